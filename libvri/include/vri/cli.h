@@ -1,0 +1,38 @@
+#pragma once
+// What every tool's main() shares: one-line errors and exit codes.
+#include <exception>
+#include <iostream>
+#include <string>
+#include <string_view>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "vri/error.h"
+
+namespace vri {
+
+// Exit codes shared by all tools (vri-diff adds its own comparison codes, in the spirit of idiff).
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitUsage = 64;  // bad argument (CLI11 parse errors use their own code, also non-zero)
+inline constexpr int kExitError = 1;   // bad input file, failed computation
+
+// "x,y,z" -> vector; throws vri::Error naming `what` unless there are exactly three finite numbers.
+glm::dvec3 parseVec3(const std::string& text, const std::string& what);
+// "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive integers.
+glm::ivec2 parseSize(const std::string& text, const std::string& what);
+
+// Runs body() and turns an escaping exception into the single line "<tool>: error: <what>".
+template <class Body>
+int guardedMain(std::string_view tool, Body&& body) {
+    try {
+        return body();
+    } catch (const Error& e) {
+        std::cerr << tool << ": error: " << e.what() << '\n';
+    } catch (const std::exception& e) {
+        std::cerr << tool << ": error: " << e.what() << '\n';
+    }
+    return kExitError;
+}
+
+}  // namespace vri

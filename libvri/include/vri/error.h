@@ -1,0 +1,14 @@
+#pragma once
+// One exception type for every user-facing failure. Its message is the one line a tool prints:
+// it names the file, field or argument and says what was expected.
+#include <stdexcept>
+#include <string>
+
+namespace vri {
+
+class Error : public std::runtime_error {
+public:
+    explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+}  // namespace vri

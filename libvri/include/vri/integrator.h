@@ -1,0 +1,49 @@
+#pragma once
+// Front-to-back accumulation of the emission-absorption integral from point samples.
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "vri/transfer_function.h"
+
+namespace vri {
+
+enum class Integrator {
+    // Paper A eq. (5)/(6): I = sum_i g_i dx prod_{j<i} exp(-tau_j dx), the Riemann sum of the
+    // outer integral with the inner one summed over the samples before i.
+    Riemann,
+    // Opacity-corrected compositing: each sample stands for a segment of constant scalar, integrated
+    // exactly: I += T g (1 - exp(-tau dx)) / tau, which is C alpha with alpha = 1 - exp(-tau dx)
+    // when g = C tau.
+    Composite,
+};
+
+std::string_view integratorName(Integrator i);  // "riemann", "composite"
+Integrator parseIntegrator(std::string_view name, const std::string& what);
+
+template <class Real>
+struct RayAccumulator {
+    Real r = 0, g = 0, b = 0;
+    Real transparency = 1;  // exp(-optical depth so far)
+
+    void add(Integrator integrator, EmissionModel emission, const TransferFunctionSample<Real>& v, Real dx) {
+        const Real attenuation = std::exp(-v.tau * dx);
+        Real weight;  // multiplies the colour
+        if (integrator == Integrator::Riemann) {
+            weight = emission == EmissionModel::ColourTimesExtinction ? v.tau * dx : dx;
+        } else {
+            const Real alpha = -std::expm1(-v.tau * dx);
+            weight = emission == EmissionModel::ColourTimesExtinction ? alpha
+                     : v.tau > Real(0)                                 ? alpha / v.tau
+                                                                       : dx;
+        }
+        const Real w = transparency * weight;
+        r += w * v.r;
+        g += w * v.g;
+        b += w * v.b;
+        transparency *= attenuation;
+    }
+    Real alpha() const { return Real(1) - transparency; }
+};
+
+}  // namespace vri

@@ -1,0 +1,48 @@
+#include "vri/cli.h"
+
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+namespace vri {
+
+namespace {
+
+std::vector<std::string_view> split(std::string_view text, char sep) {
+    std::vector<std::string_view> parts;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= text.size(); ++i)
+        if (i == text.size() || text[i] == sep) {
+            parts.push_back(text.substr(start, i - start));
+            start = i + 1;
+        }
+    return parts;
+}
+
+template <class T>
+bool parseNumber(std::string_view s, T& value) {
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    return ec == std::errc() && end == s.data() + s.size();
+}
+
+}  // namespace
+
+glm::dvec3 parseVec3(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::dvec3 v;
+    bool ok = parts.size() == 3;
+    for (int i = 0; ok && i < 3; ++i) ok = parseNumber(parts[i], v[i]) && std::isfinite(v[i]);
+    if (!ok) throw Error(what + ": expected three numbers x,y,z, got '" + text + "'");
+    return v;
+}
+
+glm::ivec2 parseSize(const std::string& text, const std::string& what) {
+    const auto parts = split(text, 'x');
+    glm::ivec2 v;
+    bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
+    if (!ok || v.x <= 0 || v.y <= 0)
+        throw Error(what + ": expected a positive image size WIDTHxHEIGHT, got '" + text + "'");
+    return v;
+}
+
+}  // namespace vri

@@ -1,0 +1,175 @@
+// vri-render: renders one image of a volume or analytic field with the CPU raycaster.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include "vri/analytic_field.h"
+#include "vri/atomic_file.h"
+#include "vri/cli.h"
+#include "vri/hash.h"
+#include "vri/image_io.h"
+#include "vri/provenance.h"
+#include "vri/render.h"
+#include "vri/render_json.h"
+#include "vri/volume_io.h"
+
+namespace fs = std::filesystem;
+
+int main(int argc, char** argv) {
+    CLI::App app{"Render a volume (or an analytic field) with the CPU raycaster: float RGBA OpenEXR, "
+                 "an optional 8-bit PNG preview and a JSON stats file."};
+    app.footer(R"(Examples:
+  vri-render --volume bonsai_256x256x256_uint8.raw --tf experiments/tf/bonsai.yaml \
+             --size 800x600 --step 0.5 -o bonsai.exr --png bonsai.png --stats bonsai.json
+  vri-render --field linear --field-dims 5,5,5 --convention node --tf experiments/tf/paper-a-linear.yaml \
+             --placement entry-exit-corner --rate 1 --eye -9,0,0 --target 0,0,0 --fov 30 -o corner.exr
+
+Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency.)");
+
+    std::string volumePath, field, tfPath, output, pngPath, statsPath;
+    std::string dims, type, byteOrder = "little", spacing, range, fieldDims = "5,5,5";
+    std::string convention = "cell", size = "800x600", eye, target, up = "0,1,0";
+    std::string method = "riemann", placement = "entry", precision = "double";
+    double fov = 30.0, rate = 0.0, step = 0.0, ert = 0.0, exposure = 1.0;
+    std::string background = "0,0,0";
+    bool fieldAsGrid = false, noSkip = false, invert = false, quiet = false;
+    int threads = 0;
+
+    auto* input = app.add_option_group("input", "what to render (one of)");
+    input->add_option("--volume", volumePath, "volume file: .raw, .nhdr, .dat, .vdb");
+    input->add_option("--field", field, "analytic field: linear (paper A's f = (x + 1.5) / 3)");
+    input->require_option(1);
+    app.add_option("--dims", dims, "raw volumes: X,Y,Z (else taken from NAME_XxYxZ_TYPE.raw)");
+    app.add_option("--type", type, "raw volumes: uint8, uint16 or float32");
+    app.add_option("--byte-order", byteOrder, "raw volumes: little or big")->capture_default_str();
+    app.add_option("--spacing", spacing, "raw volumes: voxel spacing X,Y,Z (default 1,1,1)");
+    app.add_option("--range", range, "raw value range lo,hi that maps to s = 0..1 (default: the type's range, "
+                                     "or min..max for float)");
+    app.add_option("--field-dims", fieldDims, "the grid an analytic field stands for, X,Y,Z")->capture_default_str();
+    app.add_flag("--field-as-grid", fieldAsGrid, "sample the analytic field onto that grid and render the grid");
+    app.add_option("--convention", convention, "grid convention: cell (texture style) or node (dim - 1)")
+        ->capture_default_str();
+    app.add_option("--tf", tfPath, "transfer function YAML")->required();
+    app.add_option("--size", size, "image size WIDTHxHEIGHT")->capture_default_str();
+    app.add_option("--eye", eye, "camera position X,Y,Z (default: in front of the box, +z)");
+    app.add_option("--target", target, "point looked at X,Y,Z (default: box centre)");
+    app.add_option("--up", up, "up vector X,Y,Z")->capture_default_str();
+    app.add_option("--fov", fov, "vertical field of view, degrees")->capture_default_str();
+    app.add_option("--method", method, "riemann (paper A eq. 5) or composite (opacity-corrected)")
+        ->capture_default_str();
+    app.add_option("--placement", placement, "eye, entry, entry-exit or entry-exit-corner (paper A)")
+        ->capture_default_str();
+    auto* stepOpt = app.add_option("--step", step, "step h in voxels (default 0.5)");
+    app.add_option("--rate", rate, "sampling rate in samples per voxel (= 1 / step)")->excludes(stepOpt);
+    app.add_option("--precision", precision, "double or float")->capture_default_str();
+    app.add_option("--early-termination", ert, "stop rays whose transparency drops below this (0 = off)")
+        ->capture_default_str();
+    app.add_flag("--no-skip-empty", noSkip, "march through empty space too (the image does not change)");
+    app.add_option("--threads", threads, "worker threads (default: all cores)");
+    app.add_option("-o,--output", output, "output image (.exr: float RGBA)")->required();
+    app.add_option("--png", pngPath, "8-bit preview PNG");
+    app.add_option("--png-exposure", exposure, "preview: multiply colours by this")->capture_default_str();
+    app.add_flag("--png-invert", invert, "preview: 1 - colour (darker = higher intensity)");
+    app.add_option("--background", background, "preview: background colour R,G,B")->capture_default_str();
+    app.add_option("--stats", statsPath, "write statistics and provenance as JSON ('-' for stdout)");
+    app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+    CLI11_PARSE(app, argc, argv);
+
+    return vri::guardedMain("vri-render", [&] {
+        std::optional<tbb::global_control> threadLimit;
+        if (threads < 0) throw vri::Error("--threads: expected a positive count, got " + std::to_string(threads));
+        if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
+
+        const glm::ivec2 imageSize = vri::parseSize(size, "--size");
+        const vri::GridConvention conv = vri::parseGridConvention(convention, "--convention");
+        vri::RenderOptions options;
+        options.integrator = vri::parseIntegrator(method, "--method");
+        options.placement = vri::parsePlacement(placement, "--placement");
+        options.precision = vri::parsePrecision(precision, "--precision");
+        if (step != 0.0 && !(step > 0.0)) throw vri::Error("--step: must be > 0, got " + std::to_string(step));
+        if (rate != 0.0 && !(rate > 0.0)) throw vri::Error("--rate: must be > 0, got " + std::to_string(rate));
+        options.samplingRate = rate > 0 ? rate : 1.0 / (step > 0 ? step : 0.5);
+        options.earlyTermination = ert;
+        options.skipEmptySpace = !noSkip;
+        options.progress = !quiet;
+
+        nlohmann::json inputs = nlohmann::json::array();
+        std::shared_ptr<vri::Volume> volume;
+        std::optional<vri::LinearField> linear;
+        if (!volumePath.empty()) {
+            std::optional<vri::RawLayout> layout;
+            if (!dims.empty() || !type.empty()) {
+                if (dims.empty() || type.empty()) throw vri::Error("--dims and --type go together for raw volumes");
+                layout = vri::RawLayout{};
+                layout->dims = glm::ivec3(vri::parseVec3(dims, "--dims"));
+                layout->type = vri::parseVoxelType(type, "--type");
+                if (byteOrder != "little" && byteOrder != "big")
+                    throw vri::Error("--byte-order: expected little or big, got '" + byteOrder + "'");
+                layout->order = byteOrder == "big" ? vri::ByteOrder::Big : vri::ByteOrder::Little;
+                if (!spacing.empty()) layout->spacing = vri::parseVec3(spacing, "--spacing");
+            }
+            volume = std::make_shared<vri::Volume>(vri::readVolume(volumePath, layout));
+            inputs.push_back({{"path", volumePath}, {"sha512", vri::sha512File(volumePath)}});
+        } else {
+            if (field != "linear") throw vri::Error("--field: unknown analytic field '" + field + "' (expected linear)");
+            linear.emplace();
+            linear->dims = glm::ivec3(vri::parseVec3(fieldDims, "--field-dims"));
+            if (glm::any(glm::lessThan(linear->dims, glm::ivec3(1))))
+                throw vri::Error("--field-dims: every dimension must be at least 1");
+            if (fieldAsGrid) {
+                volume = std::make_shared<vri::Volume>(vri::sampleOntoGrid(*linear, conv));
+                linear.reset();
+            }
+        }
+        if (!range.empty()) {
+            const glm::dvec3 r = vri::parseVec3(range + ",0", "--range");
+            if (!(r.y > r.x)) throw vri::Error("--range: expected lo,hi with hi > lo, got '" + range + "'");
+            if (!volume) throw vri::Error("--range applies to volumes only");
+            volume->range = vri::ValueRange{r.x, r.y};
+        }
+        const vri::Scene scene{volume, linear, conv, vri::loadTransferFunction(tfPath)};
+        inputs.push_back({{"path", tfPath}, {"sha512", vri::sha512File(tfPath)}});
+
+        vri::CameraSpec cam = vri::framingCamera(scene.box(), imageSize.x, imageSize.y, fov);
+        if (!target.empty()) cam.target = vri::parseVec3(target, "--target");
+        if (!eye.empty()) cam.eye = vri::parseVec3(eye, "--eye");
+        cam.up = vri::parseVec3(up, "--up");
+        const vri::Camera camera(cam);
+
+        vri::RenderStats stats;
+        const vri::Image image = vri::render(scene, camera, options, &stats);
+
+        nlohmann::json record = {{"tool", "vri-render"},
+                                 {"command", vri::commandLine(argc, argv)},
+                                 {"time_utc", vri::utcTimestamp()},
+                                 {"build", vri::buildInfo()},
+                                 {"machine", vri::machineInfo()},
+                                 {"inputs", inputs},
+                                 {"scene", vri::describeScene(scene)},
+                                 {"transfer_function", vri::toJson(scene.transferFunction)},
+                                 {"camera", vri::toJson(cam)},
+                                 {"options", vri::toJson(options)},
+                                 {"stats", vri::toJson(stats)}};
+        vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
+                                      {"vri:options", record["options"].dump()},
+                                      {"vri:scene", record["scene"].dump()}});
+        if (!pngPath.empty()) {
+            vri::PngOptions png;
+            png.exposure = static_cast<float>(exposure);
+            png.invert = invert;
+            const glm::dvec3 bg = vri::parseVec3(background, "--background");
+            png.background = {float(bg.x), float(bg.y), float(bg.z)};
+            vri::writePng(pngPath, image, png);
+        }
+        if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
+        if (!quiet)
+            std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated
+                      << " samples in " << stats.seconds << " s on " << stats.threads << " threads\n";
+        return vri::kExitOk;
+    });
+}
