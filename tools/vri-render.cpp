@@ -14,9 +14,9 @@
 #include "vri/hash.h"
 #include "vri/image_io.h"
 #include "vri/provenance.h"
+#include "vri/raw_input_options.h"
 #include "vri/render.h"
 #include "vri/render_json.h"
-#include "vri/volume_io.h"
 
 namespace fs = std::filesystem;
 
@@ -32,7 +32,8 @@ int main(int argc, char** argv) {
 Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency.)");
 
     std::string volumePath, field, tfPath, output, pngPath, statsPath;
-    std::string dims, type, byteOrder = "little", spacing, range, fieldDims = "5,5,5";
+    std::string range, fieldDims = "5,5,5";
+    vri::RawInputOptions raw;
     std::string convention = "cell", size = "800x600", eye, target, up = "0,1,0";
     std::string method = "riemann", placement = "entry", precision = "double";
     double fov = 30.0, rate = 0.0, step = 0.0, ert = 0.0, exposure = 1.0;
@@ -44,10 +45,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     input->add_option("--volume", volumePath, "volume file: .raw, .nhdr, .dat, .vdb");
     input->add_option("--field", field, "analytic field: linear (paper A's f = (x + 1.5) / 3)");
     input->require_option(1);
-    app.add_option("--dims", dims, "raw volumes: X,Y,Z (else taken from NAME_XxYxZ_TYPE.raw)");
-    app.add_option("--type", type, "raw volumes: uint8, uint16 or float32");
-    app.add_option("--byte-order", byteOrder, "raw volumes: little or big")->capture_default_str();
-    app.add_option("--spacing", spacing, "raw volumes: voxel spacing X,Y,Z (default 1,1,1)");
+    raw.addTo(app);
     app.add_option("--range", range, "raw value range lo,hi that maps to s = 0..1 (default: the type's range, "
                                      "or min..max for float)");
     app.add_option("--field-dims", fieldDims, "the grid an analytic field stands for, X,Y,Z")->capture_default_str();
@@ -65,7 +63,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     app.add_option("--placement", placement, "eye, entry, entry-exit or entry-exit-corner (paper A)")
         ->capture_default_str();
     auto* stepOpt = app.add_option("--step", step, "step h in voxels (default 0.5)");
-    app.add_option("--rate", rate, "sampling rate in samples per voxel (= 1 / step)")->excludes(stepOpt);
+    auto* rateOpt = app.add_option("--rate", rate, "sampling rate in samples per voxel (= 1 / step)")->excludes(stepOpt);
     app.add_option("--precision", precision, "double or float")->capture_default_str();
     app.add_option("--early-termination", ert, "stop rays whose transparency drops below this (0 = off)")
         ->capture_default_str();
@@ -78,7 +76,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     app.add_option("--background", background, "preview: background colour R,G,B")->capture_default_str();
     app.add_option("--stats", statsPath, "write statistics and provenance as JSON ('-' for stdout)");
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
-    CLI11_PARSE(app, argc, argv);
+    if (auto exitCode = vri::parseArguments(app, "vri-render", argc, argv)) return *exitCode;
 
     return vri::guardedMain("vri-render", [&] {
         std::optional<tbb::global_control> threadLimit;
@@ -91,9 +89,9 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         options.integrator = vri::parseIntegrator(method, "--method");
         options.placement = vri::parsePlacement(placement, "--placement");
         options.precision = vri::parsePrecision(precision, "--precision");
-        if (step != 0.0 && !(step > 0.0)) throw vri::Error("--step: must be > 0, got " + std::to_string(step));
-        if (rate != 0.0 && !(rate > 0.0)) throw vri::Error("--rate: must be > 0, got " + std::to_string(rate));
-        options.samplingRate = rate > 0 ? rate : 1.0 / (step > 0 ? step : 0.5);
+        if (*stepOpt && !(step > 0.0)) throw vri::Error("--step: must be > 0 voxels, got " + std::to_string(step));
+        if (*rateOpt && !(rate > 0.0)) throw vri::Error("--rate: must be > 0 samples per voxel, got " + std::to_string(rate));
+        options.samplingRate = *rateOpt ? rate : 1.0 / (*stepOpt ? step : 0.5);
         options.earlyTermination = ert;
         options.skipEmptySpace = !noSkip;
         options.progress = !quiet;
@@ -102,18 +100,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         std::shared_ptr<vri::Volume> volume;
         std::optional<vri::LinearField> linear;
         if (!volumePath.empty()) {
-            std::optional<vri::RawLayout> layout;
-            if (!dims.empty() || !type.empty()) {
-                if (dims.empty() || type.empty()) throw vri::Error("--dims and --type go together for raw volumes");
-                layout = vri::RawLayout{};
-                layout->dims = glm::ivec3(vri::parseVec3(dims, "--dims"));
-                layout->type = vri::parseVoxelType(type, "--type");
-                if (byteOrder != "little" && byteOrder != "big")
-                    throw vri::Error("--byte-order: expected little or big, got '" + byteOrder + "'");
-                layout->order = byteOrder == "big" ? vri::ByteOrder::Big : vri::ByteOrder::Little;
-                if (!spacing.empty()) layout->spacing = vri::parseVec3(spacing, "--spacing");
-            }
-            volume = std::make_shared<vri::Volume>(vri::readVolume(volumePath, layout));
+            volume = std::make_shared<vri::Volume>(raw.read(volumePath));
             inputs.push_back({{"path", volumePath}, {"sha512", vri::sha512File(volumePath)}});
         } else {
             if (field != "linear") throw vri::Error("--field: unknown analytic field '" + field + "' (expected linear)");

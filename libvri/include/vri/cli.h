@@ -2,9 +2,11 @@
 // What every tool's main() shares: one-line errors and exit codes.
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <string_view>
 
+#include <CLI/CLI.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -21,6 +23,22 @@ inline constexpr int kExitError = 1;   // bad input file, failed computation
 glm::dvec3 parseVec3(const std::string& text, const std::string& what);
 // "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive integers.
 glm::ivec2 parseSize(const std::string& text, const std::string& what);
+
+// Parses the command line; a usage error becomes the one line "<tool>: error: <what>"
+// (exit code CLI11's), --help prints the help (exit 0). Returns the exit code to leave with, if any.
+inline std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << tool << ": error: " << e.what() << " (see --help)\n";
+        return e.get_exit_code();
+    }
+    return std::nullopt;
+}
 
 // Runs body() and turns an escaping exception into the single line "<tool>: error: <what>".
 template <class Body>

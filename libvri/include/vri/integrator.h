@@ -27,6 +27,9 @@ struct RayAccumulator {
     Real transparency = 1;  // exp(-optical depth so far)
 
     void add(Integrator integrator, EmissionModel emission, const TransferFunctionSample<Real>& v, Real dx) {
+        // A sample without extinction or emission would add exactly 0 and multiply by exactly 1:
+        // leaving it out saves the exponential and changes no bit.
+        if (v.tau == Real(0) && emission == EmissionModel::ColourTimesExtinction) return;
         const Real attenuation = std::exp(-v.tau * dx);
         Real weight;  // multiplies the colour
         if (integrator == Integrator::Riemann) {

@@ -1,0 +1,28 @@
+#pragma once
+// What a result's manifest records about how it was made: the machine, the build, the exact
+// command and when. Include <nlohmann/json.hpp> where the results are used.
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace vri {
+
+// {"cpu_model", "logical_cores", "usable_cores" (this process's CPU affinity), "memory_bytes",
+//  "os", "kernel", "hostname"}; a field that cannot be found reads "unknown" (or 0).
+nlohmann::json machineInfo();
+
+// {"vri_version", "git_commit" (at CMake configure time), "compiler", "openimageio", "openvdb", "tbb"}.
+nlohmann::json buildInfo();
+
+// {"argv": [...], "shell": a command line that a POSIX shell reads back into the same argv}.
+nlohmann::json commandLine(int argc, char** argv);
+
+// `word` as one POSIX shell word: unchanged when it holds only characters no shell treats
+// specially, else in single quotes.
+std::string shellQuote(std::string_view word);
+
+// Now, UTC, ISO 8601 to the second: "2025-01-31T23:59:59Z".
+std::string utcTimestamp();
+
+}  // namespace vri

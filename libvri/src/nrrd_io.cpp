@@ -1,0 +1,208 @@
+// NRRD (teem.sourceforge.net/nrrd/format.html): 3D scalar volumes with raw encoding, detached
+// (.nhdr + data file) or attached (.nrrd, data after the header's blank line).
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "vri/atomic_file.h"
+#include "vri/error.h"
+#include "vri/volume_io.h"
+#include "volume_formats.h"
+
+namespace vri::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The header up to its blank line, field names lower-cased. Key/value pairs ("key:=value") are
+// kept apart: they are free-form, and vri stores its normalisation range in one.
+struct NrrdHeader {
+    struct Field {
+        std::string value;
+        int line = 0;
+    };
+    std::map<std::string, Field> fields;
+    std::map<std::string, Field> keyValues;
+    std::optional<std::uintmax_t> dataOffset;  // attached data start right after the blank line
+};
+
+NrrdHeader parseHeader(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    if (!std::getline(in, line) || line.size() < 8 || line.compare(0, 7, "NRRD000") != 0 ||
+        !std::isdigit(static_cast<unsigned char>(line[7])))
+        throw Error(path.string() + ": not a NRRD file (the first line must be NRRD000X)");
+
+    NrrdHeader header;
+    for (int lineNumber = 2; std::getline(in, line); ++lineNumber) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.empty()) {
+            header.dataOffset = static_cast<std::uintmax_t>(in.tellg());
+            break;
+        }
+        if (line.front() == '#') continue;
+        const std::size_t keyValue = line.find(":=");
+        const std::size_t field = line.find(": ");
+        if (keyValue != std::string::npos && keyValue < field) {
+            header.keyValues[std::string(trim(line.substr(0, keyValue)))] = {
+                std::string(trim(line.substr(keyValue + 2))), lineNumber};
+        } else if (field != std::string::npos) {
+            header.fields[toLower(trim(line.substr(0, field)))] = {std::string(trim(line.substr(field + 2))),
+                                                                    lineNumber};
+        } else {
+            throw Error(path.string() + ":" + std::to_string(lineNumber) + ": expected 'field: value', got '" +
+                        line + "'");
+        }
+    }
+    return header;
+}
+
+// "(1,0,0) (0,2,0) (0,0,3)" → its numbers.
+std::vector<double> parseVectors(const std::string& text, std::size_t count, const std::string& where) {
+    std::string numbers = text;
+    std::replace_if(numbers.begin(), numbers.end(), [](char c) { return c == '(' || c == ')' || c == ','; }, ' ');
+    return parseNumbers(numbers, count, where);
+}
+
+}  // namespace
+
+Volume readNrrd(const fs::path& path) {
+    requireRegularFile(path);
+    const NrrdHeader header = parseHeader(path);
+    const auto where = [&](const std::string& name) {
+        const auto it = header.fields.find(name);
+        return path.string() + ":" + (it == header.fields.end() ? "" : std::to_string(it->second.line) + ":") +
+               " " + name;
+    };
+    const auto optionalField = [&](const std::string& name) -> const std::string* {
+        const auto it = header.fields.find(name);
+        return it == header.fields.end() ? nullptr : &it->second.value;
+    };
+    const auto requiredField = [&](const std::string& name) -> const std::string& {
+        if (const std::string* value = optionalField(name)) return *value;
+        throw Error(path.string() + ": required field '" + name + "' is missing");
+    };
+
+    if (requiredField("dimension") != "3")
+        throw Error(where("dimension") + ": must be 3 (a scalar volume), got " + requiredField("dimension"));
+
+    RawLayout layout;
+    std::string typeName = toLower(requiredField("type"));
+    if (typeName == "unsigned short int") typeName = "unsigned short";
+    layout.type = parseVoxelType(typeName, where("type"));
+
+    const std::vector<double> sizes = parseNumbers(requiredField("sizes"), 3, where("sizes"));
+    for (int axis = 0; axis < 3; ++axis) {
+        if (sizes[axis] < 1 || sizes[axis] != static_cast<int>(sizes[axis]))
+            throw Error(where("sizes") + ": sizes must be positive integers");
+        layout.dims[axis] = static_cast<int>(sizes[axis]);
+    }
+
+    const std::string encoding = toLower(requiredField("encoding"));
+    if (encoding != "raw")
+        throw Error(where("encoding") + ": '" + encoding + "' is not supported (only raw)");
+
+    if (const std::string* endian = optionalField("endian")) {
+        const std::string order = toLower(*endian);
+        if (order != "little" && order != "big")
+            throw Error(where("endian") + ": expected little or big, got '" + *endian + "'");
+        layout.order = order == "little" ? ByteOrder::Little : ByteOrder::Big;
+    } else if (voxelSize(layout.type) > 1) {
+        throw Error(path.string() + ": required field 'endian' is missing (" +
+                    std::string(voxelTypeName(layout.type)) + " voxels)");
+    }
+
+    if (const std::string* directions = optionalField("space directions")) {
+        const std::vector<double> m = parseVectors(*directions, 9, where("space directions"));
+        for (int axis = 0; axis < 3; ++axis)
+            for (int component = 0; component < 3; ++component)
+                if ((component == axis) != (m[axis * 3 + component] != 0.0) || m[axis * 3 + axis] < 0.0)
+                    throw Error(where("space directions") +
+                                ": only axis-aligned grids with positive directions are supported, got '" +
+                                *directions + "'");
+        layout.spacing = {m[0], m[4], m[8]};
+    } else if (const std::string* spacings = optionalField("spacings")) {
+        const std::vector<double> s = parseNumbers(*spacings, 3, where("spacings"));
+        layout.spacing = {s[0], s[1], s[2]};
+    }
+
+    if (const std::string* lineSkip = optionalField("line skip"); lineSkip && *lineSkip != "0")
+        throw Error(where("line skip") + ": skipping lines is not supported");
+    long long byteSkip = 0;
+    if (const std::string* skip = optionalField("byte skip")) {
+        const double value = parseNumbers(*skip, 1, where("byte skip"))[0];
+        if (value < -1 || value != static_cast<long long>(value))
+            throw Error(where("byte skip") + ": expected -1 or a byte count, got '" + *skip + "'");
+        byteSkip = static_cast<long long>(value);
+    }
+
+    const std::string* dataFile = optionalField("data file");
+    if (!dataFile) dataFile = optionalField("datafile");
+    fs::path dataPath = path;
+    if (dataFile) {
+        if (dataFile->find('%') != std::string::npos || dataFile->find(' ') != std::string::npos ||
+            dataFile->starts_with("LIST"))
+            throw Error(where(optionalField("data file") ? "data file" : "datafile") +
+                        ": only a single data file is supported, got '" + *dataFile + "'");
+        dataPath = fs::path(*dataFile).is_absolute() ? fs::path(*dataFile) : path.parent_path() / *dataFile;
+    } else if (!header.dataOffset) {
+        throw Error(path.string() + ": no 'data file' field and no data after the header");
+    }
+
+    Volume volume;
+    try {
+        requireRegularFile(dataPath);
+        if (byteSkip == -1) {  // the data are the last bytes of the file
+            const std::uintmax_t voxelBytes = static_cast<std::uintmax_t>(layout.dims.x) * layout.dims.y *
+                                              layout.dims.z * voxelSize(layout.type);
+            layout.headerBytes = fs::file_size(dataPath) - std::min(fs::file_size(dataPath), voxelBytes);
+        } else {
+            layout.headerBytes = (dataFile ? 0 : *header.dataOffset) + static_cast<std::uintmax_t>(byteSkip);
+        }
+        volume = readRaw(dataPath, layout);
+    } catch (const Error& e) {
+        // The data file's own message, prefixed by the header that sent us there.
+        if (dataPath == path) throw;
+        throw Error(path.string() + ": data file " + e.what());
+    }
+
+    if (const std::string* origin = optionalField("space origin")) {
+        const std::vector<double> o = parseVectors(*origin, 3, where("space origin"));
+        volume.origin = {o[0], o[1], o[2]};
+    }
+    if (const auto range = header.keyValues.find("vri_range"); range != header.keyValues.end()) {
+        const std::vector<double> r = parseNumbers(range->second.value, 2,
+                                                   path.string() + ":" + std::to_string(range->second.line) +
+                                                       ": vri_range");
+        volume.range = ValueRange{r[0], r[1]};
+    }
+    return volume;
+}
+
+void writeNhdr(const fs::path& path, const Volume& volume) {
+    const fs::path rawPath = rawFileBeside(path);
+    const std::string nrrdType = volume.type == VoxelType::Float32 ? "float" : std::string(voxelTypeName(volume.type));
+    const glm::dvec3 s = volume.spacing;
+    const glm::dvec3 o = volume.origin;
+    const auto n = [](double value) { return formatNumber(value); };
+    std::string text = "NRRD0004\n"
+                       "# written by vri\n"
+                       "type: " + nrrdType + "\n"
+                       "dimension: 3\n"
+                       "sizes: " + std::to_string(volume.dims.x) + " " + std::to_string(volume.dims.y) + " " +
+                       std::to_string(volume.dims.z) + "\n"
+                       "space dimension: 3\n"
+                       "space directions: (" + n(s.x) + ",0,0) (0," + n(s.y) + ",0) (0,0," + n(s.z) + ")\n"
+                       "space origin: (" + n(o.x) + "," + n(o.y) + "," + n(o.z) + ")\n"
+                       "endian: little\n"
+                       "encoding: raw\n"
+                       "data file: " + rawPath.filename().string() + "\n";
+    if (volume.range) text += "vri_range:=" + n(volume.range->lo) + " " + n(volume.range->hi) + "\n";
+    writeRaw(rawPath, volume, ByteOrder::Little);
+    writeTextFile(path, text);
+}
+
+}  // namespace vri::detail

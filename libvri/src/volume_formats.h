@@ -1,0 +1,31 @@
+#pragma once
+// Private to the volume readers/writers: the per-format entry points that readVolume and
+// writeVolume dispatch to, and the small text helpers the header formats share.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vri/volume.h"
+
+namespace vri::detail {
+
+Volume readNrrd(const std::filesystem::path& path);  // .nhdr (detached) or .nrrd (attached or detached)
+void writeNhdr(const std::filesystem::path& path, const Volume& volume);
+Volume readInviwoDat(const std::filesystem::path& path);
+void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);
+
+// Throws "PATH: no such file" (or "is not a regular file") before a reader opens it.
+void requireRegularFile(const std::filesystem::path& path);
+
+// The raw file written beside a header file: same directory and stem, extension .raw.
+std::filesystem::path rawFileBeside(const std::filesystem::path& headerPath);
+
+std::string_view trim(std::string_view text);
+std::string toLower(std::string_view text);
+// Exactly `count` whitespace-separated numbers; throws Error("<where>: ...") otherwise.
+std::vector<double> parseNumbers(std::string_view text, std::size_t count, const std::string& where);
+// Shortest text that reads back as the same double.
+std::string formatNumber(double value);
+
+}  // namespace vri::detail

@@ -1,0 +1,207 @@
+// Format dispatch, headerless raw files and the text helpers shared by the header formats.
+#include "vri/volume_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "vri/atomic_file.h"
+#include "vri/error.h"
+#include "volume_formats.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string dimsText(glm::ivec3 dims) {
+    return std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z);
+}
+
+void reverseEachVoxel(std::vector<std::byte>& bytes, std::size_t voxelBytes) {
+    if (voxelBytes < 2) return;
+    for (auto it = bytes.begin(); it != bytes.end(); it += static_cast<std::ptrdiff_t>(voxelBytes))
+        std::reverse(it, it + static_cast<std::ptrdiff_t>(voxelBytes));
+}
+
+void requireValidLayout(const fs::path& path, const RawLayout& layout) {
+    const glm::ivec3 d = layout.dims;
+    if (d.x < 1 || d.y < 1 || d.z < 1)
+        throw Error(path.string() + ": dimensions must be at least 1x1x1, got " + dimsText(d));
+    const glm::dvec3 s = layout.spacing;
+    for (int axis = 0; axis < 3; ++axis)
+        if (!(s[axis] > 0.0) || !std::isfinite(s[axis]))
+            throw Error(path.string() + ": spacing must be positive and finite, got " + detail::formatNumber(s.x) +
+                        " " + detail::formatNumber(s.y) + " " + detail::formatNumber(s.z));
+}
+
+std::optional<glm::ivec3> parseDimsToken(std::string_view token) {
+    glm::ivec3 dims;
+    for (int axis = 0; axis < 3; ++axis) {
+        const std::size_t end = axis < 2 ? token.find('x') : token.size();
+        if (end == std::string_view::npos || end == 0) return std::nullopt;
+        const auto [ptr, ec] = std::from_chars(token.data(), token.data() + end, dims[axis]);
+        if (ec != std::errc{} || ptr != token.data() + end || dims[axis] < 1) return std::nullopt;
+        token.remove_prefix(std::min(end + 1, token.size()));
+    }
+    return dims;
+}
+
+}  // namespace
+
+namespace detail {
+
+void requireRegularFile(const fs::path& path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) throw Error(path.string() + ": no such file");
+    if (!fs::is_regular_file(status)) throw Error(path.string() + ": not a regular file");
+}
+
+fs::path rawFileBeside(const fs::path& headerPath) {
+    fs::path raw = headerPath;
+    return raw.replace_extension(".raw");
+}
+
+std::string_view trim(std::string_view text) {
+    const auto isSpace = [](unsigned char c) { return std::isspace(c) != 0; };
+    while (!text.empty() && isSpace(text.front())) text.remove_prefix(1);
+    while (!text.empty() && isSpace(text.back())) text.remove_suffix(1);
+    return text;
+}
+
+std::string toLower(std::string_view text) {
+    std::string lower(text);
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    return lower;
+}
+
+std::vector<double> parseNumbers(std::string_view text, std::size_t count, const std::string& where) {
+    std::vector<double> numbers;
+    text = trim(text);
+    while (!text.empty()) {
+        const std::size_t end = std::min(text.find_first_of(" \t"), text.size());
+        double value = 0.0;
+        const auto [ptr, ec] = std::from_chars(text.data(), text.data() + end, value);
+        if (ec != std::errc{} || ptr != text.data() + end || !std::isfinite(value))
+            throw Error(where + ": '" + std::string(text.substr(0, end)) + "' is not a finite number");
+        numbers.push_back(value);
+        text = trim(text.substr(end));
+    }
+    if (numbers.size() != count)
+        throw Error(where + ": expected " + std::to_string(count) + " numbers, got " + std::to_string(numbers.size()));
+    return numbers;
+}
+
+std::string formatNumber(double value) {
+    char buffer[32];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, end);
+}
+
+}  // namespace detail
+
+Volume readRaw(const fs::path& path, const RawLayout& layout) {
+    detail::requireRegularFile(path);
+    requireValidLayout(path, layout);
+    const std::string layoutText = dimsText(layout.dims) + " " + std::string(voxelTypeName(layout.type));
+
+    // Checked before allocating, so that a mistyped --dims is an error, not a huge allocation.
+    std::uintmax_t expected = voxelSize(layout.type);
+    constexpr std::uintmax_t kMax = std::numeric_limits<std::uintmax_t>::max();
+    for (int axis = 0; axis < 3; ++axis) {
+        if (expected > kMax / static_cast<std::uintmax_t>(layout.dims[axis]))
+            throw Error(path.string() + ": " + layoutText + " is too large");
+        expected *= static_cast<std::uintmax_t>(layout.dims[axis]);
+    }
+    if (expected > kMax - layout.headerBytes) throw Error(path.string() + ": header of " +
+                                                          std::to_string(layout.headerBytes) + " bytes is too large");
+    expected += layout.headerBytes;
+    const std::uintmax_t actual = fs::file_size(path);
+    if (actual != expected)
+        throw Error(path.string() + ": file is " + std::to_string(actual) + " bytes, expected " +
+                    std::to_string(expected) + " for " + layoutText +
+                    (layout.headerBytes > 0 ? " after a " + std::to_string(layout.headerBytes) + "-byte header" : ""));
+
+    Volume volume(layout.dims, layout.type);
+    volume.spacing = layout.spacing;
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(layout.headerBytes));
+    in.read(reinterpret_cast<char*>(volume.bytes.data()), static_cast<std::streamsize>(volume.bytes.size()));
+    if (!in) throw Error(path.string() + ": read failed");
+    if (layout.order != nativeByteOrder()) reverseEachVoxel(volume.bytes, voxelSize(layout.type));
+    return volume;
+}
+
+void writeRaw(const fs::path& path, const Volume& volume, ByteOrder order) {
+    if (volume.bytes.size() != volume.byteCount())
+        throw Error(path.string() + ": volume holds " + std::to_string(volume.bytes.size()) + " bytes, expected " +
+                    std::to_string(volume.byteCount()) + " for " + dimsText(volume.dims));
+    writeAtomically(path, [&](const fs::path& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        const auto write = [&](const std::vector<std::byte>& bytes) {
+            out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        };
+        if (order == nativeByteOrder() || voxelSize(volume.type) == 1) {
+            write(volume.bytes);
+        } else {
+            std::vector<std::byte> swapped = volume.bytes;
+            reverseEachVoxel(swapped, voxelSize(volume.type));
+            write(swapped);
+        }
+        out.close();
+        if (!out) throw Error(path.string() + ": cannot write");
+    });
+}
+
+std::optional<RawLayout> layoutFromFileName(const fs::path& path) {
+    const std::string stem = path.stem().string();
+    const std::size_t typeSeparator = stem.rfind('_');
+    if (typeSeparator == std::string::npos || typeSeparator == 0) return std::nullopt;
+    const std::size_t dimsSeparator = stem.rfind('_', typeSeparator - 1);
+    const std::size_t dimsBegin = dimsSeparator == std::string::npos ? 0 : dimsSeparator + 1;
+    const auto dims = parseDimsToken(std::string_view(stem).substr(dimsBegin, typeSeparator - dimsBegin));
+    if (!dims) return std::nullopt;
+    RawLayout layout;
+    layout.dims = *dims;
+    layout.type = parseVoxelType(stem.substr(typeSeparator + 1), path.string());
+    return layout;
+}
+
+Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayout) {
+    detail::requireRegularFile(path);
+    const std::string extension = detail::toLower(path.extension().string());
+    const bool describesItself = extension == ".nhdr" || extension == ".nrrd" || extension == ".dat" ||
+                                 extension == ".vdb";
+    if (describesItself && rawLayout)
+        throw Error(path.string() + ": dims and voxel type are for raw files; a " + extension +
+                    " file describes its own layout");
+    if (extension == ".nhdr" || extension == ".nrrd") return detail::readNrrd(path);
+    if (extension == ".dat") return detail::readInviwoDat(path);
+    if (extension == ".vdb") return readVdb(path);
+    if (rawLayout) return readRaw(path, *rawLayout);
+    if (const auto named = layoutFromFileName(path)) return readRaw(path, *named);
+    throw Error(path.string() + ": raw file of unknown layout: give its dims and voxel type (--dims X,Y,Z "
+                "--type uint8|uint16|float32) or name it NAME_XxYxZ_TYPE.raw");
+}
+
+void writeVolume(const fs::path& path, const Volume& volume) {
+    const std::string extension = detail::toLower(path.extension().string());
+    if (extension == ".vdb") return writeVdb(path, volume);
+    if (extension == ".nhdr") return detail::writeNhdr(path, volume);
+    if (extension == ".dat") return detail::writeInviwoDat(path, volume);
+    if (extension == ".raw") return writeRaw(path, volume);
+    throw Error(path.string() + ": cannot write '" + extension + "' files (expected .vdb, .nhdr, .dat or .raw)");
+}
+
+std::vector<fs::path> filesWrittenBy(const fs::path& path) {
+    const std::string extension = detail::toLower(path.extension().string());
+    if (extension == ".nhdr" || extension == ".dat") return {detail::rawFileBeside(path), path};
+    return {path};
+}
+
+}  // namespace vri

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian packages vri builds and runs with, if any is missing (apt-get, as root or via sudo).
+set -euo pipefail
+
+packages=(
+  cmake ninja-build g++ make pkg-config
+  libopenvdb-dev libboost-iostreams-dev libopenimageio-dev openimageio-tools
+  libyaml-cpp-dev libcli11-dev doctest-dev libtbb-dev
+  libvulkan-dev mesa-vulkan-drivers vulkan-tools glslang-tools glslang-dev
+  libglm-dev nlohmann-json3-dev gnuplot-nox
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}" >&2
+if [ "$(id -u)" -eq 0 ]; then
+  sudo=()
+elif command -v sudo >/dev/null 2>&1; then
+  sudo=(sudo)
+else
+  echo "install-deps: error: missing packages (${missing[*]}) and neither root nor sudo to install them" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

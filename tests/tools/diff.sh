@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# vri-diff end to end: statistics, outputs, and idiff's exit codes (0 pass, 1 warn, 2 fail,
+# 3 different shapes, 4 missing or unreadable file).
+set -euo pipefail
+
+command -v oiiotool >/dev/null || { echo "oiiotool not installed: skipping"; exit 77; }
+command -v python3 >/dev/null || { echo "python3 not installed: skipping"; exit 77; }
+diff_tool="$VRI_BIN/vri-diff"
+mkdir -p "$VRI_SCRATCH"
+cd "$VRI_SCRATCH"
+rm -f ./*.exr ./*.json ./*.csv ./*.txt
+
+oiiotool --pattern constant:color=0.5,0.2,0.1,1 8x8 4 -d float -o a.exr
+oiiotool --pattern constant:color=0.5,0.2,0.1,1 8x8 4 -d float -o same.exr
+# One pixel's R off by 0.25: 1 of 256 pixel-channels (0.390625 %).
+oiiotool a.exr --pattern constant:color=0.25,0,0,0 1x1 4 -d float --origin +3+2 --add -o changed.exr
+oiiotool --pattern constant:color=0.5,0.2,0.1,1 4x8 4 -d float -o small.exr
+oiiotool --pattern constant:color=0.5,0.2,0.1 8x8 3 -d float -o rgb.exr
+
+fail() { echo "FAILED: $*" >&2; exit 1; }
+
+# Runs vri-diff with the given arguments; sets rc, leaves stdout in out.txt and stderr in err.txt.
+run_diff() {
+    rc=0
+    "$diff_tool" "$@" >out.txt 2>err.txt || rc=$?
+}
+
+expect_rc() {
+    [[ $rc -eq $1 ]] || { cat out.txt err.txt >&2; fail "$2: exit $rc, expected $1"; }
+}
+
+json_value() {  # json_value FILE PYTHON-EXPRESSION-ON-j
+    python3 -c "import json, sys; j = json.load(open(sys.argv[1])); print($2)" "$1"
+}
+
+# An image against itself: pass, and every statistic zero.
+run_diff a.exr same.exr --json same.json
+expect_rc 0 "identical images"
+grep -q PASS out.txt || fail "identical images: no PASS in the summary"
+[[ $(json_value same.json 'j["pixels_counted"]') == all ]] || fail "pixels_counted is not 'all'"
+[[ $(json_value same.json 'max(c[k] for c in j["channels"] for k in ("max_abs", "mean_abs", "rmse"))') == 0.0 ]] ||
+    fail "identical images: non-zero statistics"
+[[ $(json_value same.json 'sum(a["count"] for c in j["channels"] for a in c["above"])') == 0 ]] ||
+    fail "identical images: counts above thresholds"
+[[ $(json_value same.json 'j["a"] + " " + j["b"]') == "a.exr same.exr" ]] || fail "input paths missing from JSON"
+
+# A changed pixel: failure with the default --fail 1e-6, outputs written.
+run_diff a.exr changed.exr --json changed.json --diff-image err.exr --histogram hist.csv
+expect_rc 2 "changed image, default --fail"
+grep -q FAIL out.txt || fail "changed image: no FAIL in the summary"
+[[ $(json_value changed.json 'j["channels"][0]["max_at"]') == "[3, 2]" ]] || fail "max not located at (3,2)"
+[[ $(json_value changed.json 'j["channels"][0]["above"][0]["count"]') == 1 ]] || fail "count above 0.01"
+[[ $(json_value changed.json 'j["channels"][1]["max_abs"]') == 0.0 ]] || fail "G changed"
+[[ -s err.exr ]] || fail "--diff-image not written"
+[[ $(head -1 hist.csv) == "bin_lo,bin_hi,R,G,B,A" ]] || fail "histogram header: $(head -1 hist.csv)"
+total=$(tail -n +2 hist.csv | awk -F, '{ s += $3 } END { print s }')
+[[ $total -eq 64 ]] || fail "histogram R counts sum to $total, not 64"
+# The difference image holds the error where it is.
+run_diff err.exr a.exr --json - --threshold 0.3
+[[ $(python3 -c 'import json, sys; print(json.load(sys.stdin)["channels"][0]["max_abs"])' <out.txt) != 0.0 ]] ||
+    fail "difference image is empty"
+
+# Tolerances: within --failpercent passes; --fail relaxed but --warn strict warns.
+run_diff a.exr changed.exr --failpercent 0.5
+expect_rc 1 "one pixel-channel in 256 with --failpercent 0.5 (still above --warn)"
+run_diff a.exr changed.exr --failpercent 0.5 --warnpercent 0.5
+expect_rc 0 "one pixel-channel in 256 with --failpercent 0.5 --warnpercent 0.5"
+run_diff a.exr changed.exr --fail 0.3 --warn 0.1
+expect_rc 1 "error 0.25 with --fail 0.3 --warn 0.1"
+grep -q WARN out.txt || fail "no WARN in the summary"
+run_diff a.exr changed.exr --fail 0.25 --warn 0.25
+expect_rc 0 "an error equal to --fail is not above it"
+
+# --json - prints JSON only.
+run_diff a.exr changed.exr --json -
+expect_rc 2 "--json -"
+json_value out.txt 'j["verdict"]' | grep -qx fail || fail "--json - did not print the JSON verdict"
+
+# Different sizes or channel counts: 3, one line on stderr.
+run_diff a.exr small.exr
+expect_rc 3 "different sizes"
+[[ $(wc -l <err.txt) -eq 1 ]] || fail "different sizes: stderr is not one line"
+run_diff a.exr rgb.exr
+expect_rc 3 "different channel counts"
+
+# Missing or unreadable file: 4, one line on stderr naming it.
+run_diff a.exr missing.exr
+expect_rc 4 "missing file"
+[[ $(wc -l <err.txt) -eq 1 ]] || fail "missing file: stderr is not one line"
+grep -q "missing.exr" err.txt || fail "missing file not named"
+echo "not an image" >garbage.exr
+run_diff garbage.exr a.exr
+expect_rc 4 "unreadable file"
+[[ $(wc -l <err.txt) -eq 1 ]] || fail "unreadable file: stderr is not one line"
+
+# Help: exit 0, exit codes and examples.
+run_diff --help
+expect_rc 0 "--help"
+grep -q "Example" out.txt || fail "--help has no examples"
+grep -q "3 images differ" out.txt || fail "--help does not state the exit codes"
+
+echo "diff.sh: all checks passed"

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# vri-render end to end: a tiny volume rendered, compared with itself and with a changed render,
+# thread-count independence, and every kind of bad input giving one line, a non-zero exit and no output.
+set -euo pipefail
+bin=${VRI_BIN:?} src=${VRI_SOURCE:?} dir=${VRI_SCRATCH:?}
+rm -rf "$dir" && mkdir -p "$dir" && cd "$dir"
+
+# A deterministic 8x8x8 uint8 volume: a ramp with some structure.
+for i in $(seq 0 511); do printf "\\x$(printf %02x $(( (i * 37 + i / 64 * 11) % 256 )))"; done > blob_8x8x8_uint8.raw
+cat > tf.yaml <<'YAML'
+points:
+  - [0.0, 0.0, 0.0, 0.0, 0.0]
+  - [0.3, 0.0, 0.0, 0.0, 0.0]
+  - [0.7, 1.0, 0.5, 0.2, 0.4]
+  - [1.0, 1.0, 1.0, 1.0, 0.8]
+YAML
+render() { "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 40x30 -q "$@"; }
+
+render --step 0.5 -o a.exr --png a.png --stats a.json
+test -s a.exr && test -s a.png && grep -q '"samples_evaluated"' a.json && grep -q '"sha512"' a.json
+"$bin/vri-diff" a.exr a.exr --fail 0 > /dev/null   # identical: exit 0
+
+render --step 0.25 -o b.exr
+set +e; "$bin/vri-diff" a.exr b.exr > /dev/null; rc=$?; set -e
+[ "$rc" -ne 0 ] || { echo "diff of different renders exited 0"; exit 1; }
+
+# Bitwise the same on 1 and 2 threads, and with empty-space skipping off.
+render --step 0.5 --threads 1 -o t1.exr
+render --step 0.5 --threads 2 --no-skip-empty -o t2.exr
+"$bin/vri-diff" a.exr t1.exr --fail 0 > /dev/null
+"$bin/vri-diff" a.exr t2.exr --fail 0 > /dev/null
+
+# Bad input: one line on stderr that names the problem, a non-zero exit, nothing written.
+expect_error() {  # expect_error PATTERN ARGS...
+  local pattern=$1; shift
+  set +e; "$bin/vri-render" "$@" -o bad.exr --png bad.png --stats bad.json -q 2> err.txt; local rc=$?; set -e
+  if [ "$rc" -eq 0 ]; then echo "expected failure for: $*"; exit 1; fi
+  if [ "$(wc -l < err.txt)" -ne 1 ]; then echo "expected one line for: $*"; cat err.txt; exit 1; fi
+  grep -q -- "$pattern" err.txt || { echo "expected '$pattern' for: $*"; cat err.txt; exit 1; }
+  if ls bad.* > /dev/null 2>&1; then echo "output written despite failure: $*"; exit 1; fi
+}
+head -c 500 blob_8x8x8_uint8.raw > short_8x8x8_uint8.raw
+printf 'points:\n  - [0.5, 0, 0, 0, 0]\n  - [0.2, 0, 0, 0, 0]\n' > unsorted.yaml
+printf 'points:\n  - [0.5, 0, 0, 0, -1]\n' > negative.yaml
+printf 'points: [[0, 0\n' > malformed.yaml
+expect_error "short_8x8x8_uint8.raw" --volume short_8x8x8_uint8.raw --tf tf.yaml
+expect_error "int7" --volume blob_8x8x8_uint8.raw --dims 8,8,8 --type int7 --tf tf.yaml
+expect_error "missing.raw" --volume missing.raw --dims 8,8,8 --type uint8 --tf tf.yaml
+expect_error "unsorted.yaml:3:5" --volume blob_8x8x8_uint8.raw --tf unsorted.yaml
+expect_error "negative.yaml:2:5" --volume blob_8x8x8_uint8.raw --tf negative.yaml
+expect_error "malformed.yaml:2:1: malformed YAML" --volume blob_8x8x8_uint8.raw --tf malformed.yaml
+expect_error "--size" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 0x30
+expect_error "--step" --volume blob_8x8x8_uint8.raw --tf tf.yaml --step 0
+expect_error "--step" --volume blob_8x8x8_uint8.raw --tf tf.yaml --step -0.5
+expect_error "placement" --volume blob_8x8x8_uint8.raw --tf tf.yaml --placement middle
+
+"$bin/vri-render" --help | grep -q "Example"
+echo "render: all checks passed"

@@ -1,0 +1,47 @@
+#include <doctest/doctest.h>
+
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "vri/provenance.h"
+
+TEST_CASE("provenance: shell quoting leaves plain words alone and quotes the rest") {
+    CHECK(vri::shellQuote("vri-render") == "vri-render");
+    CHECK(vri::shellQuote("--fail=1e-6,0.5/x:y@z%") == "--fail=1e-6,0.5/x:y@z%");
+    CHECK(vri::shellQuote("") == "''");
+    CHECK(vri::shellQuote("two words") == "'two words'");
+    CHECK(vri::shellQuote("$HOME*") == "'$HOME*'");
+    CHECK(vri::shellQuote("it's") == "'it'\\''s'");
+}
+
+TEST_CASE("provenance: command line as argv and as a pasteable line") {
+    std::vector<std::string> words{"vri-diff", "a b.exr", "it's.exr", "--json", "-"};
+    std::vector<char*> argv;
+    for (std::string& word : words) argv.push_back(word.data());
+    const nlohmann::json command = vri::commandLine(static_cast<int>(argv.size()), argv.data());
+    CHECK(command["argv"] == nlohmann::json(words));
+    CHECK(command["shell"] == "vri-diff 'a b.exr' 'it'\\''s.exr' --json -");
+}
+
+TEST_CASE("provenance: timestamp, machine and build") {
+    CHECK(std::regex_match(vri::utcTimestamp(), std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")));
+
+    const nlohmann::json machine = vri::machineInfo();
+    for (const char* key : {"cpu_model", "os", "kernel", "hostname"}) {
+        CAPTURE(key);
+        REQUIRE(machine.contains(key));
+        CHECK(!machine[key].get<std::string>().empty());
+    }
+    CHECK(machine["logical_cores"].get<int>() >= 1);
+    CHECK(machine["usable_cores"].get<int>() >= 1);
+    CHECK(machine["memory_bytes"].get<std::uint64_t>() > 0);
+
+    const nlohmann::json build = vri::buildInfo();
+    for (const char* key : {"vri_version", "git_commit", "compiler", "openimageio", "openvdb", "tbb"}) {
+        CAPTURE(key);
+        REQUIRE(build.contains(key));
+        CHECK(!build[key].get<std::string>().empty());
+    }
+}

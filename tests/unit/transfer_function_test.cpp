@@ -1,0 +1,60 @@
+// Transfer function evaluation and validation.
+#include <doctest/doctest.h>
+
+#include "vri/error.h"
+#include "vri/transfer_function.h"
+
+using namespace vri;
+
+TEST_CASE("transfer function: linear between points, constant outside, right-continuous at jumps") {
+    TransferFunction tf({{0.2, 0, 0, 0, 0}, {0.6, 1, 0.5, 0, 2}, {0.6, 0, 0, 1, 4}, {1.0, 0, 0, 1, 0}},
+                        EmissionModel::ColourTimesExtinction);
+    CHECK(tf(0.0).tau == 0.0);
+    CHECK(tf(0.4).tau == doctest::Approx(1.0));
+    CHECK(tf(0.4).r == doctest::Approx(0.5));
+    CHECK(tf(0.6).tau == 4.0);  // the jump takes the right value
+    CHECK(tf(0.599999).tau == doctest::Approx(2.0).epsilon(1e-4));
+    CHECK(tf(0.8).tau == doctest::Approx(2.0));
+    CHECK(tf(1.5).b == 1.0);
+    CHECK(tf(0.4f).tau == doctest::Approx(1.0f));
+    // Every s between breakpoints brackets correctly, whatever bin it falls in.
+    for (int i = 0; i < 1000; ++i) {
+        const double s = 0.2 + 0.4 * i / 1000.0;
+        CHECK(tf(s).tau == doctest::Approx(5.0 * (s - 0.2)).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("transfer function: invisible ranges") {
+    TransferFunction tf({{0.0, 1, 1, 1, 0}, {0.3, 1, 1, 1, 0}, {0.5, 1, 1, 1, 1}}, EmissionModel::ColourTimesExtinction);
+    CHECK(tf.isInvisible(0.0, 0.3));
+    CHECK_FALSE(tf.isInvisible(0.0, 0.31));
+    TransferFunction direct({{0.0, 1, 0, 0, 0}, {1.0, 1, 0, 0, 0}}, EmissionModel::Colour);
+    CHECK_FALSE(direct.isInvisible(0.0, 0.1));  // emits without extinction
+}
+
+TEST_CASE("transfer function: bad points are rejected with a clear message") {
+    CHECK_THROWS_WITH_AS(TransferFunction({{0.5, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}}, EmissionModel::Colour, "tf"),
+                         doctest::Contains("sorted"), Error);
+    CHECK_THROWS_WITH_AS(TransferFunction({{0.5, 0, 0, 0, -1}}, EmissionModel::Colour, "tf"),
+                         doctest::Contains("negative extinction"), Error);
+    CHECK_THROWS_AS(TransferFunction({}, EmissionModel::Colour, "tf"), Error);
+}
+
+TEST_CASE("transfer function YAML: both point forms, and errors with line and column") {
+    auto tf = parseTransferFunction("emission: color\npoints:\n  - {s: 0, color: [0, 0, 0], tau: 0}\n"
+                                    "  - [1, 1, 1, 1, 0.5]\n",
+                                    "a.yaml");
+    CHECK(tf.emission() == EmissionModel::Colour);
+    CHECK(tf(0.5).tau == doctest::Approx(0.25));
+    CHECK_THROWS_WITH_AS(parseTransferFunction("points:\n  - [0.5, 0, 0, 0, 0]\n  - [0.2, 0, 0, 0, 0]\n", "u.yaml"),
+                         doctest::Contains("u.yaml:3:5: points[1].s"), Error);
+    CHECK_THROWS_WITH_AS(parseTransferFunction("points:\n  - [0.5, 0, 0, 0, -2]\n", "n.yaml"),
+                         doctest::Contains("n.yaml:2:5"), Error);
+    CHECK_THROWS_WITH_AS(parseTransferFunction("points: [[0, 0, 0]\n", "m.yaml"),
+                         doctest::Contains("m.yaml:"), Error);
+    CHECK_THROWS_WITH_AS(parseTransferFunction("points: [[0, 0, 0]\n", "m.yaml"),
+                         doctest::Contains("malformed YAML"), Error);
+    CHECK_THROWS_WITH_AS(parseTransferFunction("pionts: []\n", "k.yaml"),
+                         doctest::Contains("k.yaml:1:1: unknown key 'pionts'"), Error);
+    CHECK_THROWS_WITH_AS(loadTransferFunction("/nonexistent/tf.yaml"), doctest::Contains("no such file"), Error);
+}

@@ -1,0 +1,456 @@
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <string>
+
+#include <unistd.h>
+
+#include "vri/error.h"
+#include "vri/volume_io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A fresh directory under the system temp directory, removed with everything in it.
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        static std::atomic<int> counter{0};
+        path = fs::temp_directory_path() /
+               ("vri-volume-io-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ignored;
+        fs::remove_all(path, ignored);
+    }
+    fs::path operator/(const std::string& name) const { return path / name; }
+};
+
+void writeBytes(const fs::path& path, const std::string& bytes) {
+    std::ofstream out(path, std::ios::binary);
+    out << bytes;
+}
+
+std::string readBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Values that exercise each type: zeros (most of them, as in real scans), the extremes, and
+// for float negative, fractional, -0.0 and NaN values.
+vri::Volume testVolume(glm::ivec3 dims, vri::VoxelType type) {
+    vri::Volume volume(dims, type);
+    vri::dispatchVoxelType(type, [&](auto t) {
+        using T = decltype(t);
+        T* values = volume.data<T>();
+        for (std::size_t i = 0; i < volume.voxelCount(); ++i) {
+            if (i % 3 != 0) continue;  // two thirds stay empty
+            if constexpr (std::is_same_v<T, float>)
+                values[i] = static_cast<float>(i) * 0.37f - 11.0f;
+            else
+                values[i] = static_cast<T>(i * 2654435761u);
+        }
+        if constexpr (std::is_same_v<T, float>) {
+            values[1] = -0.0f;
+            values[2] = std::numeric_limits<float>::quiet_NaN();
+            values[4] = std::numeric_limits<float>::max();
+            values[5] = std::numeric_limits<float>::denorm_min();
+        } else {
+            values[1] = std::numeric_limits<T>::max();
+        }
+    });
+    return volume;
+}
+
+template <class F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const vri::Error& e) {
+        return e.what();
+    }
+    FAIL("expected a vri::Error");
+    return {};
+}
+
+void checkMentions(const std::string& message, std::initializer_list<std::string> parts) {
+    INFO(message);
+    CHECK(message.find('\n') == std::string::npos);
+    for (const std::string& part : parts) CHECK_MESSAGE(message.find(part) != std::string::npos, part);
+}
+
+constexpr vri::VoxelType kAllTypes[] = {vri::VoxelType::UInt8, vri::VoxelType::UInt16, vri::VoxelType::Float32};
+
+}  // namespace
+
+TEST_CASE("volume io: raw round trip is exact for every type and byte order") {
+    TempDir dir;
+    for (vri::VoxelType type : kAllTypes)
+        for (vri::ByteOrder order : {vri::ByteOrder::Little, vri::ByteOrder::Big}) {
+            CAPTURE(vri::voxelTypeName(type));
+            CAPTURE(static_cast<int>(order));
+            vri::Volume volume = testVolume({5, 4, 3}, type);
+            volume.spacing = {0.5, 1.0, 2.0};
+            const fs::path path = dir / "v.raw";
+            vri::writeRaw(path, volume, order);
+            CHECK(fs::file_size(path) == volume.byteCount());
+            const vri::Volume back = vri::readRaw(path, {volume.dims, type, order, volume.spacing});
+            CHECK(back == volume);
+        }
+}
+
+TEST_CASE("volume io: raw byte order is the one asked for on disk") {
+    TempDir dir;
+    vri::Volume volume({1, 1, 1}, vri::VoxelType::UInt16);
+    volume.data<std::uint16_t>()[0] = 0x1234;
+    vri::writeRaw(dir / "big.raw", volume, vri::ByteOrder::Big);
+    vri::writeRaw(dir / "little.raw", volume, vri::ByteOrder::Little);
+    CHECK(readBytes(dir / "big.raw") == "\x12\x34");
+    CHECK(readBytes(dir / "little.raw") == "\x34\x12");
+}
+
+TEST_CASE("volume io: raw header bytes are skipped") {
+    TempDir dir;
+    writeBytes(dir / "h.raw", std::string("HEADER") + "\x01\x02\x03\x04");
+    vri::RawLayout layout{{2, 2, 1}, vri::VoxelType::UInt8};
+    layout.headerBytes = 6;
+    const vri::Volume volume = vri::readRaw(dir / "h.raw", layout);
+    CHECK(volume.value(1, 1, 0) == 4);
+}
+
+TEST_CASE("volume io: a raw file of the wrong size names the file, both sizes and the layout") {
+    TempDir dir;
+    const fs::path path = dir / "short.raw";
+    writeBytes(path, std::string(24, '\0'));
+    checkMentions(errorOf([&] { vri::readRaw(path, {{4, 3, 3}, vri::VoxelType::UInt8}); }),
+                  {path.string() + ":", "24 bytes", "expected 36", "4x3x3 uint8"});
+    checkMentions(errorOf([&] { vri::readRaw(path, {{4, 3, 2}, vri::VoxelType::UInt16}); }),
+                  {path.string() + ":", "24", "48", "4x3x2 uint16"});
+}
+
+TEST_CASE("volume io: layout from Open SciVis file names") {
+    const auto bonsai = vri::layoutFromFileName("/data/bonsai_256x256x256_uint8.raw");
+    REQUIRE(bonsai);
+    CHECK(bonsai->dims == glm::ivec3(256, 256, 256));
+    CHECK(bonsai->type == vri::VoxelType::UInt8);
+    CHECK(bonsai->order == vri::ByteOrder::Little);
+
+    const auto teapot = vri::layoutFromFileName("boston_teapot_256x256x178_uint8.raw");
+    REQUIRE(teapot);
+    CHECK(teapot->dims == glm::ivec3(256, 256, 178));
+
+    const auto field = vri::layoutFromFileName("field_3x4x5_float32.raw");
+    REQUIRE(field);
+    CHECK(field->type == vri::VoxelType::Float32);
+    CHECK(vri::layoutFromFileName("x_10x20x30_uint16.raw")->type == vri::VoxelType::UInt16);
+
+    CHECK_FALSE(vri::layoutFromFileName("boron.raw"));
+    CHECK_FALSE(vri::layoutFromFileName("slice_256x256_uint8.raw"));
+    CHECK_FALSE(vri::layoutFromFileName("a_0x2x2_uint8.raw"));
+    CHECK_FALSE(vri::layoutFromFileName("a_2x2x2x2_uint8.raw"));
+    checkMentions(errorOf([] { vri::layoutFromFileName("magnetic_512x512x512_float64.raw"); }),
+                  {"magnetic_512x512x512_float64.raw", "float64"});
+}
+
+TEST_CASE("volume io: readVolume reads named raw files and asks for dims and type otherwise") {
+    TempDir dir;
+    const vri::Volume volume = testVolume({4, 3, 2}, vri::VoxelType::UInt16);
+    vri::writeRaw(dir / "v_4x3x2_uint16.raw", volume);
+    CHECK(vri::readVolume(dir / "v_4x3x2_uint16.raw") == volume);
+
+    vri::writeRaw(dir / "anonymous.raw", volume);
+    checkMentions(errorOf([&] { vri::readVolume(dir / "anonymous.raw"); }),
+                  {(dir / "anonymous.raw").string() + ":", "--dims"});
+    CHECK(vri::readVolume(dir / "anonymous.raw", vri::RawLayout{{4, 3, 2}, vri::VoxelType::UInt16}) == volume);
+}
+
+TEST_CASE("volume io: a missing file is named") {
+    TempDir dir;
+    for (const char* name : {"nope.raw", "nope.nhdr", "nope.dat", "nope.vdb", "nope_2x2x2_uint8.raw"}) {
+        const fs::path path = dir / name;
+        CHECK(errorOf([&] { vri::readVolume(path); }) == path.string() + ": no such file");
+    }
+    CHECK(errorOf([&] { vri::readVdb(dir / "nope.vdb"); }) == (dir / "nope.vdb").string() + ": no such file");
+}
+
+TEST_CASE("volume io: VDB round trip is exact") {
+    TempDir dir;
+    for (vri::VoxelType type : kAllTypes) {
+        CAPTURE(vri::voxelTypeName(type));
+        // Not a multiple of the 8^3 leaf size, with a constant block that OpenVDB keeps as a tile
+        // and empty slabs at the far end that only the recorded dims bring back.
+        vri::Volume volume = testVolume({21, 17, 30}, type);
+        for (int z = 8; z < 16; ++z)
+            for (int y = 8; y < 16; ++y)
+                for (int x = 8; x < 16; ++x)
+                    vri::dispatchVoxelType(type, [&](auto t) { volume.data<decltype(t)>()[volume.index(x, y, z)] = 7; });
+        for (int z = 26; z < 30; ++z)
+            for (int y = 0; y < 17; ++y)
+                for (int x = 0; x < 21; ++x)
+                    vri::dispatchVoxelType(type, [&](auto t) { volume.data<decltype(t)>()[volume.index(x, y, z)] = 0; });
+        volume.spacing = {0.5, 0.75, 2.0 / 3.0};
+        volume.origin = {-1.25, 3.0, 1e-3};
+        volume.range = vri::ValueRange{0.1, 1234.5};
+
+        const fs::path path = dir / "v.vdb";
+        vri::writeVdb(path, volume);
+        vri::Volume back = vri::readVdb(path);
+        CHECK(back.dims == volume.dims);
+        CHECK(back.type == volume.type);
+        CHECK(back.spacing == volume.spacing);
+        CHECK(back.origin == volume.origin);
+        CHECK(back.range == volume.range);
+        CHECK(back.bytes == volume.bytes);
+        CHECK(vri::readVolume(path) == volume);
+
+        volume.range.reset();
+        vri::writeVolume(path, volume);
+        back = vri::readVolume(path);
+        CHECK_FALSE(back.range);
+        CHECK(back == volume);
+    }
+}
+
+TEST_CASE("volume io: VDB stores empty space sparsely") {
+    TempDir dir;
+    vri::Volume volume({128, 128, 128}, vri::VoxelType::Float32);  // 8 MiB dense
+    volume.data<float>()[volume.index(100, 3, 64)] = 1.5f;
+    vri::writeVdb(dir / "sparse.vdb", volume);
+    CHECK(fs::file_size(dir / "sparse.vdb") < 16 * 1024);
+    CHECK(vri::readVdb(dir / "sparse.vdb") == volume);
+
+    const vri::Volume empty({3, 2, 1}, vri::VoxelType::UInt8);
+    vri::writeVdb(dir / "empty.vdb", empty);
+    CHECK(vri::readVdb(dir / "empty.vdb") == empty);
+}
+
+TEST_CASE("volume io: VDB files from other programs are read over their active voxels") {
+    // Without vri's metadata the reader falls back to the active bounding box and float32.
+    // Renaming the metadata in place (same length, metadata are stored uncompressed) makes a
+    // vri file look foreign without linking OpenVDB into the tests.
+    TempDir dir;
+    vri::Volume volume({10, 9, 8}, vri::VoxelType::UInt16);
+    volume.spacing = {0.5, 2.0, 1.0};
+    volume.origin = {1.0, 2.0, 3.0};
+    for (int z = 3; z <= 4; ++z)
+        for (int y = 2; y <= 6; ++y)
+            for (int x = 1; x <= 3; ++x) volume.data<std::uint16_t>()[volume.index(x, y, z)] = 1000 * z + 10 * y + x;
+    vri::writeVdb(dir / "v.vdb", volume);
+    std::string bytes = readBytes(dir / "v.vdb");
+    for (const std::string key : {"vri_dims", "vri_voxel_type"}) {
+        const std::size_t at = bytes.find(key);
+        REQUIRE(at != std::string::npos);
+        bytes[at] = 'x';
+    }
+    writeBytes(dir / "foreign.vdb", bytes);
+
+    for (const vri::Volume& foreign : {vri::readVdb(dir / "foreign.vdb"), vri::readVdb(dir / "foreign.vdb", "density")}) {
+        CHECK(foreign.type == vri::VoxelType::Float32);
+        CHECK(foreign.dims == glm::ivec3(3, 5, 2));
+        CHECK(foreign.spacing == volume.spacing);
+        CHECK(foreign.origin == glm::dvec3(1.0 + 1 * 0.5, 2.0 + 2 * 2.0, 3.0 + 3 * 1.0));
+        CHECK(foreign.value(0, 0, 0) == 3021);
+        CHECK(foreign.value(2, 4, 1) == 4063);
+    }
+}
+
+TEST_CASE("volume io: VDB errors name the file") {
+    TempDir dir;
+    writeBytes(dir / "junk.vdb", "this is not a vdb file");
+    checkMentions(errorOf([&] { vri::readVdb(dir / "junk.vdb"); }), {(dir / "junk.vdb").string() + ":"});
+
+    vri::writeVdb(dir / "v.vdb", testVolume({2, 2, 2}, vri::VoxelType::UInt8));
+    checkMentions(errorOf([&] { vri::readVdb(dir / "v.vdb", std::string("temperature")); }),
+                  {(dir / "v.vdb").string() + ":", "temperature", "density"});
+}
+
+TEST_CASE("volume io: NRRD .nhdr write and read round trip") {
+    TempDir dir;
+    for (vri::VoxelType type : kAllTypes) {
+        CAPTURE(vri::voxelTypeName(type));
+        vri::Volume volume = testVolume({6, 5, 4}, type);
+        volume.spacing = {0.1, 0.2, 0.3};
+        volume.origin = {1.0 / 3.0, -2.0, 0.0};
+        volume.range = vri::ValueRange{-1.0, 2.0};
+        vri::writeVolume(dir / "v.nhdr", volume);
+        CHECK(fs::exists(dir / "v.raw"));
+        CHECK(vri::readVolume(dir / "v.nhdr") == volume);
+    }
+}
+
+TEST_CASE("volume io: NRRD headers from other programs") {
+    TempDir dir;
+    // 2x2x1 uint16, big endian, after 3 junk bytes.
+    writeBytes(dir / "data.bin", std::string("abc") + std::string("\x00\x01\x00\x02\x01\x00\xff\xff", 8));
+    writeBytes(dir / "big.nhdr", "NRRD0005\n"
+                                 "# a comment\n"
+                                 "content: test\n"
+                                 "type: unsigned short int\n"
+                                 "dimension: 3\n"
+                                 "sizes: 2 2 1\n"
+                                 "spacings: 0.5 0.25 4\n"
+                                 "kinds: domain domain domain\n"
+                                 "endian: big\n"
+                                 "encoding: raw\n"
+                                 "byte skip: 3\n"
+                                 "datafile: data.bin\n"
+                                 "units:=mm\n");
+    const vri::Volume big = vri::readVolume(dir / "big.nhdr");
+    CHECK(big.type == vri::VoxelType::UInt16);
+    CHECK(big.dims == glm::ivec3(2, 2, 1));
+    CHECK(big.spacing == glm::dvec3(0.5, 0.25, 4.0));
+    CHECK(big.value(0, 0, 0) == 1);
+    CHECK(big.value(1, 0, 0) == 2);
+    CHECK(big.value(0, 1, 0) == 256);
+    CHECK(big.value(1, 1, 0) == 65535);
+    CHECK_FALSE(big.range);
+
+    // Attached data after the blank line, space directions and origin.
+    writeBytes(dir / "attached.nrrd", std::string("NRRD0004\r\n"
+                                                  "type: uchar\n"
+                                                  "dimension: 3\n"
+                                                  "space: right-anterior-superior\n"
+                                                  "sizes: 1 2 3\n"
+                                                  "space directions: (2,0,0) (0,3,0) (0,0,4)\n"
+                                                  "space origin: (10,20,30)\n"
+                                                  "encoding: raw\n"
+                                                  "\n") +
+                                          "\x01\x02\x03\x04\x05\x06");
+    const vri::Volume attached = vri::readVolume(dir / "attached.nrrd");
+    CHECK(attached.dims == glm::ivec3(1, 2, 3));
+    CHECK(attached.spacing == glm::dvec3(2, 3, 4));
+    CHECK(attached.origin == glm::dvec3(10, 20, 30));
+    CHECK(attached.value(0, 1, 2) == 6);
+}
+
+TEST_CASE("volume io: bad NRRD headers name the file and the field") {
+    TempDir dir;
+    writeBytes(dir / "v.raw", std::string(8, '\1'));
+    const auto header = [&](const std::string& type, const std::string& encoding, const std::string& extra) {
+        writeBytes(dir / "v.nhdr", "NRRD0004\ntype: " + type + "\ndimension: 3\nsizes: 2 2 2\nencoding: " + encoding +
+                                       "\nendian: little\ndata file: v.raw\n" + extra);
+        return (dir / "v.nhdr").string();
+    };
+    std::string path = header("uchar", "raw", "");
+    CHECK(vri::readVolume(path).value(1, 1, 1) == 1);
+
+    path = header("uchar", "gzip", "");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "encoding", "gzip"});
+    path = header("double", "raw", "");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "type", "double"});
+    path = header("uchar", "raw", "space directions: (1,0.5,0) (0,1,0) (0,0,1)\n");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "space directions"});
+    path = header("uint16", "raw", "");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "v.raw", "8 bytes", "expected 16"});
+
+    writeBytes(dir / "four.nhdr", "NRRD0004\ntype: uchar\ndimension: 4\nsizes: 1 2 2 2\nencoding: raw\n");
+    checkMentions(errorOf([&] { vri::readVolume(dir / "four.nhdr"); }), {(dir / "four.nhdr").string() + ":", "dimension"});
+    writeBytes(dir / "magic.nhdr", "P5\n2 2\n");
+    checkMentions(errorOf([&] { vri::readVolume(dir / "magic.nhdr"); }), {(dir / "magic.nhdr").string() + ":", "NRRD"});
+}
+
+namespace {
+
+// boron.dat's key set over a 3x4x5 uint16 volume whose voxel (x,y,z) holds 100z + 10y + x.
+void writeSmallBoron(const TempDir& dir, const std::string& format = "UINT16") {
+    std::string raw;
+    for (int z = 0; z < 5; ++z)
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 3; ++x) {
+                const int v = 100 * z + 10 * y + x;
+                raw += static_cast<char>(v & 0xff);
+                raw += static_cast<char>(v >> 8);
+            }
+    writeBytes(dir / "small.raw", raw);
+    writeBytes(dir / "small.dat", "Rawfile: small.raw\n"
+                                  "Resolution: 3 4 5\n"
+                                  "Format: " + format + "\n"
+                                  "DataRange: 0 65535\n"
+                                  "ValueRange: 0.0 0.000098763573\n"
+                                  "ValueUnit: e/Angstrom^3\n"
+                                  "ValueName: Charge Density\n"
+                                  "Wrapping: Repeat Repeat Repeat\n"
+                                  "BasisVector1: 1.5 0.0 0.0\n"
+                                  "basisvector2: 0.0 2.0 0.0\n"
+                                  "BASISVECTOR3: 0.0 0.0 1.25\n"
+                                  "AxisNames: x y z\n"
+                                  "AxisUnits: Angstrom Angstrom Angstrom\n");
+}
+
+}  // namespace
+
+TEST_CASE("volume io: Inviwo .dat read") {
+    TempDir dir;
+    writeSmallBoron(dir);
+    const vri::Volume volume = vri::readVolume(dir / "small.dat");
+    CHECK(volume.dims == glm::ivec3(3, 4, 5));
+    CHECK(volume.type == vri::VoxelType::UInt16);
+    CHECK(volume.spacing == glm::dvec3(0.5, 0.5, 0.25));
+    CHECK(volume.origin == glm::dvec3(0, 0, 0));
+    REQUIRE(volume.range);
+    CHECK(*volume.range == vri::ValueRange{0, 65535});
+    CHECK(volume.value(2, 3, 4) == 432);
+    CHECK(volume.value(1, 0, 3) == 301);
+}
+
+TEST_CASE("volume io: Inviwo .dat write and read round trip") {
+    TempDir dir;
+    vri::Volume volume = testVolume({4, 2, 3}, vri::VoxelType::Float32);
+    volume.spacing = {0.5, 0.25, 2.0};
+    volume.origin = {-1.0, 0.5, 8.0};
+    volume.range = vri::ValueRange{-3.0, 7.5};
+    vri::writeVolume(dir / "v.dat", volume);
+    CHECK(vri::readVolume(dir / "v.dat") == volume);
+}
+
+TEST_CASE("volume io: bad .dat files name the file and the key") {
+    TempDir dir;
+    writeSmallBoron(dir, "INT16");
+    const std::string path = (dir / "small.dat").string();
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":3:", "Format", "INT16"});
+
+    writeBytes(dir / "norawfile.dat", "Resolution: 3 4 5\nFormat: UINT16\n");
+    checkMentions(errorOf([&] { vri::readVolume(dir / "norawfile.dat"); }),
+                  {(dir / "norawfile.dat").string() + ":", "Rawfile"});
+
+    writeBytes(dir / "wrongsize.dat", "Rawfile: small.raw\nResolution: 3 4 6\nFormat: UINT16\n");
+    checkMentions(errorOf([&] { vri::readVolume(dir / "wrongsize.dat"); }),
+                  {(dir / "wrongsize.dat").string() + ":", "small.raw", "120 bytes", "expected 144"});
+}
+
+TEST_CASE("volume io: writeVolume refuses unknown extensions and writes nothing") {
+    TempDir dir;
+    const vri::Volume volume({2, 2, 2}, vri::VoxelType::UInt8);
+    checkMentions(errorOf([&] { vri::writeVolume(dir / "v.png", volume); }), {(dir / "v.png").string() + ":"});
+    CHECK(fs::is_empty(dir.path));
+}
+
+TEST_CASE("volume io: the files a write creates") {
+    CHECK(vri::filesWrittenBy("out/v.vdb") == std::vector<fs::path>{"out/v.vdb"});
+    CHECK(vri::filesWrittenBy("out/v.nhdr") == std::vector<fs::path>{"out/v.raw", "out/v.nhdr"});
+    CHECK(vri::filesWrittenBy("v.DAT") == std::vector<fs::path>{"v.raw", "v.DAT"});
+}
+
+TEST_CASE("volume io: the Inviwo boron data set, when present") {
+    const char* env = std::getenv("VRI_DATA_DIR");
+    const fs::path path = fs::path(env ? env : "/work/shared/data/volumes") / "boron.dat";
+    if (!fs::exists(path)) return;  // CI without the data sets
+    const vri::Volume boron = vri::readVolume(path);
+    CHECK(boron.dims == glm::ivec3(150, 150, 150));
+    CHECK(boron.type == vri::VoxelType::UInt16);
+    REQUIRE(boron.range);
+    CHECK(*boron.range == vri::ValueRange{0, 65535});
+    CHECK(boron.spacing.x == doctest::Approx(5.05970000847 / 150));
+    CHECK(boron.spacing.y == doctest::Approx(5.63039999861 / 150));
+    CHECK(boron.spacing.z == doctest::Approx(6.98849999885 / 150));
+}

@@ -1,0 +1,152 @@
+// vri-convert: converts volumes between raw, NRRD, Inviwo .dat and OpenVDB, and summarises them.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "vri/cli.h"
+#include "vri/raw_input_options.h"
+#include "vri/volume_io.h"
+#include "vri/volume_stats.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string text(double value, int digits = 6) {
+    std::ostringstream out;
+    out << std::setprecision(digits) << value;
+    return out.str();
+}
+
+std::string text(glm::dvec3 v) { return text(v.x) + " " + text(v.y) + " " + text(v.z); }
+
+// Where the normalisation range comes from, in the order Volume::normalisationRange() tries them.
+std::string normalisationSource(const vri::Volume& volume) {
+    if (volume.range) return "from the file";
+    return volume.type == vri::VoxelType::Float32 ? "data min..max" : "the type's full range";
+}
+
+nlohmann::json infoJson(const fs::path& path, const vri::Volume& volume, const vri::VolumeStats& stats) {
+    const auto array = [](glm::dvec3 v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+    return {{"file", path.string()},
+            {"file_bytes", fs::file_size(path)},
+            {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
+            {"voxel_type", vri::voxelTypeName(volume.type)},
+            {"spacing", array(volume.spacing)},
+            {"origin", array(volume.origin)},
+            {"bytes", volume.byteCount()},
+            {"data_range", {stats.data.lo, stats.data.hi}},
+            {"normalisation_range", {stats.normalisation.lo, stats.normalisation.hi}},
+            {"normalisation_source", normalisationSource(volume)},
+            {"mean", stats.mean},
+            {"zero_fraction", stats.zeroFraction},
+            {"histogram",
+             {{"range", {stats.normalisation.lo, stats.normalisation.hi}},
+              {"counts", stats.histogram},
+              {"below", stats.below},
+              {"above", stats.above}}}};
+}
+
+void printInfo(const fs::path& path, const vri::Volume& volume, const vri::VolumeStats& stats) {
+    const double voxels = static_cast<double>(volume.voxelCount());
+    const auto percent = [&](double count) { return text(100.0 * count / voxels, 3) + "%"; };
+    const vri::ValueRange n = stats.normalisation;
+    std::cout << "file         " << path.string() << " (" << fs::file_size(path) << " bytes)\n"
+              << "dims         " << volume.dims.x << " x " << volume.dims.y << " x " << volume.dims.z << " ("
+              << volume.voxelCount() << " voxels)\n"
+              << "voxel type   " << vri::voxelTypeName(volume.type) << "\n"
+              << "spacing      " << text(volume.spacing) << "\n"
+              << "origin       " << text(volume.origin) << "\n"
+              << "bytes        " << volume.byteCount() << " in memory\n"
+              << "data range   " << text(stats.data.lo) << " .. " << text(stats.data.hi) << "\n"
+              << "normalise    " << text(n.lo) << " .. " << text(n.hi) << " (" << normalisationSource(volume) << ")\n"
+              << "mean         " << text(stats.mean) << "\n"
+              << "zero voxels  " << percent(stats.zeroFraction * voxels) << "\n"
+              << "histogram    " << stats.histogram.size() << " bins over " << text(n.lo) << " .. " << text(n.hi)
+              << "\n";
+    const double width = (n.hi - n.lo) / static_cast<double>(stats.histogram.size());
+    for (std::size_t bin = 0; bin < stats.histogram.size(); ++bin) {
+        const double count = static_cast<double>(stats.histogram[bin]);
+        const std::string bar(static_cast<std::size_t>(std::lround(40.0 * count / voxels)), '#');
+        std::cout << "  " << std::setw(10) << text(n.lo + width * static_cast<double>(bin), 4) << "  "
+                  << std::setw(10) << stats.histogram[bin] << "  " << std::setw(7) << percent(count) << "  " << bar
+                  << "\n";
+    }
+    if (stats.below + stats.above > 0)
+        std::cout << "  outside the range: " << stats.below << " below, " << stats.above << " above\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Convert a volume between raw, NRRD (.nhdr), Inviwo .dat and OpenVDB (.vdb), or summarise it."};
+    app.footer(R"(Examples:
+  vri-convert bonsai_256x256x256_uint8.raw bonsai.vdb
+      dims and type come from the Open SciVis file name; the .vdb stores only non-zero voxels
+  vri-convert bonsai.vdb bonsai_256x256x256_uint8.raw
+      and back, byte for byte
+  vri-convert --info boron.dat
+      dims, type, spacing, value range, mean, empty fraction and a 16-bin histogram
+  vri-convert --info --json bonsai.vdb
+  vri-convert scan.raw scan.nhdr --dims 512,512,300 --type uint16 --byte-order big --spacing 0.5,0.5,1
+
+Formats by extension: .nhdr/.nrrd (raw encoding), .dat (Inviwo), .vdb; anything else is raw.
+Writes are atomic: on failure no output file is left behind.)");
+
+    std::string input, output, grid;
+    vri::RawInputOptions raw;
+    bool info = false, json = false, quiet = false;
+    app.add_option("input", input, "volume to read: .raw, .nhdr, .nrrd, .dat or .vdb")->required();
+    app.add_option("output", output, "volume to write: .vdb, .nhdr, .dat or .raw (not needed with --info)");
+    raw.addTo(app);
+    app.add_option("--grid", grid, ".vdb input: the grid to read (default: the first scalar grid)");
+    app.add_flag("--info", info, "print a summary of the input: dims, type, spacing, range, mean, histogram");
+    app.add_flag("--json", json, "print the summary as JSON on stdout (implies --info)");
+    app.add_flag("-q,--quiet", quiet, "no timing line on stderr after a conversion");
+    if (auto exitCode = vri::parseArguments(app, "vri-convert", argc, argv)) return *exitCode;
+
+    return vri::guardedMain("vri-convert", [&] {
+        info = info || json;
+        if (output.empty() && !info) throw vri::Error("give an output file, or --info to summarise the input");
+
+        const std::optional<vri::RawLayout> layout = raw.layout(input);
+        if (!grid.empty() && (layout || fs::path(input).extension() != ".vdb"))
+            throw vri::Error("--grid applies to .vdb input only");
+
+        std::error_code notTheSame;
+        if (!output.empty())
+            for (const fs::path& written : vri::filesWrittenBy(output))
+                if (fs::equivalent(written, input, notTheSame))
+                    throw vri::Error(written.string() + ": writing " + output + " would overwrite the input");
+
+        const auto start = std::chrono::steady_clock::now();
+        vri::Volume volume = grid.empty() ? raw.read(input) : vri::readVdb(input, grid);
+        const auto read = std::chrono::steady_clock::now();
+
+        if (info) {
+            const vri::VolumeStats stats = vri::computeVolumeStats(volume);
+            if (json) std::cout << infoJson(input, volume, stats).dump(2) << "\n";
+            else printInfo(input, volume, stats);
+        }
+        if (!output.empty()) {
+            const auto write = std::chrono::steady_clock::now();
+            vri::writeVolume(output, volume);
+            const auto done = std::chrono::steady_clock::now();
+            const auto seconds = [](auto d) { return text(std::chrono::duration<double>(d).count(), 3); };
+            std::uintmax_t bytes = 0;
+            for (const fs::path& written : vri::filesWrittenBy(output)) bytes += fs::file_size(written);
+            if (!quiet)
+                std::cerr << "vri-convert: " << output << " (" << bytes << " bytes): read " << seconds(read - start)
+                          << " s, wrote " << seconds(done - write) << " s\n";
+        }
+        return vri::kExitOk;
+    });
+}

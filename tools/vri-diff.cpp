@@ -1,0 +1,245 @@
+// vri-diff: per-channel error statistics between two images, with a pass/warn/fail verdict whose
+// exit codes follow OpenImageIO's idiff.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "vri/atomic_file.h"
+#include "vri/cli.h"
+#include "vri/image_compare.h"
+#include "vri/image_compare_json.h"
+#include "vri/image_io.h"
+#include "vri/provenance.h"
+
+namespace {
+
+constexpr const char* kTool = "vri-diff";
+
+// idiff's codes (its ErrOK, ErrWarn, ErrFail, ErrDifferentSize, ErrFile).
+constexpr int kExitPass = 0;
+constexpr int kExitWarn = 1;
+constexpr int kExitFail = 2;
+constexpr int kExitDifferentShape = 3;
+constexpr int kExitFileError = 4;
+
+struct Options {
+    std::string a, b;
+    std::vector<double> thresholds{0.01, 0.005, 0.001};
+    std::string json, diffImage, histogram;
+    std::vector<double> histogramRange{1e-6, 1.0};
+    int binsPerDecade = 5;
+    double fail = 1e-6, failPercent = 0;
+    double warn = 1e-6, warnPercent = 0;
+};
+
+// How many pixel-channels, over all channels, have an error above a limit, and whether that is
+// more than the allowed share.
+struct LimitCheck {
+    double limit = 0;
+    double allowedPercent = 0;
+    std::uint64_t count = 0;
+    double percent = 0;
+    bool exceeded() const { return percent > allowedPercent; }
+};
+
+LimitCheck checkLimit(const vri::ImageDiff& diff, std::size_t thresholdIndex, double allowedPercent) {
+    LimitCheck check{diff.thresholds.at(thresholdIndex), allowedPercent, 0, 0};
+    for (const vri::ChannelDiff& channel : diff.channels) check.count += channel.countAbove[thresholdIndex];
+    const double pixelChannels = static_cast<double>(diff.pixels) * static_cast<double>(diff.channels.size());
+    check.percent = 100.0 * static_cast<double>(check.count) / pixelChannels;
+    return check;
+}
+
+nlohmann::json toJson(const LimitCheck& check) {
+    return {{"threshold", check.limit},
+            {"allowed_percent", check.allowedPercent},
+            {"count", check.count},
+            {"percent", check.percent},
+            {"exceeded", check.exceeded()}};
+}
+
+std::string format(const char* pattern, double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, pattern, value);
+    return text;
+}
+
+// Columns of a fixed width; the trailing blanks of a row are dropped.
+class Row {
+public:
+    Row& cell(const std::string& text, std::size_t width) {
+        text_ += text;
+        text_.resize(std::max(text_.size() + 1, column_ += width), ' ');
+        return *this;
+    }
+    std::string str() const { return text_.substr(0, text_.find_last_not_of(' ') + 1); }
+
+private:
+    std::string text_;
+    std::size_t column_ = 0;
+};
+
+// "FAIL: 25% of pixel-channels above 1e-06 (allowed 0%)"
+std::string describe(const char* verdict, const LimitCheck& check) {
+    return std::string(verdict) + ": " + format("%g", check.percent) + "% of pixel-channels above " +
+           format("%g", check.limit) + " (allowed " + format("%g", check.allowedPercent) + "%)";
+}
+
+void printSummary(const Options& options, const vri::ImageDiff& diff, const std::string& verdict) {
+    std::cout << options.a << " vs " << options.b << ": " << diff.width << "x" << diff.height << ", "
+              << diff.channels.size() << " channels, all " << diff.pixels << " pixels counted\n";
+    Row header;
+    header.cell("channel", 8).cell("max", 13).cell("at (x,y)", 12).cell("mean", 13).cell("RMSE", 13);
+    for (double t : diff.thresholds) header.cell("% > " + format("%g", t), 12);
+    std::cout << header.str() << '\n';
+    for (const vri::ChannelDiff& channel : diff.channels) {
+        Row row;
+        row.cell(channel.name, 8)
+            .cell(format("%.6g", channel.maxAbs), 13)
+            .cell("(" + std::to_string(channel.maxX) + "," + std::to_string(channel.maxY) + ")", 12)
+            .cell(format("%.6g", channel.meanAbs), 13)
+            .cell(format("%.6g", channel.rmse), 13);
+        for (double percent : channel.percentAbove) row.cell(format("%.4f", percent), 12);
+        std::cout << row.str() << '\n';
+    }
+    std::cout << verdict << '\n';
+}
+
+// CLI11's own NonNegativeNumber prints the largest double in full when it rejects a value.
+const CLI::Validator kNonNegative(
+    [](std::string& text) -> std::string {
+        try {
+            std::size_t used = 0;
+            if (std::stod(text, &used) >= 0 && used == text.size()) return {};
+        } catch (const std::exception&) {
+        }
+        return "must be a number >= 0, got '" + text + "'";
+    },
+    "NONNEGATIVE");
+
+// The one-line message of vri::guardedMain, with the exit code that names this kind of failure.
+int exitWith(int code, const std::exception& error) {
+    std::cerr << kTool << ": error: " << error.what() << '\n';
+    return code;
+}
+
+int run(int argc, char** argv) {
+    Options options;
+    CLI::App app{"Compares two images channel by channel: largest, mean and RMS absolute error, and the share of "
+                 "pixels whose error is strictly above each threshold. Every pixel counts as a ray, background "
+                 "included.",
+                 kTool};
+    app.add_option("A", options.a, "first image (reference), any format OpenImageIO reads")->required();
+    app.add_option("B", options.b, "second image, same size and channel count")->required();
+    app.add_option("--threshold", options.thresholds, "error thresholds to report, comma separated")
+        ->delimiter(',')
+        ->check(kNonNegative)
+        ->capture_default_str();
+    app.add_option("--json", options.json, "write all statistics as JSON to FILE; '-' prints them on stdout "
+                                           "instead of the summary");
+    app.add_option("--diff-image", options.diffImage, "write the per-channel |A - B| image (.exr keeps it exact)");
+    app.add_option("--histogram", options.histogram, "write per-channel error histograms as CSV "
+                                                     "(bin_lo,bin_hi,R,G,B,A; bins (lo, hi], plus a zero bin)");
+    app.add_option("--histogram-range", options.histogramRange, "LO,HI: logarithmic histogram bins span this")
+        ->delimiter(',')
+        ->expected(2)
+        ->capture_default_str();
+    app.add_option("--bins-per-decade", options.binsPerDecade, "histogram bins per factor of ten")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--fail", options.fail, "failure threshold on the absolute error")
+        ->check(kNonNegative)
+        ->capture_default_str();
+    app.add_option("--failpercent", options.failPercent, "fail when more than this % of pixel-channels is above --fail")
+        ->check(CLI::Range(0.0, 100.0))
+        ->capture_default_str();
+    app.add_option("--warn", options.warn, "warning threshold on the absolute error")
+        ->check(kNonNegative)
+        ->capture_default_str();
+    app.add_option("--warnpercent", options.warnPercent, "warn when more than this % of pixel-channels is above --warn")
+        ->check(CLI::Range(0.0, 100.0))
+        ->capture_default_str();
+    app.footer(
+        "Exit codes (as idiff): 0 pass, 1 warning, 2 failure, 3 images differ in size or channel count,\n"
+        "4 a file is missing or unreadable (or an output cannot be written); bad arguments exit >= 64.\n"
+        "Percentages of --failpercent/--warnpercent are over all pixel-channels (pixels x channels).\n"
+        "\n"
+        "Examples:\n"
+        "  vri-diff reference.exr render.exr\n"
+        "      summary on stdout, fails if any pixel-channel differs by more than 1e-6\n"
+        "  vri-diff ref.exr riemann_h0.5.exr --threshold 0.01,0.005,0.001 --json stats.json \\\n"
+        "      --histogram hist.csv --diff-image err.exr --fail 0.01 --failpercent 1\n"
+        "      Paper B's table numbers and histograms; fails if more than 1% of pixel-channels exceed 0.01\n"
+        "  vri-diff a.exr b.exr --json - | jq '.channels[].max_abs'\n"
+        "      statistics as JSON on stdout only");
+    if (auto exitCode = vri::parseArguments(app, "vri-diff", argc, argv)) return *exitCode;
+
+    std::vector<double> histogramEdges;
+    if (!options.histogram.empty()) {
+        try {
+            histogramEdges = vri::logBinEdges(options.histogramRange[0], options.histogramRange[1], options.binsPerDecade);
+        } catch (const vri::Error& e) {
+            return exitWith(vri::kExitUsage, e);
+        }
+    }
+
+    vri::Image a, b;
+    try {
+        a = vri::readImage(options.a);
+        b = vri::readImage(options.b);
+    } catch (const vri::Error& e) {
+        return exitWith(kExitFileError, e);
+    }
+    try {
+        vri::requireSameShape(a, b);
+    } catch (const vri::Error& e) {
+        return exitWith(kExitDifferentShape, e);
+    }
+
+    const vri::ImageDiff diff = vri::compareImages(a, b, options.thresholds);
+    const vri::ImageDiff limits = vri::compareImages(a, b, {options.fail, options.warn});
+    const LimitCheck failCheck = checkLimit(limits, 0, options.failPercent);
+    const LimitCheck warnCheck = checkLimit(limits, 1, options.warnPercent);
+    int code = kExitPass;
+    std::string verdict = "PASS";
+    if (failCheck.exceeded()) {
+        code = kExitFail;
+        verdict = describe("FAIL", failCheck);
+    } else if (warnCheck.exceeded()) {
+        code = kExitWarn;
+        verdict = describe("WARN", warnCheck);
+    }
+
+    try {
+        if (!options.diffImage.empty()) vri::writeImage(options.diffImage, vri::differenceImage(a, b));
+        if (!options.histogram.empty())
+            vri::writeTextFile(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges)));
+        if (!options.json.empty()) {
+            nlohmann::json json = vri::toJson(diff);
+            json["a"] = options.a;
+            json["b"] = options.b;
+            json["verdict"] = code == kExitPass ? "pass" : code == kExitWarn ? "warn" : "fail";
+            json["exit_code"] = code;
+            json["fail"] = toJson(failCheck);
+            json["warn"] = toJson(warnCheck);
+            json["command"] = vri::commandLine(argc, argv);
+            vri::writeTextFile(options.json, json.dump(2) + "\n");
+        }
+    } catch (const vri::Error& e) {
+        return exitWith(kExitFileError, e);
+    }
+    if (options.json != "-") printSummary(options, diff, verdict);
+    return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return vri::guardedMain(kTool, [&] { return run(argc, argv); });
+}
