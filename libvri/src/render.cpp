@@ -1,11 +1,13 @@
 #include "vri/render.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 
 #include <tbb/blocked_range2d.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -161,7 +163,10 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     local.raysHit = counters.raysHit;
     local.samplesPlaced = counters.samplesPlaced;
     local.samplesEvaluated = counters.samplesEvaluated;
-    local.threads = tbb::this_task_arena::max_concurrency();
+    // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
+    local.threads = static_cast<int>(std::min<std::size_t>(
+        tbb::this_task_arena::max_concurrency(),
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
     if (stats) *stats = local;
     return image;
 }
