@@ -95,6 +95,13 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         options.earlyTermination = ert;
         options.skipEmptySpace = !noSkip;
         options.progress = !quiet;
+        // Every option is checked before the render, so that a mistake never leaves some outputs written.
+        vri::PngOptions png;
+        png.exposure = static_cast<float>(exposure);
+        png.invert = invert;
+        const glm::dvec3 bg = vri::parseVec3(background, "--background");
+        png.background = {float(bg.x), float(bg.y), float(bg.z)};
+        if (!(exposure > 0.0)) throw vri::Error("--png-exposure: must be > 0, got " + std::to_string(exposure));
 
         nlohmann::json inputs = nlohmann::json::array();
         std::shared_ptr<vri::Volume> volume;
@@ -105,18 +112,15 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         } else {
             if (field != "linear") throw vri::Error("--field: unknown analytic field '" + field + "' (expected linear)");
             linear.emplace();
-            linear->dims = glm::ivec3(vri::parseVec3(fieldDims, "--field-dims"));
-            if (glm::any(glm::lessThan(linear->dims, glm::ivec3(1))))
-                throw vri::Error("--field-dims: every dimension must be at least 1");
+            linear->dims = vri::parseDims(fieldDims, "--field-dims");
             if (fieldAsGrid) {
                 volume = std::make_shared<vri::Volume>(vri::sampleOntoGrid(*linear, conv));
                 linear.reset();
             }
         }
         if (!range.empty()) {
-            const glm::dvec3 r = vri::parseVec3(range + ",0", "--range");
-            if (!(r.y > r.x)) throw vri::Error("--range: expected lo,hi with hi > lo, got '" + range + "'");
             if (!volume) throw vri::Error("--range applies to volumes only");
+            const glm::dvec2 r = vri::parseRange(range, "--range");
             volume->range = vri::ValueRange{r.x, r.y};
         }
         const vri::Scene scene{volume, linear, conv, vri::loadTransferFunction(tfPath)};
@@ -145,14 +149,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},
                                       {"vri:scene", record["scene"].dump()}});
-        if (!pngPath.empty()) {
-            vri::PngOptions png;
-            png.exposure = static_cast<float>(exposure);
-            png.invert = invert;
-            const glm::dvec3 bg = vri::parseVec3(background, "--background");
-            png.background = {float(bg.x), float(bg.y), float(bg.z)};
-            vri::writePng(pngPath, image, png);
-        }
+        if (!pngPath.empty()) vri::writePng(pngPath, image, png);
         if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
         if (!quiet)
             std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated

@@ -1,11 +1,14 @@
 #include "vri/box.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace vri {
 
 std::optional<RayInterval> clipRay(const glm::dvec3& origin, const glm::dvec3& dir, const Box& box) {
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(origin[a]) || !std::isfinite(dir[a])) return std::nullopt;
     double tNear = 0.0;
     double tFar = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {

@@ -36,6 +36,24 @@ glm::dvec3 parseVec3(const std::string& text, const std::string& what) {
     return v;
 }
 
+glm::ivec3 parseDims(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::ivec3 v;
+    bool ok = parts.size() == 3;
+    for (int i = 0; ok && i < 3; ++i) ok = parseNumber(parts[i], v[i]) && v[i] >= 1 && v[i] <= 1000000000;
+    if (!ok) throw Error(what + ": expected three positive integers X,Y,Z, got '" + text + "'");
+    return v;
+}
+
+glm::dvec2 parseRange(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::dvec2 v;
+    bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y) &&
+              std::isfinite(v.x) && std::isfinite(v.y) && v.y > v.x;
+    if (!ok) throw Error(what + ": expected lo,hi with hi > lo, got '" + text + "'");
+    return v;
+}
+
 glm::ivec2 parseSize(const std::string& text, const std::string& what) {
     const auto parts = split(text, 'x');
     glm::ivec2 v;

@@ -46,7 +46,10 @@ OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const Transfe
                     return rawRange<decltype(t)>(volume, lo, hi);
                 });
                 const double s0 = (mn - range.lo) * invRange, s1 = (mx - range.lo) * invRange;
-                const double pad = 1e-6 * (1.0 + std::abs(s0) + std::abs(s1));
+                // A float sampler rounds lo, 1 / (hi - lo) and the interpolated value to float:
+                // errors of a few float ulps of |lo|, |mn|, |mx|, scaled by 1 / (hi - lo). Pad by far more.
+                const double magnitude = 1.0 + (std::abs(range.lo) + std::abs(mn) + std::abs(mx)) * invRange;
+                const double pad = 1e-5 * magnitude;
                 empty_[(static_cast<std::size_t>(bz) * bricks_.y + by) * bricks_.x + bx] =
                     tf.isInvisible(s0 - pad, s1 + pad);
             }

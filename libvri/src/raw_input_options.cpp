@@ -1,22 +1,8 @@
 #include "vri/raw_input_options.h"
 
-#include <cmath>
-
 #include "vri/cli.h"
 
 namespace vri {
-
-namespace {
-
-glm::ivec3 parseDims(const std::string& dims) {
-    const glm::dvec3 d = parseVec3(dims, "--dims");
-    for (int axis = 0; axis < 3; ++axis)
-        if (d[axis] < 1 || d[axis] != std::floor(d[axis]) || d[axis] > 1e9)
-            throw Error("--dims: expected three positive integers X,Y,Z, got '" + dims + "'");
-    return glm::ivec3(d);
-}
-
-}  // namespace
 
 void RawInputOptions::addTo(CLI::App& app) {
     app.add_option("--dims", dims_, "raw input: X,Y,Z (else taken from NAME_XxYxZ_TYPE.raw)");
@@ -38,7 +24,7 @@ std::optional<RawLayout> RawInputOptions::layout(const std::string& input) const
             throw Error(input + ": --byte-order and --header-bytes need --dims and --type "
                                 "(the file name does not give them)");
     } else {
-        layout = RawLayout{parseDims(dims_), parseVoxelType(type_, "--type")};
+        layout = RawLayout{parseDims(dims_, "--dims"), parseVoxelType(type_, "--type")};
     }
     if (byteOrderGiven) {
         if (byteOrder_ != "little" && byteOrder_ != "big")

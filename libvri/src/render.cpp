@@ -10,6 +10,8 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <glm/vector_relational.hpp>
+#include <glm/geometric.hpp>
 
 #include "vri/error.h"
 #include "vri/grid_sampler.h"
@@ -149,6 +151,15 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
                     std::to_string(options.samplingRate));
     if (options.tileSize < 1) throw Error("tile size must be at least 1");
     if (!scene.volume && !scene.field) throw Error("scene has neither a volume nor an analytic field");
+    if (!(options.earlyTermination >= 0.0 && options.earlyTermination < 1.0))
+        throw Error("early termination threshold must be in [0, 1), got " + std::to_string(options.earlyTermination));
+    const glm::dvec3 dims = scene.dims();
+    // The longest ray crosses |dims| voxels; keep its sample count well inside an int64 and a float.
+    if (options.samplingRate * glm::length(dims) > 1e9)
+        throw Error("sampling rate " + std::to_string(options.samplingRate) +
+                    " per voxel would put more than 1e9 samples on a ray through this volume");
+    if (scene.convention == GridConvention::NodeCentred && glm::any(glm::lessThan(dims, glm::dvec3(2.0))))
+        throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
 
     Image image(camera.width(), camera.height());
     Counters counters;

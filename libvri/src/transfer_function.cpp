@@ -11,24 +11,27 @@ std::string_view emissionModelName(EmissionModel m) {
     return m == EmissionModel::Colour ? "color" : "color-times-extinction";
 }
 
+void validateTransferFunctionPoint(const TransferFunctionPoint& p, const TransferFunctionPoint* previous,
+                                   const std::string& where) {
+    for (double v : {p.s, p.r, p.g, p.b, p.tau})
+        if (!std::isfinite(v)) throw Error(where + " has a value that is not finite");
+    if (p.r < 0 || p.g < 0 || p.b < 0) throw Error(where + " has a negative colour (expected >= 0)");
+    if (p.tau < 0) throw Error(where + " has a negative extinction tau (expected >= 0)");
+    if (previous && p.s < previous->s) {
+        std::ostringstream msg;
+        msg << where << " has s = " << p.s << " below the previous point's s = " << previous->s
+            << " (points must be sorted by s)";
+        throw Error(msg.str());
+    }
+}
+
 TransferFunction::TransferFunction(std::vector<TransferFunctionPoint> points, EmissionModel emission,
                                    const std::string& source)
     : points_(std::move(points)), emission_(emission) {
     if (points_.empty()) throw Error(source + ": a transfer function needs at least one point");
-    for (std::size_t i = 0; i < points_.size(); ++i) {
-        const auto& p = points_[i];
-        const std::string where = source + ": point " + std::to_string(i);
-        for (double v : {p.s, p.r, p.g, p.b, p.tau})
-            if (!std::isfinite(v)) throw Error(where + " has a value that is not finite");
-        if (p.r < 0 || p.g < 0 || p.b < 0) throw Error(where + " has a negative colour (expected >= 0)");
-        if (p.tau < 0) throw Error(where + " has a negative extinction tau (expected >= 0)");
-        if (i > 0 && p.s < points_[i - 1].s) {
-            std::ostringstream msg;
-            msg << where << " has s = " << p.s << " below the previous point's s = " << points_[i - 1].s
-                << " (points must be sorted by s)";
-            throw Error(msg.str());
-        }
-    }
+    for (std::size_t i = 0; i < points_.size(); ++i)
+        validateTransferFunctionPoint(points_[i], i > 0 ? &points_[i - 1] : nullptr,
+                                      source + ": point " + std::to_string(i));
     const double span = points_.back().s - points_.front().s;
     binScale_ = span > 0 ? kBins / span : 0.0;
     binStart_.assign(kBins, 0);

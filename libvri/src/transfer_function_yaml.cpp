@@ -48,12 +48,9 @@ TransferFunction transferFunctionFromYaml(const YAML::Node& root, const std::str
     std::vector<TransferFunctionPoint> points;
     for (std::size_t i = 0; i < pts.size(); ++i) {
         points.push_back(parsePoint(pts[i], source, i));
-        // Validate point by point here, so that the message carries the point's line and column.
-        TransferFunction({points.back()}, emission, yaml::where(source, pts[i]));
-        if (i > 0 && points[i].s < points[i - 1].s)
-            throw Error(yaml::where(source, pts[i]) + ": points[" + std::to_string(i) + "].s = " +
-                        std::to_string(points[i].s) + " is below the previous point's s = " +
-                        std::to_string(points[i - 1].s) + " (points must be sorted by s)");
+        // Validated here as well, so that the message carries the point's line and column.
+        validateTransferFunctionPoint(points[i], i > 0 ? &points[i - 1] : nullptr,
+                                      yaml::where(source, pts[i]) + ": points[" + std::to_string(i) + "]");
     }
     return TransferFunction(std::move(points), emission, source);
 }

@@ -142,3 +142,33 @@ TEST_CASE("render rejects a non-positive step") {
     opt.samplingRate = -1.0;
     CHECK_THROWS_AS(renderBlob(analyticScene(), opt), std::exception);
 }
+
+TEST_CASE("skipping stays bitwise neutral in float with a narrow range far from zero") {
+    // Every voxel 1001 with range [1000.1, 1001.1]: s = 0.9 in double, a little more in float, right
+    // where the transfer function starts to rise. The brick test must not call it empty.
+    auto v = std::make_shared<Volume>(glm::ivec3(16), VoxelType::UInt16);
+    for (std::size_t i = 0; i < v->voxelCount(); ++i) v->data<std::uint16_t>()[i] = 1001;
+    v->range = ValueRange{1000.1, 1001.1};
+    const TransferFunction tf({{0, 0, 0, 0, 0}, {0.90001, 0, 0, 0, 0}, {1, 1, 1, 1, 10}}, EmissionModel::ColourTimesExtinction);
+    const Scene scene{v, std::nullopt, GridConvention::CellCentred, tf};
+    for (auto precision : {Precision::Double, Precision::Float}) {
+        RenderOptions opt;
+        opt.precision = precision;
+        const Image skipped = renderBlob(scene, opt);
+        opt.skipEmptySpace = false;
+        CHECK(bitwiseEqual(skipped, renderBlob(scene, opt)));
+    }
+}
+
+TEST_CASE("render rejects settings it cannot honour") {
+    RenderOptions opt;
+    opt.samplingRate = 1e300;
+    CHECK_THROWS_WITH_AS(renderBlob(analyticScene(), opt), doctest::Contains("1e9 samples"), std::exception);
+    opt.samplingRate = 2.0;
+    opt.earlyTermination = -0.5;
+    CHECK_THROWS_AS(renderBlob(analyticScene(), opt), std::exception);
+    auto flat = std::make_shared<Volume>(glm::ivec3(16, 16, 1), VoxelType::UInt8);
+    const Scene scene{flat, std::nullopt, GridConvention::NodeCentred, paperATransferFunction()};
+    CHECK_THROWS_WITH_AS(render(scene, Camera(CameraSpec{}), RenderOptions{}), doctest::Contains("node-centred"),
+                         std::exception);
+}

@@ -24,6 +24,13 @@ TEST_CASE("transfer function: linear between points, constant outside, right-con
     }
 }
 
+TEST_CASE("transfer function: a jump at the first point also takes the right value") {
+    TransferFunction tf({{0.0, 0, 0, 0, 0}, {0.0, 1, 1, 1, 4}, {1.0, 1, 1, 1, 4}}, EmissionModel::Colour);
+    CHECK(tf(0.0).tau == 4.0);
+    CHECK(tf(-0.1).tau == 0.0);
+    CHECK(tf(0.0f).tau == 4.0f);
+}
+
 TEST_CASE("transfer function: invisible ranges") {
     TransferFunction tf({{0.0, 1, 1, 1, 0}, {0.3, 1, 1, 1, 0}, {0.5, 1, 1, 1, 1}}, EmissionModel::ColourTimesExtinction);
     CHECK(tf.isInvisible(0.0, 0.3));
@@ -47,9 +54,9 @@ TEST_CASE("transfer function YAML: both point forms, and errors with line and co
     CHECK(tf.emission() == EmissionModel::Colour);
     CHECK(tf(0.5).tau == doctest::Approx(0.25));
     CHECK_THROWS_WITH_AS(parseTransferFunction("points:\n  - [0.5, 0, 0, 0, 0]\n  - [0.2, 0, 0, 0, 0]\n", "u.yaml"),
-                         doctest::Contains("u.yaml:3:5: points[1].s"), Error);
-    CHECK_THROWS_WITH_AS(parseTransferFunction("points:\n  - [0.5, 0, 0, 0, -2]\n", "n.yaml"),
-                         doctest::Contains("n.yaml:2:5"), Error);
+                         doctest::Contains("u.yaml:3:5: points[1] has s = 0.2 below"), Error);
+    CHECK_THROWS_WITH_AS(parseTransferFunction("points:\n  - [0, 0, 0, 0, 0]\n  - [0.5, 0, 0, 0, -2]\n", "n.yaml"),
+                         doctest::Contains("n.yaml:3:5: points[1] has a negative extinction"), Error);
     CHECK_THROWS_WITH_AS(parseTransferFunction("points: [[0, 0, 0]\n", "m.yaml"),
                          doctest::Contains("m.yaml:"), Error);
     CHECK_THROWS_WITH_AS(parseTransferFunction("points: [[0, 0, 0]\n", "m.yaml"),

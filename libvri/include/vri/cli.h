@@ -21,6 +21,10 @@ inline constexpr int kExitError = 1;   // bad input file, failed computation
 
 // "x,y,z" -> vector; throws vri::Error naming `what` unless there are exactly three finite numbers.
 glm::dvec3 parseVec3(const std::string& text, const std::string& what);
+// "x,y,z" -> integer dims; throws vri::Error naming `what` unless all three are integers in [1, 1e9].
+glm::ivec3 parseDims(const std::string& text, const std::string& what);
+// "lo,hi" -> pair; throws vri::Error naming `what` unless both are finite and hi > lo.
+glm::dvec2 parseRange(const std::string& text, const std::string& what);
 // "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive integers.
 glm::ivec2 parseSize(const std::string& text, const std::string& what);
 

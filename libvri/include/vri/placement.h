@@ -17,6 +17,7 @@ enum class Placement {
     EntryAlign,            // Listing 2: first sample half a step after the entry point
     EntryExitAlign,        // Listing 3: step shortened per ray so that floor(samples) fit exactly
     EntryExitAlignCorner,  // Listing 4: ceil() with `dim - 1`, so every ray of positive length gets a sample
+                           // (except, as written, one exactly along an axis of a single voxel)
 };
 
 std::string_view placementName(Placement p);  // "eye", "entry", "entry-exit", "entry-exit-corner"
@@ -58,7 +59,9 @@ SampleSchedule<Real> placeSamples(Placement placement, const glm::vec<3, Real>& 
         samples = ceil(samplingRate * glm::length(ray * (dim - glm::vec<3, Real>(1))));
         break;
     }
-    if (!(samples > Real(0))) return s;  // Listing 3 on a ray shorter than one step: no sample at all
+    // Listing 3 on a ray shorter than one step: no sample at all. (render() bounds the rate, so
+    // `samples` is finite and fits an int64.)
+    if (!(samples > Real(0)) || !std::isfinite(samples)) return s;
     s.tIncr = s.tEnd / samples;
 
     if (placement == Placement::EyeAlign) {

@@ -21,6 +21,11 @@ struct TransferFunctionPoint {
     double tau;      // extinction per world unit (= per voxel for unit spacing), >= 0
 };
 
+// Throws vri::Error "<where> <what is wrong>" unless every value of `p` is finite, colour and tau are
+// non-negative, and s is not below the previous point's.
+void validateTransferFunctionPoint(const TransferFunctionPoint& p, const TransferFunctionPoint* previous,
+                                   const std::string& where);
+
 template <class Real>
 struct TransferFunctionSample {
     Real r, g, b, tau;
@@ -41,7 +46,7 @@ public:
     template <class Real>
     TransferFunctionSample<Real> operator()(Real s) const {
         const auto& p = points_;
-        if (!(s > static_cast<Real>(p.front().s))) return at<Real>(0);
+        if (!(s >= static_cast<Real>(p.front().s))) return at<Real>(0);
         if (!(s < static_cast<Real>(p.back().s))) return at<Real>(p.size() - 1);
         int bin = static_cast<int>((static_cast<double>(s) - p.front().s) * binScale_);
         std::size_t i = binStart_[bin < 0 ? 0 : (bin >= kBins ? kBins - 1 : bin)];
