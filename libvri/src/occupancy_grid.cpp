@@ -30,7 +30,7 @@ std::pair<double, double> rawRange(const Volume& v, glm::ivec3 lo, glm::ivec3 hi
 }  // namespace
 
 OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const TransferFunction& tf)
-    : dims_(volume.dims) {
+    : dims_(volume.dims), maxIndex_(glm::dvec3(volume.dims) - glm::dvec3(1.0)) {
     // Bricks tile the index range [0, n - 1] of each axis: brick m holds indices [m B, (m + 1) B).
     for (int a = 0; a < 3; ++a) bricks_[a] = (dims_[a] - 1) / kBrick + 1;
     empty_.assign(static_cast<std::size_t>(bricks_.x) * bricks_.y * bricks_.z, 0);
@@ -54,23 +54,6 @@ OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const Transfe
                     tf.isInvisible(s0 - pad, s1 + pad);
             }
     });
-}
-
-OccupancyGrid::Visit OccupancyGrid::visit(const glm::dvec3& x0, const glm::dvec3& dxdt, double t) const {
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    glm::ivec3 m;
-    double tExit = inf;
-    for (int a = 0; a < 3; ++a) {
-        const double x = std::clamp(x0[a] + t * dxdt[a], 0.0, static_cast<double>(dims_[a] - 1));
-        m[a] = std::min(static_cast<int>(x) / kBrick, bricks_[a] - 1);
-        // The first and last bricks also own the clamped region outside the voxel index range.
-        const double lo = m[a] == 0 ? -inf : static_cast<double>(m[a] * kBrick);
-        const double hi = m[a] == bricks_[a] - 1 ? inf : static_cast<double>((m[a] + 1) * kBrick);
-        if (dxdt[a] > 0) tExit = std::min(tExit, (hi - x0[a]) / dxdt[a]);
-        else if (dxdt[a] < 0) tExit = std::min(tExit, (lo - x0[a]) / dxdt[a]);
-    }
-    const bool empty = empty_[(static_cast<std::size_t>(m.z) * bricks_.y + m.y) * bricks_.x + m.x];
-    return {empty, tExit};
 }
 
 double OccupancyGrid::emptyFraction() const {

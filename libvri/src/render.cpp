@@ -76,8 +76,8 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                         if (s.count == 0) continue;
                         const Vec du = (exit - entry) / s.tEnd;
                         const Real dx = s.tIncr * static_cast<Real>(worldLength / static_cast<double>(s.tEnd));
-                        const glm::dvec3 x0 = glm::dvec3(entry) * indexMap.scale - indexMap.offset;
-                        const glm::dvec3 dxdt = glm::dvec3(du) * indexMap.scale;
+                        const OccupancyGrid::Ray indexRay(glm::dvec3(entry) * indexMap.scale - indexMap.offset,
+                                                          glm::dvec3(du) * indexMap.scale);
 
                         RayAccumulator<Real> acc;
                         double knownOccupiedUntil = -std::numeric_limits<double>::infinity();
@@ -85,17 +85,18 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                         while (k < s.count) {
                             const Real t = s.t(k);
                             if (occupancy && static_cast<double>(t) >= knownOccupiedUntil) {
-                                const auto brick = occupancy->visit(x0, dxdt, static_cast<double>(t));
+                                const auto brick = occupancy->visit(indexRay, static_cast<double>(t));
                                 if (brick.empty) {
+                                    // Jump to the first sample at or past the exit, counted on the
+                                    // positions we evaluate; every sample skipped lies before the exit.
                                     if (!(brick.tExit < static_cast<double>(s.tEnd))) {
-                                        k = s.count;
+                                        k = s.count;  // the rest of the ray is empty
                                         break;
                                     }
-                                    // Resume one sample before the exit: that sample is then judged
-                                    // by its own position, so rounding at the boundary cannot skip a
-                                    // visible sample.
-                                    const double next = std::ceil((brick.tExit - s.tStart) / s.tIncr) - 1.0;
-                                    k = std::max(k + 1, static_cast<std::int64_t>(next));
+                                    auto next = static_cast<std::int64_t>(std::ceil((brick.tExit - s.tStart) / s.tIncr));
+                                    next = std::clamp<std::int64_t>(next, k + 1, s.count);
+                                    while (next > k + 1 && static_cast<double>(s.t(next - 1)) >= brick.tExit) --next;
+                                    k = next;
                                     continue;
                                 }
                                 knownOccupiedUntil = brick.tExit;
