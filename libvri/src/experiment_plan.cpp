@@ -1,0 +1,181 @@
+// From an experiment to the command lines of its steps, and the order they can run in.
+#include "vri/experiment_plan.h"
+
+#include <algorithm>
+#include <map>
+
+#include "vri/error.h"
+#include "vri/provenance.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// `path` as a command names it when run from `workDir`: relative when the two share more than the root.
+std::string displayPath(const fs::path& path, const fs::path& workDir) {
+    const fs::path relative = path.lexically_relative(workDir);
+    const auto workDepth = std::distance(workDir.begin(), workDir.end()) - 1;  // components below the root
+    const auto up = std::count(relative.begin(), relative.end(), fs::path(".."));
+    if (relative.empty() || up >= workDepth) return path.string();
+    return relative.string();
+}
+
+// Absolute, normal, without a trailing separator (which would count as one more component).
+fs::path normalDirectory(const fs::path& dir) {
+    fs::path normal = fs::absolute(dir).lexically_normal();
+    if (!normal.has_filename() && normal != normal.root_path()) normal = normal.parent_path();
+    return normal;
+}
+
+class Planner {
+public:
+    Planner(const Experiment& experiment, Plan& plan) : experiment_(experiment), plan_(plan) {}
+
+    void addRender(const RunSpec& run);
+    void addDiff(const ComparisonSpec& comparison);
+    void addTable(const TableSpec& table);
+    void addFigure(const FigureSpec& figure);
+
+private:
+    fs::path result(const std::string& name) const { return plan_.resultsDir / name; }
+    std::string show(const fs::path& path) const { return displayPath(path, plan_.workDir); }
+    // An output, named on the command line after `option` (none for a positional argument).
+    void output(Step& step, const std::string& option, const fs::path& path) const {
+        if (!option.empty()) step.arguments.push_back(option);
+        step.arguments.push_back(show(path));
+        step.outputs.push_back(path);
+    }
+    void input(Step& step, const std::string& option, const fs::path& path) const {
+        if (!option.empty()) step.arguments.push_back(option);
+        step.arguments.push_back(show(path));
+        step.inputs.push_back(path);
+    }
+
+    const Experiment& experiment_;
+    Plan& plan_;
+};
+
+void Planner::addRender(const RunSpec& run) {
+    const SceneSpec& scene = experiment_.scene(run.scene);
+    Step step{run.id, "render", run.tool, {}, {}, {}, {{"scene", scene.name}}};
+    if (!scene.dataset.empty()) step.parameters.emplace_back("dataset", scene.dataset);
+    for (const auto& [option, value] : scene.options) {
+        const bool isFile = option == "--volume" || option == "--tf";
+        if (isFile) {
+            input(step, option, value);
+            continue;
+        }
+        step.arguments.push_back(option);
+        if (!value.empty()) step.arguments.push_back(value);
+    }
+    for (const auto& [option, value] : run.options) step.arguments.insert(step.arguments.end(), {option, value});
+    step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
+    step.arguments.push_back("-q");  // vri-run shows its own progress
+    output(step, "-o", renderImage(plan_, run.id));
+    output(step, "--png", result(run.id + ".png"));
+    output(step, "--stats", result(run.id + ".json"));
+    plan_.steps.push_back(std::move(step));
+}
+
+void Planner::addDiff(const ComparisonSpec& c) {
+    Step step{c.id, "diff", "vri-diff", {}, {}, {}, {{"reference", c.reference}, {"run", c.run}}};
+    input(step, "", renderImage(plan_, c.reference));
+    input(step, "", renderImage(plan_, c.run));
+    std::string thresholds;
+    for (const std::string& t : c.thresholds) thresholds += (thresholds.empty() ? "" : ",") + t;
+    step.arguments.insert(step.arguments.end(), {"--threshold", thresholds});
+    // Measure only: a difference is the result here, not a failure of the step.
+    step.arguments.insert(step.arguments.end(), {"--failpercent", "100", "--warnpercent", "100"});
+    output(step, "--json", result(c.id + ".json"));
+    if (!c.diffImage.empty()) output(step, "--diff-image", result(c.id + "." + c.diffImage));
+    if (c.histogram) output(step, "--histogram", result(c.id + "-histogram.csv"));
+    plan_.steps.push_back(std::move(step));
+}
+
+void Planner::addTable(const TableSpec& table) {
+    Step step{"table-" + table.name, "table", "vri-tabulate", {}, {}, {}, {{"table", table.name}}};
+    if (!table.comparisons.empty()) {
+        step.arguments = {"--layout", "thresholds", "--title", table.title};
+        for (const std::string& group : table.comparisons)
+            for (const ComparisonSpec& c : experiment_.comparisons)
+                if (c.group == group) {
+                    step.arguments.insert(step.arguments.end(), {"--row", c.run});
+                    input(step, "", result(c.id + ".json"));
+                }
+    } else {
+        step.arguments = {"--layout", "matrix", "--title", table.title, "--value", table.value};
+        for (const std::string& run : table.runs) {
+            step.arguments.insert(step.arguments.end(), {"--cell", run, table.column});
+            input(step, "", result(run + ".json"));
+        }
+    }
+    output(step, "-o", result(table.name + ".md"));
+    output(step, "--csv", result(table.name + ".csv"));
+    plan_.steps.push_back(std::move(step));
+}
+
+void Planner::addFigure(const FigureSpec& figure) {
+    Step step{"figure-" + figure.name, "figure", "vri-plot", {}, {}, {}, {{"figure", figure.name}}};
+    input(step, "", figure.spec);
+    for (const std::string& table : figure.tables) step.inputs.push_back(result(table + ".csv"));
+    output(step, "-o", result(figure.name + ".png"));
+    step.outputs.push_back(result(figure.name + ".svg"));  // vri-plot writes these beside the PNG
+    step.outputs.push_back(result(figure.name + ".gp"));
+    plan_.steps.push_back(std::move(step));
+}
+
+}  // namespace
+
+const Step& Plan::step(const std::string& id) const {
+    for (const Step& s : steps)
+        if (s.id == id) return s;
+    throw Error("no step '" + id + "' in the plan");
+}
+
+std::string Plan::commandPath(const fs::path& file) const { return displayPath(file, workDir); }
+
+fs::path renderImage(const Plan& plan, const std::string& runId) { return plan.resultsDir / (runId + ".exr"); }
+
+Plan planExperiment(const Experiment& experiment, const fs::path& resultsDir, const fs::path& workDir) {
+    Plan plan{normalDirectory(resultsDir), normalDirectory(workDir), {}, {}};
+    Planner planner(experiment, plan);
+    for (const RunSpec& run : experiment.runs) planner.addRender(run);
+    for (const ComparisonSpec& c : experiment.comparisons) planner.addDiff(c);
+    for (const TableSpec& t : experiment.tables) planner.addTable(t);
+    for (const FigureSpec& f : experiment.figures) planner.addFigure(f);
+
+    std::map<fs::path, std::size_t> writer;
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+        const Step& step = plan.steps[i];
+        if (std::count_if(plan.steps.begin(), plan.steps.end(), [&](const Step& s) { return s.id == step.id; }) > 1)
+            throw Error(experiment.source.string() + ": two steps are called '" + step.id + "'");
+        std::vector<std::size_t> dependencies;
+        for (const fs::path& in : step.inputs)
+            if (auto w = writer.find(in); w != writer.end() && std::find(dependencies.begin(), dependencies.end(), w->second) == dependencies.end())
+                dependencies.push_back(w->second);
+        for (const fs::path& out : step.outputs)
+            if (!writer.emplace(out, i).second)
+                throw Error(experiment.source.string() + ": steps '" + plan.steps[writer[out]].id + "' and '" + step.id +
+                            "' both write " + out.string());
+        plan.dependencies.push_back(std::move(dependencies));
+    }
+    return plan;
+}
+
+std::vector<std::string> commandWords(const Plan& plan, const Step& step, const fs::path& toolDir) {
+    std::string tool = displayPath(fs::absolute(toolDir / step.tool).lexically_normal(), plan.workDir);
+    if (tool.find('/') == std::string::npos) tool = "./" + tool;  // a bare name would be looked up in PATH
+    std::vector<std::string> words{tool};
+    words.insert(words.end(), step.arguments.begin(), step.arguments.end());
+    return words;
+}
+
+std::string shellCommand(const std::vector<std::string>& words) {
+    std::string line;
+    for (const std::string& word : words) line += (line.empty() ? "" : " ") + shellQuote(word);
+    return line;
+}
+
+}  // namespace vri

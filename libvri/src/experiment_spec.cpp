@@ -1,0 +1,494 @@
+// Reading experiment files: validation with file:line:col in every message, quick: overrides and
+// the expansion of parameter sweeps into runs.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "vri/datasets.h"
+#include "vri/experiment.h"
+#include "vri/integrator.h"
+#include "vri/placement.h"
+#include "vri/render.h"
+#include "vri/transfer_function.h"
+#include "yaml_util.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A parameter of a run tool that the file may set or sweep: its command-line option, how it is
+// checked, and how its value reads in a run id ("h" + "0.5"; an empty prefix shows the value alone).
+// A new method parameter (paper B's eps, h_min, h_max) is one more row.
+struct RunParameter {
+    std::string_view key, option, idPrefix;
+    std::function<void(const std::string& value, const std::string& where)> check;
+};
+
+void positiveNumber(const std::string& value, const std::string& where) {
+    double v = 0;
+    std::istringstream in(value);
+    if (!(in >> v) || !in.eof() || !(v > 0) || !std::isfinite(v))
+        throw Error(where + ": expected a number > 0, got '" + value + "'");
+}
+
+void nonNegativeNumber(const std::string& value, const std::string& where) {
+    double v = 0;
+    std::istringstream in(value);
+    if (!(in >> v) || !in.eof() || !(v >= 0) || !std::isfinite(v))
+        throw Error(where + ": expected a number >= 0, got '" + value + "'");
+}
+
+const std::vector<RunParameter>& renderParameters() {
+    static const std::vector<RunParameter> parameters{
+        {"method", "--method", "", [](auto& v, auto& w) { parseIntegrator(v, w); }},
+        {"placement", "--placement", "", [](auto& v, auto& w) { parsePlacement(v, w); }},
+        {"step", "--step", "h", positiveNumber},
+        {"rate", "--rate", "r", positiveNumber},
+        {"precision", "--precision", "", [](auto& v, auto& w) { parsePrecision(v, w); }},
+        {"early_termination", "--early-termination", "ert", nonNegativeNumber},
+    };
+    return parameters;
+}
+
+// Reads experiment files; `source` names the file in messages, `baseDir` resolves relative paths.
+class ExperimentReader {
+public:
+    ExperimentReader(std::string source, fs::path baseDir) : source_(std::move(source)), baseDir_(std::move(baseDir)) {}
+
+    Experiment read(YAML::Node root, bool quick);
+
+private:
+    std::string at(const YAML::Node& node) const { return yaml::where(source_, node); }
+    std::string text(const YAML::Node& node, std::string_view what) const { return yaml::toString(node, source_, what); }
+    std::string number(const YAML::Node& node, std::string_view what) const {
+        yaml::toDouble(node, source_, what);
+        return node.Scalar();
+    }
+    bool flag(const YAML::Node& node, std::string_view what) const;
+    std::string vec3(const YAML::Node& node, std::string_view what) const;
+    std::vector<std::string> names(const YAML::Node& node, std::string_view what) const;
+    fs::path existingFile(const YAML::Node& node, std::string_view what) const;
+    YAML::Node required(const YAML::Node& map, const char* key, std::string_view what) const;
+    // Items of a name -> entry mapping, each checked to be a mapping, in file order.
+    std::vector<std::pair<std::string, YAML::Node>> entries(const YAML::Node& node, std::string_view what) const;
+
+    PaperItem readPaper(const YAML::Node& node) const;
+    SceneSpec readScene(const std::string& name, const YAML::Node& node);
+    void readRuns(const YAML::Node& node, bool reference, Experiment& experiment) const;
+    void readComparisons(const YAML::Node& node, Experiment& experiment) const;
+    void readTables(const YAML::Node& node, Experiment& experiment) const;
+    void readFigures(const YAML::Node& node, Experiment& experiment) const;
+    void readReproduce(const YAML::Node& node, Experiment& experiment) const;
+
+    std::string source_;
+    fs::path baseDir_;
+    std::optional<std::vector<DatasetInfo>> catalog_;  // experiments/datasets.yaml, read when a scene names a dataset
+};
+
+bool ExperimentReader::flag(const YAML::Node& node, std::string_view what) const {
+    try {
+        if (node.IsScalar()) return node.as<bool>();
+    } catch (const YAML::Exception&) {
+    }
+    throw Error(at(node) + ": " + std::string(what) + " must be true or false");
+}
+
+std::string ExperimentReader::vec3(const YAML::Node& node, std::string_view what) const {
+    if (!node.IsSequence() || node.size() != 3) throw Error(at(node) + ": " + std::string(what) + " must be [x, y, z]");
+    return number(node[0], what) + "," + number(node[1], what) + "," + number(node[2], what);
+}
+
+std::vector<std::string> ExperimentReader::names(const YAML::Node& node, std::string_view what) const {
+    if (node.IsScalar()) return {node.Scalar()};
+    if (!node.IsSequence()) throw Error(at(node) + ": " + std::string(what) + " must be a name or a list of names");
+    std::vector<std::string> result;
+    for (const YAML::Node& item : node) result.push_back(text(item, what));
+    return result;
+}
+
+fs::path ExperimentReader::existingFile(const YAML::Node& node, std::string_view what) const {
+    const fs::path path = (baseDir_ / text(node, what)).lexically_normal();
+    if (!fs::is_regular_file(path))
+        throw Error(at(node) + ": " + std::string(what) + ": no such file: " + path.string());
+    return fs::absolute(path);
+}
+
+YAML::Node ExperimentReader::required(const YAML::Node& map, const char* key, std::string_view what) const {
+    const YAML::Node node = map[key];
+    if (!node) throw Error(at(map) + ": " + std::string(what) + " has no '" + key + "'");
+    return node;
+}
+
+std::vector<std::pair<std::string, YAML::Node>> ExperimentReader::entries(const YAML::Node& node,
+                                                                          std::string_view what) const {
+    yaml::requireMap(node, source_, what);
+    std::vector<std::pair<std::string, YAML::Node>> result;
+    for (const auto& kv : node) {
+        const std::string name = text(kv.first, std::string(what) + " name");
+        if (name.empty() || name.find_first_of("/ \t") != std::string::npos)
+            throw Error(at(kv.first) + ": '" + name + "' is not a usable name (no blanks or '/')");
+        yaml::requireMap(kv.second, source_, std::string(what) + " '" + name + "'");
+        result.emplace_back(name, kv.second);
+    }
+    return result;
+}
+
+PaperItem ExperimentReader::readPaper(const YAML::Node& node) const {
+    yaml::requireMap(node, source_, "paper");
+    yaml::requireKeys(node, source_, {"paper", "item", "says"});
+    PaperItem paper{text(required(node, "paper", "paper"), "paper.paper"), text(required(node, "item", "paper"), "paper.item"),
+                    text(required(node, "says", "paper"), "paper.says")};
+    if (paper.paper != "A" && paper.paper != "B" && paper.paper != "none")
+        throw Error(at(node["paper"]) + ": paper.paper must be A, B or none, got '" + paper.paper + "'");
+    return paper;
+}
+
+SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node& node) {
+    yaml::requireKeys(node, source_,
+                      {"dataset", "volume", "field", "field_dims", "as_grid", "convention", "tf", "camera", "size", "png"});
+    SceneSpec scene{name, {}, {}, {}, {}, {}};
+    const std::string what = "scene '" + name + "'";
+    const int inputs = !!node["dataset"] + !!node["volume"] + !!node["field"];
+    if (inputs != 1) throw Error(at(node) + ": " + what + " needs exactly one of dataset, volume or field");
+    if (const YAML::Node n = node["dataset"]) {
+        scene.dataset = text(n, "dataset");
+        if (!catalog_) catalog_ = loadDatasetCatalog(baseDir_ / "datasets.yaml");
+        const DatasetInfo& info = findDataset(*catalog_, scene.dataset, at(n));
+        scene.datasetStatus = info.status;
+        scene.datasetNote = info.note;
+        const fs::path file = fs::absolute(datasetPath(info, defaultDataDir())).lexically_normal();
+        if (!fs::is_regular_file(file))
+            throw Error(at(n) + ": dataset '" + scene.dataset + "': no such file: " + file.string() + " (run make data)");
+        scene.files.push_back(file);
+        scene.options.emplace_back("--volume", file.string());
+        if (info.header.empty()) {
+            const RawLayout layout = rawLayout(info);
+            const auto join = [](auto v) {
+                std::ostringstream out;
+                out << v.x << ',' << v.y << ',' << v.z;
+                return out.str();
+            };
+            scene.options.emplace_back("--dims", join(layout.dims));
+            scene.options.emplace_back("--type", std::string(voxelTypeName(layout.type)));
+            scene.options.emplace_back("--byte-order", layout.order == ByteOrder::Big ? "big" : "little");
+            scene.options.emplace_back("--spacing", join(layout.spacing));
+        }
+    } else if (const YAML::Node n = node["volume"]) {
+        scene.files.push_back(existingFile(n, "volume"));
+        scene.options.emplace_back("--volume", scene.files.back().string());
+    } else {
+        const std::string field = text(node["field"], "field");
+        if (field != "linear") throw Error(at(node["field"]) + ": unknown analytic field '" + field + "' (expected linear)");
+        scene.options.emplace_back("--field", field);
+        if (const YAML::Node dims = node["field_dims"]) {
+            const std::string d = vec3(dims, "field_dims");
+            for (const YAML::Node& v : dims)
+                if (double x = v.as<double>(); x != std::floor(x) || x < 2)
+                    throw Error(at(v) + ": field_dims must be whole numbers >= 2");
+            scene.options.emplace_back("--field-dims", d);
+        }
+        if (node["as_grid"] && flag(node["as_grid"], "as_grid")) scene.options.emplace_back("--field-as-grid", "");
+    }
+    if ((node["field_dims"] || node["as_grid"]) && !node["field"])
+        throw Error(at(node) + ": field_dims and as_grid apply to analytic fields only");
+
+    const YAML::Node convention = required(node, "convention", what);
+    parseGridConvention(text(convention, "convention"), at(convention) + ": convention");
+    scene.options.emplace_back("--convention", convention.Scalar());
+
+    const YAML::Node tf = required(node, "tf", what);
+    scene.files.push_back(existingFile(tf, "tf"));
+    loadTransferFunction(scene.files.back());  // its own errors carry its own file:line:col
+    scene.options.emplace_back("--tf", scene.files.back().string());
+
+    if (const YAML::Node size = node["size"]) {
+        if (!size.IsSequence() || size.size() != 2) throw Error(at(size) + ": size must be [width, height]");
+        for (const YAML::Node& v : size)
+            if (double x = yaml::toDouble(v, source_, "size"); x != std::floor(x) || x < 1 || x > 65536)
+                throw Error(at(v) + ": size must be whole numbers in 1..65536");
+        scene.options.emplace_back("--size", size[0].Scalar() + "x" + size[1].Scalar());
+    }
+    if (const YAML::Node camera = node["camera"]) {
+        yaml::requireMap(camera, source_, "camera");
+        yaml::requireKeys(camera, source_, {"eye", "target", "up", "fov"});
+        for (const char* key : {"eye", "target", "up"})
+            if (camera[key]) scene.options.emplace_back(std::string("--") + key, vec3(camera[key], key));
+        if (const YAML::Node fov = camera["fov"]) {
+            const std::string f = number(fov, "fov");
+            if (double x = fov.as<double>(); !(x > 0 && x < 180)) throw Error(at(fov) + ": fov must be in (0, 180) degrees");
+            scene.options.emplace_back("--fov", f);
+        }
+    }
+    if (const YAML::Node png = node["png"]) {
+        yaml::requireMap(png, source_, "png");
+        yaml::requireKeys(png, source_, {"invert", "exposure", "background"});
+        if (png["invert"] && flag(png["invert"], "png.invert")) scene.options.emplace_back("--png-invert", "");
+        if (const YAML::Node e = png["exposure"]) {
+            positiveNumber(number(e, "png.exposure"), at(e) + ": png.exposure");
+            scene.options.emplace_back("--png-exposure", e.Scalar());
+        }
+        if (png["background"]) scene.options.emplace_back("--background", vec3(png["background"], "png.background"));
+    }
+    return scene;
+}
+
+void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experiment& experiment) const {
+    const char* section = reference ? "references" : "methods";
+    for (const auto& [prefix, entry] : entries(node, section)) {
+        // The parameters, each a list of values (a scalar is a list of one that does not show in ids).
+        struct Axis {
+            const RunParameter* parameter;
+            std::vector<std::string> values;
+            bool swept;
+        };
+        std::vector<Axis> axes;
+        std::vector<std::string> scenes;
+        bool hasMethod = false;
+        for (const auto& kv : entry) {
+            const std::string key = text(kv.first, "key");
+            if (key == "scenes") {
+                scenes = names(kv.second, "scenes");
+                for (std::size_t i = 0; i < scenes.size(); ++i)
+                    if (std::none_of(experiment.scenes.begin(), experiment.scenes.end(),
+                                     [&](const SceneSpec& s) { return s.name == scenes[i]; }))
+                        throw Error(at(kv.second) + ": unknown scene '" + scenes[i] + "'");
+                continue;
+            }
+            const auto& known = renderParameters();
+            const auto parameter = std::find_if(known.begin(), known.end(), [&](auto& p) { return p.key == key; });
+            if (parameter == known.end()) {
+                std::string list = "scenes";
+                for (const RunParameter& p : known) list += ", " + std::string(p.key);
+                throw Error(at(kv.first) + ": unknown key '" + key + "' (expected one of: " + list + ")");
+            }
+            hasMethod = hasMethod || key == "method";
+            Axis axis{&*parameter, {}, kv.second.IsSequence()};
+            if (axis.swept && kv.second.size() == 0) throw Error(at(kv.second) + ": " + key + ": an empty list");
+            const auto value = [&](const YAML::Node& v) {
+                if (!v.IsScalar()) throw Error(at(v) + ": " + key + " must be a value or a list of values");
+                parameter->check(v.Scalar(), at(v) + ": " + key);
+                axis.values.push_back(v.Scalar());
+            };
+            if (axis.swept)
+                for (const YAML::Node& v : kv.second) value(v);
+            else
+                value(kv.second);
+            axes.push_back(std::move(axis));
+        }
+        if (!hasMethod) {  // the entry's name is the method, as in `riemann: {step: [...]}`
+            static const RunParameter& method = renderParameters().front();
+            method.check(prefix, at(entry) + ": " + section + " entry '" + prefix + "' has no method, and its name");
+            axes.insert(axes.begin(), Axis{&method, {prefix}, false});
+        }
+        if (scenes.empty())
+            for (const SceneSpec& s : experiment.scenes) scenes.push_back(s.name);
+
+        // The cartesian product, the last axis varying fastest (as nested loops in file order).
+        std::vector<std::size_t> index(axes.size(), 0);
+        for (const std::string& scene : scenes) {
+            for (bool more = true; more;) {
+                RunSpec run{experiment.scenes.size() > 1 ? scene + "-" + prefix : prefix, "vri-render", scene, reference, {}, {}};
+                for (std::size_t a = 0; a < axes.size(); ++a) {
+                    const std::string& v = axes[a].values[index[a]];
+                    run.parameters.emplace_back(axes[a].parameter->key, v);
+                    run.options.emplace_back(axes[a].parameter->option, v);
+                    if (axes[a].swept) run.id += "-" + std::string(axes[a].parameter->idPrefix) + v;
+                }
+                if (std::any_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& r) { return r.id == run.id; }))
+                    throw Error(at(entry) + ": run id '" + run.id + "' is used twice (rename one of the entries)");
+                experiment.runs.push_back(std::move(run));
+                more = false;
+                for (std::size_t a = axes.size(); a-- > 0 && !more;) {
+                    more = ++index[a] < axes[a].values.size();
+                    if (!more) index[a] = 0;
+                }
+            }
+        }
+    }
+}
+
+void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& experiment) const {
+    for (const auto& [group, entry] : entries(node, "comparisons")) {
+        yaml::requireKeys(entry, source_, {"reference", "runs", "thresholds", "diff_image", "histogram"});
+        const YAML::Node ref = required(entry, "reference", "comparison '" + group + "'");
+        const std::string reference = text(ref, "reference");
+        const auto known = [&](const std::string& id, const YAML::Node& where) {
+            for (const RunSpec& r : experiment.runs)
+                if (r.id == id) return;
+            throw Error(at(where) + ": unknown run '" + id + "'");
+        };
+        known(reference, ref);
+        std::vector<std::string> runs;
+        if (const YAML::Node r = entry["runs"]) {
+            runs = names(r, "runs");
+            for (const std::string& id : runs) known(id, r);
+        } else {  // every other method run of the reference's scene
+            for (const RunSpec& r : experiment.runs)
+                if (!r.reference && r.id != reference && r.scene == experiment.run(reference).scene) runs.push_back(r.id);
+        }
+        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", false};
+        if (const YAML::Node t = entry["thresholds"]) {
+            if (!t.IsSequence() || t.size() == 0) throw Error(at(t) + ": thresholds must be a list of numbers");
+            base.thresholds.clear();
+            for (const YAML::Node& v : t) {
+                nonNegativeNumber(number(v, "thresholds"), at(v) + ": thresholds");
+                base.thresholds.push_back(v.Scalar());
+            }
+        }
+        if (const YAML::Node d = entry["diff_image"]) {
+            base.diffImage = text(d, "diff_image");
+            if (base.diffImage == "none") base.diffImage.clear();
+            else if (base.diffImage != "png" && base.diffImage != "exr")
+                throw Error(at(d) + ": diff_image must be png, exr or none, got '" + base.diffImage + "'");
+        }
+        if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
+        for (const std::string& run : runs) {
+            ComparisonSpec c = base;
+            c.id = group + "-" + run;
+            c.run = run;
+            experiment.comparisons.push_back(std::move(c));
+        }
+    }
+}
+
+void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment) const {
+    for (const auto& [name, entry] : entries(node, "tables")) {
+        yaml::requireKeys(entry, source_, {"title", "comparisons", "runs", "value", "column"});
+        TableSpec table{name, name, {}, {}};
+        if (entry["value"]) table.value = text(entry["value"], "value");
+        if (entry["column"]) table.column = text(entry["column"], "column");
+        if (entry["title"]) table.title = text(entry["title"], "title");
+        if (const YAML::Node c = entry["comparisons"]) {
+            table.comparisons = names(c, "comparisons");
+            for (const std::string& group : table.comparisons)
+                if (std::none_of(experiment.comparisons.begin(), experiment.comparisons.end(),
+                                 [&](auto& x) { return x.group == group; }))
+                    throw Error(at(c) + ": unknown comparison '" + group + "'");
+        }
+        if (const YAML::Node r = entry["runs"]) {
+            table.runs = names(r, "runs");
+            for (const std::string& id : table.runs)
+                if (std::none_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& x) { return x.id == id; }))
+                    throw Error(at(r) + ": unknown run '" + id + "'");
+        }
+        if (table.comparisons.empty() == table.runs.empty())
+            throw Error(at(entry) + ": table '" + name + "' needs either comparisons (a threshold table) or runs (a table of values)");
+        experiment.tables.push_back(std::move(table));
+    }
+}
+
+void ExperimentReader::readFigures(const YAML::Node& node, Experiment& experiment) const {
+    for (const auto& [name, entry] : entries(node, "figures")) {
+        yaml::requireKeys(entry, source_, {"spec", "tables"});
+        FigureSpec figure{name, existingFile(required(entry, "spec", "figure '" + name + "'"), "spec"), {}};
+        if (const YAML::Node t = entry["tables"]) {
+            figure.tables = names(t, "tables");
+            for (const std::string& table : figure.tables)
+                if (std::none_of(experiment.tables.begin(), experiment.tables.end(), [&](auto& x) { return x.name == table; }))
+                    throw Error(at(t) + ": unknown table '" + table + "'");
+        }
+        experiment.figures.push_back(std::move(figure));
+    }
+}
+
+void ExperimentReader::readReproduce(const YAML::Node& node, Experiment& experiment) const {
+    yaml::requireMap(node, source_, "reproduce");
+    yaml::requireKeys(node, source_, {"tolerance", "checks"});
+    double tolerance = 0;
+    if (node["tolerance"]) tolerance = yaml::toDouble(node["tolerance"], source_, "tolerance");
+    const YAML::Node checks = required(node, "checks", "reproduce");
+    if (!checks.IsSequence() || checks.size() == 0) throw Error(at(checks) + ": checks must be a non-empty list");
+    for (const YAML::Node& c : checks) {
+        yaml::requireMap(c, source_, "a check");
+        yaml::requireKeys(c, source_, {"of", "metrics", "tolerance"});
+        ReproduceCheck check{text(required(c, "of", "a check"), "of"), names(required(c, "metrics", "a check"), "metrics"),
+                             tolerance};
+        if (c["tolerance"]) check.tolerance = yaml::toDouble(c["tolerance"], source_, "tolerance");
+        if (!(check.tolerance >= 0)) throw Error(at(c) + ": tolerance must be >= 0");
+        const bool isRun = std::any_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& r) { return r.id == check.of; });
+        const bool isComparison = std::any_of(experiment.comparisons.begin(), experiment.comparisons.end(),
+                                              [&](auto& x) { return x.id == check.of; });
+        if (!isRun && !isComparison) throw Error(at(c["of"]) + ": '" + check.of + "' is neither a run nor a comparison");
+        const std::set<std::string> allowed = isRun ? std::set<std::string>{"max", "mean"}
+                                                    : std::set<std::string>{"max_abs", "mean_abs", "rmse"};
+        for (const std::string& m : check.metrics)
+            if (!allowed.contains(m))
+                throw Error(at(c["metrics"]) + ": metric '" + m + "' does not apply to " + (isRun ? "a run" : "a comparison") +
+                            " (expected " + (isRun ? "max, mean" : "max_abs, mean_abs, rmse") + ")");
+        experiment.reproduce.push_back(std::move(check));
+    }
+}
+
+// quick: overrides. Maps merge key by key; any other value replaces the one below it.
+void mergeOverrides(YAML::Node base, const YAML::Node& overrides) {
+    for (const auto& kv : overrides) {
+        const std::string key = kv.first.Scalar();
+        const YAML::Node below = static_cast<const YAML::Node&>(base)[key];
+        if (below && below.IsMap() && kv.second.IsMap())
+            mergeOverrides(below, kv.second);
+        else
+            base[key] = kv.second;
+    }
+}
+
+Experiment ExperimentReader::read(YAML::Node root, bool quick) {
+    yaml::requireMap(root, source_, "an experiment");
+    static const std::initializer_list<std::string_view> topLevel{
+        "name", "title", "paper", "agreement", "scenes", "methods", "references",
+        "comparisons", "tables", "figures", "reproduce", "quick"};
+    yaml::requireKeys(root, source_, topLevel);
+    if (const YAML::Node q = root["quick"]) {
+        yaml::requireMap(q, source_, "quick");
+        yaml::requireKeys(q, source_, {"title", "scenes", "methods", "references", "comparisons", "tables", "figures"});
+        if (quick) mergeOverrides(root, q);
+    }
+    Experiment experiment;
+    experiment.source = source_;
+    experiment.quick = quick;
+    const YAML::Node name = required(root, "name", "the experiment");
+    experiment.name = text(name, "name");
+    if (experiment.name.empty() || experiment.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_.") != std::string::npos)
+        throw Error(at(name) + ": name must be lowercase letters, digits, '-', '_' or '.', got '" + experiment.name + "'");
+    experiment.title = text(required(root, "title", "the experiment"), "title");
+    experiment.paper = readPaper(required(root, "paper", "the experiment"));
+    if (root["agreement"]) experiment.agreement = text(root["agreement"], "agreement");
+    for (const auto& [sceneName, entry] : entries(required(root, "scenes", "the experiment"), "scenes"))
+        experiment.scenes.push_back(readScene(sceneName, entry));
+    if (experiment.scenes.empty()) throw Error(at(root["scenes"]) + ": no scenes");
+    if (root["references"]) readRuns(root["references"], true, experiment);
+    readRuns(required(root, "methods", "the experiment"), false, experiment);
+    if (root["comparisons"]) readComparisons(root["comparisons"], experiment);
+    if (root["tables"]) readTables(root["tables"], experiment);
+    if (root["figures"]) readFigures(root["figures"], experiment);
+    if (root["reproduce"]) readReproduce(root["reproduce"], experiment);
+    return experiment;
+}
+
+}  // namespace
+
+const SceneSpec& Experiment::scene(const std::string& sceneName) const {
+    for (const SceneSpec& s : scenes)
+        if (s.name == sceneName) return s;
+    throw Error(source.string() + ": unknown scene '" + sceneName + "'");
+}
+
+const RunSpec& Experiment::run(const std::string& id) const {
+    for (const RunSpec& r : runs)
+        if (r.id == id) return r;
+    throw Error(source.string() + ": unknown run '" + id + "'");
+}
+
+Experiment parseExperiment(const std::string& yamlText, const std::string& source, const fs::path& baseDir, bool quick) {
+    return ExperimentReader(source, baseDir).read(yaml::parse(yamlText, source), quick);
+}
+
+Experiment loadExperiment(const fs::path& path, bool quick) {
+    return ExperimentReader(path.string(), path.parent_path()).read(yaml::load(path), quick);
+}
+
+}  // namespace vri

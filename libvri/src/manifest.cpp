@@ -1,0 +1,165 @@
+// manifest.json of an experiment, and the results gallery read back from the manifests.
+#include "vri/manifest.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "vri/atomic_file.h"
+#include "vri/provenance.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The first line a command prints, or "" when it cannot run (no git, not a work tree).
+std::string firstLineOf(const std::string& command) {
+    std::string line;
+    if (FILE* pipe = ::popen(command.c_str(), "r")) {
+        std::array<char, 256> buffer{};
+        if (std::fgets(buffer.data(), buffer.size(), pipe)) line = buffer.data();
+        ::pclose(pipe);
+    }
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    return line;
+}
+
+// The commit of the experiment file's work tree, and whether tracked files differ from it.
+nlohmann::json sourceTree(const fs::path& experimentFile) {
+    const std::string dir = shellQuote(fs::absolute(experimentFile).parent_path().string());
+    const std::string commit = firstLineOf("git -C " + dir + " rev-parse HEAD 2>/dev/null");
+    if (commit.empty()) return {{"commit", "unknown"}};
+    const bool modified = !firstLineOf("git -C " + dir + " status --porcelain --untracked-files=no 2>/dev/null").empty();
+    return {{"commit", commit}, {"modified_files", modified}};
+}
+
+nlohmann::json digests(const std::vector<FileDigest>& files) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const FileDigest& f : files) list.push_back({{"path", f.path}, {"sha512", f.sha512}});
+    return list;
+}
+
+std::string stateName(StepOutcome::State state) {
+    switch (state) {
+    case StepOutcome::State::Ran: return "ran";
+    case StepOutcome::State::Cached: return "cached";
+    case StepOutcome::State::Unavailable: return "tool not built";
+    }
+    return "unknown";
+}
+
+}  // namespace
+
+void writeManifest(const Experiment& experiment, const Plan& plan, const std::vector<StepOutcome>& outcomes,
+                   const fs::path& toolDir, FileHasher& hasher) {
+    nlohmann::json steps = nlohmann::json::array();
+    nlohmann::json tools = nlohmann::json::object();
+    nlohmann::json outputs = {{"images", nlohmann::json::array()}, {"diff_images", nlohmann::json::array()},
+                              {"tables", nlohmann::json::array()}, {"figures", nlohmann::json::array()}};
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+        const Step& step = plan.steps[i];
+        const StepOutcome& outcome = outcomes.at(i);
+        nlohmann::json parameters = nlohmann::json::object();
+        for (const auto& [key, value] : step.parameters) parameters[key] = value;
+        steps.push_back({{"id", step.id},
+                         {"kind", step.kind},
+                         {"state", stateName(outcome.state)},
+                         {"command", outcome.record.command},
+                         {"parameters", parameters},
+                         {"inputs", digests(outcome.record.inputs)},
+                         {"outputs", digests(outcome.record.outputs)},
+                         {"wall_seconds", outcome.record.wallSeconds},
+                         {"ran_utc", outcome.record.ranUtc}});
+        if (outcome.state == StepOutcome::State::Unavailable) continue;
+        tools[step.tool] = hasher.digest(toolDir / step.tool);
+        for (const fs::path& out : step.outputs) {
+            const std::string name = out.lexically_relative(plan.resultsDir).string();
+            const std::string ext = out.extension().string();
+            if (step.kind == "render" && ext == ".png") outputs["images"].push_back({{"id", step.id}, {"file", name}});
+            if (step.kind == "diff" && ext == ".png") outputs["diff_images"].push_back({{"id", step.id}, {"file", name}});
+            if (step.kind == "table" && ext == ".md") outputs["tables"].push_back({{"id", step.id}, {"file", name}});
+            if (step.kind == "figure" && ext == ".png") outputs["figures"].push_back({{"id", step.id}, {"file", name}});
+        }
+    }
+    nlohmann::json datasets = nlohmann::json::array();
+    for (const SceneSpec& scene : experiment.scenes)
+        if (!scene.dataset.empty())
+            datasets.push_back({{"scene", scene.name}, {"dataset", scene.dataset}, {"status", scene.datasetStatus},
+                                {"note", scene.datasetNote}});
+    const nlohmann::json manifest = {
+        {"experiment",
+         {{"name", experiment.name},
+          {"title", experiment.title},
+          {"paper", {{"paper", experiment.paper.paper}, {"item", experiment.paper.item}, {"says", experiment.paper.says}}},
+          {"agreement", experiment.agreement},
+          {"source", plan.commandPath(fs::absolute(experiment.source).lexically_normal())},
+          {"source_sha512", hasher.digest(experiment.source)},
+          {"quick", experiment.quick}}},
+        {"source_tree", sourceTree(experiment.source)},
+        {"build", buildInfo()},
+        {"machine", machineInfo()},
+        {"tools", tools},
+        {"datasets", datasets},
+        {"outputs", outputs},
+        {"steps", steps}};
+    writeTextFile(plan.resultsDir / "manifest.json", manifest.dump(2) + "\n");
+}
+
+std::string galleryMarkdown(const fs::path& resultsRoot) {
+    std::vector<fs::path> manifests;
+    for (const fs::directory_entry& entry : fs::directory_iterator(resultsRoot))
+        if (fs::is_regular_file(entry.path() / "manifest.json")) manifests.push_back(entry.path() / "manifest.json");
+    std::sort(manifests.begin(), manifests.end());
+
+    std::ostringstream md;
+    md << "# Results\n\n"
+          "Generated by `vri-run --gallery` from each experiment's `manifest.json`; regenerate everything with\n"
+          "`make experiments`. Each experiment's folder holds its images, tables, figures and the manifest with the\n"
+          "exact commands, input digests, build, machine and wall times.\n";
+    for (const fs::path& path : manifests) {
+        std::ifstream in(path);
+        const nlohmann::json m = nlohmann::json::parse(in);
+        const nlohmann::json& e = m.at("experiment");
+        const std::string dir = path.parent_path().filename().string();
+        md << "\n## " << e.at("title").get<std::string>() << "\n\n";
+        const nlohmann::json& paper = e.at("paper");
+        if (paper.at("paper") != "none")
+            md << "**Paper " << paper.at("paper").get<std::string>() << ", " << paper.at("item").get<std::string>()
+               << ":** " << paper.at("says").get<std::string>() << "\n\n";
+        for (const nlohmann::json& d : m.at("datasets"))
+            if (d.at("status") != "exact")
+                md << "*Dataset " << d.at("dataset").get<std::string>() << " is " << d.at("status").get<std::string>()
+                   << ":* " << d.at("note").get<std::string>() << "\n\n";
+        const auto gallery = [&](const nlohmann::json& list) {
+            if (list.empty()) return;
+            md << "|";
+            for (const nlohmann::json& item : list) md << " " << item.at("id").get<std::string>() << " |";
+            md << "\n|";
+            for (std::size_t i = 0; i < list.size(); ++i) md << "---|";
+            md << "\n|";
+            for (const nlohmann::json& item : list)
+                md << " ![" << item.at("id").get<std::string>() << "](" << dir << "/" << item.at("file").get<std::string>()
+                   << ") |";
+            md << "\n\n";
+        };
+        const nlohmann::json& outputs = m.at("outputs");
+        gallery(outputs.at("images"));
+        gallery(outputs.at("diff_images"));
+        gallery(outputs.at("figures"));
+        for (const nlohmann::json& table : outputs.at("tables"))
+            md << std::ifstream(path.parent_path() / table.at("file").get<std::string>()).rdbuf() << "\n";
+        if (!e.at("agreement").get<std::string>().empty())
+            md << "**Ours against the paper:** " << e.at("agreement").get<std::string>() << "\n\n";
+        md << "Experiment file `" << e.at("source").get<std::string>() << "`, manifest [" << dir << "/manifest.json]("
+           << dir << "/manifest.json).\n";
+    }
+    return md.str();
+}
+
+}  // namespace vri

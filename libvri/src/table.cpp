@@ -1,0 +1,90 @@
+// Printing tables as Markdown and CSV, with a fixed number of decimals per column as the papers do.
+#include "vri/table.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "vri/error.h"
+
+namespace vri {
+
+namespace {
+
+std::string formatNumber(const std::optional<double>& value, int precision, const char* missing) {
+    if (!value) return missing;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", precision, *value);
+    return text;
+}
+
+// A pipe inside a cell would end it.
+std::string markdownCell(const std::string& text) {
+    std::string escaped;
+    for (char c : text) {
+        if (c == '|') escaped += '\\';
+        escaped += c == '\n' ? ' ' : c;
+    }
+    return escaped;
+}
+
+// RFC 4180: quoted when it holds a comma, quote or line break; quotes doubled.
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
+void requireConsistent(const Table& table) {
+    if (table.cells.size() != table.rows.size() || table.precision.size() != table.columns.size())
+        throw Error("table '" + table.title + "': rows, columns and cells disagree in size");
+    for (const auto& row : table.cells)
+        if (row.size() != table.columns.size())
+            throw Error("table '" + table.title + "': a row has the wrong number of cells");
+}
+
+}  // namespace
+
+std::string toMarkdown(const Table& table) {
+    requireConsistent(table);
+    std::string out;
+    if (!table.title.empty()) out += "**" + markdownCell(table.title) + "**\n\n";
+    out += "| " + markdownCell(table.rowHeader) + " |";
+    for (const std::string& column : table.columns) out.append(" ").append(markdownCell(column)).append(" |");
+    out += "\n|:--|";
+    for (std::size_t c = 0; c < table.columns.size(); ++c) out += "--:|";
+    out += "\n";
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        out += "| " + markdownCell(table.rows[r]) + " |";
+        for (std::size_t c = 0; c < table.columns.size(); ++c)
+            out.append(" ").append(formatNumber(table.cells[r][c], table.precision[c], "-")).append(" |");
+        out += "\n";
+    }
+    if (!table.notes.empty()) out += "\n";
+    for (const std::string& note : table.notes) out += note + "\n";
+    return out;
+}
+
+std::string toCsv(const Table& table) {
+    requireConsistent(table);
+    std::string out = csvField(table.rowHeader);
+    for (const std::string& column : table.columns) out.append(",").append(csvField(column));
+    out += "\n";
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        out += csvField(table.rows[r]);
+        for (std::size_t c = 0; c < table.columns.size(); ++c)
+            out.append(",").append(formatNumber(table.cells[r][c], table.precision[c], ""));
+        out += "\n";
+    }
+    return out;
+}
+
+double median(std::vector<double> values) {
+    if (values.empty()) throw Error("median of no values");
+    std::sort(values.begin(), values.end());
+    const std::size_t middle = values.size() / 2;
+    if (values.size() % 2 == 1) return values[middle];
+    return (values[middle - 1] + values[middle]) / 2;
+}
+
+}  // namespace vri

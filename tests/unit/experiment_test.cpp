@@ -1,0 +1,182 @@
+#include <doctest/doctest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "vri/error.h"
+#include "vri/experiment.h"
+#include "vri/experiment_plan.h"
+#include "vri/step_cache.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A scratch folder with two transfer functions, removed afterwards.
+struct ExperimentDir {
+    fs::path dir = fs::temp_directory_path() / ("vri-experiment-test-" + std::to_string(::getpid()));
+    ExperimentDir() {
+        fs::create_directories(dir);
+        write("a.yaml", "points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 1, 1, 0.5]\n");
+        write("b.yaml", "points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 0, 0, 0.5]\n");
+    }
+    ~ExperimentDir() { fs::remove_all(dir); }
+    void write(const std::string& name, const std::string& text) const { std::ofstream(dir / name) << text; }
+    vri::Experiment parse(const std::string& text, bool quick = false) const {
+        return vri::parseExperiment(text, "exp.yaml", dir, quick);
+    }
+    std::string error(const std::string& text, bool quick = false) const {
+        try {
+            parse(text, quick);
+        } catch (const vri::Error& e) {
+            return e.what();
+        }
+        return "no error";
+    }
+};
+
+const std::string kHead = "name: t\ntitle: T\npaper: {paper: A, item: Fig. 4, says: steps}\n";
+
+const std::string kTwoScenes = kHead + R"(scenes:
+  a: {field: linear, convention: node, tf: a.yaml, size: [8, 8]}
+  b: {field: linear, convention: node, tf: b.yaml, size: [8, 8]}
+methods:
+  riemann:
+    placement: [eye, entry]
+    rate: 1
+comparisons:
+  ca: {reference: a-riemann-entry}
+  cb: {reference: b-riemann-entry}
+)";
+
+std::vector<std::string> ids(const vri::Experiment& e) {
+    std::vector<std::string> result;
+    for (const vri::RunSpec& r : e.runs) result.push_back(r.id);
+    return result;
+}
+
+}  // namespace
+
+TEST_CASE("experiment: an unknown key is named with its line and column") {
+    ExperimentDir d;
+    const std::string text = kHead + "scenes:\n  s:\n    field: linear\n    convention: node\n    tf: a.yaml\n"
+                                     "    colour: red\nmethods: {riemann: {rate: 1}}\n";
+    CHECK(d.error(text).starts_with("exp.yaml:9:5: unknown key 'colour'"));
+    CHECK(d.error(kHead + "scene: {}\n").starts_with("exp.yaml:4:1: unknown key 'scene'"));
+    // Method parameters are checked against the run tool's list too.
+    const std::string method = kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\n"
+                                       "methods:\n  riemann: {rate: 1, stpe: 0.5}\n";
+    CHECK(d.error(method).starts_with("exp.yaml:6:22: unknown key 'stpe'"));
+}
+
+TEST_CASE("experiment: a wrong type or a bad value is named with its line and column") {
+    ExperimentDir d;
+    const std::string scene = "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\n";
+    CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml, size: big}}\nmethods: {riemann: {}}\n")
+              .starts_with("exp.yaml:4:65: size must be [width, height]"));
+    CHECK(d.error(kHead + scene + "methods:\n  riemann: {step: [0.5, abc]}\n").starts_with("exp.yaml:6:25: step: expected a number > 0, got 'abc'"));
+    CHECK(d.error(kHead + scene + "methods:\n  riemann: {step: -1}\n").starts_with("exp.yaml:6:19: step: expected a number > 0"));
+    CHECK(d.error(kHead + scene + "methods:\n  riemann: {placement: middle}\n").starts_with("exp.yaml:6:24: placement"));
+    CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: corner, tf: a.yaml}}\nmethods: {riemann: {}}\n")
+              .starts_with("exp.yaml:4:41: convention"));
+    CHECK(d.error(kHead + scene + "methods: {riemann: {}}\ncomparisons:\n  c: {reference: nope}\n")
+              .starts_with("exp.yaml:7:18: unknown run 'nope'"));
+    CHECK(d.error(kHead + scene + "methods: {riemann: {}}\nreproduce: {checks: [{of: riemann, metrics: [rmse]}]}\n")
+              .starts_with("exp.yaml:6:45: metric 'rmse' does not apply to a run"));
+}
+
+TEST_CASE("experiment: a missing transfer function or volume is named with its line and column") {
+    ExperimentDir d;
+    CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: nope.yaml}}\nmethods: {riemann: {}}\n")
+              .starts_with("exp.yaml:4:51: tf: no such file"));
+    CHECK(d.error(kHead + "scenes: {s: {volume: v.raw, convention: cell, tf: a.yaml}}\nmethods: {riemann: {}}\n")
+              .starts_with("exp.yaml:4:22: volume: no such file"));
+    // A broken transfer function reports its own position.
+    d.write("broken.yaml", "points:\n  - [0.5, 0, 0, 0, 0]\n  - [0.2, 0, 0, 0, 0]\n");
+    CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: broken.yaml}}\nmethods: {riemann: {}}\n")
+              .find("broken.yaml:3:5") != std::string::npos);
+}
+
+TEST_CASE("experiment: sweeps expand to the cartesian product with readable ids") {
+    ExperimentDir d;
+    const vri::Experiment e = d.parse(kHead + R"(scenes: {s: {field: linear, convention: node, tf: a.yaml}}
+methods:
+  riemann:
+    placement: [eye, entry]
+    step: [0.5, 0.25]
+    precision: float
+  fine: {method: composite, step: 0.1}
+)");
+    CHECK(ids(e) == std::vector<std::string>{"riemann-eye-h0.5", "riemann-eye-h0.25", "riemann-entry-h0.5",
+                                             "riemann-entry-h0.25", "fine"});
+    const vri::RunSpec& run = e.run("riemann-entry-h0.25");
+    CHECK(run.options == vri::ToolOptions{{"--method", "riemann"}, {"--placement", "entry"}, {"--step", "0.25"},
+                                          {"--precision", "float"}});
+    CHECK(e.run("fine").options == vri::ToolOptions{{"--method", "composite"}, {"--step", "0.1"}});
+
+    // With several scenes, ids start with the scene; a comparison covers the other runs of its scene.
+    const vri::Experiment two = d.parse(kTwoScenes);
+    CHECK(ids(two) == std::vector<std::string>{"a-riemann-eye", "a-riemann-entry", "b-riemann-eye", "b-riemann-entry"});
+    REQUIRE(two.comparisons.size() == 2);
+    CHECK(two.comparisons[0].id == "ca-a-riemann-eye");
+    CHECK(two.comparisons[1].run == "b-riemann-eye");
+    CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods:\n  riemann: {}\n"
+                          "  other: {method: riemann}\n  riemann-x: {method: riemann}\n")
+              .find("no error") != std::string::npos);
+}
+
+TEST_CASE("experiment: quick overrides merge maps and replace lists, ids stay") {
+    ExperimentDir d;
+    const std::string text = kHead + R"(scenes: {s: {field: linear, convention: node, tf: a.yaml, size: [500, 500]}}
+methods:
+  riemann: {placement: [eye, entry], step: [0.5, 0.1]}
+quick:
+  scenes: {s: {size: [50, 40]}}
+  methods: {riemann: {step: [0.5]}}
+)";
+    const vri::Experiment full = d.parse(text), quick = d.parse(text, true);
+    CHECK(full.runs.size() == 4);
+    CHECK(ids(quick) == std::vector<std::string>{"riemann-eye-h0.5", "riemann-entry-h0.5"});
+    const auto& options = quick.scenes[0].options;
+    CHECK(std::find(options.begin(), options.end(), vri::ToolOption{"--size", "50x40"}) != options.end());
+    CHECK(std::find(options.begin(), options.end(), vri::ToolOption{"--convention", "node"}) != options.end());
+    CHECK(quick.quick);
+    // A typo in the quick block is caught with its position, also when not running quick.
+    CHECK(d.error(text + "  scene: {}\n").starts_with("exp.yaml:10:3: unknown key 'scene'"));
+}
+
+TEST_CASE("experiment: a changed transfer function changes the keys of its renders and what follows, nothing else") {
+    ExperimentDir d;
+    const vri::Experiment e = d.parse(kTwoScenes);
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    REQUIRE(plan.steps.size() == 6);
+    CHECK(plan.dependencies[plan.steps.size() - 1].size() == 2);  // a diff depends on both renders
+
+    vri::FileHasher before;
+    const std::vector<std::string> keys = vri::stepKeys(plan, d.dir / "bin", before);
+    vri::FileHasher again;
+    CHECK(vri::stepKeys(plan, d.dir / "bin", again) == keys);  // stable
+
+    d.write("a.yaml", "points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 1, 1, 0.6]\n");
+    vri::FileHasher after;
+    const std::vector<std::string> changed = vri::stepKeys(plan, d.dir / "bin", after);
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+        const bool usesA = plan.steps[i].id.starts_with("a-") || plan.steps[i].id.starts_with("ca-");
+        CAPTURE(plan.steps[i].id);
+        CHECK((changed[i] != keys[i]) == usesA);
+    }
+}
+
+TEST_CASE("experiment: commands name files relative to the directory they run from") {
+    ExperimentDir d;
+    const vri::Experiment e = d.parse(kTwoScenes);
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    const std::string line = vri::shellCommand(vri::commandWords(plan, plan.step("ca-a-riemann-eye"), d.dir / "bin"));
+    CHECK(line == "bin/vri-diff results/t/a-riemann-entry.exr results/t/a-riemann-eye.exr --threshold 0.01,0.005,0.001 "
+                  "--failpercent 100 --warnpercent 100 --json results/t/ca-a-riemann-eye.json");
+    CHECK(plan.commandPath("/elsewhere/x.exr") == "/elsewhere/x.exr");
+}

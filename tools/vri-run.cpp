@@ -1,0 +1,126 @@
+// vri-run: runs experiment files as graphs of small tool invocations, with caching and provenance.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "vri/atomic_file.h"
+#include "vri/cli.h"
+#include "vri/experiment.h"
+#include "vri/experiment_plan.h"
+#include "vri/experiment_reproduce.h"
+#include "vri/experiment_run.h"
+#include "vri/manifest.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kTool = "vri-run";
+
+struct Options {
+    std::vector<std::string> experiments;
+    bool quick = false, dryRun = false, force = false, record = false, check = false;
+    std::string results, committed = "results", gallery;
+    int jobs = 1;
+};
+
+// Compares (--check) or records (--record) the reproduce: numbers of a quick run; false on a mismatch.
+bool reproduce(const Options& options, const vri::Experiment& experiment, const vri::Plan& plan) {
+    if (experiment.reproduce.empty()) return true;
+    const nlohmann::json measured = vri::measureReproduceMetrics(experiment, plan);
+    const fs::path committed = fs::path(options.committed) / experiment.name / "reproduce.json";
+    if (options.record) {
+        vri::writeTextFile(committed, measured.dump(2) + "\n");
+        std::cerr << kTool << ": recorded " << committed.string() << '\n';
+        return true;
+    }
+    std::ifstream in(committed);
+    if (!in) throw vri::Error(committed.string() + ": no such file (record it with vri-run --quick --record)");
+    const std::vector<std::string> problems = vri::reproduceMismatches(experiment, measured, nlohmann::json::parse(in));
+    for (const std::string& p : problems) std::cerr << kTool << ": " << experiment.name << ": " << p << '\n';
+    if (problems.empty()) std::cerr << kTool << ": " << experiment.name << ": reproduced (" << committed.string() << ")\n";
+    return problems.empty();
+}
+
+int run(const Options& options) {
+    if ((options.record || options.check) && !options.quick)
+        throw vri::Error("--record and --check apply to quick runs (add --quick)");
+    const fs::path toolDir = fs::read_symlink("/proc/self/exe").parent_path();
+    const fs::path resultsRoot = !options.results.empty() ? fs::path(options.results)
+                                 : options.quick          ? fs::path("build/experiments-quick")
+                                                          : fs::path("results");
+    bool reproduced = true;
+    for (const std::string& file : options.experiments) {
+        const vri::Experiment experiment = vri::loadExperiment(file, options.quick);
+        const vri::Plan plan = vri::planExperiment(experiment, resultsRoot / experiment.name, fs::current_path());
+        if (options.dryRun) {
+            for (const vri::Step& step : plan.steps)
+                std::cout << vri::shellCommand(vri::commandWords(plan, step, toolDir)) << '\n';
+            continue;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        vri::FileHasher hasher;
+        fs::remove(plan.resultsDir / "manifest.json");  // rewritten only once every step has succeeded
+        const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, {toolDir, options.jobs, options.force}, hasher);
+        vri::writeManifest(experiment, plan, outcomes, toolDir, hasher);
+        std::size_t ran = 0, cached = 0;
+        for (const vri::StepOutcome& o : outcomes) {
+            ran += o.state == vri::StepOutcome::State::Ran;
+            cached += o.state == vri::StepOutcome::State::Cached;
+        }
+        std::cerr << kTool << ": " << experiment.name << ": " << plan.steps.size() << " steps, " << ran << " ran, "
+                  << cached << " cached, in "
+                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s -> "
+                  << plan.commandPath(plan.resultsDir) << '\n';
+        if (options.record || options.check) reproduced = reproduce(options, experiment, plan) && reproduced;
+    }
+    if (!options.gallery.empty()) {
+        const fs::path readme = fs::path(options.gallery) / "README.md";
+        vri::writeTextFile(readme, vri::galleryMarkdown(options.gallery));
+        std::cerr << kTool << ": wrote " << readme.string() << '\n';
+    }
+    return reproduced ? vri::kExitOk : vri::kExitError;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    CLI::App app{"Runs experiment files: expands each into the exact command lines of the small tools (vri-render, "
+                 "vri-diff, vri-tabulate, vri-plot), runs those whose inputs changed since their last successful run, "
+                 "and writes results/<experiment>/ with a manifest.json of commands, digests, build, machine and times.",
+                 kTool};
+    app.add_option("EXPERIMENT", options.experiments, "experiment YAML files (schema: experiments/README.md)");
+    app.add_flag("--quick", options.quick, "apply each file's quick: overrides (small sizes, fewer sweep values)");
+    app.add_flag("--dry-run", options.dryRun, "print the commands, one per line, runnable from here; run nothing");
+    app.add_flag("--force", options.force, "run every step even when its cache record vouches for it");
+    app.add_option("--results", options.results, "results root (default: results, with --quick build/experiments-quick)");
+    app.add_option("--jobs", options.jobs, "steps run at once")->capture_default_str();
+    app.add_flag("--record", options.record, "with --quick: write the reproduce: numbers to COMMITTED/<experiment>/reproduce.json");
+    app.add_flag("--check", options.check, "with --quick: compare the reproduce: numbers with the committed ones; exit 1 on a mismatch")
+        ->excludes("--record");
+    app.add_option("--committed", options.committed, "the committed results root for --record and --check")
+        ->capture_default_str();
+    app.add_option("--gallery", options.gallery, "afterwards, write DIR/README.md from DIR/*/manifest.json");
+    app.footer(R"(Steps are cached in <results>/<experiment>/.steps/: a step is skipped when its command, tool binary,
+input files (or the steps that write them) and outputs are as when it last succeeded.
+Tools are taken from the directory vri-run is in.
+
+Examples:
+  vri-run experiments/paper-a-fig4.yaml
+  vri-run --dry-run experiments/paper-a-fig4.yaml > fig4.sh     # the commands, to rerun by hand
+  vri-run --quick --check experiments/paper-a-fig4.yaml         # the reproducibility check of make test
+  vri-run --gallery results experiments/*.yaml                  # everything, then results/README.md)");
+    if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
+    return vri::guardedMain(kTool, [&] {
+        if (options.experiments.empty() && options.gallery.empty())
+            throw vri::Error("nothing to do: name experiment files or --gallery DIR (see --help)");
+        return run(options);
+    });
+}

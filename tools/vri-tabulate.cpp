@@ -1,0 +1,122 @@
+// vri-tabulate: the papers' tables (Markdown and CSV) from vri-diff and vri-render JSON files.
+#include <CLI/CLI.hpp>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vri/atomic_file.h"
+#include "vri/cli.h"
+#include "vri/table.h"
+
+namespace {
+
+constexpr const char* kTool = "vri-tabulate";
+
+struct Options {
+    std::string layout;
+    std::string markdown, csv, title, rowHeader = "Method";
+    std::optional<int> precision;
+    std::vector<double> thresholds;
+    std::vector<std::vector<std::string>> rows, cells, columnValues, columnPrecisions;
+    std::string value;
+};
+
+std::vector<std::filesystem::path> paths(std::vector<std::string>::const_iterator first,
+                                         std::vector<std::string>::const_iterator last) {
+    return {first, last};
+}
+
+vri::Table buildTable(const Options& options) {
+    if (options.layout == "thresholds") {
+        if (options.rows.empty()) throw vri::Error("--layout thresholds needs --row LABEL FILE...");
+        if (!options.cells.empty() || !options.value.empty() || !options.columnValues.empty() ||
+            !options.columnPrecisions.empty())
+            throw vri::Error("--cell, --value, --column-value and --column-precision belong to --layout matrix");
+        std::vector<vri::ThresholdRow> rows;
+        for (const auto& row : options.rows) rows.push_back({row[0], paths(row.begin() + 1, row.end())});
+        return vri::thresholdTable(rows, options.thresholds, options.precision.value_or(4));
+    }
+    if (options.cells.empty() || options.value.empty())
+        throw vri::Error("--layout matrix needs --value EXPR and --cell ROW COLUMN FILE...");
+    if (!options.rows.empty() || !options.thresholds.empty())
+        throw vri::Error("--row and --thresholds belong to --layout thresholds");
+    std::vector<vri::MatrixCell> cells;
+    for (const auto& cell : options.cells) {
+        if (cell.size() < 3) throw vri::Error("--cell needs ROW COLUMN FILE...");
+        cells.push_back({cell[0], cell[1], paths(cell.begin() + 2, cell.end())});
+    }
+    vri::MatrixOptions matrix;
+    matrix.value = options.value;
+    matrix.precision = options.precision.value_or(2);
+    for (const auto& pair : options.columnValues) matrix.columnValue[pair[0]] = pair[1];
+    for (const auto& pair : options.columnPrecisions) {
+        const std::string& decimals = pair[1];
+        if (decimals.empty() || decimals.size() > 2 || decimals.find_first_not_of("0123456789") != std::string::npos)
+            throw vri::Error("--column-precision " + pair[0] + ": '" + decimals + "' is not a number of decimals");
+        matrix.columnPrecision[pair[0]] = std::stoi(decimals);
+    }
+    return vri::matrixTable(cells, matrix);
+}
+
+int run(int argc, char** argv) {
+    Options options;
+    CLI::App app{"Builds a paper table from the JSON files vri-diff (--json) and vri-render (--stats) write: "
+                 "Markdown, and CSV on request. Rows and columns keep the order given.",
+                 kTool};
+    app.add_option("--layout", options.layout,
+                   "thresholds: % of rays above each threshold per channel (paper B Tables I, II, VI); "
+                   "matrix: one value per row and column (Tables III-V)")
+        ->required()
+        ->check(CLI::IsMember({"thresholds", "matrix"}));
+    app.add_option("-o,--output", options.markdown, "Markdown table ('-' for stdout)")->required();
+    app.add_option("--csv", options.csv, "also write the table as CSV");
+    app.add_option("--title", options.title, "caption printed above the Markdown table");
+    app.add_option("--row-header", options.rowHeader, "heading of the label column")->capture_default_str();
+    app.add_option("--precision", options.precision, "decimals (default: 4 for thresholds, 2 for matrix)")
+        ->check(CLI::Range(0, 17));
+    app.add_option("--row", options.rows, "thresholds: LABEL FILE [FILE...]; one vri-diff JSON for all thresholds, "
+                                          "or one per threshold in threshold order")
+        ->expected(2, 1 << 20);
+    app.add_option("--thresholds", options.thresholds, "thresholds: which, comma separated (default: the first file's)")
+        ->delimiter(',');
+    app.add_option("--cell", options.cells, "matrix: ROW COLUMN FILE [FILE...]; several files give their median")
+        ->expected(3, 1 << 20);
+    app.add_option("--value", options.value, "matrix: dotted JSON path of the value, e.g. stats.wall_seconds; "
+                                             "'1/PATH' for its reciprocal (fps)");
+    app.add_option("--column-value", options.columnValues, "matrix: COLUMN EXPR, another value for one column")
+        ->expected(2);
+    app.add_option("--column-precision", options.columnPrecisions, "matrix: COLUMN N, other decimals for one column")
+        ->expected(2);
+    app.footer(
+        "Labels may hold spaces (quote them). Markdown and CSV are written atomically; the Markdown ends with\n"
+        "notes saying what the numbers are and, for medians, of how many runs.\n"
+        "\n"
+        "Examples:\n"
+        "  vri-tabulate --layout thresholds --title 'Table I: % of rays above the error, Bonsai' \\\n"
+        "      --row 'Riemann (h = 0.5)' riemann-0.5.diff.json \\\n"
+        "      --row Coupled coupled-e0.01.diff.json coupled-e0.005.diff.json coupled-e0.001.diff.json \\\n"
+        "      -o table1.md --csv table1.csv\n"
+        "  vri-tabulate --layout matrix --value stats.wall_seconds --title 'Table III: CPU seconds per frame' \\\n"
+        "      --cell 'Riemann h = 0.5' Bonsai run1.json run2.json run3.json \\\n"
+        "      --cell 'Riemann h = 0.5' BluntFin run1b.json run2b.json run3b.json -o table3.md\n"
+        "  vri-tabulate --layout matrix --value stats.wall_seconds --column-value 'GPU (fps)' 1/stats.wall_seconds \\\n"
+        "      --column-precision 'GPU (fps)' 0 --cell Coupled 'CPU (s)' cpu.json --cell Coupled 'GPU (fps)' gpu.json -o -");
+    if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
+
+    vri::Table table = buildTable(options);
+    table.title = options.title;
+    table.rowHeader = options.rowHeader;
+    const std::string markdown = vri::toMarkdown(table);
+    const std::string csv = options.csv.empty() ? std::string() : vri::toCsv(table);
+    if (!options.csv.empty()) vri::writeTextFile(options.csv, csv);
+    vri::writeTextFile(options.markdown, markdown);
+    return vri::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return vri::guardedMain(kTool, [&] { return run(argc, argv); });
+}
