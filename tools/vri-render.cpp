@@ -3,6 +3,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -17,6 +18,7 @@
 #include "vri/raw_input_options.h"
 #include "vri/render.h"
 #include "vri/render_json.h"
+#include "vri/table.h"
 
 namespace fs = std::filesystem;
 
@@ -36,10 +38,11 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     vri::RawInputOptions raw;
     std::string convention = "cell", size = "800x600", eye, target, up = "0,1,0";
     std::string method = "riemann", placement = "entry", precision = "double";
-    double fov = 30.0, rate = 0.0, step = 0.0, ert = 0.0, exposure = 1.0;
+    double fov = 30.0, rate = 0.0, step = 0.0, ert = 0.0, exposure = 1.0, zoom = 1.0;
+    std::string zoomCentre;
     std::string background = "0,0,0";
     bool fieldAsGrid = false, noSkip = false, invert = false, quiet = false;
-    int threads = 0;
+    int threads = 0, repeat = 1;
 
     auto* input = app.add_option_group("input", "what to render (one of)");
     input->add_option("--volume", volumePath, "volume file: .raw, .nhdr, .dat, .vdb");
@@ -58,6 +61,10 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     app.add_option("--target", target, "point looked at X,Y,Z (default: box centre)");
     app.add_option("--up", up, "up vector X,Y,Z")->capture_default_str();
     app.add_option("--fov", fov, "vertical field of view, degrees")->capture_default_str();
+    app.add_option("--zoom", zoom, "close-up: magnify the frame this many times about --zoom-centre")
+        ->capture_default_str();
+    app.add_option("--zoom-centre", zoomCentre, "the point zoomed into, X,Y in pixels of the full frame "
+                                                "(default: the image centre)");
     app.add_option("--method", method, "riemann (paper A eq. 5) or composite (opacity-corrected)")
         ->capture_default_str();
     app.add_option("--placement", placement, "eye, entry, entry-exit or entry-exit-corner (paper A)")
@@ -69,6 +76,9 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         ->capture_default_str();
     app.add_flag("--no-skip-empty", noSkip, "march through empty space too (the image does not change)");
     app.add_option("--threads", threads, "worker threads (default: all cores)");
+    app.add_option("--repeat", repeat, "render N times for timing: the stats give every wall time and their median, "
+                                       "and any image that differs from the first is an error")
+        ->capture_default_str();
     app.add_option("-o,--output", output, "output image (.exr: float RGBA)")->required();
     app.add_option("--png", pngPath, "8-bit preview PNG");
     app.add_option("--png-exposure", exposure, "preview: multiply colours by this")->capture_default_str();
@@ -81,6 +91,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     return vri::guardedMain("vri-render", [&] {
         std::optional<tbb::global_control> threadLimit;
         if (threads < 0) throw vri::Error("--threads: expected a positive count, got " + std::to_string(threads));
+        if (repeat < 1) throw vri::Error("--repeat: expected a positive count, got " + std::to_string(repeat));
         if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
         const glm::ivec2 imageSize = vri::parseSize(size, "--size");
@@ -130,10 +141,19 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (!target.empty()) cam.target = vri::parseVec3(target, "--target");
         if (!eye.empty()) cam.eye = vri::parseVec3(eye, "--eye");
         cam.up = vri::parseVec3(up, "--up");
+        cam.zoom = zoom;
+        if (!zoomCentre.empty()) cam.zoomCentre = vri::parseVec2(zoomCentre, "--zoom-centre");
         const vri::Camera camera(cam);
 
         vri::RenderStats stats;
         const vri::Image image = vri::render(scene, camera, options, &stats);
+        std::vector<double> wallSeconds{stats.seconds};
+        for (int i = 1; i < repeat; ++i) {
+            vri::RenderStats again;
+            if (vri::render(scene, camera, options, &again).pixels != image.pixels)
+                throw vri::Error("--repeat: render " + std::to_string(i + 1) + " differs from the first");
+            wallSeconds.push_back(again.seconds);
+        }
 
         nlohmann::json record = {{"tool", "vri-render"},
                                  {"command", vri::commandLine(argc, argv)},
@@ -146,6 +166,9 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
                                  {"camera", vri::toJson(cam)},
                                  {"options", vri::toJson(options)},
                                  {"stats", vri::toJson(stats)}};
+        if (repeat > 1)
+            record["timing"] = {{"repeats", repeat}, {"wall_seconds", wallSeconds},
+                                {"median_wall_seconds", vri::median(wallSeconds)}};
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},
                                       {"vri:scene", record["scene"].dump()}});
@@ -153,7 +176,9 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
         if (!quiet)
             std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated
-                      << " samples in " << stats.seconds << " s on " << stats.threads << " threads\n";
+                      << " samples in " << (repeat > 1 ? vri::median(wallSeconds) : stats.seconds) << " s"
+                      << (repeat > 1 ? " (median of " + std::to_string(repeat) + ")" : "") << " on " << stats.threads
+                      << " threads\n";
         return vri::kExitOk;
     });
 }

@@ -93,8 +93,9 @@ int run(const Options& options) {
 int main(int argc, char** argv) {
     Options options;
     CLI::App app{"Runs experiment files: expands each into the exact command lines of the small tools (vri-render, "
-                 "vri-diff, vri-tabulate, vri-plot), runs those whose inputs changed since their last successful run, "
-                 "and writes results/<experiment>/ with a manifest.json of commands, digests, build, machine and times.",
+                 "vri-diff, vri-tabulate, vri-plot, and any vri tool under commands:), runs those whose inputs changed "
+                 "since their last successful run, and writes results/<experiment>/ with a manifest.json of commands, "
+                 "digests, build, machine and times.",
                  kTool};
     app.add_option("EXPERIMENT", options.experiments, "experiment YAML files (schema: experiments/README.md)");
     app.add_flag("--quick", options.quick, "apply each file's quick: overrides (small sizes, fewer sweep values)");

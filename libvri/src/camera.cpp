@@ -28,6 +28,8 @@ Camera::Camera(const CameraSpec& spec) : spec_(spec) {
     if (spec.width <= 0 || spec.height <= 0)
         throw Error("image size must be positive, got " + std::to_string(spec.width) + "x" +
                     std::to_string(spec.height));
+    if (!(spec.zoom >= 1.0) || !std::isfinite(spec.zoom))
+        throw Error("zoom must be a finite factor >= 1, got " + std::to_string(spec.zoom));
     if (!(spec.fovYDegrees > 0.0 && spec.fovYDegrees < 180.0))
         throw Error("field of view must be in (0, 180) degrees, got " + std::to_string(spec.fovYDegrees));
     const glm::dvec3 view = spec.target - spec.eye;
@@ -42,8 +44,12 @@ Camera::Camera(const CameraSpec& spec) : spec_(spec) {
 }
 
 glm::dvec3 Camera::direction(int px, int py) const {
-    const double x = (2.0 * (px + 0.5) / spec_.width - 1.0) * tanHalfX_;
-    const double y = (1.0 - 2.0 * (py + 0.5) / spec_.height) * tanHalfY_;
+    // The pixel's centre in the full frame; with zoom 1 about the centre this is exactly px + 0.5.
+    const glm::dvec2 centre = spec_.zoomCentre.value_or(glm::dvec2(0.5 * spec_.width, 0.5 * spec_.height));
+    const double fx = centre.x + (px + 0.5 - 0.5 * spec_.width) / spec_.zoom;
+    const double fy = centre.y + (py + 0.5 - 0.5 * spec_.height) / spec_.zoom;
+    const double x = (2.0 * fx / spec_.width - 1.0) * tanHalfX_;
+    const double y = (1.0 - 2.0 * fy / spec_.height) * tanHalfY_;
     return glm::normalize(forward_ + x * right_ + y * up_);
 }
 

@@ -27,6 +27,15 @@ bool parseNumber(std::string_view s, T& value) {
 
 }  // namespace
 
+glm::dvec2 parseVec2(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::dvec2 v;
+    bool ok = parts.size() == 2;
+    for (int i = 0; ok && i < 2; ++i) ok = parseNumber(parts[i], v[i]) && std::isfinite(v[i]);
+    if (!ok) throw Error(what + ": expected two numbers x,y, got '" + text + "'");
+    return v;
+}
+
 glm::dvec3 parseVec3(const std::string& text, const std::string& what) {
     const auto parts = split(text, ',');
     glm::dvec3 v;
@@ -61,6 +70,38 @@ glm::ivec2 parseSize(const std::string& text, const std::string& what) {
     if (!ok || v.x <= 0 || v.y <= 0)
         throw Error(what + ": expected a positive image size WIDTHxHEIGHT, got '" + text + "'");
     return v;
+}
+
+std::vector<std::string> parseWordList(const std::string& text, const std::string& what) {
+    std::vector<std::string> words;
+    for (std::string_view part : split(text, ',')) {
+        if (part.empty()) throw Error(what + ": expected words separated by single commas, got '" + text + "'");
+        words.emplace_back(part);
+    }
+    return words;
+}
+
+std::vector<double> parsePositiveList(const std::string& text, const std::string& what) {
+    std::vector<double> values;
+    for (std::string_view part : split(text, ',')) {
+        double v = 0.0;
+        if (!parseNumber(part, v) || !std::isfinite(v) || !(v > 0.0))
+            throw Error(what + ": expected positive numbers separated by commas, got '" + text + "'");
+        values.push_back(v);
+    }
+    return values;
+}
+
+std::vector<int> parseIndexList(const std::string& text, const std::string& what, int count) {
+    std::vector<int> values;
+    for (std::string_view part : split(text, ',')) {
+        int v = -1;
+        if (!parseNumber(part, v) || v < 0 || v >= count)
+            throw Error(what + ": expected indices in 0.." + std::to_string(count - 1) + " separated by commas, got '" +
+                        text + "'");
+        values.push_back(v);
+    }
+    return values;
 }
 
 }  // namespace vri

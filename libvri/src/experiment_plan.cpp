@@ -35,12 +35,17 @@ public:
 
     void addRender(const RunSpec& run);
     void addDiff(const ComparisonSpec& comparison);
+    void addCommand(const CommandSpec& command);
     void addTable(const TableSpec& table);
     void addFigure(const FigureSpec& figure);
 
 private:
     fs::path result(const std::string& name) const { return plan_.resultsDir / name; }
     std::string show(const fs::path& path) const { return displayPath(path, plan_.workDir); }
+    static void option(Step& step, const ToolOption& o) {
+        step.arguments.push_back(o.first);
+        if (!o.second.empty()) step.arguments.push_back(o.second);  // else a flag
+    }
     // An output, named on the command line after `option` (none for a positional argument).
     void output(Step& step, const std::string& option, const fs::path& path) const {
         if (!option.empty()) step.arguments.push_back(option);
@@ -52,6 +57,11 @@ private:
         step.arguments.push_back(show(path));
         step.inputs.push_back(path);
     }
+    bool written(const fs::path& path) const {  // by a step planned so far
+        return std::any_of(plan_.steps.begin(), plan_.steps.end(), [&](const Step& s) {
+            return std::find(s.outputs.begin(), s.outputs.end(), path) != s.outputs.end();
+        });
+    }
 
     const Experiment& experiment_;
     Plan& plan_;
@@ -61,14 +71,12 @@ void Planner::addRender(const RunSpec& run) {
     const SceneSpec& scene = experiment_.scene(run.scene);
     Step step{run.id, "render", run.tool, {}, {}, {}, {{"scene", scene.name}}};
     if (!scene.dataset.empty()) step.parameters.emplace_back("dataset", scene.dataset);
-    for (const auto& [option, value] : scene.options) {
-        const bool isFile = option == "--volume" || option == "--tf";
-        if (isFile) {
-            input(step, option, value);
-            continue;
-        }
-        step.arguments.push_back(option);
-        if (!value.empty()) step.arguments.push_back(value);
+    for (const ToolOption& o : scene.options) {
+        const bool isFile = o.first == "--volume" || o.first == "--tf";
+        if (isFile)
+            input(step, o.first, o.second);
+        else
+            option(step, o);
     }
     for (const auto& [option, value] : run.options) step.arguments.insert(step.arguments.end(), {option, value});
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
@@ -94,6 +102,14 @@ void Planner::addDiff(const ComparisonSpec& c) {
     plan_.steps.push_back(std::move(step));
 }
 
+void Planner::addCommand(const CommandSpec& command) {
+    Step step{command.name, "command", command.tool, {}, {}, {}, {{"command", command.name}}};
+    for (const ToolOption& o : command.options) option(step, o);
+    for (const auto& [word, path] : command.inputs) input(step, word, path);
+    for (const auto& [word, file] : command.outputs) output(step, word, result(file));
+    plan_.steps.push_back(std::move(step));
+}
+
 void Planner::addTable(const TableSpec& table) {
     Step step{"table-" + table.name, "table", "vri-tabulate", {}, {}, {}, {{"table", table.name}}};
     if (!table.comparisons.empty()) {
@@ -107,10 +123,16 @@ void Planner::addTable(const TableSpec& table) {
     } else {
         step.arguments = {"--layout", "matrix", "--title", table.title, "--value", table.value};
         for (const std::string& run : table.runs) {
-            step.arguments.insert(step.arguments.end(), {"--cell", run, table.column});
+            const std::string& scene = experiment_.run(run).scene;
+            const bool prefixed = run.starts_with(scene + "-");
+            if (table.byScene)
+                step.arguments.insert(step.arguments.end(), {"--cell", prefixed ? run.substr(scene.size() + 1) : run, scene});
+            else
+                step.arguments.insert(step.arguments.end(), {"--cell", run, table.column});
             input(step, "", result(run + ".json"));
         }
     }
+    if (!table.precision.empty()) step.arguments.insert(step.arguments.end(), {"--precision", table.precision});
     output(step, "-o", result(table.name + ".md"));
     output(step, "--csv", result(table.name + ".csv"));
     plan_.steps.push_back(std::move(step));
@@ -119,7 +141,14 @@ void Planner::addTable(const TableSpec& table) {
 void Planner::addFigure(const FigureSpec& figure) {
     Step step{"figure-" + figure.name, "figure", "vri-plot", {}, {}, {}, {{"figure", figure.name}}};
     input(step, "", figure.spec);
-    for (const std::string& table : figure.tables) step.inputs.push_back(result(table + ".csv"));
+    // The spec names its data relative to --data-dir, so one spec serves full and quick results alike.
+    step.arguments.insert(step.arguments.end(), {"--data-dir", show(plan_.resultsDir)});
+    for (const std::string& file : figure.data) {
+        const fs::path path = result(file);
+        if (!written(path))
+            throw Error(figure.dataAt + ": figure '" + figure.name + "' reads '" + file + "', which no step writes");
+        step.inputs.push_back(path);
+    }
     output(step, "-o", result(figure.name + ".png"));
     step.outputs.push_back(result(figure.name + ".svg"));  // vri-plot writes these beside the PNG
     step.outputs.push_back(result(figure.name + ".gp"));
@@ -143,6 +172,7 @@ Plan planExperiment(const Experiment& experiment, const fs::path& resultsDir, co
     Planner planner(experiment, plan);
     for (const RunSpec& run : experiment.runs) planner.addRender(run);
     for (const ComparisonSpec& c : experiment.comparisons) planner.addDiff(c);
+    for (const CommandSpec& c : experiment.commands) planner.addCommand(c);
     for (const TableSpec& t : experiment.tables) planner.addTable(t);
     for (const FigureSpec& f : experiment.figures) planner.addFigure(f);
 
@@ -174,7 +204,7 @@ std::vector<std::string> commandWords(const Plan& plan, const Step& step, const 
 
 std::string shellCommand(const std::vector<std::string>& words) {
     std::string line;
-    for (const std::string& word : words) line += (line.empty() ? "" : " ") + shellQuote(word);
+    for (const std::string& word : words) line.append(line.empty() ? "" : " ").append(shellQuote(word));
     return line;
 }
 

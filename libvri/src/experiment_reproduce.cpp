@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vri/csv.h"
 #include "vri/error.h"
 #include "vri/image_io.h"
 
@@ -42,11 +43,52 @@ nlohmann::json diffMetrics(const fs::path& diffJson, const std::vector<std::stri
     return result;
 }
 
+// Every cell of a CSV file, by column: numbers as numbers, anything else as text.
+nlohmann::json csvCells(const fs::path& path) {
+    const CsvFile csv = readCsv(path);
+    nlohmann::json columns = nlohmann::json::object();
+    for (std::size_t c = 0; c < csv.header.size(); ++c) {
+        nlohmann::json cells = nlohmann::json::array();
+        for (const auto& row : csv.rows) {
+            const std::string field = c < row.size() ? row[c] : "";
+            const auto value = parseNumber(field);
+            cells.push_back(value && std::isfinite(*value) ? nlohmann::json(*value) : nlohmann::json(field));
+        }
+        columns[csv.header[c]] = std::move(cells);
+    }
+    return columns;
+}
+
+// A file's cells against the committed ones: the same columns and rows, numbers within tolerance.
+void compareCells(const std::string& what, const nlohmann::json& now, const nlohmann::json& then, double tolerance,
+                  std::vector<std::string>& problems) {
+    for (const auto& [column, cells] : now.items()) {
+        if (!then.contains(column) || then[column].size() != cells.size()) {
+            problems.push_back(what + " " + column + ": the committed file has no such column, or other rows");
+            continue;
+        }
+        for (std::size_t row = 0; row < cells.size(); ++row) {
+            const nlohmann::json &a = cells[row], &b = then[column][row];
+            const bool same = a.is_number() && b.is_number() ? std::abs(a.get<double>() - b.get<double>()) <= tolerance
+                                                             : a == b;
+            if (!same) {
+                problems.push_back(what + " " + column + " row " + std::to_string(row + 1) + ": " + a.dump() +
+                                   ", committed " + b.dump() + " (tolerance " + std::to_string(tolerance) + ")");
+                return;  // the first difference of a file says enough
+            }
+        }
+    }
+}
+
 }  // namespace
 
 nlohmann::json measureReproduceMetrics(const Experiment& experiment, const Plan& plan) {
     nlohmann::json measured = nlohmann::json::object();
     for (const ReproduceCheck& check : experiment.reproduce) {
+        if (!check.file.empty()) {
+            measured[check.of][check.file] = csvCells(plan.resultsDir / check.file);
+            continue;
+        }
         const bool isRun = std::any_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& r) { return r.id == check.of; });
         measured[check.of].update(isRun ? imageMetrics(readImage(renderImage(plan, check.of)), check.metrics)
                                         : diffMetrics(plan.resultsDir / (check.of + ".json"), check.metrics));
@@ -58,6 +100,15 @@ std::vector<std::string> reproduceMismatches(const Experiment& experiment, const
                                              const nlohmann::json& committed) {
     std::vector<std::string> problems;
     for (const ReproduceCheck& check : experiment.reproduce) {
+        if (!check.file.empty()) {
+            const std::string what = check.of + " " + check.file;
+            if (!committed.contains(check.of) || !committed[check.of].contains(check.file))
+                problems.push_back(what + ": no committed values (record them with vri-run --quick --record)");
+            else
+                compareCells(what, measured.at(check.of).at(check.file), committed[check.of][check.file], check.tolerance,
+                             problems);
+            continue;
+        }
         for (const std::string& metric : check.metrics) {
             const nlohmann::json& now = measured.at(check.of).at(metric);
             const std::string what = check.of + " " + metric;

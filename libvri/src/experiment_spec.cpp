@@ -9,6 +9,7 @@
 
 #include "vri/datasets.h"
 #include "vri/experiment.h"
+#include "vri/experiment_plan.h"
 #include "vri/integrator.h"
 #include "vri/placement.h"
 #include "vri/render.h"
@@ -36,6 +37,12 @@ void positiveNumber(const std::string& value, const std::string& where) {
         throw Error(where + ": expected a number > 0, got '" + value + "'");
 }
 
+void positiveCount(const std::string& value, const std::string& where) {
+    int v = 0;
+    std::istringstream in(value);
+    if (!(in >> v) || !in.eof() || v < 1) throw Error(where + ": expected a whole number >= 1, got '" + value + "'");
+}
+
 void nonNegativeNumber(const std::string& value, const std::string& where) {
     double v = 0;
     std::istringstream in(value);
@@ -51,9 +58,13 @@ const std::vector<RunParameter>& renderParameters() {
         {"rate", "--rate", "r", positiveNumber},
         {"precision", "--precision", "", [](auto& v, auto& w) { parsePrecision(v, w); }},
         {"early_termination", "--early-termination", "ert", nonNegativeNumber},
+        {"repeat", "--repeat", "x", positiveCount},  // timing: the stats give the median of the frames
     };
     return parameters;
 }
+
+// How a tool's option is named on its command line: "-o" for a one-letter key, "--summary" otherwise.
+std::string optionWord(const std::string& key) { return (key.size() == 1 ? "-" : "--") + key; }
 
 // Reads experiment files; `source` names the file in messages, `baseDir` resolves relative paths.
 class ExperimentReader {
@@ -76,11 +87,16 @@ private:
     YAML::Node required(const YAML::Node& map, const char* key, std::string_view what) const;
     // Items of a name -> entry mapping, each checked to be a mapping, in file order.
     std::vector<std::pair<std::string, YAML::Node>> entries(const YAML::Node& node, std::string_view what) const;
+    // Items of an option -> value mapping of a command, keys checked to be option names, in file order.
+    std::vector<std::pair<std::string, YAML::Node>> optionEntries(const YAML::Node& node, std::string_view what) const;
+    std::optional<std::string> optionValue(const YAML::Node& node, const std::string& key) const;
+    std::string resultFile(const YAML::Node& node, const std::string& key) const;
 
     PaperItem readPaper(const YAML::Node& node) const;
     SceneSpec readScene(const std::string& name, const YAML::Node& node);
     void readRuns(const YAML::Node& node, bool reference, Experiment& experiment) const;
     void readComparisons(const YAML::Node& node, Experiment& experiment) const;
+    void readCommands(const YAML::Node& node, Experiment& experiment) const;
     void readTables(const YAML::Node& node, Experiment& experiment) const;
     void readFigures(const YAML::Node& node, Experiment& experiment) const;
     void readReproduce(const YAML::Node& node, Experiment& experiment) const;
@@ -136,6 +152,49 @@ std::vector<std::pair<std::string, YAML::Node>> ExperimentReader::entries(const 
         result.emplace_back(name, kv.second);
     }
     return result;
+}
+
+std::vector<std::pair<std::string, YAML::Node>> ExperimentReader::optionEntries(const YAML::Node& node,
+                                                                                std::string_view what) const {
+    yaml::requireMap(node, source_, what);
+    std::vector<std::pair<std::string, YAML::Node>> result;
+    for (const auto& kv : node) {
+        const std::string key = text(kv.first, std::string(what) + " key");
+        // Letters, digits and '-' only: a key is one word of the command and cannot pass as `--`.
+        static constexpr std::string_view allowed = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-";
+        if (key.empty() || key.front() == '-' || key.find_first_not_of(allowed) != std::string::npos)
+            throw Error(at(kv.first) + ": '" + key + "' is not an option name (letters, digits and '-')");
+        result.emplace_back(key, kv.second);
+    }
+    return result;
+}
+
+// A value as the file spells it, a list joined by commas, "" (a flag) for true, nothing for false.
+// Only a plain true or false is a flag: a quoted "true" is the word.
+std::optional<std::string> ExperimentReader::optionValue(const YAML::Node& node, const std::string& key) const {
+    const std::string expected = "option '" + key + "' must be a value, a list of values, true or false";
+    if (node.IsSequence()) {
+        if (node.size() == 0) throw Error(at(node) + ": option '" + key + "': an empty list");
+        std::string joined;
+        for (const YAML::Node& item : node) {
+            if (!item.IsScalar() || item.Scalar().empty()) throw Error(at(item) + ": " + expected);
+            joined += (joined.empty() ? "" : ",") + item.Scalar();
+        }
+        return joined;
+    }
+    if (!node.IsScalar() || node.Scalar().empty()) throw Error(at(node) + ": " + expected);
+    if (node.Tag() == "?" && (node.Scalar() == "true" || node.Scalar() == "false"))
+        return node.Scalar() == "true" ? std::optional<std::string>("") : std::nullopt;
+    return node.Scalar();
+}
+
+// A file name in the results folder: no folders, not hidden (.steps), not one of vri-run's own files.
+std::string ExperimentReader::resultFile(const YAML::Node& node, const std::string& key) const {
+    const std::string name = text(node, "output '" + key + "'");
+    if (name.empty() || name.front() == '.' || name.find('/') != std::string::npos || name == "manifest.json" ||
+        name == "reproduce.json")
+        throw Error(at(node) + ": output '" + key + "' must be a file name in the results folder, got '" + name + "'");
+    return name;
 }
 
 PaperItem ExperimentReader::readPaper(const YAML::Node& node) const {
@@ -215,13 +274,23 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
     }
     if (const YAML::Node camera = node["camera"]) {
         yaml::requireMap(camera, source_, "camera");
-        yaml::requireKeys(camera, source_, {"eye", "target", "up", "fov"});
+        yaml::requireKeys(camera, source_, {"eye", "target", "up", "fov", "zoom", "zoom_centre"});
         for (const char* key : {"eye", "target", "up"})
             if (camera[key]) scene.options.emplace_back(std::string("--") + key, vec3(camera[key], key));
         if (const YAML::Node fov = camera["fov"]) {
             const std::string f = number(fov, "fov");
             if (double x = fov.as<double>(); !(x > 0 && x < 180)) throw Error(at(fov) + ": fov must be in (0, 180) degrees");
             scene.options.emplace_back("--fov", f);
+        }
+        if (const YAML::Node zoom = camera["zoom"]) {
+            const std::string z = number(zoom, "zoom");
+            if (!(zoom.as<double>() >= 1)) throw Error(at(zoom) + ": zoom must be a factor >= 1");
+            scene.options.emplace_back("--zoom", z);
+        }
+        if (const YAML::Node centre = camera["zoom_centre"]) {
+            if (!centre.IsSequence() || centre.size() != 2)
+                throw Error(at(centre) + ": zoom_centre must be [x, y], pixels of the full frame");
+            scene.options.emplace_back("--zoom-centre", number(centre[0], "zoom_centre") + "," + number(centre[1], "zoom_centre"));
         }
     }
     if (const YAML::Node png = node["png"]) {
@@ -297,7 +366,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     const std::string& v = axes[a].values[index[a]];
                     run.parameters.emplace_back(axes[a].parameter->key, v);
                     run.options.emplace_back(axes[a].parameter->option, v);
-                    if (axes[a].swept) run.id += "-" + std::string(axes[a].parameter->idPrefix) + v;
+                    if (axes[a].swept) run.id.append("-").append(axes[a].parameter->idPrefix).append(v);
                 }
                 if (std::any_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& r) { return r.id == run.id; }))
                     throw Error(at(entry) + ": run id '" + run.id + "' is used twice (rename one of the entries)");
@@ -356,13 +425,41 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
     }
 }
 
+void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experiment) const {
+    for (const auto& [name, entry] : entries(node, "commands")) {
+        yaml::requireKeys(entry, source_, {"tool", "options", "inputs", "outputs"});
+        const std::string what = "command '" + name + "'";
+        const YAML::Node tool = required(entry, "tool", what);
+        CommandSpec command{name, text(tool, "tool"), {}, {}, {}};
+        if (!command.tool.starts_with("vri-") || command.tool.size() == 4 ||
+            command.tool.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-", 4) != std::string::npos)
+            throw Error(at(tool) + ": tool must be a vri tool (vri-[a-z0-9-]+), got '" + command.tool + "'");
+        if (const YAML::Node options = entry["options"])
+            for (const auto& [key, value] : optionEntries(options, "options"))
+                if (const auto v = optionValue(value, key)) command.options.emplace_back(optionWord(key), *v);
+        if (const YAML::Node inputs = entry["inputs"])
+            for (const auto& [key, value] : optionEntries(inputs, "inputs"))
+                command.inputs.emplace_back(optionWord(key), existingFile(value, "input '" + key + "'"));
+        const YAML::Node outputs = required(entry, "outputs", what);
+        for (const auto& [key, value] : optionEntries(outputs, "outputs"))
+            command.outputs.emplace_back(optionWord(key), resultFile(value, key));
+        if (command.outputs.empty()) throw Error(at(outputs) + ": " + what + " has no outputs");
+        experiment.commands.push_back(std::move(command));
+    }
+}
+
 void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "tables")) {
-        yaml::requireKeys(entry, source_, {"title", "comparisons", "runs", "value", "column"});
+        yaml::requireKeys(entry, source_, {"title", "comparisons", "runs", "value", "column", "group_by", "precision"});
         TableSpec table{name, name, {}, {}};
         if (entry["value"]) table.value = text(entry["value"], "value");
         if (entry["column"]) table.column = text(entry["column"], "column");
         if (entry["title"]) table.title = text(entry["title"], "title");
+        if (const YAML::Node p = entry["precision"]) {
+            table.precision = text(p, "precision");
+            if (const double d = yaml::toDouble(p, source_, "precision"); d != std::floor(d) || d < 0 || d > 17)
+                throw Error(at(p) + ": precision must be a whole number of decimals in 0..17");
+        }
         if (const YAML::Node c = entry["comparisons"]) {
             table.comparisons = names(c, "comparisons");
             for (const std::string& group : table.comparisons)
@@ -376,6 +473,14 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
                 if (std::none_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& x) { return x.id == id; }))
                     throw Error(at(r) + ": unknown run '" + id + "'");
         }
+        if (const YAML::Node g = entry["group_by"]) {
+            if (text(g, "group_by") != "scene") throw Error(at(g) + ": group_by must be scene");
+            if (!table.comparisons.empty()) throw Error(at(g) + ": group_by applies to a table of values (runs)");
+            table.byScene = true;
+            if (table.runs.empty())  // every method run
+                for (const RunSpec& run : experiment.runs)
+                    if (!run.reference) table.runs.push_back(run.id);
+        }
         if (table.comparisons.empty() == table.runs.empty())
             throw Error(at(entry) + ": table '" + name + "' needs either comparisons (a threshold table) or runs (a table of values)");
         experiment.tables.push_back(std::move(table));
@@ -384,13 +489,11 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
 
 void ExperimentReader::readFigures(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "figures")) {
-        yaml::requireKeys(entry, source_, {"spec", "tables"});
-        FigureSpec figure{name, existingFile(required(entry, "spec", "figure '" + name + "'"), "spec"), {}};
-        if (const YAML::Node t = entry["tables"]) {
-            figure.tables = names(t, "tables");
-            for (const std::string& table : figure.tables)
-                if (std::none_of(experiment.tables.begin(), experiment.tables.end(), [&](auto& x) { return x.name == table; }))
-                    throw Error(at(t) + ": unknown table '" + table + "'");
+        yaml::requireKeys(entry, source_, {"spec", "data"});
+        FigureSpec figure{name, existingFile(required(entry, "spec", "figure '" + name + "'"), "spec"), {}, {}};
+        if (const YAML::Node d = entry["data"]) {  // whether some step writes each file, the plan checks
+            figure.data = names(d, "data");
+            figure.dataAt = at(d);
         }
         experiment.figures.push_back(std::move(figure));
     }
@@ -405,15 +508,29 @@ void ExperimentReader::readReproduce(const YAML::Node& node, Experiment& experim
     if (!checks.IsSequence() || checks.size() == 0) throw Error(at(checks) + ": checks must be a non-empty list");
     for (const YAML::Node& c : checks) {
         yaml::requireMap(c, source_, "a check");
-        yaml::requireKeys(c, source_, {"of", "metrics", "tolerance"});
-        ReproduceCheck check{text(required(c, "of", "a check"), "of"), names(required(c, "metrics", "a check"), "metrics"),
-                             tolerance};
+        yaml::requireKeys(c, source_, {"of", "metrics", "file", "tolerance"});
+        ReproduceCheck check{text(required(c, "of", "a check"), "of"), {}, "", tolerance};
         if (c["tolerance"]) check.tolerance = yaml::toDouble(c["tolerance"], source_, "tolerance");
         if (!(check.tolerance >= 0)) throw Error(at(c) + ": tolerance must be >= 0");
+        const auto command = std::find_if(experiment.commands.begin(), experiment.commands.end(),
+                                          [&](const CommandSpec& x) { return x.name == check.of; });
+        if (command != experiment.commands.end()) {
+            if (c["metrics"]) throw Error(at(c["metrics"]) + ": a command's check compares a file: give file, not metrics");
+            check.file = text(required(c, "file", "a command's check"), "file");
+            const bool written = std::any_of(command->outputs.begin(), command->outputs.end(),
+                                             [&](const auto& output) { return output.second == check.file; });
+            if (!written || !check.file.ends_with(".csv"))
+                throw Error(at(c["file"]) + ": '" + check.file + "' is not a CSV file that command '" + check.of + "' writes");
+            experiment.reproduce.push_back(std::move(check));
+            continue;
+        }
+        if (c["file"]) throw Error(at(c["file"]) + ": file applies to a command's check only");
+        check.metrics = names(required(c, "metrics", "a check"), "metrics");
         const bool isRun = std::any_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& r) { return r.id == check.of; });
         const bool isComparison = std::any_of(experiment.comparisons.begin(), experiment.comparisons.end(),
                                               [&](auto& x) { return x.id == check.of; });
-        if (!isRun && !isComparison) throw Error(at(c["of"]) + ": '" + check.of + "' is neither a run nor a comparison");
+        if (!isRun && !isComparison)
+            throw Error(at(c["of"]) + ": '" + check.of + "' is neither a run, a comparison nor a command");
         const std::set<std::string> allowed = isRun ? std::set<std::string>{"max", "mean"}
                                                     : std::set<std::string>{"max_abs", "mean_abs", "rmse"};
         for (const std::string& m : check.metrics)
@@ -440,11 +557,12 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     yaml::requireMap(root, source_, "an experiment");
     static const std::initializer_list<std::string_view> topLevel{
         "name", "title", "paper", "agreement", "scenes", "methods", "references",
-        "comparisons", "tables", "figures", "reproduce", "quick"};
+        "comparisons", "commands", "tables", "figures", "reproduce", "quick"};
     yaml::requireKeys(root, source_, topLevel);
     if (const YAML::Node q = root["quick"]) {
         yaml::requireMap(q, source_, "quick");
-        yaml::requireKeys(q, source_, {"title", "scenes", "methods", "references", "comparisons", "tables", "figures"});
+        yaml::requireKeys(q, source_,
+                          {"title", "scenes", "methods", "references", "comparisons", "commands", "tables", "figures"});
         if (quick) mergeOverrides(root, q);
     }
     Experiment experiment;
@@ -457,15 +575,22 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     experiment.title = text(required(root, "title", "the experiment"), "title");
     experiment.paper = readPaper(required(root, "paper", "the experiment"));
     if (root["agreement"]) experiment.agreement = text(root["agreement"], "agreement");
-    for (const auto& [sceneName, entry] : entries(required(root, "scenes", "the experiment"), "scenes"))
-        experiment.scenes.push_back(readScene(sceneName, entry));
-    if (experiment.scenes.empty()) throw Error(at(root["scenes"]) + ": no scenes");
-    if (root["references"]) readRuns(root["references"], true, experiment);
-    readRuns(required(root, "methods", "the experiment"), false, experiment);
+    // Renders need scenes and methods; an experiment of commands alone (a 2D study) has neither.
+    if (root["scenes"] || root["methods"] || root["references"] || !root["commands"]) {
+        for (const auto& [sceneName, entry] : entries(required(root, "scenes", "the experiment"), "scenes"))
+            experiment.scenes.push_back(readScene(sceneName, entry));
+        if (experiment.scenes.empty()) throw Error(at(root["scenes"]) + ": no scenes");
+        if (root["references"]) readRuns(root["references"], true, experiment);
+        readRuns(required(root, "methods", "the experiment"), false, experiment);
+    }
     if (root["comparisons"]) readComparisons(root["comparisons"], experiment);
+    if (root["commands"]) readCommands(root["commands"], experiment);
     if (root["tables"]) readTables(root["tables"], experiment);
     if (root["figures"]) readFigures(root["figures"], experiment);
     if (root["reproduce"]) readReproduce(root["reproduce"], experiment);
+    // Which step writes which file only the plan knows; planning once here (where to does not matter)
+    // makes a figure that reads a file no step writes a mistake in the file like any other.
+    planExperiment(experiment, fs::current_path() / "results" / experiment.name, fs::current_path());
     return experiment;
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "vri/error.h"
+#include "vri/format.h"
 
 namespace vri {
 
@@ -35,21 +36,14 @@ std::string shape(const Image& image) {
            std::to_string(image.channels) + " channels";
 }
 
-std::string formatNumber(double value) {
-    if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-    char buffer[32];
-    auto result = std::to_chars(buffer, buffer + sizeof buffer, value);  // shortest exact form
-    return std::string(buffer, result.ptr);
-}
-
 void requireValidEdges(const std::vector<double>& edges) {
     if (edges.empty()) throw Error("histogram needs at least one bin edge");
     for (std::size_t i = 0; i < edges.size(); ++i) {
         if (!std::isfinite(edges[i]) || edges[i] < 0)
-            throw Error("histogram bin edges must be finite and >= 0, got " + formatNumber(edges[i]));
+            throw Error("histogram bin edges must be finite and >= 0, got " + exactNumber(edges[i]));
         if (i > 0 && !(edges[i] > edges[i - 1]))
-            throw Error("histogram bin edges must be strictly ascending, got " + formatNumber(edges[i - 1]) +
-                        " then " + formatNumber(edges[i]));
+            throw Error("histogram bin edges must be strictly ascending, got " + exactNumber(edges[i - 1]) +
+                        " then " + exactNumber(edges[i]));
     }
 }
 
@@ -132,8 +126,8 @@ ErrorHistogram errorHistogram(const Image& a, const Image& b, std::vector<double
 
 std::vector<double> logBinEdges(double lo, double hi, int binsPerDecade) {
     if (!(lo > 0) || !(hi > lo) || !std::isfinite(hi) || binsPerDecade < 1)
-        throw Error("logarithmic bins need 0 < lo < hi and at least one bin per decade, got lo " + formatNumber(lo) +
-                    ", hi " + formatNumber(hi) + ", " + std::to_string(binsPerDecade) + " per decade");
+        throw Error("logarithmic bins need 0 < lo < hi and at least one bin per decade, got lo " + exactNumber(lo) +
+                    ", hi " + exactNumber(hi) + ", " + std::to_string(binsPerDecade) + " per decade");
     const double firstExponent = std::log10(lo);
     std::vector<double> edges{lo};
     for (int k = 1;; ++k) {
@@ -156,8 +150,8 @@ std::string toCsv(const ErrorHistogram& histogram) {
     for (const std::string& name : histogram.channelNames) cell(name);
     csv += '\n';
     for (std::size_t bin = 0; bin < histogram.binCount(); ++bin) {
-        csv += formatNumber(histogram.binLower(bin));
-        cell(formatNumber(histogram.binUpper(bin)));
+        csv += exactNumber(histogram.binLower(bin));
+        cell(exactNumber(histogram.binUpper(bin)));
         for (const auto& counts : histogram.counts) cell(std::to_string(counts[bin]));
         csv += '\n';
     }

@@ -8,6 +8,7 @@
 
 #include "vri/atomic_file.h"
 #include "vri/error.h"
+#include "vri/format.h"
 #include "vri/volume_io.h"
 #include "volume_formats.h"
 
@@ -124,7 +125,7 @@ Volume readInviwoDat(const fs::path& path) {
 
 void writeInviwoDat(const fs::path& path, const Volume& volume) {
     const fs::path rawPath = rawFileBeside(path);
-    const auto n = [](double value) { return formatNumber(value); };
+    const auto n = [](double value) { return exactNumber(value); };
     const glm::dvec3 extent = volume.spacing * glm::dvec3(volume.dims);
     const glm::dvec3 o = volume.origin;
     std::string format(voxelTypeName(volume.type));

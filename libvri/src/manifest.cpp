@@ -54,6 +54,19 @@ std::string stateName(StepOutcome::State state) {
     return "unknown";
 }
 
+// The list of the manifest's "outputs" (what the gallery shows) that a step's output file belongs
+// to, or "" for none: previews and command images, diff images, Markdown tables, figures.
+std::string galleryList(const Step& step, const fs::path& file) {
+    const std::string ext = file.extension().string();
+    const bool madeImage = step.kind == "render" || step.kind == "command";
+    const bool madeTable = step.kind == "table" || step.kind == "command";
+    if (ext == ".png" && madeImage) return "images";
+    if (ext == ".png" && step.kind == "diff") return "diff_images";
+    if (ext == ".md" && madeTable) return "tables";
+    if (ext == ".png" && step.kind == "figure") return "figures";
+    return "";
+}
+
 }  // namespace
 
 void writeManifest(const Experiment& experiment, const Plan& plan, const std::vector<StepOutcome>& outcomes,
@@ -78,14 +91,9 @@ void writeManifest(const Experiment& experiment, const Plan& plan, const std::ve
                          {"ran_utc", outcome.record.ranUtc}});
         if (outcome.state == StepOutcome::State::Unavailable) continue;
         tools[step.tool] = hasher.digest(toolDir / step.tool);
-        for (const fs::path& out : step.outputs) {
-            const std::string name = out.lexically_relative(plan.resultsDir).string();
-            const std::string ext = out.extension().string();
-            if (step.kind == "render" && ext == ".png") outputs["images"].push_back({{"id", step.id}, {"file", name}});
-            if (step.kind == "diff" && ext == ".png") outputs["diff_images"].push_back({{"id", step.id}, {"file", name}});
-            if (step.kind == "table" && ext == ".md") outputs["tables"].push_back({{"id", step.id}, {"file", name}});
-            if (step.kind == "figure" && ext == ".png") outputs["figures"].push_back({{"id", step.id}, {"file", name}});
-        }
+        for (const fs::path& out : step.outputs)
+            if (const std::string list = galleryList(step, out); !list.empty())
+                outputs[list].push_back({{"id", step.id}, {"file", out.lexically_relative(plan.resultsDir).string()}});
     }
     nlohmann::json datasets = nlohmann::json::array();
     for (const SceneSpec& scene : experiment.scenes)
@@ -151,9 +159,11 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
         const nlohmann::json& outputs = m.at("outputs");
         gallery(outputs.at("images"));
         gallery(outputs.at("diff_images"));
-        gallery(outputs.at("figures"));
         for (const nlohmann::json& table : outputs.at("tables"))
-            md << std::ifstream(path.parent_path() / table.at("file").get<std::string>()).rdbuf() << "\n";
+            // An empty file would leave `md` failed, and the rest of the gallery unwritten.
+            if (std::ifstream in(path.parent_path() / table.at("file").get<std::string>()); in.peek() != EOF)
+                md << in.rdbuf() << "\n";
+        gallery(outputs.at("figures"));
         if (!e.at("agreement").get<std::string>().empty())
             md << "**Ours against the paper:** " << e.at("agreement").get<std::string>() << "\n\n";
         md << "Experiment file `" << e.at("source").get<std::string>() << "`, manifest [" << dir << "/manifest.json]("

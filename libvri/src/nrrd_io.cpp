@@ -8,6 +8,7 @@
 
 #include "vri/atomic_file.h"
 #include "vri/error.h"
+#include "vri/format.h"
 #include "vri/volume_io.h"
 #include "volume_formats.h"
 
@@ -187,7 +188,7 @@ void writeNhdr(const fs::path& path, const Volume& volume) {
     const std::string nrrdType = volume.type == VoxelType::Float32 ? "float" : std::string(voxelTypeName(volume.type));
     const glm::dvec3 s = volume.spacing;
     const glm::dvec3 o = volume.origin;
-    const auto n = [](double value) { return formatNumber(value); };
+    const auto n = [](double value) { return exactNumber(value); };
     std::string text = "NRRD0004\n"
                        "# written by vri\n"
                        "type: " + nrrdType + "\n"

@@ -1,20 +1,17 @@
 #pragma once
-// Private: the little CSV reading that vri-plot needs (the header to find columns by name, the
-// values for a Pareto front). Fields may be quoted as RFC 4180 says.
+// Private to vri-plot: a heatmap's grid read from CSV.
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 namespace vri::plot {
 
-std::vector<std::string> splitCsvLine(const std::string& line);
-
-struct CsvFile {
-    std::vector<std::string> header;
-    std::vector<std::vector<std::string>> rows;
-};
-
-// Throws vri::Error naming the file when it cannot be read or is empty.
-CsvFile readCsv(const std::filesystem::path& path);
+// A heatmap's (x, y, z) fields, as written in the file, in scan order (by y, then x): gnuplot draws
+// an image only from points in that order, and the file may have them in any. Columns are 1-based.
+// Throws vri::Error "FILE...: what is wrong" when a field is not a number or the points do not fill
+// an evenly spaced grid of at least 2 x 2, each point once.
+std::vector<std::array<std::string, 3>> gridRows(const std::filesystem::path& path, int xColumn, int yColumn,
+                                                 int zColumn);
 
 }  // namespace vri::plot

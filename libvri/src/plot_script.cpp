@@ -1,10 +1,10 @@
-// Writing the gnuplot script of a figure, and the Pareto front it may mark.
+// Writing the gnuplot script of a figure, with the Pareto front it may mark and its heatmaps' grids.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <charconv>
 
 #include "plot_csv.h"
+#include "vri/csv.h"
 #include "vri/plot.h"
 
 namespace vri {
@@ -20,18 +20,19 @@ std::string quoted(const std::string& text) {
     return out + "'";
 }
 
+// The shortest text that reads back as the same double: exact, and 0.8 stays "0.8".
 std::string number(double value) {
     char text[40];
-    std::snprintf(text, sizeof text, "%.17g", value);
-    return text;
+    return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
 }
 
-std::string axisCommands(const char* name, const PlotAxis& axis) {
+// A heatmap's axes end where its image does (fit), other axes at a tic mark beyond the data.
+std::string axisCommands(const char* name, const PlotAxis& axis, bool fit) {
     const std::string n = name;
     std::string out = "    set " + n + "label " + quoted(axis.label) + "\n";
     out += axis.log ? "    set logscale " + n + "\n" : "    unset logscale " + n + "\n";
     out += "    set " + n + "range [" + (axis.min ? number(*axis.min) : "*") + ":" +
-           (axis.max ? number(*axis.max) : "*") + "]\n";
+           (axis.max ? number(*axis.max) : "*") + "]" + (fit ? " noextend" : " extend") + "\n";
     return out;
 }
 
@@ -41,18 +42,74 @@ std::string keyCommand(const std::string& key) {
     return "    set key " + key + "\n";
 }
 
+// Colours from the lowest value to the highest, at evenly spaced stops.
+std::string paletteCommand(const std::string& palette) {
+    if (palette == "gray") return "    set palette defined (0 '#000000', 1 '#ffffff')\n";
+    if (palette == "diverging") return "    set palette defined (0 '#3b4cc0', 1 '#f2f2f2', 2 '#b40426')\n";
+    return "    set palette defined (0 '#440154', 1 '#482878', 2 '#3e4a89', 3 '#31688e', 4 '#26828e', 5 '#1f9e89', "
+           "6 '#35b779', 7 '#6dcd59', 8 '#b4de2c', 9 '#fde725')\n";  // viridis
+}
+
+// Everything a panel sets before it plots; what one panel sets, the next resets, so that no
+// setting leaks into a later panel (or from the PNG's last panel into the SVG's first).
+std::string panelCommands(const PlotPanel& panel) {
+    const bool heatmap = panel.hasStyle("heatmap");
+    std::string out = "    set title " + quoted(panel.title) + "\n";
+    out += axisCommands("x", panel.x, heatmap) + axisCommands("y", panel.y, heatmap) + keyCommand(panel.key);
+    out += panel.equalAspect ? "    set size ratio -1\n" : "    set size noratio\n";
+    out += "    unset label\n";
+    for (const PlotLabel& label : panel.labels)
+        out += "    set label " + quoted(label.text) + " at " + number(label.x) + "," + number(label.y) + " front\n";
+    if (heatmap) {
+        const PlotColorbar& bar = panel.colorbar;
+        out += paletteCommand(bar.palette);
+        out += "    set cbrange [" + (bar.min ? number(*bar.min) : "*") + ":" + (bar.max ? number(*bar.max) : "*") + "]\n";
+        out += "    set cblabel " + quoted(bar.label) + "\n    set colorbox\n";
+    }
+    return out;
+}
+
+// gnuplot's filled circle, filled square, cross and filled triangle.
+int pointType(const std::string& point) {
+    if (point == "square") return 5;
+    if (point == "cross") return 2;
+    if (point == "triangle") return 9;
+    return 7;
+}
+
 std::string styleClause(const PlotSeries& series) {
     const std::string colour = series.color.empty() ? "" : " lc rgb " + quoted(series.color);
+    const std::string width = " lw " + number(series.width);
+    const std::string point = " pt " + std::to_string(pointType(series.point)) + " ps " + number(series.pointSize);
     if (series.style == "histogram") return "with boxxyerror fs transparent solid 0.35 border" + colour;
-    if (series.style == "points") return "with points pt 7 ps 0.8" + colour;
-    if (series.style == "linespoints") return "with linespoints lw 2 pt 7 ps 0.8" + colour;
-    if (series.style == "dashed") return "with lines lw 2 dt 2" + colour;
-    if (series.style == "dotted") return "with lines lw 2 dt 3" + colour;
-    return "with lines lw 2" + colour;
+    if (series.style == "heatmap") return "with image";
+    if (series.style == "segments") return "with vectors nohead" + width + colour;
+    if (series.style == "points") return "with points" + point + colour;
+    if (series.style == "linespoints") return "with linespoints" + width + point + colour;
+    if (series.style == "dashed") return "with lines" + width + " dt 2" + colour;
+    if (series.style == "dotted") return "with lines" + width + " dt 3" + colour;
+    return "with lines" + width + colour;
+}
+
+// The y column, or NaN (which gnuplot skips) on the rows that `where` leaves out.
+std::string yExpression(const PlotSeries& series) {
+    const std::string y = std::to_string(series.yColumn);
+    if (series.where.empty()) return y;
+    std::string condition;
+    for (const auto& [column, text] : series.where)
+        condition += (condition.empty() ? "" : " && ") + ("strcol(" + std::to_string(column) + ") eq " + quoted(text));
+    return "(" + condition + " ? $" + y + " : NaN)";
 }
 
 std::string usingClause(const PlotSeries& series) {
-    const std::string x = std::to_string(series.xColumn), y = std::to_string(series.yColumn);
+    const std::string x = std::to_string(series.xColumn), y = yExpression(series);
+    if (series.style == "heatmap") return "using 1:2:3";  // its datablock's columns
+    if (series.style == "segments") {
+        // From (x, y) by (x2 - x, y2 - y).
+        const std::string x2 = std::to_string(series.x2Column), y2 = std::to_string(series.y2Column);
+        const std::string y1 = std::to_string(series.yColumn);
+        return "using " + x + ":" + y + ":($" + x2 + " - $" + x + "):($" + y2 + " - $" + y1 + ")";
+    }
     if (series.style != "histogram") return "using " + x + ":" + y;
     // Boxes from bin_lo to bin_hi (the next column) and from 0 to the count. Only bins with finite,
     // positive edges are drawn (a log axis has no room for the others): vri-diff's zero bin, its
@@ -64,19 +121,28 @@ std::string usingClause(const PlotSeries& series) {
     return clause.append(":(0):($").append(y).append(")");
 }
 
-std::optional<double> parseNumber(const std::string& text) {
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size()) return std::nullopt;
-    return value;
+// Where gnuplot reads a series from: its CSV past the header, or for a heatmap the datablock that
+// holds the CSV's grid in scan order.
+std::string dataSource(const PlotSeries& series, std::size_t panel, std::size_t index, const fs::path& scriptDir) {
+    if (series.style == "heatmap") return "$heatmap" + std::to_string(panel + 1) + "_" + std::to_string(index + 1);
+    return quoted(fs::relative(fs::absolute(series.file), scriptDir).generic_string()) + " skip 1";
 }
 
-// The panel's points from every series, for its Pareto front.
+std::string heatmapBlock(const PlotSeries& series, std::size_t panel, std::size_t index, const fs::path& scriptDir) {
+    std::string out = "# " + fs::relative(fs::absolute(series.file), scriptDir).generic_string() +
+                      " as x,y,z in scan order, which gnuplot's image needs\n";
+    out += dataSource(series, panel, index, scriptDir) + " << EOD\n";
+    for (const auto& [x, y, z] : plot::gridRows(series.file, series.xColumn, series.yColumn, series.zColumn))
+        out.append(x).append(",").append(y).append(",").append(z).append("\n");
+    return out + "EOD\n";
+}
+
+// The panel's points from every series of points or lines, for its Pareto front.
 std::vector<std::pair<double, double>> panelPoints(const PlotPanel& panel) {
     std::vector<std::pair<double, double>> points;
     for (const PlotSeries& series : panel.series) {
-        if (series.style == "histogram") continue;
-        for (const auto& row : plot::readCsv(series.file).rows) {
+        if (series.style == "histogram" || series.style == "heatmap" || series.style == "segments") continue;
+        for (const auto& row : readCsv(series.file).rows) {
             const std::size_t xi = series.xColumn - 1, yi = series.yColumn - 1;
             if (xi >= row.size() || yi >= row.size()) continue;
             const auto x = parseNumber(row[xi]), y = parseNumber(row[yi]);
@@ -117,8 +183,11 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
            "cd (i > 0 ? script_dir[1:i] : \".\")\n"
            "set datafile separator comma\n";
     for (std::size_t p = 0; p < spec.panels.size(); ++p) {
-        if (!spec.panels[p].pareto) continue;
-        const auto points = panelPoints(spec.panels[p]);
+        const PlotPanel& panel = spec.panels[p];
+        for (std::size_t s = 0; s < panel.series.size(); ++s)
+            if (panel.series[s].style == "heatmap") out += heatmapBlock(panel.series[s], p, s, scriptDir);
+        if (!panel.pareto) continue;
+        const auto points = panelPoints(panel);
         out += "$pareto" + std::to_string(p + 1) + " << EOD\n";
         for (std::size_t i : paretoFront(points)) out.append(number(points[i].first)).append(",").append(number(points[i].second)).append("\n");
         out += "EOD\n";
@@ -137,14 +206,13 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
     for (std::size_t p = 0; p < spec.panels.size(); ++p) {
         const PlotPanel& panel = spec.panels[p];
         out += "    # panel " + std::to_string(p + 1) + "\n";
-        out += "    set title " + quoted(panel.title) + "\n";
-        out += axisCommands("x", panel.x) + axisCommands("y", panel.y) + keyCommand(panel.key);
-        out += "    plot ";
+        out += panelCommands(panel) + "    plot ";
         for (std::size_t s = 0; s < panel.series.size(); ++s) {
             const PlotSeries& series = panel.series[s];
-            const std::string file = fs::relative(fs::absolute(series.file), scriptDir).generic_string();
-            out += (s == 0 ? "" : ", \\\n         ") + quoted(file) + " skip 1 " + usingClause(series) + " " +
-                   styleClause(series) + " title " + quoted(series.label);
+            // A heatmap is keyed by its colour bar, not in the legend.
+            const std::string title = series.style == "heatmap" || series.label.empty() ? "notitle" : "title " + quoted(series.label);
+            out += (s == 0 ? "" : ", \\\n         ") + dataSource(series, p, s, scriptDir) + " " + usingClause(series) +
+                   " " + styleClause(series) + " " + title;
         }
         if (panel.pareto)
             out += ", \\\n         $pareto" + std::to_string(p + 1) +

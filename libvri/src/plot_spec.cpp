@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "plot_csv.h"
+#include "vri/csv.h"
 #include "vri/error.h"
 #include "vri/plot.h"
 #include "yaml_util.h"
@@ -22,6 +23,21 @@ struct SpecSource {
 };
 
 constexpr const char* kKeyPlacements[] = {"top left", "top right", "bottom left", "bottom right", "outside", "off"};
+constexpr const char* kAspects[] = {"auto", "equal"};
+
+// Series keys that only some styles take, with those styles. A heatmap's colours and its entry in
+// the legend are its panel's colour bar, so it takes no color or label.
+constexpr std::pair<const char*, const char*> kStyleOnlyKeys[] = {
+    {"z", "heatmap"},
+    {"x2", "segments"},
+    {"y2", "segments"},
+    {"width", "line, dashed, dotted, linespoints, segments"},
+    {"size", "points, linespoints"},
+    {"point", "points, linespoints"},
+    {"color", "line, dashed, dotted, points, linespoints, histogram, segments"},
+    {"label", "line, dashed, dotted, points, linespoints, histogram, segments"},
+    {"where", "line, dashed, dotted, points, linespoints, segments"},
+};
 
 bool toBool(const YAML::Node& node, const SpecSource& src, const std::string& what) {
     try {
@@ -36,6 +52,29 @@ int toPositiveInt(const YAML::Node& node, const SpecSource& src, const std::stri
     if (value < 1 || value > most || value != std::floor(value))
         throw Error(src.at(node) + ": " + what + " must be a whole number from 1 to " + std::to_string(most));
     return static_cast<int>(value);
+}
+
+double toPositiveNumber(const YAML::Node& node, const SpecSource& src, const std::string& what) {
+    const double value = yaml::toDouble(node, src.name, what);
+    if (!(value > 0) || !std::isfinite(value)) throw Error(src.at(node) + ": " + what + " must be a positive number");
+    return value;
+}
+
+// A string that must be one of `names`; the message lists them.
+template <std::size_t N>
+std::string toChoice(const YAML::Node& node, const SpecSource& src, const std::string& what,
+                     const char* const (&names)[N]) {
+    const std::string value = yaml::toString(node, src.name, what);
+    if (std::any_of(std::begin(names), std::end(names), [&](const char* name) { return value == name; })) return value;
+    std::string expected;
+    for (std::size_t i = 0; i < N; ++i) expected += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(names[i]);
+    throw Error(src.at(node) + ": " + what + " '" + value + "' is unknown (expected " + expected + ")");
+}
+
+void requirePresent(const YAML::Node& node, const SpecSource& src, const std::string& what,
+                    const std::vector<std::string>& keys) {
+    for (const std::string& key : keys)
+        if (!node[key]) throw Error(src.at(node) + ": " + what + " is missing '" + key + "'");
 }
 
 // A [first, second] pair node, checked for shape.
@@ -79,44 +118,110 @@ bool isHexColour(const std::string& text) {
            std::all_of(text.begin() + 1, text.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
 }
 
+// The keys the series' style needs are there, and none that it does not take.
+void requireStyleKeys(const YAML::Node& node, const SpecSource& src, const std::string& what, const std::string& style) {
+    for (const auto& [key, styles] : kStyleOnlyKeys)
+        if (node[key] && (", " + std::string(styles) + ", ").find(", " + style + ", ") == std::string::npos)
+            throw Error(src.at(node[key]) + ": " + what + "." + key + " is not for style " + style + " (only for " +
+                        styles + ")");
+    std::vector<std::string> required = {"file", "y"};
+    if (style != "histogram") required.push_back("x");
+    if (style == "heatmap") required.push_back("z");
+    if (style == "segments") required.insert(required.end(), {"x2", "y2"});
+    requirePresent(node, src, what, required);
+    if (style == "histogram" && node["x"])
+        throw Error(src.at(node["x"]) + ": a histogram takes its bins from the columns bin_lo and bin_hi; no 'x'");
+}
+
+// The columns a series names, checked against its file's header (and a heatmap's rows for their grid).
+void findColumns(PlotSeries& series, const YAML::Node& node, const SpecSource& src, const std::string& what) {
+    const std::vector<std::string> header = readCsv(series.file).header;
+    auto column = [&](const char* key) {
+        return columnIndex(header, yaml::toString(node[key], src.name, what + "." + key), node[key], src, series.file);
+    };
+    series.y = yaml::toString(node["y"], src.name, what + ".y");
+    series.yColumn = column("y");
+    if (series.style == "histogram") {
+        series.x = "bin_lo";
+        series.xColumn = columnIndex(header, "bin_lo", node["file"], src, series.file);
+        columnIndex(header, "bin_hi", node["file"], src, series.file);
+        return;
+    }
+    series.x = yaml::toString(node["x"], src.name, what + ".x");
+    series.xColumn = column("x");
+    if (series.style == "segments") {
+        series.x2Column = column("x2");
+        series.y2Column = column("y2");
+    }
+    if (const YAML::Node where = node["where"]) {
+        yaml::requireMap(where, src.name, what + ".where");
+        for (const auto& entry : where) {
+            const std::string name = yaml::toString(entry.first, src.name, what + ".where");
+            series.where.emplace_back(columnIndex(header, name, entry.first, src, series.file),
+                                      yaml::toString(entry.second, src.name, what + ".where." + name));
+        }
+    }
+    if (series.style == "heatmap") {
+        series.zColumn = column("z");
+        try {
+            plot::gridRows(series.file, series.xColumn, series.yColumn, series.zColumn);
+        } catch (const Error& e) {
+            throw Error(src.at(node["file"]) + ": " + e.what());
+        }
+    }
+}
+
 PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std::string& what) {
     yaml::requireMap(node, src.name, what);
-    yaml::requireKeys(node, src.name, {"file", "x", "y", "style", "label", "color"});
+    yaml::requireKeys(node, src.name,
+                      {"file", "x", "y", "z", "x2", "y2", "style", "label", "color", "width", "size", "point", "where"});
     PlotSeries series;
-    if (node["style"]) {
-        series.style = yaml::toString(node["style"], src.name, what + ".style");
-        if (std::none_of(std::begin(kPlotStyles), std::end(kPlotStyles), [&](const char* s) { return series.style == s; }))
-            throw Error(src.at(node["style"]) + ": style '" + series.style +
-                        "' is unknown (expected line, dashed, dotted, points, linespoints or histogram)");
-    }
-    const bool histogram = series.style == "histogram";
-    for (const char* key : {"file", "y"})
-        if (!node[key]) throw Error(src.at(node) + ": " + what + " is missing '" + key + "'");
-    if (!histogram && !node["x"]) throw Error(src.at(node) + ": " + what + " is missing 'x'");
-    if (histogram && node["x"])
-        throw Error(src.at(node["x"]) + ": a histogram takes its bins from the columns bin_lo and bin_hi; no 'x'");
+    if (node["style"]) series.style = toChoice(node["style"], src, what + ".style", kPlotStyles);
+    requireStyleKeys(node, src, what, series.style);
 
     const std::string file = yaml::toString(node["file"], src.name, what + ".file");
     series.file = (fs::path(file).is_absolute() ? fs::path(file) : src.baseDir / file).lexically_normal();
     if (!fs::is_regular_file(series.file))
         throw Error(src.at(node["file"]) + ": data file " + series.file.string() + " does not exist");
-    const std::vector<std::string> header = plot::readCsv(series.file).header;
-    series.y = yaml::toString(node["y"], src.name, what + ".y");
-    series.yColumn = columnIndex(header, series.y, node["y"], src, series.file);
-    if (histogram) {
-        series.x = "bin_lo";
-        series.xColumn = columnIndex(header, "bin_lo", node["file"], src, series.file);
-        columnIndex(header, "bin_hi", node["file"], src, series.file);
-    } else {
-        series.x = yaml::toString(node["x"], src.name, what + ".x");
-        series.xColumn = columnIndex(header, series.x, node["x"], src, series.file);
-    }
+    findColumns(series, node, src, what);
     series.label = node["label"] ? yaml::toString(node["label"], src.name, what + ".label") : series.y;
     if (node["color"]) {
         series.color = yaml::toString(node["color"], src.name, what + ".color");
         if (!isHexColour(series.color)) throw Error(src.at(node["color"]) + ": color must be \"#rrggbb\"");
     }
+    if (node["width"]) series.width = toPositiveNumber(node["width"], src, what + ".width");
+    if (node["size"]) series.pointSize = toPositiveNumber(node["size"], src, what + ".size");
+    if (node["point"]) series.point = toChoice(node["point"], src, what + ".point", kPlotPoints);
     return series;
+}
+
+PlotColorbar parseColorbar(const YAML::Node& node, const SpecSource& src, const std::string& what) {
+    yaml::requireMap(node, src.name, what);
+    yaml::requireKeys(node, src.name, {"label", "min", "max", "palette"});
+    PlotColorbar colorbar;
+    if (node["label"]) colorbar.label = yaml::toString(node["label"], src.name, what + ".label");
+    if (node["min"]) colorbar.min = yaml::toDouble(node["min"], src.name, what + ".min");
+    if (node["max"]) colorbar.max = yaml::toDouble(node["max"], src.name, what + ".max");
+    if (colorbar.min && colorbar.max && !(*colorbar.min < *colorbar.max))
+        throw Error(src.at(node["max"]) + ": " + what + ".max must be above its min");
+    if (node["palette"]) colorbar.palette = toChoice(node["palette"], src, what + ".palette", kPlotPalettes);
+    return colorbar;
+}
+
+std::vector<PlotLabel> parseLabels(const YAML::Node& list, const SpecSource& src, const std::string& what) {
+    if (!list.IsSequence()) throw Error(src.at(list) + ": " + what + " must be a list of {x, y, text}");
+    std::vector<PlotLabel> labels;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const YAML::Node node = list[i];
+        const std::string item = what + "[" + std::to_string(i) + "]";
+        yaml::requireMap(node, src.name, item);
+        yaml::requireKeys(node, src.name, {"x", "y", "text"});
+        requirePresent(node, src, item, {"x", "y", "text"});
+        labels.push_back({yaml::toDouble(node["x"], src.name, item + ".x"),
+                          yaml::toDouble(node["y"], src.name, item + ".y"),
+                          yaml::toString(node["text"], src.name, item + ".text")});
+    }
+    return labels;
 }
 
 PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::string& what, bool titled) {
@@ -126,21 +231,20 @@ PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::s
     if (titled && node["title"]) panel.title = yaml::toString(node["title"], src.name, field("title"));
     if (node["x"]) panel.x = parseAxis(node["x"], src, field("x"));
     if (node["y"]) panel.y = parseAxis(node["y"], src, field("y"));
-    if (node["key"]) {
-        panel.key = yaml::toString(node["key"], src.name, field("key"));
-        if (std::none_of(std::begin(kKeyPlacements), std::end(kKeyPlacements), [&](const char* k) { return panel.key == k; }))
-            throw Error(src.at(node["key"]) + ": key '" + panel.key +
-                        "' is unknown (expected top left, top right, bottom left, bottom right, outside or off)");
-    }
+    if (node["key"]) panel.key = toChoice(node["key"], src, field("key"), kKeyPlacements);
     if (node["pareto"]) panel.pareto = toBool(node["pareto"], src, field("pareto"));
+    if (node["aspect"]) panel.equalAspect = toChoice(node["aspect"], src, field("aspect"), kAspects) == "equal";
+    if (node["labels"]) panel.labels = parseLabels(node["labels"], src, field("labels"));
+    if (node["colorbar"]) panel.colorbar = parseColorbar(node["colorbar"], src, field("colorbar"));
     const YAML::Node list = node["series"];
     if (!list || !list.IsSequence() || list.size() == 0)
         throw Error(src.at(list ? list : node) + ": " + field("series") + " must be a non-empty list");
     for (std::size_t i = 0; i < list.size(); ++i)
         panel.series.push_back(parseSeries(list[i], src, field("series[" + std::to_string(i) + "]")));
-    for (const PlotSeries& series : panel.series)
-        if (series.style == "histogram" && panel.y.log)
-            throw Error(src.at(node["y"]) + ": " + field("y") + ": histogram boxes start at 0, so y cannot be logarithmic");
+    if (panel.y.log && panel.hasStyle("histogram"))
+        throw Error(src.at(node["y"]) + ": " + field("y") + ": histogram boxes start at 0, so y cannot be logarithmic");
+    if (node["colorbar"] && !panel.hasStyle("heatmap"))
+        throw Error(src.at(node["colorbar"]) + ": " + field("colorbar") + " is for panels with a heatmap series");
     return panel;
 }
 
@@ -150,7 +254,9 @@ PlotSpec specFromYaml(const YAML::Node& root, const SpecSource& src) {
     spec.source = src.name;
     const bool multi = static_cast<bool>(root["panels"]);
     if (multi) yaml::requireKeys(root, src.name, {"title", "size", "grid", "panels"});
-    else yaml::requireKeys(root, src.name, {"title", "size", "grid", "x", "y", "key", "pareto", "series"});
+    else
+        yaml::requireKeys(root, src.name,
+                          {"title", "size", "grid", "x", "y", "key", "pareto", "aspect", "labels", "colorbar", "series"});
     if (root["title"]) spec.title = yaml::toString(root["title"], src.name, "title");
     if (root["size"]) {
         const auto [w, h] = pairOf(root["size"], src, "size");
@@ -163,7 +269,8 @@ PlotSpec specFromYaml(const YAML::Node& root, const SpecSource& src) {
         for (std::size_t i = 0; i < list.size(); ++i) {
             const std::string what = "panels[" + std::to_string(i) + "]";
             yaml::requireMap(list[i], src.name, what);
-            yaml::requireKeys(list[i], src.name, {"title", "x", "y", "key", "pareto", "series"});
+            yaml::requireKeys(list[i], src.name,
+                              {"title", "x", "y", "key", "pareto", "aspect", "labels", "colorbar", "series"});
             spec.panels.push_back(parsePanel(list[i], src, what, true));
         }
     } else {
@@ -185,13 +292,14 @@ PlotSpec specFromYaml(const YAML::Node& root, const SpecSource& src) {
 
 }  // namespace
 
-PlotSpec parsePlotSpec(const std::string& yamlText, const std::string& source, const fs::path& baseDir) {
-    const SpecSource src{source, baseDir};
+PlotSpec parsePlotSpec(const std::string& yamlText, const std::string& source, const fs::path& specDir,
+                       const fs::path& dataDir) {
+    const SpecSource src{source, dataDir.empty() ? specDir : dataDir};
     return specFromYaml(yaml::parse(yamlText, source), src);
 }
 
-PlotSpec loadPlotSpec(const fs::path& spec) {
-    const SpecSource src{spec.string(), spec.parent_path()};
+PlotSpec loadPlotSpec(const fs::path& spec, const fs::path& dataDir) {
+    const SpecSource src{spec.string(), dataDir.empty() ? spec.parent_path() : dataDir};
     return specFromYaml(yaml::load(spec), src);
 }
 

@@ -117,28 +117,51 @@ double Rays2D::field(const glm::dvec2& local) const {
     return sample(glm::dvec3((local + 0.5 * study_.side) / study_.side, 0.5));
 }
 
-DiscreteRay Rays2D::discrete(int rayIndex, Placement placement, double samplingRate) const {
+Rays2D::Schedule Rays2D::schedule(int rayIndex, Placement placement, double samplingRate) const {
     const Study2D& study = study_;
-    const GridSampler<float, double> sample(grid_, study.convention);
     const LocalRay r = toLocal(study, rayIndex);
+    Schedule out;
     const auto seg = clip(study, r);
-    if (!seg) return {0.0, 0, 0.0};
+    if (!seg) return out;
     const double h = 0.5 * study.side;
     auto tex = [&](glm::dvec2 p) { return glm::dvec3((p + h) / study.side, 0.0); };
-    const glm::dvec3 entry = tex(r.origin + seg->tNear * r.dir), exit = tex(r.origin + seg->tFar * r.dir);
+    out.entry = tex(r.origin + seg->tNear * r.dir);
+    out.exit = tex(r.origin + seg->tFar * r.dir);
+    out.tNear = seg->tNear;
+    out.length = seg->tFar - seg->tNear;
     const glm::dvec3 dim(study.gridSize, study.gridSize, 1.0);
-    const SampleSchedule<double> s = placeSamples<double>(placement, entry, exit, tex(r.origin), dim, samplingRate);
-    if (s.count == 0) return {0.0, 0, 0.0};
-    const double dx = s.tIncr * (seg->tFar - seg->tNear) / s.tEnd;
-    const glm::dvec3 du = (exit - entry) / s.tEnd;
+    out.samples = placeSamples<double>(placement, out.entry, out.exit, tex(r.origin), dim, samplingRate);
+    return out;
+}
+
+DiscreteRay Rays2D::discrete(int rayIndex, Placement placement, double samplingRate) const {
+    const GridSampler<float, double> sample(grid_, study_.convention);
+    const Schedule s = schedule(rayIndex, placement, samplingRate);
+    if (s.samples.count == 0) return {0.0, 0, 0.0};
+    const double dx = s.samples.tIncr * s.length / s.samples.tEnd;
+    const glm::dvec3 du = (s.exit - s.entry) / s.samples.tEnd;
     RayAccumulator<double> acc;
-    for (std::int64_t k = 0; k < s.count; ++k) {
-        glm::dvec3 u = entry + s.t(k) * du;
-        u.z = 0.5;
+    for (std::int64_t k = 0; k < s.samples.count; ++k) {
+        glm::dvec3 u = s.entry + s.samples.t(k) * du;
+        u.z = 0.5;  // the middle of the grid's single layer
         const double f = sample(u);
         acc.add(Integrator::Riemann, EmissionModel::Colour, {f, f, f, 0.5 * f}, dx);
     }
-    return {acc.r, s.count, dx};
+    return {acc.r, s.samples.count, dx};
+}
+
+RaySamples Rays2D::samples(int rayIndex, Placement placement, double samplingRate) const {
+    const Schedule s = schedule(rayIndex, placement, samplingRate);
+    const double a = study_.rayAngleDegrees(rayIndex) * std::numbers::pi / 180.0;
+    RaySamples out;
+    out.direction = glm::dvec2(std::cos(a), std::sin(a));
+    out.entry = study_.eye + s.tNear * out.direction;  // rotating the frame keeps distances along the ray
+    out.length = s.length;
+    if (s.samples.count == 0) return out;
+    const double toWorld = s.length / s.samples.tEnd;
+    out.step = s.samples.tIncr * toWorld;
+    for (std::int64_t k = 0; k < s.samples.count; ++k) out.positions.push_back(s.samples.t(k) * toWorld);
+    return out;
 }
 
 }  // namespace vri

@@ -32,7 +32,9 @@ nlohmann::json toJson(const RenderStats& s) {
 
 nlohmann::json toJson(const CameraSpec& c) {
     return {{"eye", vec(c.eye)},           {"target", vec(c.target)}, {"up", vec(c.up)},
-            {"fov_y_degrees", c.fovYDegrees}, {"width", c.width},     {"height", c.height}};
+            {"fov_y_degrees", c.fovYDegrees}, {"width", c.width},     {"height", c.height},
+            {"zoom", c.zoom},
+            {"zoom_centre", c.zoomCentre ? nlohmann::json{c.zoomCentre->x, c.zoomCentre->y} : nlohmann::json()}};
 }
 
 nlohmann::json toJson(const TransferFunction& tf) {

@@ -25,7 +25,5 @@ std::string_view trim(std::string_view text);
 std::string toLower(std::string_view text);
 // Exactly `count` whitespace-separated numbers; throws Error("<where>: ...") otherwise.
 std::vector<double> parseNumbers(std::string_view text, std::size_t count, const std::string& where);
-// Shortest text that reads back as the same double.
-std::string formatNumber(double value);
 
 }  // namespace vri::detail

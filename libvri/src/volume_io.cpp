@@ -10,6 +10,7 @@
 
 #include "vri/atomic_file.h"
 #include "vri/error.h"
+#include "vri/format.h"
 #include "volume_formats.h"
 
 namespace vri {
@@ -35,8 +36,8 @@ void requireValidLayout(const fs::path& path, const RawLayout& layout) {
     const glm::dvec3 s = layout.spacing;
     for (int axis = 0; axis < 3; ++axis)
         if (!(s[axis] > 0.0) || !std::isfinite(s[axis]))
-            throw Error(path.string() + ": spacing must be positive and finite, got " + detail::formatNumber(s.x) +
-                        " " + detail::formatNumber(s.y) + " " + detail::formatNumber(s.z));
+            throw Error(path.string() + ": spacing must be positive and finite, got " + exactNumber(s.x) +
+                        " " + exactNumber(s.y) + " " + exactNumber(s.z));
 }
 
 std::optional<glm::ivec3> parseDimsToken(std::string_view token) {
@@ -95,12 +96,6 @@ std::vector<double> parseNumbers(std::string_view text, std::size_t count, const
     if (numbers.size() != count)
         throw Error(where + ": expected " + std::to_string(count) + " numbers, got " + std::to_string(numbers.size()));
     return numbers;
-}
-
-std::string formatNumber(double value) {
-    char buffer[32];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return std::string(buffer, end);
 }
 
 }  // namespace detail

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# vri-plot end to end: a figure (PNG, SVG and the gnuplot script that redraws it by hand), and a
+# vri-plot end to end: a figure (PNG, SVG and the gnuplot script that redraws it by hand), a
+# heatmap and a diagram of segments, a spec drawn from another data folder (--data-dir), and a
 # malformed spec that fails with one file:line:col line and writes nothing.
 set -euo pipefail
 
@@ -47,6 +48,52 @@ rc=0
 grep -q "^vri-plot: error: figs/bad.yaml:9:50: column 'erorr' is not in" err.txt || fail "message: $(cat err.txt)"
 [[ ! -e bad ]] || fail "a malformed spec wrote output"
 
+# A heatmap (its grid written column by column, not in gnuplot's scan order) and a diagram of
+# segments, both with data paths relative to --data-dir rather than to the spec.
+mkdir -p results/a
+awk 'BEGIN { print "u,v,f"; for (i = 0; i <= 20; i++) for (j = 0; j <= 20; j++)
+             printf "%g,%g,%g\n", i / 20, j / 20, sin(3.14159265 * i / 20) * j / 20 }' > results/a/f.csv
+# Per sample: the stretch of the ray it stands for (t0 to t1) on its placement's row, from lo to hi.
+awk 'BEGIN { print "t0,t1,placement,t,lo,hi"
+             for (i = 0; i < 4; i++) printf "%g,%g,1,%g,0.9,1.1\n", i / 4, (i + 1) / 4, (i + 0.5) / 4
+             for (i = 0; i <= 4; i++) printf "%g,%g,2,%g,1.9,2.1\n", i ? (i - 0.5) / 4 : 0, i < 4 ? (i + 0.5) / 4 : 1, i / 4 }' \
+    > results/a/samples.csv
+cat > figs/heat.yaml <<'YAML'
+size: [900, 400]
+panels:
+  - title: f(u, v) = sin(pi u) v
+    aspect: equal
+    x: u
+    y: v
+    colorbar: {label: f, min: 0, max: 1, palette: viridis}
+    labels:
+      - {x: 0.05, y: 0.9, text: top}
+    series:
+      - {file: f.csv, x: u, y: v, z: f, style: heatmap}
+  - title: where samples go along a ray
+    x: {label: t, range: [-0.05, 1.05]}
+    y: {label: placement, range: [0.5, 2.8]}
+    key: off
+    labels:
+      - {x: 0, y: 1.25, text: midpoints}
+      - {x: 0, y: 2.25, text: ends}
+    series:
+      - {file: samples.csv, x: t0, y: placement, x2: t1, y2: placement, style: segments, width: 3, color: "#1f77b4"}
+      - {file: samples.csv, x: t0, y: lo, x2: t0, y2: hi, style: segments, width: 1, color: "#000000"}
+      - {file: samples.csv, x: t, y: placement, style: points, size: 1.5, point: square, color: "#d62728"}
+YAML
+"$plot" figs/heat.yaml --data-dir results/a -o results/a/heat.png --script-only
+grep -q "with image notitle" results/a/heat.gp || fail "no image in the heatmap's script"
+grep -q "with vectors nohead lw 3" results/a/heat.gp || fail "no segments in the script"
+grep -q "^'samples.csv' skip 1\|plot 'samples.csv' skip 1" results/a/heat.gp || fail "data path not from --data-dir"
+rc=0
+"$plot" figs/heat.yaml -o heat/heat.png --script-only 2>err.txt || rc=$?
+[[ $rc -ne 0 ]] && grep -q "figs/heat.yaml:11:.*data file figs/f.csv does not exist" err.txt ||
+    fail "without --data-dir: $(cat err.txt)"
+rc=0
+"$plot" figs/heat.yaml --data-dir results/none -o heat/heat.png 2>err.txt || rc=$?
+[[ $rc -ne 0 && ! -e heat ]] || fail "a missing --data-dir passed"
+
 if ! command -v gnuplot >/dev/null; then
     echo "gnuplot not installed: skipping the drawing"
     exit 77
@@ -60,4 +107,8 @@ grep -q "<svg" out/fig.svg || fail "fig.svg is not SVG"
 rm out/fig.png out/fig.svg
 (cd / && gnuplot "$VRI_SCRATCH/out/fig.gp")
 [[ -s out/fig.png && -s out/fig.svg ]] || fail "gnuplot fig.gp did not redraw the figure"
+"$plot" figs/heat.yaml --data-dir results/a -o results/a/heat.png 2>err.txt
+[[ ! -s err.txt ]] || fail "gnuplot warned: $(cat err.txt)"
+[[ $(head -c 8 results/a/heat.png | od -An -tx1 | tr -d ' ') == 89504e470d0a1a0a ]] || fail "heat.png is not a PNG"
+grep -q "<image" results/a/heat.svg || fail "heat.svg has no image"
 echo "plot: all checks passed"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # vri-run end to end: the --dry-run commands reproduce its results by hand, a second run is all
 # cached, a changed transfer function re-runs only what depends on it, a failing step stops the run
-# with its command and output, and a malformed file is one line with file:line:col.
+# with its command and output, a command's Markdown shows in the gallery, and a malformed file is one
+# line with file:line:col.
 set -euo pipefail
 bin=${VRI_BIN:?} dir=${VRI_SCRATCH:?}
 rm -rf "$dir" && mkdir -p "$dir" && cd "$dir"
@@ -29,17 +30,24 @@ methods:
 comparisons:
   vs-corner-red: {reference: red-riemann-entry-exit-corner, diff_image: png}
   vs-corner-blue: {reference: blue-riemann-entry-exit-corner}
+commands:
+  rays:
+    tool: vri-rays2d
+    options: {convention: node, rates: [1, 4]}
+    outputs: {o: rays.csv, errors: errors.md}
 YAML
 summary() { grep "vri-run: small:" "$1"; }
 
 # The printed commands, run by hand, give what vri-run gives.
 "$bin/vri-run" --dry-run --results hand exp.yaml > commands.sh
-[ "$(wc -l < commands.sh)" -eq 6 ] || { echo "expected 6 commands"; cat commands.sh; exit 1; }
+[ "$(wc -l < commands.sh)" -eq 7 ] || { echo "expected 7 commands"; cat commands.sh; exit 1; }
+grep -q -- "vri-rays2d --convention node --rates 1,4 -o hand/small/rays.csv --errors hand/small/errors.md" commands.sh
 [ ! -e hand ] || { echo "--dry-run wrote something"; exit 1; }
 bash -e commands.sh > /dev/null
 "$bin/vri-run" --jobs 3 --results auto exp.yaml 2> first.txt
-summary first.txt | grep -q "6 steps, 6 ran, 0 cached" || { cat first.txt; exit 1; }
+summary first.txt | grep -q "7 steps, 7 ran, 0 cached" || { cat first.txt; exit 1; }
 for exr in hand/small/*.exr; do "$bin/vri-diff" "$exr" "auto/small/$(basename "$exr")" --fail 0 > /dev/null; done
+cmp hand/small/rays.csv auto/small/rays.csv
 cmp hand/small/vs-corner-red-red-riemann-entry.png auto/small/vs-corner-red-red-riemann-entry.png
 grep -q '"percent"' auto/small/vs-corner-blue-blue-riemann-entry.json
 grep -q '"wall_seconds"' auto/small/manifest.json
@@ -47,20 +55,20 @@ grep -q "vri-render" auto/small/manifest.json
 
 # Nothing changed: nothing runs.
 "$bin/vri-run" --results auto exp.yaml 2> second.txt
-summary second.txt | grep -q "6 steps, 0 ran, 6 cached" || { cat second.txt; exit 1; }
+summary second.txt | grep -q "7 steps, 0 ran, 7 cached" || { cat second.txt; exit 1; }
 
 # One transfer function changes: its scene's renders and diff run again, the other scene's do not.
 sed -i 's/0.8]/0.7]/' red.yaml
 "$bin/vri-run" --results auto exp.yaml 2> third.txt
-summary third.txt | grep -q "6 steps, 3 ran, 3 cached" || { cat third.txt; exit 1; }
+summary third.txt | grep -q "7 steps, 3 ran, 4 cached" || { cat third.txt; exit 1; }
 
 # A deleted output is made again, and so is what reads that step's outputs (an EXR records the
 # time it was written, so the re-rendered image is a new input for the diff); --force runs everything.
 rm auto/small/blue-riemann-entry.png
 "$bin/vri-run" --results auto exp.yaml 2> fourth.txt
-summary fourth.txt | grep -q "2 ran, 4 cached" || { cat fourth.txt; exit 1; }
+summary fourth.txt | grep -q "2 ran, 5 cached" || { cat fourth.txt; exit 1; }
 "$bin/vri-run" --force --results auto exp.yaml 2> fifth.txt
-summary fifth.txt | grep -q "6 ran, 0 cached" || { cat fifth.txt; exit 1; }
+summary fifth.txt | grep -q "7 ran, 0 cached" || { cat fifth.txt; exit 1; }
 
 # A failing step: its command and its output, a non-zero exit, no record and no manifest.
 head -c 100 /dev/zero > short_8x8x8_uint8.raw
@@ -79,9 +87,11 @@ printf 'name: x\ntitle: X\npaper: {paper: A, item: I, says: S}\nscenes:\n  s: {f
 set +e; "$bin/vri-run" --dry-run typo.yaml > /dev/null 2> err.txt; rc=$?; set -e
 [ "$rc" -ne 0 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -q "typo.yaml:5:54: unknown key 'sise'" err.txt || { cat err.txt; exit 1; }
 
-# The gallery lists the experiment with its images.
-"$bin/vri-run" --gallery auto 2> /dev/null
-grep -q "Two scenes, two placements" auto/README.md && grep -q "small/red-riemann-entry.png" auto/README.md
+# The gallery (after a good run: the failed one left no manifest) lists the experiment with its
+# images and, inlined, the command's Markdown table.
+"$bin/vri-run" --results auto --gallery auto exp.yaml 2> /dev/null
+{ grep -q "Two scenes, two placements" auto/README.md && grep -q "small/red-riemann-entry.png" auto/README.md &&
+  grep -qF "$(head -1 auto/small/errors.md)" auto/README.md; } || { cat auto/README.md; exit 1; }
 
 "$bin/vri-run" --help | grep -q "Examples"
 echo "run: all checks passed"

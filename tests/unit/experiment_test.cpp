@@ -10,6 +10,8 @@
 #include "vri/error.h"
 #include "vri/experiment.h"
 #include "vri/experiment_plan.h"
+#include "vri/experiment_run.h"
+#include "vri/manifest.h"
 #include "vri/step_cache.h"
 
 namespace fs = std::filesystem;
@@ -179,4 +181,104 @@ TEST_CASE("experiment: commands name files relative to the directory they run fr
     CHECK(line == "bin/vri-diff results/t/a-riemann-entry.exr results/t/a-riemann-eye.exr --threshold 0.01,0.005,0.001 "
                   "--failpercent 100 --warnpercent 100 --json results/t/ca-a-riemann-eye.json");
     CHECK(plan.commandPath("/elsewhere/x.exr") == "/elsewhere/x.exr");
+}
+
+TEST_CASE("experiment: a command's options, flags, lists, inputs and outputs become its words") {
+    ExperimentDir d;
+    const std::string text = kHead + R"(commands:
+  rays-node:
+    tool: vri-rays2d
+    options:
+      convention: node
+      rates: [1, 4, 16]
+      fov: 30.0
+      exact: true
+      verbose: false
+      label: "true"
+      q: true
+    inputs: {tf: a.yaml}
+    outputs: {o: rays-node.csv, summary: errors-node.md}
+quick:
+  commands: {rays-node: {options: {rates: [1]}}}
+)";
+    const vri::Experiment e = d.parse(text);
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    const vri::Step& step = plan.step("rays-node");
+    CHECK(step.kind == "command");
+    // Scalars as the file spells them, a list joined, true a flag, false left out, a quoted "true" a word.
+    CHECK(vri::shellCommand(vri::commandWords(plan, step, d.dir / "bin")) ==
+          "bin/vri-rays2d --convention node --rates 1,4,16 --fov 30.0 --exact --label true -q --tf a.yaml "
+          "-o results/t/rays-node.csv --summary results/t/errors-node.md");
+    CHECK(step.inputs == std::vector<fs::path>{d.dir / "a.yaml"});
+    CHECK(step.outputs == std::vector<fs::path>{plan.resultsDir / "rays-node.csv", plan.resultsDir / "errors-node.md"});
+
+    // quick: merges into a command's options key by key.
+    const vri::ToolOptions quick = d.parse(text, true).commands.at(0).options;
+    CHECK(std::find(quick.begin(), quick.end(), vri::ToolOption{"--rates", "1"}) != quick.end());
+    CHECK(std::find(quick.begin(), quick.end(), vri::ToolOption{"--convention", "node"}) != quick.end());
+
+    // Its input files are hashed for the cache.
+    vri::FileHasher before, after;
+    const std::string key = vri::stepKeys(plan, d.dir / "bin", before).at(0);
+    d.write("a.yaml", "points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 1, 1, 0.6]\n");
+    CHECK(vri::stepKeys(plan, d.dir / "bin", after).at(0) != key);
+}
+
+TEST_CASE("experiment: a mistake in a command is named with its line and column") {
+    ExperimentDir d;
+    const std::string head = kHead + "commands:\n  c:\n    tool: vri-rays2d\n";
+    CHECK(d.error(head + "    output: {o: x.csv}\n").starts_with("exp.yaml:7:5: unknown key 'output'"));
+    CHECK(d.error(head + "    outputs: {o: x.csv}\n    options: {rates: {a: 1}}\n")
+              .starts_with("exp.yaml:8:22: option 'rates' must be a value, a list of values, true or false"));
+    CHECK(d.error(head + "    outputs: {o: x.csv}\n    inputs: {tf: nope.yaml}\n")
+              .starts_with("exp.yaml:8:18: input 'tf': no such file"));
+    CHECK(d.error(head + "    outputs: {o: ../x.csv}\n").starts_with("exp.yaml:7:18: output 'o' must be a file name"));
+    CHECK(d.error(head + "    outputs: {}\n").starts_with("exp.yaml:7:14: command 'c' has no outputs"));
+    CHECK(d.error(kHead + "commands:\n  c: {tool: rays2d, outputs: {o: x.csv}}\n")
+              .starts_with("exp.yaml:5:13: tool must be a vri tool"));
+}
+
+TEST_CASE("experiment: a figure reads files that other steps write, and runs after them") {
+    ExperimentDir d;
+    d.write("plot.yaml", "series: []\n");
+    const std::string commands = kHead + "commands:\n  c: {tool: vri-rays2d, outputs: {o: rays.csv}}\n";
+    CHECK(d.error(commands + "figures:\n  f: {spec: plot.yaml, data: [rays.csv, nope.csv]}\n")
+              .starts_with("exp.yaml:7:30: figure 'f' reads 'nope.csv', which no step writes"));
+
+    const vri::Experiment e = d.parse(commands + "figures:\n  f: {spec: plot.yaml, data: [rays.csv]}\n");
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    REQUIRE(plan.steps.size() == 2);
+    CHECK(plan.steps[1].id == "figure-f");
+    CHECK(plan.dependencies[1] == std::vector<std::size_t>{0});
+    // Data paths resolve against the results folder, which differs between full and quick runs.
+    CHECK(vri::shellCommand(vri::commandWords(plan, plan.steps[1], d.dir / "bin")) ==
+          "bin/vri-plot plot.yaml --data-dir results/t -o results/t/f.png");
+}
+
+TEST_CASE("experiment: the gallery shows images, then tables, then figures, commands' among them") {
+    ExperimentDir d;
+    d.write("plot.yaml", "series: []\n");
+    const vri::Experiment e = d.parse(kHead + R"(scenes: {s: {field: linear, convention: node, tf: a.yaml}}
+methods: {riemann: {}}
+commands:
+  c: {tool: vri-rays2d, outputs: {o: c.csv, summary: c.md, image: c.png}}
+tables:
+  time: {runs: [riemann]}
+figures:
+  f: {spec: plot.yaml, data: [c.csv, time.csv]}
+)");
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    fs::create_directories(plan.resultsDir);
+    d.write("results/t/c.md", "| command table |\n");
+    d.write("results/t/time.md", "| time table |\n");
+    vri::FileHasher hasher;
+    vri::writeManifest(e, plan, std::vector<vri::StepOutcome>(plan.steps.size()), d.dir / "bin", hasher);
+    const std::string md = vri::galleryMarkdown(d.dir / "results");
+    const std::vector<std::string> order{"(t/riemann.png)", "(t/c.png)", "| command table |", "| time table |",
+                                         "(t/f.png)"};
+    for (std::size_t i = 0; i + 1 < order.size(); ++i) {
+        CAPTURE(order[i]);
+        CHECK(md.find(order[i]) < md.find(order[i + 1]));
+        CHECK(md.find(order[i + 1]) != std::string::npos);
+    }
 }

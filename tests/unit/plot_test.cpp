@@ -42,9 +42,11 @@ TEST_CASE("plot: spec errors point at file, line and column") {
     CHECK(errorOf("series:\n  - {file: e.csv, x: h, y: err}\n", dir.path) ==
           "fig.yaml:2:12: data file " + (dir / "e.csv").string() + " does not exist");
     CHECK(errorOf("title: t\ncolour: red\n" + series, dir.path) ==
-          "fig.yaml:2:1: unknown key 'colour' (expected one of: title, size, grid, x, y, key, pareto, series)");
-    CHECK(errorOf("series:\n  - {file: d.csv, x: h, y: err, style: bars}\n", dir.path).starts_with(
-        "fig.yaml:2:40: style 'bars' is unknown"));
+          "fig.yaml:2:1: unknown key 'colour' (expected one of: title, size, grid, x, y, key, pareto, aspect, labels, "
+          "colorbar, series)");
+    CHECK(errorOf("series:\n  - {file: d.csv, x: h, y: err, style: bars}\n", dir.path) ==
+          "fig.yaml:2:40: series[0].style 'bars' is unknown (expected line, dashed, dotted, points, linespoints, "
+          "histogram, heatmap or segments)");
     CHECK(errorOf("x: {log: yes please}\n" + series, dir.path) == "fig.yaml:1:10: x.log must be true or false");
     CHECK(errorOf("grid: [1, 1]\npanels:\n  - " + series.substr(0, 7) + "\n    - {file: d.csv, x: h, y: err}\n  - " +
                       series.substr(0, 7) + "\n    - {file: d.csv, x: h, y: err}\n",
@@ -80,11 +82,11 @@ TEST_CASE("plot: the gnuplot script") {
     };
     has("if (!exists(\"png_out\")) png_out = 'fig.png'\n");
     has("cd (i > 0 ? script_dir[1:i] : \".\")\n");
-    has("$pareto1 << EOD\n1,0.20000000000000001\n2,0.10000000000000001\nEOD\n");
+    has("$pareto1 << EOD\n1,0.2\n2,0.1\nEOD\n");
     has("set terminal pngcairo size 640,480 noenhanced");
     has("set multiplot layout 1,2 title 'It''s a test'\n");
-    has("    set xlabel 'seconds'\n    set logscale x\n    set xrange [0.5:4]\n");
-    has("    unset logscale y\n    set yrange [*:*]\n    unset key\n");
+    has("    set xlabel 'seconds'\n    set logscale x\n    set xrange [0.5:4] extend\n");
+    has("    unset logscale y\n    set yrange [*:*] extend\n    unset key\n    set size noratio\n    unset label\n");
     has("plot '../data/speed.csv' skip 1 using 2:3 with points pt 7 ps 0.8 title 'all', \\\n"
         "         $pareto1 using 1:2 with linespoints");
     has("plot '../data/hist.csv' skip 1 using (($1 > 0 && $2 < 1e300) ? ($1 + $2) / 2 : NaN):($4 / 2):1:2:(0):($4) "
@@ -99,4 +101,167 @@ TEST_CASE("plot: the gnuplot script") {
     std::size_t entries = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dir / "out")) entries += !entry.path().empty();
     CHECK(entries == 3);  // no temporary file left behind
+}
+
+TEST_CASE("plot: a heatmap from a grid in any order, with its colour bar") {
+    test::TempDir dir("plot");
+    writeFile(dir / "f.csv", "u,v,f\n1,0.5,0.3\n0,0,0\n0,0.5,0.1\n1,0,0.2\n");
+    const PlotSpec spec = parsePlotSpec("aspect: equal\n"
+                                        "colorbar: {label: \"f(u, v)\", min: 0, max: 1, palette: gray}\n"
+                                        "labels:\n"
+                                        "  - {x: 0.5, y: 0.25, text: centre}\n"
+                                        "series:\n"
+                                        "  - {file: f.csv, x: u, y: v, z: f, style: heatmap}\n",
+                                        "fig.yaml", dir.path);
+    REQUIRE(spec.panels.size() == 1);
+    CHECK(spec.panels[0].series[0].zColumn == 3);
+    const std::string script = gnuplotScript(spec, dir / "fig.gp", "fig.png", "fig.svg");
+    auto has = [&](const std::string& text) {
+        INFO(text);
+        CHECK(script.find(text) != std::string::npos);
+    };
+    has("# f.csv as x,y,z in scan order, which gnuplot's image needs\n"
+        "$heatmap1_1 << EOD\n0,0,0\n1,0,0.2\n0,0.5,0.1\n1,0.5,0.3\nEOD\n");
+    has("    set xrange [*:*] noextend\n");
+    has("    set size ratio -1\n    unset label\n    set label 'centre' at 0.5,0.25 front\n");
+    has("    set palette defined (0 '#000000', 1 '#ffffff')\n    set cbrange [0:1]\n    set cblabel 'f(u, v)'\n"
+        "    set colorbox\n");
+    has("    plot $heatmap1_1 using 1:2:3 with image notitle\n");
+
+    // By default viridis, over the data's range.
+    const std::string plain = gnuplotScript(
+        parsePlotSpec("series:\n  - {file: f.csv, x: u, y: v, z: f, style: heatmap}\n", "fig.yaml", dir.path),
+        dir / "fig.gp", "fig.png", "fig.svg");
+    CHECK(plain.find("set palette defined (0 '#440154'") != std::string::npos);
+    CHECK(plain.find("set cbrange [*:*]\n") != std::string::npos);
+}
+
+TEST_CASE("plot: heatmap spec errors") {
+    test::TempDir dir("plot");
+    writeFile(dir / "f.csv", "u,v,f\n0,0,0\n1,0,1\n0,1,1\n1,1,2\n");
+    const std::string heatmap = "series:\n  - {file: f.csv, x: u, y: v, z: f, style: heatmap}\n";
+    CHECK(errorOf(heatmap, dir.path) == "no error");
+    CHECK(errorOf("series:\n  - {file: f.csv, x: u, y: v, style: heatmap}\n", dir.path) ==
+          "fig.yaml:2:5: series[0] is missing 'z'");
+    CHECK(errorOf("series:\n  - {file: f.csv, x: u, y: v, z: g, style: heatmap}\n", dir.path) ==
+          "fig.yaml:2:34: column 'g' is not in " + (dir / "f.csv").string() + " (it has: u, v, f)");
+    CHECK(errorOf("series:\n  - {file: f.csv, x: u, y: v, z: f}\n", dir.path) ==
+          "fig.yaml:2:34: series[0].z is not for style line (only for heatmap)");
+    CHECK(errorOf("series:\n  - {file: f.csv, x: u, y: v, z: f, style: heatmap, color: \"#ff0000\"}\n", dir.path) ==
+          "fig.yaml:2:60: series[0].color is not for style heatmap (only for line, dashed, dotted, points, linespoints, "
+          "histogram, segments)");
+    CHECK(errorOf("colorbar: {palette: jet}\n" + heatmap, dir.path) ==
+          "fig.yaml:1:21: colorbar.palette 'jet' is unknown (expected viridis, gray or diverging)");
+    CHECK(errorOf("colorbar: {min: 1, max: 0}\n" + heatmap, dir.path) == "fig.yaml:1:25: colorbar.max must be above its min");
+    CHECK(errorOf("colorbar: {label: f}\nseries:\n  - {file: f.csv, x: u, y: v}\n", dir.path) ==
+          "fig.yaml:1:11: colorbar is for panels with a heatmap series");
+    CHECK(errorOf("aspect: square\n" + heatmap, dir.path) ==
+          "fig.yaml:1:9: aspect 'square' is unknown (expected auto or equal)");
+
+    // The rows must fill an evenly spaced grid, each point once.
+    auto gridError = [&](const std::string& csv) {
+        writeFile(dir / "g.csv", csv);
+        return errorOf("series:\n  - {file: g.csv, x: u, y: v, z: f, style: heatmap}\n", dir.path);
+    };
+    const std::string at = "fig.yaml:2:12: " + (dir / "g.csv").string() + ": ";
+    CHECK(gridError("u,v,f\n0,0,0\n1,0,1\n0,1,1\n") ==
+          at + "the points do not fill a grid: 2 x values and 2 y values make 4 points, there are 3");
+    CHECK(gridError("u,v,f\n0,0,0\n1,0,1\n0,1,1\n1,1,2\n1,1,3\n") == at + "the point (1, 1) is in more than one row");
+    CHECK(gridError("u,v,f\n0,0,0\n1,0,1\n3,0,1\n0,1,1\n1,1,2\n3,1,2\n") ==
+          at + "the values of u are not evenly spaced, as those of a heatmap's grid must be");
+    CHECK(gridError("u,v,f\n0,0,0\n1,0,1\n") == at + "a heatmap needs a grid of at least 2 x 2 points, this one is 2 x 1");
+    CHECK(gridError("u,v,f\n0,0,0\n1,0,x\n0,1,1\n1,1,2\n") == at + "data row 2: f 'x' is not a number");
+}
+
+TEST_CASE("plot: segments, point shapes, line widths and labels") {
+    test::TempDir dir("plot");
+    writeFile(dir / "s.csv", "t0,t1,row,t\n0,0.5,1,0.25\n0.5,1,1,0.75\n");
+    const PlotSpec spec = parsePlotSpec(
+        "labels:\n"
+        "  - {x: 0, y: 1.2, text: \"it's the ray\"}\n"
+        "series:\n"
+        "  - {file: s.csv, x: t0, y: row, x2: t1, y2: row, style: segments, width: 3, color: \"#000000\", label: spans}\n"
+        "  - {file: s.csv, x: t, y: row, style: points, size: 1.5, point: square, label: samples}\n"
+        "  - {file: s.csv, x: t, y: row, style: linespoints, point: triangle, width: 0.5}\n"
+        "  - {file: s.csv, x: t, y: row, style: dashed, width: 1}\n",
+        "fig.yaml", dir.path);
+    const PlotSeries& segments = spec.panels[0].series[0];
+    CHECK(segments.x2Column == 2);
+    CHECK(segments.y2Column == 3);
+    const std::string script = gnuplotScript(spec, dir / "fig.gp", "fig.png", "fig.svg");
+    auto has = [&](const std::string& text) {
+        INFO(text);
+        CHECK(script.find(text) != std::string::npos);
+    };
+    has("    set label 'it''s the ray' at 0,1.2 front\n");
+    has("plot 's.csv' skip 1 using 1:3:($2 - $1):($3 - $3) with vectors nohead lw 3 lc rgb '#000000' title 'spans'");
+    has("'s.csv' skip 1 using 4:3 with points pt 5 ps 1.5 title 'samples'");
+    has("'s.csv' skip 1 using 4:3 with linespoints lw 0.5 pt 9 ps 0.8 title 'row'");
+    has("'s.csv' skip 1 using 4:3 with lines lw 1 dt 2 title 'row'\n");
+    CHECK(script.find("set colorbox") == std::string::npos);
+}
+
+TEST_CASE("plot: where picks the rows of one file for each series") {
+    test::TempDir dir("plot");
+    writeFile(dir / "d.csv", "panel,kind,x,y,x2,y2\neye,covered,0,0,1,0\neye,missed,1,0,2,0\n");
+    const PlotSpec spec = parsePlotSpec(
+        "series:\n"
+        "  - {file: d.csv, x: x, y: y, x2: x2, y2: y2, style: segments, where: {panel: eye, kind: covered}}\n"
+        "  - {file: d.csv, x: x, y: y, style: points, label: \"\", where: {kind: \"it's\"}}\n",
+        "fig.yaml", dir.path);
+    CHECK(spec.panels[0].series[0].where == std::vector<std::pair<int, std::string>>{{1, "eye"}, {2, "covered"}});
+    const std::string script = gnuplotScript(spec, dir / "fig.gp", "fig.png", "fig.svg");
+    INFO(script);
+    CHECK(script.find("using 3:(strcol(1) eq 'eye' && strcol(2) eq 'covered' ? $4 : NaN):($5 - $3):($6 - $4) "
+                      "with vectors nohead") != std::string::npos);
+    CHECK(script.find("using 3:(strcol(2) eq 'it''s' ? $4 : NaN) with points pt 7 ps 0.8 notitle") != std::string::npos);
+    CHECK_THROWS_WITH_AS(parsePlotSpec("series:\n  - {file: d.csv, x: x, y: y, where: {colour: red}}\n", "fig.yaml",
+                                       dir.path),
+                         doctest::Contains("fig.yaml:2:39: column 'colour' is not in"), Error);
+    CHECK_THROWS_WITH_AS(parsePlotSpec("series:\n  - {file: d.csv, y: y, style: histogram, where: {kind: a}}\n",
+                                       "fig.yaml", dir.path),
+                         doctest::Contains("where is not for style histogram"), Error);
+}
+
+TEST_CASE("plot: segments and point spec errors") {
+    test::TempDir dir("plot");
+    writeFile(dir / "s.csv", "t0,t1,row\n0,0.5,1\n");
+    CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, x2: t1, style: segments}\n", dir.path) ==
+          "fig.yaml:2:5: series[0] is missing 'y2'");
+    CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, x2: t1, y2: row}\n", dir.path) ==
+          "fig.yaml:2:38: series[0].x2 is not for style line (only for segments)");
+    CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, x2: t2, y2: row, style: segments}\n", dir.path) ==
+          "fig.yaml:2:38: column 't2' is not in " + (dir / "s.csv").string() + " (it has: t0, t1, row)");
+    CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, size: 2}\n", dir.path) ==
+          "fig.yaml:2:40: series[0].size is not for style line (only for points, linespoints)");
+    CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, style: points, width: 2}\n", dir.path) ==
+          "fig.yaml:2:56: series[0].width is not for style points (only for line, dashed, dotted, linespoints, segments)");
+    CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, width: -1}\n", dir.path) ==
+          "fig.yaml:2:41: series[0].width must be a positive number");
+    CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, style: points, point: star}\n", dir.path) ==
+          "fig.yaml:2:56: series[0].point 'star' is unknown (expected circle, square, cross or triangle)");
+    const std::string series = "series:\n  - {file: s.csv, x: t0, y: row}\n";
+    CHECK(errorOf("labels:\n  - {x: 0, y: 1}\n" + series, dir.path) == "fig.yaml:2:5: labels[0] is missing 'text'");
+    CHECK(errorOf("labels:\n  - {x: left, y: 1, text: a}\n" + series, dir.path) ==
+          "fig.yaml:2:9: labels[0].x must be a number");
+    CHECK(errorOf("labels: {x: 0, y: 1, text: a}\n" + series, dir.path) ==
+          "fig.yaml:1:9: labels must be a list of {x, y, text}");
+}
+
+TEST_CASE("plot: relative data paths from a data directory") {
+    test::TempDir dir("plot");
+    std::filesystem::create_directories(dir / "specs");
+    std::filesystem::create_directories(dir / "results/a");
+    writeFile(dir / "results/a/d.csv", "h,err\n1,2\n");
+    writeFile(dir / "specs/fig.yaml", "series:\n  - {file: d.csv, x: h, y: err}\n");
+    const std::string text = "series:\n  - {file: d.csv, x: h, y: err}\n";
+    CHECK(parsePlotSpec(text, "fig.yaml", dir / "specs", dir / "results/a").panels[0].series[0].file ==
+          dir / "results/a/d.csv");
+    CHECK(loadPlotSpec(dir / "specs/fig.yaml", dir / "results/a").panels[0].series[0].file == dir / "results/a/d.csv");
+    // Without one, paths start at the spec's folder, which has no d.csv.
+    CHECK(errorOf(text, dir / "specs") == "fig.yaml:2:12: data file " + (dir / "specs/d.csv").string() + " does not exist");
+    // Absolute paths stay as they are.
+    const std::string absolute = "series:\n  - {file: " + (dir / "results/a/d.csv").string() + ", x: h, y: err}\n";
+    CHECK(parsePlotSpec(absolute, "fig.yaml", dir / "specs", dir / "elsewhere").panels[0].series[0].file ==
+          dir / "results/a/d.csv");
 }

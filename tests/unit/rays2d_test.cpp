@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "vri/rays2d.h"
+#include "vri/rays2d_report.h"
 
 using namespace vri;
 
@@ -133,4 +136,86 @@ TEST_CASE("2D study: Fig. 2's features") {
             CHECK(under);
         }
     }
+}
+
+namespace {
+
+struct Segment {
+    std::string panel, kind;
+    double x, y, x2, y2;
+    double length() const { return std::hypot(x2 - x, y2 - y); }
+};
+
+std::vector<Segment> parseDiagram(const std::string& csv) {
+    std::vector<Segment> out;
+    std::istringstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    CHECK(line == "panel,kind,x,y,x2,y2");
+    while (std::getline(in, line)) {
+        std::istringstream row(line);
+        Segment s;
+        std::string cell;
+        std::getline(row, s.panel, ',');
+        std::getline(row, s.kind, ',');
+        for (double* v : {&s.x, &s.y, &s.x2, &s.y2}) {
+            std::getline(row, cell, ',');
+            *v = std::stod(cell);
+        }
+        out.push_back(s);
+    }
+    return out;
+}
+
+double total(const std::vector<Segment>& segments, const std::string& panel, const std::string& kind) {
+    double sum = 0.0;
+    for (const Segment& s : segments)
+        if (s.panel == panel && s.kind == kind) sum += s.length();
+    return sum;
+}
+
+}  // namespace
+
+TEST_CASE("2D study diagram: covered and missed stretches add up to the ray inside the square") {
+    const Rays2D study{Study2D{}};
+    const auto exact = study.closedForm();
+    for (int ray : {20, 70, 105}) {
+        const auto segments = parseDiagram(diagramCsv(study, {ray}, {Placement::EyeAlign, Placement::EntryExitAlign,
+                                                                     Placement::EntryExitAlignCorner}, 1.0));
+        for (const char* panel : {"eye", "entry-exit", "entry-exit-corner"}) {
+            CAPTURE(ray);
+            CAPTURE(panel);
+            CHECK(total(segments, panel, "covered") + total(segments, panel, "missed") ==
+                  doctest::Approx(exact[ray].length).epsilon(1e-12));
+        }
+        // Entry Exit Align's stretches tile the ray exactly: nothing overshot, nothing missed (when it samples at all).
+        if (study.samples(ray, Placement::EntryExitAlign, 1.0).positions.size() > 0) {
+            CHECK(total(segments, "entry-exit", "overshot") < 1e-12);
+            CHECK(total(segments, "entry-exit", "missed") < 1e-12);
+        }
+    }
+    // Ray 105 is a corner ray shorter than one step: Entry Exit Align misses all of it, the corner variant none.
+    const auto corner = parseDiagram(diagramCsv(study, {105}, {Placement::EntryExitAlign, Placement::EntryExitAlignCorner}, 1.0));
+    CHECK(total(corner, "entry-exit", "missed") == doctest::Approx(exact[105].length));
+    CHECK(total(corner, "entry-exit-corner", "missed") < 1e-12);
+    CHECK(total(corner, "setup", "fan") > 0.0);
+}
+
+TEST_CASE("2D study tables: one CSV column per placement and rate, errors over the rays that hit") {
+    const Rays2D study{Study2D{}};
+    const Fan fan = castFan(study, {Placement::EntryAlign, Placement::EntryExitAlignCorner}, {1.0, 4.0});
+    const std::string csv = fanCsv(fan);
+    CHECK(csv.substr(0, csv.find('\n')) ==
+          "ray,angle_deg,length,closed_form,entry_r1,entry_r4,entry-exit-corner_r1,entry-exit-corner_r4,"
+          "n_entry_r1,n_entry_r4,n_entry-exit-corner_r1,n_entry-exit-corner_r4");
+    CHECK(std::count(csv.begin(), csv.end(), '\n') == 121);
+    const Table t = fanErrorTable(fan);
+    REQUIRE(t.rows.size() == 4);
+    CHECK(t.rows[3] == "entry-exit-corner, 4");
+    for (const auto& row : t.cells) {
+        CHECK(*row[0] >= *row[1]);            // max >= mean
+        CHECK(*row[0] == std::max(*row[2], *row[3]));
+    }
+    CHECK(*t.cells[2][4] == 0.0);  // corner align leaves no ray without a sample
+    CHECK(*t.cells[1][0] < *t.cells[0][0]);  // entry align: rate 4 beats rate 1
 }

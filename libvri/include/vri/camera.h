@@ -1,5 +1,8 @@
 #pragma once
 // Pinhole camera: one ray through the centre of each pixel, row 0 at the top of the image.
+#include <optional>
+
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "vri/box.h"
@@ -13,6 +16,11 @@ struct CameraSpec {
     double fovYDegrees = 30.0;  // full vertical field of view
     int width = 800;
     int height = 600;
+    // A close-up of the same view: the image shows the frame magnified `zoom` times about
+    // zoomCentre, a point of the full frame in pixels (x right, y down; unset: the frame's centre).
+    // Zoom 1 about the centre gives the whole frame, bit for bit.
+    double zoom = 1.0;
+    std::optional<glm::dvec2> zoomCentre;
 };
 
 // Looks at the box centre along -z (+y up) from just far enough for the whole box to fit the view.
@@ -21,7 +29,7 @@ CameraSpec framingCamera(const Box& box, int width, int height, double fovYDegre
 class Camera {
 public:
     // Throws vri::Error on a zero image size, a field of view outside (0, 180), eye == target,
-    // or an up vector parallel to the view direction.
+    // an up vector parallel to the view direction, or a zoom that is not >= 1.
     explicit Camera(const CameraSpec& spec);
 
     const CameraSpec& spec() const { return spec_; }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <glm/vec2.hpp>
@@ -19,6 +20,8 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitUsage = 64;  // bad argument (CLI11 parse errors use their own code, also non-zero)
 inline constexpr int kExitError = 1;   // bad input file, failed computation
 
+// "x,y" -> vector; throws vri::Error naming `what` unless there are exactly two finite numbers.
+glm::dvec2 parseVec2(const std::string& text, const std::string& what);
 // "x,y,z" -> vector; throws vri::Error naming `what` unless there are exactly three finite numbers.
 glm::dvec3 parseVec3(const std::string& text, const std::string& what);
 // "x,y,z" -> integer dims; throws vri::Error naming `what` unless all three are integers in [1, 1e9].
@@ -27,6 +30,13 @@ glm::ivec3 parseDims(const std::string& text, const std::string& what);
 glm::dvec2 parseRange(const std::string& text, const std::string& what);
 // "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive integers.
 glm::ivec2 parseSize(const std::string& text, const std::string& what);
+
+// "a,b,c" -> the words between the commas (empty words are an error naming `what`).
+std::vector<std::string> parseWordList(const std::string& text, const std::string& what);
+// "1,4,16" -> positive finite numbers; throws vri::Error naming `what` otherwise.
+std::vector<double> parsePositiveList(const std::string& text, const std::string& what);
+// "3,17" -> integers in [0, count); throws vri::Error naming `what` otherwise.
+std::vector<int> parseIndexList(const std::string& text, const std::string& what, int count);
 
 // Parses the command line; a usage error becomes the one line "<tool>: error: <what>"
 // (exit code CLI11's), --help prints the help (exit 0). Returns the exit code to leave with, if any.

@@ -12,6 +12,7 @@
 namespace vri {
 
 // One command-line option of a tool: {"--step", "0.5"}; an empty value is a flag ("--png-invert").
+// Where an experiment file names options by key, a one-letter key is "-o", any other "--summary".
 using ToolOption = std::pair<std::string, std::string>;
 using ToolOptions = std::vector<ToolOption>;
 
@@ -50,6 +51,16 @@ struct ComparisonSpec {
     bool histogram = false;
 };
 
+// One invocation of any vri tool that writes data files (vri-rays2d, ...), from `commands:`: the step
+// that stands for it is called `name`. Its inputs are source files, its outputs land in the results folder.
+struct CommandSpec {
+    std::string name;
+    std::string tool;     // "vri-rays2d"
+    ToolOptions options;  // in file order; lists joined by commas, true as a flag, false left out
+    std::vector<std::pair<std::string, std::filesystem::path>> inputs;  // option -> file (absolute), hashed
+    std::vector<std::pair<std::string, std::string>> outputs;  // option -> file name in results/<experiment>/
+};
+
 // A table by vri-tabulate: either the % of pixels above each threshold, one row per run of some
 // comparisons (paper B Tables I, II), or one value of each run's stats, one row per run (Table III).
 struct TableSpec {
@@ -58,20 +69,27 @@ struct TableSpec {
     std::vector<std::string> runs;         // RunSpec ids (matrix layout)
     std::string value = "stats.wall_seconds";  // matrix layout: the dotted JSON path in the stats file
     std::string column = "seconds";            // matrix layout: its column heading
+    std::string precision;  // decimals, "" for vri-tabulate's default
+    bool byScene = false;  // matrix layout, `group_by: scene`: one column per scene, rows the runs without the scene
 };
 
-// A figure drawn by vri-plot from a plot spec (relative to the experiment file) and tables' CSV.
+// A figure drawn by vri-plot from a plot spec (relative to the experiment file) and data files that
+// other steps write into the results folder (tables' CSV, commands' outputs).
 struct FigureSpec {
     std::string name;
-    std::filesystem::path spec;  // absolute
-    std::vector<std::string> tables;  // TableSpec names whose CSV the plot reads
+    std::filesystem::path spec;     // absolute
+    std::vector<std::string> data;  // file names in results/<experiment>/ that the plot reads
+    std::string dataAt;             // "file:line:col" of `data:`, for the error when no step writes one
 };
 
 // A number the reproducibility check recomputes from a quick run and compares with the committed one.
+// A run's image, a comparison's numbers, or every cell of a CSV file a command writes.
 struct ReproduceCheck {
     std::string of;  // a RunSpec id (image metrics: max, mean) or a ComparisonSpec id (max_abs, mean_abs, rmse)
+                     // or a CommandSpec name (with `file`)
     std::vector<std::string> metrics;
-    double tolerance = 0;  // absolute, per channel
+    std::string file;      // commands: one of its outputs, a CSV compared cell by cell
+    double tolerance = 0;  // absolute, per channel or per cell
 };
 
 struct Experiment {
@@ -83,6 +101,7 @@ struct Experiment {
     std::vector<SceneSpec> scenes;
     std::vector<RunSpec> runs;
     std::vector<ComparisonSpec> comparisons;
+    std::vector<CommandSpec> commands;
     std::vector<TableSpec> tables;
     std::vector<FigureSpec> figures;
     std::vector<ReproduceCheck> reproduce;
@@ -94,6 +113,7 @@ struct Experiment {
 // Parses and validates; every problem is a vri::Error "file:line:col: ...". Relative paths are
 // resolved against `baseDir` (the experiment file's folder) and must exist. With `quick`, the
 // file's quick: block is merged over it first (maps merge key by key, anything else replaces).
+// The step graph is checked too (planExperiment): a figure reading a file that no step writes fails here.
 Experiment parseExperiment(const std::string& yamlText, const std::string& source,
                            const std::filesystem::path& baseDir, bool quick);
 Experiment loadExperiment(const std::filesystem::path& path, bool quick);

@@ -1,7 +1,8 @@
 #pragma once
 // An experiment as a graph of steps: each step is one exact command line of a small tool
-// (vri-render, vri-diff, vri-tabulate, vri-plot, ...) with the files it reads and writes. A step
-// depends on the steps that write its inputs. A new kind of work is a new kind of step.
+// (vri-render, vri-diff, vri-tabulate, vri-plot, or any tool a `commands:` entry names) with the files
+// it reads and writes. A step depends on the steps that write its inputs. A new kind of work is a new
+// kind of step.
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -13,8 +14,8 @@
 namespace vri {
 
 struct Step {
-    std::string id;    // unique in its experiment: the run or comparison id, "table-<name>", "figure-<name>"
-    std::string kind;  // "render", "diff", "table", "figure"
+    std::string id;    // unique in its experiment: the run, comparison or command id, "table-<name>", "figure-<name>"
+    std::string kind;  // "render", "diff", "command", "table", "figure"
     std::string tool;  // executable name, looked up in the tool directory
     std::vector<std::string> arguments;  // after the tool, paths relative to the directory the plan was made for
     std::vector<std::filesystem::path> inputs;   // files read (absolute)

@@ -1,6 +1,7 @@
 #pragma once
 // Figures drawn by gnuplot from CSV data. A YAML spec says what to draw; vri writes a gnuplot
 // script that is kept beside the figure, so anyone can redraw it by hand (`gnuplot fig.gp`).
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,18 +16,45 @@ struct PlotAxis {
     std::optional<double> min, max;  // unset: gnuplot chooses
 };
 
-// Styles: line, dashed, dotted, points, linespoints, and histogram: the bins of vri-diff's
-// histogram CSV (columns bin_lo, bin_hi) drawn as boxes, `y` naming the count column; only bins
-// with finite positive edges are drawn (not the zero, first and overflow bins).
-inline constexpr const char* kPlotStyles[] = {"line", "dashed", "dotted", "points", "linespoints", "histogram"};
+// Styles: line, dashed, dotted, points, linespoints;
+// histogram: the bins of vri-diff's histogram CSV (columns bin_lo, bin_hi) drawn as boxes, `y` naming
+//   the count column; only bins with finite positive edges are drawn (not the zero, first and overflow bins);
+// heatmap: a function over a rectangle drawn as an image, coloured by the value column `z` and keyed by
+//   the panel's colour bar; the (x, y) points must fill a regular grid, each once, in any order;
+// segments: a line segment per row, from (x, y) to (x2, y2).
+inline constexpr const char* kPlotStyles[] = {"line",        "dashed",    "dotted",  "points",
+                                              "linespoints", "histogram", "heatmap", "segments"};
+inline constexpr const char* kPlotPoints[] = {"circle", "square", "cross", "triangle"};
+inline constexpr const char* kPlotPalettes[] = {"viridis", "gray", "diverging"};
 
 struct PlotSeries {
-    std::filesystem::path file;  // as resolved: relative paths in the spec are from the spec's folder
+    std::filesystem::path file;  // as resolved: relative paths in the spec are from the data folder
     std::string x, y;            // column names in the CSV header
     int xColumn = 0, yColumn = 0;  // 1-based, found from the header; for histograms xColumn is bin_lo
+    int zColumn = 0;                // heatmaps: the value; 0 for other styles
+    int x2Column = 0, y2Column = 0;  // segments: where each segment ends; 0 for other styles
     std::string style = "line";
     std::string label;
-    std::string color;  // "#rrggbb", or empty for gnuplot's cycle
+    std::string color;             // "#rrggbb", or empty for gnuplot's cycle
+    double width = 2;              // line width, of the styles that draw lines
+    double pointSize = 0.8;        // of points and linespoints
+    std::string point = "circle";  // one of kPlotPoints
+    // Only the rows whose columns hold these texts (1-based column, text), for several series
+    // drawn from one file: `where: {panel: eye, kind: covered}`. Not for histograms and heatmaps.
+    std::vector<std::pair<int, std::string>> where;
+};
+
+// How a panel with a heatmap maps values to colours.
+struct PlotColorbar {
+    std::string label;
+    std::optional<double> min, max;  // unset: the data's range
+    std::string palette = "viridis";  // one of kPlotPalettes
+};
+
+// Free text on a panel, starting at (x, y) in the axes' units.
+struct PlotLabel {
+    double x = 0, y = 0;
+    std::string text;
 };
 
 struct PlotPanel {
@@ -34,7 +62,14 @@ struct PlotPanel {
     PlotAxis x, y;
     std::string key = "top right";  // legend: top/bottom left/right, outside, or off
     bool pareto = false;  // mark the points of all series not dominated in (x, y), both minimised
+    bool equalAspect = false;  // one unit as long on x as on y, so that squares look square
+    PlotColorbar colorbar;     // drawn when the panel has a heatmap
+    std::vector<PlotLabel> labels;
     std::vector<PlotSeries> series;
+
+    bool hasStyle(const std::string& style) const {
+        return std::any_of(series.begin(), series.end(), [&](const PlotSeries& s) { return s.style == style; });
+    }
 };
 
 struct PlotSpec {
@@ -45,8 +80,10 @@ struct PlotSpec {
     std::vector<PlotPanel> panels;
 };
 
-// Reads and validates a spec: unknown keys, wrong types, missing CSV files and columns that are
-// not in a CSV's header are each one vri::Error "spec:line:col: what is wrong".
+// Reads and validates a spec: unknown keys, wrong types, missing CSV files, columns that are not
+// in a CSV's header and heatmap rows that do not fill a grid are each one vri::Error
+// "spec:line:col: what is wrong". Relative data paths start at dataDir, or where it is empty at the
+// spec's folder (specDir): one spec can draw the data of several results folders.
 //
 //   title: Paper A, Fig. 2            # optional
 //   size: [1200, 900]                 # optional, pixels (default 800x600)
@@ -57,10 +94,24 @@ struct PlotSpec {
 //       y: {label: intensity}
 //       key: top left
 //       pareto: false
+//       aspect: equal                 # optional: one unit as long on x as on y (default: auto)
+//       labels:                       # optional free text, starting at (x, y)
+//         - {x: 0.5, y: 1.2, text: midpoint}
+//       colorbar: {label: error, min: 0, max: 1, palette: viridis}  # heatmaps; all optional
 //       series:
-//         - {file: rays.csv, x: ray, y: closed_form, style: line, label: closed form}
-PlotSpec loadPlotSpec(const std::filesystem::path& spec);
-PlotSpec parsePlotSpec(const std::string& yamlText, const std::string& source, const std::filesystem::path& baseDir);
+//         - {file: rays.csv, x: ray, y: closed_form, style: line, label: closed form, width: 1}
+//         - {file: rays.csv, x: ray, y: riemann, style: points, size: 1.5, point: square}
+//         - {file: f.csv, x: u, y: v, z: f, style: heatmap}
+//         - {file: steps.csv, x: t0, y: row, x2: t1, y2: row, style: segments, color: "#000000"}
+//
+// A series' `width` (line width) is for line, dashed, dotted, linespoints and segments; `size` and
+// `point` (circle, square, cross, triangle) for points and linespoints; heatmaps take neither
+// `color` nor `label`. Without `label` a series is keyed by its y column; `label: ""` leaves it
+// out of the key. `where: {column: text, ...}` keeps only the rows whose columns hold those
+// texts (not for histograms and heatmaps), so one CSV can feed several series. Palettes: viridis (default), gray, diverging (blue, white, red).
+PlotSpec loadPlotSpec(const std::filesystem::path& spec, const std::filesystem::path& dataDir = {});
+PlotSpec parsePlotSpec(const std::string& yamlText, const std::string& source, const std::filesystem::path& specDir,
+                       const std::filesystem::path& dataDir = {});
 
 // Indices of the points no other point dominates (another point <= in both and < in one),
 // ordered by x; of equal points only the first. Points with a non-finite coordinate are left out.

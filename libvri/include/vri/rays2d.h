@@ -41,6 +41,14 @@ struct DiscreteRay {
     double step;       // world units
 };
 
+// Where a placement puts the samples of one ray, in the world frame, for diagrams.
+struct RaySamples {
+    glm::dvec2 entry{0.0}, direction{0.0};  // direction: unit
+    double length = 0.0;                    // D, world units
+    double step = 0.0;                      // dx, world units: the stretch each sample stands for
+    std::vector<double> positions;          // distances of the samples from the entry, world units
+};
+
 class Rays2D {
 public:
     explicit Rays2D(const Study2D& study);
@@ -57,10 +65,20 @@ public:
     // field reconstructed bilinearly from the grid as a renderer would.
     DiscreteRay discrete(int rayIndex, Placement placement, double samplingRate) const;
 
+    RaySamples samples(int rayIndex, Placement placement, double samplingRate) const;
+
     // The reconstructed field at a point of the square's own frame ([-side/2, side/2]^2).
     double field(const glm::dvec2& local) const;
 
 private:
+    // A ray's samples as the renderer places them: in texture coordinates of the square.
+    struct Schedule {
+        glm::dvec3 entry{0.0}, exit{0.0};
+        double tNear = 0.0, length = 0.0;  // world units
+        SampleSchedule<double> samples;
+    };
+    Schedule schedule(int rayIndex, Placement placement, double samplingRate) const;
+
     Study2D study_;
     Volume grid_;  // gridSize x gridSize x 1
 };

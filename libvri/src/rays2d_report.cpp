@@ -1,0 +1,207 @@
+#include "vri/rays2d_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "vri/error.h"
+#include "vri/format.h"
+
+namespace vri {
+
+namespace {
+
+class CsvWriter {
+public:
+    explicit CsvWriter(const std::vector<std::string>& header) { row(header); }
+    void row(const std::vector<std::string>& cells) {
+        for (std::size_t i = 0; i < cells.size(); ++i) text_ += (i ? "," : "") + cells[i];
+        text_ += '\n';
+    }
+    const std::string& text() const { return text_; }
+
+private:
+    std::string text_;
+};
+
+glm::dvec2 rotated(glm::dvec2 v, double radians) {
+    const double c = std::cos(radians), s = std::sin(radians);
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+void segment(CsvWriter& csv, const std::string& panel, const std::string& kind, glm::dvec2 a, glm::dvec2 b) {
+    csv.row({panel, kind, exactNumber(a.x), exactNumber(a.y), exactNumber(b.x), exactNumber(b.y)});
+}
+
+void square(CsvWriter& csv, const Study2D& study, const std::string& panel) {
+    const double h = 0.5 * study.side;
+    const glm::dvec2 corners[] = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
+    for (int i = 0; i < 4; ++i)
+        segment(csv, panel, "square", rotated(corners[i], study.rotationRadians),
+                rotated(corners[(i + 1) % 4], study.rotationRadians));
+}
+
+// One ray of a placement panel: the ray, its samples, their stretches and what they miss.
+void diagramRay(CsvWriter& csv, const std::string& panel, const RaySamples& r, double tickLength) {
+    auto at = [&](double distance) { return r.entry + distance * r.direction; };
+    const glm::dvec2 across = tickLength * glm::dvec2(-r.direction.y, r.direction.x);
+    const double overhang = 0.5;  // world units of ray drawn before the entry and after the exit
+    segment(csv, panel, "ray", at(-overhang), at(r.length + overhang));
+    // Part [a, b] of a stretch: covered inside the square, overshot outside.
+    auto stretch = [&](double a, double b) {
+        const double lo = std::clamp(a, 0.0, r.length), hi = std::clamp(b, 0.0, r.length);
+        if (a < lo) segment(csv, panel, "overshot", at(a), at(lo));
+        if (lo < hi) segment(csv, panel, "covered", at(lo), at(hi));
+        if (hi < b) segment(csv, panel, "overshot", at(hi), at(b));
+    };
+    for (double p : r.positions) {
+        const double a = p - 0.5 * r.step, b = p + 0.5 * r.step;
+        stretch(a, b);
+        for (double end : {a, b}) segment(csv, panel, "tick", at(end) - across, at(end) + across);
+        segment(csv, panel, "sample", at(p), at(p));
+    }
+    // Consecutive stretches touch, so together they cover one interval; the rest of [0, D] is missed.
+    if (r.positions.empty()) {
+        segment(csv, panel, "missed", at(0.0), at(r.length));
+        return;
+    }
+    const double from = r.positions.front() - 0.5 * r.step, to = r.positions.back() + 0.5 * r.step;
+    if (from > 0.0) segment(csv, panel, "missed", at(0.0), at(std::min(from, r.length)));
+    if (to < r.length) segment(csv, panel, "missed", at(std::max(to, 0.0)), at(r.length));
+}
+
+}  // namespace
+
+Fan castFan(const Rays2D& study, const std::vector<Placement>& placements, const std::vector<double>& rates) {
+    Fan fan{placements, rates, study.closedForm(), {}};
+    for (Placement p : placements) {
+        auto& perRate = fan.discrete.emplace_back();
+        for (double rate : rates) {
+            auto& perRay = perRate.emplace_back();
+            for (const Ray2D& ray : fan.rays) perRay.push_back(study.discrete(ray.index, p, rate));
+        }
+    }
+    return fan;
+}
+
+std::string fanColumn(Placement placement, double rate) {
+    return std::string(placementName(placement)) + "_r" + exactNumber(rate);
+}
+
+std::string fanCsv(const Fan& fan) {
+    std::vector<std::string> header{"ray", "angle_deg", "length", "closed_form"};
+    for (Placement p : fan.placements)
+        for (double rate : fan.rates) header.push_back(fanColumn(p, rate));
+    for (Placement p : fan.placements)
+        for (double rate : fan.rates) header.push_back("n_" + fanColumn(p, rate));
+    CsvWriter csv(header);
+    for (std::size_t i = 0; i < fan.rays.size(); ++i) {
+        const Ray2D& ray = fan.rays[i];
+        std::vector<std::string> row{std::to_string(ray.index), exactNumber(ray.angleDegrees), exactNumber(ray.length),
+                                     exactNumber(ray.closedForm)};
+        for (const auto& perRate : fan.discrete)
+            for (const auto& perRay : perRate) row.push_back(exactNumber(perRay[i].intensity));
+        for (const auto& perRate : fan.discrete)
+            for (const auto& perRay : perRate) row.push_back(std::to_string(perRay[i].samples));
+        csv.row(row);
+    }
+    return csv.text();
+}
+
+namespace {
+
+int raysThatHit(const Fan& fan) {
+    return static_cast<int>(std::count_if(fan.rays.begin(), fan.rays.end(), [](const Ray2D& r) { return r.length > 0.0; }));
+}
+
+struct ErrorSummary {
+    double maxAbs = 0.0, meanAbs = 0.0, over = 0.0, under = 0.0;
+    int empty = 0;  // rays of positive length without a sample
+};
+
+ErrorSummary summarise(const Fan& fan, std::size_t placement, std::size_t rate) {
+    ErrorSummary s;
+    for (std::size_t i = 0; i < fan.rays.size(); ++i) {
+        if (!(fan.rays[i].length > 0.0)) continue;
+        const DiscreteRay& d = fan.discrete[placement][rate][i];
+        const double e = d.intensity - fan.rays[i].closedForm;
+        s.maxAbs = std::max(s.maxAbs, std::abs(e));
+        s.meanAbs += std::abs(e);
+        s.over = std::max(s.over, e);
+        s.under = std::max(s.under, -e);
+        s.empty += d.samples == 0;
+    }
+    if (const int hits = raysThatHit(fan)) s.meanAbs /= hits;
+    return s;
+}
+
+}  // namespace
+
+Table fanErrorTable(const Fan& fan) {
+    Table t;
+    t.title = "Paper A's 2D study: error of eq. (6) against the closed form, per placement and sampling rate";
+    t.rowHeader = "Placement, rate";
+    t.columns = {"max |error|", "mean |error|", "max over", "max under", "rays without samples"};
+    t.precision = {6, 6, 6, 6, 0};
+    for (std::size_t p = 0; p < fan.placements.size(); ++p)
+        for (std::size_t r = 0; r < fan.rates.size(); ++r) {
+            const ErrorSummary s = summarise(fan, p, r);
+            t.rows.push_back(std::string(placementName(fan.placements[p])) + ", " + exactNumber(fan.rates[r]));
+            t.cells.push_back({s.maxAbs, s.meanAbs, s.over, s.under, double(s.empty)});
+        }
+    t.notes = {"Over the " + std::to_string(raysThatHit(fan)) + " rays that cross the square; intensities are in "
+               "[0, 2]. Over/under: the largest discrete sum above/below the closed form."};
+    return t;
+}
+
+std::string convergenceCsv(const Fan& fan) {
+    std::vector<std::string> header{"rate"};
+    for (Placement p : fan.placements)
+        for (const char* stat : {"_max", "_mean"}) header.push_back(std::string(placementName(p)) + stat);
+    CsvWriter csv(header);
+    for (std::size_t r = 0; r < fan.rates.size(); ++r) {
+        std::vector<std::string> row{exactNumber(fan.rates[r])};
+        for (std::size_t p = 0; p < fan.placements.size(); ++p) {
+            const ErrorSummary s = summarise(fan, p, r);
+            row.insert(row.end(), {exactNumber(s.maxAbs), exactNumber(s.meanAbs)});
+        }
+        csv.row(row);
+    }
+    return csv.text();
+}
+
+std::string diagramCsv(const Rays2D& study, const std::vector<int>& rays, const std::vector<Placement>& placements,
+                       double rate) {
+    const Study2D& s = study.study();
+    for (int ray : rays)
+        if (ray < 0 || ray >= s.rays)
+            throw Error("diagram: ray " + std::to_string(ray) + " is not in 0.." + std::to_string(s.rays - 1));
+    CsvWriter csv({"panel", "kind", "x", "y", "x2", "y2"});
+    square(csv, s, "setup");
+    const double reach = glm::length(s.eye) + s.side;  // far enough past the square
+    for (int i = 0; i < s.rays; ++i) {
+        const double a = s.rayAngleDegrees(i) * std::numbers::pi / 180.0;
+        segment(csv, "setup", "fan", s.eye, s.eye + reach * glm::dvec2(std::cos(a), std::sin(a)));
+    }
+    const double tick = 0.02 * s.side;
+    for (Placement p : placements) {
+        const std::string panel(placementName(p));
+        square(csv, s, panel);
+        for (int ray : rays) diagramRay(csv, panel, study.samples(ray, p, rate), tick);
+    }
+    return csv.text();
+}
+
+std::string fieldCsv(const Rays2D& study, int resolution) {
+    if (resolution < 2) throw Error("field image: the resolution must be at least 2, got " + std::to_string(resolution));
+    const double h = 0.5 * study.study().side;
+    CsvWriter csv({"x", "y", "analytic", "reconstructed"});
+    for (int j = 0; j < resolution; ++j)
+        for (int i = 0; i < resolution; ++i) {
+            const glm::dvec2 p(-h + 2.0 * h * i / (resolution - 1), -h + 2.0 * h * j / (resolution - 1));
+            csv.row({exactNumber(p.x), exactNumber(p.y), exactNumber((p.x + h) / (2.0 * h)), exactNumber(study.field(p))});
+        }
+    return csv.text();
+}
+
+}  // namespace vri
