@@ -25,24 +25,25 @@ bool parseNumber(std::string_view s, T& value) {
     return ec == std::errc() && end == s.data() + s.size();
 }
 
-}  // namespace
-
-glm::dvec2 parseVec2(const std::string& text, const std::string& what) {
+// Exactly N finite numbers separated by commas; throws vri::Error(message) otherwise.
+template <int N>
+glm::vec<N, double> finiteVector(const std::string& text, const std::string& message) {
     const auto parts = split(text, ',');
-    glm::dvec2 v;
-    bool ok = parts.size() == 2;
-    for (int i = 0; ok && i < 2; ++i) ok = parseNumber(parts[i], v[i]) && std::isfinite(v[i]);
-    if (!ok) throw Error(what + ": expected two numbers x,y, got '" + text + "'");
+    glm::vec<N, double> v;
+    bool ok = parts.size() == N;
+    for (int i = 0; ok && i < N; ++i) ok = parseNumber(parts[i], v[i]) && std::isfinite(v[i]);
+    if (!ok) throw Error(message);
     return v;
 }
 
+}  // namespace
+
+glm::dvec2 parseVec2(const std::string& text, const std::string& what) {
+    return finiteVector<2>(text, what + ": expected two numbers x,y, got '" + text + "'");
+}
+
 glm::dvec3 parseVec3(const std::string& text, const std::string& what) {
-    const auto parts = split(text, ',');
-    glm::dvec3 v;
-    bool ok = parts.size() == 3;
-    for (int i = 0; ok && i < 3; ++i) ok = parseNumber(parts[i], v[i]) && std::isfinite(v[i]);
-    if (!ok) throw Error(what + ": expected three numbers x,y,z, got '" + text + "'");
-    return v;
+    return finiteVector<3>(text, what + ": expected three numbers x,y,z, got '" + text + "'");
 }
 
 glm::ivec3 parseDims(const std::string& text, const std::string& what) {
