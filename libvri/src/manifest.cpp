@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -140,8 +141,9 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
         if (paper.at("paper") != "none")
             md << "**Paper " << paper.at("paper").get<std::string>() << ", " << paper.at("item").get<std::string>()
                << ":** " << paper.at("says").get<std::string>() << "\n\n";
+        std::set<std::string> noted;  // a dataset shown in several scenes is noted once
         for (const nlohmann::json& d : m.at("datasets"))
-            if (d.at("status") != "exact")
+            if (d.at("status") != "exact" && noted.insert(d.at("dataset").get<std::string>()).second)
                 md << "*Dataset " << d.at("dataset").get<std::string>() << " is " << d.at("status").get<std::string>()
                    << ":* " << d.at("note").get<std::string>() << "\n\n";
         const auto gallery = [&](const nlohmann::json& list) {
