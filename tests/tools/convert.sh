@@ -1,14 +1,9 @@
 #!/usr/bin/env bash
 # vri-convert end to end: raw -> vdb -> raw is byte-exact, --info and --help work, and bad input
 # fails with one line on stderr and no output file.
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 convert="$VRI_BIN/vri-convert"
-mkdir -p "$VRI_SCRATCH"
-cd "$VRI_SCRATCH"
-rm -rf ./*
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # 4x3x2 uint8 with zeros, small and large values.
 printf '\000\001\002\003\000\000\377\200\000\012\013\014\000\000\000\000\100\101\102\000\000\000\000\376' > tiny_4x3x2_uint8.raw

@@ -2,14 +2,9 @@
 # vri-data (`make data`) end to end on a tiny catalog: a good file is verified, a corrupted one is a
 # MISMATCH, a missing one is downloaded (from a file:// URL, so no network is needed) and checked,
 # a bad download is refused and removed; then the project's catalog against $VRI_DATA_DIR if present.
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 data="$VRI_BIN/vri-data"
-mkdir -p "$VRI_SCRATCH"
-cd "$VRI_SCRATCH"
-rm -rf ./* ./.[!.]*
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
 
 mkdir -p published volumes
 printf 'abcd' > published/tiny.raw

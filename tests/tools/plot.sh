@@ -2,14 +2,9 @@
 # vri-plot end to end: a figure (PNG, SVG and the gnuplot script that redraws it by hand), a
 # heatmap and a diagram of segments, a spec drawn from another data folder (--data-dir), and a
 # malformed spec that fails with one file:line:col line and writes nothing.
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 plot="$VRI_BIN/vri-plot"
-mkdir -p "$VRI_SCRATCH"
-cd "$VRI_SCRATCH"
-rm -rf ./* ./.[!.]*
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$plot" --help | grep -q "Example" || fail "--help shows no example"
 

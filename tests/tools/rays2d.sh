@@ -1,14 +1,9 @@
 #!/usr/bin/env bash
 # vri-rays2d end to end: paper A's fan (120 rays, 101 of them hit the square), the closed form
 # against each placement, the error table, the Fig. 1 diagram and Fig. 3 field; bad arguments write nothing.
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 rays2d="$VRI_BIN/vri-rays2d"
-mkdir -p "$VRI_SCRATCH"
-cd "$VRI_SCRATCH"
-rm -rf ./*
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$rays2d" --help | grep -q "Examples" || fail "--help shows no example"
 

@@ -1,14 +1,9 @@
 #!/usr/bin/env bash
 # vri-tabulate end to end: paper B's threshold table and a timing matrix (median of three runs),
 # exact Markdown and CSV, and failures that write nothing.
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 tabulate="$VRI_BIN/vri-tabulate"
-mkdir -p "$VRI_SCRATCH"
-cd "$VRI_SCRATCH"
-rm -rf ./*
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$tabulate" --help | grep -q "Example" || fail "--help shows no example"
 
