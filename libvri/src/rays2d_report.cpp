@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "vri/error.h"
 #include "vri/format.h"
@@ -24,11 +23,6 @@ private:
     std::string text_;
 };
 
-glm::dvec2 rotated(glm::dvec2 v, double radians) {
-    const double c = std::cos(radians), s = std::sin(radians);
-    return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-
 void segment(CsvWriter& csv, const std::string& panel, const std::string& kind, glm::dvec2 a, glm::dvec2 b) {
     csv.row({panel, kind, exactNumber(a.x), exactNumber(a.y), exactNumber(b.x), exactNumber(b.y)});
 }
@@ -37,8 +31,7 @@ void square(CsvWriter& csv, const Study2D& study, const std::string& panel) {
     const double h = 0.5 * study.side;
     const glm::dvec2 corners[] = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
     for (int i = 0; i < 4; ++i)
-        segment(csv, panel, "square", rotated(corners[i], study.rotationRadians),
-                rotated(corners[(i + 1) % 4], study.rotationRadians));
+        segment(csv, panel, "square", study.toWorld(corners[i]), study.toWorld(corners[(i + 1) % 4]));
 }
 
 // One ray of a placement panel: the ray, its samples, their stretches and what they miss.
@@ -68,6 +61,33 @@ void diagramRay(CsvWriter& csv, const std::string& panel, const RaySamples& r, d
     const double from = r.positions.front() - 0.5 * r.step, to = r.positions.back() + 0.5 * r.step;
     if (from > 0.0) segment(csv, panel, "missed", at(0.0), at(std::min(from, r.length)));
     if (to < r.length) segment(csv, panel, "missed", at(std::max(to, 0.0)), at(r.length));
+}
+
+int raysThatHit(const Fan& fan) {
+    return static_cast<int>(std::count_if(fan.rays.begin(), fan.rays.end(), [](const Ray2D& r) { return r.length > 0.0; }));
+}
+
+struct ErrorSummary {
+    double maxAbs = 0.0, meanAbs = 0.0, over = 0.0, under = 0.0;
+    int empty = 0;  // rays of positive length without a sample
+};
+
+ErrorSummary summarise(const Fan& fan, std::size_t placement, std::size_t rate) {
+    ErrorSummary s;
+    int hits = 0;
+    for (std::size_t i = 0; i < fan.rays.size(); ++i) {
+        if (!(fan.rays[i].length > 0.0)) continue;
+        ++hits;
+        const DiscreteRay& d = fan.discrete[placement][rate][i];
+        const double e = d.intensity - fan.rays[i].closedForm;
+        s.maxAbs = std::max(s.maxAbs, std::abs(e));
+        s.meanAbs += std::abs(e);
+        s.over = std::max(s.over, e);
+        s.under = std::max(s.under, -e);
+        s.empty += d.samples == 0;
+    }
+    if (hits > 0) s.meanAbs /= hits;
+    return s;
 }
 
 }  // namespace
@@ -107,35 +127,6 @@ std::string fanCsv(const Fan& fan) {
     }
     return csv.text();
 }
-
-namespace {
-
-int raysThatHit(const Fan& fan) {
-    return static_cast<int>(std::count_if(fan.rays.begin(), fan.rays.end(), [](const Ray2D& r) { return r.length > 0.0; }));
-}
-
-struct ErrorSummary {
-    double maxAbs = 0.0, meanAbs = 0.0, over = 0.0, under = 0.0;
-    int empty = 0;  // rays of positive length without a sample
-};
-
-ErrorSummary summarise(const Fan& fan, std::size_t placement, std::size_t rate) {
-    ErrorSummary s;
-    for (std::size_t i = 0; i < fan.rays.size(); ++i) {
-        if (!(fan.rays[i].length > 0.0)) continue;
-        const DiscreteRay& d = fan.discrete[placement][rate][i];
-        const double e = d.intensity - fan.rays[i].closedForm;
-        s.maxAbs = std::max(s.maxAbs, std::abs(e));
-        s.meanAbs += std::abs(e);
-        s.over = std::max(s.over, e);
-        s.under = std::max(s.under, -e);
-        s.empty += d.samples == 0;
-    }
-    if (const int hits = raysThatHit(fan)) s.meanAbs /= hits;
-    return s;
-}
-
-}  // namespace
 
 Table fanErrorTable(const Fan& fan) {
     Table t;
@@ -179,10 +170,7 @@ std::string diagramCsv(const Rays2D& study, const std::vector<int>& rays, const 
     CsvWriter csv({"panel", "kind", "x", "y", "x2", "y2"});
     square(csv, s, "setup");
     const double reach = glm::length(s.eye) + s.side;  // far enough past the square
-    for (int i = 0; i < s.rays; ++i) {
-        const double a = s.rayAngleDegrees(i) * std::numbers::pi / 180.0;
-        segment(csv, "setup", "fan", s.eye, s.eye + reach * glm::dvec2(std::cos(a), std::sin(a)));
-    }
+    for (int i = 0; i < s.rays; ++i) segment(csv, "setup", "fan", s.eye, s.eye + reach * s.rayDirection(i));
     const double tick = 0.02 * s.side;
     for (Placement p : placements) {
         const std::string panel(placementName(p));
@@ -199,7 +187,7 @@ std::string fieldCsv(const Rays2D& study, int resolution) {
     for (int j = 0; j < resolution; ++j)
         for (int i = 0; i < resolution; ++i) {
             const glm::dvec2 p(-h + 2.0 * h * i / (resolution - 1), -h + 2.0 * h * j / (resolution - 1));
-            csv.row({exactNumber(p.x), exactNumber(p.y), exactNumber((p.x + h) / (2.0 * h)), exactNumber(study.field(p))});
+            csv.row({exactNumber(p.x), exactNumber(p.y), exactNumber(study.analytic(p)), exactNumber(study.field(p))});
         }
     return csv.text();
 }

@@ -8,6 +8,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "vri/analytic_field.h"
 #include "vri/grid_convention.h"
 #include "vri/placement.h"
 #include "vri/volume.h"
@@ -25,6 +26,11 @@ struct Study2D {
     // Ray i leaves the eye at angle -fov/2 + (i + 1/2) fov / rays from the +x axis: equal angular
     // spacing with the rays at the centres of `rays` equal sectors, like pixel centres.
     double rayAngleDegrees(int i) const;
+    glm::dvec2 rayDirection(int i) const;  // unit, world frame
+
+    // The square's own frame (axis-aligned, f varies with its x) and the world frame it is rotated into.
+    glm::dvec2 toWorld(const glm::dvec2& local) const;
+    glm::dvec2 toLocal(const glm::dvec2& world) const;
 };
 
 struct Ray2D {
@@ -67,7 +73,9 @@ public:
 
     RaySamples samples(int rayIndex, Placement placement, double samplingRate) const;
 
-    // The reconstructed field at a point of the square's own frame ([-side/2, side/2]^2).
+    // At a point of the square's own frame ([-side/2, side/2]^2): f itself, and as the grid
+    // reconstructs it.
+    double analytic(const glm::dvec2& local) const { return field_(glm::dvec3(local, 0.0)); }
     double field(const glm::dvec2& local) const;
 
 private:
@@ -76,11 +84,15 @@ private:
         glm::dvec3 entry{0.0}, exit{0.0};
         double tNear = 0.0, length = 0.0;  // world units
         SampleSchedule<double> samples;
+        double worldPerT = 0.0;            // world units per unit of the schedule's t
     };
     Schedule schedule(int rayIndex, Placement placement, double samplingRate) const;
+    // A point of the square's frame in the grid's texture coordinates, in the middle of its one layer.
+    glm::dvec3 toTexture(const glm::dvec2& local) const;
 
     Study2D study_;
-    Volume grid_;  // gridSize x gridSize x 1
+    LinearField field_;  // f = (x + side/2) / side over the square, standing for the grid
+    Volume grid_;        // f sampled onto gridSize x gridSize x 1 voxels
 };
 
 }  // namespace vri
