@@ -1,7 +1,6 @@
 // vri-run: runs experiment files as graphs of small tool invocations, with caching and provenance.
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -15,6 +14,7 @@
 #include "vri/experiment_plan.h"
 #include "vri/experiment_reproduce.h"
 #include "vri/experiment_run.h"
+#include "vri/json_file.h"
 #include "vri/manifest.h"
 
 namespace fs = std::filesystem;
@@ -40,9 +40,10 @@ bool reproduce(const Options& options, const vri::Experiment& experiment, const 
         std::cerr << kTool << ": recorded " << committed.string() << '\n';
         return true;
     }
-    std::ifstream in(committed);
-    if (!in) throw vri::Error(committed.string() + ": no such file (record it with vri-run --quick --record)");
-    const std::vector<std::string> problems = vri::reproduceMismatches(experiment, measured, nlohmann::json::parse(in));
+    if (!fs::is_regular_file(committed))
+        throw vri::Error(committed.string() + ": no such file (record it with vri-run --quick --record)");
+    const std::vector<std::string> problems =
+        vri::reproduceMismatches(experiment, measured, vri::readJsonFile(committed));
     for (const std::string& p : problems) std::cerr << kTool << ": " << experiment.name << ": " << p << '\n';
     if (problems.empty()) std::cerr << kTool << ": " << experiment.name << ": reproduced (" << committed.string() << ")\n";
     return problems.empty();

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -11,6 +10,7 @@
 #include "vri/csv.h"
 #include "vri/error.h"
 #include "vri/image_io.h"
+#include "vri/json_file.h"
 
 namespace vri {
 
@@ -34,9 +34,7 @@ nlohmann::json imageMetrics(const Image& image, const std::vector<std::string>& 
 }
 
 nlohmann::json diffMetrics(const fs::path& diffJson, const std::vector<std::string>& metrics) {
-    std::ifstream in(diffJson);
-    if (!in) throw Error(diffJson.string() + ": no such file");
-    const nlohmann::json diff = nlohmann::json::parse(in);
+    const nlohmann::json diff = readJsonFile(diffJson);
     nlohmann::json result = nlohmann::json::object();
     for (const nlohmann::json& channel : diff.at("channels"))
         for (const std::string& m : metrics) result[m][channel.at("name").get<std::string>()] = channel.at(m);

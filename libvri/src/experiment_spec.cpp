@@ -80,7 +80,7 @@ private:
         yaml::toDouble(node, source_, what);
         return node.Scalar();
     }
-    bool flag(const YAML::Node& node, std::string_view what) const;
+    bool flag(const YAML::Node& node, std::string_view what) const { return yaml::toBool(node, source_, what); }
     std::string vec3(const YAML::Node& node, std::string_view what) const;
     std::vector<std::string> names(const YAML::Node& node, std::string_view what) const;
     fs::path existingFile(const YAML::Node& node, std::string_view what) const;
@@ -105,14 +105,6 @@ private:
     fs::path baseDir_;
     std::optional<std::vector<DatasetInfo>> catalog_;  // experiments/datasets.yaml, read when a scene names a dataset
 };
-
-bool ExperimentReader::flag(const YAML::Node& node, std::string_view what) const {
-    try {
-        if (node.IsScalar()) return node.as<bool>();
-    } catch (const YAML::Exception&) {
-    }
-    throw Error(at(node) + ": " + std::string(what) + " must be true or false");
-}
 
 std::string ExperimentReader::vec3(const YAML::Node& node, std::string_view what) const {
     if (!node.IsSequence() || node.size() != 3) throw Error(at(node) + ": " + std::string(what) + " must be [x, y, z]");
@@ -451,7 +443,8 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
 void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "tables")) {
         yaml::requireKeys(entry, source_, {"title", "comparisons", "runs", "value", "column", "group_by", "precision"});
-        TableSpec table{name, name, {}, {}};
+        TableSpec table;
+        table.name = table.title = name;
         if (entry["value"]) table.value = text(entry["value"], "value");
         if (entry["column"]) table.column = text(entry["column"], "column");
         if (entry["title"]) table.title = text(entry["title"], "title");

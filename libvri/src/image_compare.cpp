@@ -1,7 +1,6 @@
 #include "vri/image_compare.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 

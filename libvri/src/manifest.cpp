@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vri/atomic_file.h"
+#include "vri/json_file.h"
 #include "vri/provenance.h"
 
 namespace vri {
@@ -38,12 +39,6 @@ nlohmann::json sourceTree(const fs::path& experimentFile) {
     if (commit.empty()) return {{"commit", "unknown"}};
     const bool modified = !firstLineOf("git -C " + dir + " status --porcelain --untracked-files=no 2>/dev/null").empty();
     return {{"commit", commit}, {"modified_files", modified}};
-}
-
-nlohmann::json digests(const std::vector<FileDigest>& files) {
-    nlohmann::json list = nlohmann::json::array();
-    for (const FileDigest& f : files) list.push_back({{"path", f.path}, {"sha512", f.sha512}});
-    return list;
 }
 
 std::string stateName(StepOutcome::State state) {
@@ -86,8 +81,8 @@ void writeManifest(const Experiment& experiment, const Plan& plan, const std::ve
                          {"state", stateName(outcome.state)},
                          {"command", outcome.record.command},
                          {"parameters", parameters},
-                         {"inputs", digests(outcome.record.inputs)},
-                         {"outputs", digests(outcome.record.outputs)},
+                         {"inputs", toJson(outcome.record.inputs)},
+                         {"outputs", toJson(outcome.record.outputs)},
                          {"wall_seconds", outcome.record.wallSeconds},
                          {"ran_utc", outcome.record.ranUtc}});
         if (outcome.state == StepOutcome::State::Unavailable) continue;
@@ -132,8 +127,7 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
           "`make experiments`. Each experiment's folder holds its images, tables, figures and the manifest with the\n"
           "exact commands, input digests, build, machine and wall times.\n";
     for (const fs::path& path : manifests) {
-        std::ifstream in(path);
-        const nlohmann::json m = nlohmann::json::parse(in);
+        const nlohmann::json m = readJsonFile(path);
         const nlohmann::json& e = m.at("experiment");
         const std::string dir = path.parent_path().filename().string();
         md << "\n## " << e.at("title").get<std::string>() << "\n\n";

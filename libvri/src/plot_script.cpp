@@ -1,10 +1,10 @@
 // Writing the gnuplot script of a figure, with the Pareto front it may mark and its heatmaps' grids.
 #include <algorithm>
 #include <cmath>
-#include <charconv>
 
 #include "plot_csv.h"
 #include "vri/csv.h"
+#include "vri/format.h"
 #include "vri/plot.h"
 
 namespace vri {
@@ -20,19 +20,13 @@ std::string quoted(const std::string& text) {
     return out + "'";
 }
 
-// The shortest text that reads back as the same double: exact, and 0.8 stays "0.8".
-std::string number(double value) {
-    char text[40];
-    return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
-}
-
 // A heatmap's axes end where its image does (fit), other axes at a tic mark beyond the data.
 std::string axisCommands(const char* name, const PlotAxis& axis, bool fit) {
     const std::string n = name;
     std::string out = "    set " + n + "label " + quoted(axis.label) + "\n";
     out += axis.log ? "    set logscale " + n + "\n" : "    unset logscale " + n + "\n";
-    out += "    set " + n + "range [" + (axis.min ? number(*axis.min) : "*") + ":" +
-           (axis.max ? number(*axis.max) : "*") + "]" + (fit ? " noextend" : " extend") + "\n";
+    out += "    set " + n + "range [" + (axis.min ? exactNumber(*axis.min) : "*") + ":" +
+           (axis.max ? exactNumber(*axis.max) : "*") + "]" + (fit ? " noextend" : " extend") + "\n";
     return out;
 }
 
@@ -59,11 +53,13 @@ std::string panelCommands(const PlotPanel& panel) {
     out += panel.equalAspect ? "    set size ratio -1\n" : "    set size noratio\n";
     out += "    unset label\n";
     for (const PlotLabel& label : panel.labels)
-        out += "    set label " + quoted(label.text) + " at " + number(label.x) + "," + number(label.y) + " front\n";
+        out += "    set label " + quoted(label.text) + " at " + exactNumber(label.x) + "," + exactNumber(label.y) +
+               " front\n";
     if (heatmap) {
         const PlotColorbar& bar = panel.colorbar;
         out += paletteCommand(bar.palette);
-        out += "    set cbrange [" + (bar.min ? number(*bar.min) : "*") + ":" + (bar.max ? number(*bar.max) : "*") + "]\n";
+        out += "    set cbrange [" + (bar.min ? exactNumber(*bar.min) : "*") + ":" +
+               (bar.max ? exactNumber(*bar.max) : "*") + "]\n";
         out += "    set cblabel " + quoted(bar.label) + "\n    set colorbox\n";
     }
     return out;
@@ -79,8 +75,8 @@ int pointType(const std::string& point) {
 
 std::string styleClause(const PlotSeries& series) {
     const std::string colour = series.color.empty() ? "" : " lc rgb " + quoted(series.color);
-    const std::string width = " lw " + number(series.width);
-    const std::string point = " pt " + std::to_string(pointType(series.point)) + " ps " + number(series.pointSize);
+    const std::string width = " lw " + exactNumber(series.width);
+    const std::string point = " pt " + std::to_string(pointType(series.point)) + " ps " + exactNumber(series.pointSize);
     if (series.style == "histogram") return "with boxxyerror fs transparent solid 0.35 border" + colour;
     if (series.style == "heatmap") return "with image";
     if (series.style == "segments") return "with vectors nohead" + width + colour;
@@ -189,7 +185,8 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
         if (!panel.pareto) continue;
         const auto points = panelPoints(panel);
         out += "$pareto" + std::to_string(p + 1) + " << EOD\n";
-        for (std::size_t i : paretoFront(points)) out.append(number(points[i].first)).append(",").append(number(points[i].second)).append("\n");
+        for (std::size_t i : paretoFront(points))
+            out.append(exactNumber(points[i].first)).append(",").append(exactNumber(points[i].second)).append("\n");
         out += "EOD\n";
     }
     const std::string size = std::to_string(spec.width) + "," + std::to_string(spec.height);

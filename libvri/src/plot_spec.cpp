@@ -39,14 +39,6 @@ constexpr std::pair<const char*, const char*> kStyleOnlyKeys[] = {
     {"where", "line, dashed, dotted, points, linespoints, segments"},
 };
 
-bool toBool(const YAML::Node& node, const SpecSource& src, const std::string& what) {
-    try {
-        if (node.IsScalar()) return node.as<bool>();
-    } catch (const YAML::Exception&) {
-    }
-    throw Error(src.at(node) + ": " + what + " must be true or false");
-}
-
 int toPositiveInt(const YAML::Node& node, const SpecSource& src, const std::string& what, int most) {
     const double value = yaml::toDouble(node, src.name, what);
     if (value < 1 || value > most || value != std::floor(value))
@@ -92,7 +84,7 @@ PlotAxis parseAxis(const YAML::Node& node, const SpecSource& src, const std::str
     yaml::requireMap(node, src.name, what);
     yaml::requireKeys(node, src.name, {"label", "log", "range"});
     if (node["label"]) axis.label = yaml::toString(node["label"], src.name, what + ".label");
-    if (node["log"]) axis.log = toBool(node["log"], src, what + ".log");
+    if (node["log"]) axis.log = yaml::toBool(node["log"], src.name, what + ".log");
     if (node["range"]) {
         const auto [lo, hi] = pairOf(node["range"], src, what + ".range");
         axis.min = yaml::toDouble(lo, src.name, what + ".range");
@@ -232,7 +224,7 @@ PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::s
     if (node["x"]) panel.x = parseAxis(node["x"], src, field("x"));
     if (node["y"]) panel.y = parseAxis(node["y"], src, field("y"));
     if (node["key"]) panel.key = toChoice(node["key"], src, field("key"), kKeyPlacements);
-    if (node["pareto"]) panel.pareto = toBool(node["pareto"], src, field("pareto"));
+    if (node["pareto"]) panel.pareto = yaml::toBool(node["pareto"], src.name, field("pareto"));
     if (node["aspect"]) panel.equalAspect = toChoice(node["aspect"], src, field("aspect"), kAspects) == "equal";
     if (node["labels"]) panel.labels = parseLabels(node["labels"], src, field("labels"));
     if (node["colorbar"]) panel.colorbar = parseColorbar(node["colorbar"], src, field("colorbar"));

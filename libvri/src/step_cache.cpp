@@ -22,12 +22,6 @@ void addField(Sha512& hash, const std::string& text) {
     hash.update(std::as_bytes(std::span(field.data(), field.size())));
 }
 
-nlohmann::json toJson(const std::vector<FileDigest>& files) {
-    nlohmann::json list = nlohmann::json::array();
-    for (const FileDigest& f : files) list.push_back({{"path", f.path}, {"sha512", f.sha512}});
-    return list;
-}
-
 std::vector<FileDigest> digestsFromJson(const nlohmann::json& list) {
     std::vector<FileDigest> files;
     for (const nlohmann::json& f : list) files.push_back({f.at("path").get<std::string>(), f.at("sha512").get<std::string>()});
@@ -35,6 +29,12 @@ std::vector<FileDigest> digestsFromJson(const nlohmann::json& list) {
 }
 
 }  // namespace
+
+nlohmann::json toJson(const std::vector<FileDigest>& files) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const FileDigest& f : files) list.push_back({{"path", f.path}, {"sha512", f.sha512}});
+    return list;
+}
 
 const std::string& FileHasher::digest(const fs::path& path) {
     if (auto found = digests_.find(path); found != digests_.end()) return found->second;

@@ -2,13 +2,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "vri/error.h"
+#include "vri/json_file.h"
 #include "vri/table.h"
 
 namespace vri {
@@ -17,16 +17,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw Error(file.string() + ": no such file");
-    try {
-        return json::parse(in);
-    } catch (const json::exception& e) {
-        throw Error(file.string() + ": not valid JSON: " + e.what());
-    }
-}
 
 // Follows a dotted path; a part that is a number indexes an array.
 const json& lookup(const json& root, const std::string& path, const fs::path& file) {
@@ -101,14 +91,14 @@ std::string medianNote(std::size_t fewest, std::size_t most) {
 
 double readJsonValue(const fs::path& file, const std::string& expression) {
     const ValueExpression parsed = parseExpression(expression);
-    const double value = numberAt(readJson(file), parsed.path, file);
+    const double value = numberAt(readJsonFile(file), parsed.path, file);
     return parsed.reciprocal ? 1.0 / value : value;
 }
 
 Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> thresholds, int precision) {
     if (rows.empty()) throw Error("a threshold table needs at least one row");
     const fs::path& first = rows.front().files.at(0);
-    const json firstDiff = readJson(first);
+    const json firstDiff = readJsonFile(first);
     if (thresholds.empty())
         for (const json& t : lookup(firstDiff, "thresholds", first)) thresholds.push_back(t.get<double>());
     const std::vector<std::string> channels = channelNames(firstDiff, first);
@@ -126,7 +116,7 @@ Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> 
                         " files; expected 1 or one per threshold (" + std::to_string(thresholds.size()) + ")");
         std::vector<json> diffs;
         for (const fs::path& file : row.files) {
-            diffs.push_back(readJson(file));
+            diffs.push_back(readJsonFile(file));
             if (channelNames(diffs.back(), file) != channels)
                 throw Error(file.string() + ": its channels differ from those of " + first.string());
         }
@@ -174,7 +164,7 @@ Table matrixTable(const std::vector<MatrixCell>& cells, const MatrixOptions& opt
         if (cell.files.empty()) throw Error("cell (" + cell.row + ", " + cell.column + ") has no files");
         const ValueExpression expression = parseExpression(valueOf(cell.column));
         std::vector<double> values;
-        for (const fs::path& file : cell.files) values.push_back(numberAt(readJson(file), expression.path, file));
+        for (const fs::path& file : cell.files) values.push_back(numberAt(readJsonFile(file), expression.path, file));
         const double middle = median(values);
         table.cells[indexOf(table.rows, cell.row)][indexOf(table.columns, cell.column)] =
             expression.reciprocal ? 1.0 / middle : middle;

@@ -53,6 +53,14 @@ double toDouble(const YAML::Node& node, const std::string& source, std::string_v
     throw Error(where(source, node) + ": " + std::string(what) + " must be a number");
 }
 
+bool toBool(const YAML::Node& node, const std::string& source, std::string_view what) {
+    try {
+        if (node.IsScalar()) return node.as<bool>();
+    } catch (const YAML::Exception&) {
+    }
+    throw Error(where(source, node) + ": " + std::string(what) + " must be true or false");
+}
+
 std::string toString(const YAML::Node& node, const std::string& source, std::string_view what) {
     if (!node.IsScalar()) throw Error(where(source, node) + ": " + std::string(what) + " must be a string");
     return node.as<std::string>();

@@ -23,6 +23,7 @@ void requireKeys(const YAML::Node& map, const std::string& source, std::initiali
 void requireMap(const YAML::Node& node, const std::string& source, std::string_view what);
 
 double toDouble(const YAML::Node& node, const std::string& source, std::string_view what);
+bool toBool(const YAML::Node& node, const std::string& source, std::string_view what);
 std::string toString(const YAML::Node& node, const std::string& source, std::string_view what);
 
 }  // namespace vri::yaml

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "vri/experiment_plan.h"
 
 namespace vri {
@@ -34,6 +36,9 @@ struct FileDigest {
     std::string path;  // as the command names it
     std::string sha512;
 };
+
+// [{"path", "sha512"}, ...], as records and manifests list files.
+nlohmann::json toJson(const std::vector<FileDigest>& files);
 
 // What a successful run of a step left behind.
 struct StepRecord {
