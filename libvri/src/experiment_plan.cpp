@@ -78,7 +78,7 @@ void Planner::addRender(const RunSpec& run) {
         else
             option(step, o);
     }
-    for (const auto& [option, value] : run.options) step.arguments.insert(step.arguments.end(), {option, value});
+    for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
     output(step, "-o", renderImage(plan_, run.id));

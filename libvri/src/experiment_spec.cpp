@@ -10,6 +10,7 @@
 #include "vri/datasets.h"
 #include "vri/experiment.h"
 #include "vri/experiment_plan.h"
+#include "vri/format.h"
 #include "vri/integrator.h"
 #include "vri/placement.h"
 #include "vri/render.h"
@@ -91,6 +92,7 @@ private:
     std::vector<std::pair<std::string, YAML::Node>> optionEntries(const YAML::Node& node, std::string_view what) const;
     std::optional<std::string> optionValue(const YAML::Node& node, const std::string& key) const;
     std::string resultFile(const YAML::Node& node, const std::string& key) const;
+    void requireRun(const Experiment& experiment, const std::string& id, const YAML::Node& where) const;
 
     PaperItem readPaper(const YAML::Node& node) const;
     SceneSpec readScene(const std::string& name, const YAML::Node& node);
@@ -189,6 +191,11 @@ std::string ExperimentReader::resultFile(const YAML::Node& node, const std::stri
     return name;
 }
 
+void ExperimentReader::requireRun(const Experiment& experiment, const std::string& id, const YAML::Node& where) const {
+    if (std::none_of(experiment.runs.begin(), experiment.runs.end(), [&](const RunSpec& r) { return r.id == id; }))
+        throw Error(at(where) + ": unknown run '" + id + "'");
+}
+
 PaperItem ExperimentReader::readPaper(const YAML::Node& node) const {
     yaml::requireMap(node, source_, "paper");
     yaml::requireKeys(node, source_, {"paper", "item", "says"});
@@ -219,11 +226,8 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
         scene.options.emplace_back("--volume", file.string());
         if (info.header.empty()) {
             const RawLayout layout = rawLayout(info);
-            const auto join = [](auto v) {
-                std::ostringstream out;
-                out << v.x << ',' << v.y << ',' << v.z;
-                return out.str();
-            };
+            // Exactly as the catalog has them: a spacing printed to 6 digits would be another volume.
+            const auto join = [](auto v) { return exactNumber(v.x) + "," + exactNumber(v.y) + "," + exactNumber(v.z); };
             scene.options.emplace_back("--dims", join(layout.dims));
             scene.options.emplace_back("--type", std::string(voxelTypeName(layout.type)));
             scene.options.emplace_back("--byte-order", layout.order == ByteOrder::Big ? "big" : "little");
@@ -378,16 +382,11 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
         yaml::requireKeys(entry, source_, {"reference", "runs", "thresholds", "diff_image", "histogram"});
         const YAML::Node ref = required(entry, "reference", "comparison '" + group + "'");
         const std::string reference = text(ref, "reference");
-        const auto known = [&](const std::string& id, const YAML::Node& where) {
-            for (const RunSpec& r : experiment.runs)
-                if (r.id == id) return;
-            throw Error(at(where) + ": unknown run '" + id + "'");
-        };
-        known(reference, ref);
+        requireRun(experiment, reference, ref);
         std::vector<std::string> runs;
         if (const YAML::Node r = entry["runs"]) {
             runs = names(r, "runs");
-            for (const std::string& id : runs) known(id, r);
+            for (const std::string& id : runs) requireRun(experiment, id, r);
         } else {  // every other method run of the reference's scene
             for (const RunSpec& r : experiment.runs)
                 if (!r.reference && r.id != reference && r.scene == experiment.run(reference).scene) runs.push_back(r.id);
@@ -462,9 +461,7 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
         }
         if (const YAML::Node r = entry["runs"]) {
             table.runs = names(r, "runs");
-            for (const std::string& id : table.runs)
-                if (std::none_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& x) { return x.id == id; }))
-                    throw Error(at(r) + ": unknown run '" + id + "'");
+            for (const std::string& id : table.runs) requireRun(experiment, id, r);
         }
         if (const YAML::Node g = entry["group_by"]) {
             if (text(g, "group_by") != "scene") throw Error(at(g) + ": group_by must be scene");
