@@ -2,10 +2,11 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
-#include <optional>
-#include <system_error>
+#include <functional>
 
+#include "vri/atomic_file.h"
 #include "vri/datasets.h"
+#include "vri/error.h"
 #include "vri/provenance.h"
 
 namespace vri {
@@ -14,29 +15,23 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool commandExists(const std::string& name) {
-    return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
-}
-
-// Downloads url to `target` through a temporary name beside it. Returns the reason on failure.
-std::optional<std::string> fetchUrl(const std::string& url, const fs::path& target) {
+// Downloads url into `target` through writeAtomically: the file appears only once it is complete
+// and `accept` (which throws to refuse it) has passed it. Throws vri::Error saying why not.
+void fetch(const std::string& url, const fs::path& target, const std::function<void(const fs::path& tmp)>& accept = {}) {
     std::string command;
     // -f: an HTTP error is a failure, not a saved error page.
-    if (commandExists("curl")) command = "curl -fsSL --retry 2 -o ";
-    else if (commandExists("wget")) command = "wget -q -O ";
-    else return "neither curl nor wget is installed";
-    const fs::path partial = target.parent_path() / std::string(".").append(target.filename().string()).append(".download");
-    const int status = std::system((command + shellQuote(partial.string()) + " " + shellQuote(url)).c_str());
-    std::error_code ec;
-    if (status != 0) {
-        const int code = WIFEXITED(status) ? WEXITSTATUS(status) : status;
-        fs::remove(partial, ec);
-        return "download of " + url + " failed (" + command.substr(0, command.find(' ')) + " exit status " +
-               std::to_string(code) + ")";
-    }
-    fs::rename(partial, target, ec);
-    if (ec) return target.string() + ": cannot move the download into place: " + ec.message();
-    return std::nullopt;
+    if (commandAvailable("curl")) command = "curl -fsSL --retry 2 -o ";
+    else if (commandAvailable("wget")) command = "wget -q -O ";
+    else throw Error("neither curl nor wget is installed");
+    writeAtomically(target, [&](const fs::path& tmp) {
+        const int status = std::system((command + shellQuote(tmp.string()) + " " + shellQuote(url)).c_str());
+        if (status != 0) {
+            const int code = WIFEXITED(status) ? WEXITSTATUS(status) : status;
+            throw Error("download of " + url + " failed (" + command.substr(0, command.find(' ')) + " exit status " +
+                        std::to_string(code) + ")");
+        }
+        if (accept) accept(tmp);
+    });
 }
 
 // The dataset's files are all there: hold them to the catalog.
@@ -79,28 +74,30 @@ DatasetCheck checkDataset(const DatasetInfo& info, const fs::path& dataDir, bool
     const std::string absent = !rawThere ? raw.string() : header.string();
     if (!download) return {DatasetState::Missing, absent + ": not there (published at " + info.url + ")"};
 
-    std::error_code ec;
-    fs::create_directories(raw.parent_path(), ec);
-    if (ec) return {DatasetState::Missing, raw.parent_path().string() + ": cannot create: " + ec.message()};
-    if (!headerThere) {
+    if (!headerThere) {  // writeAtomically makes the folders it needs
         if (info.headerUrl.empty()) return {DatasetState::Missing, absent + ": not there, and no header_url"};
-        if (auto failure = fetchUrl(info.headerUrl, header)) return {DatasetState::Missing, *failure};
+        try {
+            fetch(info.headerUrl, header);
+        } catch (const Error& e) {
+            return {DatasetState::Missing, e.what()};
+        }
     }
     if (rawThere) return checkPresent(info, dataDir);
 
     // Checked under its temporary name, so that a wrong download never sits where data is looked for.
-    DatasetInfo fetched = info;
-    fetched.file = fs::path(info.file).replace_filename("." + raw.filename().string() + ".check").string();
-    const fs::path checkedName = dataDir / fetched.file;
-    if (auto failure = fetchUrl(info.url, checkedName)) return {DatasetState::Missing, *failure};
-    DatasetCheck check = checkPresent(fetched, dataDir);
-    if (check.state == DatasetState::Mismatch) {
-        fs::remove(checkedName, ec);
-        return {DatasetState::Mismatch, "downloaded from " + info.url + " but it is not the catalog's file: " +
-                                            check.detail + " (removed)"};
+    DatasetCheck check{DatasetState::Missing, ""};
+    try {
+        fetch(info.url, raw, [&](const fs::path& tmp) {
+            DatasetInfo fetched = info;
+            fetched.file = tmp.lexically_relative(dataDir).string();
+            check = checkPresent(fetched, dataDir);
+            if (check.state == DatasetState::Mismatch)
+                throw Error("downloaded from " + info.url + " but it is not the catalog's file: " + check.detail +
+                            " (removed)");
+        });
+    } catch (const Error& e) {
+        return {check.state == DatasetState::Mismatch ? DatasetState::Mismatch : DatasetState::Missing, e.what()};
     }
-    fs::rename(checkedName, raw, ec);
-    if (ec) return {DatasetState::Missing, raw.string() + ": cannot move the download into place: " + ec.message()};
     const std::string verdict = check.state == DatasetState::Verified ? "SHA-512 matches the catalog" : check.detail;
     return {DatasetState::Downloaded, raw.string() + " from " + info.url + "; " + verdict};
 }

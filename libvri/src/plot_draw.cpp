@@ -33,7 +33,7 @@ void writePlotScript(const PlotSpec& spec, const fs::path& png) {
 
 void drawPlot(const PlotSpec& spec, const fs::path& png) {
     requirePngPath(png);
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    if (!commandAvailable("gnuplot"))
         throw Error("gnuplot is not installed (Debian: apt-get install gnuplot-nox); nothing was written");
     const fs::path script = besidePng(png, ".gp"), svg = besidePng(png, ".svg");
     const std::string text = gnuplotScript(spec, script, png.filename().string(), svg.filename().string());

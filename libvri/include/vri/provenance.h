@@ -22,6 +22,9 @@ nlohmann::json commandLine(int argc, char** argv);
 // specially, else in single quotes.
 std::string shellQuote(std::string_view word);
 
+// Whether the shell finds `name` as a command (gnuplot, curl, ...).
+bool commandAvailable(const std::string& name);
+
 // Now, UTC, ISO 8601 to the second: "2025-01-31T23:59:59Z".
 std::string utcTimestamp();
 
