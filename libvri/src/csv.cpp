@@ -7,6 +7,19 @@
 
 namespace vri {
 
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
+std::string csvLine(const std::vector<std::string>& fields) {
+    std::string line;
+    for (std::size_t i = 0; i < fields.size(); ++i) line.append(i ? "," : "").append(csvField(fields[i]));
+    return line + "\n";
+}
+
 std::vector<std::string> splitCsvLine(const std::string& line) {
     std::vector<std::string> fields(1);
     bool quoted = false;

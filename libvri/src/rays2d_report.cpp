@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vri/csv.h"
 #include "vri/error.h"
 #include "vri/format.h"
 
@@ -10,13 +11,11 @@ namespace vri {
 
 namespace {
 
+// A CSV file built line by line, header first.
 class CsvWriter {
 public:
     explicit CsvWriter(const std::vector<std::string>& header) { row(header); }
-    void row(const std::vector<std::string>& cells) {
-        for (std::size_t i = 0; i < cells.size(); ++i) text_ += (i ? "," : "") + cells[i];
-        text_ += '\n';
-    }
+    void row(const std::vector<std::string>& cells) { text_ += csvLine(cells); }
     const std::string& text() const { return text_; }
 
 private:

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "vri/csv.h"
 #include "vri/error.h"
 
 namespace vri {
@@ -25,14 +26,6 @@ std::string markdownCell(const std::string& text) {
         escaped += c == '\n' ? ' ' : c;
     }
     return escaped;
-}
-
-// RFC 4180: quoted when it holds a comma, quote or line break; quotes doubled.
-std::string csvField(const std::string& text) {
-    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-    std::string quoted = "\"";
-    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
 }
 
 void requireConsistent(const Table& table) {

@@ -1,12 +1,16 @@
 #pragma once
-// Reading the CSV files the tools write (a header line, then rows); fields may be quoted as
-// RFC 4180 says.
+// The CSV files the tools write and read: a header line, then rows; fields quoted as RFC 4180 says.
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace vri {
+
+// A field as written: quoted when it holds a comma, quote or line break, quotes doubled.
+std::string csvField(const std::string& text);
+// One line of fields, with its newline.
+std::string csvLine(const std::vector<std::string>& fields);
 
 std::vector<std::string> splitCsvLine(const std::string& line);
 
