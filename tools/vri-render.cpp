@@ -166,9 +166,8 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
                                  {"camera", vri::toJson(cam)},
                                  {"options", vri::toJson(options)},
                                  {"stats", vri::toJson(stats)}};
-        if (repeat > 1)
-            record["timing"] = {{"repeats", repeat}, {"wall_seconds", wallSeconds},
-                                {"median_wall_seconds", vri::median(wallSeconds)}};
+        const double medianSeconds = vri::median(wallSeconds);
+        record["timing"] = {{"repeats", repeat}, {"wall_seconds", wallSeconds}, {"median_wall_seconds", medianSeconds}};
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},
                                       {"vri:scene", record["scene"].dump()}});
@@ -176,7 +175,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
         if (!quiet)
             std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated
-                      << " samples in " << (repeat > 1 ? vri::median(wallSeconds) : stats.seconds) << " s"
+                      << " samples in " << medianSeconds << " s"
                       << (repeat > 1 ? " (median of " + std::to_string(repeat) + ")" : "") << " on " << stats.threads
                       << " threads\n";
         return vri::kExitOk;
