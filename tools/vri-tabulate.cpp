@@ -16,10 +16,12 @@ constexpr const char* kTool = "vri-tabulate";
 
 struct Options {
     std::string layout;
-    std::string markdown, csv, title, rowHeader = "Method";
+    std::string markdown, csv, title;
+    std::optional<std::string> rowHeader;
     std::optional<int> precision;
     std::vector<double> thresholds;
-    std::vector<std::vector<std::string>> rows, cells, columnValues, columnPrecisions;
+    std::optional<double> threshold;
+    std::vector<std::vector<std::string>> rows, cells, columnValues, columnPrecisions, runs;
     std::string value;
 };
 
@@ -28,20 +30,50 @@ std::vector<std::filesystem::path> paths(std::vector<std::string>::const_iterato
     return {first, last};
 }
 
+// CLI11 lets the last use of an option that takes several words fall short of them.
+void requireWords(const std::vector<std::vector<std::string>>& uses, std::size_t words, const char* usage) {
+    for (const auto& use : uses)
+        if (use.size() != words) throw vri::Error(usage);
+}
+
+// An option that one layout alone takes is a mistake with another.
+void requireLayoutOptions(const Options& options) {
+    const struct {
+        const char* option;
+        const char* layout;
+        bool given;
+    } owned[] = {
+        {"--row", "thresholds", !options.rows.empty()},
+        {"--thresholds", "thresholds", !options.thresholds.empty()},
+        {"--cell", "matrix", !options.cells.empty()},
+        {"--value", "matrix", !options.value.empty()},
+        {"--column-value", "matrix", !options.columnValues.empty()},
+        {"--column-precision", "matrix", !options.columnPrecisions.empty()},
+        {"--run", "tradeoff", !options.runs.empty()},
+        {"--threshold", "tradeoff", options.threshold.has_value()},
+    };
+    for (const auto& o : owned)
+        if (o.given && options.layout != o.layout)
+            throw vri::Error(std::string(o.option) + " belongs to --layout " + o.layout);
+}
+
 vri::Table buildTable(const Options& options) {
+    requireLayoutOptions(options);
     if (options.layout == "thresholds") {
         if (options.rows.empty()) throw vri::Error("--layout thresholds needs --row LABEL FILE...");
-        if (!options.cells.empty() || !options.value.empty() || !options.columnValues.empty() ||
-            !options.columnPrecisions.empty())
-            throw vri::Error("--cell, --value, --column-value and --column-precision belong to --layout matrix");
         std::vector<vri::ThresholdRow> rows;
         for (const auto& row : options.rows) rows.push_back({row[0], paths(row.begin() + 1, row.end())});
         return vri::thresholdTable(rows, options.thresholds, options.precision.value_or(4));
     }
+    if (options.layout == "tradeoff") {
+        if (options.runs.empty()) throw vri::Error("--layout tradeoff needs --run LABEL STATS DIFF");
+        requireWords(options.runs, 3, "--run needs LABEL STATS DIFF");
+        std::vector<vri::TradeoffRow> rows;
+        for (const auto& run : options.runs) rows.push_back({run[0], run[1], run[2]});
+        return vri::tradeoffTable(rows, options.threshold.value_or(0.001), options.precision.value_or(4));
+    }
     if (options.cells.empty() || options.value.empty())
         throw vri::Error("--layout matrix needs --value EXPR and --cell ROW COLUMN FILE...");
-    if (!options.rows.empty() || !options.thresholds.empty())
-        throw vri::Error("--row and --thresholds belong to --layout thresholds");
     std::vector<vri::MatrixCell> cells;
     for (const auto& cell : options.cells) {
         if (cell.size() < 3) throw vri::Error("--cell needs ROW COLUMN FILE...");
@@ -50,6 +82,8 @@ vri::Table buildTable(const Options& options) {
     vri::MatrixOptions matrix;
     matrix.value = options.value;
     matrix.precision = options.precision.value_or(2);
+    requireWords(options.columnValues, 2, "--column-value needs COLUMN EXPR");
+    requireWords(options.columnPrecisions, 2, "--column-precision needs COLUMN N");
     for (const auto& pair : options.columnValues) matrix.columnValue[pair[0]] = pair[1];
     for (const auto& pair : options.columnPrecisions) {
         const std::string& decimals = pair[1];
@@ -67,14 +101,17 @@ int run(int argc, char** argv) {
                  kTool};
     app.add_option("--layout", options.layout,
                    "thresholds: % of rays above each threshold per channel (paper B Tables I, II, VI); "
-                   "matrix: one value per row and column (Tables III-V)")
+                   "matrix: one value per row and column (Tables III-V); "
+                   "tradeoff: per run its seconds per frame against its errors, with the Pareto front flagged")
         ->required()
-        ->check(CLI::IsMember({"thresholds", "matrix"}));
+        ->check(CLI::IsMember({"thresholds", "matrix", "tradeoff"}));
     app.add_option("-o,--output", options.markdown, "Markdown table ('-' for stdout)")->required();
     app.add_option("--csv", options.csv, "also write the table as CSV");
     app.add_option("--title", options.title, "caption printed above the Markdown table");
-    app.add_option("--row-header", options.rowHeader, "heading of the label column")->capture_default_str();
-    app.add_option("--precision", options.precision, "decimals (default: 4 for thresholds, 2 for matrix)")
+    app.add_option("--row-header", options.rowHeader,
+                   "heading of the label column (default: Method; run for tradeoff)");
+    app.add_option("--precision", options.precision,
+                   "decimals (default: 4 for thresholds and tradeoff's % columns, 2 for matrix)")
         ->check(CLI::Range(0, 17));
     app.add_option("--row", options.rows, "thresholds: LABEL FILE [FILE...]; one vri-diff JSON for all thresholds, "
                                           "or one per threshold in threshold order")
@@ -89,6 +126,11 @@ int run(int argc, char** argv) {
         ->expected(2);
     app.add_option("--column-precision", options.columnPrecisions, "matrix: COLUMN N, other decimals for one column")
         ->expected(2);
+    app.add_option("--run", options.runs, "tradeoff: LABEL STATS DIFF, one row: the run's vri-render stats "
+                                          "(timing.median_wall_seconds) and its vri-diff JSON against the reference")
+        ->expected(3);
+    app.add_option("--threshold", options.threshold, "tradeoff: the error threshold of the % columns (default 0.001); "
+                                                     "one of those the diffs counted");
     app.footer(
         "Labels may hold spaces (quote them). Markdown and CSV are written atomically; the Markdown ends with\n"
         "notes saying what the numbers are and, for medians, of how many runs.\n"
@@ -102,12 +144,15 @@ int run(int argc, char** argv) {
         "      --cell 'Riemann h = 0.5' Bonsai run1.json run2.json run3.json \\\n"
         "      --cell 'Riemann h = 0.5' BluntFin run1b.json run2b.json run3b.json -o table3.md\n"
         "  vri-tabulate --layout matrix --value stats.wall_seconds --column-value 'GPU (fps)' 1/stats.wall_seconds \\\n"
-        "      --column-precision 'GPU (fps)' 0 --cell Coupled 'CPU (s)' cpu.json --cell Coupled 'GPU (fps)' gpu.json -o -");
+        "      --column-precision 'GPU (fps)' 0 --cell Coupled 'CPU (s)' cpu.json --cell Coupled 'GPU (fps)' gpu.json -o -\n"
+        "  vri-tabulate --layout tradeoff --threshold 0.001 --title 'Bonsai: seconds per frame against error' \\\n"
+        "      --run riemann-h0.5 riemann-h0.5.json vs-exact-riemann-h0.5.json \\\n"
+        "      --run simpson-e0.001 simpson-e0.001.json vs-exact-simpson-e0.001.json -o tradeoff.md --csv tradeoff.csv");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     vri::Table table = buildTable(options);
     table.title = options.title;
-    table.rowHeader = options.rowHeader;
+    if (options.rowHeader) table.rowHeader = *options.rowHeader;
     const std::string markdown = vri::toMarkdown(table);
     const std::string csv = options.csv.empty() ? std::string() : vri::toCsv(table);
     if (!options.csv.empty()) vri::writeTextFile(options.csv, csv);

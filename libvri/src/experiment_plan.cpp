@@ -112,12 +112,15 @@ void Planner::addCommand(const CommandSpec& command) {
 
 void Planner::addTable(const TableSpec& table) {
     Step step{"table-" + table.name, "table", "vri-tabulate", {}, {}, {}, {{"table", table.name}}};
-    if (!table.comparisons.empty()) {
-        step.arguments = {"--layout", "thresholds", "--title", table.title};
+    if (table.layout != "matrix") {
+        const bool tradeoff = table.layout == "tradeoff";
+        step.arguments = {"--layout", table.layout, "--title", table.title};
+        if (tradeoff) step.arguments.insert(step.arguments.end(), {"--threshold", table.threshold});
         for (const std::string& group : table.comparisons)
             for (const ComparisonSpec& c : experiment_.comparisons)
                 if (c.group == group) {
-                    step.arguments.insert(step.arguments.end(), {"--row", c.run});
+                    step.arguments.insert(step.arguments.end(), {tradeoff ? "--run" : "--row", c.run});
+                    if (tradeoff) input(step, "", result(c.run + ".json"));  // its time: the run's stats
                     input(step, "", result(c.id + ".json"));
                 }
     } else {

@@ -441,7 +441,8 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
 
 void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "tables")) {
-        yaml::requireKeys(entry, source_, {"title", "comparisons", "runs", "value", "column", "group_by", "precision"});
+        yaml::requireKeys(entry, source_, {"title", "layout", "comparisons", "runs", "value", "column", "group_by",
+                                           "threshold", "precision"});
         TableSpec table;
         table.name = table.title = name;
         if (entry["value"]) table.value = text(entry["value"], "value");
@@ -471,8 +472,38 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
                 for (const RunSpec& run : experiment.runs)
                     if (!run.reference) table.runs.push_back(run.id);
         }
-        if (table.comparisons.empty() == table.runs.empty())
-            throw Error(at(entry) + ": table '" + name + "' needs either comparisons (a threshold table) or runs (a table of values)");
+        if (const YAML::Node l = entry["layout"]) {
+            table.layout = text(l, "layout");
+            if (table.layout != "thresholds" && table.layout != "matrix" && table.layout != "tradeoff")
+                throw Error(at(l) + ": layout must be thresholds, matrix or tradeoff, got '" + table.layout + "'");
+            const bool matrix = table.layout == "matrix";
+            if (table.comparisons.empty() != matrix || table.runs.empty() == matrix)
+                throw Error(at(l) + ": layout " + table.layout +
+                            (matrix ? " takes runs, not comparisons" : " takes comparisons, not runs"));
+        } else {
+            if (table.comparisons.empty() == table.runs.empty())
+                throw Error(at(entry) + ": table '" + name + "' needs either comparisons (a threshold table) or runs (a table of values)");
+            table.layout = table.comparisons.empty() ? "matrix" : "thresholds";
+        }
+        for (const char* key : {"value", "column"})
+            if (entry[key] && table.layout != "matrix")
+                throw Error(at(entry[key]) + ": " + key + " applies to a table of values (runs)");
+        if (const YAML::Node t = entry["threshold"]) {
+            if (table.layout != "tradeoff") throw Error(at(t) + ": threshold applies to layout tradeoff");
+            table.threshold = number(t, "threshold");
+            nonNegativeNumber(table.threshold, at(t) + ": threshold");
+        }
+        if (table.layout == "tradeoff")  // vri-diff counts only the thresholds it is given
+            for (const std::string& group : table.comparisons) {
+                const auto& thresholds = std::find_if(experiment.comparisons.begin(), experiment.comparisons.end(),
+                                                      [&](auto& x) { return x.group == group; })->thresholds;
+                std::string counted;
+                for (const std::string& t : thresholds) counted += (counted.empty() ? "" : ", ") + t;
+                if (std::none_of(thresholds.begin(), thresholds.end(),
+                                 [&](const std::string& t) { return std::stod(t) == std::stod(table.threshold); }))
+                    throw Error(at(entry["threshold"] ? entry["threshold"] : entry) + ": threshold " + table.threshold +
+                                " is not one that comparison '" + group + "' counts (" + counted + ")");
+            }
         experiment.tables.push_back(std::move(table));
     }
 }

@@ -1,10 +1,10 @@
 // Writing the gnuplot script of a figure, with the Pareto front it may mark and its heatmaps' grids.
 #include <algorithm>
-#include <cmath>
 
 #include "plot_csv.h"
 #include "vri/csv.h"
 #include "vri/format.h"
+#include "vri/pareto.h"
 #include "vri/plot.h"
 
 namespace vri {
@@ -133,7 +133,17 @@ std::string heatmapBlock(const PlotSeries& series, std::size_t panel, std::size_
     return out + "EOD\n";
 }
 
-// The panel's points from every series of points or lines, for its Pareto front.
+// Each point's text from the series' labels column, right of and above the point, clear of its
+// marker; the rows that `where` leaves out get none.
+std::string labelsClause(const PlotSeries& series) {
+    const std::string colour = series.color.empty() ? "" : " tc rgb " + quoted(series.color);
+    return "using " + std::to_string(series.xColumn) + ":" + yExpression(series) + ":(strcol(" +
+           std::to_string(series.labelColumn) + ")) with labels left offset char 0.5,0.5 font ',8'" + colour +
+           " notitle";
+}
+
+// The panel's points from every series of points or lines, for its Pareto front: the points drawn,
+// so not the rows that a series' `where` leaves out.
 std::vector<std::pair<double, double>> panelPoints(const PlotPanel& panel) {
     std::vector<std::pair<double, double>> points;
     for (const PlotSeries& series : panel.series) {
@@ -141,6 +151,11 @@ std::vector<std::pair<double, double>> panelPoints(const PlotPanel& panel) {
         for (const auto& row : readCsv(series.file).rows) {
             const std::size_t xi = series.xColumn - 1, yi = series.yColumn - 1;
             if (xi >= row.size() || yi >= row.size()) continue;
+            const bool kept = std::all_of(series.where.begin(), series.where.end(), [&](const auto& condition) {
+                const std::size_t column = condition.first - 1;
+                return column < row.size() && row[column] == condition.second;
+            });
+            if (!kept) continue;
             const auto x = parseNumber(row[xi]), y = parseNumber(row[yi]);
             if (x && y) points.emplace_back(*x, *y);
         }
@@ -149,18 +164,6 @@ std::vector<std::pair<double, double>> panelPoints(const PlotPanel& panel) {
 }
 
 }  // namespace
-
-std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>>& points) {
-    std::vector<std::size_t> order;
-    for (std::size_t i = 0; i < points.size(); ++i)
-        if (std::isfinite(points[i].first) && std::isfinite(points[i].second)) order.push_back(i);
-    // By x, then y: a point is on the front when its y is below every y before it.
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return points[a] < points[b]; });
-    std::vector<std::size_t> front;
-    for (std::size_t i : order)
-        if (front.empty() || points[i].second < points[front.back()].second) front.push_back(i);
-    return front;
-}
 
 std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, const std::string& pngName,
                           const std::string& svgName) {
@@ -184,9 +187,13 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
             if (panel.series[s].style == "heatmap") out += heatmapBlock(panel.series[s], p, s, scriptDir);
         if (!panel.pareto) continue;
         const auto points = panelPoints(panel);
+        const auto front = paretoFront(points);
         out += "$pareto" + std::to_string(p + 1) + " << EOD\n";
-        for (std::size_t i : paretoFront(points))
-            out.append(exactNumber(points[i].first)).append(",").append(exactNumber(points[i].second)).append("\n");
+        for (std::size_t k = 0; k < front.size(); ++k) {
+            const auto& [x, y] = points[front[k]];
+            if (k == 0 || points[front[k]] != points[front[k - 1]])  // equal points are one vertex of the line
+                out += exactNumber(x) + "," + exactNumber(y) + "\n";
+        }
         out += "EOD\n";
     }
     const std::string size = std::to_string(spec.width) + "," + std::to_string(spec.height);
@@ -208,8 +215,10 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
             const PlotSeries& series = panel.series[s];
             // A heatmap is keyed by its colour bar, not in the legend.
             const std::string title = series.style == "heatmap" || series.label.empty() ? "notitle" : "title " + quoted(series.label);
-            out += (s == 0 ? "" : ", \\\n         ") + dataSource(series, p, s, scriptDir) + " " + usingClause(series) +
-                   " " + styleClause(series) + " " + title;
+            const std::string source = dataSource(series, p, s, scriptDir);
+            out += (s == 0 ? "" : ", \\\n         ") + source + " " + usingClause(series) + " " + styleClause(series) +
+                   " " + title;
+            if (series.labelColumn != 0) out += ", \\\n         " + source + " " + labelsClause(series);
         }
         if (panel.pareto)
             out += ", \\\n         $pareto" + std::to_string(p + 1) +

@@ -37,6 +37,7 @@ constexpr std::pair<const char*, const char*> kStyleOnlyKeys[] = {
     {"color", "line, dashed, dotted, points, linespoints, histogram, segments"},
     {"label", "line, dashed, dotted, points, linespoints, histogram, segments"},
     {"where", "line, dashed, dotted, points, linespoints, segments"},
+    {"labels", "line, dashed, dotted, points, linespoints"},
 };
 
 int toPositiveInt(const YAML::Node& node, const SpecSource& src, const std::string& what, int most) {
@@ -141,6 +142,7 @@ void findColumns(PlotSeries& series, const YAML::Node& node, const SpecSource& s
     }
     series.x = yaml::toString(node["x"], src.name, what + ".x");
     series.xColumn = column("x");
+    if (node["labels"]) series.labelColumn = column("labels");
     if (series.style == "segments") {
         series.x2Column = column("x2");
         series.y2Column = column("y2");
@@ -166,7 +168,8 @@ void findColumns(PlotSeries& series, const YAML::Node& node, const SpecSource& s
 PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std::string& what) {
     yaml::requireMap(node, src.name, what);
     yaml::requireKeys(node, src.name,
-                      {"file", "x", "y", "z", "x2", "y2", "style", "label", "color", "width", "size", "point", "where"});
+                      {"file", "x", "y", "z", "x2", "y2", "style", "label", "color", "width", "size", "point", "where",
+                       "labels"});
     PlotSeries series;
     if (node["style"]) series.style = toChoice(node["style"], src, what + ".style", kPlotStyles);
     requireStyleKeys(node, src, what, series.style);

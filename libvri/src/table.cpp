@@ -11,10 +11,12 @@ namespace vri {
 
 namespace {
 
-std::string formatNumber(const std::optional<double>& value, int precision, const char* missing) {
+std::string formatNumber(const Table& table, std::size_t column, const std::optional<double>& value,
+                         const char* missing) {
     if (!value) return missing;
+    const bool significant = !table.significant.empty() && table.significant[column];
     char text[64];
-    std::snprintf(text, sizeof text, "%.*f", precision, *value);
+    std::snprintf(text, sizeof text, significant ? "%.*g" : "%.*f", table.precision[column], *value);
     return text;
 }
 
@@ -29,7 +31,8 @@ std::string markdownCell(const std::string& text) {
 }
 
 void requireConsistent(const Table& table) {
-    if (table.cells.size() != table.rows.size() || table.precision.size() != table.columns.size())
+    if (table.cells.size() != table.rows.size() || table.precision.size() != table.columns.size() ||
+        (!table.significant.empty() && table.significant.size() != table.columns.size()))
         throw Error("table '" + table.title + "': rows, columns and cells disagree in size");
     for (const auto& row : table.cells)
         if (row.size() != table.columns.size())
@@ -50,7 +53,7 @@ std::string toMarkdown(const Table& table) {
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         out += "| " + markdownCell(table.rows[r]) + " |";
         for (std::size_t c = 0; c < table.columns.size(); ++c)
-            out.append(" ").append(formatNumber(table.cells[r][c], table.precision[c], "-")).append(" |");
+            out.append(" ").append(formatNumber(table, c, table.cells[r][c], "-")).append(" |");
         out += "\n";
     }
     if (!table.notes.empty()) out += "\n";
@@ -66,7 +69,7 @@ std::string toCsv(const Table& table) {
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         out += csvField(table.rows[r]);
         for (std::size_t c = 0; c < table.columns.size(); ++c)
-            out.append(",").append(formatNumber(table.cells[r][c], table.precision[c], ""));
+            out.append(",").append(formatNumber(table, c, table.cells[r][c], ""));
         out += "\n";
     }
     return out;

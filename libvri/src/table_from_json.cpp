@@ -1,4 +1,5 @@
-// Building the papers' tables from the JSON that vri-diff and vri-render write.
+// Building the papers' tables, and the speed-against-accuracy table, from the JSON that vri-diff and
+// vri-render write.
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -9,6 +10,7 @@
 
 #include "vri/error.h"
 #include "vri/json_file.h"
+#include "vri/pareto.h"
 #include "vri/table.h"
 
 namespace vri {
@@ -180,6 +182,71 @@ Table matrixTable(const std::vector<MatrixCell>& cells, const MatrixOptions& opt
     }
     table.notes.push_back(values + ".");
     if (const std::string note = medianNote(fewest, most); !note.empty()) table.notes.push_back(note);
+    return table;
+}
+
+Table tradeoffTable(const std::vector<TradeoffRow>& rows, double threshold, int precision) {
+    if (rows.empty()) throw Error("a tradeoff table needs at least one row");
+    const fs::path& first = rows.front().diff;
+    const std::vector<std::string> channels = channelNames(readJsonFile(first), first);
+    if (channels.empty()) throw Error(first.string() + ": has no channels");
+    const std::string above = " > " + formatThreshold(threshold);
+    constexpr int kDigits = 4;  // significant digits of times and maximum errors
+
+    Table table;
+    table.rowHeader = "run";
+    auto addColumn = [&](const std::string& name, int digits, bool significant) {
+        table.columns.push_back(name);
+        table.precision.push_back(digits);
+        table.significant.push_back(significant);
+    };
+    addColumn("seconds", kDigits, true);
+    for (const std::string& channel : channels) addColumn(channel + above, precision, false);
+    addColumn("worst" + above, precision, false);
+    for (const std::string& channel : channels) addColumn("max " + channel, kDigits, true);
+    addColumn("max", kDigits, true);
+    addColumn("pareto %", 0, false);
+    addColumn("pareto max", 0, false);
+
+    std::vector<std::pair<double, double>> byPercent, byMax;  // (seconds, error) per row
+    for (const TradeoffRow& row : rows) {
+        const json diff = readJsonFile(row.diff);
+        if (channelNames(diff, row.diff) != channels)
+            throw Error(row.diff.string() + ": its channels differ from those of " + first.string());
+        const double seconds = numberAt(readJsonFile(row.stats), "timing.median_wall_seconds", row.stats);
+        table.rows.push_back(row.label);
+        auto& cells = table.cells.emplace_back();
+        cells.push_back(seconds);
+        double worstPercent = 0, worstMax = 0;
+        for (std::size_t c = 0; c < channels.size(); ++c) {
+            cells.push_back(percentAbove(diff, c, threshold, row.diff));
+            worstPercent = std::max(worstPercent, *cells.back());
+        }
+        cells.push_back(worstPercent);
+        for (std::size_t c = 0; c < channels.size(); ++c) {
+            cells.push_back(numberAt(diff, "channels." + std::to_string(c) + ".max_abs", row.diff));
+            worstMax = std::max(worstMax, *cells.back());
+        }
+        cells.push_back(worstMax);
+        byPercent.emplace_back(seconds, worstPercent);
+        byMax.emplace_back(seconds, worstMax);
+    }
+    std::vector<double> onPercent(rows.size(), 0), onMax(rows.size(), 0);
+    for (std::size_t r : paretoFront(byPercent)) onPercent[r] = 1;
+    for (std::size_t r : paretoFront(byMax)) onMax[r] = 1;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        table.cells[r].push_back(onPercent[r]);
+        table.cells[r].push_back(onMax[r]);
+    }
+
+    table.notes.push_back("seconds: median wall time per frame (the run's timing.median_wall_seconds).");
+    table.notes.push_back(channels.front() + above + " ... worst" + above +
+                          ": % of rays (all pixels, background included) whose absolute error exceeds " +
+                          formatThreshold(threshold) + ", per channel and in the worst channel; max " +
+                          channels.front() + " ... max: the largest absolute error, per channel and over all.");
+    table.notes.push_back("pareto % (pareto max): 1 on the Pareto front of seconds against worst" + above +
+                          " (against max), where no other row is at least as fast and as accurate and better in one; "
+                          "an infinite error is never on it.");
     return table;
 }
 

@@ -1,7 +1,6 @@
 // Figure specs and the gnuplot scripts made from them; a real PNG and SVG when gnuplot is installed.
 #include <doctest/doctest.h>
 
-#include <cmath>
 #include <cstdlib>
 #include <fstream>
 
@@ -25,12 +24,6 @@ std::string errorOf(const std::string& spec, const std::filesystem::path& base) 
 }
 
 }  // namespace
-
-TEST_CASE("plot: Pareto front in (x, y) minimisation") {
-    const std::vector<std::pair<double, double>> points = {{1, 5}, {2, 3}, {3, 4}, {4, 1}, {2, 3}, {0.5, std::nan("")}, {5, 1}};
-    CHECK(paretoFront(points) == std::vector<std::size_t>{0, 1, 3});
-    CHECK(paretoFront({}).empty());
-}
 
 TEST_CASE("plot: spec errors point at file, line and column") {
     test::TempDir dir("plot");
@@ -101,6 +94,37 @@ TEST_CASE("plot: the gnuplot script") {
     std::size_t entries = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dir / "out")) entries += !entry.path().empty();
     CHECK(entries == 3);  // no temporary file left behind
+}
+
+TEST_CASE("plot: speed against accuracy, each point labelled with its run, the front of the points drawn") {
+    test::TempDir dir("plot");
+    writeFile(dir / "t.csv", "run,seconds,max,pareto max,scene\n"
+                             "r1,1,0.5,1,a\nr2,2,0.1,1,a\nr3,3,0.2,0,a\nfast,0.5,0.01,1,b\n");
+    const PlotSpec spec = parsePlotSpec(
+        "pareto: true\n"
+        "series:\n"
+        "  - {file: t.csv, x: seconds, y: max, style: points, labels: run, color: \"#1f77b4\", where: {scene: a}}\n"
+        "  - {file: t.csv, x: seconds, y: max, style: points, label: front, where: {scene: a, pareto max: 1}}\n",
+        "fig.yaml", dir.path);
+    CHECK(spec.panels[0].series[0].labelColumn == 1);
+    CHECK(spec.panels[0].series[1].labelColumn == 0);
+    const std::string script = gnuplotScript(spec, dir / "fig.gp", "fig.png", "fig.svg");
+    auto has = [&](const std::string& text) {
+        INFO(text);
+        CHECK(script.find(text) != std::string::npos);
+    };
+    // Scene b's point is not drawn, so it is not on the front; a point in both series is one vertex.
+    has("$pareto1 << EOD\n1,0.5\n2,0.1\nEOD\n");
+    has("plot 't.csv' skip 1 using 2:(strcol(5) eq 'a' ? $3 : NaN) with points pt 7 ps 0.8 lc rgb '#1f77b4' title 'max', "
+        "\\\n         't.csv' skip 1 using 2:(strcol(5) eq 'a' ? $3 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 "
+        "font ',8' tc rgb '#1f77b4' notitle, \\\n");
+
+    CHECK(errorOf("series:\n  - {file: t.csv, x: seconds, y: max, labels: name}\n", dir.path) ==
+          "fig.yaml:2:47: column 'name' is not in " + (dir / "t.csv").string() +
+              " (it has: run, seconds, max, pareto max, scene)");
+    CHECK(errorOf("series:\n  - {file: t.csv, x: seconds, y: max, x2: seconds, y2: max, style: segments, labels: run}\n",
+                  dir.path) ==
+          "fig.yaml:2:86: series[0].labels is not for style segments (only for line, dashed, dotted, points, linespoints)");
 }
 
 TEST_CASE("plot: a heatmap from a grid in any order, with its colour bar") {

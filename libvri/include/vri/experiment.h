@@ -61,14 +61,18 @@ struct CommandSpec {
     std::vector<std::pair<std::string, std::string>> outputs;  // option -> file name in results/<experiment>/
 };
 
-// A table by vri-tabulate: either the % of pixels above each threshold, one row per run of some
-// comparisons (paper B Tables I, II), or one value of each run's stats, one row per run (Table III).
+// A table by vri-tabulate, in one of its layouts: "thresholds", the % of pixels above each threshold,
+// one row per run of some comparisons (paper B Tables I, II); "matrix", one value of each run's stats,
+// one row per run (Table III); "tradeoff", per run of some comparisons its seconds per frame against
+// its errors at one threshold, the Pareto front flagged (paper B's speed against accuracy).
 struct TableSpec {
     std::string name, title;
-    std::vector<std::string> comparisons;  // ComparisonSpec::group names (threshold layout)
+    std::string layout;                    // "thresholds", "matrix" or "tradeoff"
+    std::vector<std::string> comparisons;  // ComparisonSpec::group names (thresholds and tradeoff layouts)
     std::vector<std::string> runs;         // RunSpec ids (matrix layout)
     std::string value = "stats.wall_seconds";  // matrix layout: the dotted JSON path in the stats file
     std::string column = "seconds";            // matrix layout: its column heading
+    std::string threshold = "0.001";           // tradeoff layout: as the file spells it
     std::string precision;  // decimals, "" for vri-tabulate's default
     bool byScene = false;  // matrix layout, `group_by: scene`: one column per scene, rows the runs without the scene
 };

@@ -42,6 +42,7 @@ struct PlotSeries {
     // Only the rows whose columns hold these texts (1-based column, text), for several series
     // drawn from one file: `where: {panel: eye, kind: covered}`. Not for histograms and heatmaps.
     std::vector<std::pair<int, std::string>> where;
+    int labelColumn = 0;  // 1-based: the column whose text is written beside each point (`labels:`); 0 for none
 };
 
 // How a panel with a heatmap maps values to colours.
@@ -61,7 +62,7 @@ struct PlotPanel {
     std::string title;
     PlotAxis x, y;
     std::string key = "top right";  // legend: top/bottom left/right, outside, or off
-    bool pareto = false;  // mark the points of all series not dominated in (x, y), both minimised
+    bool pareto = false;  // draw the front of the points drawn (all series, `where` applied), both minimised
     bool equalAspect = false;  // one unit as long on x as on y, so that squares look square
     PlotColorbar colorbar;     // drawn when the panel has a heatmap
     std::vector<PlotLabel> labels;
@@ -103,19 +104,20 @@ struct PlotSpec {
 //         - {file: rays.csv, x: ray, y: riemann, style: points, size: 1.5, point: square}
 //         - {file: f.csv, x: u, y: v, z: f, style: heatmap}
 //         - {file: steps.csv, x: t0, y: row, x2: t1, y2: row, style: segments, color: "#000000"}
+//         - {file: tradeoff.csv, x: seconds, y: max, style: points, labels: run, where: {"pareto max": 1}}
 //
 // A series' `width` (line width) is for line, dashed, dotted, linespoints and segments; `size` and
 // `point` (circle, square, cross, triangle) for points and linespoints; heatmaps take neither
 // `color` nor `label`. Without `label` a series is keyed by its y column; `label: ""` leaves it
 // out of the key. `where: {column: text, ...}` keeps only the rows whose columns hold those
-// texts (not for histograms and heatmaps), so one CSV can feed several series. Palettes: viridis (default), gray, diverging (blue, white, red).
+// texts (not for histograms and heatmaps), so one CSV can feed several series; gnuplot breaks a
+// line at each row left out. `labels: column` writes each point's text from that column beside it
+// (line, dashed, dotted, points, linespoints), e.g. the run of each point of vri-tabulate's tradeoff
+// table. A panel's `pareto: true` draws the Pareto front of its points, joined in order of x.
+// Palettes: viridis (default), gray, diverging (blue, white, red).
 PlotSpec loadPlotSpec(const std::filesystem::path& spec, const std::filesystem::path& dataDir = {});
 PlotSpec parsePlotSpec(const std::string& yamlText, const std::string& source, const std::filesystem::path& specDir,
                        const std::filesystem::path& dataDir = {});
-
-// Indices of the points no other point dominates (another point <= in both and < in one),
-// ordered by x; of equal points only the first. Points with a non-finite coordinate are left out.
-std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>>& points);
 
 // The gnuplot script for a figure whose script will be `scriptPath`: data paths are written
 // relative to the script's folder (the script changes into it), and it writes pngName and

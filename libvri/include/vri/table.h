@@ -18,6 +18,9 @@ struct Table {
     std::vector<std::string> rows;
     std::vector<std::vector<std::optional<double>>> cells;  // [row][column]
     std::vector<int> precision;       // decimals, per column
+    // Per column, whether its precision counts significant digits instead ("1.23e-05"): for numbers
+    // that span orders of magnitude, such as maximum errors and times. Empty: decimals everywhere.
+    std::vector<bool> significant;
     std::vector<std::string> notes;   // lines under the Markdown table: what the numbers are
 };
 
@@ -55,6 +58,21 @@ struct MatrixOptions {
 };
 // Throws vri::Error when a file lacks the value, a cell is given twice, or an override names no column.
 Table matrixTable(const std::vector<MatrixCell>& cells, const MatrixOptions& options);
+
+// Speed against accuracy (paper B's Riemann steps against adaptive tolerances): one row per compared
+// run, its time per frame from its vri-render stats and its errors against the reference from the
+// comparison's vri-diff JSON. Rows may come from several comparisons (one per method or backend).
+struct TradeoffRow {
+    std::string label;             // the run
+    std::filesystem::path stats;   // vri-render --stats: timing.median_wall_seconds
+    std::filesystem::path diff;    // vri-diff --json of the run against its reference
+};
+// Columns: "seconds"; "R > t", ... per channel and "worst > t", the largest of them: the % of rays
+// whose error exceeds `threshold` (`precision` decimals); "max R", ... and "max": the largest
+// absolute error per channel and of all; "pareto %" and "pareto max": 1 for the rows on the Pareto
+// front of seconds against "worst > t" or against "max" (see paretoFront), else 0. Throws vri::Error
+// naming the file when a diff lacks the threshold or its channels differ from the first diff's.
+Table tradeoffTable(const std::vector<TradeoffRow>& rows, double threshold, int precision = 4);
 
 // Median of a non-empty list: the middle value, or the mean of the two middle ones.
 double median(std::vector<double> values);
