@@ -1,6 +1,5 @@
 // vri-render: renders one image of a volume or analytic field with the CPU raycaster.
 #include <filesystem>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,15 +8,13 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
-#include "vri/analytic_field.h"
 #include "vri/atomic_file.h"
 #include "vri/cli.h"
-#include "vri/hash.h"
 #include "vri/image_io.h"
 #include "vri/provenance.h"
-#include "vri/raw_input_options.h"
 #include "vri/render.h"
 #include "vri/render_json.h"
+#include "vri/scene_options.h"
 #include "vri/table.h"
 
 namespace fs = std::filesystem;
@@ -33,38 +30,15 @@ int main(int argc, char** argv) {
 
 Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency.)");
 
-    std::string volumePath, field, tfPath, output, pngPath, statsPath;
-    std::string range, fieldDims = "5,5,5";
-    vri::RawInputOptions raw;
-    std::string convention = "cell", size = "800x600", eye, target, up = "0,1,0";
+    std::string output, pngPath, statsPath;
+    vri::SceneOptions sceneOptions;
     std::string method = "riemann", placement = "entry", precision = "double";
-    double fov = 30.0, rate = 0.0, step = 0.0, ert = 0.0, exposure = 1.0, zoom = 1.0;
-    std::string zoomCentre;
+    double rate = 0.0, step = 0.0, ert = 0.0, exposure = 1.0;
     std::string background = "0,0,0";
-    bool fieldAsGrid = false, noSkip = false, invert = false, quiet = false;
+    bool noSkip = false, invert = false, quiet = false;
     int threads = 0, repeat = 1;
 
-    auto* input = app.add_option_group("input", "what to render (one of)");
-    input->add_option("--volume", volumePath, "volume file: .raw, .nhdr, .dat, .vdb");
-    input->add_option("--field", field, "analytic field: linear (paper A's f = (x + 1.5) / 3)");
-    input->require_option(1);
-    raw.addTo(app);
-    app.add_option("--range", range, "raw value range lo,hi that maps to s = 0..1 (default: the type's range, "
-                                     "or min..max for float)");
-    app.add_option("--field-dims", fieldDims, "the grid an analytic field stands for, X,Y,Z")->capture_default_str();
-    app.add_flag("--field-as-grid", fieldAsGrid, "sample the analytic field onto that grid and render the grid");
-    app.add_option("--convention", convention, "grid convention: cell (texture style) or node (dim - 1)")
-        ->capture_default_str();
-    app.add_option("--tf", tfPath, "transfer function YAML")->required();
-    app.add_option("--size", size, "image size WIDTHxHEIGHT")->capture_default_str();
-    app.add_option("--eye", eye, "camera position X,Y,Z (default: in front of the box, +z)");
-    app.add_option("--target", target, "point looked at X,Y,Z (default: box centre)");
-    app.add_option("--up", up, "up vector X,Y,Z")->capture_default_str();
-    app.add_option("--fov", fov, "vertical field of view, degrees")->capture_default_str();
-    app.add_option("--zoom", zoom, "close-up: magnify the frame this many times about --zoom-centre")
-        ->capture_default_str();
-    app.add_option("--zoom-centre", zoomCentre, "the point zoomed into, X,Y in pixels of the full frame "
-                                                "(default: the image centre)");
+    sceneOptions.addTo(app);
     app.add_option("--method", method, "riemann (paper A eq. 5) or composite (opacity-corrected)")
         ->capture_default_str();
     app.add_option("--placement", placement, "eye, entry, entry-exit or entry-exit-corner (paper A)")
@@ -94,8 +68,6 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (repeat < 1) throw vri::Error("--repeat: expected a positive count, got " + std::to_string(repeat));
         if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
-        const glm::ivec2 imageSize = vri::parseSize(size, "--size");
-        const vri::GridConvention conv = vri::parseGridConvention(convention, "--convention");
         vri::RenderOptions options;
         options.integrator = vri::parseIntegrator(method, "--method");
         options.placement = vri::parsePlacement(placement, "--placement");
@@ -114,35 +86,9 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         png.background = {float(bg.x), float(bg.y), float(bg.z)};
         if (!(exposure > 0.0)) throw vri::Error("--png-exposure: must be > 0, got " + std::to_string(exposure));
 
-        nlohmann::json inputs = nlohmann::json::array();
-        std::shared_ptr<vri::Volume> volume;
-        std::optional<vri::LinearField> linear;
-        if (!volumePath.empty()) {
-            volume = std::make_shared<vri::Volume>(raw.read(volumePath));
-            inputs.push_back({{"path", volumePath}, {"sha512", vri::sha512File(volumePath)}});
-        } else {
-            if (field != "linear") throw vri::Error("--field: unknown analytic field '" + field + "' (expected linear)");
-            linear.emplace();
-            linear->dims = vri::parseDims(fieldDims, "--field-dims");
-            if (fieldAsGrid) {
-                volume = std::make_shared<vri::Volume>(vri::sampleOntoGrid(*linear, conv));
-                linear.reset();
-            }
-        }
-        if (!range.empty()) {
-            if (!volume) throw vri::Error("--range applies to volumes only");
-            const glm::dvec2 r = vri::parseRange(range, "--range");
-            volume->range = vri::ValueRange{r.x, r.y};
-        }
-        const vri::Scene scene{volume, linear, conv, vri::loadTransferFunction(tfPath)};
-        inputs.push_back({{"path", tfPath}, {"sha512", vri::sha512File(tfPath)}});
-
-        vri::CameraSpec cam = vri::framingCamera(scene.box(), imageSize.x, imageSize.y, fov);
-        if (!target.empty()) cam.target = vri::parseVec3(target, "--target");
-        if (!eye.empty()) cam.eye = vri::parseVec3(eye, "--eye");
-        cam.up = vri::parseVec3(up, "--up");
-        cam.zoom = zoom;
-        if (!zoomCentre.empty()) cam.zoomCentre = vri::parseVec2(zoomCentre, "--zoom-centre");
+        const vri::SceneSetup setup = sceneOptions.load();
+        const vri::Scene& scene = setup.scene;
+        const vri::CameraSpec& cam = setup.camera;
         const vri::Camera camera(cam);
 
         vri::RenderStats stats;
@@ -160,7 +106,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
                                  {"time_utc", vri::utcTimestamp()},
                                  {"build", vri::buildInfo()},
                                  {"machine", vri::machineInfo()},
-                                 {"inputs", inputs},
+                                 {"inputs", setup.inputs},
                                  {"scene", vri::describeScene(scene)},
                                  {"transfer_function", vri::toJson(scene.transferFunction)},
                                  {"camera", vri::toJson(cam)},

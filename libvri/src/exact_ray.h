@@ -1,0 +1,51 @@
+#pragma once
+// The emission-absorption integral along one ray whose scalar is a cubic on each piece, solved to
+// near double precision with a bound on its error (see exact_reference.h for the method).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "vri/cubic.h"
+#include "vri/transfer_function.h"
+
+namespace vri {
+
+class ExactRay {
+public:
+    // Allocates all the scratch space a ray needs: the per-ray calls allocate nothing.
+    ExactRay(const TransferFunction& tf, double tolerance);
+
+    void begin();  // starts a new ray
+    // The next piece, front to back: `length` world units over which s = cubic(sigma), sigma in
+    // [0, 1] from the piece's start to its end. `sScale` bounds the magnitudes whose rounding went
+    // into the cubic's coefficients (see the error analysis in exact_ray.cpp).
+    void addPiece(double length, const Cubic& s, double sScale);
+    // True once the transparency is below 2^-60: the rest of the ray can change the colour by at
+    // most 2^-60 times its colour (and length, for emission = colour), and alpha not at all in double.
+    bool opaque() const { return opticalDepth_ >= kOpaqueDepth; }
+    // Ends the ray, `remainingLength` world units of which were left out after opaque(): RGBA and
+    // a bound on each channel's error.
+    void finish(double remainingLength, double value[4], double bound[4]) const;
+
+    std::uint64_t subPieces = 0, quadratureIntervals = 0;  // counted over all rays
+
+private:
+    static constexpr double kOpaqueDepth = 41.588830833596716;  // 60 ln 2
+
+    struct Segment;  // one linear part of the transfer function, as polynomial data
+    void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale);
+
+    const TransferFunction& tf_;
+    EmissionModel emission_;
+    double tolerance_;
+    std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
+    std::vector<double> levels_;   // the distinct s of the TF points: where a piece is split
+    std::vector<double> splits_;   // scratch: a piece's split points in sigma
+    std::array<double, 3> maxColour_{};
+
+    // The ray so far.
+    double opticalDepth_ = 0.0, depthError_ = 0.0;
+    std::array<double, 3> colour_{}, quadratureError_{}, roundingError_{};
+};
+
+}  // namespace vri

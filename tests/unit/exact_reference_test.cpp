@@ -1,0 +1,242 @@
+// The accurate reference against closed forms (paper A's linear field, a cubic along a cell's
+// diagonal, transfer-function jumps and breakpoints inside a cell), the Riemann sum converging to it,
+// its error bound and its independence of the thread count.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <tbb/global_control.h>
+
+#include "vri/cubic.h"
+#include "vri/exact_reference.h"
+
+using namespace vri;
+using V = glm::dvec3;
+
+namespace {
+
+TransferFunction paperATransferFunction() {  // g(s) = s, tau(s) = s / 2
+    return TransferFunction({{0, 0, 0, 0, 0}, {1, 1, 1, 1, 0.5}}, EmissionModel::Colour);
+}
+
+double maxBound(const ExactReference& ref) {
+    double m = 0.0;
+    for (double b : ref.bounds) m = std::max(m, b);
+    return m;
+}
+
+// Paper A's closed form for every pixel: F = length (f(entry) + f(exit)) / 2, I = 2 (1 - exp(-F / 2)).
+void checkLinearFieldClosedForm(const Scene& scene) {
+    CameraSpec spec;
+    spec.eye = V(-4.0, 1.5, 2.5);
+    spec.target = V(0.1, -0.2, 0.0);
+    spec.fovYDegrees = 40.0;
+    spec.width = 24;
+    spec.height = 18;
+    const Camera camera(spec);
+    const ExactReference ref = renderExactReference(scene, camera);
+    const LinearField field;
+    int hit = 0;
+    for (int py = 0; py < spec.height; ++py)
+        for (int px = 0; px < spec.width; ++px) {
+            const V dir = camera.direction(px, py);
+            const auto seg = clipRay(camera.eye(), dir, field.box);
+            double colour = 0.0, alpha = 0.0;
+            if (seg && seg->tFar > seg->tNear) {
+                ++hit;
+                const double length = seg->tFar - seg->tNear;
+                const double F = length *
+                                 (field(camera.eye() + seg->tNear * dir) + field(camera.eye() + seg->tFar * dir)) / 2;
+                colour = 2.0 * (1.0 - std::exp(-F / 2));
+                alpha = 1.0 - std::exp(-F / 2);
+            }
+            const double* v = &ref.values[(static_cast<std::size_t>(py) * spec.width + px) * 4];
+            for (int c = 0; c < 3; ++c) CHECK(std::abs(v[c] - colour) < 1e-9);
+            CHECK(std::abs(v[3] - alpha) < 1e-9);
+        }
+    CHECK(hit > spec.width * spec.height / 4);
+    CHECK(maxBound(ref) < 1e-9);
+}
+
+// A 2x2x2 node-centred volume whose only non-zero voxel is (1, 1, 1) = 1: the field in the unit cube is
+// x y z, so along the diagonal from (0, 0, 0) to (1, 1, 1) it is s = lambda^3 over a length of sqrt 3.
+Scene cornerCell(TransferFunction tf) {
+    auto v = std::make_shared<Volume>(glm::ivec3(2), VoxelType::Float32);
+    v->data<float>()[7] = 1.0f;
+    v->range = ValueRange{0.0, 1.0};
+    return Scene{v, std::nullopt, GridConvention::NodeCentred, std::move(tf)};
+}
+
+// The one pixel of a ray along that diagonal.
+ExactReference diagonalRay(const Scene& scene) {
+    CameraSpec spec;
+    spec.eye = V(-1.0);
+    spec.target = V(0.5);
+    spec.width = spec.height = 1;
+    return renderExactReference(scene, Camera(spec));
+}
+
+std::shared_ptr<Volume> noisyBlob(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing) {
+    auto v = std::make_shared<Volume>(dims, type);
+    v->spacing = spacing;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> noise(0.0, 0.3);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                const V p = (V(x, y, z) + 0.5) / V(dims) - 0.5;
+                const double value = std::clamp(1.0 - 2.0 * std::sqrt(glm::dot(p, p)) + noise(rng), 0.0, 1.0);
+                const std::size_t i = v->index(x, y, z);
+                if (type == VoxelType::UInt8) v->data<std::uint8_t>()[i] = static_cast<std::uint8_t>(value * 255);
+                if (type == VoxelType::UInt16) v->data<std::uint16_t>()[i] = static_cast<std::uint16_t>(value * 65535);
+                if (type == VoxelType::Float32) v->data<float>()[i] = static_cast<float>(value);
+            }
+    return v;
+}
+
+TransferFunction blobTransferFunction() {  // invisible low values, a jump, colours changing with s
+    return TransferFunction({{0.0, 0, 0, 0, 0},
+                             {0.3, 0, 0, 0, 0},
+                             {0.5, 0.9, 0.4, 0.1, 0.4},
+                             {0.5, 0.2, 0.8, 0.3, 1.2},
+                             {1.0, 1, 1, 1, 0.6}},
+                            EmissionModel::ColourTimesExtinction);
+}
+
+Camera blobCamera(const Scene& scene) {
+    CameraSpec spec = framingCamera(scene.box(), 20, 16, 30.0);
+    spec.eye = scene.box().centre() + V(7.0, 4.0, 9.0);
+    return Camera(spec);
+}
+
+}  // namespace
+
+TEST_CASE("cubic: the trilinear interpolant along a segment is the product of the weights") {
+    std::array<double, 8> corner{};
+    corner[7] = 1.0;
+    const Cubic diagonal = trilinearAlongSegment(corner, V(0.0), V(1.0));
+    CHECK(diagonal.c == std::array<double, 4>{0.0, 0.0, 0.0, 1.0});
+
+    // Any corners and any segment: the cubic equals trilinear interpolation at every point.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int trial = 0; trial < 20; ++trial) {
+        for (double& c : corner) c = u(rng) * 100.0;
+        const V w0(u(rng), u(rng), u(rng)), w1(u(rng), u(rng), u(rng));
+        const Cubic p = trilinearAlongSegment(corner, w0, w1);
+        for (double sigma : {0.0, 0.3, 0.71, 1.0}) {
+            const V w = w0 + sigma * (w1 - w0);
+            double expected = 0.0;
+            for (int k = 0; k < 8; ++k)
+                expected += corner[k] * ((k & 1) ? w.x : 1 - w.x) * ((k & 2) ? w.y : 1 - w.y) * ((k & 4) ? w.z : 1 - w.z);
+            CHECK(p(sigma) == doctest::Approx(expected).epsilon(1e-13));
+        }
+    }
+}
+
+TEST_CASE("cubic: critical points, monotone roots to full precision and reparameterisation") {
+    const Cubic p{{0.0, 0.56, -1.5, 1.0}};  // p' = 3 x^2 - 3 x + 0.56
+    double critical[2];
+    REQUIRE(criticalPoints(p, 0.0, 1.0, critical) == 2);
+    CHECK(critical[0] == doctest::Approx((3.0 - std::sqrt(2.28)) / 6.0).epsilon(1e-15));
+    CHECK(critical[1] == doctest::Approx((3.0 + std::sqrt(2.28)) / 6.0).epsilon(1e-15));
+    CHECK(criticalPoints(p, 0.3, 0.7, critical) == 0);
+
+    const Cubic cube{{0.0, 0.0, 0.0, 1.0}};
+    const double root = solveMonotone(cube, 0.5, 0.0, 1.0);
+    CHECK(std::abs(root - std::cbrt(0.5)) <= 2e-16);
+    const Cubic falling{{1.0, -1.0, 0.0, 0.0}};
+    CHECK(solveMonotone(falling, 0.25, 0.0, 1.0) == 0.75);
+
+    const Cubic shifted = p.reparameterised(0.2, 0.5);
+    for (double y : {0.0, 0.4, 1.0}) CHECK(shifted(y) == doctest::Approx(p(0.2 + 0.5 * y)).epsilon(1e-14));
+}
+
+TEST_CASE("exact reference matches paper A's closed form on the linear field") {
+    checkLinearFieldClosedForm(Scene{nullptr, LinearField{}, GridConvention::NodeCentred, paperATransferFunction()});
+    auto grid = std::make_shared<Volume>(sampleOntoGrid(LinearField{}, GridConvention::NodeCentred));
+    checkLinearFieldClosedForm(Scene{grid, std::nullopt, GridConvention::NodeCentred, paperATransferFunction()});
+}
+
+TEST_CASE("exact reference integrates the cubic along a cell's diagonal") {
+    // Emission = colour, C = s, tau = k s with s = lambda^3, dt = sqrt 3 dlambda:
+    // depth D = sqrt 3 k / 4, I = (1 - exp(-D)) / k, alpha = 1 - exp(-D).
+    const double k = 2.0;
+    const Scene scene = cornerCell(TransferFunction({{0, 0, 0, 0, 0}, {1, 1, 1, 1, k}}, EmissionModel::Colour));
+    const ExactReference ref = diagonalRay(scene);
+    const double alpha = 1.0 - std::exp(-std::sqrt(3.0) * k / 4);
+    for (int c = 0; c < 3; ++c) CHECK(std::abs(ref.values[c] - alpha / k) < 1e-13);
+    CHECK(std::abs(ref.values[3] - alpha) < 1e-13);
+    CHECK(maxBound(ref) < 1e-12);
+}
+
+TEST_CASE("exact reference splits at transfer-function breakpoints and jumps inside a cell") {
+    // Red while s < 0.5, blue after: tau = s up to s = 0.25, then 3 s - 0.5 up to 0.5, where it
+    // jumps from 1 to 2, then 2 s + 1. With g = C tau and C constant per part, I = C (T_a - T_b).
+    const TransferFunction tf({{0.0, 1, 0, 0, 0.0},
+                               {0.25, 1, 0, 0, 0.25},
+                               {0.5, 1, 0, 0, 1.0},
+                               {0.5, 0, 0, 1, 2.0},
+                               {1.0, 0, 0, 1, 3.0}},
+                              EmissionModel::ColourTimesExtinction);
+    const double r3 = std::sqrt(3.0);
+    const double l1 = std::cbrt(0.25), l2 = std::cbrt(0.5);
+    const double d1 = r3 * std::pow(l1, 4) / 4;
+    const double d2 = d1 + r3 * (3 * (std::pow(l2, 4) - std::pow(l1, 4)) / 4 - 0.5 * (l2 - l1));
+    const double d3 = d2 + r3 * ((1 - std::pow(l2, 4)) / 2 + (1 - l2));
+    const ExactReference ref = diagonalRay(cornerCell(tf));
+    CHECK(std::abs(ref.values[0] - (1 - std::exp(-d2))) < 1e-13);
+    CHECK(ref.values[1] == 0.0);
+    CHECK(std::abs(ref.values[2] - (std::exp(-d2) - std::exp(-d3))) < 1e-13);
+    CHECK(std::abs(ref.values[3] - (1 - std::exp(-d3))) < 1e-13);
+    CHECK(maxBound(ref) < 1e-12);
+    CHECK(ref.stats.subPieces == 3);  // s crosses 0.25 and 0.5 (the jump) once each
+}
+
+TEST_CASE("Riemann sums converge to the exact reference, whose bound is tiny") {
+    for (auto [type, convention] : {std::pair{VoxelType::UInt8, GridConvention::CellCentred},
+                                    std::pair{VoxelType::UInt16, GridConvention::NodeCentred},
+                                    std::pair{VoxelType::Float32, GridConvention::CellCentred}}) {
+        CAPTURE(voxelTypeName(type));
+        const Scene scene{noisyBlob(glm::ivec3(9, 8, 7), type, V(1.0, 0.75, 1.0)), std::nullopt, convention,
+                          blobTransferFunction()};
+        const Camera camera = blobCamera(scene);
+        const ExactReference ref = renderExactReference(scene, camera);
+        CHECK(maxBound(ref) < 1e-9);
+        CHECK(ref.stats.raysHit > 0);
+        double previous = 0.0;
+        for (double step : {0.1, 0.01, 0.001}) {
+            RenderOptions opt;
+            opt.samplingRate = 1.0 / step;
+            const Image riemann = render(scene, camera, opt);
+            double error = 0.0;
+            for (std::size_t i = 0; i < riemann.pixels.size(); ++i)
+                error = std::max(error, std::abs(riemann.pixels[i] - ref.values[i]));
+            CAPTURE(step);
+            CHECK(error < 20 * step);
+            if (previous > 0.0) CHECK(error < previous / 4);  // first order, ~10x per step
+            previous = error;
+        }
+    }
+}
+
+TEST_CASE("exact reference does not depend on the thread count") {
+    const Scene scene{noisyBlob(glm::ivec3(10), VoxelType::UInt8, V(1.0)), std::nullopt, GridConvention::CellCentred,
+                      blobTransferFunction()};
+    const Camera camera = blobCamera(scene);
+    ExactReferenceOptions opt;
+    opt.tileSize = 4;
+    ExactReference one, many;
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        one = renderExactReference(scene, camera, opt);
+    }
+    many = renderExactReference(scene, camera, opt);
+    CHECK(one.values == many.values);
+    CHECK(one.bounds == many.bounds);
+    CHECK(one.stats.subPieces == many.stats.subPieces);
+}
