@@ -4,12 +4,27 @@
 
 namespace vri {
 
-std::string_view integratorName(Integrator i) { return i == Integrator::Riemann ? "riemann" : "composite"; }
+namespace {
+constexpr Integrator kIntegrators[] = {Integrator::Riemann, Integrator::Composite, Integrator::Simpson,
+                                       Integrator::Coupled, Integrator::Decoupled};
+}  // namespace
+
+std::string_view integratorName(Integrator i) {
+    switch (i) {
+    case Integrator::Riemann: return "riemann";
+    case Integrator::Composite: return "composite";
+    case Integrator::Simpson: return "simpson";
+    case Integrator::Coupled: return "coupled";
+    case Integrator::Decoupled: break;
+    }
+    return "decoupled";
+}
 
 Integrator parseIntegrator(std::string_view name, const std::string& what) {
-    if (name == "riemann") return Integrator::Riemann;
-    if (name == "composite") return Integrator::Composite;
-    throw Error(what + ": unknown method '" + std::string(name) + "' (expected riemann or composite)");
+    for (Integrator i : kIntegrators)
+        if (name == integratorName(i)) return i;
+    throw Error(what + ": unknown method '" + std::string(name) +
+                "' (expected riemann, composite, simpson, coupled or decoupled)");
 }
 
 }  // namespace vri

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/global_control.h>
@@ -36,6 +37,8 @@ namespace {
 
 struct Counters {
     std::atomic<std::uint64_t> raysHit{0}, samplesPlaced{0}, samplesEvaluated{0};
+    std::mutex adaptiveMutex;
+    AdaptiveCounts adaptive;
 };
 
 // Maps texture coordinates to the occupancy grid's voxel index space: x = u * scale - offset.
@@ -43,23 +46,130 @@ struct IndexMap {
     glm::dvec3 scale, offset;
 };
 
+// One pixel's ray inside the box, in texture coordinates.
+template <class Real>
+struct TextureRay {
+    glm::vec<3, Real> entry, exit;
+    double worldLength;
+};
+
+// Paper A's fixed-step placements, each sample standing for a segment of the ray (Riemann, composite).
+template <class Real, class Sampler>
+RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sample, const OccupancyGrid* occupancy,
+                                  const IndexMap& indexMap, const glm::vec<3, Real>& eyeU, const glm::vec<3, Real>& dims,
+                                  const TransferFunction& tf, const RenderOptions& opt, std::uint64_t& placed,
+                                  std::uint64_t& evaluated) {
+    using Vec = glm::vec<3, Real>;
+    RayAccumulator<Real> acc;
+    const Real rate = static_cast<Real>(opt.samplingRate);
+    const Real ert = static_cast<Real>(opt.earlyTermination);
+    const EmissionModel emission = tf.emission();
+    const SampleSchedule<Real> s = placeSamples<Real>(opt.placement, ray.entry, ray.exit, eyeU, dims, rate);
+    if (s.count == 0) return acc;
+    const Vec du = (ray.exit - ray.entry) / s.tEnd;
+    const Real dx = s.tIncr * static_cast<Real>(ray.worldLength / static_cast<double>(s.tEnd));
+    const OccupancyGrid::Ray indexRay(glm::dvec3(ray.entry) * indexMap.scale - indexMap.offset,
+                                      glm::dvec3(du) * indexMap.scale);
+    double knownOccupiedUntil = -std::numeric_limits<double>::infinity();
+    std::int64_t k = 0;
+    while (k < s.count) {
+        const Real t = s.t(k);
+        if (occupancy && static_cast<double>(t) >= knownOccupiedUntil) {
+            const auto brick = occupancy->visit(indexRay, static_cast<double>(t));
+            if (brick.empty) {
+                // Jump to the first sample at or past the exit, counted on the positions we
+                // evaluate; every sample skipped lies before the exit.
+                if (!(brick.tExit < static_cast<double>(s.tEnd))) {
+                    k = s.count;  // the rest of the ray is empty
+                    break;
+                }
+                auto next = static_cast<std::int64_t>(std::ceil((brick.tExit - s.tStart) / s.tIncr));
+                next = std::clamp<std::int64_t>(next, k + 1, s.count);
+                while (next > k + 1 && static_cast<double>(s.t(next - 1)) >= brick.tExit) --next;
+                k = next;
+                continue;
+            }
+            knownOccupiedUntil = brick.tExit;
+        }
+        acc.add(opt.integrator, emission, tf(sample(ray.entry + t * du)), dx);
+        ++evaluated;
+        ++k;
+        if (acc.transparency < ert) break;
+    }
+    placed += static_cast<std::uint64_t>(k);
+    return acc;
+}
+
+// True when [a, b] of an index-space ray lies in empty bricks only. Conservative: it gives up
+// (false) rather than loop on a brick exit that rounding leaves on the wrong side.
+bool emptyAlong(const OccupancyGrid& occupancy, const OccupancyGrid::Ray& ray, double a, double b) {
+    double t = a;
+    for (int visits = 0; visits < 64; ++visits) {
+        const auto brick = occupancy.visit(ray, t);
+        if (!brick.empty) return false;
+        if (brick.tExit >= b) return true;
+        if (!(brick.tExit > t)) return false;
+        t = brick.tExit;
+    }
+    return false;
+}
+
+// Paper B's Simpson methods along one ray, parametrised in voxels of ray (adaptive_simpson.h).
+template <class Real, class Sampler>
+AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler& sample,
+                                      const OccupancyGrid* occupancy, const IndexMap& indexMap,
+                                      const glm::vec<3, Real>& dims, const TransferFunction& tf,
+                                      const AdaptiveSimpsonRay<Real>& method, AdaptiveCounts& counts,
+                                      std::vector<AdaptiveTry>* log) {
+    using Vec = glm::vec<3, Real>;
+    const Vec along = ray.exit - ray.entry;
+    const Real length = glm::length(along * dims);  // voxels, as paper A's placements count them
+    if (!(length > Real(0))) return {};
+    const Vec du = along / length;  // texture units per voxel of ray
+    const Real worldPerVoxel = static_cast<Real>(ray.worldLength / static_cast<double>(length));
+    const bool colourTimesExtinction = tf.emission() == EmissionModel::ColourTimesExtinction;
+    const auto evaluate = [&](Real v) {
+        const TransferFunctionSample<Real> x = tf(sample(ray.entry + v * du));
+        const Real kappa = x.tau * worldPerVoxel;
+        const Real weight = colourTimesExtinction ? kappa : worldPerVoxel;
+        return RayPoint<Real>{kappa, x.r * weight, x.g * weight, x.b * weight};
+    };
+    if (!occupancy) return method.integrate(length, evaluate, [](double, double) { return false; }, counts, log);
+    const OccupancyGrid::Ray indexRay(glm::dvec3(ray.entry) * indexMap.scale - indexMap.offset,
+                                      glm::dvec3(du) * indexMap.scale);
+    const auto knownEmpty = [&](double a, double b) { return emptyAlong(*occupancy, indexRay, a, b); };
+    return method.integrate(length, evaluate, knownEmpty, counts, log);
+}
+
+AdaptiveParameters simpsonParameters(const RenderOptions& opt) {
+    AdaptiveParameters p = opt.adaptive;
+    if (opt.integrator == Integrator::Simpson) {
+        p.h0 = p.hMin = p.hMax = 1.0 / opt.samplingRate;
+        p.coupling = Coupling::Coupled;
+    } else {
+        p.coupling = opt.integrator == Integrator::Coupled ? Coupling::Coupled : Coupling::Decoupled;
+    }
+    return p;
+}
+
 template <class Real, class Sampler>
 void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* occupancy, const IndexMap& indexMap,
-                const Camera& camera, const RenderOptions& opt, Image& image, Counters& counters) {
+                const Camera& camera, const RenderOptions& opt, Image& image, Counters& counters,
+                std::vector<AdaptiveTry>* rayLog) {
     using Vec = glm::vec<3, Real>;
     const Box box = scene.box();
     const Vec dims(scene.dims());
     const Vec eyeU(box.toTexture(camera.eye()));
-    const Real rate = static_cast<Real>(opt.samplingRate);
-    const Real ert = static_cast<Real>(opt.earlyTermination);
     const TransferFunction& tf = scene.transferFunction;
-    const EmissionModel emission = tf.emission();
+    const bool simpson = isSimpson(opt.integrator);
+    const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), static_cast<Real>(opt.earlyTermination));
     const int tile = opt.tileSize;
     const int tilesX = (image.width + tile - 1) / tile, tilesY = (image.height + tile - 1) / tile;
     Progress progress("render", static_cast<std::uint64_t>(tilesX) * tilesY, opt.progress);
 
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1), [&](const auto& tiles) {
         std::uint64_t hit = 0, placed = 0, evaluated = 0;
+        AdaptiveCounts adaptive;
         for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
             for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
                 for (int py = ty * tile; py < std::min((ty + 1) * tile, image.height); ++py)
@@ -68,63 +178,45 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                         const glm::dvec3 dir = camera.direction(px, py);
                         const auto segment = clipRay(camera.eye(), dir, box);
                         if (!segment) continue;
-                        const double worldLength = segment->tFar - segment->tNear;
-                        if (worldLength > 0) ++hit;
-                        const Vec entry(box.toTexture(camera.eye() + segment->tNear * dir));
-                        const Vec exit(box.toTexture(camera.eye() + segment->tFar * dir));
-                        const SampleSchedule<Real> s = placeSamples<Real>(opt.placement, entry, exit, eyeU, dims, rate);
-                        if (s.count == 0) continue;
-                        const Vec du = (exit - entry) / s.tEnd;
-                        const Real dx = s.tIncr * static_cast<Real>(worldLength / static_cast<double>(s.tEnd));
-                        const OccupancyGrid::Ray indexRay(glm::dvec3(entry) * indexMap.scale - indexMap.offset,
-                                                          glm::dvec3(du) * indexMap.scale);
-
-                        RayAccumulator<Real> acc;
-                        double knownOccupiedUntil = -std::numeric_limits<double>::infinity();
-                        std::int64_t k = 0;
-                        while (k < s.count) {
-                            const Real t = s.t(k);
-                            if (occupancy && static_cast<double>(t) >= knownOccupiedUntil) {
-                                const auto brick = occupancy->visit(indexRay, static_cast<double>(t));
-                                if (brick.empty) {
-                                    // Jump to the first sample at or past the exit, counted on the
-                                    // positions we evaluate; every sample skipped lies before the exit.
-                                    if (!(brick.tExit < static_cast<double>(s.tEnd))) {
-                                        k = s.count;  // the rest of the ray is empty
-                                        break;
-                                    }
-                                    auto next = static_cast<std::int64_t>(std::ceil((brick.tExit - s.tStart) / s.tIncr));
-                                    next = std::clamp<std::int64_t>(next, k + 1, s.count);
-                                    while (next > k + 1 && static_cast<double>(s.t(next - 1)) >= brick.tExit) --next;
-                                    k = next;
-                                    continue;
-                                }
-                                knownOccupiedUntil = brick.tExit;
-                            }
-                            acc.add(opt.integrator, emission, tf(sample(entry + t * du)), dx);
-                            ++evaluated;
-                            ++k;
-                            if (acc.transparency < ert) break;
+                        const TextureRay<Real> ray{Vec(box.toTexture(camera.eye() + segment->tNear * dir)),
+                                                   Vec(box.toTexture(camera.eye() + segment->tFar * dir)),
+                                                   segment->tFar - segment->tNear};
+                        if (ray.worldLength > 0) ++hit;
+                        if (simpson) {
+                            const bool logged = rayLog && opt.logPixel == glm::ivec2(px, py);
+                            const AdaptiveResult<Real> r = integrateSimpson(ray, sample, occupancy, indexMap, dims, tf,
+                                                                            method, adaptive, logged ? rayLog : nullptr);
+                            out[0] = static_cast<float>(r.r);
+                            out[1] = static_cast<float>(r.g);
+                            out[2] = static_cast<float>(r.b);
+                            out[3] = static_cast<float>(r.alpha);
+                        } else {
+                            const RayAccumulator<Real> acc = marchSamples(ray, sample, occupancy, indexMap, eyeU, dims,
+                                                                          tf, opt, placed, evaluated);
+                            out[0] = static_cast<float>(acc.r);
+                            out[1] = static_cast<float>(acc.g);
+                            out[2] = static_cast<float>(acc.b);
+                            out[3] = static_cast<float>(acc.alpha());
                         }
-                        placed += static_cast<std::uint64_t>(k);
-                        out[0] = static_cast<float>(acc.r);
-                        out[1] = static_cast<float>(acc.g);
-                        out[2] = static_cast<float>(acc.b);
-                        out[3] = static_cast<float>(acc.alpha());
                     }
                 progress.advance(1);
             }
         counters.raysHit += hit;
-        counters.samplesPlaced += placed;
-        counters.samplesEvaluated += evaluated;
+        counters.samplesPlaced += placed + adaptive.pointsUsed;
+        counters.samplesEvaluated += evaluated + adaptive.pointsEvaluated;
+        if (simpson) {
+            const std::lock_guard lock(counters.adaptiveMutex);
+            counters.adaptive += adaptive;
+        }
     });
 }
 
 template <class Real>
 void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& opt, Image& image,
                  Counters& counters, RenderStats& stats) {
+    std::vector<AdaptiveTry>* log = opt.logPixel ? &stats.rayLog : nullptr;
     if (!scene.volume) {
-        renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, IndexMap{}, camera, opt, image, counters);
+        renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, IndexMap{}, camera, opt, image, counters, log);
         return;
     }
     const Volume& volume = *scene.volume;
@@ -140,7 +232,8 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     const IndexMap indexMap{cell ? n : n - glm::dvec3(1.0), glm::dvec3(cell ? 0.5 : 0.0)};
     dispatchVoxelType(volume.type, [&](auto voxel) {
         const GridSampler<decltype(voxel), Real> sampler(volume, scene.convention);
-        renderWith<Real>(scene, sampler, occupancy ? &*occupancy : nullptr, indexMap, camera, opt, image, counters);
+        renderWith<Real>(scene, sampler, occupancy ? &*occupancy : nullptr, indexMap, camera, opt, image, counters,
+                         log);
     });
 }
 
@@ -159,6 +252,13 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     if (options.samplingRate * glm::length(dims) > 1e9)
         throw Error("sampling rate " + std::to_string(options.samplingRate) +
                     " per voxel would put more than 1e9 samples on a ray through this volume");
+    if (options.integrator == Integrator::Coupled || options.integrator == Integrator::Decoupled)
+        validate(options.adaptive);
+    if (options.logPixel && !(options.logPixel->x >= 0 && options.logPixel->y >= 0 &&
+                              options.logPixel->x < camera.width() && options.logPixel->y < camera.height()))
+        throw Error("the logged pixel " + std::to_string(options.logPixel->x) + "," +
+                    std::to_string(options.logPixel->y) + " is outside the " + std::to_string(camera.width()) + "x" +
+                    std::to_string(camera.height()) + " image");
     if (scene.convention == GridConvention::NodeCentred && glm::any(glm::lessThan(dims, glm::dvec3(2.0))))
         throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
 
@@ -175,6 +275,7 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     local.raysHit = counters.raysHit;
     local.samplesPlaced = counters.samplesPlaced;
     local.samplesEvaluated = counters.samplesEvaluated;
+    local.adaptive = counters.adaptive;
     // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
     local.threads = static_cast<int>(std::min<std::size_t>(
         tbb::this_task_arena::max_concurrency(),

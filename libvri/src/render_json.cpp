@@ -1,5 +1,7 @@
 #include "vri/render_json.h"
 
+#include <cmath>
+
 namespace vri {
 
 namespace {
@@ -7,19 +9,29 @@ nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
 nlohmann::json toJson(const RenderOptions& o) {
-    return {{"method", integratorName(o.integrator)},
-            {"placement", placementName(o.placement)},
-            {"sampling_rate", o.samplingRate},
-            {"step_voxels", 1.0 / o.samplingRate},
-            {"precision", precisionName(o.precision)},
-            {"early_termination", o.earlyTermination},
-            {"skip_empty_space", o.skipEmptySpace},
-            {"tile_size", o.tileSize}};
+    nlohmann::json j = {{"method", integratorName(o.integrator)},
+                        {"precision", precisionName(o.precision)},
+                        {"early_termination", o.earlyTermination},
+                        {"skip_empty_space", o.skipEmptySpace},
+                        {"tile_size", o.tileSize}};
+    if (o.integrator == Integrator::Coupled || o.integrator == Integrator::Decoupled) {
+        const AdaptiveParameters& a = o.adaptive;
+        j["tolerance"] = a.tolerance;
+        j["h0_voxels"] = a.h0;
+        j["h_min_voxels"] = a.hMin;
+        j["h_max_voxels"] = std::isfinite(a.hMax) ? nlohmann::json(a.hMax) : nlohmann::json("none");
+        j["accepted_value"] = acceptedValueName(a.accepted);
+    } else {
+        j["sampling_rate"] = o.samplingRate;
+        j["step_voxels"] = 1.0 / o.samplingRate;
+        if (!isSimpson(o.integrator)) j["placement"] = placementName(o.placement);
+    }
+    return j;
 }
 
 nlohmann::json toJson(const RenderStats& s) {
     const double samplesPerSecond = s.seconds > 0 ? s.samplesEvaluated / s.seconds : 0.0;
-    return {{"wall_seconds", s.seconds},
+    nlohmann::json j = {{"wall_seconds", s.seconds},
             {"setup_seconds", s.setupSeconds},
             {"threads", s.threads},
             {"rays", s.rays},
@@ -28,6 +40,15 @@ nlohmann::json toJson(const RenderStats& s) {
             {"samples_evaluated", s.samplesEvaluated},
             {"samples_per_second", samplesPerSecond},
             {"empty_brick_fraction", s.emptyBrickFraction}};
+    if (s.adaptive.innerTries > 0) j["adaptive"] = toJson(s.adaptive);  // the Simpson methods
+    return j;
+}
+
+nlohmann::json toJson(const AdaptiveCounts& c) {
+    return {{"inner_tries", c.innerTries},       {"inner_failures", c.innerFailures},
+            {"outer_tries", c.outerTries},       {"outer_failures", c.outerFailures},
+            {"outer_steps", c.outerSteps},       {"accepted_at_h_min_above_tolerance", c.acceptedAtMinimum},
+            {"points_used", c.pointsUsed},       {"points_evaluated", c.pointsEvaluated}};
 }
 
 nlohmann::json toJson(const CameraSpec& c) {

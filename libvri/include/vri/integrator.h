@@ -16,9 +16,17 @@ enum class Integrator {
     // exactly: I += T g (1 - exp(-tau dx)) / tau, which is C alpha with alpha = 1 - exp(-tau dx)
     // when g = C tau.
     Composite,
+    // Simpson's rule on uniform steps h (each split into two Simpson panels, samples h / 4 apart):
+    // paper B's adaptive code with h_min = h_max = h0 = h, so every try is taken.
+    Simpson,
+    // Paper B's iterative adaptive Simpson, Algorithm 3, coupled and decoupled (adaptive_simpson.h).
+    Coupled,
+    Decoupled,
 };
 
-std::string_view integratorName(Integrator i);  // "riemann", "composite"
+std::string_view integratorName(Integrator i);  // "riemann", "composite", "simpson", "coupled", "decoupled"
+// True for the methods integrated by adaptive_simpson.h rather than by point samples.
+inline bool isSimpson(Integrator i) { return i == Integrator::Simpson || i == Integrator::Coupled || i == Integrator::Decoupled; }
 Integrator parseIntegrator(std::string_view name, const std::string& what);
 
 template <class Real>

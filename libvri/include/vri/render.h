@@ -6,7 +6,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "vri/adaptive_simpson.h"
 #include "vri/analytic_field.h"
 #include "vri/camera.h"
 #include "vri/grid_convention.h"
@@ -37,6 +39,10 @@ struct RenderOptions {
     Integrator integrator = Integrator::Riemann;
     Placement placement = Placement::EntryAlign;
     double samplingRate = 2.0;  // samples per voxel along the ray (paper A); the step is h = 1 / rate voxels
+    // Coupled and decoupled: paper B's parameters (the coupling follows the integrator). Uniform
+    // Simpson takes its step from samplingRate and ignores these.
+    AdaptiveParameters adaptive;
+    std::optional<glm::ivec2> logPixel;  // record every try of the adaptive methods along this pixel's ray
     Precision precision = Precision::Double;
     // Stop a ray once its transparency falls below this; 0 (the default) integrates every ray to
     // its exit, as accuracy studies need.
@@ -55,9 +61,12 @@ struct RenderStats {
     double setupSeconds = 0.0;           // building the empty-space grid
     int threads = 0;
     double emptyBrickFraction = 0.0;
+    AdaptiveCounts adaptive;  // Simpson methods: tries, failures, steps and points of all rays
+    std::vector<AdaptiveTry> rayLog;  // the tries along RenderOptions::logPixel's ray
 };
 
-// Throws vri::Error on a non-positive or non-finite sampling rate.
+// Throws vri::Error on a non-positive or non-finite sampling rate, bad adaptive parameters, or a
+// log pixel outside the image.
 Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats = nullptr);
 
 }  // namespace vri

@@ -9,6 +9,7 @@ namespace vri {
 
 nlohmann::json toJson(const RenderOptions& options);
 nlohmann::json toJson(const RenderStats& stats);
+nlohmann::json toJson(const AdaptiveCounts& counts);
 nlohmann::json toJson(const CameraSpec& camera);
 nlohmann::json toJson(const TransferFunction& tf);
 nlohmann::json describeScene(const Scene& scene);  // kind, dims, voxel type, spacing, box, convention, range
