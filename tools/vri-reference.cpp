@@ -13,6 +13,7 @@
 #include "vri/exact_reference.h"
 #include "vri/exact_reference_json.h"
 #include "vri/image_io.h"
+#include "vri/preview_options.h"
 #include "vri/provenance.h"
 #include "vri/render.h"
 #include "vri/render_json.h"
@@ -53,6 +54,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
     double step = 0.01, tolerance = vri::ExactReferenceOptions{}.tolerance;
     int threads = 0, repeat = 1;
     bool quiet = false;
+    vri::PreviewOptions preview;
     sceneOptions.addTo(app);
     app.add_option("--method", method, "exact (piecewise cubic, with an error bound) or riemann (paper B's reference)")
         ->capture_default_str();
@@ -66,6 +68,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
         ->capture_default_str();
     app.add_option("-o,--output", output, "output image (.exr: float RGBA)")->required();
     app.add_option("--png", pngPath, "8-bit preview PNG");
+    preview.addTo(app);
     app.add_option("--error-image", errorPath, "exact: per-pixel error bounds as float RGBA OpenEXR");
     app.add_option("--stats", statsPath, "write statistics and provenance as JSON ('-' for stdout)");
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
@@ -86,6 +89,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
         if (!(step > 0.0)) throw vri::Error("--step: must be > 0 voxels, got " + std::to_string(step));
         if (!(tolerance > 0.0)) throw vri::Error("--tolerance: must be > 0, got " + std::to_string(tolerance));
 
+        const vri::PngOptions png = preview.get();
         vri::ExactReferenceOptions exactOptions;
         exactOptions.tolerance = tolerance;
         exactOptions.progress = !quiet;
@@ -133,7 +137,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
                                              {"vri:options", record["options"].dump()},
                                              {"vri:scene", record["scene"].dump()}};
         vri::writeExr(output, result.image, metadata);
-        if (!pngPath.empty()) vri::writePng(pngPath, result.image);
+        if (!pngPath.empty()) vri::writePng(pngPath, result.image, png);
         if (!errorPath.empty()) vri::writeExr(errorPath, *result.bounds, metadata);
         if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
         if (!quiet) {

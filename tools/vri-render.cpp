@@ -11,6 +11,7 @@
 #include "vri/atomic_file.h"
 #include "vri/cli.h"
 #include "vri/image_io.h"
+#include "vri/preview_options.h"
 #include "vri/provenance.h"
 #include "vri/render.h"
 #include "vri/render_json.h"
@@ -25,26 +26,43 @@ int main(int argc, char** argv) {
     app.footer(R"(Examples:
   vri-render --volume bonsai_256x256x256_uint8.raw --tf experiments/tf/bonsai.yaml \
              --size 800x600 --step 0.5 -o bonsai.exr --png bonsai.png --stats bonsai.json
+  vri-render --volume bonsai_256x256x256_uint8.raw --tf experiments/tf/paper-b-bonsai.yaml --method coupled \
+             --tolerance 0.01 --log-ray 400,300 --log ray.csv -o coupled.exr --stats coupled.json
   vri-render --field linear --field-dims 5,5,5 --convention node --tf experiments/tf/paper-a-linear.yaml \
              --placement entry-exit-corner --rate 1 --eye -9,0,0 --target 0,0,0 --fov 30 -o corner.exr
 
-Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency.)");
+Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency
+(Simpson methods: alpha = the integral of extinction times transparency, paper B's fourth channel).)");
 
-    std::string output, pngPath, statsPath;
+    std::string output, pngPath, statsPath, logPath, logRay, hMax = "2";
     vri::SceneOptions sceneOptions;
     std::string method = "riemann", placement = "entry", precision = "double";
-    double rate = 0.0, step = 0.0, ert = 0.0, exposure = 1.0;
-    std::string background = "0,0,0";
-    bool noSkip = false, invert = false, quiet = false;
+    double rate = 0.0, step = 0.0, ert = 0.0;
+    vri::PreviewOptions preview;
+    bool noSkip = false, quiet = false;
     int threads = 0, repeat = 1;
+    vri::AdaptiveParameters adaptive;
+    std::string accepted{vri::acceptedValueName(adaptive.accepted)};
 
     sceneOptions.addTo(app);
-    app.add_option("--method", method, "riemann (paper A eq. 5) or composite (opacity-corrected)")
+    app.add_option("--method", method, "riemann (paper A eq. 5), composite (opacity-corrected), simpson (uniform "
+                                       "steps of --step), coupled or decoupled (paper B's adaptive Simpson)")
         ->capture_default_str();
     app.add_option("--placement", placement, "eye, entry, entry-exit or entry-exit-corner (paper A)")
         ->capture_default_str();
     auto* stepOpt = app.add_option("--step", step, "step h in voxels (default 0.5)");
     auto* rateOpt = app.add_option("--rate", rate, "sampling rate in samples per voxel (= 1 / step)")->excludes(stepOpt);
+    auto* adaptiveGroup = app.add_option_group("adaptive", "coupled and decoupled (paper B), steps in voxels");
+    adaptiveGroup->add_option("--tolerance,--eps", adaptive.tolerance, "error tolerance eps at the step h0")
+        ->capture_default_str();
+    adaptiveGroup->add_option("--h0", adaptive.h0, "initial step")->capture_default_str();
+    adaptiveGroup->add_option("--h-min", adaptive.hMin, "smallest step (taken whatever the error)")->capture_default_str();
+    adaptiveGroup->add_option("--h-max", hMax, "largest step, or 'none'")->capture_default_str();
+    adaptiveGroup->add_option("--accepted-value", accepted, "richardson (D + (D - S)/15) or paper (D + |D - S|/15)")
+        ->capture_default_str();
+    auto* logRayOpt = adaptiveGroup->add_option("--log-ray", logRay, "record every step try along pixel X,Y's ray");
+    adaptiveGroup->add_option("--log", logPath, "CSV of the logged ray's tries (with --log-ray)")->needs(logRayOpt);
+    logRayOpt->needs(adaptiveGroup->get_option("--log"));
     app.add_option("--precision", precision, "double or float")->capture_default_str();
     app.add_option("--early-termination", ert, "stop rays whose transparency drops below this (0 = off)")
         ->capture_default_str();
@@ -55,9 +73,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         ->capture_default_str();
     app.add_option("-o,--output", output, "output image (.exr: float RGBA)")->required();
     app.add_option("--png", pngPath, "8-bit preview PNG");
-    app.add_option("--png-exposure", exposure, "preview: multiply colours by this")->capture_default_str();
-    app.add_flag("--png-invert", invert, "preview: 1 - colour (darker = higher intensity)");
-    app.add_option("--background", background, "preview: background colour R,G,B")->capture_default_str();
+    preview.addTo(app);
     app.add_option("--stats", statsPath, "write statistics and provenance as JSON ('-' for stdout)");
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
     if (auto exitCode = vri::parseArguments(app, "vri-render", argc, argv)) return *exitCode;
@@ -75,16 +91,15 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (*stepOpt && !(step > 0.0)) throw vri::Error("--step: must be > 0 voxels, got " + std::to_string(step));
         if (*rateOpt && !(rate > 0.0)) throw vri::Error("--rate: must be > 0 samples per voxel, got " + std::to_string(rate));
         options.samplingRate = *rateOpt ? rate : 1.0 / (*stepOpt ? step : 0.5);
+        adaptive.hMax = vri::parseLimit(hMax, "--h-max");
+        adaptive.accepted = vri::parseAcceptedValue(accepted, "--accepted-value");
+        options.adaptive = adaptive;
+        if (!logRay.empty()) options.logPixel = vri::parsePixel(logRay, "--log-ray");
         options.earlyTermination = ert;
         options.skipEmptySpace = !noSkip;
         options.progress = !quiet;
         // Every option is checked before the render, so that a mistake never leaves some outputs written.
-        vri::PngOptions png;
-        png.exposure = static_cast<float>(exposure);
-        png.invert = invert;
-        const glm::dvec3 bg = vri::parseVec3(background, "--background");
-        png.background = {float(bg.x), float(bg.y), float(bg.z)};
-        if (!(exposure > 0.0)) throw vri::Error("--png-exposure: must be > 0, got " + std::to_string(exposure));
+        const vri::PngOptions png = preview.get();
 
         const vri::SceneSetup setup = sceneOptions.load();
         const vri::Scene& scene = setup.scene;
@@ -119,6 +134,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
                                       {"vri:scene", record["scene"].dump()}});
         if (!pngPath.empty()) vri::writePng(pngPath, image, png);
         if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
+        if (!logPath.empty()) vri::writeTextFile(logPath, vri::adaptiveLogCsv(stats.rayLog));
         if (!quiet)
             std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated
                       << " samples in " << medianSeconds << " s"

@@ -1,5 +1,6 @@
 #include "vri/adaptive_simpson.h"
 
+#include "vri/csv.h"
 #include "vri/error.h"
 #include "vri/format.h"
 
@@ -24,6 +25,19 @@ void validate(const AdaptiveParameters& p) {
                     exactNumber(p.hMax));
     if (!(p.tolerance >= 0.0) || !std::isfinite(p.tolerance))
         throw Error("the tolerance must be >= 0 and finite, got " + exactNumber(p.tolerance));
+}
+
+std::string adaptiveLogCsv(const std::vector<AdaptiveTry>& log) {
+    std::string out = csvLine({"kind", "accepted", "skipped", "t", "h", "error", "tolerance", "r", "g", "b", "alpha",
+                               "transparency"});
+    for (const AdaptiveTry& a : log) {
+        const bool integrals = a.kind == AdaptiveTry::Outer && a.accepted;
+        const auto value = [&](double x) { return integrals ? exactNumber(x) : std::string(); };
+        out += csvLine({a.kind == AdaptiveTry::Inner ? "inner" : "outer", a.accepted ? "1" : "0", a.skipped ? "1" : "0",
+                        exactNumber(a.t), exactNumber(a.h), exactNumber(a.error), exactNumber(a.tolerance), value(a.r),
+                        value(a.g), value(a.b), value(a.alpha), value(a.transparency)});
+    }
+    return out;
 }
 
 }  // namespace vri

@@ -19,8 +19,11 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
         if (ec) throw Error(path.string() + ": cannot create directory " + dir.string() + ": " + ec.message());
     }
     fs::path tmp = path;
-    tmp.replace_filename("." + path.stem().string() + ".tmp." + std::to_string(::getpid()) +
-                         path.extension().string());
+    // Appended piece by piece: `"." + std::string` trips a false -Wrestrict in GCC 12.
+    std::string name = ".";
+    name += path.stem().string();
+    name += ".tmp." + std::to_string(::getpid()) + path.extension().string();
+    tmp.replace_filename(name);
     try {
         write(tmp);
         std::error_code ec;

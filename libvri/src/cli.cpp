@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace vri {
@@ -70,6 +71,22 @@ glm::ivec2 parseSize(const std::string& text, const std::string& what) {
     bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
     if (!ok || v.x <= 0 || v.y <= 0)
         throw Error(what + ": expected a positive image size WIDTHxHEIGHT, got '" + text + "'");
+    return v;
+}
+
+glm::ivec2 parsePixel(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::ivec2 v;
+    bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
+    if (!ok || v.x < 0 || v.y < 0) throw Error(what + ": expected a pixel X,Y (integers >= 0), got '" + text + "'");
+    return v;
+}
+
+double parseLimit(const std::string& text, const std::string& what) {
+    if (text == "none") return std::numeric_limits<double>::infinity();
+    double v;
+    if (!parseNumber(text, v) || !std::isfinite(v) || !(v > 0.0))
+        throw Error(what + ": expected a positive number or 'none', got '" + text + "'");
     return v;
 }
 

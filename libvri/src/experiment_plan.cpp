@@ -84,6 +84,8 @@ void Planner::addRender(const RunSpec& run) {
     output(step, "-o", renderImage(plan_, run.id));
     output(step, "--png", result(run.id + ".png"));
     output(step, "--stats", result(run.id + ".json"));
+    if (std::ranges::any_of(run.parameters, [](auto& kv) { return kv.first == "log_ray"; }))
+        output(step, "--log", result(run.id + "-ray.csv"));
     plan_.steps.push_back(std::move(step));
 }
 
@@ -116,13 +118,24 @@ void Planner::addTable(const TableSpec& table) {
         const bool tradeoff = table.layout == "tradeoff";
         step.arguments = {"--layout", table.layout, "--title", table.title};
         if (tradeoff) step.arguments.insert(step.arguments.end(), {"--threshold", table.threshold});
-        for (const std::string& group : table.comparisons)
-            for (const ComparisonSpec& c : experiment_.comparisons)
-                if (c.group == group) {
-                    step.arguments.insert(step.arguments.end(), {tradeoff ? "--run" : "--row", c.run});
-                    if (tradeoff) input(step, "", result(c.run + ".json"));  // its time: the run's stats
-                    input(step, "", result(c.id + ".json"));
-                }
+        if (table.rows.empty()) {  // one row per compared run
+            for (const std::string& group : table.comparisons)
+                for (const ComparisonSpec& c : experiment_.comparisons)
+                    if (c.group == group) {
+                        step.arguments.insert(step.arguments.end(), {tradeoff ? "--run" : "--row", c.run});
+                        if (tradeoff) input(step, "", result(c.run + ".json"));  // its time: the run's stats
+                        input(step, "", result(c.id + ".json"));
+                    }
+        }
+        for (const auto& [label, runs] : table.rows) {  // the reader checked that each run is compared once
+            step.arguments.insert(step.arguments.end(), {"--row", label});
+            for (const std::string& run : runs) {
+                const auto c = std::ranges::find_if(experiment_.comparisons, [&](const ComparisonSpec& x) {
+                    return x.run == run && std::ranges::count(table.comparisons, x.group) > 0;
+                });
+                input(step, "", result(c->id + ".json"));
+            }
+        }
     } else {
         step.arguments = {"--layout", "matrix", "--title", table.title, "--value", table.value};
         for (const std::string& run : table.runs) {

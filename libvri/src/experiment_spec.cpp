@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include "vri/adaptive_simpson.h"
+#include "vri/cli.h"
 #include "vri/datasets.h"
 #include "vri/experiment.h"
 #include "vri/experiment_plan.h"
@@ -51,15 +53,25 @@ void nonNegativeNumber(const std::string& value, const std::string& where) {
         throw Error(where + ": expected a number >= 0, got '" + value + "'");
 }
 
+// `method: exact` is vri-reference's accurate solution (a reference, not a vri-render method).
+constexpr std::string_view kExactMethod = "exact";
+
 const std::vector<RunParameter>& renderParameters() {
     static const std::vector<RunParameter> parameters{
-        {"method", "--method", "", [](auto& v, auto& w) { parseIntegrator(v, w); }},
+        {"method", "--method", "", [](auto& v, auto& w) { if (v != kExactMethod) parseIntegrator(v, w); }},
         {"placement", "--placement", "", [](auto& v, auto& w) { parsePlacement(v, w); }},
         {"step", "--step", "h", positiveNumber},
         {"rate", "--rate", "r", positiveNumber},
         {"precision", "--precision", "", [](auto& v, auto& w) { parsePrecision(v, w); }},
         {"early_termination", "--early-termination", "ert", nonNegativeNumber},
         {"repeat", "--repeat", "x", positiveCount},  // timing: the stats give the median of the frames
+        // Paper B's adaptive Simpson (coupled, decoupled).
+        {"eps", "--tolerance", "eps", nonNegativeNumber},
+        {"h0", "--h0", "h0-", positiveNumber},
+        {"h_min", "--h-min", "hmin", positiveNumber},
+        {"h_max", "--h-max", "hmax", [](auto& v, auto& w) { parseLimit(v, w); }},
+        {"accepted", "--accepted-value", "", [](auto& v, auto& w) { parseAcceptedValue(v, w); }},
+        {"log_ray", "--log-ray", "ray", [](auto& v, auto& w) { parsePixel(v, w); }},  // + --log <run>-ray.csv
     };
     return parameters;
 }
@@ -364,6 +376,14 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     run.options.emplace_back(axes[a].parameter->option, v);
                     if (axes[a].swept) run.id.append("-").append(axes[a].parameter->idPrefix).append(v);
                 }
+                const auto method = std::find_if(run.parameters.begin(), run.parameters.end(),
+                                                 [](auto& kv) { return kv.first == "method"; });
+                if (method->second == kExactMethod) {
+                    run.tool = "vri-reference";
+                    for (const auto& [key, value] : run.parameters)
+                        if (key != "method" && key != "repeat")
+                            throw Error(at(entry) + ": " + key + " does not apply to method exact (vri-reference)");
+                }
                 if (std::any_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& r) { return r.id == run.id; }))
                     throw Error(at(entry) + ": run id '" + run.id + "' is used twice (rename one of the entries)");
                 experiment.runs.push_back(std::move(run));
@@ -441,8 +461,8 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
 
 void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "tables")) {
-        yaml::requireKeys(entry, source_, {"title", "layout", "comparisons", "runs", "value", "column", "group_by",
-                                           "threshold", "precision"});
+        yaml::requireKeys(entry, source_, {"title", "layout", "comparisons", "runs", "rows", "value", "column",
+                                           "group_by", "threshold", "precision"});
         TableSpec table;
         table.name = table.title = name;
         if (entry["value"]) table.value = text(entry["value"], "value");
@@ -492,6 +512,27 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
             if (table.layout != "tradeoff") throw Error(at(t) + ": threshold applies to layout tradeoff");
             table.threshold = number(t, "threshold");
             nonNegativeNumber(table.threshold, at(t) + ": threshold");
+        }
+        if (const YAML::Node r = entry["rows"]) {
+            if (table.layout != "thresholds") throw Error(at(r) + ": rows applies to layout thresholds");
+            for (const auto& kv : r) {
+                std::pair<std::string, std::vector<std::string>> row{text(kv.first, "row label"), names(kv.second, "row runs")};
+                for (const std::string& run : row.second) {
+                    const auto compared = std::count_if(experiment.comparisons.begin(), experiment.comparisons.end(), [&](auto& c) {
+                        return c.run == run && std::ranges::count(table.comparisons, c.group) > 0;
+                    });
+                    if (compared != 1)
+                        throw Error(at(kv.second) + ": row '" + row.first + "': run '" + run + "' is compared " +
+                                    std::to_string(compared) + " times in the table's comparisons (expected once)");
+                }
+                const std::size_t thresholds = std::find_if(experiment.comparisons.begin(), experiment.comparisons.end(), [&](auto& c) {
+                    return c.run == row.second.front() && std::ranges::count(table.comparisons, c.group) > 0;
+                })->thresholds.size();
+                if (row.second.size() != 1 && row.second.size() != thresholds)
+                    throw Error(at(kv.second) + ": row '" + row.first + "' needs one run, or one per threshold (" +
+                                std::to_string(thresholds) + "), got " + std::to_string(row.second.size()));
+                table.rows.push_back(std::move(row));
+            }
         }
         if (table.layout == "tradeoff")  // vri-diff counts only the thresholds it is given
             for (const std::string& group : table.comparisons) {

@@ -32,14 +32,14 @@ nlohmann::json toJson(const RenderOptions& o) {
 nlohmann::json toJson(const RenderStats& s) {
     const double samplesPerSecond = s.seconds > 0 ? s.samplesEvaluated / s.seconds : 0.0;
     nlohmann::json j = {{"wall_seconds", s.seconds},
-            {"setup_seconds", s.setupSeconds},
-            {"threads", s.threads},
-            {"rays", s.rays},
-            {"rays_hit", s.raysHit},
-            {"samples_placed", s.samplesPlaced},
-            {"samples_evaluated", s.samplesEvaluated},
-            {"samples_per_second", samplesPerSecond},
-            {"empty_brick_fraction", s.emptyBrickFraction}};
+                        {"setup_seconds", s.setupSeconds},
+                        {"threads", s.threads},
+                        {"rays", s.rays},
+                        {"rays_hit", s.raysHit},
+                        {"samples_placed", s.samplesPlaced},
+                        {"samples_evaluated", s.samplesEvaluated},
+                        {"samples_per_second", samplesPerSecond},
+                        {"empty_brick_fraction", s.emptyBrickFraction}};
     if (s.adaptive.innerTries > 0) j["adaptive"] = toJson(s.adaptive);  // the Simpson methods
     return j;
 }

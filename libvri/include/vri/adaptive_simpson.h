@@ -90,6 +90,10 @@ struct AdaptiveTry {
     double r, g, b, alpha, transparency;
 };
 
+// The log as CSV: kind (inner/outer), accepted, skipped, t, h, error, tolerance, r, g, b, alpha,
+// transparency (the last five after accepted outer tries, empty otherwise); numbers exact.
+std::string adaptiveLogCsv(const std::vector<AdaptiveTry>& log);
+
 struct AdaptiveCounts {
     std::uint64_t innerTries = 0, innerFailures = 0;
     std::uint64_t outerTries = 0, outerFailures = 0;

@@ -30,6 +30,10 @@ glm::ivec3 parseDims(const std::string& text, const std::string& what);
 glm::dvec2 parseRange(const std::string& text, const std::string& what);
 // "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive integers.
 glm::ivec2 parseSize(const std::string& text, const std::string& what);
+// "X,Y" -> a pixel; throws vri::Error naming `what` unless both are integers >= 0.
+glm::ivec2 parsePixel(const std::string& text, const std::string& what);
+// A positive finite number, or "none" -> +infinity (no limit); throws vri::Error naming `what` otherwise.
+double parseLimit(const std::string& text, const std::string& what);
 
 // "a,b,c" -> the words between the commas (empty words are an error naming `what`).
 std::vector<std::string> parseWordList(const std::string& text, const std::string& what);

@@ -70,6 +70,10 @@ struct TableSpec {
     std::string layout;                    // "thresholds", "matrix" or "tradeoff"
     std::vector<std::string> comparisons;  // ComparisonSpec::group names (thresholds and tradeoff layouts)
     std::vector<std::string> runs;         // RunSpec ids (matrix layout)
+    // Thresholds layout, `rows:`: label -> the compared runs of the row, one for all thresholds or one
+    // per threshold in order (paper B's adaptive rows: the run at eps = each threshold). Empty: one
+    // row per compared run, labelled with its id.
+    std::vector<std::pair<std::string, std::vector<std::string>>> rows;
     std::string value = "stats.wall_seconds";  // matrix layout: the dotted JSON path in the stats file
     std::string column = "seconds";            // matrix layout: its column heading
     std::string threshold = "0.001";           // tradeoff layout: as the file spells it
