@@ -52,7 +52,7 @@ int run(int argc, char** argv) {
                  "(the opacity of one world unit, one voxel at unit spacing), at evenly spaced s over [0, 1] and at "
                  "every breakpoint, both sides of a jump included.",
                  kTool};
-    app.add_option("TF", tfPath, "transfer function YAML")->required();
+    app.add_option("TF,--tf", tfPath, "transfer function YAML (positional, or --tf as in experiment commands)")->required();
     app.add_option("--samples", samples, "evenly spaced s over [0, 1], ends included (breakpoints come on top)")
         ->check(CLI::Range(2, 1000000))
         ->capture_default_str();

@@ -28,13 +28,13 @@ void validate(const AdaptiveParameters& p) {
 }
 
 std::string adaptiveLogCsv(const std::vector<AdaptiveTry>& log) {
-    std::string out = csvLine({"kind", "accepted", "skipped", "t", "h", "error", "tolerance", "r", "g", "b", "alpha",
+    std::string out = csvLine({"kind", "accepted", "skipped", "t", "h", "t_end", "error", "tolerance", "r", "g", "b", "alpha",
                                "transparency"});
     for (const AdaptiveTry& a : log) {
         const bool integrals = a.kind == AdaptiveTry::Outer && a.accepted;
         const auto value = [&](double x) { return integrals ? exactNumber(x) : std::string(); };
         out += csvLine({a.kind == AdaptiveTry::Inner ? "inner" : "outer", a.accepted ? "1" : "0", a.skipped ? "1" : "0",
-                        exactNumber(a.t), exactNumber(a.h), exactNumber(a.error), exactNumber(a.tolerance), value(a.r),
+                        exactNumber(a.t), exactNumber(a.h), exactNumber(a.t + a.h), exactNumber(a.error), exactNumber(a.tolerance), value(a.r),
                         value(a.g), value(a.b), value(a.alpha), value(a.transparency)});
     }
     return out;

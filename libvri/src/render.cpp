@@ -275,7 +275,7 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     local.raysHit = counters.raysHit;
     local.samplesPlaced = counters.samplesPlaced;
     local.samplesEvaluated = counters.samplesEvaluated;
-    local.adaptive = counters.adaptive;
+    if (isSimpson(options.integrator)) local.adaptive = counters.adaptive;
     // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
     local.threads = static_cast<int>(std::min<std::size_t>(
         tbb::this_task_arena::max_concurrency(),

@@ -40,7 +40,7 @@ nlohmann::json toJson(const RenderStats& s) {
                         {"samples_evaluated", s.samplesEvaluated},
                         {"samples_per_second", samplesPerSecond},
                         {"empty_brick_fraction", s.emptyBrickFraction}};
-    if (s.adaptive.innerTries > 0) j["adaptive"] = toJson(s.adaptive);  // the Simpson methods
+    if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
     return j;
 }
 

@@ -19,7 +19,7 @@ render --method coupled --tolerance 0.001 --log-ray 20,15 --log ray.csv -o c.exr
 [ "$(json c.json "d['options']['tolerance']")" = 0.001 ]
 [ "$(json c.json "d['stats']['adaptive']['outer_steps'] > 0")" = True ]
 [ "$(json c.json "d['stats']['adaptive']['inner_tries'] >= d['stats']['adaptive']['outer_steps']")" = True ]
-head -1 ray.csv | grep -q '^kind,accepted,skipped,t,h,error,tolerance,r,g,b,alpha,transparency$'
+head -1 ray.csv | grep -q '^kind,accepted,skipped,t,h,t_end,error,tolerance,r,g,b,alpha,transparency$'
 grep -q '^outer,1,' ray.csv
 # Steps within [h_min, h_max] = [0.1, 2] (the last piece of a ray may be shorter).
 python3 - <<'PY'

@@ -90,7 +90,7 @@ struct AdaptiveTry {
     double r, g, b, alpha, transparency;
 };
 
-// The log as CSV: kind (inner/outer), accepted, skipped, t, h, error, tolerance, r, g, b, alpha,
+// The log as CSV: kind (inner/outer), accepted, skipped, t, h, t_end = t + h, error, tolerance, r, g, b, alpha,
 // transparency (the last five after accepted outer tries, empty otherwise); numbers exact.
 std::string adaptiveLogCsv(const std::vector<AdaptiveTry>& log);
 

@@ -61,7 +61,7 @@ struct RenderStats {
     double setupSeconds = 0.0;           // building the empty-space grid
     int threads = 0;
     double emptyBrickFraction = 0.0;
-    AdaptiveCounts adaptive;  // Simpson methods: tries, failures, steps and points of all rays
+    std::optional<AdaptiveCounts> adaptive;  // Simpson methods: tries, failures, steps and points of all rays
     std::vector<AdaptiveTry> rayLog;  // the tries along RenderOptions::logPixel's ray
 };
 
