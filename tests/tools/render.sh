@@ -54,5 +54,6 @@ expect_error "--step" --volume blob_8x8x8_uint8.raw --tf tf.yaml --step 0
 expect_error "--step" --volume blob_8x8x8_uint8.raw --tf tf.yaml --step -0.5
 expect_error "placement" --volume blob_8x8x8_uint8.raw --tf tf.yaml --placement middle
 
-"$bin/vri-render" --help | grep -q "Example"
+help=$("$bin/vri-render" --help)  # captured whole: grep -q on a pipe would cut the writer off (SIGPIPE)
+grep -q "Example" <<<"$help"
 echo "render: all checks passed"

@@ -5,6 +5,8 @@
 set -euo pipefail
 bin=${VRI_BIN:?} src=${VRI_SOURCE:?} dir=${VRI_SCRATCH:?}
 rm -rf "$dir" && mkdir -p "$dir" && cd "$dir"
+# The volumes, as the Makefile finds them when ctest runs without it (a relative default would start here).
+export VRI_DATA_DIR=${VRI_DATA_DIR:-$src/../shared/data/volumes}
 
 experiments=$(grep -l '^reproduce:' "$src"/experiments/*.yaml || true)
 [ -n "$experiments" ] || { echo "no experiment has a reproduce: block"; exit 77; }

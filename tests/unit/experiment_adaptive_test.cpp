@@ -81,13 +81,13 @@ TEST_CASE("experiment files: bad adaptive parameters and exact with method optio
 
 TEST_CASE("experiment tables: threshold rows take one run for all thresholds or one per threshold") {
     AdaptiveDir d;
-    const vri::Experiment e = d.parse(kRuns + R"(tables:
+    const vri::Experiment e = d.parse(kRuns + R"yaml(tables:
   t:
     comparisons: [vs]
     rows:
       "Riemann (h = 0.5)": [riemann-h0.5]
       Coupled: [coupled-eps0.01, coupled-eps0.001]
-)");
+)yaml");
     const vri::Plan plan = vri::planExperiment(e, d.dir / "results/b", d.dir.path);
     const vri::Step& table = plan.step("table-t");
     const auto& a = table.arguments;
