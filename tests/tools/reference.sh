@@ -23,7 +23,7 @@ grep -q '"step_voxels": 0.01' lin-riemann.json || fail "riemann stats lack the s
 "$bin/vri-diff" lin.exr lin-riemann.exr --fail 0.01 --warn 0.01 > /dev/null || fail "riemann 0.01 far from exact on the linear field"
 
 # A deterministic 8x8x8 uint8 volume, cell-centred, non-unit spacing: the same on 1 and 2 threads.
-for i in $(seq 0 511); do printf "\\x$(printf %02x $(( (i * 37 + i / 64 * 11) % 256 )))"; done > blob_8x8x8_uint8.raw
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_volume
 cat > tf.yaml <<'YAML'
 points:
   - [0.0, 0.0, 0.0, 0.0, 0.0]

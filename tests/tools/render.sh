@@ -6,7 +6,7 @@ bin=${VRI_BIN:?} src=${VRI_SOURCE:?} dir=${VRI_SCRATCH:?}
 rm -rf "$dir" && mkdir -p "$dir" && cd "$dir"
 
 # A deterministic 8x8x8 uint8 volume: a ramp with some structure.
-for i in $(seq 0 511); do printf "\\x$(printf %02x $(( (i * 37 + i / 64 * 11) % 256 )))"; done > blob_8x8x8_uint8.raw
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_volume
 cat > tf.yaml <<'YAML'
 points:
   - [0.0, 0.0, 0.0, 0.0, 0.0]
