@@ -1,4 +1,4 @@
-// vri-render: renders one image of a volume or analytic field with the CPU raycaster.
+// vri-render: renders one image of a volume or analytic field with the CPU raycaster or the Vulkan backend.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -17,12 +17,29 @@
 #include "vri/render_json.h"
 #include "vri/scene_options.h"
 #include "vri/table.h"
+#include "vri/vulkan_renderer.h"
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// --list-devices: one line per Vulkan device, "INDEX<TAB>NAME<TAB>TYPE<TAB>API VERSION".
+int listDevices() {
+    const std::vector<vri::VulkanDeviceInfo> devices = vri::VulkanRenderer::listDevices();
+    if (devices.empty()) {
+        std::cerr << "vri-render: error: no Vulkan device found\n";
+        return vri::kExitError;
+    }
+    for (const vri::VulkanDeviceInfo& d : devices)
+        std::cout << d.index << '\t' << d.name << '\t' << d.type << '\t' << d.apiVersion << '\n';
+    return vri::kExitOk;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-    CLI::App app{"Render a volume (or an analytic field) with the CPU raycaster: float RGBA OpenEXR, "
-                 "an optional 8-bit PNG preview and a JSON stats file."};
+    CLI::App app{"Render a volume (or an analytic field) with the CPU raycaster or on a Vulkan device: float RGBA "
+                 "OpenEXR, an optional 8-bit PNG preview and a JSON stats file."};
     app.footer(R"(Examples:
   vri-render --volume bonsai_256x256x256_uint8.raw --tf experiments/tf/bonsai.yaml \
              --size 800x600 --step 0.5 -o bonsai.exr --png bonsai.png --stats bonsai.json
@@ -31,16 +48,21 @@ int main(int argc, char** argv) {
   vri-render --field linear --field-dims 5,5,5 --convention node --tf experiments/tf/paper-a-linear.yaml \
              --placement entry-exit-corner --rate 1 --eye -9,0,0 --target 0,0,0 --fov 30 -o corner.exr
 
+  vri-render --backend vulkan --device llvmpipe --volume bonsai_256x256x256_uint8.raw \
+             --tf experiments/tf/paper-b-bonsai.yaml --method coupled -o coupled-vk.exr
+  vri-render --list-devices
+
 Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency
 (Simpson methods: alpha = the integral of extinction times transparency, paper B's fourth channel).)");
 
     std::string output, pngPath, statsPath, logPath, logRay, hMax = "2";
     vri::SceneOptions sceneOptions;
-    std::string method = "riemann", placement = "entry", precision = "double";
+    std::string method = "riemann", placement = "entry", precision = "double", backend = "cpu", device;
+    bool listDevicesFlag = false;
     double rate = 0.0, step = 0.0, ert = 0.0;
     vri::PreviewOptions preview;
     bool noSkip = false, quiet = false;
-    int threads = 0, repeat = 1;
+    int threads = 0, repeat = 1, warmUp = 0;
     vri::AdaptiveParameters adaptive;
     std::string accepted{vri::acceptedValueName(adaptive.accepted)};
 
@@ -63,11 +85,18 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     auto* logRayOpt = adaptiveGroup->add_option("--log-ray", logRay, "record every step try along pixel X,Y's ray");
     adaptiveGroup->add_option("--log", logPath, "CSV of the logged ray's tries (with --log-ray)")->needs(logRayOpt);
     logRayOpt->needs(adaptiveGroup->get_option("--log"));
-    app.add_option("--precision", precision, "double or float")->capture_default_str();
+    auto* precisionOpt = app.add_option("--precision", precision, "double or float (the Vulkan backend: float only, "
+                                                                  "its default)")->capture_default_str();
+    app.add_option("--backend", backend, "cpu (the raycaster of libvri) or vulkan (compute shaders, float)")
+        ->capture_default_str();
+    app.add_option("--device", device, "Vulkan device: an index of --list-devices or part of a name (default: the first)");
+    app.add_flag("--list-devices", listDevicesFlag, "list the Vulkan devices (index, name, type, API version) and exit");
     app.add_option("--early-termination", ert, "stop rays whose transparency drops below this (0 = off)")
         ->capture_default_str();
     app.add_flag("--no-skip-empty", noSkip, "march through empty space too (the image does not change)");
     app.add_option("--threads", threads, "worker threads (default: all cores)");
+    app.add_option("--warm-up", warmUp, "render N untimed frames first (caches, clocks, a GPU's pipelines)")
+        ->capture_default_str();
     app.add_option("--repeat", repeat, "render N times for timing: the stats give every wall time and their median, "
                                        "and any image that differs from the first is an error")
         ->capture_default_str();
@@ -76,14 +105,23 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     preview.addTo(app);
     app.add_option("--stats", statsPath, "write statistics and provenance as JSON ('-' for stdout)");
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+    // Before parsing: listing devices needs none of the options that a render requires.
+    for (int i = 1; i < argc; ++i)
+        if (std::string_view(argv[i]) == "--list-devices") return listDevices();
     if (auto exitCode = vri::parseArguments(app, "vri-render", argc, argv)) return *exitCode;
 
     return vri::guardedMain("vri-render", [&] {
         std::optional<tbb::global_control> threadLimit;
         if (threads < 0) throw vri::Error("--threads: expected a positive count, got " + std::to_string(threads));
         if (repeat < 1) throw vri::Error("--repeat: expected a positive count, got " + std::to_string(repeat));
+        if (warmUp < 0) throw vri::Error("--warm-up: expected a count >= 0, got " + std::to_string(warmUp));
         if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
+        if (backend != "cpu" && backend != "vulkan")
+            throw vri::Error("--backend: unknown backend '" + backend + "' (expected cpu or vulkan)");
+        const bool vulkan = backend == "vulkan";
+        if (vulkan && !*precisionOpt) precision = "float";
+        if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
         vri::RenderOptions options;
         options.integrator = vri::parseIntegrator(method, "--method");
         options.placement = vri::parsePlacement(placement, "--placement");
@@ -96,7 +134,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         options.adaptive = adaptive;
         if (!logRay.empty()) options.logPixel = vri::parsePixel(logRay, "--log-ray");
         options.earlyTermination = ert;
-        options.skipEmptySpace = !noSkip;
+        options.skipEmptySpace = !noSkip && !vulkan;  // the Vulkan backend marches through empty space
         options.progress = !quiet;
         // Every option is checked before the render, so that a mistake never leaves some outputs written.
         const vri::PngOptions png = preview.get();
@@ -106,12 +144,19 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         const vri::CameraSpec& cam = setup.camera;
         const vri::Camera camera(cam);
 
+        // The Vulkan device is opened once; the volume is uploaded by the first render and reused by repeats.
+        std::optional<vri::VulkanRenderer> gpu;
+        if (vulkan) gpu.emplace(device);
+        const auto renderOnce = [&](vri::RenderStats* s) {
+            return gpu ? gpu->render(scene, camera, options, s) : vri::render(scene, camera, options, s);
+        };
+        for (int i = 0; i < warmUp; ++i) renderOnce(nullptr);
         vri::RenderStats stats;
-        const vri::Image image = vri::render(scene, camera, options, &stats);
+        const vri::Image image = renderOnce(&stats);
         std::vector<double> wallSeconds{stats.seconds};
         for (int i = 1; i < repeat; ++i) {
             vri::RenderStats again;
-            if (vri::render(scene, camera, options, &again).pixels != image.pixels)
+            if (renderOnce(&again).pixels != image.pixels)
                 throw vri::Error("--repeat: render " + std::to_string(i + 1) + " differs from the first");
             wallSeconds.push_back(again.seconds);
         }
@@ -128,7 +173,10 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
                                  {"options", vri::toJson(options)},
                                  {"stats", vri::toJson(stats)}};
         const double medianSeconds = vri::median(wallSeconds);
-        record["timing"] = {{"repeats", repeat}, {"wall_seconds", wallSeconds}, {"median_wall_seconds", medianSeconds}};
+        record["timing"] = {{"warm_up_frames", warmUp},
+                            {"repeats", repeat},
+                            {"wall_seconds", wallSeconds},
+                            {"median_wall_seconds", medianSeconds}};
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},
                                       {"vri:scene", record["scene"].dump()}});
@@ -138,8 +186,8 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (!quiet)
             std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated
                       << " samples in " << medianSeconds << " s"
-                      << (repeat > 1 ? " (median of " + std::to_string(repeat) + ")" : "") << " on " << stats.threads
-                      << " threads\n";
+                      << (repeat > 1 ? " (median of " + std::to_string(repeat) + ")" : "") << " on "
+                      << (vulkan ? stats.device : std::to_string(stats.threads) + " threads") << "\n";
         return vri::kExitOk;
     });
 }

@@ -72,6 +72,11 @@ const std::vector<RunParameter>& renderParameters() {
         {"h_max", "--h-max", "hmax", [](auto& v, auto& w) { parseLimit(v, w); }},
         {"accepted", "--accepted-value", "", [](auto& v, auto& w) { parseAcceptedValue(v, w); }},
         {"log_ray", "--log-ray", "ray", [](auto& v, auto& w) { parsePixel(v, w); }},  // + --log <run>-ray.csv
+        {"backend", "--backend", "", [](auto& v, auto& w) {
+             if (v != "cpu" && v != "vulkan") throw Error(w + ": expected cpu or vulkan, got '" + v + "'");
+         }},
+        {"device", "--device", "dev", [](auto&, auto&) {}},  // a Vulkan device: index or part of its name
+        {"warm_up", "--warm-up", "w", positiveCount},         // frames rendered before the timed ones
     };
     return parameters;
 }

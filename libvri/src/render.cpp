@@ -141,17 +141,6 @@ AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler
     return method.integrate(length, evaluate, knownEmpty, counts, log);
 }
 
-AdaptiveParameters simpsonParameters(const RenderOptions& opt) {
-    AdaptiveParameters p = opt.adaptive;
-    if (opt.integrator == Integrator::Simpson) {
-        p.h0 = p.hMin = p.hMax = 1.0 / opt.samplingRate;
-        p.coupling = Coupling::Coupled;
-    } else {
-        p.coupling = opt.integrator == Integrator::Coupled ? Coupling::Coupled : Coupling::Decoupled;
-    }
-    return p;
-}
-
 template <class Real, class Sampler>
 void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* occupancy, const IndexMap& indexMap,
                 const Camera& camera, const RenderOptions& opt, Image& image, Counters& counters,
@@ -239,7 +228,18 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
 
 }  // namespace
 
-Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
+AdaptiveParameters simpsonParameters(const RenderOptions& opt) {
+    AdaptiveParameters p = opt.adaptive;
+    if (opt.integrator == Integrator::Simpson) {
+        p.h0 = p.hMin = p.hMax = 1.0 / opt.samplingRate;
+        p.coupling = Coupling::Coupled;
+    } else {
+        p.coupling = opt.integrator == Integrator::Coupled ? Coupling::Coupled : Coupling::Decoupled;
+    }
+    return p;
+}
+
+void validateRender(const Scene& scene, const Camera& camera, const RenderOptions& options) {
     if (!(options.samplingRate > 0.0) || !std::isfinite(options.samplingRate))
         throw Error("sampling rate must be positive and finite (step h = 1 / rate > 0), got " +
                     std::to_string(options.samplingRate));
@@ -261,7 +261,10 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
                     std::to_string(camera.height()) + " image");
     if (scene.convention == GridConvention::NodeCentred && glm::any(glm::lessThan(dims, glm::dvec3(2.0))))
         throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
+}
 
+Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
+    validateRender(scene, camera, options);
     Image image(camera.width(), camera.height());
     Counters counters;
     RenderStats local;

@@ -39,7 +39,9 @@ nlohmann::json toJson(const RenderStats& s) {
                         {"samples_placed", s.samplesPlaced},
                         {"samples_evaluated", s.samplesEvaluated},
                         {"samples_per_second", samplesPerSecond},
-                        {"empty_brick_fraction", s.emptyBrickFraction}};
+                        {"empty_brick_fraction", s.emptyBrickFraction},
+                        {"backend", s.backend}};
+    if (!s.device.empty()) j["device"] = s.device;
     if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
     return j;
 }

@@ -57,13 +57,21 @@ struct RenderStats {
     std::uint64_t raysHit = 0;           // rays whose segment in the box has positive length
     std::uint64_t samplesPlaced = 0;     // samples the placement puts on the rays (up to early termination)
     std::uint64_t samplesEvaluated = 0;  // of those, the ones not skipped as empty space
-    double seconds = 0.0;                // wall time of the render loop (excludes loading)
+    double seconds = 0.0;                // wall time of the render loop (excludes loading; Vulkan: also upload and pipeline creation)
     double setupSeconds = 0.0;           // building the empty-space grid
     int threads = 0;
     double emptyBrickFraction = 0.0;
     std::optional<AdaptiveCounts> adaptive;  // Simpson methods: tries, failures, steps and points of all rays
     std::vector<AdaptiveTry> rayLog;  // the tries along RenderOptions::logPixel's ray
+    std::string backend = "cpu";      // "cpu" or "vulkan" (vulkan_renderer.h)
+    std::string device;               // the Vulkan device's name; empty on the CPU
 };
+
+// Throws vri::Error on options render() cannot honour (see render()); shared with the Vulkan backend.
+void validateRender(const Scene& scene, const Camera& camera, const RenderOptions& options);
+// The parameters the Simpson methods run with: uniform Simpson's h0 = h_min = h_max = 1 / samplingRate,
+// coupled; coupled and decoupled take options.adaptive with the coupling of their name.
+AdaptiveParameters simpsonParameters(const RenderOptions& options);
 
 // Throws vri::Error on a non-positive or non-finite sampling rate, bad adaptive parameters, or a
 // log pixel outside the image.

@@ -1,0 +1,350 @@
+#include "vri/vulkan_renderer.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <map>
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+#include <tbb/parallel_for.h>
+
+#include "vri/error.h"
+#include "vulkan_context.h"
+
+// SPIR-V of shaders/*.comp, compiled at build time (libvri/CMakeLists.txt).
+#include "march_spv.h"
+#include "simpson_spv.h"
+
+namespace vri {
+
+namespace {
+
+// The shaders' uniform block Params (shaders/common.glsl), std140.
+struct Params {
+    float scale[4], offset[4], maxCoord[4];
+    std::int32_t maxBase[4], stride[4];
+    float dims[4], eyeU[4];
+    float lo, invRange, samplingRate, earlyTermination;
+    float h0, hMin, hMax, epsPerVoxel;
+    std::int32_t width, height, tfCount, accepted;
+};
+static_assert(sizeof(Params) == 160);
+
+enum Binding { kParams, kVolume, kTransferFunction, kRays, kOutput, kCounters, kBindings };
+
+// Shader and specialisation constants (common.glsl, march.comp, simpson.comp) of one pipeline.
+using PipelineKey = std::array<int, 5>;
+
+int voxelTypeConstant(const Scene& scene) {
+    if (!scene.volume) return 3;
+    switch (scene.volume->type) {
+    case VoxelType::UInt8: return 0;
+    case VoxelType::UInt16: return 1;
+    case VoxelType::Float32: break;
+    }
+    return 2;
+}
+
+// Per transfer function point: s, r, g, b, tau and the differences to the next point, rounded to float
+// from double as TransferFunction::operator()<float> rounds them.
+std::vector<float> transferFunctionTable(const TransferFunction& tf) {
+    const auto& p = tf.points();
+    std::vector<float> out;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const TransferFunctionPoint& a = p[i];
+        const TransferFunctionPoint& b = i + 1 < p.size() ? p[i + 1] : a;
+        for (double v : {a.s, a.r, a.g, a.b, a.tau, b.s - a.s, b.r - a.r, b.g - a.g, b.b - a.b, b.tau - a.tau})
+            out.push_back(static_cast<float>(v));
+    }
+    return out;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+struct VulkanRenderer::Impl {
+    VulkanContext context;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+    VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
+    VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
+    VkShaderModule march = VK_NULL_HANDLE, simpson = VK_NULL_HANDLE;
+    std::map<PipelineKey, VkPipeline> pipelines;
+
+    std::shared_ptr<const Volume> volume;  // the uploaded one, kept alive so that its address stays unique
+    VulkanBuffer volumeBuffer, params, transferFunction, rays, output, counters;
+
+    explicit Impl(const std::string& selector) {
+        context.open(selector);
+        const VkDevice device = context.device();
+        std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
+        for (std::uint32_t b = 0; b < kBindings; ++b)
+            bindings[b] = {b, b == kParams ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                           VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+        const VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, nullptr, 0,
+                                                         kBindings, bindings.data()};
+        vkCheck(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
+        const VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 1,
+                                                            &setLayout, 0, nullptr};
+        vkCheck(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout), "vkCreatePipelineLayout");
+        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings - 1}};
+        const VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 2, sizes};
+        vkCheck(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool), "vkCreateDescriptorPool");
+        const VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, descriptorPool,
+                                                  1, &setLayout};
+        vkCheck(vkAllocateDescriptorSets(device, &setInfo, &descriptorSet), "vkAllocateDescriptorSets");
+        march = shaderModule(march_spv, sizeof(march_spv));
+        simpson = shaderModule(simpson_spv, sizeof(simpson_spv));
+        params = VulkanBuffer(context, sizeof(Params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, false);
+    }
+
+    ~Impl() {
+        const VkDevice device = context.device();
+        vkDeviceWaitIdle(device);
+        for (const auto& [key, pipeline] : pipelines) vkDestroyPipeline(device, pipeline, nullptr);
+        vkDestroyShaderModule(device, march, nullptr);
+        vkDestroyShaderModule(device, simpson, nullptr);
+        vkDestroyDescriptorPool(device, descriptorPool, nullptr);
+        vkDestroyPipelineLayout(device, pipelineLayout, nullptr);
+        vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
+    }
+
+    VkShaderModule shaderModule(const std::uint32_t* code, std::size_t bytes) const {
+        const VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0, bytes, code};
+        VkShaderModule module;
+        vkCheck(vkCreateShaderModule(context.device(), &info, nullptr, &module), "vkCreateShaderModule");
+        return module;
+    }
+
+    VkPipeline pipeline(const PipelineKey& key) {
+        if (const auto it = pipelines.find(key); it != pipelines.end()) return it->second;
+        std::array<VkSpecializationMapEntry, 4> entries;
+        for (std::uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * 4u, 4u};
+        const VkSpecializationInfo spec{std::uint32_t(entries.size()), entries.data(), 4 * sizeof(int), &key[1]};
+        const VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
+                                                    VK_SHADER_STAGE_COMPUTE_BIT, key[0] ? simpson : march, "main", &spec};
+        const VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO, nullptr, 0, stage,
+                                               pipelineLayout, VK_NULL_HANDLE, -1};
+        VkPipeline p;
+        vkCheck(vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p),
+                "vkCreateComputePipelines");
+        return pipelines[key] = p;
+    }
+
+    void checkRange(VkDeviceSize bytes, const std::string& what) const {
+        const VkDeviceSize limit = context.properties().limits.maxStorageBufferRange;
+        if (bytes > limit)
+            throw Error(what + " needs " + std::to_string(bytes) + " bytes in one storage buffer, more than the " +
+                        std::to_string(limit) + " that Vulkan device '" + context.info().name + "' allows");
+    }
+
+    // Uploads the volume in its native type, padded to whole 32-bit words (the shader reads uint[]).
+    void upload(const std::shared_ptr<const Volume>& v) {
+        if (volume == v && volumeBuffer.handle()) return;
+        const std::size_t bytes = v ? v->byteCount() : 0;
+        const VkDeviceSize padded = std::max<VkDeviceSize>(4, (bytes + 3) / 4 * 4);
+        if (v) checkRange(padded, "the " + std::string(voxelTypeName(v->type)) + " volume");
+        volume.reset();
+        volumeBuffer = VulkanBuffer();
+        VulkanBuffer target(context, padded, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        const auto fill = [&](void* to) {
+            std::memset(to, 0, padded);
+            if (bytes) std::memcpy(to, v->bytes.data(), bytes);
+        };
+        if (target.mapped()) {
+            fill(target.mapped());
+        } else {
+            const VulkanBuffer staging(context, padded, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+            fill(staging.mapped());
+            context.submitAndWait([&](VkCommandBuffer cmd) {
+                const VkBufferCopy region{0, 0, padded};
+                vkCmdCopyBuffer(cmd, staging.handle(), target.handle(), 1, &region);
+            });
+        }
+        volumeBuffer = std::move(target);
+        volume = v;
+    }
+
+    // A host-visible buffer of at least `bytes`, reused across renders.
+    void ensure(VulkanBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage, const std::string& what) {
+        checkRange(bytes, what);
+        if (buffer.handle() && buffer.size() >= bytes) return;
+        buffer = VulkanBuffer();
+        buffer = VulkanBuffer(context, bytes, usage, false);
+    }
+
+    void bind() const {
+        const VulkanBuffer* buffers[kBindings] = {&params, &volumeBuffer, &transferFunction, &rays, &output, &counters};
+        VkDescriptorBufferInfo infos[kBindings];
+        VkWriteDescriptorSet writes[kBindings];
+        for (std::uint32_t b = 0; b < kBindings; ++b) {
+            infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
+            writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, descriptorSet, b, 0, 1,
+                         b == kParams ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                         nullptr, &infos[b], nullptr};
+        }
+        vkUpdateDescriptorSets(context.device(), kBindings, writes, 0, nullptr);
+    }
+};
+
+std::vector<VulkanDeviceInfo> VulkanRenderer::listDevices() {
+    try {
+        return VulkanContext().devices();
+    } catch (const Error&) {
+        return {};
+    }
+}
+
+VulkanRenderer::VulkanRenderer(const std::string& device) : impl_(std::make_unique<Impl>(device)) {}
+
+VulkanRenderer::~VulkanRenderer() = default;
+
+const VulkanDeviceInfo& VulkanRenderer::device() const { return impl_->context.info(); }
+
+Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
+    validateRender(scene, camera, options);
+    if (options.precision != Precision::Float)
+        throw Error("the Vulkan backend renders in single precision only (precision float)");
+    if (options.logPixel) throw Error("the Vulkan backend does not log a ray (the per-ray log is CPU only)");
+    Impl& m = *impl_;
+    const bool simpson = isSimpson(options.integrator);
+    const int width = camera.width(), height = camera.height();
+    const VkDeviceSize pixels = VkDeviceSize(width) * height;
+    const std::uint32_t groupsX = (width + 7) / 8, groupsY = (height + 7) / 8;
+    const auto& limits = m.context.properties().limits;
+    if (groupsX > limits.maxComputeWorkGroupCount[0] || groupsY > limits.maxComputeWorkGroupCount[1])
+        throw Error("the image is too large for one dispatch on Vulkan device '" + m.context.info().name + "'");
+
+    // Setup, not timed: the volume (once per volume) and the pipeline (once per combination).
+    RenderStats local;
+    const auto setupStart = std::chrono::steady_clock::now();
+    m.upload(scene.volume);
+    const int emission = scene.transferFunction.emission() == EmissionModel::ColourTimesExtinction ? 0 : 1;
+    const AdaptiveParameters adaptive = simpsonParameters(options);
+    const PipelineKey key = simpson ? PipelineKey{1, voxelTypeConstant(scene), emission,
+                                                  adaptive.coupling == Coupling::Coupled ? 1 : 0, 0}
+                                    : PipelineKey{0, voxelTypeConstant(scene), emission, int(options.placement),
+                                                  options.integrator == Integrator::Composite ? 1 : 0};
+    const VkPipeline pipeline = m.pipeline(key);
+    const std::vector<float> tf = transferFunctionTable(scene.transferFunction);
+    m.ensure(m.transferFunction, tf.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the transfer function");
+    m.ensure(m.rays, pixels * 32, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's rays");
+    m.ensure(m.output, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image");
+    m.ensure(m.counters, pixels * 32, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's sample counts");
+    local.setupSeconds = secondsSince(setupStart);
+
+    const auto start = std::chrono::steady_clock::now();
+    // The uniforms, with the values GridSampler<T, float>, placeSamples<float> and AdaptiveSimpsonRay<float> use.
+    using Vec = glm::vec3;
+    const Box box = scene.box();
+    const Vec dims(scene.dims());
+    const Vec eyeU(box.toTexture(camera.eye()));
+    Params p{};
+    if (scene.volume) {
+        const Volume& v = *scene.volume;
+        const bool cell = scene.convention == GridConvention::CellCentred;
+        const std::int32_t strides[3] = {1, v.dims.x, v.dims.x * v.dims.y};
+        for (int a = 0; a < 3; ++a) {
+            p.scale[a] = static_cast<float>(cell ? v.dims[a] : v.dims[a] - 1);
+            p.offset[a] = cell ? 0.5f : 0.0f;
+            p.maxCoord[a] = static_cast<float>(v.dims[a] - 1);
+            p.maxBase[a] = std::max(v.dims[a] - 2, 0);
+            p.stride[a] = v.dims[a] == 1 ? 0 : strides[a];
+        }
+        const ValueRange r = v.normalisationRange();
+        p.lo = static_cast<float>(r.lo);
+        p.invRange = r.hi > r.lo ? static_cast<float>(1.0 / (r.hi - r.lo)) : 0.0f;
+    }
+    for (int a = 0; a < 3; ++a) {
+        p.dims[a] = dims[a];
+        p.eyeU[a] = eyeU[a];
+    }
+    p.samplingRate = static_cast<float>(options.samplingRate);
+    p.earlyTermination = static_cast<float>(options.earlyTermination);
+    p.h0 = static_cast<float>(adaptive.h0);
+    p.hMin = static_cast<float>(adaptive.hMin);
+    p.hMax = static_cast<float>(adaptive.hMax);
+    p.epsPerVoxel = static_cast<float>(adaptive.tolerance / adaptive.h0);
+    p.width = width;
+    p.height = height;
+    p.tfCount = static_cast<std::int32_t>(scene.transferFunction.points().size());
+    p.accepted = adaptive.accepted == AcceptedValue::Richardson ? 0 : 1;
+    std::memcpy(m.params.mapped(), &p, sizeof p);
+    std::memcpy(m.transferFunction.mapped(), tf.data(), tf.size() * sizeof(float));
+
+    // The rays, clipped in double as render() clips them, with the world length per unit of the ray's
+    // parameter (texture units for the placements, voxels for Simpson) that render() derives in float.
+    auto* rays = static_cast<glm::vec4*>(m.rays.mapped());
+    const glm::dvec3 eye = camera.eye();
+    tbb::parallel_for(0, height, [&](int py) {
+        for (int px = 0; px < width; ++px) {
+            glm::vec4* out = rays + 2 * (std::size_t(py) * width + px);
+            const glm::dvec3 dir = camera.direction(px, py);
+            const auto segment = clipRay(eye, dir, box);
+            if (!segment) {
+                out[0] = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+                out[1] = glm::vec4(0.0f);
+                continue;
+            }
+            const Vec entry(box.toTexture(eye + segment->tNear * dir));
+            const Vec exit(box.toTexture(eye + segment->tFar * dir));
+            const double worldLength = segment->tFar - segment->tNear;
+            const float length = simpson ? glm::length((exit - entry) * dims) : glm::length(exit - entry);
+            out[0] = glm::vec4(entry, length > 0.0f ? static_cast<float>(worldLength / double(length)) : 0.0f);
+            out[1] = glm::vec4(exit, static_cast<float>(worldLength));
+        }
+    });
+
+    m.bind();
+    m.context.submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.pipelineLayout, 0, 1, &m.descriptorSet, 0, nullptr);
+        vkCmdDispatch(cmd, groupsX, groupsY, 1);
+        const VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                                     VK_ACCESS_HOST_READ_BIT};
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0,
+                             nullptr, 0, nullptr);
+    });
+    m.output.invalidate();
+    m.counters.invalidate();
+
+    Image image(width, height);
+    std::memcpy(image.pixels.data(), m.output.mapped(), pixels * 16);
+    const auto* c = static_cast<const std::uint32_t*>(m.counters.mapped());
+    AdaptiveCounts counts;
+    std::uint64_t placed = 0, evaluated = 0;
+    for (VkDeviceSize i = 0; i < pixels; ++i, c += 8) {
+        if (rays[2 * i].w >= 0.0f && rays[2 * i + 1].w > 0.0f) ++local.raysHit;
+        if (simpson) {
+            counts.pointsUsed += c[0];
+            counts.pointsEvaluated += c[1];
+            counts.innerTries += c[2];
+            counts.innerFailures += c[3];
+            counts.outerTries += c[4];
+            counts.outerFailures += c[5];
+            counts.outerSteps += c[6];
+            counts.acceptedAtMinimum += c[7];
+        } else {
+            placed += c[0];
+            evaluated += c[1];
+        }
+    }
+    local.seconds = secondsSince(start);
+    local.rays = pixels;
+    local.samplesPlaced = placed + counts.pointsUsed;
+    local.samplesEvaluated = evaluated + counts.pointsEvaluated;
+    if (simpson) local.adaptive = counts;
+    local.backend = "vulkan";
+    local.device = m.context.info().name;
+    if (stats) *stats = local;
+    return image;
+}
+
+}  // namespace vri

@@ -1,0 +1,85 @@
+// Shared by the compute shaders of the Vulkan backend (libvri/src/vulkan_renderer.cpp): the bindings,
+// the volume sampler and the transfer function, each a port of the CPU code in float.
+//
+// The volume is read from a storage buffer in its native type and interpolated here with the
+// formula and clamping of grid_sampler.h, not with a hardware sampler: texture units filter with
+// low-precision weights (8 fractional bits on many GPUs), far from float.
+//
+// `precise` keeps the compiler from fusing multiplies and adds: the CPU code is built with
+// -ffp-contract=off, and fused operations would round differently.
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+// Specialisation constants: one pipeline per combination, so that each shader is straight-line code.
+layout(constant_id = 0) const int VOXEL_TYPE = 0;  // 0 uint8, 1 uint16, 2 float32, 3 the analytic linear field
+layout(constant_id = 1) const int EMISSION = 0;    // 0 colour times extinction, 1 colour
+const int ANALYTIC = 3;
+
+layout(std140, binding = 0) uniform Params {
+    vec4 scale;     // texture coordinate -> voxel index: x = u * scale - offset
+    vec4 offset;
+    vec4 maxCoord;  // dims - 1
+    ivec4 maxBase;  // max(dims - 2, 0)
+    ivec4 stride;   // voxels; 0 along an axis of a single layer
+    vec4 dims;      // the grid resolution paper A's placements use
+    vec4 eyeU;      // the eye in texture coordinates
+    float lo, invRange;  // normalisation: s = (value - lo) * invRange
+    float samplingRate, earlyTermination;
+    float h0, hMin, hMax, epsPerVoxel;  // paper B, voxels; hMax may be +inf
+    int width, height, tfCount, accepted;  // accepted: 0 Richardson, 1 paper (D + |D - S| / 15)
+} P;
+
+layout(std430, binding = 1) readonly buffer Volume { uint words[]; };
+// Per transfer function point i: s, r, g, b, tau, then the differences to point i + 1 as the CPU
+// computes them (in double, then rounded to float).
+layout(std430, binding = 2) readonly buffer TransferFunction { float tf[]; };
+// Per pixel: (entry, world units per unit of the ray's parameter; < 0: no hit), (exit, world length:
+// read by the CPU for the stats only).
+layout(std430, binding = 3) readonly buffer Rays { vec4 rays[]; };
+layout(std430, binding = 4) writeonly buffer Output { vec4 pixels[]; };
+layout(std430, binding = 5) writeonly buffer Counters { uvec4 counters[]; };  // two per pixel
+
+float voxel(uint i) {
+    if (VOXEL_TYPE == 0) return float((words[i >> 2] >> ((i & 3u) * 8u)) & 0xffu);
+    if (VOXEL_TYPE == 1) return float((words[i >> 1] >> ((i & 1u) * 16u)) & 0xffffu);
+    return uintBitsToFloat(words[i]);
+}
+
+precise float lerp1(float a, float b, float t) { return a + t * (b - a); }
+
+// GridSampler::operator() (or LinearFieldSampler): the normalised scalar at texture coordinate u.
+float sampleScalar(vec3 u) {
+    if (VOXEL_TYPE == ANALYTIC) return u.x;
+    precise vec3 x = u * P.scale.xyz - P.offset.xyz;
+    uint base = 0u;
+    precise vec3 w;
+    for (int a = 0; a < 3; ++a) {
+        precise float c = clamp(x[a], 0.0, P.maxCoord[a]);
+        int i = min(int(c), P.maxBase[a]);
+        w[a] = c - float(i);
+        base += uint(i) * uint(P.stride[a]);
+    }
+    uint sx = uint(P.stride.x), sy = uint(P.stride.y), sz = uint(P.stride.z);
+    precise float c00 = lerp1(voxel(base), voxel(base + sx), w.x);
+    precise float c10 = lerp1(voxel(base + sy), voxel(base + sy + sx), w.x);
+    precise float c01 = lerp1(voxel(base + sz), voxel(base + sz + sx), w.x);
+    precise float c11 = lerp1(voxel(base + sz + sy), voxel(base + sz + sy + sx), w.x);
+    precise float c0 = lerp1(c00, c10, w.y);
+    precise float c1 = lerp1(c01, c11, w.y);
+    precise float s = (lerp1(c0, c1, w.z) - P.lo) * P.invRange;
+    return s;
+}
+
+// TransferFunction::operator(): (r, g, b, tau), piecewise linear, constant beyond the ends; at a jump
+// (equal s) the value is taken from the right.
+vec4 transfer(float s) {
+    int last = P.tfCount - 1;
+    if (!(s >= tf[0])) return vec4(tf[1], tf[2], tf[3], tf[4]);
+    if (!(s < tf[10 * last])) return vec4(tf[10 * last + 1], tf[10 * last + 2], tf[10 * last + 3], tf[10 * last + 4]);
+    int i = 0;
+    while (s >= tf[10 * (i + 1)]) ++i;
+    int o = 10 * i;
+    precise float w = (s - tf[o]) / tf[o + 5];
+    precise vec4 v = vec4(tf[o + 1], tf[o + 2], tf[o + 3], tf[o + 4]) + w * vec4(tf[o + 6], tf[o + 7], tf[o + 8], tf[o + 9]);
+    return v;
+}

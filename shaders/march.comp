@@ -1,0 +1,89 @@
+#version 450
+// Paper A's fixed-step methods, one invocation per pixel: Riemann (or opacity-corrected composite)
+// over the samples of one of the four placements, as render.cpp's marchSamples, placement.h's
+// placeSamples and integrator.h's RayAccumulator compute them in float (without empty-space skipping).
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+layout(constant_id = 2) const int PLACEMENT = 1;   // 0 eye, 1 entry, 2 entry-exit, 3 entry-exit-corner
+layout(constant_id = 3) const int COMPOSITE = 0;   // 0 Riemann, 1 opacity-corrected compositing
+
+// exp(x) - 1 without the cancellation of the plain difference near 0 (Kahan's trick), for
+// composite's alpha = -expm1(-tau dx).
+precise float expm1(float x) {
+    precise float u = exp(x);
+    if (u == 1.0) return x;
+    precise float um1 = u - 1.0;
+    if (um1 == -1.0) return -1.0;
+    return um1 * x / log(u);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel.x >= P.width || pixel.y >= P.height) return;
+    int id = pixel.y * P.width + pixel.x;
+    vec4 a = rays[2 * id], b = rays[2 * id + 1];
+    counters[2 * id] = uvec4(0u);
+    counters[2 * id + 1] = uvec4(0u);
+    pixels[id] = vec4(0.0);
+    if (a.w < 0.0) return;  // the ray misses the box
+    vec3 entry = a.xyz, exit = b.xyz;
+
+    // placeSamples
+    precise vec3 ray = exit - entry;
+    precise float tEnd = length(ray);
+    if (!(tEnd > 0.0)) return;
+    precise float samples;
+    if (PLACEMENT == 0 || PLACEMENT == 1) samples = length(ray * P.dims.xyz) * P.samplingRate;
+    else if (PLACEMENT == 2) samples = floor(length(ray * P.dims.xyz) * P.samplingRate);
+    else samples = ceil(P.samplingRate * length(ray * (P.dims.xyz - vec3(1.0))));
+    if (!(samples > 0.0) || isinf(samples)) return;
+    precise float tIncr = tEnd / samples;
+    precise float tStart;
+    if (PLACEMENT == 0) {
+        precise float numSteps = length(entry - P.eyeU.xyz) / tIncr;
+        tStart = (1.0 - (numSteps - floor(numSteps))) * tIncr;
+    } else {
+        tStart = 0.5 * tIncr;
+    }
+    int count;
+    if (PLACEMENT >= 2) {
+        count = int(samples);
+    } else {
+        // As many samples as have t < tEnd, counted on the positions evaluated.
+        int n = tStart < tEnd ? int(ceil((tEnd - tStart) / tIncr)) : 0;
+        while (n > 0 && !(tStart + float(n - 1) * tIncr < tEnd)) --n;
+        while (tStart + float(n) * tIncr < tEnd) ++n;
+        count = n;
+    }
+
+    // marchSamples: a.w is the world length per texture unit of the ray.
+    precise vec3 du = ray / tEnd;
+    precise float dx = tIncr * a.w;
+    precise float r = 0.0, g = 0.0, bl = 0.0, transparency = 1.0;
+    int k = 0;
+    while (k < count) {
+        precise float t = tStart + float(k) * tIncr;
+        vec4 v = transfer(sampleScalar(entry + t * du));
+        ++k;
+        // RayAccumulator::add
+        if (!(v.w == 0.0 && EMISSION == 0)) {
+            precise float attenuation = exp(-v.w * dx);
+            precise float weight;
+            if (COMPOSITE == 0) {
+                weight = EMISSION == 0 ? v.w * dx : dx;
+            } else {
+                precise float alpha = -expm1(-v.w * dx);
+                weight = EMISSION == 0 ? alpha : v.w > 0.0 ? alpha / v.w : dx;
+            }
+            precise float w = transparency * weight;
+            r += w * v.x;
+            g += w * v.y;
+            bl += w * v.z;
+            transparency *= attenuation;
+        }
+        if (transparency < P.earlyTermination) break;
+    }
+    pixels[id] = vec4(r, g, bl, 1.0 - transparency);
+    counters[2 * id] = uvec4(uint(k), uint(k), 0u, 0u);  // samples placed, evaluated
+}

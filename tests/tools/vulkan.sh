@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# vri-render's Vulkan backend end to end: --list-devices, a render of a tiny volume compared with the
+# CPU in float, the stats naming the device, a repeat that reuses the uploaded volume, and bad
+# --device/--backend/--precision giving one error line. Skipped (77) when there is no Vulkan device.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+
+"$VRI_BIN/vri-render" --list-devices > devices.txt 2> /dev/null || { echo "no Vulkan device: skipping"; exit 77; }
+# One line per device: index, name, type and API version, tab separated.
+awk -F'\t' 'NF != 4 || $1 != NR - 1 { exit 1 }' devices.txt || fail "bad --list-devices output: $(cat devices.txt)"
+device=$(head -1 devices.txt | cut -f2)
+
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_volume
+cat > tf.yaml <<'YAML'
+points:
+  - [0.0, 0.0, 0.0, 0.0, 0.0]
+  - [0.3, 0.0, 0.0, 0.0, 0.0]
+  - [0.7, 1.0, 0.5, 0.2, 0.4]
+  - [1.0, 1.0, 1.0, 1.0, 0.8]
+YAML
+render() { "$VRI_BIN/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 40x30 --eye 20,14,-9 -q "$@"; }
+
+# Riemann at each placement: within float rounding of the CPU (see tests/unit/vulkan_test.cpp).
+for placement in eye entry entry-exit entry-exit-corner; do
+  render --placement $placement --step 0.3 --precision float -o cpu-$placement.exr
+  render --placement $placement --step 0.3 --backend vulkan --device 0 -o vk-$placement.exr --stats vk-$placement.json
+  "$VRI_BIN/vri-diff" cpu-$placement.exr vk-$placement.exr --fail 2e-5 --warn 2e-5 > diff.txt \
+    || fail "$placement: Vulkan differs from the CPU: $(cat diff.txt)"
+done
+grep -q '"backend": "vulkan"' vk-entry.json || fail "stats do not name the backend"
+grep -qF "\"device\": \"$device\"" vk-entry.json || fail "stats do not name the device $device"
+grep -q '"precision": "float"' vk-entry.json || fail "the Vulkan render is not recorded as float"
+
+# Coupled, by a part of the device's name, repeated on the uploaded volume: within a few tolerances.
+render --method coupled --tolerance 0.001 --precision float -o cpu-coupled.exr
+render --method coupled --tolerance 0.001 --backend vulkan --device "${device:0:4}" --repeat 3 -o vk-coupled.exr \
+  --stats vk-coupled.json
+"$VRI_BIN/vri-diff" cpu-coupled.exr vk-coupled.exr --fail 0.004 --warn 0.004 > diff.txt \
+  || fail "coupled: Vulkan differs from the CPU: $(cat diff.txt)"
+grep -q '"repeats": 3' vk-coupled.json && grep -q '"outer_steps"' vk-coupled.json
+
+expect_error() {  # expect_error PATTERN ARGS...
+  local pattern=$1; shift
+  set +e; render "$@" -o bad.exr 2> err.txt; local rc=$?; set -e
+  [ "$rc" -ne 0 ] || fail "expected failure for: $*"
+  [ "$(wc -l < err.txt)" -eq 1 ] || fail "expected one line for: $*: $(cat err.txt)"
+  grep -q "^vri-render: error: .*$pattern" err.txt || fail "expected '$pattern' for: $*: $(cat err.txt)"
+  if ls bad.* > /dev/null 2>&1; then fail "output written despite failure: $*"; fi
+}
+expect_error "no Vulkan device matches" --backend vulkan --device no-such-gpu
+expect_error "no Vulkan device matches" --backend vulkan --device 99
+expect_error "single precision" --backend vulkan --precision double
+expect_error "unknown backend" --backend opencl
+expect_error "needs --backend vulkan" --device 0
+echo ok

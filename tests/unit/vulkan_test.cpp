@@ -1,0 +1,198 @@
+// The Vulkan backend against the CPU raycaster in float, on whatever Vulkan device comes first
+// (Mesa's lavapipe on a machine without a GPU). Skipped when there is no Vulkan device at all.
+//
+// Tolerances. The two backends integrate the same clipped rays at the same sample positions with
+// the same float formulas; what may differ is the rounding of exp(), of division and of sqrt(),
+// which Vulkan lets a device compute to within a few ulp instead of correctly rounded. One ulp of
+// relative error per sample, carried through a product of up to ~100 attenuations and a sum of as
+// many terms, stays below 1e-5 of values that are at most a few units here: kFixedStep = 2e-5.
+// The adaptive methods branch on float error estimates, so a tie broken differently takes other
+// steps on that ray; both images then still approximate the integral within the tolerance, so their
+// difference is bounded by a few times the tolerance the methods were run with (kAdaptive).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "vri/error.h"
+#include "vri/render.h"
+#include "vri/vulkan_renderer.h"
+
+using namespace vri;
+
+namespace {
+
+constexpr double kFixedStep = 2e-5;
+
+bool haveVulkan() {
+    if (!VulkanRenderer::listDevices().empty()) return true;
+    MESSAGE("no Vulkan device: skipping");
+    return false;
+}
+
+double maxDifference(const Image& a, const Image& b) {
+    REQUIRE(a.pixels.size() == b.pixels.size());
+    double d = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) d = std::max(d, double(std::abs(a.pixels[i] - b.pixels[i])));
+    return d;
+}
+
+double maxValue(const Image& a) {
+    double m = 0;
+    for (float v : a.pixels) m = std::max(m, double(v));
+    return m;
+}
+
+Scene linearScene() {  // paper A's field and transfer function: g(s) = s, tau(s) = s / 2
+    return Scene{nullptr, LinearField{}, GridConvention::NodeCentred,
+                 TransferFunction({{0, 0, 0, 0, 0}, {1, 1, 1, 1, 0.5}}, EmissionModel::Colour)};
+}
+
+// A noisy uint8 blob in empty space, converted to `type` (same values) when asked.
+Scene blobScene(VoxelType type = VoxelType::UInt8) {
+    const int n = 20;
+    auto v = std::make_shared<Volume>(glm::ivec3(n, n - 3, n + 2), type);
+    std::mt19937 rng(5);
+    for (int z = 0; z < v->dims.z; ++z)
+        for (int y = 0; y < v->dims.y; ++y)
+            for (int x = 0; x < v->dims.x; ++x) {
+                const glm::dvec3 p = (glm::dvec3(x, y, z) + 0.5) / glm::dvec3(v->dims) - 0.5;
+                const double r = glm::length(p);
+                const int base = r < 0.35 ? 220 - int(400 * r) : 0;
+                const int value = base > 0 ? base + int(rng() % 30) : 0;
+                const std::size_t i = v->index(x, y, z);
+                if (type == VoxelType::UInt8) v->data<std::uint8_t>()[i] = std::uint8_t(value);
+                if (type == VoxelType::UInt16) v->data<std::uint16_t>()[i] = std::uint16_t(value);
+                if (type == VoxelType::Float32) v->data<float>()[i] = float(value);
+            }
+    v->range = ValueRange{0.0, 255.0};
+    v->spacing = glm::dvec3(1.0, 1.25, 0.8);
+    const TransferFunction tf({{0, 0, 0, 0, 0}, {0.25, 0, 0, 0, 0}, {0.5, 1, 0.5, 0.2, 0.3}, {0.5, 0.2, 0.8, 1, 0.6},
+                               {1, 1, 1, 1, 1.2}},
+                              EmissionModel::ColourTimesExtinction);
+    return Scene{v, std::nullopt, GridConvention::CellCentred, tf};
+}
+
+// An oblique view, so that rays enter through different faces and the placements differ per pixel.
+Camera obliqueCamera(const Scene& scene) {
+    CameraSpec spec = framingCamera(scene.box(), 40, 30, 35.0);
+    const glm::dvec3 c = scene.box().centre();
+    spec.eye = c + glm::length(spec.eye - c) * glm::normalize(glm::dvec3(0.5, 0.4, 1.0));
+    return Camera(spec);
+}
+
+RenderOptions floatOptions(Integrator integrator) {
+    RenderOptions opt;
+    opt.integrator = integrator;
+    opt.precision = Precision::Float;
+    opt.samplingRate = 3.0;
+    return opt;
+}
+
+}  // namespace
+
+TEST_CASE("Vulkan Riemann matches the CPU in float for every placement") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    for (const Scene& scene : {linearScene(), blobScene()}) {
+        const Camera camera = obliqueCamera(scene);
+        for (auto placement : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,
+                               Placement::EntryExitAlignCorner}) {
+            CAPTURE(placementName(placement));
+            RenderOptions opt = floatOptions(Integrator::Riemann);
+            opt.placement = placement;
+            RenderStats cpuStats, gpuStats;
+            opt.skipEmptySpace = false;  // as the GPU: then the sample counts agree too
+            const Image cpu = render(scene, camera, opt, &cpuStats);
+            const Image vk = gpu.render(scene, camera, opt, &gpuStats);
+            const double d = maxDifference(cpu, vk);
+            MESSAGE(placementName(placement), ": max difference ", d, " of values up to ", maxValue(cpu));
+            CHECK(maxValue(cpu) > 0.1);
+            CHECK(d <= kFixedStep);
+            CHECK(gpuStats.raysHit == cpuStats.raysHit);
+            CHECK(gpuStats.samplesPlaced == cpuStats.samplesPlaced);
+            CHECK(gpuStats.backend == "vulkan");
+            CHECK(gpuStats.device == gpu.device().name);
+        }
+    }
+}
+
+TEST_CASE("Vulkan reads uint16 and float32 volumes like uint8 ones") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    const RenderOptions opt = floatOptions(Integrator::Riemann);
+    const Scene byteScene = blobScene();
+    const Image reference = render(byteScene, obliqueCamera(byteScene), opt);
+    for (auto type : {VoxelType::UInt16, VoxelType::Float32}) {
+        CAPTURE(voxelTypeName(type));
+        const Scene scene = blobScene(type);
+        CHECK(maxDifference(reference, gpu.render(scene, obliqueCamera(scene), opt)) <= kFixedStep);
+    }
+}
+
+TEST_CASE("Vulkan composite and uniform Simpson match the CPU in float") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    for (const Scene& scene : {linearScene(), blobScene()})
+        for (auto integrator : {Integrator::Composite, Integrator::Simpson}) {
+            CAPTURE(integratorName(integrator));
+            const RenderOptions opt = floatOptions(integrator);
+            const Camera camera = obliqueCamera(scene);
+            const double d = maxDifference(render(scene, camera, opt), gpu.render(scene, camera, opt));
+            MESSAGE(integratorName(integrator), ": max difference ", d);
+            CHECK(d <= kFixedStep);
+        }
+}
+
+TEST_CASE("Vulkan coupled and decoupled stay within a bound of the CPU in float") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    for (const Scene& scene : {linearScene(), blobScene()})
+        for (auto integrator : {Integrator::Coupled, Integrator::Decoupled})
+            for (double tolerance : {1e-2, 1e-4}) {
+                CAPTURE(integratorName(integrator));
+                CAPTURE(tolerance);
+                RenderOptions opt = floatOptions(integrator);
+                opt.adaptive.tolerance = tolerance;
+                const Camera camera = obliqueCamera(scene);
+                RenderStats cpuStats, gpuStats;
+                opt.skipEmptySpace = false;
+                const Image cpu = render(scene, camera, opt, &cpuStats);
+                const Image vk = gpu.render(scene, camera, opt, &gpuStats);
+                const double d = maxDifference(cpu, vk);
+                MESSAGE(integratorName(integrator), " eps ", tolerance, ": max difference ", d, ", steps ",
+                        gpuStats.adaptive->outerSteps, " (CPU ", cpuStats.adaptive->outerSteps, ")");
+                CHECK(d <= std::max(kFixedStep, 4 * tolerance));
+                REQUIRE(gpuStats.adaptive);
+                const double steps = double(cpuStats.adaptive->outerSteps);
+                CHECK(std::abs(double(gpuStats.adaptive->outerSteps) - steps) <= 0.01 * steps);
+            }
+}
+
+TEST_CASE("Vulkan keeps the uploaded volume and renders repeatably") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    const Scene scene = blobScene();
+    const RenderOptions opt = floatOptions(Integrator::Coupled);
+    RenderStats first, second;
+    const Image a = gpu.render(scene, obliqueCamera(scene), opt, &first);
+    const Image b = gpu.render(scene, obliqueCamera(scene), opt, &second);
+    CHECK(a.pixels == b.pixels);
+    // Another volume replaces the uploaded one: the same values in float32 give the same image.
+    const Scene other = blobScene(VoxelType::Float32);
+    CHECK(maxDifference(a, gpu.render(other, obliqueCamera(other), opt)) <= kFixedStep);
+}
+
+TEST_CASE("Vulkan rejects what it cannot do") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    const Scene scene = linearScene();
+    RenderOptions opt;  // double precision
+    CHECK_THROWS_WITH_AS(gpu.render(scene, obliqueCamera(scene), opt), doctest::Contains("single precision"), Error);
+    opt.precision = Precision::Float;
+    opt.samplingRate = 0.0;
+    CHECK_THROWS_AS(gpu.render(scene, obliqueCamera(scene), opt), Error);
+    CHECK_THROWS_WITH_AS(VulkanRenderer("no such device"), doctest::Contains("no Vulkan device matches"), Error);
+    CHECK_THROWS_WITH_AS(VulkanRenderer("99"), doctest::Contains("no Vulkan device matches"), Error);
+}
