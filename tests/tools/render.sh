@@ -6,14 +6,7 @@ bin=${VRI_BIN:?} src=${VRI_SOURCE:?} dir=${VRI_SCRATCH:?}
 rm -rf "$dir" && mkdir -p "$dir" && cd "$dir"
 
 # A deterministic 8x8x8 uint8 volume: a ramp with some structure.
-source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_volume
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.3, 0.0, 0.0, 0.0, 0.0]
-  - [0.7, 1.0, 0.5, 0.2, 0.4]
-  - [1.0, 1.0, 1.0, 1.0, 0.8]
-YAML
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
 render() { "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 40x30 -q "$@"; }
 
 render --step 0.5 -o a.exr --png a.png --stats a.json

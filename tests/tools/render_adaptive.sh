@@ -4,14 +4,7 @@
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 # A deterministic 8x8x8 uint8 volume and a transfer function with an empty range.
-source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_volume
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.3, 0.0, 0.0, 0.0, 0.0]
-  - [0.7, 1.0, 0.5, 0.2, 0.4]
-  - [1.0, 1.0, 1.0, 1.0, 0.8]
-YAML
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
 render() { "$VRI_BIN/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 40x30 -q "$@"; }
 count() { grep -o "\"$2\": [0-9]*" "$1" | head -1 | grep -o '[0-9]*$'; }  # count FILE KEY: an integer of the stats
 

@@ -9,14 +9,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 awk -F'\t' 'NF != 4 || $1 != NR - 1 { exit 1 }' devices.txt || fail "bad --list-devices output: $(cat devices.txt)"
 device=$(head -1 devices.txt | cut -f2)
 
-source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_volume
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.3, 0.0, 0.0, 0.0, 0.0]
-  - [0.7, 1.0, 0.5, 0.2, 0.4]
-  - [1.0, 1.0, 1.0, 1.0, 0.8]
-YAML
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
 render() { "$VRI_BIN/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 40x30 --eye 20,14,-9 -q "$@"; }
 
 # Riemann at each placement: within float rounding of the CPU (see tests/unit/vulkan_test.cpp).
