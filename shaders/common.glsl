@@ -27,6 +27,8 @@ layout(std140, binding = 0) uniform Params {
     float samplingRate, earlyTermination;
     float h0, hMin, hMax, epsPerVoxel;  // paper B, voxels; hMax may be +inf
     int width, height, tfCount, accepted;  // accepted: 0 Richardson, 1 paper (D + |D - S| / 15)
+    ivec4 bricks;   // empty-space bricks per axis (occupancy_grid.h); w: 1 when skipping empty space
+    vec4 maxIndex;  // dims - 1, the voxel index range the bricks cover
 } P;
 
 layout(std430, binding = 1) readonly buffer Volume { uint words[]; };
@@ -38,6 +40,29 @@ layout(std430, binding = 2) readonly buffer TransferFunction { float tf[]; };
 layout(std430, binding = 3) readonly buffer Rays { vec4 rays[]; };
 layout(std430, binding = 4) writeonly buffer Output { vec4 pixels[]; };
 layout(std430, binding = 5) writeonly buffer Counters { uvec4 counters[]; };  // two per pixel
+// OccupancyGrid::emptyFlags(), one byte per brick, x fastest: 1 where the transfer function gives
+// nothing to any sample that the brick (and a one-voxel margin) can produce.
+layout(std430, binding = 6) readonly buffer Occupancy { uint emptyWords[]; };
+
+const int BRICK_SHIFT = 3;  // OccupancyGrid::kBrickShift
+
+// OccupancyGrid::visit in float for the index-space ray x0 + t dxdt: whether the brick at t is empty,
+// and the parameter where the ray leaves it. The one-voxel margin of the emptiness test covers the
+// rounding of float positions, so a skipped sample is one that would have added exactly nothing.
+bool brickEmpty(vec3 x0, vec3 dxdt, float t, out float tExit) {
+    uint cell = 0u;
+    tExit = 1.0 / 0.0;
+    for (int a = 2; a >= 0; --a) {
+        precise float x = clamp(x0[a] + t * dxdt[a], 0.0, P.maxIndex[a]);
+        int m = min(int(x) >> BRICK_SHIFT, P.bricks[a] - 1);
+        cell = cell * uint(P.bricks[a]) + uint(m);
+        if (dxdt[a] > 0.0 && m + 1 < P.bricks[a])
+            tExit = min(tExit, (float((m + 1) << BRICK_SHIFT) - x0[a]) / dxdt[a]);
+        else if (dxdt[a] < 0.0 && m > 0)
+            tExit = min(tExit, (float(m << BRICK_SHIFT) - x0[a]) / dxdt[a]);
+    }
+    return ((emptyWords[cell >> 2] >> ((cell & 3u) * 8u)) & 0xffu) != 0u;
+}
 
 float voxel(uint i) {
     if (VOXEL_TYPE == 0) return float((words[i >> 2] >> ((i & 3u) * 8u)) & 0xffu);

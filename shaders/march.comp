@@ -1,7 +1,8 @@
 #version 450
 // Paper A's fixed-step methods, one invocation per pixel: Riemann (or opacity-corrected composite)
 // over the samples of one of the four placements, as render.cpp's marchSamples, placement.h's
-// placeSamples and integrator.h's RayAccumulator compute them in float (without empty-space skipping).
+// placeSamples and integrator.h's RayAccumulator compute them in float, skipping empty bricks as
+// marchSamples does (which changes no bit of the image).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -61,11 +62,30 @@ void main() {
     precise vec3 du = ray / tEnd;
     precise float dx = tIncr * a.w;
     precise float r = 0.0, g = 0.0, bl = 0.0, transparency = 1.0;
-    int k = 0;
+    precise vec3 x0 = entry * P.scale.xyz - P.offset.xyz;  // the ray in voxel index space, as the bricks
+    precise vec3 dxdt = du * P.scale.xyz;
+    float knownOccupiedUntil = -1.0 / 0.0;
+    int k = 0, evaluated = 0;
     while (k < count) {
         precise float t = tStart + float(k) * tIncr;
+        if (P.bricks.w != 0 && t >= knownOccupiedUntil) {
+            float tExit;
+            if (brickEmpty(x0, dxdt, t, tExit)) {
+                // To the first sample at or past the exit, as marchSamples: every one skipped lies before it.
+                if (!(tExit < tEnd)) {
+                    k = count;
+                    break;
+                }
+                int next = clamp(int(ceil((tExit - tStart) / tIncr)), k + 1, count);
+                while (next > k + 1 && tStart + float(next - 1) * tIncr >= tExit) --next;
+                k = next;
+                continue;
+            }
+            knownOccupiedUntil = tExit;
+        }
         vec4 v = transfer(sampleScalar(entry + t * du));
         ++k;
+        ++evaluated;
         // RayAccumulator::add
         if (!(v.w == 0.0 && EMISSION == 0)) {
             precise float attenuation = exp(-v.w * dx);
@@ -85,5 +105,5 @@ void main() {
         if (transparency < P.earlyTermination) break;
     }
     pixels[id] = vec4(r, g, bl, 1.0 - transparency);
-    counters[2 * id] = uvec4(uint(k), uint(k), 0u, 0u);  // samples placed, evaluated
+    counters[2 * id] = uvec4(uint(k), uint(evaluated), 0u, 0u);  // samples placed, evaluated
 }

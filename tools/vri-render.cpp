@@ -134,7 +134,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         options.adaptive = adaptive;
         if (!logRay.empty()) options.logPixel = vri::parsePixel(logRay, "--log-ray");
         options.earlyTermination = ert;
-        options.skipEmptySpace = !noSkip && !vulkan;  // the Vulkan backend marches through empty space
+        options.skipEmptySpace = !noSkip;
         options.progress = !quiet;
         // Every option is checked before the render, so that a mistake never leaves some outputs written.
         const vri::PngOptions png = preview.get();

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "vri/error.h"
+#include "vri/occupancy_grid.h"
 #include "vulkan_context.h"
 
 // SPIR-V of shaders/*.comp, compiled at build time (libvri/CMakeLists.txt).
@@ -30,10 +31,12 @@ struct Params {
     float lo, invRange, samplingRate, earlyTermination;
     float h0, hMin, hMax, epsPerVoxel;
     std::int32_t width, height, tfCount, accepted;
+    std::int32_t bricks[4];  // w: 1 when skipping empty space
+    float maxIndex[4];
 };
-static_assert(sizeof(Params) == 160);
+static_assert(sizeof(Params) == 192);
 
-enum Binding { kParams, kVolume, kTransferFunction, kRays, kOutput, kCounters, kBindings };
+enum Binding { kParams, kVolume, kTransferFunction, kRays, kOutput, kCounters, kOccupancy, kBindings };
 
 // Shader and specialisation constants (common.glsl, march.comp, simpson.comp) of one pipeline.
 using PipelineKey = std::array<int, 5>;
@@ -78,7 +81,7 @@ struct VulkanRenderer::Impl {
     std::map<PipelineKey, VkPipeline> pipelines;
 
     std::shared_ptr<const Volume> volume;  // the uploaded one, kept alive so that its address stays unique
-    VulkanBuffer volumeBuffer, params, transferFunction, rays, output, counters;
+    VulkanBuffer volumeBuffer, params, transferFunction, rays, output, counters, occupancy;
 
     explicit Impl(const std::string& selector) {
         context.open(selector);
@@ -181,7 +184,8 @@ struct VulkanRenderer::Impl {
     }
 
     void bind() const {
-        const VulkanBuffer* buffers[kBindings] = {&params, &volumeBuffer, &transferFunction, &rays, &output, &counters};
+        const VulkanBuffer* buffers[kBindings] = {&params,  &volumeBuffer, &transferFunction, &rays,
+                                                  &output,  &counters,     &occupancy};
         VkDescriptorBufferInfo infos[kBindings];
         VkWriteDescriptorSet writes[kBindings];
         for (std::uint32_t b = 0; b < kBindings; ++b) {
@@ -276,6 +280,22 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     p.height = height;
     p.tfCount = static_cast<std::int32_t>(scene.transferFunction.points().size());
     p.accepted = adaptive.accepted == AcceptedValue::Richardson ? 0 : 1;
+    // Empty-space skipping, for the fixed-step methods (the Simpson shader marches through empty space):
+    // the CPU's bricks, built here as render() builds them, inside the timed part.
+    std::vector<std::uint8_t> empty(4, 0);  // a placeholder when not skipping: the binding needs a buffer
+    if (scene.volume && options.skipEmptySpace && !simpson) {
+        const OccupancyGrid grid(*scene.volume, scene.convention, scene.transferFunction);
+        empty = grid.emptyFlags();
+        local.emptyBrickFraction = grid.emptyFraction();
+        for (int a = 0; a < 3; ++a) {
+            p.bricks[a] = grid.bricks()[a];
+            p.maxIndex[a] = static_cast<float>(grid.maxIndex()[a]);
+        }
+        p.bricks[3] = 1;
+    }
+    empty.resize((empty.size() + 3) / 4 * 4, 0);
+    m.ensure(m.occupancy, empty.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the empty-space bricks");
+    std::memcpy(m.occupancy.mapped(), empty.data(), empty.size());
     std::memcpy(m.params.mapped(), &p, sizeof p);
     std::memcpy(m.transferFunction.mapped(), tf.data(), tf.size() * sizeof(float));
 

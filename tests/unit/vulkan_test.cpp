@@ -118,6 +118,25 @@ TEST_CASE("Vulkan Riemann matches the CPU in float for every placement") {
     }
 }
 
+TEST_CASE("Vulkan empty-space skipping changes no bit of the image") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    const Scene scene = blobScene();
+    const Camera camera = obliqueCamera(scene);
+    for (auto placement : {Placement::EyeAlign, Placement::EntryExitAlignCorner}) {
+        RenderOptions opt = floatOptions(Integrator::Riemann);
+        opt.placement = placement;
+        opt.skipEmptySpace = false;
+        RenderStats full, skipping;
+        const Image a = gpu.render(scene, camera, opt, &full);
+        opt.skipEmptySpace = true;
+        const Image b = gpu.render(scene, camera, opt, &skipping);
+        CHECK(a.pixels == b.pixels);
+        CHECK(skipping.samplesPlaced == full.samplesPlaced);
+        CHECK(skipping.samplesEvaluated < full.samplesEvaluated);
+    }
+}
+
 TEST_CASE("Vulkan reads uint16 and float32 volumes like uint8 ones") {
     if (!haveVulkan()) return;
     VulkanRenderer gpu;

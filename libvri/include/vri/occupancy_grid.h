@@ -56,6 +56,9 @@ public:
     }
 
     glm::ivec3 bricks() const { return bricks_; }
+    glm::dvec3 maxIndex() const { return maxIndex_; }
+    // Per brick, x fastest, 1 when empty: what visit() reads, for the Vulkan backend to upload.
+    const std::vector<std::uint8_t>& emptyFlags() const { return empty_; }
     double emptyFraction() const;
 
 private:

@@ -3,8 +3,8 @@
 // device (a GPU, or Mesa's lavapipe on the CPU). The Vulkan headers stay in libvri/src/vulkan_*.cpp.
 //
 // What differs from vri::render() with Precision::Float: float arithmetic whose rounding the device
-// chooses (exp, division), no empty-space skipping (it never changes the CPU image either, so the
-// sample counts of the stats are those of --no-skip-empty), no per-ray log. The rays themselves
+// chooses (exp, division), empty-space skipping for the fixed-step methods only (Simpson marches
+// through empty space; skipping never changes an image, only the samples evaluated), no per-ray log. The rays themselves
 // (entry and exit points, world length per unit of ray) are clipped on the CPU in double precision
 // exactly as render() does, so both backends integrate along the same segments.
 #include <cstdint>
