@@ -1,14 +1,14 @@
 #version 450
 // Paper B's Simpson methods, one invocation per pixel: adaptive_simpson.h's AdaptiveSimpsonRay and
 // SimpsonWindow ported to float, coupled or decoupled (uniform Simpson is coupled with
-// h0 = h_min = h_max), as render.cpp's integrateSimpson calls them (without empty-space skipping).
+// h0 = h_min = h_max), as render.cpp's integrateSimpson calls them, with its empty-space shortcut.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
 layout(constant_id = 2) const int COUPLED = 1;
 
-// The ray: v in voxels of ray, point = entry + v * du.
-vec3 entry, du;
+// The ray: v in voxels of ray, point = entry + v * du; in voxel index space x0 + v * dxdt.
+vec3 entry, du, x0, dxdt;
 float worldPerVoxel;
 
 // AdaptiveCounts of this ray.
@@ -34,8 +34,24 @@ vec4 evaluate(float v) {
     return p;
 }
 
+// render.cpp's emptyAlong: true when [a, b] lies in empty bricks only; gives up (false) rather than
+// loop on a brick exit that rounding leaves on the wrong side.
+bool emptyAlong(float a, float b) {
+    if (P.bricks.w == 0) return false;
+    float t = a;
+    for (int visits = 0; visits < 64; ++visits) {
+        float tExit;
+        if (!brickEmpty(x0, dxdt, t, tExit)) return false;
+        if (tExit >= b) return true;
+        if (!(tExit > t)) return false;
+        t = tExit;
+    }
+    return false;
+}
+
 void place(float a, float b) {
     precise float h = b - a;
+    bool empty = emptyAlong(a, b);  // then every point is exactly zero: not evaluated
     precise float x[5] = float[5](a, a + h * 0.25, a + h * 0.5, a + h * 0.75, b);
     vec4 next[5];
     for (int k = 0; k < 5; ++k) {
@@ -48,9 +64,11 @@ void place(float a, float b) {
                 }
         if (j >= 0) {
             next[k] = wp[j];
-        } else {
+        } else if (!empty) {
             next[k] = evaluate(x[k]);
             ++pointsEvaluated;
+        } else {
+            next[k] = vec4(0.0);
         }
     }
     pointsUsed += 5u;
@@ -143,6 +161,8 @@ void main() {
     precise float rayLength = length(along * P.dims.xyz);
     if (!(rayLength > 0.0)) return;
     du = along / rayLength;
+    x0 = entry * P.scale.xyz - P.offset.xyz;
+    dxdt = du * P.scale.xyz;
     worldPerVoxel = ra.w;
 
     // AdaptiveSimpsonRay::integrate

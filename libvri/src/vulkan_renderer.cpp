@@ -280,10 +280,9 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     p.height = height;
     p.tfCount = static_cast<std::int32_t>(scene.transferFunction.points().size());
     p.accepted = adaptive.accepted == AcceptedValue::Richardson ? 0 : 1;
-    // Empty-space skipping, for the fixed-step methods (the Simpson shader marches through empty space):
-    // the CPU's bricks, built here as render() builds them, inside the timed part.
+    // Empty-space skipping: the CPU's bricks, built here as render() builds them, inside the timed part.
     std::vector<std::uint8_t> empty(4, 0);  // a placeholder when not skipping: the binding needs a buffer
-    if (scene.volume && options.skipEmptySpace && !simpson) {
+    if (scene.volume && options.skipEmptySpace) {
         const OccupancyGrid grid(*scene.volume, scene.convention, scene.transferFunction);
         empty = grid.emptyFlags();
         local.emptyBrickFraction = grid.emptyFraction();

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "vri/error.h"
 #include "vri/render.h"
@@ -123,8 +124,12 @@ TEST_CASE("Vulkan empty-space skipping changes no bit of the image") {
     VulkanRenderer gpu;
     const Scene scene = blobScene();
     const Camera camera = obliqueCamera(scene);
-    for (auto placement : {Placement::EyeAlign, Placement::EntryExitAlignCorner}) {
-        RenderOptions opt = floatOptions(Integrator::Riemann);
+    for (auto [integrator, placement] : {std::pair{Integrator::Riemann, Placement::EyeAlign},
+                                         std::pair{Integrator::Riemann, Placement::EntryExitAlignCorner},
+                                         std::pair{Integrator::Coupled, Placement::EntryAlign},
+                                         std::pair{Integrator::Decoupled, Placement::EntryAlign}}) {
+        CAPTURE(integratorName(integrator));
+        RenderOptions opt = floatOptions(integrator);
         opt.placement = placement;
         opt.skipEmptySpace = false;
         RenderStats full, skipping;

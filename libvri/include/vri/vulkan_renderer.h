@@ -3,8 +3,8 @@
 // device (a GPU, or Mesa's lavapipe on the CPU). The Vulkan headers stay in libvri/src/vulkan_*.cpp.
 //
 // What differs from vri::render() with Precision::Float: float arithmetic whose rounding the device
-// chooses (exp, division), empty-space skipping for the fixed-step methods only (Simpson marches
-// through empty space; skipping never changes an image, only the samples evaluated), no per-ray log. The rays themselves
+// chooses (exp, division), no per-ray log. Empty space is skipped as on the CPU (the same bricks),
+// which never changes an image, only the samples evaluated. The rays themselves
 // (entry and exit points, world length per unit of ray) are clipped on the CPU in double precision
 // exactly as render() does, so both backends integrate along the same segments.
 #include <cstdint>
