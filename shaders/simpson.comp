@@ -51,7 +51,7 @@ bool emptyAlong(float a, float b) {
 
 void place(float a, float b) {
     precise float h = b - a;
-    bool empty = emptyAlong(a, b);  // then every point is exactly zero: not evaluated
+    int space = 0;  // asked only for a point not reused: 0 unasked, 1 empty (exactly zero), 2 occupied
     precise float x[5] = float[5](a, a + h * 0.25, a + h * 0.5, a + h * 0.75, b);
     vec4 next[5];
     for (int k = 0; k < 5; ++k) {
@@ -64,11 +64,14 @@ void place(float a, float b) {
                 }
         if (j >= 0) {
             next[k] = wp[j];
-        } else if (!empty) {
-            next[k] = evaluate(x[k]);
-            ++pointsEvaluated;
         } else {
-            next[k] = vec4(0.0);
+            if (space == 0) space = emptyAlong(a, b) ? 1 : 2;
+            if (space == 2) {
+                next[k] = evaluate(x[k]);
+                ++pointsEvaluated;
+            } else {
+                next[k] = vec4(0.0);
+            }
         }
     }
     pointsUsed += 5u;

@@ -130,13 +130,18 @@ public:
     void place(Real a, Real b, const Evaluate& evaluate, const KnownEmpty& knownEmpty, AdaptiveCounts& counts) {
         const Real h = b - a;
         Real x[5] = {a, a + h * Real(0.25), a + h * Real(0.5), a + h * Real(0.75), b};
-        const bool empty = knownEmpty(static_cast<double>(a), static_cast<double>(b));
+        // Asked only when a point is not reused: a try that reuses all five (the coupled outer try)
+        // walks no bricks.
+        enum { Unasked, Empty, Occupied } space = Unasked;
         RayPoint<Real> next[5];
         for (int k = 0; k < 5; ++k) {
             const int j = valid_ ? find(x[k]) : -1;
             if (j >= 0) {
                 next[k] = p_[j];
-            } else if (!empty) {
+                continue;
+            }
+            if (space == Unasked) space = knownEmpty(static_cast<double>(a), static_cast<double>(b)) ? Empty : Occupied;
+            if (space == Occupied) {
                 next[k] = evaluate(x[k]);
                 ++counts.pointsEvaluated;
             }  // else: known to be exactly zero, as RayPoint's default
