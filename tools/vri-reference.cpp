@@ -10,6 +10,7 @@
 
 #include "vri/atomic_file.h"
 #include "vri/cli.h"
+#include "vri/frame_timing.h"
 #include "vri/exact_reference.h"
 #include "vri/exact_reference_json.h"
 #include "vri/image_io.h"
@@ -18,7 +19,6 @@
 #include "vri/render.h"
 #include "vri/render_json.h"
 #include "vri/scene_options.h"
-#include "vri/table.h"
 
 namespace {
 
@@ -52,7 +52,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
     vri::SceneOptions sceneOptions;
     std::string method = "exact", output, pngPath, errorPath, statsPath;
     double step = 0.01, tolerance = vri::ExactReferenceOptions{}.tolerance;
-    int threads = 0, repeat = 1;
+    vri::FrameTiming timing;
     bool quiet = false;
     vri::PreviewOptions preview;
     sceneOptions.addTo(app);
@@ -62,10 +62,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
     auto* toleranceOpt =
         app.add_option("--tolerance", tolerance, "exact: quadrature error allowed per transfer-function piece of a ray")
             ->capture_default_str();
-    app.add_option("--threads", threads, "worker threads (default: all cores)");
-    app.add_option("--repeat", repeat, "compute N times for timing: the stats give every wall time and their median, "
-                                       "and any image that differs from the first is an error")
-        ->capture_default_str();
+    timing.addTo(app);
     app.add_option("-o,--output", output, "output image (.exr: float RGBA)")->required();
     app.add_option("--png", pngPath, "8-bit preview PNG");
     preview.addTo(app);
@@ -76,9 +73,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
 
     return vri::guardedMain("vri-reference", [&] {
         std::optional<tbb::global_control> threadLimit;
-        if (threads < 0) throw vri::Error("--threads: expected a positive count, got " + std::to_string(threads));
-        if (repeat < 1) throw vri::Error("--repeat: expected a positive count, got " + std::to_string(repeat));
-        if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
+        timing.limitThreads(threadLimit);
         if (method != "exact" && method != "riemann")
             throw vri::Error("--method: unknown method '" + method + "' (expected exact or riemann)");
         const bool exact = method == "exact";
@@ -111,14 +106,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
             vri::Image image = vri::render(setup.scene, camera, riemannOptions, &stats);
             return {std::move(image), std::nullopt, vri::toJson(stats), stats.seconds};
         };
-        const Result result = compute();
-        std::vector<double> wallSeconds{result.seconds};
-        for (int i = 1; i < repeat; ++i) {
-            const Result again = compute();
-            if (again.image.pixels != result.image.pixels)
-                throw vri::Error("--repeat: computation " + std::to_string(i + 1) + " differs from the first");
-            wallSeconds.push_back(again.seconds);
-        }
+        const auto [result, wallSeconds] = timing.run(compute);
 
         nlohmann::json record = {{"tool", "vri-reference"},
                                  {"command", vri::commandLine(argc, argv)},
@@ -131,8 +119,8 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
                                  {"camera", vri::toJson(setup.camera)},
                                  {"options", exact ? vri::toJson(exactOptions) : vri::toJson(riemannOptions)},
                                  {"stats", result.stats}};
-        const double medianSeconds = vri::median(wallSeconds);
-        record["timing"] = {{"repeats", repeat}, {"wall_seconds", wallSeconds}, {"median_wall_seconds", medianSeconds}};
+        record["timing"] = timing.toJson(wallSeconds);
+        const double medianSeconds = record["timing"]["median_wall_seconds"];
         const vri::ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
                                              {"vri:options", record["options"].dump()},
                                              {"vri:scene", record["scene"].dump()}};
@@ -143,7 +131,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
         if (!quiet) {
             std::cerr << "vri-reference: " << method << ", " << result.image.width << "x" << result.image.height
                       << " in " << medianSeconds << " s"
-                      << (repeat > 1 ? " (median of " + std::to_string(repeat) + ")" : "") << " on "
+                      << (timing.repeat() > 1 ? " (median of " + std::to_string(timing.repeat()) + ")" : "") << " on "
                       << result.stats["threads"].get<int>() << " threads";
             if (exact) std::cerr << "; error bound max " << result.stats["error_bound"]["max"].dump();
             std::cerr << "\n";

@@ -10,13 +10,13 @@
 
 #include "vri/atomic_file.h"
 #include "vri/cli.h"
+#include "vri/frame_timing.h"
 #include "vri/image_io.h"
 #include "vri/preview_options.h"
 #include "vri/provenance.h"
 #include "vri/render.h"
 #include "vri/render_json.h"
 #include "vri/scene_options.h"
-#include "vri/table.h"
 #include "vri/vulkan_renderer.h"
 
 namespace fs = std::filesystem;
@@ -62,7 +62,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     double rate = 0.0, step = 0.0, ert = 0.0;
     vri::PreviewOptions preview;
     bool noSkip = false, quiet = false;
-    int threads = 0, repeat = 1, warmUp = 0;
+    vri::FrameTiming timing;
     vri::AdaptiveParameters adaptive;
     std::string accepted{vri::acceptedValueName(adaptive.accepted)};
 
@@ -94,12 +94,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     app.add_option("--early-termination", ert, "stop rays whose transparency drops below this (0 = off)")
         ->capture_default_str();
     app.add_flag("--no-skip-empty", noSkip, "march through empty space too (the image does not change)");
-    app.add_option("--threads", threads, "worker threads (default: all cores)");
-    app.add_option("--warm-up", warmUp, "render N untimed frames first (caches, clocks, a GPU's pipelines)")
-        ->capture_default_str();
-    app.add_option("--repeat", repeat, "render N times for timing: the stats give every wall time and their median, "
-                                       "and any image that differs from the first is an error")
-        ->capture_default_str();
+    timing.addTo(app);
     app.add_option("-o,--output", output, "output image (.exr: float RGBA)")->required();
     app.add_option("--png", pngPath, "8-bit preview PNG");
     preview.addTo(app);
@@ -112,10 +107,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
 
     return vri::guardedMain("vri-render", [&] {
         std::optional<tbb::global_control> threadLimit;
-        if (threads < 0) throw vri::Error("--threads: expected a positive count, got " + std::to_string(threads));
-        if (repeat < 1) throw vri::Error("--repeat: expected a positive count, got " + std::to_string(repeat));
-        if (warmUp < 0) throw vri::Error("--warm-up: expected a count >= 0, got " + std::to_string(warmUp));
-        if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
+        timing.limitThreads(threadLimit);
 
         if (backend != "cpu" && backend != "vulkan")
             throw vri::Error("--backend: unknown backend '" + backend + "' (expected cpu or vulkan)");
@@ -147,19 +139,18 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         // The Vulkan device is opened once; the volume is uploaded by the first render and reused by repeats.
         std::optional<vri::VulkanRenderer> gpu;
         if (vulkan) gpu.emplace(device);
-        const auto renderOnce = [&](vri::RenderStats* s) {
-            return gpu ? gpu->render(scene, camera, options, s) : vri::render(scene, camera, options, s);
+        struct Frame {
+            vri::Image image;
+            vri::RenderStats stats;
+            double seconds;
         };
-        for (int i = 0; i < warmUp; ++i) renderOnce(nullptr);
-        vri::RenderStats stats;
-        const vri::Image image = renderOnce(&stats);
-        std::vector<double> wallSeconds{stats.seconds};
-        for (int i = 1; i < repeat; ++i) {
-            vri::RenderStats again;
-            if (renderOnce(&again).pixels != image.pixels)
-                throw vri::Error("--repeat: render " + std::to_string(i + 1) + " differs from the first");
-            wallSeconds.push_back(again.seconds);
-        }
+        const auto [frame, wallSeconds] = timing.run([&] {
+            vri::RenderStats s;
+            vri::Image image = gpu ? gpu->render(scene, camera, options, &s) : vri::render(scene, camera, options, &s);
+            return Frame{std::move(image), s, s.seconds};
+        });
+        const vri::Image& image = frame.image;
+        const vri::RenderStats& stats = frame.stats;
 
         nlohmann::json record = {{"tool", "vri-render"},
                                  {"command", vri::commandLine(argc, argv)},
@@ -172,11 +163,8 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
                                  {"camera", vri::toJson(cam)},
                                  {"options", vri::toJson(options)},
                                  {"stats", vri::toJson(stats)}};
-        const double medianSeconds = vri::median(wallSeconds);
-        record["timing"] = {{"warm_up_frames", warmUp},
-                            {"repeats", repeat},
-                            {"wall_seconds", wallSeconds},
-                            {"median_wall_seconds", medianSeconds}};
+        record["timing"] = timing.toJson(wallSeconds);
+        const double medianSeconds = record["timing"]["median_wall_seconds"];
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},
                                       {"vri:scene", record["scene"].dump()}});
@@ -186,7 +174,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (!quiet)
             std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated
                       << " samples in " << medianSeconds << " s"
-                      << (repeat > 1 ? " (median of " + std::to_string(repeat) + ")" : "") << " on "
+                      << (timing.repeat() > 1 ? " (median of " + std::to_string(timing.repeat()) + ")" : "") << " on "
                       << (vulkan ? stats.device : std::to_string(stats.threads) + " threads") << "\n";
         return vri::kExitOk;
     });
