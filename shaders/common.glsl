@@ -3,7 +3,8 @@
 //
 // The volume is read from a storage buffer in its native type and interpolated here with the
 // formula and clamping of grid_sampler.h, not with a hardware sampler: texture units filter with
-// low-precision weights (8 fractional bits on many GPUs), far from float.
+// low-precision weights (8 fractional bits on many GPUs), far from float. The sampler is there for
+// comparison (SAMPLER = 1, vri-render --interpolation sampler): the same voxels in a 3D image.
 //
 // `precise` keeps the compiler from fusing multiplies and adds: the CPU code is built with
 // -ffp-contract=off, and fused operations would round differently.
@@ -13,6 +14,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 // Specialisation constants: one pipeline per combination, so that each shader is straight-line code.
 layout(constant_id = 0) const int VOXEL_TYPE = 0;  // 0 uint8, 1 uint16, 2 float32, 3 the analytic linear field
 layout(constant_id = 1) const int EMISSION = 0;    // 0 colour times extinction, 1 colour
+layout(constant_id = 4) const int SAMPLER = 0;     // 0 interpolate here, 1 the texture unit's trilinear filter
 const int ANALYTIC = 3;
 
 layout(std140, binding = 0) uniform Params {
@@ -29,6 +31,7 @@ layout(std140, binding = 0) uniform Params {
     int width, height, tfCount, accepted;  // accepted: 0 Richardson, 1 paper (D + |D - S| / 15)
     ivec4 bricks;   // empty-space bricks per axis (occupancy_grid.h); w: 1 when skipping empty space
     vec4 maxIndex;  // dims - 1, the voxel index range the bricks cover
+    vec4 texel;     // the sampler: 1 / dims, and in w the voxel value of a texel that reads 1 (255 for R8 unorm)
 } P;
 
 layout(std430, binding = 1) readonly buffer Volume { uint words[]; };
@@ -43,6 +46,8 @@ layout(std430, binding = 5) writeonly buffer Counters { uvec4 counters[]; };  //
 // OccupancyGrid::emptyFlags(), one byte per brick, x fastest: 1 where the transfer function gives
 // nothing to any sample that the brick (and a one-voxel margin) can produce.
 layout(std430, binding = 6) readonly buffer Occupancy { uint emptyWords[]; };
+// The voxels again, as a 3D image filtered linearly and clamped to the edge (used when SAMPLER = 1).
+layout(binding = 7) uniform sampler3D volumeTexture;
 
 const int BRICK_SHIFT = 3;  // OccupancyGrid::kBrickShift
 
@@ -76,6 +81,13 @@ precise float lerp1(float a, float b, float t) { return a + t * (b - a); }
 float sampleScalar(vec3 u) {
     if (VOXEL_TYPE == ANALYTIC) return u.x;
     precise vec3 x = u * P.scale.xyz - P.offset.xyz;
+    if (SAMPLER == 1) {
+        // Voxel index x lies at texel centre (x + 0.5) / dims; clamping to the edge clamps x to
+        // [0, dims - 1] as the CPU does.
+        precise vec3 t = (x + 0.5) * P.texel.xyz;
+        precise float s = (textureLod(volumeTexture, t, 0.0).r * P.texel.w - P.lo) * P.invRange;
+        return s;
+    }
     uint base = 0u;
     precise vec3 w;
     for (int a = 0; a < 3; ++a) {

@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
 
   vri-render --backend vulkan --device llvmpipe --volume bonsai_256x256x256_uint8.raw \
              --tf experiments/tf/paper-b-bonsai.yaml --method coupled -o coupled-vk.exr
+  vri-render --backend vulkan --interpolation sampler --volume bonsai_256x256x256_uint8.raw \
+             --tf experiments/tf/paper-b-bonsai.yaml --step 0.1 -o riemann-sampler.exr
   vri-render --list-devices
 
 Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency
@@ -58,6 +60,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     std::string output, pngPath, statsPath, logPath, logRay, hMax = "2";
     vri::SceneOptions sceneOptions;
     std::string method = "riemann", placement = "entry", precision = "double", backend = "cpu", device;
+    std::string interpolation = "shader";
     bool listDevicesFlag = false;
     double rate = 0.0, step = 0.0, ert = 0.0;
     vri::PreviewOptions preview;
@@ -90,6 +93,10 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     app.add_option("--backend", backend, "cpu (the raycaster of libvri) or vulkan (compute shaders, float)")
         ->capture_default_str();
     app.add_option("--device", device, "Vulkan device: an index of --list-devices or part of a name (default: the first)");
+    auto* interpolationOpt =
+        app.add_option("--interpolation", interpolation, "Vulkan: shader (grid_sampler.h's trilinear formula in float) "
+                                                         "or sampler (the device's 3D texture filtering)")
+            ->capture_default_str();
     app.add_flag("--list-devices", listDevicesFlag, "list the Vulkan devices (index, name, type, API version) and exit");
     app.add_option("--early-termination", ert, "stop rays whose transparency drops below this (0 = off)")
         ->capture_default_str();
@@ -114,6 +121,8 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         const bool vulkan = backend == "vulkan";
         if (vulkan && !*precisionOpt) precision = "float";
         if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
+        if (!vulkan && *interpolationOpt) throw vri::Error("--interpolation: needs --backend vulkan");
+        const vri::VulkanInterpolation interpolationChoice = vri::parseInterpolation(interpolation, "--interpolation");
         vri::RenderOptions options;
         options.integrator = vri::parseIntegrator(method, "--method");
         options.placement = vri::parsePlacement(placement, "--placement");
@@ -138,7 +147,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
 
         // The Vulkan device is opened once; the volume is uploaded by the first render and reused by repeats.
         std::optional<vri::VulkanRenderer> gpu;
-        if (vulkan) gpu.emplace(device);
+        if (vulkan) gpu.emplace(device, interpolationChoice);
         struct Frame {
             vri::Image image;
             vri::RenderStats stats;

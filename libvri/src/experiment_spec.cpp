@@ -17,6 +17,7 @@
 #include "vri/placement.h"
 #include "vri/render.h"
 #include "vri/transfer_function.h"
+#include "vri/vulkan_renderer.h"
 #include "yaml_util.h"
 
 namespace vri {
@@ -76,6 +77,7 @@ const std::vector<RunParameter>& renderParameters() {
              if (v != "cpu" && v != "vulkan") throw Error(w + ": expected cpu or vulkan, got '" + v + "'");
          }},
         {"device", "--device", "dev", [](auto&, auto&) {}},  // a Vulkan device: index or part of its name
+        {"interpolation", "--interpolation", "", [](auto& v, auto& w) { parseInterpolation(v, w); }},  // Vulkan
         {"warm_up", "--warm-up", "w", positiveCount},         // frames rendered before the timed ones
     };
     return parameters;

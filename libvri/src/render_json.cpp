@@ -42,6 +42,7 @@ nlohmann::json toJson(const RenderStats& s) {
                         {"empty_brick_fraction", s.emptyBrickFraction},
                         {"backend", s.backend}};
     if (!s.device.empty()) j["device"] = s.device;
+    if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;
     if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
     return j;
 }

@@ -63,12 +63,7 @@ VulkanBuffer::VulkanBuffer(const VulkanContext& context, VkDeviceSize size, VkBu
     vkCheck(vkCreateBuffer(device_, &info, nullptr, &buffer_), "vkCreateBuffer");
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device_, buffer_, &req);
-    const VkPhysicalDeviceMemoryProperties& mem = context.memory();
-    const auto find = [&](VkMemoryPropertyFlags wanted) {
-        for (std::uint32_t i = 0; i < mem.memoryTypeCount; ++i)
-            if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & wanted) == wanted) return int(i);
-        return -1;
-    };
+    const auto find = [&](VkMemoryPropertyFlags wanted) { return context.memoryType(req.memoryTypeBits, wanted); };
     const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
     int type = -1;
     if (deviceLocal) type = find(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
@@ -84,7 +79,7 @@ VulkanBuffer::VulkanBuffer(const VulkanContext& context, VkDeviceSize size, VkBu
     if (allocated != VK_SUCCESS) release();
     vkCheck(allocated, "vkAllocateMemory");
     vkCheck(vkBindBufferMemory(device_, buffer_, memory_, 0), "vkBindBufferMemory");
-    const VkMemoryPropertyFlags flags = mem.memoryTypes[type].propertyFlags;
+    const VkMemoryPropertyFlags flags = context.memory().memoryTypes[type].propertyFlags;
     coherent_ = flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     if (flags & host) vkCheck(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
 }
@@ -110,6 +105,12 @@ void VulkanBuffer::invalidate() const {
     if (coherent_ || !mapped_) return;
     const VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0, VK_WHOLE_SIZE};
     vkCheck(vkInvalidateMappedMemoryRanges(device_, 1, &range), "vkInvalidateMappedMemoryRanges");
+}
+
+void VulkanBuffer::flush() const {
+    if (coherent_ || !mapped_) return;
+    const VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, memory_, 0, VK_WHOLE_SIZE};
+    vkCheck(vkFlushMappedMemoryRanges(device_, 1, &range), "vkFlushMappedMemoryRanges");
 }
 
 void VulkanBuffer::release() {
@@ -171,7 +172,7 @@ void VulkanContext::open(const std::string& selector) {
         for (const VulkanDeviceInfo& d : all) names += (names.empty() ? "" : ", ") + std::to_string(d.index) + " " + d.name;
         throw Error("--device: no Vulkan device matches '" + selector + "' (devices: " + names + ")");
     }
-    const VkPhysicalDevice physical = physical_[chosen];
+    const VkPhysicalDevice physical = physicalDevice_ = physical_[chosen];
     info_ = all[chosen];
     vkGetPhysicalDeviceProperties(physical, &properties_);
     vkGetPhysicalDeviceMemoryProperties(physical, &memory_);
@@ -196,6 +197,18 @@ void VulkanContext::open(const std::string& selector) {
     const VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
                                            VK_COMMAND_POOL_CREATE_TRANSIENT_BIT, family};
     vkCheck(vkCreateCommandPool(device_, &poolInfo, nullptr, &pool_), "vkCreateCommandPool");
+}
+
+int VulkanContext::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags wanted) const {
+    for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i)
+        if ((typeBits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & wanted) == wanted) return int(i);
+    return -1;
+}
+
+VkFormatFeatureFlags VulkanContext::imageFeatures(VkFormat format) const {
+    VkFormatProperties p;
+    vkGetPhysicalDeviceFormatProperties(physicalDevice_, format, &p);
+    return p.optimalTilingFeatures;
 }
 
 VkCommandBuffer VulkanContext::begin() const {

@@ -2,6 +2,7 @@
 // The Vulkan instance, one device with a compute queue, and buffers: what the Vulkan backend
 // (vulkan_renderer.cpp) builds on. Private to libvri: only vulkan_*.cpp include the Vulkan headers.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@ public:
     void* mapped() const { return mapped_; }  // null for device-only memory
     bool hostCoherent() const { return coherent_; }
     void invalidate() const;  // makes device writes visible to mapped() reads
+    void flush() const;       // makes mapped() writes visible to the device
 
 private:
     void release();
@@ -61,6 +63,10 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     const VkPhysicalDeviceMemoryProperties& memory() const { return memory_; }
     const VulkanDeviceInfo& info() const { return info_; }
+    // The index of a memory type among `typeBits` with all of `wanted`, or -1.
+    int memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags wanted) const;
+    // What the device can do with optimally tiled images of `format`.
+    VkFormatFeatureFlags imageFeatures(VkFormat format) const;
 
     // Records commands into a fresh command buffer, submits them and waits for the device.
     template <class Record>
@@ -76,6 +82,7 @@ private:
 
     VkInstance instance_ = VK_NULL_HANDLE;
     std::vector<VkPhysicalDevice> physical_;
+    VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;  // the opened one
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
     VulkanDeviceInfo info_;

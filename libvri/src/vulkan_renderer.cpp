@@ -14,6 +14,8 @@
 #include "vri/error.h"
 #include "vri/occupancy_grid.h"
 #include "vulkan_context.h"
+#include "vulkan_sampler_probe.h"
+#include "vulkan_texture.h"
 
 // SPIR-V of shaders/*.comp, compiled at build time (libvri/CMakeLists.txt).
 #include "march_spv.h"
@@ -33,13 +35,22 @@ struct Params {
     std::int32_t width, height, tfCount, accepted;
     std::int32_t bricks[4];  // w: 1 when skipping empty space
     float maxIndex[4];
+    float texel[4];  // the sampler: 1 / dims, and in w the voxel value of a texel that reads 1
 };
-static_assert(sizeof(Params) == 192);
+static_assert(sizeof(Params) == 208);
 
-enum Binding { kParams, kVolume, kTransferFunction, kRays, kOutput, kCounters, kOccupancy, kBindings };
+enum Binding { kParams, kVolume, kTransferFunction, kRays, kOutput, kCounters, kOccupancy, kVolumeTexture, kBindings };
+
+VkDescriptorType descriptorType(std::uint32_t binding) {
+    if (binding == kParams) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    if (binding == kVolumeTexture) return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
 
 // Shader and specialisation constants (common.glsl, march.comp, simpson.comp) of one pipeline.
-using PipelineKey = std::array<int, 5>;
+using PipelineKey = std::array<int, 6>;
+
+constexpr std::string_view kInterpolationNames[] = {"shader", "sampler"};
 
 int voxelTypeConstant(const Scene& scene) {
     if (!scene.volume) return 3;
@@ -71,6 +82,14 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+std::string_view interpolationName(VulkanInterpolation i) { return kInterpolationNames[int(i)]; }
+
+VulkanInterpolation parseInterpolation(std::string_view name, const std::string& what) {
+    for (int i = 0; i < 2; ++i)
+        if (name == kInterpolationNames[i]) return VulkanInterpolation(i);
+    throw Error(what + ": unknown interpolation '" + std::string(name) + "' (expected shader or sampler)");
+}
+
 struct VulkanRenderer::Impl {
     VulkanContext context;
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
@@ -80,16 +99,20 @@ struct VulkanRenderer::Impl {
     VkShaderModule march = VK_NULL_HANDLE, simpson = VK_NULL_HANDLE;
     std::map<PipelineKey, VkPipeline> pipelines;
 
+    const VulkanInterpolation interpolation;
     std::shared_ptr<const Volume> volume;  // the uploaded one, kept alive so that its address stays unique
-    VulkanBuffer volumeBuffer, params, transferFunction, rays, output, counters, occupancy;
+    // Whichever of the two the interpolation does not read holds a one-voxel placeholder, since every
+    // binding needs a valid descriptor.
+    VulkanBuffer volumeBuffer;
+    VulkanTexture3D volumeTexture;
+    VulkanBuffer params, transferFunction, rays, output, counters, occupancy;
 
-    explicit Impl(const std::string& selector) {
+    Impl(const std::string& selector, VulkanInterpolation interpolation) : interpolation(interpolation) {
         context.open(selector);
         const VkDevice device = context.device();
         std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
         for (std::uint32_t b = 0; b < kBindings; ++b)
-            bindings[b] = {b, b == kParams ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                           VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+            bindings[b] = {b, descriptorType(b), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
         const VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, nullptr, 0,
                                                          kBindings, bindings.data()};
         vkCheck(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
@@ -97,8 +120,9 @@ struct VulkanRenderer::Impl {
                                                             &setLayout, 0, nullptr};
         vkCheck(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout), "vkCreatePipelineLayout");
         const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings - 1}};
-        const VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 2, sizes};
+                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings - 2}};
+        const VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 3, sizes};
         vkCheck(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool), "vkCreateDescriptorPool");
         const VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, descriptorPool,
                                                   1, &setLayout};
@@ -128,9 +152,10 @@ struct VulkanRenderer::Impl {
 
     VkPipeline pipeline(const PipelineKey& key) {
         if (const auto it = pipelines.find(key); it != pipelines.end()) return it->second;
-        std::array<VkSpecializationMapEntry, 4> entries;
+        std::array<VkSpecializationMapEntry, std::tuple_size_v<PipelineKey> - 1> entries;
         for (std::uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * 4u, 4u};
-        const VkSpecializationInfo spec{std::uint32_t(entries.size()), entries.data(), 4 * sizeof(int), &key[1]};
+        const VkSpecializationInfo spec{std::uint32_t(entries.size()), entries.data(), entries.size() * sizeof(int),
+                                        &key[1]};
         const VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
                                                     VK_SHADER_STAGE_COMPUTE_BIT, key[0] ? simpson : march, "main", &spec};
         const VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO, nullptr, 0, stage,
@@ -148,14 +173,17 @@ struct VulkanRenderer::Impl {
                         std::to_string(limit) + " that Vulkan device '" + context.info().name + "' allows");
     }
 
-    // Uploads the volume in its native type, padded to whole 32-bit words (the shader reads uint[]).
+    // Uploads the volume in its native type: into a storage buffer padded to whole 32-bit words (the
+    // shader reads uint[]), or into a 3D image for the sampler. The other binding gets a placeholder.
     void upload(const std::shared_ptr<const Volume>& v) {
         if (volume == v && volumeBuffer.handle()) return;
-        const std::size_t bytes = v ? v->byteCount() : 0;
-        const VkDeviceSize padded = std::max<VkDeviceSize>(4, (bytes + 3) / 4 * 4);
-        if (v) checkRange(padded, "the " + std::string(voxelTypeName(v->type)) + " volume");
         volume.reset();
         volumeBuffer = VulkanBuffer();
+        volumeTexture = VulkanTexture3D();
+        const bool sampled = v && interpolation == VulkanInterpolation::Sampler;
+        const std::size_t bytes = v && !sampled ? v->byteCount() : 0;
+        const VkDeviceSize padded = std::max<VkDeviceSize>(4, (bytes + 3) / 4 * 4);
+        if (bytes) checkRange(padded, "the " + std::string(voxelTypeName(v->type)) + " volume");
         VulkanBuffer target(context, padded, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         const auto fill = [&](void* to) {
             std::memset(to, 0, padded);
@@ -163,13 +191,23 @@ struct VulkanRenderer::Impl {
         };
         if (target.mapped()) {
             fill(target.mapped());
+            target.flush();
         } else {
             const VulkanBuffer staging(context, padded, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
             fill(staging.mapped());
+            staging.flush();
             context.submitAndWait([&](VkCommandBuffer cmd) {
                 const VkBufferCopy region{0, 0, padded};
                 vkCmdCopyBuffer(cmd, staging.handle(), target.handle(), 1, &region);
             });
+        }
+        if (sampled) {
+            const VolumeTextureFormat f = volumeTextureFormat(v->type);
+            const VkExtent3D extent{std::uint32_t(v->dims.x), std::uint32_t(v->dims.y), std::uint32_t(v->dims.z)};
+            volumeTexture = VulkanTexture3D(context, extent, f.format, f.name, v->bytes.data(), v->byteCount());
+        } else {
+            const std::uint8_t zero = 0;
+            volumeTexture = VulkanTexture3D(context, {1, 1, 1}, VK_FORMAT_R8_UNORM, "R8 unorm", &zero, 1);
         }
         volumeBuffer = std::move(target);
         volume = v;
@@ -184,16 +222,19 @@ struct VulkanRenderer::Impl {
     }
 
     void bind() const {
-        const VulkanBuffer* buffers[kBindings] = {&params,  &volumeBuffer, &transferFunction, &rays,
-                                                  &output,  &counters,     &occupancy};
-        VkDescriptorBufferInfo infos[kBindings];
+        const VulkanBuffer* buffers[kVolumeTexture] = {&params, &volumeBuffer, &transferFunction, &rays,
+                                                       &output, &counters,     &occupancy};
+        VkDescriptorBufferInfo infos[kVolumeTexture];
         VkWriteDescriptorSet writes[kBindings];
-        for (std::uint32_t b = 0; b < kBindings; ++b) {
+        for (std::uint32_t b = 0; b < kVolumeTexture; ++b) {
             infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
-            writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, descriptorSet, b, 0, 1,
-                         b == kParams ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+            writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, descriptorSet, b, 0, 1, descriptorType(b),
                          nullptr, &infos[b], nullptr};
         }
+        const VkDescriptorImageInfo texture{volumeTexture.sampler(), volumeTexture.view(),
+                                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        writes[kVolumeTexture] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, descriptorSet, kVolumeTexture, 0, 1,
+                                  descriptorType(kVolumeTexture), &texture, nullptr, nullptr};
         vkUpdateDescriptorSets(context.device(), kBindings, writes, 0, nullptr);
     }
 };
@@ -206,11 +247,14 @@ std::vector<VulkanDeviceInfo> VulkanRenderer::listDevices() {
     }
 }
 
-VulkanRenderer::VulkanRenderer(const std::string& device) : impl_(std::make_unique<Impl>(device)) {}
+VulkanRenderer::VulkanRenderer(const std::string& device, VulkanInterpolation interpolation)
+    : impl_(std::make_unique<Impl>(device, interpolation)) {}
 
 VulkanRenderer::~VulkanRenderer() = default;
 
 const VulkanDeviceInfo& VulkanRenderer::device() const { return impl_->context.info(); }
+
+SamplerProbe VulkanRenderer::probeSampler(VoxelType type) { return vri::probeSampler(impl_->context, type); }
 
 Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
     validateRender(scene, camera, options);
@@ -232,10 +276,11 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     m.upload(scene.volume);
     const int emission = scene.transferFunction.emission() == EmissionModel::ColourTimesExtinction ? 0 : 1;
     const AdaptiveParameters adaptive = simpsonParameters(options);
+    const int sampler = m.interpolation == VulkanInterpolation::Sampler ? 1 : 0;
     const PipelineKey key = simpson ? PipelineKey{1, voxelTypeConstant(scene), emission,
-                                                  adaptive.coupling == Coupling::Coupled ? 1 : 0, 0}
+                                                  adaptive.coupling == Coupling::Coupled ? 1 : 0, 0, sampler}
                                     : PipelineKey{0, voxelTypeConstant(scene), emission, int(options.placement),
-                                                  options.integrator == Integrator::Composite ? 1 : 0};
+                                                  options.integrator == Integrator::Composite ? 1 : 0, sampler};
     const VkPipeline pipeline = m.pipeline(key);
     const std::vector<float> tf = transferFunctionTable(scene.transferFunction);
     m.ensure(m.transferFunction, tf.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the transfer function");
@@ -262,6 +307,8 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
             p.maxBase[a] = std::max(v.dims[a] - 2, 0);
             p.stride[a] = v.dims[a] == 1 ? 0 : strides[a];
         }
+        for (int a = 0; a < 3; ++a) p.texel[a] = 1.0f / static_cast<float>(v.dims[a]);
+        p.texel[3] = volumeTextureFormat(v.type).unit;
         const ValueRange r = v.normalisationRange();
         p.lo = static_cast<float>(r.lo);
         p.invRange = r.hi > r.lo ? static_cast<float>(1.0 / (r.hi - r.lo)) : 0.0f;
@@ -297,6 +344,7 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     std::memcpy(m.occupancy.mapped(), empty.data(), empty.size());
     std::memcpy(m.params.mapped(), &p, sizeof p);
     std::memcpy(m.transferFunction.mapped(), tf.data(), tf.size() * sizeof(float));
+    for (const VulkanBuffer* b : {&m.occupancy, &m.params, &m.transferFunction}) b->flush();
 
     // The rays, clipped in double as render() clips them, with the world length per unit of the ray's
     // parameter (texture units for the placements, voxels for Simpson) that render() derives in float.
@@ -321,6 +369,7 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
         }
     });
 
+    m.rays.flush();
     m.bind();
     m.context.submitAndWait([&](VkCommandBuffer cmd) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
@@ -362,6 +411,7 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     if (simpson) local.adaptive = counts;
     local.backend = "vulkan";
     local.device = m.context.info().name;
+    local.interpolation = interpolationName(m.interpolation);
     if (stats) *stats = local;
     return image;
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # vri-render's Vulkan backend end to end: --list-devices, a render of a tiny volume compared with the
-# CPU in float, the stats naming the device, a repeat that reuses the uploaded volume, and bad
-# --device/--backend/--precision giving one error line. Skipped (77) when there is no Vulkan device.
+# CPU in float, the stats naming the device, a repeat that reuses the uploaded volume, the hardware
+# sampler's interpolation, and bad --device/--backend/--precision/--interpolation giving one error line. Skipped (77) when there is no Vulkan device.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 "$VRI_BIN/vri-render" --list-devices > devices.txt 2> /dev/null || { echo "no Vulkan device: skipping"; exit 77; }
@@ -31,6 +31,14 @@ render --method coupled --tolerance 0.001 --backend vulkan --device "${device:0:
   || fail "coupled: Vulkan differs from the CPU: $(cat diff.txt)"
 grep -q '"repeats": 3' vk-coupled.json && grep -q '"outer_steps"' vk-coupled.json
 
+# The texture unit's interpolation: the same image up to the sampler's weights (R8 unorm here; lavapipe's
+# differ by a few 1e-3, see tests/unit/vulkan_test.cpp), and the stats saying which interpolation ran.
+render --step 0.3 --backend vulkan --interpolation sampler -o vk-sampler.exr --stats vk-sampler.json
+"$VRI_BIN/vri-diff" vk-entry.exr vk-sampler.exr --fail 0.1 --warn 0.1 > diff.txt \
+  || fail "sampler: differs from the shader's interpolation: $(cat diff.txt)"
+grep -q '"interpolation": "sampler"' vk-sampler.json || fail "stats do not name the sampler"
+grep -q '"interpolation": "shader"' vk-entry.json || fail "stats do not name the shader's interpolation"
+
 expect_error() {  # expect_error PATTERN ARGS...
   local pattern=$1; shift
   set +e; render "$@" -o bad.exr 2> err.txt; local rc=$?; set -e
@@ -44,4 +52,6 @@ expect_error "no Vulkan device matches" --backend vulkan --device 99
 expect_error "single precision" --backend vulkan --precision double
 expect_error "unknown backend" --backend opencl
 expect_error "needs --backend vulkan" --device 0
+expect_error "needs --backend vulkan" --interpolation sampler
+expect_error "unknown interpolation 'nearest'" --backend vulkan --interpolation nearest
 echo ok

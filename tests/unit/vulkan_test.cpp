@@ -208,6 +208,109 @@ TEST_CASE("Vulkan keeps the uploaded volume and renders repeatably") {
     CHECK(maxDifference(a, gpu.render(other, obliqueCamera(other), opt)) <= kFixedStep);
 }
 
+// A format's own resolution: what the texels can hold between 0 and full scale.
+double formatQuantum(VoxelType type) {
+    switch (type) {
+    case VoxelType::UInt8: return 1.0 / 255.0;
+    case VoxelType::UInt16: return 1.0 / 65535.0;
+    case VoxelType::Float32: break;
+    }
+    return 1e-7;
+}
+
+TEST_CASE("Vulkan sampler probe: exact at the texel centres, within the reported sub-texel precision between") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    for (auto type : {VoxelType::UInt8, VoxelType::UInt16, VoxelType::Float32}) {
+        CAPTURE(voxelTypeName(type));
+        SamplerProbe probe;
+        try {
+            probe = gpu.probeSampler(type);
+        } catch (const Error& e) {
+            // Vulkan requires linear filtering of R8 unorm; R16 unorm and R32 float are optional.
+            REQUIRE(type != VoxelType::UInt8);
+            MESSAGE(e.what());
+            continue;
+        }
+        MESSAGE(probe.format, ": max error ", probe.maxError, " (", probe.effectiveBits(), " bits; the device reports ",
+                probe.subTexelPrecisionBits, " sub-texel bits)");
+        REQUIRE(probe.weight.size() == 4097);
+        REQUIRE(probe.read.size() == probe.weight.size());
+        CHECK(probe.read.front() == 0.0);
+        CHECK(probe.read.back() == 1.0);
+        CHECK(probe.subTexelPrecisionBits >= 4);  // the Vulkan minimum
+        // Weights on a grid of 2^-bits, then the result rounded to the format's own resolution at worst.
+        CHECK(probe.maxError <= std::ldexp(1.0, -probe.subTexelPrecisionBits) + formatQuantum(type));
+        // Readings never go back as the weight grows: a filter that does would put ridges into an image.
+        CHECK(std::is_sorted(probe.read.begin(), probe.read.end()));
+    }
+}
+
+// A ramp along x (voxel values 0, 17, ..., 255) with colour s and extinction s / 2 per voxel: smooth,
+// so that a bounded error in the interpolated value gives a bounded error in the image.
+Scene rampScene(VoxelType type) {
+    auto v = std::make_shared<Volume>(glm::ivec3(16, 12, 14), type);
+    for (int z = 0; z < v->dims.z; ++z)
+        for (int y = 0; y < v->dims.y; ++y)
+            for (int x = 0; x < v->dims.x; ++x) {
+                const std::size_t i = v->index(x, y, z);
+                if (type == VoxelType::UInt8) v->data<std::uint8_t>()[i] = std::uint8_t(17 * x);
+                if (type == VoxelType::UInt16) v->data<std::uint16_t>()[i] = std::uint16_t(17 * x);
+                if (type == VoxelType::Float32) v->data<float>()[i] = float(17 * x);
+            }
+    v->range = ValueRange{0.0, 255.0};
+    return Scene{v, std::nullopt, GridConvention::CellCentred,
+                 TransferFunction({{0, 0, 0, 0, 0}, {1, 1, 1, 1, 0.5}}, EmissionModel::Colour)};
+}
+
+// The sampler path against the shader's interpolation on the same device. Where the probe finds the
+// filter exact (lavapipe's R16 and R32 float), the images agree as closely as the CPU and shader do.
+// Where it does not, each interpolated value moves by at most delta = probe error x the jump between
+// neighbouring voxels (1/15 on the ramp). Along a ray of length L, with c tau = s^2 / 2 (slope <= 1,
+// at most 1/2) and tau = s / 2 (slope 1/2), the Riemann sum's colour moves by at most
+// L delta + (1/2) L (L delta / 2) and its alpha by L delta / 2. The noisy blob, whose transfer function
+// jumps, is only reported there: a value moved across a jump changes a sample completely.
+TEST_CASE("Vulkan sampler interpolation agrees with the shader's as closely as the probe allows") {
+    if (!haveVulkan()) return;
+    VulkanRenderer shader;
+    VulkanRenderer sampler("", VulkanInterpolation::Sampler);
+    for (auto type : {VoxelType::UInt8, VoxelType::UInt16, VoxelType::Float32}) {
+        CAPTURE(voxelTypeName(type));
+        SamplerProbe probe;
+        try {
+            probe = sampler.probeSampler(type);
+        } catch (const Error& e) {
+            MESSAGE(e.what());
+            continue;
+        }
+        const bool exact = probe.maxError <= 1e-7;
+        for (const Scene& scene : {rampScene(type), blobScene(type)}) {
+            const bool ramp = scene.transferFunction.points().size() == 2;
+            const Camera camera = obliqueCamera(scene);
+            const double length = glm::length(scene.box().size());
+            const double delta = probe.maxError / 15.0;
+            for (auto integrator : {Integrator::Riemann, Integrator::Coupled}) {
+                CAPTURE(integratorName(integrator));
+                const RenderOptions opt = floatOptions(integrator);
+                RenderStats stats;
+                const Image a = shader.render(scene, camera, opt);
+                const Image b = sampler.render(scene, camera, opt, &stats);
+                const double d = maxDifference(a, b);
+                MESSAGE(probe.format, (ramp ? " ramp " : " blob "), integratorName(integrator), ": max difference ", d,
+                        " of values up to ", maxValue(a), " (probe error ", probe.maxError, ")");
+                CHECK(stats.interpolation == "sampler");
+                CHECK(maxValue(a) > 0.1);
+                if (exact)
+                    CHECK(d <= (integrator == Integrator::Riemann ? kFixedStep : 4 * opt.adaptive.tolerance));
+                else if (ramp && integrator == Integrator::Riemann)
+                    CHECK(d <= length * delta + 0.25 * length * length * delta + kFixedStep);
+            }
+        }
+    }
+    CHECK_THROWS_WITH_AS(parseInterpolation("nearest", "--interpolation"),
+                         doctest::Contains("--interpolation: unknown interpolation 'nearest'"), Error);
+}
+
 TEST_CASE("Vulkan rejects what it cannot do") {
     if (!haveVulkan()) return;
     VulkanRenderer gpu;

@@ -65,6 +65,7 @@ struct RenderStats {
     std::vector<AdaptiveTry> rayLog;  // the tries along RenderOptions::logPixel's ray
     std::string backend = "cpu";      // "cpu" or "vulkan" (vulkan_renderer.h)
     std::string device;               // the Vulkan device's name; empty on the CPU
+    std::string interpolation;        // the Vulkan backend's: "shader" or "sampler"; empty on the CPU
 };
 
 // Throws vri::Error on options render() cannot honour (see render()); shared with the Vulkan backend.
