@@ -51,27 +51,31 @@ bool emptyAlong(float a, float b) {
 
 void place(float a, float b) {
     precise float h = b - a;
-    int space = 0;  // asked only for a point not reused: 0 unasked, 1 empty (exactly zero), 2 occupied
     precise float x[5] = float[5](a, a + h * 0.25, a + h * 0.5, a + h * 0.75, b);
-    vec4 next[5];
+    int reused[5];  // the previous window's point at the same position, or -1
+    bool fresh = false;
     for (int k = 0; k < 5; ++k) {
-        int j = -1;
+        reused[k] = -1;
         if (wValid)
             for (int i = 0; i < 5; ++i)
                 if (wx[i] == x[k]) {
-                    j = i;
+                    reused[k] = i;
                     break;
                 }
-        if (j >= 0) {
-            next[k] = wp[j];
+        fresh = fresh || reused[k] < 0;
+    }
+    // Asked once, and only when a point must be evaluated (then every such point is exactly zero): asking
+    // inside the loop below would, on SIMD devices, walk the bricks once per point for the whole group.
+    bool empty = fresh && emptyAlong(a, b);
+    vec4 next[5];
+    for (int k = 0; k < 5; ++k) {
+        if (reused[k] >= 0) {
+            next[k] = wp[reused[k]];
+        } else if (!empty) {
+            next[k] = evaluate(x[k]);
+            ++pointsEvaluated;
         } else {
-            if (space == 0) space = emptyAlong(a, b) ? 1 : 2;
-            if (space == 2) {
-                next[k] = evaluate(x[k]);
-                ++pointsEvaluated;
-            } else {
-                next[k] = vec4(0.0);
-            }
+            next[k] = vec4(0.0);
         }
     }
     pointsUsed += 5u;
