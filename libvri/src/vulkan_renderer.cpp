@@ -166,11 +166,11 @@ struct VulkanRenderer::Impl {
         return pipelines[key] = p;
     }
 
-    void checkRange(VkDeviceSize bytes, const std::string& what) const {
+    void checkRange(VkDeviceSize bytes, const std::string& what, const std::string& hint = "") const {
         const VkDeviceSize limit = context.properties().limits.maxStorageBufferRange;
         if (bytes > limit)
             throw Error(what + " needs " + std::to_string(bytes) + " bytes in one storage buffer, more than the " +
-                        std::to_string(limit) + " that Vulkan device '" + context.info().name + "' allows");
+                        std::to_string(limit) + " that Vulkan device '" + context.info().name + "' allows" + hint);
     }
 
     // Uploads the volume in its native type: into a storage buffer padded to whole 32-bit words (the
@@ -183,7 +183,9 @@ struct VulkanRenderer::Impl {
         const bool sampled = v && interpolation == VulkanInterpolation::Sampler;
         const std::size_t bytes = v && !sampled ? v->byteCount() : 0;
         const VkDeviceSize padded = std::max<VkDeviceSize>(4, (bytes + 3) / 4 * 4);
-        if (bytes) checkRange(padded, "the " + std::string(voxelTypeName(v->type)) + " volume");
+        if (bytes)
+            checkRange(padded, "the " + std::string(voxelTypeName(v->type)) + " volume",
+                       " (--interpolation sampler reads it from a 3D image instead)");
         VulkanBuffer target(context, padded, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         const auto fill = [&](void* to) {
             std::memset(to, 0, padded);
