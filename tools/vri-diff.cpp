@@ -32,6 +32,7 @@ struct Options {
     std::string a, b;
     std::vector<double> thresholds{0.01, 0.005, 0.001};
     std::string json, diffImage, histogram;
+    double diffScale = 1.0;
     std::vector<double> histogramRange{1e-6, 1.0};
     int binsPerDecade = 5;
     double fail = 1e-6, failPercent = 0;
@@ -143,7 +144,13 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--json", options.json, "write all statistics as JSON to FILE; '-' prints them on stdout "
                                            "instead of the summary");
-    app.add_option("--diff-image", options.diffImage, "write the per-channel |A - B| image (.exr keeps it exact)");
+    auto* diffImage =
+        app.add_option("--diff-image", options.diffImage, "write the per-channel |A - B| image (.exr keeps it exact)");
+    app.add_option("--diff-scale", options.diffScale, "multiply the difference image by this (a PNG then shows an "
+                                                      "error of 1/K as full white; PNG keeps R, G, B only)")
+        ->check(CLI::PositiveNumber)
+        ->needs(diffImage)
+        ->capture_default_str();
     app.add_option("--histogram", options.histogram, "write per-channel error histograms as CSV "
                                                      "(bin_lo,bin_hi,R,G,B,A; bins (lo, hi], plus a zero bin)");
     app.add_option("--histogram-range", options.histogramRange, "LO,HI: logarithmic histogram bins span this")
@@ -217,7 +224,7 @@ int run(int argc, char** argv) {
     }
 
     try {
-        if (!options.diffImage.empty()) vri::writeImage(options.diffImage, vri::differenceImage(a, b));
+        if (!options.diffImage.empty()) vri::writeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale));
         if (!options.histogram.empty())
             vri::writeTextFile(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges)));
         if (!options.json.empty()) {

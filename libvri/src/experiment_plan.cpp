@@ -100,6 +100,7 @@ void Planner::addDiff(const ComparisonSpec& c) {
     step.arguments.insert(step.arguments.end(), {"--failpercent", "100", "--warnpercent", "100"});
     output(step, "--json", result(c.id + ".json"));
     if (!c.diffImage.empty()) output(step, "--diff-image", result(c.id + "." + c.diffImage));
+    if (!c.diffScale.empty()) step.arguments.insert(step.arguments.end(), {"--diff-scale", c.diffScale});
     if (c.histogram) output(step, "--histogram", result(c.id + "-histogram.csv"));
     plan_.steps.push_back(std::move(step));
 }

@@ -406,7 +406,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
 
 void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [group, entry] : entries(node, "comparisons")) {
-        yaml::requireKeys(entry, source_, {"reference", "runs", "thresholds", "diff_image", "histogram"});
+        yaml::requireKeys(entry, source_, {"reference", "runs", "thresholds", "diff_image", "diff_scale", "histogram"});
         const YAML::Node ref = required(entry, "reference", "comparison '" + group + "'");
         const std::string reference = text(ref, "reference");
         requireRun(experiment, reference, ref);
@@ -418,7 +418,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             for (const RunSpec& r : experiment.runs)
                 if (!r.reference && r.id != reference && r.scene == experiment.run(reference).scene) runs.push_back(r.id);
         }
-        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", false};
+        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", "", false};
         if (const YAML::Node t = entry["thresholds"]) {
             if (!t.IsSequence() || t.size() == 0) throw Error(at(t) + ": thresholds must be a list of numbers");
             base.thresholds.clear();
@@ -432,6 +432,11 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             if (base.diffImage == "none") base.diffImage.clear();
             else if (base.diffImage != "png" && base.diffImage != "exr")
                 throw Error(at(d) + ": diff_image must be png, exr or none, got '" + base.diffImage + "'");
+        }
+        if (const YAML::Node k = entry["diff_scale"]) {
+            if (base.diffImage.empty()) throw Error(at(k) + ": diff_scale needs diff_image");
+            base.diffScale = number(k, "diff_scale");
+            positiveNumber(base.diffScale, at(k) + ": diff_scale");
         }
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
         for (const std::string& run : runs) {

@@ -90,12 +90,12 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double
     return diff;
 }
 
-Image differenceImage(const Image& a, const Image& b) {
+Image differenceImage(const Image& a, const Image& b, double scale) {
     requireSameShape(a, b);
     Image difference(a.width, a.height, a.channels);
     difference.channelNames = a.channelNames;
     std::size_t i = 0;
-    forEachError(a, b, [&](int, int, int, double error) { difference.pixels[i++] = static_cast<float>(error); });
+    forEachError(a, b, [&](int, int, int, double error) { difference.pixels[i++] = static_cast<float>(error * scale); });
     return difference;
 }
 

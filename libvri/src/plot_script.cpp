@@ -24,7 +24,9 @@ std::string quoted(const std::string& text) {
 std::string axisCommands(const char* name, const PlotAxis& axis, bool fit) {
     const std::string n = name;
     std::string out = "    set " + n + "label " + quoted(axis.label) + "\n";
-    out += axis.log ? "    set logscale " + n + "\n" : "    unset logscale " + n + "\n";
+    // A log axis labels its decades 1e-06 ... 0.01 ... 1, not 0.0000010 with gnuplot's fixed decimals.
+    out += axis.log ? "    set logscale " + n + "\n    set format " + n + " '%g'\n"
+                    : "    unset logscale " + n + "\n    set format " + n + " '% h'\n";
     out += "    set " + n + "range [" + (axis.min ? exactNumber(*axis.min) : "*") + ":" +
            (axis.max ? exactNumber(*axis.max) : "*") + "]" + (fit ? " noextend" : " extend") + "\n";
     return out;

@@ -59,6 +59,14 @@ total=$(tail -n +2 hist.csv | awk -F, '{ s += $3 } END { print s }')
 run_diff err.exr a.exr --json - --threshold 0.3
 [[ $(python3 -c 'import json, sys; print(json.load(sys.stdin)["channels"][0]["max_abs"])' <out.txt) != 0.0 ]] ||
     fail "difference image is empty"
+# --diff-scale multiplies it: twice the scale, twice the largest value.
+run_diff a.exr changed.exr --diff-image err2.exr --diff-scale 2
+run_diff err.exr err2.exr --json - --threshold 0.3
+[[ $(python3 -c 'import json, sys; c = json.load(sys.stdin)["channels"][0]; print(c["max_abs"] > 0)' <out.txt) == True ]] ||
+    fail "--diff-scale 2 gives the same image"
+run_diff a.exr changed.exr --diff-scale 2
+[[ $rc -ne 0 && $rc -ne 2 ]] || fail "--diff-scale without --diff-image: exit $rc, expected a usage error"
+grep -q -- "--diff-image" err.txt || fail "--diff-scale without --diff-image: $(cat err.txt)"
 
 # Tolerances: within --failpercent passes; --fail relaxed but --warn strict warns.
 run_diff a.exr changed.exr --failpercent 0.5

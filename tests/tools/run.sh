@@ -28,7 +28,7 @@ scenes:
 methods:
   riemann: {placement: [entry, entry-exit-corner], rate: 1}
 comparisons:
-  vs-corner-red: {reference: red-riemann-entry-exit-corner, diff_image: png}
+  vs-corner-red: {reference: red-riemann-entry-exit-corner, diff_image: png, diff_scale: 4}
   vs-corner-blue: {reference: blue-riemann-entry-exit-corner}
 commands:
   rays:

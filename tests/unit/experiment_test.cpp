@@ -89,6 +89,11 @@ TEST_CASE("experiment: a wrong type or a bad value is named with its line and co
               .starts_with("exp.yaml:7:18: unknown run 'nope'"));
     CHECK(d.error(kHead + scene + "methods: {riemann: {}}\nreproduce: {checks: [{of: riemann, metrics: [rmse]}]}\n")
               .starts_with("exp.yaml:6:45: metric 'rmse' does not apply to a run"));
+    const std::string compare = kHead + scene + "methods: {riemann: {step: [0.5, 0.25]}}\ncomparisons:\n  c: ";
+    CHECK(d.error(compare + "{reference: riemann-h0.25, diff_scale: 10}\n")
+              .starts_with("exp.yaml:7:45: diff_scale needs diff_image"));
+    CHECK(d.error(compare + "{reference: riemann-h0.25, diff_image: png, diff_scale: 0}\n")
+              .starts_with("exp.yaml:7:62: diff_scale: expected a number > 0"));
 }
 
 TEST_CASE("experiment: a missing transfer function or volume is named with its line and column") {

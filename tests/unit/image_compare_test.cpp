@@ -75,6 +75,10 @@ TEST_CASE("image compare: NaN against a number is an infinite error, equal NaNs 
     CHECK(difference.pixels[1] == 0.0f);
     CHECK(difference.pixels[2] == 0.0f);
     CHECK(std::isinf(difference.pixels[3]));
+    vri::Image c(2, 1, 1), d(2, 1, 1);
+    c.pixels = {0.25f, 1.0f};
+    d.pixels = {0.5f, 1.0f};
+    CHECK(vri::differenceImage(c, d, 4.0).pixels == std::vector<float>{1.0f, 0.0f});  // scaled for a picture
 }
 
 TEST_CASE("image compare: different shapes throw and name both") {

@@ -78,8 +78,8 @@ TEST_CASE("plot: the gnuplot script") {
     has("$pareto1 << EOD\n1,0.2\n2,0.1\nEOD\n");
     has("set terminal pngcairo size 640,480 noenhanced");
     has("set multiplot layout 1,2 title 'It''s a test'\n");
-    has("    set xlabel 'seconds'\n    set logscale x\n    set xrange [0.5:4] extend\n");
-    has("    unset logscale y\n    set yrange [*:*] extend\n    unset key\n    set size noratio\n    unset label\n");
+    has("    set xlabel 'seconds'\n    set logscale x\n    set format x '%g'\n    set xrange [0.5:4] extend\n");
+    has("    unset logscale y\n    set format y '% h'\n    set yrange [*:*] extend\n    unset key\n    set size noratio\n    unset label\n");
     has("plot '../data/speed.csv' skip 1 using 2:3 with points pt 7 ps 0.8 title 'all', \\\n"
         "         $pareto1 using 1:2 with linespoints");
     has("plot '../data/hist.csv' skip 1 using (($1 > 0 && $2 < 1e300) ? ($1 + $2) / 2 : NaN):($4 / 2):1:2:(0):($4) "

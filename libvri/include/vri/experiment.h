@@ -48,6 +48,7 @@ struct ComparisonSpec {
     std::string reference, run;  // RunSpec ids
     std::vector<std::string> thresholds;
     std::string diffImage;  // "", "png" or "exr"
+    std::string diffScale;  // vri-diff --diff-scale, as written; "" for none
     bool histogram = false;
 };
 

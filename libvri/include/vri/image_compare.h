@@ -40,8 +40,9 @@ void requireSameShape(const Image& a, const Image& b);
 // Deterministic (a fixed summation order in double). Throws as requireSameShape.
 ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double>& thresholds);
 
-// Per-channel error |a - b| (as above), channel names from a. Throws as requireSameShape.
-Image differenceImage(const Image& a, const Image& b);
+// Per-channel error |a - b| (as above) times `scale` (to make small errors visible in an 8-bit
+// picture), channel names from a. Throws as requireSameShape.
+Image differenceImage(const Image& a, const Image& b, double scale = 1.0);
 
 // Counts of errors per bin and channel. Bins follow the "strictly above" rule of compareImages,
 // so the count above any edge is the sum of the bins past it:
