@@ -22,9 +22,11 @@ do for [format in "png svg"] {
     set title 'between two neighbouring texels (0 and full scale)'
     set xlabel 'exact weight of the second texel'
     unset logscale x
+    set format x '% h'
     set xrange [0:1] extend
     set ylabel 'sampler reading - exact (fraction of the neighbour difference)'
     unset logscale y
+    set format y '% h'
     set yrange [*:*] extend
     set key top right
     set size noratio
