@@ -71,6 +71,7 @@ RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sa
     const OccupancyGrid::Ray indexRay(glm::dvec3(ray.entry) * indexMap.scale - indexMap.offset,
                                       glm::dvec3(du) * indexMap.scale);
     double knownOccupiedUntil = -std::numeric_limits<double>::infinity();
+    std::size_t segment = 0;  // the transfer function's last bracket
     std::int64_t k = 0;
     while (k < s.count) {
         const Real t = s.t(k);
@@ -91,7 +92,7 @@ RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sa
             }
             knownOccupiedUntil = brick.tExit;
         }
-        acc.add(opt.integrator, emission, tf(sample(ray.entry + t * du)), dx);
+        acc.add(opt.integrator, emission, tf(sample(ray.entry + t * du), segment), dx);
         ++evaluated;
         ++k;
         if (acc.transparency < ert) break;
@@ -128,8 +129,9 @@ AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler
     const Vec du = along / length;  // texture units per voxel of ray
     const Real worldPerVoxel = static_cast<Real>(ray.worldLength / static_cast<double>(length));
     const bool colourTimesExtinction = tf.emission() == EmissionModel::ColourTimesExtinction;
+    std::size_t segment = 0;  // the transfer function's last bracket
     const auto evaluate = [&](Real v) {
-        const TransferFunctionSample<Real> x = tf(sample(ray.entry + v * du));
+        const TransferFunctionSample<Real> x = tf(sample(ray.entry + v * du), segment);
         const Real kappa = x.tau * worldPerVoxel;
         const Real weight = colourTimesExtinction ? kappa : worldPerVoxel;
         return RayPoint<Real>{kappa, x.r * weight, x.g * weight, x.b * weight};

@@ -1,6 +1,8 @@
 // Transfer function evaluation and validation.
 #include <doctest/doctest.h>
 
+#include <cstdint>
+
 #include "vri/error.h"
 #include "vri/transfer_function.h"
 
@@ -21,6 +23,33 @@ TEST_CASE("transfer function: linear between points, constant outside, right-con
     for (int i = 0; i < 1000; ++i) {
         const double s = 0.2 + 0.4 * i / 1000.0;
         CHECK(tf(s).tau == doctest::Approx(5.0 * (s - 0.2)).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("transfer function: the remembered segment never changes a value") {
+    const TransferFunction tf({{0.1, 0, 0, 0, 0}, {0.3, 1, 0.5, 0, 2}, {0.3, 0, 0, 1, 4}, {0.3, 1, 1, 1, 3},
+                               {0.55, 0.2, 0.7, 0.1, 1}, {0.9, 0, 0, 1, 0}},
+                              EmissionModel::ColourTimesExtinction);
+    std::size_t segment = 0;
+    std::uint64_t state = 12345;
+    double s = 0.0;
+    for (int k = 0; k < 20000; ++k) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        const double u = double(state >> 11) * 0x1.0p-53;  // in [0, 1)
+        // Small steps as along a ray, a jump now and then, and breakpoints exactly.
+        if (k % 97 == 0) s = tf.points()[(state >> 33) % tf.points().size()].s;
+        else if (k % 13 == 0) s = u * 1.2 - 0.1;
+        else s += (u - 0.5) * 0.02;
+        if (k % 5 == 0) segment = (state >> 20) % 8;  // any stale value, even past the last segment
+        const TransferFunctionSample<double> plain = tf(s), remembered = tf(s, segment);
+        CAPTURE(s);
+        CHECK(remembered.r == plain.r);
+        CHECK(remembered.g == plain.g);
+        CHECK(remembered.b == plain.b);
+        CHECK(remembered.tau == plain.tau);
+        const TransferFunctionSample<float> plainF = tf(float(s)), rememberedF = tf(float(s), segment);
+        CHECK(rememberedF.tau == plainF.tau);
+        CHECK(rememberedF.r == plainF.r);
     }
 }
 

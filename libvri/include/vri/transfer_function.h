@@ -45,13 +45,26 @@ public:
     // At a jump (two points with equal s) the value is taken from the right.
     template <class Real>
     TransferFunctionSample<Real> operator()(Real s) const {
+        std::size_t segment = 0;
+        return (*this)(s, segment);
+    }
+
+    // The same value, trying the segment of the previous call first (`segment`, updated): along a ray
+    // s moves a little at a time, so the last bracket usually still holds. The bracket p[i].s <= s <
+    // p[i + 1].s is unique, so the result never depends on what `segment` held.
+    template <class Real>
+    TransferFunctionSample<Real> operator()(Real s, std::size_t& segment) const {
         const auto& p = points_;
         if (!(s >= static_cast<Real>(p.front().s))) return at<Real>(0);
         if (!(s < static_cast<Real>(p.back().s))) return at<Real>(p.size() - 1);
-        int bin = static_cast<int>((static_cast<double>(s) - p.front().s) * binScale_);
-        std::size_t i = binStart_[bin < 0 ? 0 : (bin >= kBins ? kBins - 1 : bin)];
-        while (i > 0 && s < static_cast<Real>(p[i].s)) --i;  // guards the bin's rounding
-        while (s >= static_cast<Real>(p[i + 1].s)) ++i;
+        std::size_t i = segment;
+        if (!(i + 1 < p.size() && s >= static_cast<Real>(p[i].s) && s < static_cast<Real>(p[i + 1].s))) {
+            const int bin = static_cast<int>((static_cast<double>(s) - p.front().s) * binScale_);
+            i = binStart_[bin < 0 ? 0 : (bin >= kBins ? kBins - 1 : bin)];
+            while (i > 0 && s < static_cast<Real>(p[i].s)) --i;  // guards the bin's rounding
+            while (s >= static_cast<Real>(p[i + 1].s)) ++i;
+            segment = i;
+        }
         const auto& a = p[i];
         const auto& b = p[i + 1];
         const Real w = (s - static_cast<Real>(a.s)) / static_cast<Real>(b.s - a.s);
