@@ -49,6 +49,8 @@ class VulkanContext {
 public:
     // Creates an instance; throws vri::Error when there is no Vulkan loader or driver.
     VulkanContext();
+    // An instance with the device that `selector` names opened (see open()).
+    explicit VulkanContext(const std::string& selector) : VulkanContext() { open(selector); }
     ~VulkanContext();
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;

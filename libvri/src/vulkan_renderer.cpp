@@ -1,19 +1,20 @@
 #include "vri/vulkan_renderer.h"
 
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <map>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 #include <tbb/parallel_for.h>
 
 #include "vri/error.h"
+#include "vri/grid_sampler.h"
 #include "vri/occupancy_grid.h"
 #include "vulkan_context.h"
+#include "vulkan_pipelines.h"
 #include "vulkan_sampler_probe.h"
 #include "vulkan_texture.h"
 
@@ -41,14 +42,12 @@ static_assert(sizeof(Params) == 208);
 
 enum Binding { kParams, kVolume, kTransferFunction, kRays, kOutput, kCounters, kOccupancy, kVolumeTexture, kBindings };
 
-VkDescriptorType descriptorType(std::uint32_t binding) {
-    if (binding == kParams) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    if (binding == kVolumeTexture) return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+std::vector<VkDescriptorType> bindingTypes() {
+    std::vector<VkDescriptorType> types(kBindings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    types[kParams] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    types[kVolumeTexture] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    return types;
 }
-
-// Shader and specialisation constants (common.glsl, march.comp, simpson.comp) of one pipeline.
-using PipelineKey = std::array<int, 6>;
 
 constexpr std::string_view kInterpolationNames[] = {"shader", "sampler"};
 
@@ -92,14 +91,10 @@ VulkanInterpolation parseInterpolation(std::string_view name, const std::string&
 
 struct VulkanRenderer::Impl {
     VulkanContext context;
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
-    VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
-    VkShaderModule march = VK_NULL_HANDLE, simpson = VK_NULL_HANDLE;
-    std::map<PipelineKey, VkPipeline> pipelines;
-
     const VulkanInterpolation interpolation;
+    VulkanPipelines kernels;
+    VkShaderModule march, simpson;
+
     std::shared_ptr<const Volume> volume;  // the uploaded one, kept alive so that its address stays unique
     // Whichever of the two the interpolation does not read holds a one-voxel placeholder, since every
     // binding needs a valid descriptor.
@@ -107,64 +102,13 @@ struct VulkanRenderer::Impl {
     VulkanTexture3D volumeTexture;
     VulkanBuffer params, transferFunction, rays, output, counters, occupancy;
 
-    Impl(const std::string& selector, VulkanInterpolation interpolation) : interpolation(interpolation) {
-        context.open(selector);
-        const VkDevice device = context.device();
-        std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
-        for (std::uint32_t b = 0; b < kBindings; ++b)
-            bindings[b] = {b, descriptorType(b), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-        const VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, nullptr, 0,
-                                                         kBindings, bindings.data()};
-        vkCheck(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
-        const VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 1,
-                                                            &setLayout, 0, nullptr};
-        vkCheck(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout), "vkCreatePipelineLayout");
-        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
-                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings - 2}};
-        const VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 3, sizes};
-        vkCheck(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool), "vkCreateDescriptorPool");
-        const VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, descriptorPool,
-                                                  1, &setLayout};
-        vkCheck(vkAllocateDescriptorSets(device, &setInfo, &descriptorSet), "vkAllocateDescriptorSets");
-        march = shaderModule(march_spv, sizeof(march_spv));
-        simpson = shaderModule(simpson_spv, sizeof(simpson_spv));
-        params = VulkanBuffer(context, sizeof(Params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, false);
-    }
+    Impl(const std::string& selector, VulkanInterpolation interpolation)
+        : context(selector), interpolation(interpolation), kernels(context, bindingTypes()),
+          march(kernels.module(march_spv, sizeof(march_spv))),
+          simpson(kernels.module(simpson_spv, sizeof(simpson_spv))),
+          params(context, sizeof(Params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, false) {}
 
-    ~Impl() {
-        const VkDevice device = context.device();
-        vkDeviceWaitIdle(device);
-        for (const auto& [key, pipeline] : pipelines) vkDestroyPipeline(device, pipeline, nullptr);
-        vkDestroyShaderModule(device, march, nullptr);
-        vkDestroyShaderModule(device, simpson, nullptr);
-        vkDestroyDescriptorPool(device, descriptorPool, nullptr);
-        vkDestroyPipelineLayout(device, pipelineLayout, nullptr);
-        vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
-    }
-
-    VkShaderModule shaderModule(const std::uint32_t* code, std::size_t bytes) const {
-        const VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0, bytes, code};
-        VkShaderModule module;
-        vkCheck(vkCreateShaderModule(context.device(), &info, nullptr, &module), "vkCreateShaderModule");
-        return module;
-    }
-
-    VkPipeline pipeline(const PipelineKey& key) {
-        if (const auto it = pipelines.find(key); it != pipelines.end()) return it->second;
-        std::array<VkSpecializationMapEntry, std::tuple_size_v<PipelineKey> - 1> entries;
-        for (std::uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * 4u, 4u};
-        const VkSpecializationInfo spec{std::uint32_t(entries.size()), entries.data(), entries.size() * sizeof(int),
-                                        &key[1]};
-        const VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                                                    VK_SHADER_STAGE_COMPUTE_BIT, key[0] ? simpson : march, "main", &spec};
-        const VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO, nullptr, 0, stage,
-                                               pipelineLayout, VK_NULL_HANDLE, -1};
-        VkPipeline p;
-        vkCheck(vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p),
-                "vkCreateComputePipelines");
-        return pipelines[key] = p;
-    }
+    ~Impl() { vkDeviceWaitIdle(context.device()); }  // before the buffers go
 
     void checkRange(VkDeviceSize bytes, const std::string& what, const std::string& hint = "") const {
         const VkDeviceSize limit = context.properties().limits.maxStorageBufferRange;
@@ -224,20 +168,9 @@ struct VulkanRenderer::Impl {
     }
 
     void bind() const {
-        const VulkanBuffer* buffers[kVolumeTexture] = {&params, &volumeBuffer, &transferFunction, &rays,
-                                                       &output, &counters,     &occupancy};
-        VkDescriptorBufferInfo infos[kVolumeTexture];
-        VkWriteDescriptorSet writes[kBindings];
-        for (std::uint32_t b = 0; b < kVolumeTexture; ++b) {
-            infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
-            writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, descriptorSet, b, 0, 1, descriptorType(b),
-                         nullptr, &infos[b], nullptr};
-        }
-        const VkDescriptorImageInfo texture{volumeTexture.sampler(), volumeTexture.view(),
-                                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        writes[kVolumeTexture] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, descriptorSet, kVolumeTexture, 0, 1,
-                                  descriptorType(kVolumeTexture), &texture, nullptr, nullptr};
-        vkUpdateDescriptorSets(context.device(), kBindings, writes, 0, nullptr);
+        const VulkanBuffer* buffers[] = {&params, &volumeBuffer, &transferFunction, &rays, &output, &counters, &occupancy};
+        for (std::uint32_t b = 0; b < kVolumeTexture; ++b) kernels.bind(b, *buffers[b]);
+        kernels.bind(kVolumeTexture, volumeTexture);
     }
 };
 
@@ -279,11 +212,12 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     const int emission = scene.transferFunction.emission() == EmissionModel::ColourTimesExtinction ? 0 : 1;
     const AdaptiveParameters adaptive = simpsonParameters(options);
     const int sampler = m.interpolation == VulkanInterpolation::Sampler ? 1 : 0;
-    const PipelineKey key = simpson ? PipelineKey{1, voxelTypeConstant(scene), emission,
-                                                  adaptive.coupling == Coupling::Coupled ? 1 : 0, 0, sampler}
-                                    : PipelineKey{0, voxelTypeConstant(scene), emission, int(options.placement),
-                                                  options.integrator == Integrator::Composite ? 1 : 0, sampler};
-    const VkPipeline pipeline = m.pipeline(key);
+    // Specialisation constants (common.glsl, march.comp, simpson.comp).
+    const VkPipeline pipeline =
+        simpson ? m.kernels.pipeline(m.simpson, {voxelTypeConstant(scene), emission,
+                                                 adaptive.coupling == Coupling::Coupled ? 1 : 0, 0, sampler})
+                : m.kernels.pipeline(m.march, {voxelTypeConstant(scene), emission, int(options.placement),
+                                               options.integrator == Integrator::Composite ? 1 : 0, sampler});
     const std::vector<float> tf = transferFunctionTable(scene.transferFunction);
     m.ensure(m.transferFunction, tf.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the transfer function");
     m.ensure(m.rays, pixels * 32, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's rays");
@@ -373,15 +307,7 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
 
     m.rays.flush();
     m.bind();
-    m.context.submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.pipelineLayout, 0, 1, &m.descriptorSet, 0, nullptr);
-        vkCmdDispatch(cmd, groupsX, groupsY, 1);
-        const VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
-                                     VK_ACCESS_HOST_READ_BIT};
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0,
-                             nullptr, 0, nullptr);
-    });
+    m.kernels.dispatch(pipeline, groupsX, groupsY);
     m.output.invalidate();
     m.counters.invalidate();
 
