@@ -41,10 +41,6 @@ struct Counters {
     AdaptiveCounts adaptive;
 };
 
-// Maps texture coordinates to the occupancy grid's voxel index space: x = u * scale - offset.
-struct IndexMap {
-    glm::dvec3 scale, offset;
-};
 
 // One pixel's ray inside the box, in texture coordinates.
 template <class Real>
@@ -56,7 +52,7 @@ struct TextureRay {
 // Paper A's fixed-step placements, each sample standing for a segment of the ray (Riemann, composite).
 template <class Real, class Sampler>
 RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sample, const OccupancyGrid* occupancy,
-                                  const IndexMap& indexMap, const glm::vec<3, Real>& eyeU, const glm::vec<3, Real>& dims,
+                                  const GridIndexing& indexMap, const glm::vec<3, Real>& eyeU, const glm::vec<3, Real>& dims,
                                   const TransferFunction& tf, const RenderOptions& opt, std::uint64_t& placed,
                                   std::uint64_t& evaluated) {
     using Vec = glm::vec<3, Real>;
@@ -118,7 +114,7 @@ bool emptyAlong(const OccupancyGrid& occupancy, const OccupancyGrid::Ray& ray, d
 // Paper B's Simpson methods along one ray, parametrised in voxels of ray (adaptive_simpson.h).
 template <class Real, class Sampler>
 AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler& sample,
-                                      const OccupancyGrid* occupancy, const IndexMap& indexMap,
+                                      const OccupancyGrid* occupancy, const GridIndexing& indexMap,
                                       const glm::vec<3, Real>& dims, const TransferFunction& tf,
                                       const AdaptiveSimpsonRay<Real>& method, AdaptiveCounts& counts,
                                       std::vector<AdaptiveTry>* log) {
@@ -144,7 +140,7 @@ AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler
 }
 
 template <class Real, class Sampler>
-void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* occupancy, const IndexMap& indexMap,
+void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* occupancy, const GridIndexing& indexMap,
                 const Camera& camera, const RenderOptions& opt, Image& image, Counters& counters,
                 std::vector<AdaptiveTry>* rayLog) {
     using Vec = glm::vec<3, Real>;
@@ -207,7 +203,8 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
                  Counters& counters, RenderStats& stats) {
     std::vector<AdaptiveTry>* log = opt.logPixel ? &stats.rayLog : nullptr;
     if (!scene.volume) {
-        renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, IndexMap{}, camera, opt, image, counters, log);
+        renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, GridIndexing{}, camera, opt, image, counters,
+                         log);
         return;
     }
     const Volume& volume = *scene.volume;
@@ -218,9 +215,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         stats.setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats.emptyBrickFraction = occupancy->emptyFraction();
     }
-    const bool cell = scene.convention == GridConvention::CellCentred;
-    const glm::dvec3 n(volume.dims);
-    const IndexMap indexMap{cell ? n : n - glm::dvec3(1.0), glm::dvec3(cell ? 0.5 : 0.0)};
+    const GridIndexing indexMap(volume.dims, scene.convention);
     dispatchVoxelType(volume.type, [&](auto voxel) {
         const GridSampler<decltype(voxel), Real> sampler(volume, scene.convention);
         renderWith<Real>(scene, sampler, occupancy ? &*occupancy : nullptr, indexMap, camera, opt, image, counters,

@@ -234,16 +234,15 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     Params p{};
     if (scene.volume) {
         const Volume& v = *scene.volume;
-        const bool cell = scene.convention == GridConvention::CellCentred;
-        const std::int32_t strides[3] = {1, v.dims.x, v.dims.x * v.dims.y};
+        const GridIndexing g(v.dims, scene.convention);
         for (int a = 0; a < 3; ++a) {
-            p.scale[a] = static_cast<float>(cell ? v.dims[a] : v.dims[a] - 1);
-            p.offset[a] = cell ? 0.5f : 0.0f;
-            p.maxCoord[a] = static_cast<float>(v.dims[a] - 1);
-            p.maxBase[a] = std::max(v.dims[a] - 2, 0);
-            p.stride[a] = v.dims[a] == 1 ? 0 : strides[a];
+            p.scale[a] = static_cast<float>(g.scale[a]);
+            p.offset[a] = static_cast<float>(g.offset[a]);
+            p.maxCoord[a] = static_cast<float>(g.maxCoord[a]);
+            p.maxBase[a] = g.maxBase[a];
+            p.stride[a] = static_cast<std::int32_t>(g.stride[a]);
+            p.texel[a] = 1.0f / static_cast<float>(v.dims[a]);
         }
-        for (int a = 0; a < 3; ++a) p.texel[a] = 1.0f / static_cast<float>(v.dims[a]);
         p.texel[3] = volumeTextureFormat(v.type).unit;
         const ValueRange r = v.normalisationRange();
         p.lo = static_cast<float>(r.lo);

@@ -11,21 +11,42 @@
 
 namespace vri {
 
+// How texture coordinates u in [0,1]^3 address a grid of `dims` voxels under a convention: voxel
+// index x = u * scale - offset, clamped to [0, maxCoord], the cell's lower corner at most maxBase.
+// GridSampler, the empty-space bricks and the Vulkan shaders all address the volume this way.
+struct GridIndexing {
+    glm::dvec3 scale{1.0}, offset{0.0};
+    glm::dvec3 maxCoord{0.0};             // dims - 1
+    glm::ivec3 maxBase{0};                // max(dims - 2, 0)
+    std::int64_t stride[3] = {0, 0, 0};   // voxels; 0 along an axis of a single layer (both taps read it)
+
+    GridIndexing() = default;
+    GridIndexing(const glm::ivec3& dims, GridConvention convention) {
+        const bool cell = convention == GridConvention::CellCentred;
+        const std::int64_t strides[3] = {1, dims.x, std::int64_t(dims.x) * dims.y};
+        for (int a = 0; a < 3; ++a) {
+            scale[a] = cell ? dims[a] : dims[a] - 1;
+            offset[a] = cell ? 0.5 : 0.0;
+            maxCoord[a] = dims[a] - 1;
+            maxBase[a] = std::max(dims[a] - 2, 0);
+            stride[a] = dims[a] == 1 ? 0 : strides[a];
+        }
+    }
+};
+
 template <class T, class Real>
 class GridSampler {
 public:
     using Vec = glm::vec<3, Real>;
 
-    GridSampler(const Volume& volume, GridConvention convention)
-        : data_(volume.data<T>()), n_(volume.dims),
-          stride_{1, std::int64_t(volume.dims.x), std::int64_t(volume.dims.x) * volume.dims.y} {
-        const bool cell = convention == GridConvention::CellCentred;
+    GridSampler(const Volume& volume, GridConvention convention) : data_(volume.data<T>()) {
+        const GridIndexing g(volume.dims, convention);
+        scale_ = Vec(g.scale);
+        offset_ = Vec(g.offset);
         for (int a = 0; a < 3; ++a) {
-            scale_[a] = static_cast<Real>(cell ? n_[a] : n_[a] - 1);
-            offset_[a] = static_cast<Real>(cell ? 0.5 : 0.0);
-            maxCoord_[a] = static_cast<Real>(n_[a] - 1);
-            maxBase_[a] = std::max(n_[a] - 2, 0);
-            if (n_[a] == 1) stride_[a] = 0;  // a single layer: both taps read it
+            maxCoord_[a] = static_cast<Real>(g.maxCoord[a]);
+            maxBase_[a] = g.maxBase[a];
+            stride_[a] = g.stride[a];
         }
         const ValueRange r = volume.normalisationRange();
         lo_ = static_cast<Real>(r.lo);
@@ -62,7 +83,6 @@ public:
 
 private:
     const T* data_;
-    glm::ivec3 n_;
     std::int64_t stride_[3];
     Vec scale_{}, offset_{};
     Real maxCoord_[3];
