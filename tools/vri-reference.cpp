@@ -120,7 +120,6 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
                                  {"options", exact ? vri::toJson(exactOptions) : vri::toJson(riemannOptions)},
                                  {"stats", result.stats}};
         record["timing"] = timing.toJson(wallSeconds);
-        const double medianSeconds = record["timing"]["median_wall_seconds"];
         const vri::ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
                                              {"vri:options", record["options"].dump()},
                                              {"vri:scene", record["scene"].dump()}};
@@ -130,8 +129,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
         if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
         if (!quiet) {
             std::cerr << "vri-reference: " << method << ", " << result.image.width << "x" << result.image.height
-                      << " in " << medianSeconds << " s"
-                      << (timing.repeat() > 1 ? " (median of " + std::to_string(timing.repeat()) + ")" : "") << " on "
+                      << " in " << timing.summary(wallSeconds) << " on "
                       << result.stats["threads"].get<int>() << " threads";
             if (exact) std::cerr << "; error bound max " << result.stats["error_bound"]["max"].dump();
             std::cerr << "\n";

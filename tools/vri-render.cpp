@@ -173,7 +173,6 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
                                  {"options", vri::toJson(options)},
                                  {"stats", vri::toJson(stats)}};
         record["timing"] = timing.toJson(wallSeconds);
-        const double medianSeconds = record["timing"]["median_wall_seconds"];
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},
                                       {"vri:scene", record["scene"].dump()}});
@@ -182,8 +181,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (!logPath.empty()) vri::writeTextFile(logPath, vri::adaptiveLogCsv(stats.rayLog));
         if (!quiet)
             std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated
-                      << " samples in " << medianSeconds << " s"
-                      << (timing.repeat() > 1 ? " (median of " + std::to_string(timing.repeat()) + ")" : "") << " on "
+                      << " samples in " << timing.summary(wallSeconds) << " on "
                       << (vulkan ? stats.device : std::to_string(stats.threads) + " threads") << "\n";
         return vri::kExitOk;
     });

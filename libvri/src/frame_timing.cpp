@@ -1,5 +1,7 @@
 #include "vri/frame_timing.h"
 
+#include <sstream>
+
 #include "vri/table.h"
 
 namespace vri {
@@ -25,6 +27,13 @@ nlohmann::json FrameTiming::toJson(const std::vector<double>& wallSeconds) const
             {"repeats", repeat_},
             {"wall_seconds", wallSeconds},
             {"median_wall_seconds", median(wallSeconds)}};
+}
+
+std::string FrameTiming::summary(const std::vector<double>& wallSeconds) const {
+    std::ostringstream out;
+    out << median(wallSeconds) << " s";
+    if (repeat_ > 1) out << " (median of " << repeat_ << ")";
+    return out.str();
 }
 
 }  // namespace vri

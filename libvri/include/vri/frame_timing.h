@@ -36,9 +36,10 @@ public:
         return std::pair{std::move(first), std::move(wallSeconds)};
     }
 
-    int repeat() const { return repeat_; }
     // {"warm_up_frames", "repeats", "wall_seconds", "median_wall_seconds"}
     nlohmann::json toJson(const std::vector<double>& wallSeconds) const;
+    // For the tools' closing line: "0.94 s", or "0.94 s (median of 3)".
+    std::string summary(const std::vector<double>& wallSeconds) const;
 
 private:
     int threads_ = 0, repeat_ = 1, warmUp_ = 0;
