@@ -4,7 +4,6 @@
 
 #include <iostream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,16 +20,9 @@ namespace {
 
 constexpr const char* kTool = "vri-sampler-probe";
 
-std::vector<vri::VoxelType> parseTypes(const std::string& list) {
-    std::vector<vri::VoxelType> types;
-    std::stringstream in(list);
-    for (std::string name; std::getline(in, name, ',');) types.push_back(vri::parseVoxelType(name, "--types"));
-    if (types.empty()) throw vri::Error("--types: expected a comma-separated list of uint8, uint16, float32");
-    return types;
-}
-
 int run(int argc, char** argv) {
-    std::string device, types = "uint8,uint16,float32", output, summary;
+    std::string device, output, summary;
+    std::vector<std::string> types{"uint8", "uint16", "float32"};
     bool quiet = false;
     CLI::App app{"Measures a Vulkan device's trilinear texture filtering: for each voxel type, a 2-texel 3D image "
                  "holding 0 and full scale is read at 4097 evenly spaced points between the texel centres, and "
@@ -40,6 +32,7 @@ int run(int argc, char** argv) {
     app.add_option("--device", device, "Vulkan device: an index of vri-render --list-devices or part of a name");
     app.add_option("--types", types, "voxel types to probe, comma separated (uint8: R8 unorm, uint16: R16 unorm, "
                                      "float32: R32 float)")
+        ->delimiter(',')
         ->capture_default_str();
     app.add_option("-o,--output", output, "CSV of every reading: type, format, weight, read, error ('-': stdout)");
     app.add_option("--summary", summary, "Markdown table per type: reported sub-texel bits, max error, effective "
@@ -53,7 +46,8 @@ int run(int argc, char** argv) {
                "when at least one type was measured, 1 when none could be (no Vulkan device, no filterable "
                "format), non-zero on a bad argument. Outputs are written atomically.");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
-    const std::vector<vri::VoxelType> voxelTypes = parseTypes(types);
+    std::vector<vri::VoxelType> voxelTypes;
+    for (const std::string& name : types) voxelTypes.push_back(vri::parseVoxelType(name, "--types"));
 
     vri::VulkanRenderer renderer(device);
     vri::Table table;
