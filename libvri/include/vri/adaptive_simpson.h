@@ -130,18 +130,20 @@ public:
     void place(Real a, Real b, const Evaluate& evaluate, const KnownEmpty& knownEmpty, AdaptiveCounts& counts) {
         const Real h = b - a;
         Real x[5] = {a, a + h * Real(0.25), a + h * Real(0.5), a + h * Real(0.75), b};
-        // Asked only when a point is not reused: a try that reuses all five (the coupled outer try)
-        // walks no bricks.
-        enum { Unasked, Empty, Occupied } space = Unasked;
+        int reused[5];  // the previous window's point at the same position, or -1
+        bool fresh = false;
+        for (int k = 0; k < 5; ++k) {
+            reused[k] = valid_ ? find(x[k]) : -1;
+            fresh = fresh || reused[k] < 0;
+        }
+        // Asked only when a point must be evaluated: a try that reuses all five (the coupled outer
+        // try) walks no bricks.
+        const bool empty = fresh && knownEmpty(static_cast<double>(a), static_cast<double>(b));
         RayPoint<Real> next[5];
         for (int k = 0; k < 5; ++k) {
-            const int j = valid_ ? find(x[k]) : -1;
-            if (j >= 0) {
-                next[k] = p_[j];
-                continue;
-            }
-            if (space == Unasked) space = knownEmpty(static_cast<double>(a), static_cast<double>(b)) ? Empty : Occupied;
-            if (space == Occupied) {
+            if (reused[k] >= 0) {
+                next[k] = p_[reused[k]];
+            } else if (!empty) {
                 next[k] = evaluate(x[k]);
                 ++counts.pointsEvaluated;
             }  // else: known to be exactly zero, as RayPoint's default
