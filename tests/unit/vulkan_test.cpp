@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "vri/error.h"
+#include "vri/image_compare.h"
 #include "vri/render.h"
 #include "vri/vulkan_renderer.h"
 
@@ -36,8 +37,13 @@ bool haveVulkan() {
 double maxDifference(const Image& a, const Image& b) {
     REQUIRE(a.pixels.size() == b.pixels.size());
     double d = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) d = std::max(d, double(std::abs(a.pixels[i] - b.pixels[i])));
+    for (const auto& channel : compareImages(a, b, {}).channels) d = std::max(d, channel.maxAbs);
     return d;
+}
+
+// Voxel i of a volume of any type holds `value`.
+void setVoxel(Volume& v, std::size_t i, int value) {
+    dispatchVoxelType(v.type, [&](auto voxel) { v.data<decltype(voxel)>()[i] = static_cast<decltype(voxel)>(value); });
 }
 
 double maxValue(const Image& a) {
@@ -62,11 +68,7 @@ Scene blobScene(VoxelType type = VoxelType::UInt8) {
                 const glm::dvec3 p = (glm::dvec3(x, y, z) + 0.5) / glm::dvec3(v->dims) - 0.5;
                 const double r = glm::length(p);
                 const int base = r < 0.35 ? 220 - int(400 * r) : 0;
-                const int value = base > 0 ? base + int(rng() % 30) : 0;
-                const std::size_t i = v->index(x, y, z);
-                if (type == VoxelType::UInt8) v->data<std::uint8_t>()[i] = std::uint8_t(value);
-                if (type == VoxelType::UInt16) v->data<std::uint16_t>()[i] = std::uint16_t(value);
-                if (type == VoxelType::Float32) v->data<float>()[i] = float(value);
+                setVoxel(*v, v->index(x, y, z), base > 0 ? base + int(rng() % 30) : 0);
             }
     v->range = ValueRange{0.0, 255.0};
     v->spacing = glm::dvec3(1.0, 1.25, 0.8);
@@ -259,12 +261,7 @@ Scene rampScene(VoxelType type) {
     auto v = std::make_shared<Volume>(glm::ivec3(16, 12, 14), type);
     for (int z = 0; z < v->dims.z; ++z)
         for (int y = 0; y < v->dims.y; ++y)
-            for (int x = 0; x < v->dims.x; ++x) {
-                const std::size_t i = v->index(x, y, z);
-                if (type == VoxelType::UInt8) v->data<std::uint8_t>()[i] = std::uint8_t(17 * x);
-                if (type == VoxelType::UInt16) v->data<std::uint16_t>()[i] = std::uint16_t(17 * x);
-                if (type == VoxelType::Float32) v->data<float>()[i] = float(17 * x);
-            }
+            for (int x = 0; x < v->dims.x; ++x) setVoxel(*v, v->index(x, y, z), 17 * x);
     v->range = ValueRange{0.0, 255.0};
     return Scene{v, std::nullopt, GridConvention::CellCentred,
                  TransferFunction({{0, 0, 0, 0, 0}, {1, 1, 1, 1, 0.5}}, EmissionModel::Colour)};
