@@ -57,8 +57,8 @@ struct RenderStats {
     std::uint64_t raysHit = 0;           // rays whose segment in the box has positive length
     std::uint64_t samplesPlaced = 0;     // samples the placement puts on the rays (up to early termination)
     std::uint64_t samplesEvaluated = 0;  // of those, the ones not skipped as empty space
-    double seconds = 0.0;                // wall time of the render loop (excludes loading; Vulkan: also upload and pipeline creation)
-    double setupSeconds = 0.0;           // building the empty-space grid
+    double seconds = 0.0;                // wall time of the render loop (excludes loading and setupSeconds)
+    double setupSeconds = 0.0;           // CPU: building the empty-space grid; Vulkan: upload and pipelines
     int threads = 0;
     double emptyBrickFraction = 0.0;
     std::optional<AdaptiveCounts> adaptive;  // Simpson methods: tries, failures, steps and points of all rays
