@@ -116,9 +116,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         std::optional<tbb::global_control> threadLimit;
         timing.limitThreads(threadLimit);
 
-        if (backend != "cpu" && backend != "vulkan")
-            throw vri::Error("--backend: unknown backend '" + backend + "' (expected cpu or vulkan)");
-        const bool vulkan = backend == "vulkan";
+        const bool vulkan = vri::parseBackend(backend, "--backend") == vri::Backend::Vulkan;
         if (vulkan && !*precisionOpt) precision = "float";
         if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
         if (!vulkan && *interpolationOpt) throw vri::Error("--interpolation: needs --backend vulkan");

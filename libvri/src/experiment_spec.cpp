@@ -73,9 +73,7 @@ const std::vector<RunParameter>& renderParameters() {
         {"h_max", "--h-max", "hmax", [](auto& v, auto& w) { parseLimit(v, w); }},
         {"accepted", "--accepted-value", "", [](auto& v, auto& w) { parseAcceptedValue(v, w); }},
         {"log_ray", "--log-ray", "ray", [](auto& v, auto& w) { parsePixel(v, w); }},  // + --log <run>-ray.csv
-        {"backend", "--backend", "", [](auto& v, auto& w) {
-             if (v != "cpu" && v != "vulkan") throw Error(w + ": expected cpu or vulkan, got '" + v + "'");
-         }},
+        {"backend", "--backend", "", [](auto& v, auto& w) { parseBackend(v, w); }},
         {"device", "--device", "dev", [](auto&, auto&) {}},  // a Vulkan device: index or part of its name
         {"interpolation", "--interpolation", "", [](auto& v, auto& w) { parseInterpolation(v, w); }},  // Vulkan
         {"warm_up", "--warm-up", "w", positiveCount},         // frames rendered before the timed ones

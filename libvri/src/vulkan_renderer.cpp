@@ -83,6 +83,12 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 std::string_view interpolationName(VulkanInterpolation i) { return kInterpolationNames[int(i)]; }
 
+Backend parseBackend(std::string_view name, const std::string& what) {
+    if (name == "cpu") return Backend::Cpu;
+    if (name == "vulkan") return Backend::Vulkan;
+    throw Error(what + ": unknown backend '" + std::string(name) + "' (expected cpu or vulkan)");
+}
+
 VulkanInterpolation parseInterpolation(std::string_view name, const std::string& what) {
     for (int i = 0; i < 2; ++i)
         if (name == kInterpolationNames[i]) return VulkanInterpolation(i);

@@ -27,6 +27,10 @@ struct VulkanDeviceInfo {
     std::string apiVersion;  // "1.3.239"
 };
 
+// Which renderer draws: vri::render() on the CPU, or VulkanRenderer.
+enum class Backend { Cpu, Vulkan };
+Backend parseBackend(std::string_view name, const std::string& what);  // "cpu", "vulkan"
+
 // Where the volume is interpolated. Shader (the default) reads the voxels from a storage buffer and
 // interpolates with grid_sampler.h's formula in float. Sampler uploads a 3D image (R8 or R16 unorm, R32
 // float) and lets the texture unit filter it, with the weights' precision the device chooses: 8
