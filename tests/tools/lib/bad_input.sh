@@ -1,0 +1,49 @@
+# Sourced by the bad-input tests (tests/tools/bad_input_*.sh), after lib/scratch.sh.
+#
+#   bad CODE PATTERN -- COMMAND [ARGS...]
+#
+# runs COMMAND in the work directory ($VRI_SCRATCH/work, the current directory after sourcing) and
+# checks the three things a user relies on when an input is bad:
+#   - the exit code is CODE ("nonzero" accepts any non-zero code; a crash, 128 + signal, never passes);
+#   - stderr is exactly one line and matches the extended regular expression PATTERN;
+#   - the work directory is exactly as before: no file added (hidden temporary files included),
+#     removed, replaced or changed, and every FIFO, symlink or device in it keeps its kind.
+# Outputs go to $VRI_SCRATCH/logs, outside the work directory. bad_done prints the number of cases
+# and fails when none ran.
+bad_cases=0
+bad_logs="$VRI_SCRATCH/logs"
+mkdir -p "$bad_logs" "$VRI_SCRATCH/work"
+cd "$VRI_SCRATCH/work"
+
+# Every entry with its kind, size, mode and (for regular files) content hash.
+bad_snapshot() {
+  find . -mindepth 1 -printf '%p %y %s %m\n' | LC_ALL=C sort
+  find . -type f -exec sha256sum {} + | LC_ALL=C sort
+}
+
+bad() {
+  local code=$1 pattern=$2
+  shift 2
+  [ "$1" = "--" ] && shift
+  bad_cases=$((bad_cases + 1))
+  local label="case $bad_cases ($*)"
+  local before after rc=0
+  before=$(bad_snapshot)
+  "$@" > "$bad_logs/out" 2> "$bad_logs/err" < /dev/null || rc=$?
+  after=$(bad_snapshot)
+  if [ "$code" = nonzero ]; then
+    { [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ]; } || fail "$label: exit $rc, expected a non-zero code below 128; stderr: $(head -c 500 "$bad_logs/err")"
+  else
+    [ "$rc" -eq "$code" ] || fail "$label: exit $rc, expected $code; stderr: $(head -c 500 "$bad_logs/err")"
+  fi
+  [ "$(wc -l < "$bad_logs/err")" -eq 1 ] ||
+    fail "$label: expected one line on stderr, got $(wc -l < "$bad_logs/err"): $(head -c 500 "$bad_logs/err")"
+  grep -Eq -- "$pattern" "$bad_logs/err" || fail "$label: stderr does not match /$pattern/: $(cat "$bad_logs/err")"
+  [ "$before" = "$after" ] ||
+    fail "$label: the work directory changed: $(diff <(echo "$before") <(echo "$after") | head -20)"
+}
+
+bad_done() {
+  [ "$bad_cases" -gt 0 ] || fail "no bad-input case ran"
+  echo "$bad_cases bad-input cases passed"
+}
