@@ -2,16 +2,17 @@
 #include "vri/manifest.h"
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "vri/atomic_file.h"
+#include "vri/error.h"
 #include "vri/json_file.h"
+#include "vri/process.h"
 #include "vri/provenance.h"
 
 namespace vri {
@@ -20,24 +21,29 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The first line a command prints, or "" when it cannot run (no git, not a work tree).
-std::string firstLineOf(const std::string& command) {
-    std::string line;
-    if (FILE* pipe = ::popen(command.c_str(), "r")) {
-        std::array<char, 256> buffer{};
-        if (std::fgets(buffer.data(), buffer.size(), pipe)) line = buffer.data();
-        ::pclose(pipe);
+// The first line `git -C dir ARGS...` prints, or "" when it cannot run (no git, not a work tree).
+std::string firstLineOfGit(const fs::path& dir, std::vector<std::string> args) {
+    const auto git = findProgram("git");
+    if (!git) return "";
+    std::vector<std::string> words{"git", "-C", dir.string()};
+    words.insert(words.end(), std::make_move_iterator(args.begin()), std::make_move_iterator(args.end()));
+    try {
+        auto [status, output] = captureProcess(*git, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false});
+        if (!status.ok()) return "";
+        output = output.substr(0, output.find('\n'));
+        if (!output.empty() && output.back() == '\r') output.pop_back();
+        return output;
+    } catch (const Error&) {
+        return "";  // git could not be started: the source tree is unknown, not a failed experiment
     }
-    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-    return line;
 }
 
 // The commit of the experiment file's work tree, and whether tracked files differ from it.
 nlohmann::json sourceTree(const fs::path& experimentFile) {
-    const std::string dir = shellQuote(fs::absolute(experimentFile).parent_path().string());
-    const std::string commit = firstLineOf("git -C " + dir + " rev-parse HEAD 2>/dev/null");
+    const fs::path dir = fs::absolute(experimentFile).parent_path();
+    const std::string commit = firstLineOfGit(dir, {"rev-parse", "HEAD"});
     if (commit.empty()) return {{"commit", "unknown"}};
-    const bool modified = !firstLineOf("git -C " + dir + " status --porcelain --untracked-files=no 2>/dev/null").empty();
+    const bool modified = !firstLineOfGit(dir, {"status", "--porcelain", "--untracked-files=no"}).empty();
     return {{"commit", commit}, {"modified_files", modified}};
 }
 

@@ -88,10 +88,6 @@ nlohmann::json buildInfo() {
             {"tbb", TBB_VERSION_STRING}};
 }
 
-bool commandAvailable(const std::string& name) {
-    return std::system(("command -v " + shellQuote(name) + " >/dev/null 2>&1").c_str()) == 0;
-}
-
 std::string shellQuote(std::string_view word) {
     const auto safe = [](char ch) {
         return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
