@@ -6,6 +6,7 @@
 // ("0.5", not 0.500000), so that the commands a reader sees are the ones the file reads.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -118,6 +119,13 @@ struct Experiment {
     const SceneSpec& scene(const std::string& name) const;
     const RunSpec& run(const std::string& id) const;
 };
+
+// Names become file names in the results folder (the experiment's folder, run ids, tables, figures,
+// command outputs) and step ids in .steps/: letters, digits, '.', '_', '+' and '-', starting with a
+// letter or a digit, never "..". So no name is a path, hidden, "." or "..", and none holds a quote,
+// a blank, a shell or gnuplot character or a control character. Every name an experiment file gives
+// is held to this, with an error naming the file, line, column and key.
+bool isSafeName(std::string_view name);
 
 // Parses and validates; every problem is a vri::Error "file:line:col: ...". Relative paths are
 // resolved against `baseDir` (the experiment file's folder) and must exist. With `quick`, the
