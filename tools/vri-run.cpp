@@ -68,7 +68,7 @@ int run(const Options& options) {
             continue;
         }
         const auto start = std::chrono::steady_clock::now();
-        const vri::FolderLock lock(plan.resultsDir);  // until this experiment's manifest is written
+        const vri::FolderLock lock(plan.commandPath(plan.resultsDir));  // until its manifest is written
         // Left by a vri-run or a step killed mid-write; a step of a killed vri-run that still runs keeps its own.
         for (const fs::path& folder : {plan.resultsDir, plan.resultsDir / ".steps"})
             for (const fs::path& stale : vri::removeStaleTempFiles(folder))
