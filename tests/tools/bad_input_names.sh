@@ -19,58 +19,61 @@ scene='scenes:
   a: {field: linear, field_dims: [5, 5, 5], convention: node, tf: red.yaml, size: [8, 8]}'
 commands='commands:
   rays: {tool: vri-rays2d, outputs: {o: rays.csv}}'
-# experiment FILE TEXT: writes the experiment file (the work directory's snapshot then includes it).
-experiment() { printf '%s\n' "$2" > "$1"; }
-
-experiment dotdot.yaml "name: \"..\"
+# refused NAME TEXT WHERE: the experiment NAME.yaml holding TEXT is refused with "NAME.yaml:WHERE" (an
+# extended regular expression from its line and column on), before anything is written.
+refused() {
+  printf '%s\n' "$2" > "$1.yaml"
+  bad 1 "^vri-run: error: $1.yaml:$3" -- "$run" --results out "$1.yaml"
+}
+refused dotdot "name: \"..\"
 $head
-$commands"
-bad 1 '^vri-run: error: dotdot.yaml:1:7: name must be letters, digits' -- "$run" --dry-run dotdot.yaml
-experiment dot.yaml "name: \".\"
+$commands" \
+  '1:7: name must be letters, digits'
+refused dot "name: \".\"
 $head
-$commands"
-bad 1 '^vri-run: error: dot.yaml:1:7: name must be letters' -- "$run" --results out dot.yaml
-experiment quote.yaml "name: \"x';system('touch\${IFS}marker');x='\"
+$commands" \
+  '1:7: name must be letters'
+refused quote "name: \"x';system('touch\${IFS}marker');x='\"
 $head
-$commands"
-bad 1 '^vri-run: error: quote.yaml:1:7: name must be letters' -- "$run" --results out quote.yaml
-experiment slash.yaml "name: a/b
+$commands" \
+  '1:7: name must be letters'
+refused slash "name: a/b
 $head
-$commands"
-bad 1 '^vri-run: error: slash.yaml:1:7: name must be letters' -- "$run" --results out slash.yaml
-experiment figure.yaml "name: f
+$commands" \
+  '1:7: name must be letters'
+refused figure "name: f
 $head
 $commands
 figures:
-  \"x';system('touch\${IFS}marker');x='\": {spec: red.yaml, data: [rays.csv]}"
-bad 1 '^vri-run: error: figure.yaml:7:3: figures: a name must be letters' -- "$run" --results out figure.yaml
-experiment command.yaml "name: c
+  \"x';system('touch\${IFS}marker');x='\": {spec: red.yaml, data: [rays.csv]}" \
+  '7:3: figures: a name must be letters'
+refused command "name: c
 $head
 commands:
-  ../rays: {tool: vri-rays2d, outputs: {o: rays.csv}}"
-bad 1 '^vri-run: error: command.yaml:5:3: commands: a name must be' -- "$run" --results out command.yaml
-experiment scene.yaml "name: s
+  ../rays: {tool: vri-rays2d, outputs: {o: rays.csv}}" \
+  '5:3: commands: a name must be'
+refused scene "name: s
 $head
 scenes:
   \"a b\": {field: linear, convention: node, tf: red.yaml, size: [8, 8]}
 methods:
-  riemann: {placement: eye}"
-bad 1 '^vri-run: error: scene.yaml:5:3: scenes: a name must be' -- "$run" --results out scene.yaml
-experiment method.yaml "name: m
+  riemann: {placement: eye}" \
+  '5:3: scenes: a name must be'
+refused method "name: m
 $head
 $scene
 methods:
-  \"it's\": {method: riemann, placement: eye}"
-bad 1 "^vri-run: error: method.yaml:7:3: methods: a name must be" -- "$run" --results out method.yaml
-experiment comparison.yaml "name: m
+  \"it's\": {method: riemann, placement: eye}" \
+  "7:3: methods: a name must be"
+refused comparison "name: m
 $head
 $scene
 methods:
   riemann: {placement: [eye, entry]}
 comparisons:
-  .hidden: {reference: riemann-entry}"
-bad 1 "^vri-run: error: comparison.yaml:9:3: comparisons: a name must be" -- "$run" --results out comparison.yaml
-experiment table.yaml "name: t
+  .hidden: {reference: riemann-entry}" \
+  "9:3: comparisons: a name must be"
+refused table "name: t
 $head
 $scene
 methods:
@@ -78,65 +81,62 @@ methods:
 comparisons:
   vs: {reference: riemann-entry}
 tables:
-  \"\$(touch marker)\": {comparisons: vs}"
-bad 1 "^vri-run: error: table.yaml:11:3: tables: a name must be" -- "$run" --results out table.yaml
-experiment device.yaml "name: d
+  \"\$(touch marker)\": {comparisons: vs}" \
+  "11:3: tables: a name must be"
+refused device "name: d
 $head
 $scene
 methods:
-  riemann: {placement: eye, backend: vulkan, device: [\"0\", \"../../outside\"]}"
-bad 1 "^vri-run: error: device.yaml:7:12: methods entry 'riemann': a swept value does not fit in a run id" -- \
-  "$run" --results out device.yaml
-experiment output.yaml "name: o
+  riemann: {placement: eye, backend: vulkan, device: [\"0\", \"../../outside\"]}" \
+  "7:12: methods entry 'riemann': a swept value does not fit in a run id"
+refused output "name: o
 $head
 commands:
-  rays: {tool: vri-rays2d, outputs: {o: ../outside.csv}}"
-bad 1 "^vri-run: error: output.yaml:5:41: output 'o' must be a file name in the results folder" -- "$run" --results out output.yaml
-experiment manifest.yaml "name: o
+  rays: {tool: vri-rays2d, outputs: {o: ../outside.csv}}" \
+  "5:41: output 'o' must be a file name in the results folder"
+refused manifest "name: o
 $head
 commands:
-  rays: {tool: vri-rays2d, outputs: {o: manifest.json}}"
-bad 1 "^vri-run: error: manifest.yaml:5:41: output 'o' must be a file name .*not manifest.json" -- "$run" --results out manifest.yaml
-experiment option.yaml "name: o
+  rays: {tool: vri-rays2d, outputs: {o: manifest.json}}" \
+  "5:41: output 'o' must be a file name .*not manifest.json"
+refused option "name: o
 $head
 commands:
-  rays: {tool: vri-rays2d, options: {errors: ../outside.md}, outputs: {o: rays.csv}}"
-bad 1 "^vri-run: error: option.yaml:5:46: option 'errors' writes a file: name it under outputs:" -- "$run" --results out option.yaml
-experiment path.yaml "name: o
+  rays: {tool: vri-rays2d, options: {errors: ../outside.md}, outputs: {o: rays.csv}}" \
+  "5:46: option 'errors' writes a file: name it under outputs:"
+refused path "name: o
 $head
 commands:
-  rays: {tool: vri-rays2d, options: {rotation: ../../x}, outputs: {o: rays.csv}}"
-bad 1 "^vri-run: error: path.yaml:5:48: option 'rotation' names a file or an option" -- "$run" --results out path.yaml
-experiment file.yaml "name: o
+  rays: {tool: vri-rays2d, options: {rotation: ../../x}, outputs: {o: rays.csv}}" \
+  "5:48: option 'rotation' names a file or an option"
+refused file "name: o
 $head
 commands:
-  rays: {tool: vri-rays2d, options: {rotation: outside.csv}, outputs: {o: rays.csv}}"
-bad 1 "^vri-run: error: file.yaml:5:48: option 'rotation' names a file" -- "$run" --results out file.yaml
-experiment shifted.yaml "name: o
+  rays: {tool: vri-rays2d, options: {rotation: outside.csv}, outputs: {o: rays.csv}}" \
+  "5:48: option 'rotation' names a file"
+refused shifted "name: o
 $head
 commands:
-  rays: {tool: vri-rays2d, options: {rotation: -o, rates: x}, outputs: {o: rays.csv}}"
-bad 1 "^vri-run: error: shifted.yaml:5:48: option 'rotation' names a file or an option" -- "$run" --results out shifted.yaml
-experiment input.yaml "name: o
+  rays: {tool: vri-rays2d, options: {rotation: -o, rates: x}, outputs: {o: rays.csv}}" \
+  "5:48: option 'rotation' names a file or an option"
+refused input "name: o
 $head
 commands:
-  tf: {tool: vri-tf, inputs: {o: red.yaml}, outputs: {csv: tf.csv}}"
-bad 1 "^vri-run: error: input.yaml:5:34: input 'o' is an option that writes a file" -- "$run" --results out input.yaml
-experiment nested.yaml "name: o
+  tf: {tool: vri-tf, inputs: {o: red.yaml}, outputs: {csv: tf.csv}}" \
+  "5:34: input 'o' is an option that writes a file"
+refused nested "name: o
 $head
 commands:
-  again: {tool: vri-run, outputs: {o: x.csv}}"
-bad 1 "^vri-run: error: nested.yaml:5:17: vri-run cannot be a command's tool" -- "$run" --results out nested.yaml
-experiment fetch.yaml "name: o
+  again: {tool: vri-run, outputs: {o: x.csv}}" \
+  "5:17: vri-run cannot be a command's tool"
+refused fetch "name: o
 $head
 commands:
-  data: {tool: vri-data, outputs: {o: x.csv}}"
-bad 1 "^vri-run: error: fetch.yaml:5:16: vri-data cannot be a command's tool" -- "$run" --results out fetch.yaml
+  data: {tool: vri-data, outputs: {o: x.csv}}" \
+  "5:16: vri-data cannot be a command's tool"
 
 # A folder another process holds: this shell takes the lock as vri-run would, with its pid in the file.
-experiment good.yaml "name: good
-$head
-$commands"
+printf '%s\n' "name: good" "$head" "$commands" > good.yaml
 mkdir -p held/good
 echo $$ > held/good/.vri-run.lock
 exec {lock}< held/good/.vri-run.lock

@@ -83,6 +83,12 @@ root="it's \$(touch marker8) \`touch marker9\` ';system('touch marker10')'"
 [ -s "$root/small/closed-form.png" ] || fail "no figure under '$root'"
 [ -z "$(markers)" ] || fail "a name ran as code: $(markers)"
 manifest_matches "$root/small/manifest.json"
+# --dry-run prints them quoted for a shell: run by hand, they make the same files and run nothing else.
+"$bin/vri-run" --dry-run --results "by hand $root" small.yaml > by-hand.sh
+bash -e by-hand.sh > /dev/null 2>&1 || fail "the --dry-run commands failed: $(head -3 by-hand.sh)"
+cmp "$root/small/rays.csv" "by hand $root/small/rays.csv" || fail "by hand: another rays.csv"
+[ -s "by hand $root/small/closed-form.png" ] || fail "by hand: no figure"
+[ -z "$(markers)" ] || fail "a printed command ran a name as code: $(markers)"
 
 # A hostile figure name is refused before anything runs.
 sed "s/  closed-form:/  \"x';system('touch\${IFS}marker11');x='\":/" small.yaml > hostile.yaml
