@@ -25,16 +25,20 @@ namespace {
 std::string holder(int fd) {
     char text[32] = {};
     const ssize_t n = ::pread(fd, text, sizeof text - 1, 0);
-    const std::string pid = n > 0 ? std::string(text, static_cast<std::size_t>(n)).substr(0, std::string(text).find('\n')) : "";
+    const std::string pid =
+        n > 0 ? std::string(text, static_cast<std::size_t>(n)).substr(0, std::string(text).find('\n')) : "";
     if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) return "pid unknown";
     std::ostringstream raw;
     raw << std::ifstream("/proc/" + pid + "/cmdline", std::ios::binary).rdbuf();
     std::string command = raw.str();
-    while (!command.empty() && command.back() == '\0') command.pop_back();
+    while (!command.empty() && command.back() == '\0')
+        command.pop_back();
     if (command.size() > 300) command = command.substr(0, 300) + "...";
     for (char& c : command)
-        if (c == '\0') c = ' ';
-        else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+        if (c == '\0')
+            c = ' ';
+        else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            c = '?';
     return "pid " + pid + (command.empty() ? "" : ": " + command);
 }
 
@@ -55,10 +59,9 @@ FolderLock::FolderLock(const fs::path& folder) {
     }
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
         const int error = errno;
-        const std::string message = error == EWOULDBLOCK
-                                        ? folder.string() + ": in use by another vri-run (" + holder(fd_) +
-                                              "); wait for it to finish, or stop it"
-                                        : file.string() + ": cannot lock: " + std::strerror(error);
+        const std::string message = error == EWOULDBLOCK ? folder.string() + ": in use by another vri-run (" +
+                                                               holder(fd_) + "); wait for it to finish, or stop it"
+                                                         : file.string() + ": cannot lock: " + std::strerror(error);
         ::close(fd_);
         throw Error(message);
     }

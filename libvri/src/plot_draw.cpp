@@ -19,8 +19,12 @@ void requirePngPath(const fs::path& png) {
     if (png.extension() != ".png") throw Error(png.string() + ": the figure's name must end in .png");
 }
 
-fs::path besidePng(const fs::path& png, const char* extension) {
-    return fs::path(png).replace_extension(extension);
+fs::path besidePng(const fs::path& png, const char* extension) { return fs::path(png).replace_extension(extension); }
+
+std::string withoutTrailingBlanks(std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\r'))
+        text.pop_back();
+    return text;
 }
 
 std::string fileText(const fs::path& path) {
@@ -36,23 +40,23 @@ std::string incompleteImage(const fs::path& png, const fs::path& svg) {
     static constexpr std::array<unsigned char, 12> kEnd = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
     const std::string image = fileText(png);
     const auto bytesAre = [&](std::size_t at, const auto& bytes) {
-        return image.size() >= at + bytes.size() && std::equal(bytes.begin(), bytes.end(), image.begin() + at,
-                                                                [](unsigned char b, char c) { return b == static_cast<unsigned char>(c); });
+        return image.size() >= at + bytes.size() &&
+               std::equal(bytes.begin(), bytes.end(), image.begin() + at,
+                          [](unsigned char b, char c) { return b == static_cast<unsigned char>(c); });
     };
     if (image.size() < kSignature.size() + kEnd.size() || !bytesAre(0, kSignature) ||
         !bytesAre(image.size() - kEnd.size(), kEnd))
         return "the PNG it wrote is not a complete PNG (" + std::to_string(image.size()) + " bytes)";
-    std::string drawing = fileText(svg);
-    while (!drawing.empty() && (drawing.back() == '\n' || drawing.back() == ' ')) drawing.pop_back();
+    const std::string drawing = withoutTrailingBlanks(fileText(svg));
     if (!drawing.starts_with("<?xml") || !drawing.ends_with("</svg>"))
         return "the SVG it wrote is not a complete SVG (" + std::to_string(drawing.size()) + " bytes)";
     return "";
 }
 
 // gnuplot's last line of complaint, for a one-line message.
-std::string lastLine(std::string text) {
-    while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\r')) text.pop_back();
-    text = text.substr(text.find_last_of('\n') + 1);
+std::string lastLine(const std::string& messages) {
+    const std::string trimmed = withoutTrailingBlanks(messages);
+    std::string text = trimmed.substr(trimmed.find_last_of('\n') + 1);
     for (char& c : text)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
     return text;
@@ -63,7 +67,8 @@ std::string lastLine(std::string text) {
 void writePlotScript(const PlotSpec& spec, const fs::path& png) {
     requirePngPath(png);
     const fs::path script = besidePng(png, ".gp");
-    writeTextFile(script, gnuplotScript(spec, script, png.filename().string(), besidePng(png, ".svg").filename().string()));
+    writeTextFile(script,
+                  gnuplotScript(spec, script, png.filename().string(), besidePng(png, ".svg").filename().string()));
 }
 
 void drawPlot(const PlotSpec& spec, const fs::path& png) {
@@ -80,17 +85,20 @@ void drawPlot(const PlotSpec& spec, const fs::path& png) {
                 const fs::path log = fs::path(tmpScript).replace_extension(".log");
                 // The output paths reach the script as ARG1 and ARG2 of `gnuplot -c`: gnuplot never parses
                 // them, so no character of a name can be read as gnuplot code.
-                const ExitStatus status =
-                    runProcess(*gnuplot, {"gnuplot", "-c", tmpScript.string(), fs::absolute(tmpPng).string(),
-                                          fs::absolute(tmpSvg).string()},
-                               {.in = "/dev/null", .out = log, .err = {}, .errToOut = true});
+                const ExitStatus status = runProcess(
+                    *gnuplot,
+                    {"gnuplot", "-c", tmpScript.string(), fs::absolute(tmpPng).string(), fs::absolute(tmpSvg).string()},
+                    {.in = "/dev/null", .out = log, .err = {}, .errToOut = true});
                 const std::string messages = fileText(log);
                 std::error_code ignored;
                 fs::remove(log, ignored);
                 std::string reason;
-                if (!status.ok()) reason = lastLine(messages).empty() ? status.describe() : lastLine(messages);
-                else if (!fs::is_regular_file(tmpPng) || !fs::is_regular_file(tmpSvg)) reason = "it wrote no PNG or no SVG";
-                else reason = incompleteImage(tmpPng, tmpSvg);
+                if (!status.ok())
+                    reason = lastLine(messages).empty() ? status.describe() : lastLine(messages);
+                else if (!fs::is_regular_file(tmpPng) || !fs::is_regular_file(tmpSvg))
+                    reason = "it wrote no PNG or no SVG";
+                else
+                    reason = incompleteImage(tmpPng, tmpSvg);
                 if (!reason.empty()) throw Error(png.string() + ": gnuplot failed: " + reason);
                 if (!messages.empty()) std::fputs(messages.c_str(), stderr);
             });

@@ -29,7 +29,9 @@ public:
     FileActions(const FileActions&) = delete;
     FileActions& operator=(const FileActions&) = delete;
 
-    void open(int fd, const fs::path& path, int flags) { check(posix_spawn_file_actions_addopen(&actions_, fd, path.c_str(), flags, 0644)); }
+    void open(int fd, const fs::path& path, int flags) {
+        check(posix_spawn_file_actions_addopen(&actions_, fd, path.c_str(), flags, 0644));
+    }
     void dup(int from, int to) { check(posix_spawn_file_actions_adddup2(&actions_, from, to)); }
     const posix_spawn_file_actions_t* get() const { return &actions_; }
 
@@ -49,15 +51,20 @@ bool isExecutableFile(const fs::path& path) {
 void redirect(FileActions& actions, const ProcessStreams& streams, int captureFd) {
     constexpr int kWrite = O_WRONLY | O_CREAT | O_TRUNC;
     if (!streams.in.empty()) actions.open(STDIN_FILENO, streams.in, O_RDONLY);
-    if (captureFd >= 0) actions.dup(captureFd, STDOUT_FILENO);
-    else if (!streams.out.empty()) actions.open(STDOUT_FILENO, streams.out, kWrite);
-    if (streams.errToOut) actions.dup(STDOUT_FILENO, STDERR_FILENO);
-    else if (!streams.err.empty()) actions.open(STDERR_FILENO, streams.err, kWrite);
+    if (captureFd >= 0)
+        actions.dup(captureFd, STDOUT_FILENO);
+    else if (!streams.out.empty())
+        actions.open(STDOUT_FILENO, streams.out, kWrite);
+    if (streams.errToOut)
+        actions.dup(STDOUT_FILENO, STDERR_FILENO);
+    else if (!streams.err.empty())
+        actions.open(STDERR_FILENO, streams.err, kWrite);
 }
 
 pid_t spawn(const fs::path& program, const std::vector<std::string>& words, const FileActions& actions) {
     std::vector<char*> argv;
-    for (const std::string& w : words) argv.push_back(const_cast<char*>(w.c_str()));
+    for (const std::string& w : words)
+        argv.push_back(const_cast<char*>(w.c_str()));
     argv.push_back(nullptr);
     pid_t pid = 0;
     // glibc reports a failed exec (and a redirection that cannot be opened) here, not as exit 127.
@@ -79,7 +86,8 @@ std::string ExitStatus::describe() const {
 
 std::optional<fs::path> findProgram(const std::string& name) {
     if (name.empty()) return std::nullopt;
-    if (name.find('/') != std::string::npos) return isExecutableFile(name) ? std::optional<fs::path>(name) : std::nullopt;
+    if (name.find('/') != std::string::npos)
+        return isExecutableFile(name) ? std::optional<fs::path>(name) : std::nullopt;
     const char* path = std::getenv("PATH");
     const std::string folders = path ? path : "/usr/local/bin:/usr/bin:/bin";  // glibc's execvp default, less "."
     for (std::size_t start = 0;;) {
@@ -138,8 +146,10 @@ std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const
     char buffer[4096];
     for (;;) {
         const ssize_t n = ::read(pipeFds[0], buffer, sizeof buffer);
-        if (n > 0) output.append(buffer, static_cast<std::size_t>(n));
-        else if (n == 0 || errno != EINTR) break;
+        if (n > 0)
+            output.append(buffer, static_cast<std::size_t>(n));
+        else if (n == 0 || errno != EINTR)
+            break;
     }
     ::close(pipeFds[0]);
     return {waitProcess(pid), std::move(output)};

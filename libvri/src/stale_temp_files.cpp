@@ -22,7 +22,8 @@ std::optional<pid_t> writerPid(std::string_view name) {
         const std::string_view rest = name.substr(at + 5);
         pid_t pid = 0;
         const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), pid);
-        if (at > 1 && error == std::errc() && end != rest.data() && pid > 0 && (end == rest.data() + rest.size() || *end == '.'))
+        if (at > 1 && error == std::errc() && end != rest.data() && pid > 0 &&
+            (end == rest.data() + rest.size() || *end == '.'))
             return pid;
     }
     return std::nullopt;

@@ -28,8 +28,8 @@ TEST_CASE("process: every word reaches the program as it is") {
     test::TempDir dir("process");
     const auto printf = findProgram("printf");
     REQUIRE(printf);
-    const std::string hostile = "$(touch " + (dir / "m1").string() + ") `touch " + (dir / "m2").string() +
-                                "` ';touch m3;' \"\n*";
+    const std::string hostile =
+        "$(touch " + (dir / "m1").string() + ") `touch " + (dir / "m2").string() + "` ';touch m3;' \"\n*";
     const auto [status, output] = captureProcess(*printf, {"printf", "[%s]", hostile, ""});
     CHECK(status.ok());
     CHECK(output == "[" + hostile + "][]");
@@ -41,7 +41,8 @@ TEST_CASE("process: redirections and exit statuses") {
     test::TempDir dir("process");
     const auto printf = findProgram("printf");
     REQUIRE(printf);
-    const ExitStatus written = runProcess(*printf, {"printf", "out"}, {.in = {}, .out = dir / "o.txt", .err = {}, .errToOut = false});
+    const ExitStatus written =
+        runProcess(*printf, {"printf", "out"}, {.in = {}, .out = dir / "o.txt", .err = {}, .errToOut = false});
     CHECK(written.ok());
     std::ostringstream text;
     text << std::ifstream(dir / "o.txt").rdbuf();
@@ -62,6 +63,7 @@ TEST_CASE("process: redirections and exit statuses") {
     CHECK(killed.describe() == "signal 9");
 
     CHECK_THROWS_WITH_AS(startProcess(dir / "missing", {"missing"}), doctest::Contains("cannot start"), Error);
-    CHECK_THROWS_AS(startProcess(*printf, {"printf"}, {.in = dir / "no-such-input", .out = {}, .err = {}, .errToOut = false}),
-                    Error);
+    CHECK_THROWS_AS(
+        startProcess(*printf, {"printf"}, {.in = dir / "no-such-input", .out = {}, .err = {}, .errToOut = false}),
+        Error);
 }
