@@ -2,8 +2,8 @@
 # Bad names and paths, each one line naming the file, line, column and key, exit 1, nothing written:
 # experiment, scene, method, comparison, command, table and figure names outside the safe set,
 # command options and inputs that would write outside the experiment's folder, tools that cannot be
-# a command's, a folder another vri-run holds, a lock file that is not a regular file, and a gnuplot
-# failure named by its figure.
+# a command's, a folder another vri-run holds, a lock file that is not a regular file, and gnuplot
+# failing, leaving a cut-off PNG, or killed, each named by its figure.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
 run=$VRI_BIN/vri-run
@@ -154,5 +154,16 @@ printf 'y: {label: e, log: true}\nseries:\n  - {file: negative.csv, x: x, y: y}\
 mkdir -p figs
 bad 1 "^vri-plot: error: figs/it's a figure.png: gnuplot failed: .*all points y value undefined" -- \
   "$VRI_BIN/vri-plot" negative.yaml -o "figs/it's a figure.png"
+# A gnuplot that exits 0 with a cut-off PNG (as on a full disk), and one killed mid-way: stand-ins
+# first in PATH, outside the work directory. Called as gnuplot -c SCRIPT PNG SVG.
+mkdir -p "$VRI_SCRATCH/cut" "$VRI_SCRATCH/killed"
+printf '#!/bin/sh\nprintf "\\211PNG\\r\\n\\032\\n" > "$3"\nprintf "<?xml?><svg></svg>\\n" > "$4"\n' > "$VRI_SCRATCH/cut/gnuplot"
+printf '#!/bin/sh\nkill -9 $$\n' > "$VRI_SCRATCH/killed/gnuplot"
+chmod +x "$VRI_SCRATCH/cut/gnuplot" "$VRI_SCRATCH/killed/gnuplot"
+printf 'series:\n  - {file: negative.csv, x: x, y: y}\n' > line.yaml
+bad 1 "^vri-plot: error: figs/cut.png: gnuplot failed: the PNG it wrote is not a complete PNG \\(8 bytes\\)$" -- \
+  env PATH="$VRI_SCRATCH/cut:$PATH" "$VRI_BIN/vri-plot" line.yaml -o figs/cut.png
+bad 1 "^vri-plot: error: figs/killed.png: gnuplot failed: signal 9$" -- \
+  env PATH="$VRI_SCRATCH/killed:$PATH" "$VRI_BIN/vri-plot" line.yaml -o figs/killed.png
 [ -z "$(find "$VRI_SCRATCH" -name 'marker*')" ] || fail "a name ran as code"
 bad_done
