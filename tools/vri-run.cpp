@@ -72,7 +72,8 @@ int run(const Options& options) {
         // Left by a vri-run or a step killed mid-write; a step of a killed vri-run that still runs keeps its own.
         for (const fs::path& folder : {plan.resultsDir, plan.resultsDir / ".steps"})
             for (const fs::path& stale : vri::removeStaleTempFiles(folder))
-                std::cerr << kTool << ": removed " << plan.commandPath(stale) << ", a temporary file of a process that is gone\n";
+                std::cerr << kTool << ": removed " << plan.commandPath(stale)
+                          << ", a temporary file of a process that is gone\n";
         vri::FileHasher hasher;
         fs::remove(plan.resultsDir / "manifest.json");  // rewritten only once every step has succeeded
         const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, {toolDir, options.jobs, options.force}, hasher);

@@ -200,7 +200,8 @@ Plan planExperiment(const Experiment& experiment, const fs::path& resultsDir, co
             throw Error(experiment.source.string() + ": two steps are called '" + step.id + "'");
         // The reader holds every name to isSafeName; this holds the plan to what that buys: each step's
         // record and outputs in the experiment's folder, whatever made the Experiment.
-        if (!isSafeName(step.id)) throw Error(experiment.source.string() + ": step id '" + step.id + "' is not a safe name");
+        if (!isSafeName(step.id))
+            throw Error(experiment.source.string() + ": step id '" + step.id + "' is not a safe name");
         for (const fs::path& out : step.outputs)
             if (out.parent_path() != plan.resultsDir)
                 throw Error(experiment.source.string() + ": step '" + step.id + "' would write " + out.string() +

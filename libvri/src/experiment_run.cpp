@@ -112,7 +112,8 @@ bool Scheduler::startReady() {
         outcomes_[i].record.command = shellCommand(words);
         fs::path log = record;
         log.replace_extension(".log");
-        running_[startProcess(tool, words, {.in = "/dev/null", .out = log, .err = {}, .errToOut = true})] = Child{i, Clock::now(), log};
+        running_[startProcess(tool, words, {.in = "/dev/null", .out = log, .err = {}, .errToOut = true})] =
+            Child{i, Clock::now(), log};
         state_[i] = Running;
     }
     return changed;

@@ -82,26 +82,28 @@ const std::vector<RunParameter>& renderParameters() {
     return parameters;
 }
 
-constexpr std::string_view kSafeName = "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
+constexpr std::string_view kSafeName =
+    "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
 
 // The options with which vri tools write a file: in `commands:` they belong under `outputs:`, where
 // the file lands in the results folder, never under `options:` or `inputs:` (an input named `o`
 // would be overwritten wherever it is). A tool with a new output option adds it here.
 const std::set<std::string, std::less<>> kOutputOptions = {
-    "-o",          "--output",      "--png",        "--stats",       "--json",    "--csv",
-    "--log",       "--diff-image",  "--histogram",  "--errors",      "--errors-csv", "--convergence",
-    "--diagram",   "--field-image", "--summary",    "--error-image"};
+    "-o",        "--output",      "--png",       "--stats",      "--json",       "--csv",
+    "--log",     "--diff-image",  "--histogram", "--errors",     "--errors-csv", "--convergence",
+    "--diagram", "--field-image", "--summary",   "--error-image"};
 
 // Whether a command's option value names a file, which `options:` must not (a tool may write to it,
 // relative to where vri-run runs): a path, or a name with a file extension vri reads or writes. A
 // value that reads as another option ("-o", "--csv") would shift the words after it, so it counts too.
 bool namesFile(const std::string& value) {
-    static const std::set<std::string, std::less<>> extensions = {
-        ".vdb", ".nhdr", ".nrrd", ".dat", ".raw", ".exr", ".png", ".svg", ".gp", ".csv", ".md", ".json", ".txt",
-        ".yaml", ".yml", ".log"};
+    static const std::set<std::string, std::less<>> extensions = {".vdb", ".nhdr", ".nrrd", ".dat", ".raw", ".exr",
+                                                                  ".png", ".svg",  ".gp",   ".csv", ".md",  ".json",
+                                                                  ".txt", ".yaml", ".yml",  ".log"};
     std::string ext = fs::path(value).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    const bool looksLikeOption = value.size() > 1 && value[0] == '-' && !(std::isdigit(static_cast<unsigned char>(value[1])) || value[1] == '.');
+    const bool looksLikeOption =
+        value.size() > 1 && value[0] == '-' && !(std::isdigit(static_cast<unsigned char>(value[1])) || value[1] == '.');
     return value.find('/') != std::string::npos || value == "." || value == ".." || value.starts_with("~") ||
            extensions.contains(ext) || looksLikeOption;
 }
@@ -182,7 +184,8 @@ std::vector<std::pair<std::string, YAML::Node>> ExperimentReader::entries(const 
     std::vector<std::pair<std::string, YAML::Node>> result;
     for (const auto& kv : node) {
         const std::string name = text(kv.first, std::string(what) + " name");
-        if (!isSafeName(name)) throw Error(at(kv.first) + ": " + std::string(what) + ": a name must be " + std::string(kSafeName));
+        if (!isSafeName(name))
+            throw Error(at(kv.first) + ": " + std::string(what) + ": a name must be " + std::string(kSafeName));
         yaml::requireMap(kv.second, source_, std::string(what) + " '" + name + "'");
         result.emplace_back(name, kv.second);
     }
@@ -497,7 +500,8 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
         if (const YAML::Node inputs = entry["inputs"])
             for (const auto& [key, value] : optionEntries(inputs, "inputs")) {
                 if (kOutputOptions.contains(optionWord(key)))
-                    throw Error(at(value) + ": input '" + key + "' is an option that writes a file: name it under outputs:");
+                    throw Error(at(value) + ": input '" + key +
+                                "' is an option that writes a file: name it under outputs:");
                 command.inputs.emplace_back(optionWord(key), existingFile(value, "input '" + key + "'"));
             }
         const YAML::Node outputs = required(entry, "outputs", what);
@@ -708,9 +712,12 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
 }  // namespace
 
 bool isSafeName(std::string_view name) {
-    const auto alnum = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); };
+    const auto alnum = [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    };
     return !name.empty() && alnum(name.front()) && name.find("..") == std::string_view::npos &&
-           std::all_of(name.begin(), name.end(), [&](char c) { return alnum(c) || c == '.' || c == '_' || c == '+' || c == '-'; });
+           std::all_of(name.begin(), name.end(),
+                       [&](char c) { return alnum(c) || c == '.' || c == '_' || c == '+' || c == '-'; });
 }
 
 const SceneSpec& Experiment::scene(const std::string& sceneName) const {

@@ -28,7 +28,8 @@ std::string firstLineOfGit(const fs::path& dir, std::vector<std::string> args) {
     std::vector<std::string> words{"git", "-C", dir.string()};
     words.insert(words.end(), std::make_move_iterator(args.begin()), std::make_move_iterator(args.end()));
     try {
-        auto [status, output] = captureProcess(*git, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false});
+        auto [status, output] =
+            captureProcess(*git, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false});
         if (!status.ok()) return "";
         output = output.substr(0, output.find('\n'));
         if (!output.empty() && output.back() == '\r') output.pop_back();

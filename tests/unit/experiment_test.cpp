@@ -292,8 +292,9 @@ TEST_CASE("experiment: names are file names in the results folder, never paths, 
     CHECK(vri::isSafeName("paper-a-fig4"));
     CHECK(vri::isSafeName("Riemann_h0.5+x"));
     CHECK(vri::isSafeName("9"));
-    for (const char* bad : {"", ".", "..", "a..b", ".hidden", "-x", "_x", "a/b", "a b", "it's", "x';system('touch X');x='",
-                            "$(touch X)", "`touch X`", "a\nb", "a\\b", "caf\u00e9", "a,b", "a\"b"}) {
+    for (const char* bad :
+         {"", ".", "..", "a..b", ".hidden", "-x", "_x", "a/b", "a b", "it's", "x';system('touch X');x='", "$(touch X)",
+          "`touch X`", "a\nb", "a\\b", "caf\u00e9", "a,b", "a\"b"}) {
         INFO(bad);
         CHECK_FALSE(vri::isSafeName(bad));
     }
@@ -302,10 +303,12 @@ TEST_CASE("experiment: names are file names in the results folder, never paths, 
     const std::string command = "commands:\n  c: {tool: vri-rays2d, outputs: {o: x.csv}}\n";
     CHECK(d.error("name: \"..\"\n" + head + command).starts_with("exp.yaml:1:7: name must be letters, digits"));
     CHECK(d.error("name: \".\"\n" + head + command).starts_with("exp.yaml:1:7: name must be letters, digits"));
-    CHECK(d.error("name: \"x';system('touch${IFS}X');x='\"\n" + head + command).starts_with("exp.yaml:1:7: name must be"));
+    CHECK(d.error("name: \"x';system('touch${IFS}X');x='\"\n" + head + command)
+              .starts_with("exp.yaml:1:7: name must be"));
     CHECK(d.error(kHead + "commands:\n  \"../c\": {tool: vri-rays2d, outputs: {o: x.csv}}\n")
               .starts_with("exp.yaml:5:3: commands: a name must be letters, digits"));
-    CHECK(d.error(kHead + "commands:\n  c: {tool: vri-rays2d, outputs: {o: x.csv}}\nfigures:\n  \"f'g\": {spec: a.yaml}\n")
+    CHECK(d.error(kHead +
+                  "commands:\n  c: {tool: vri-rays2d, outputs: {o: x.csv}}\nfigures:\n  \"f'g\": {spec: a.yaml}\n")
               .starts_with("exp.yaml:7:3: figures: a name must be"));
     CHECK(d.error(kHead + "scenes:\n  \"a b\": {field: linear, convention: node, tf: a.yaml, size: [8, 8]}\n"
                           "methods:\n  riemann: {placement: eye}\n")
@@ -321,11 +324,16 @@ TEST_CASE("experiment: a command writes only into the results folder, through ou
     CHECK(d.error(head + "    options: {errors: ../outside.md}\n")
               .starts_with("exp.yaml:8:23: option 'errors' writes a file: name it under outputs:"));
     CHECK(d.error(head + "    options: {output: x.csv}\n").starts_with("exp.yaml:8:23: option 'output' writes a file"));
-    CHECK(d.error(head + "    options: {rotation: ../x}\n").starts_with("exp.yaml:8:25: option 'rotation' names a file"));
-    CHECK(d.error(head + "    options: {rotation: /tmp/x}\n").starts_with("exp.yaml:8:25: option 'rotation' names a file"));
-    CHECK(d.error(head + "    options: {rotation: out.csv}\n").starts_with("exp.yaml:8:25: option 'rotation' names a file"));
-    CHECK(d.error(head + "    options: {rotation: --csv}\n").starts_with("exp.yaml:8:25: option 'rotation' names a file or an option"));
-    CHECK(d.error(head + "    inputs: {o: a.yaml}\n").starts_with("exp.yaml:8:17: input 'o' is an option that writes a file"));
+    CHECK(
+        d.error(head + "    options: {rotation: ../x}\n").starts_with("exp.yaml:8:25: option 'rotation' names a file"));
+    CHECK(d.error(head + "    options: {rotation: /tmp/x}\n")
+              .starts_with("exp.yaml:8:25: option 'rotation' names a file"));
+    CHECK(d.error(head + "    options: {rotation: out.csv}\n")
+              .starts_with("exp.yaml:8:25: option 'rotation' names a file"));
+    CHECK(d.error(head + "    options: {rotation: --csv}\n")
+              .starts_with("exp.yaml:8:25: option 'rotation' names a file or an option"));
+    CHECK(d.error(head + "    inputs: {o: a.yaml}\n")
+              .starts_with("exp.yaml:8:17: input 'o' is an option that writes a file"));
     CHECK(d.error(kHead + "commands:\n  c: {tool: vri-run, outputs: {o: x.csv}}\n")
               .starts_with("exp.yaml:5:13: vri-run cannot be a command's tool"));
     CHECK(d.error(head + "    options: {rotation: -0.5, rates: [1, 4]}\n") == "no error");  // numbers are values
@@ -337,6 +345,6 @@ TEST_CASE("experiment: a command writes only into the results folder, through ou
                          doctest::Contains("outside the experiment's folder"), vri::Error);
     e.commands[0].outputs[0].second = "x.csv";
     e.commands[0].name = "../c";
-    CHECK_THROWS_WITH_AS(vri::planExperiment(e, d.dir / "results" / e.name, d.dir), doctest::Contains("not a safe name"),
-                         vri::Error);
+    CHECK_THROWS_WITH_AS(vri::planExperiment(e, d.dir / "results" / e.name, d.dir),
+                         doctest::Contains("not a safe name"), vri::Error);
 }

@@ -300,11 +300,17 @@ TEST_CASE("plot: no character of a title, label, series or file name is read as 
     std::filesystem::create_directories(dir / "data");
     writeFile(dir / ("data/" + dataName + ".csv"), "x,y\n1,2\n2,3\n");
     const std::string quotedData = "\"data/d'\\n system('touch marker4') \\\\.csv\"";
-    const PlotSpec spec = parsePlotSpec("title: \"" + hostile + "\\nsecond line\"\n"
-                                        "labels: [{x: 1, y: 2, text: \"" + hostile + "\"}]\n"
-                                        "series:\n"
-                                        "  - {file: " + quotedData + ", x: x, y: y, label: \"" + hostile + "\"}\n"
-                                        "  - {file: " + quotedData + ", x: x, y: y, where: {x: \"1\\n'\"}}\n",
+    const PlotSpec spec = parsePlotSpec("title: \"" + hostile +
+                                            "\\nsecond line\"\n"
+                                            "labels: [{x: 1, y: 2, text: \"" +
+                                            hostile +
+                                            "\"}]\n"
+                                            "series:\n"
+                                            "  - {file: " +
+                                            quotedData + ", x: x, y: y, label: \"" + hostile +
+                                            "\"}\n"
+                                            "  - {file: " +
+                                            quotedData + ", x: x, y: y, where: {x: \"1\\n'\"}}\n",
                                         "fig.yaml", dir.path);
     const std::string script = gnuplotScript(spec, dir / "out/fig.gp", "f'ig.png", "f'ig.svg");
     CHECK(script.find("'it''s '';system(''touch marker1'');x='' `touch marker2` $(touch marker3) @ARG0 \u00e9'") !=
