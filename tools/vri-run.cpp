@@ -42,8 +42,8 @@ bool reproduce(const Options& options, const vri::Experiment& experiment, const 
     }
     if (!fs::is_regular_file(committed))
         throw vri::Error(committed.string() + ": no such file (record it with vri-run --quick --record)");
-    const std::vector<std::string> problems =
-        vri::reproduceMismatches(experiment, measured, vri::readJsonFile(committed));
+    const std::vector<std::string> problems = vri::readingJsonOf(
+        committed, [&] { return vri::reproduceMismatches(experiment, measured, vri::readJsonFile(committed)); });
     for (const std::string& p : problems) std::cerr << kTool << ": " << experiment.name << ": " << p << '\n';
     if (problems.empty()) std::cerr << kTool << ": " << experiment.name << ": reproduced (" << committed.string() << ")\n";
     return problems.empty();

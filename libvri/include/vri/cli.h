@@ -1,7 +1,9 @@
 #pragma once
 // What every tool's main() shares: one-line errors and exit codes.
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -12,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "vri/error.h"
+#include "vri/printable.h"
 
 namespace vri {
 
@@ -52,21 +55,29 @@ inline std::optional<int> parseArguments(CLI::App& app, std::string_view tool, i
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << tool << ": error: " << e.what() << " (see --help)\n";
+        std::cerr << tool << ": error: " << printable(e.what()) << " (see --help)\n";
         return e.get_exit_code();
     }
     return std::nullopt;
 }
 
-// Runs body() and turns an escaping exception into the single line "<tool>: error: <what>".
+// Runs body() and turns an escaping exception into the single line "<tool>: error: <what>", its
+// control characters escaped (printable.h). vri::Error is the expected case; the others are a last
+// resort for failures no check anticipated, said in words rather than as a library's raw text.
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
+    const auto report = [&](const std::string& what) { std::cerr << tool << ": error: " << printable(what) << '\n'; };
     try {
         return body();
     } catch (const Error& e) {
-        std::cerr << tool << ": error: " << e.what() << '\n';
+        report(e.what());
+    } catch (const std::bad_alloc&) {
+        report("out of memory: the input asks for more memory than is available (sizes from input are checked "
+               "against VRI_MAX_BYTES, 16 GiB by default; lower it to be refused before allocating)");
+    } catch (const std::filesystem::filesystem_error& e) {
+        report((e.path1().empty() ? std::string("file system") : e.path1().string()) + ": " + e.code().message());
     } catch (const std::exception& e) {
-        std::cerr << tool << ": error: " << e.what() << '\n';
+        report(e.what());
     }
     return kExitError;
 }
