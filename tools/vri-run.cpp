@@ -112,7 +112,8 @@ int main(int argc, char** argv) {
     app.add_option("--gallery", options.gallery, "afterwards, write DIR/README.md from DIR/*/manifest.json");
     app.footer(R"(Steps are cached in <results>/<experiment>/.steps/: a step is skipped when its command, tool binary,
 input files (or the steps that write them) and outputs are as when it last succeeded.
-Tools are taken from the directory vri-run is in.
+Tools are taken from the directory vri-run is in. The sweeps of one file may expand to at most 10000 runs
+(counted before expanding, --dry-run included).
 
 Examples:
   vri-run experiments/paper-a-fig4.yaml
