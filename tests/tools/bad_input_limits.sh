@@ -10,6 +10,7 @@ tf=$VRI_SOURCE/experiments/tf/paper-a-linear.yaml
 render() { "$bin/vri-render" --field linear --tf "$tf" -q -o out.exr "$@"; }
 
 # --- inputs, made before the cases: the work directory must stay as it is from here on ---
+"$bin/vri-render" --field linear --tf "$tf" -q --size 4x4 -o a.exr
 printf '\x01\x02\x03\x04\x05\x06\x07\x08' > v_2x2x2_uint8.raw
 "$bin/vri-convert" -q v_2x2x2_uint8.raw v.vdb
 # vri_dims is stored uncompressed: "vri_dims", the length and name of its type ("vec3i"), its size
@@ -58,9 +59,9 @@ bad 1 '^vri-convert: error: gib\.vdb: vri_dims 1024x1024x1024 \(uint8\): needs 1
 bad 1 'gib\.vdb: .*for a file of' -- "$bin/vri-render" --volume gib.vdb --tf "$tf" -q -o out.exr
 bad 1 'cut\.vdb: vri_dims 1x2x2 does not contain the active voxels \(0,0,0\)\.\.\(1,1,1\)$' -- "$bin/vri-convert" --info cut.vdb
 bad 1 'huge\.dat:2: Resolution: expected three positive integers up to 2147483647' -- "$bin/vri-convert" --info huge.dat
-bad 1 'wide\.dat: Rawfile .*is too large' -- "$bin/vri-convert" --info wide.dat
+bad 1 'wide\.dat: Rawfile v_2x2x2_uint8\.raw: 2147483647x2147483647x2147483647 uint8 needs more than 2\^64 bytes$' -- "$bin/vri-convert" --info wide.dat
 bad 1 'huge\.nhdr:4: sizes: sizes must be positive integers up to 2147483647' -- "$bin/vri-convert" --info huge.nhdr
-bad 1 'skip\.nhdr: data file .*is too large' -- "$bin/vri-convert" --info skip.nhdr
+bad 1 'skip\.nhdr: data file .*needs more than 2\^64 bytes$' -- "$bin/vri-convert" --info skip.nhdr
 bad 1 'raw.*file is 8 bytes, expected 1000000000000000000' -- "$bin/vri-convert" --info v_2x2x2_uint8.raw --dims 1000000,1000000,1000000 --type uint8
 # The last resort: an allocation the limits allowed and the machine does not have. (Not under
 # AddressSanitizer, whose shadow memory needs more address space than the ulimit leaves.)
@@ -85,6 +86,8 @@ bad 1 'diagram: .*needs unboundedly many samples' -- "$bin/vri-rays2d" --diagram
 bad 1 'a 100000x100000x1 float32 volume: needs 40000000000 bytes' -- "$bin/vri-rays2d" -o rays.csv --grid 100000
 bad 1 "^vri-run: error: sweep\.yaml:7:[0-9]+: methods entry 'coupled': needs 100000000 runs, limit 10000$" -- "$bin/vri-run" --dry-run sweep.yaml
 bad 1 "sweep\.yaml:7:[0-9]+: methods entry 'coupled': needs 100000000 runs, limit 10000$" -- "$bin/vri-run" --results results sweep.yaml
+bad 64 '^vri-diff: error: logarithmic bins from 1e-300 to 1e\+300 at 100000000 per decade: needs 60000000000 bins, limit 1000000$' -- \
+  "$bin/vri-diff" a.exr a.exr --histogram histogram.csv --histogram-range 1e-300,1e300 --bins-per-decade 100000000
 
 # --- item 9: messages ---
 bad 1 '^vri-render: error: camera eye 1e\+308,0,0: coordinates must be finite and at most 1e\+150 in magnitude$' -- render --eye 1e308,0,0
