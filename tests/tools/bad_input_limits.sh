@@ -33,6 +33,7 @@ printf 'NRRD0004\ntype: uchar\x07\ndimension: 3\nsizes: 2 2 2\nencoding: raw\nda
 printf 'points:\n  - [0.0, 0.0, 0.0, 0.0, 0.0]\npo\x1bints: 3\n' > escape-tf.yaml
 echo '{"channels": [{"name": "R", "above": [{"threshold": "x"}]}], "thresholds": [0.1]}' > wrong-type.json
 echo '{"channels": ' > truncated.json
+cp v_2x2x2_uint8.raw $'latin\xff_2x2x2_uint8.raw'  # a name that is not UTF-8
 # Eight lines of YAML, 10^8 runs.
 cat > sweep.yaml <<YAML
 name: sweep
@@ -107,5 +108,7 @@ bad nonzero "--size: expected a positive image size WIDTHxHEIGHT, got '1x\\\\x1b
 bad 1 '^vri-tabulate: error: wrong-type\.json: type must be number, but is string$' -- "$bin/vri-tabulate" --layout thresholds --row a wrong-type.json -o table.md
 bad 1 '^vri-tabulate: error: truncated\.json: not valid JSON: parse error at line 2, column 1: syntax error while parsing value - unexpected end of input' -- "$bin/vri-tabulate" --layout thresholds --row a truncated.json -o table.md
 bad 1 '^vri-run: error: missing-dir: No such file or directory$' -- "$bin/vri-run" --gallery missing-dir
+bad 1 '^vri-convert: error: a file name or text to be written as JSON is not valid UTF-8 \(invalid UTF-8 byte at index 5: 0xFF\)$' -- \
+  "$bin/vri-convert" --info --json $'latin\xff_2x2x2_uint8.raw'
 
 bad_done

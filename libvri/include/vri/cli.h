@@ -1,9 +1,7 @@
 #pragma once
 // What every tool's main() shares: one-line errors and exit codes.
 #include <exception>
-#include <filesystem>
 #include <iostream>
-#include <new>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -61,9 +59,13 @@ inline std::optional<int> parseArguments(CLI::App& app, std::string_view tool, i
     return std::nullopt;
 }
 
+// The one line for an exception that no check turned into vri::Error (out of memory, a file-system
+// or JSON library failure): said in words and naming the path where there is one, not as a library's
+// raw text.
+std::string describeUnexpected(const std::exception& e);
+
 // Runs body() and turns an escaping exception into the single line "<tool>: error: <what>", its
-// control characters escaped (printable.h). vri::Error is the expected case; the others are a last
-// resort for failures no check anticipated, said in words rather than as a library's raw text.
+// control characters escaped (printable.h).
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
     const auto report = [&](const std::string& what) { std::cerr << tool << ": error: " << printable(what) << '\n'; };
@@ -71,13 +73,8 @@ int guardedMain(std::string_view tool, Body&& body) {
         return body();
     } catch (const Error& e) {
         report(e.what());
-    } catch (const std::bad_alloc&) {
-        report("out of memory: the input asks for more memory than is available (sizes from input are checked "
-               "against VRI_MAX_BYTES, 16 GiB by default; lower it to be refused before allocating)");
-    } catch (const std::filesystem::filesystem_error& e) {
-        report((e.path1().empty() ? std::string("file system") : e.path1().string()) + ": " + e.code().message());
     } catch (const std::exception& e) {
-        report(e.what());
+        report(describeUnexpected(e));
     }
     return kExitError;
 }
