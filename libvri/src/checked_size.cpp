@@ -1,5 +1,6 @@
 #include "vri/checked_size.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -12,9 +13,9 @@ namespace vri {
 
 namespace {
 
-// Counts up to 2^53 exactly, beyond that in three significant digits ("about 7.38e+19").
+// Counts up to 2^53 exactly (rounded down), beyond that in three significant digits ("about 7.38e+19").
 std::string amountText(double amount) {
-    if (amount <= 9007199254740992.0) return std::to_string(static_cast<std::uint64_t>(amount));
+    if (amount >= 0.0 && amount <= 9007199254740992.0) return std::to_string(static_cast<std::uint64_t>(amount));
     char text[32];
     std::snprintf(text, sizeof text, "about %.3g", amount);
     return text;
