@@ -44,8 +44,8 @@ bool reproduce(const Options& options, const vri::Experiment& experiment, const 
     }
     if (!fs::is_regular_file(committed))
         throw vri::Error(committed.string() + ": no such file (record it with vri-run --quick --record)");
-    const std::vector<std::string> problems =
-        vri::reproduceMismatches(experiment, measured, vri::readJsonFile(committed));
+    const std::vector<std::string> problems = vri::readingJsonOf(
+        committed, [&] { return vri::reproduceMismatches(experiment, measured, vri::readJsonFile(committed)); });
     for (const std::string& p : problems) std::cerr << kTool << ": " << experiment.name << ": " << p << '\n';
     if (problems.empty()) std::cerr << kTool << ": " << experiment.name << ": reproduced (" << committed.string() << ")\n";
     return problems.empty();
@@ -123,6 +123,7 @@ input files (or the steps that write them) and outputs are as when it last succe
 Tools are taken from the directory vri-run is in. One vri-run at a time works in an experiment's folder
 (it holds <results>/<experiment>/.vri-run.lock): a second one exits 1 naming the process that holds it.
 Temporary files (.NAME.tmp.PID.*) whose process is gone are removed first.
+The sweeps of one file may expand to at most 10000 runs (counted before expanding, --dry-run included).
 
 Examples:
   vri-run experiments/paper-a-fig4.yaml

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "vri/adaptive_simpson.h"
+#include "vri/checked_size.h"
 #include "vri/cli.h"
 #include "vri/datasets.h"
 #include "vri/experiment.h"
@@ -397,6 +398,16 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         if (scenes.empty())
             for (const SceneSpec& s : experiment.scenes) scenes.push_back(s.name);
 
+        // Counted before expanding: the product of the lists' lengths, saturating, and the runs before it.
+        std::uint64_t runs = scenes.size();
+        for (const Axis& axis : axes) runs = checkedProduct({runs, axis.values.size()}).value_or(UINT64_MAX);
+        const std::size_t before = experiment.runs.size();
+        runs = runs > kMaxRuns ? runs : runs + before;
+        if (runs > kMaxRuns)
+            throw Error(at(entry) + ": " + section + " entry '" + prefix + "'" +
+                        (before > 0 ? " with the " + std::to_string(before) + " runs before it" : "") + ": needs " +
+                        (runs == UINT64_MAX ? "more than 2^64" : std::to_string(runs)) + " runs, limit " +
+                        std::to_string(kMaxRuns));
         // The cartesian product, the last axis varying fastest (as nested loops in file order).
         std::vector<std::size_t> index(axes.size(), 0);
         for (const std::string& scene : scenes) {

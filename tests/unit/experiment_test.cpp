@@ -348,3 +348,21 @@ TEST_CASE("experiment: a command writes only into the results folder, through ou
     CHECK_THROWS_WITH_AS(vri::planExperiment(e, d.dir / "results" / e.name, d.dir),
                          doctest::Contains("not a safe name"), vri::Error);
 }
+
+TEST_CASE("experiment: sweeps are counted against the run limit before they are expanded") {
+    ExperimentDir d;
+    std::string ten = "[1, 2, 3, 4, 5, 6, 7, 8, 9, 10]";
+    const std::string scene = "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods:\n";
+    // 10^4 runs are allowed; 10^8 are refused at once, without expanding them.
+    CHECK(d.parse(kHead + scene + "  coupled: {h0: " + ten + ", eps: " + ten + ", h_max: " + ten + ", repeat: " + ten +
+                  "}\n")
+              .runs.size() == vri::kMaxRuns);
+    CHECK(d.error(kHead + scene + "  coupled: {h0: " + ten + ", eps: " + ten + ", h_max: " + ten + ", repeat: " + ten +
+                  ", warm_up: " + ten + ", h_min: " + ten + ", early_termination: [0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, "
+                  "0.7, 0.8, 0.9], accepted: [paper, richardson], device: [a, b, c, d, e]}\n") ==
+          "exp.yaml:6:12: methods entry 'coupled': needs 100000000 runs, limit 10000");
+    // The runs of earlier entries count too.
+    CHECK(d.error(kHead + scene + "  coupled: {h0: " + ten + ", eps: " + ten + ", h_max: " + ten + ", repeat: " + ten +
+                  "}\n  riemann: {step: 0.5}\n") ==
+          "exp.yaml:7:12: methods entry 'riemann' with the 10000 runs before it: needs 10001 runs, limit 10000");
+}

@@ -4,6 +4,7 @@
 //
 // Values that end up on a tool's command line are kept as the scalar text of the YAML file
 // ("0.5", not 0.500000), so that the commands a reader sees are the ones the file reads.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -31,6 +32,10 @@ struct SceneSpec {
     std::vector<std::filesystem::path> files;  // volume and transfer function, absolute: hashed for the cache
     ToolOptions options;                    // vri-render's scene options, paths as absolute paths
 };
+
+// The most runs the sweeps of one experiment file may expand to (the largest of experiments/ has
+// under 100): a few lines of YAML can multiply out to 10^8 runs, refused before expanding.
+inline constexpr std::uint64_t kMaxRuns = 10000;
 
 // One invocation of a run tool (vri-render today; vri-reference tomorrow): a point of a sweep.
 struct RunSpec {
