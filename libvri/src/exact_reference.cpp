@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
+#include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 #include <tbb/blocked_range2d.h>
 #include <tbb/global_control.h>
@@ -14,6 +16,8 @@
 
 #include "exact_ray.h"
 #include "vri/error.h"
+#include "vri/format.h"
+#include "vri/occupancy_grid.h"
 #include "vri/progress.h"
 
 namespace vri {
@@ -31,8 +35,10 @@ struct PieceCounts {
 template <class T>
 class GridWalker {
 public:
-    GridWalker(const Volume& volume, GridConvention convention, const TransferFunction& tf)
-        : data_(volume.data<T>()), tf_(tf) {
+    // `occupancy`, when given, lets the walk jump over bricks on which the transfer function is zero.
+    GridWalker(const Volume& volume, GridConvention convention, const TransferFunction& tf,
+               const OccupancyGrid* occupancy)
+        : data_(volume.data<T>()), tf_(tf), occupancy_(occupancy) {
         const bool cell = convention == GridConvention::CellCentred;
         for (int a = 0; a < 3; ++a) {
             n_[a] = volume.dims[a];
@@ -50,7 +56,7 @@ public:
     }
 
     // Integrates the segment from texture coordinate uEntry to uExit, `length` world units long,
-    // into `ray` until it is opaque; returns the length left out.
+    // into `ray` until it is done(); returns the length left out.
     double walk(const glm::dvec3& uEntry, const glm::dvec3& uExit, double length, ExactRay& ray,
                 PieceCounts& counts) const {
         constexpr double inf = std::numeric_limits<double>::infinity();
@@ -59,11 +65,12 @@ public:
         const glm::dvec3 exit = entry + delta;
         int next[3], step[3];
         double phi[3];
+        auto planeAt = [&](int a, int plane) { return (plane - entry[a]) / delta[a]; };
         // The parameter where axis a crosses the integer next[a], or inf when no plane is left before the exit.
         auto crossing = [&](int a) {
             const bool left = step[a] > 0 ? next[a] <= n_[a] - 1 && next[a] < exit[a]
                                           : step[a] < 0 && next[a] >= 0 && next[a] > exit[a];
-            return left ? (next[a] - entry[a]) / delta[a] : inf;
+            return left ? planeAt(a, next[a]) : inf;
         };
         for (int a = 0; a < 3; ++a) {
             step[a] = delta[a] > 0 ? 1 : delta[a] < 0 ? -1 : 0;
@@ -71,12 +78,39 @@ public:
                                   : std::min(static_cast<int>(std::ceil(entry[a])) - 1, n_[a] - 1);
             phi[a] = crossing(a);
         }
-        double phiA = 0.0;
+        // Puts every axis where the plane-by-plane walk would be once it has passed the event at phiJump:
+        // on the first plane crossed after it. Crossings grow with the plane index, so a short search
+        // from the plane under the jump's point finds it.
+        auto jumpTo = [&](double phiJump) {
+            for (int a = 0; a < 3; ++a) {
+                if (step[a] == 0) continue;
+                const double x = entry[a] + phiJump * delta[a];
+                int plane = step[a] > 0 ? std::max(static_cast<int>(std::floor(x)), next[a])
+                                        : std::min(static_cast<int>(std::ceil(x)), next[a]);
+                while (planeAt(a, plane) <= phiJump) plane += step[a];
+                while (plane != next[a] && planeAt(a, plane - step[a]) > phiJump) plane -= step[a];
+                next[a] = plane;
+                phi[a] = crossing(a);
+            }
+        };
+        double phiA = 0.0, occupiedUntil = -inf;
         for (;;) {
             const double phiB = std::min({phi[0], phi[1], phi[2], 1.0});
             if (phiB > phiA) {
+                if (occupancy_ && phiA >= occupiedUntil) {
+                    const auto [empty, phiExit] = brickAlong(entry, delta, 0.5 * (phiA + phiB));
+                    if (empty && phiExit > phiA) {
+                        // Every piece up to the brick's exit face lies in cells of the brick or its margin,
+                        // whose corners the brick's emptiness covers: each would have been invisible.
+                        if (phiExit >= 1.0) return 0.0;
+                        jumpTo(phiExit);
+                        phiA = phiExit;
+                        continue;
+                    }
+                    occupiedUntil = phiExit;
+                }
                 addPiece(entry, delta, phiA, phiB, length, ray, counts);
-                if (ray.opaque()) return (1.0 - phiB) * length;
+                if (ray.done((1.0 - phiB) * length)) return (1.0 - phiB) * length;
             }
             if (phiB >= 1.0) return 0.0;
             for (int a = 0; a < 3; ++a)
@@ -89,6 +123,28 @@ public:
     }
 
 private:
+    // Whether the occupancy brick that holds the ray's point at phi is empty, and the parameter where
+    // the ray leaves it: its exit face is a plane of integer index, crossed where the walk crosses it.
+    struct BrickVisit {
+        bool empty;
+        double phiExit;
+    };
+    BrickVisit brickAlong(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
+        constexpr int B = OccupancyGrid::kBrick;
+        const glm::ivec3 bricks = occupancy_->bricks();
+        std::size_t index = 0;
+        double phiExit = std::numeric_limits<double>::infinity();
+        for (int a = 2; a >= 0; --a) {
+            const double x = std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a]);
+            const int m = std::min(static_cast<int>(x) >> OccupancyGrid::kBrickShift, bricks[a] - 1);
+            index = index * static_cast<std::size_t>(bricks[a]) + static_cast<std::size_t>(m);
+            // The first and last bricks also own the clamped region outside the voxel index range.
+            if (delta[a] > 0 && m + 1 < bricks[a]) phiExit = std::min(phiExit, ((m + 1) * B - entry[a]) / delta[a]);
+            if (delta[a] < 0 && m > 0) phiExit = std::min(phiExit, (m * B - entry[a]) / delta[a]);
+        }
+        return {occupancy_->emptyFlags()[index] != 0, phiExit};
+    }
+
     void addPiece(const glm::dvec3& entry, const glm::dvec3& delta, double phiA, double phiB, double length,
                   ExactRay& ray, PieceCounts& counts) const {
         ++counts.pieces;
@@ -125,6 +181,7 @@ private:
 
     const T* data_;
     const TransferFunction& tf_;
+    const OccupancyGrid* occupancy_;
     int n_[3];
     std::int64_t stride_[3];
     glm::dvec3 scale_, offset_;
@@ -134,7 +191,7 @@ private:
 };
 
 struct Counters {
-    std::atomic<std::uint64_t> raysHit{0}, pieces{0}, visible{0}, subPieces{0}, intervals{0}, opaque{0};
+    std::atomic<std::uint64_t> raysHit{0}, pieces{0}, visible{0}, subPieces{0}, intervals{0}, nodes{0}, opaque{0};
 };
 
 // Calls walk(uEntry, uExit, length, ray, counts) -> length left out, for every pixel's ray that
@@ -174,6 +231,7 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
         counters.visible += counts.visible;
         counters.subPieces += ray.subPieces;
         counters.intervals += ray.quadratureIntervals;
+        counters.nodes += ray.quadratureNodes;
     });
 }
 
@@ -197,6 +255,15 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
         glm::any(glm::lessThan(scene.volume->dims, glm::ivec3(2))))
         throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
 
+    // Each piece's optical depth must be a finite double: refuse extinctions near the top of its range.
+    double largestTau = 0.0;
+    for (const TransferFunctionPoint& p : scene.transferFunction.points()) largestTau = std::max(largestTau, p.tau);
+    const Box box = scene.box();
+    const double diagonal = glm::length(box.size());
+    if (!std::isfinite(64.0 * largestTau * diagonal))
+        throw Error("transfer function: extinction " + exactNumber(largestTau) + " per unit length over a box " +
+                    exactNumber(diagonal) + " long: the optical depth overflows double");
+
     ExactReference out;
     out.width = camera.width();
     out.height = camera.height();
@@ -207,8 +274,11 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
     const auto start = std::chrono::steady_clock::now();
     if (scene.volume) {
         const Volume& volume = *scene.volume;
+        std::optional<OccupancyGrid> occupancy;
+        if (options.skipEmptySpace) occupancy.emplace(volume, scene.convention, scene.transferFunction);
         dispatchVoxelType(volume.type, [&](auto voxel) {
-            const GridWalker<decltype(voxel)> walker(volume, scene.convention, scene.transferFunction);
+            const GridWalker<decltype(voxel)> walker(volume, scene.convention, scene.transferFunction,
+                                                     occupancy ? &*occupancy : nullptr);
             traceRays(scene, camera, options, [&](const glm::dvec3& a, const glm::dvec3& b, double length, ExactRay& ray,
                                                   PieceCounts& counts) { return walker.walk(a, b, length, ray, counts); },
                       out, counters);
@@ -225,6 +295,13 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
         }, out, counters);
     }
 
+    for (std::size_t i = 0; i < n; ++i)
+        if (!std::isfinite(out.values[i]) || !std::isfinite(out.bounds[i]))
+            throw Error("exact method: pixel " + std::to_string(i / 4 % out.width) + "," +
+                        std::to_string(i / 4 / out.width) + " has a " +
+                        (std::isfinite(out.values[i]) ? "non-finite error bound" : "non-finite value") +
+                        " (an extinction or transfer-function slope too large for double)");
+
     ExactReferenceStats& st = out.stats;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     st.rays = static_cast<std::uint64_t>(out.width) * out.height;
@@ -233,6 +310,7 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
     st.piecesVisible = counters.visible;
     st.subPieces = counters.subPieces;
     st.quadratureIntervals = counters.intervals;
+    st.quadratureNodes = counters.nodes;
     st.raysOpaque = counters.opaque;
     // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
     st.threads = static_cast<int>(std::min<std::size_t>(
