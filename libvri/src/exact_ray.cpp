@@ -150,8 +150,8 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
 //    shift; each coefficient carries at most ~20 roundings of terms below sScale: |ds| <= 32 u sScale.
 //  - tau, C (cubics in the sub-piece variable): forming v_A + m (s - s_A) and evaluating by Horner
 //    adds <= 16 u (sum|coefficients| + |v_A| + |m s_A|); the error of s enters times the TF slope |m|.
-//  - g = C tau (or C) on an interval: <= dC |tau| + |C| dtau + 16 u |C| |tau|, with |C|, |tau| the
-//    interval's largest, times the interval's length and largest transparency.
+//  - g = C tau (or C): <= dC |tau| + |C| dtau + 16 u |C| |tau|, with |C|, |tau| bounded by the sums of
+//    their coefficients, times an interval's length and largest transparency.
 //  - optical depth: the quartic integral of tau, error <= lambda ell (dtau + 8 u sum|tau|) at lambda,
 //    plus u times the running sum per addition; the transparency exp(-depth) in front of a sub-piece
 //    then has relative error <= depthError + 2 u, and so has every contribution behind it.
@@ -201,7 +201,7 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     const double tauSum = absSum(tau.p);
 
     std::array<double, 7> g[3];  // the emission of each channel
-    double gMax[3];
+    double gMax[3], gError[3];
     for (int c = 0; c < 3; ++c) {
         g[c] = {};
         const double colourSum = absSum(colour[c].p);
@@ -209,9 +209,11 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
             for (int i = 0; i < 4; ++i)
                 for (int j = 0; j < 4; ++j) g[c][i + j] += colour[c].p[i] * tau.p[j];
             gMax[c] = colourSum * tauSum;
+            gError[c] = colour[c].error * tauSum + colourSum * tau.error + 16.0 * kUnit * gMax[c];
         } else {
             for (int i = 0; i < 4; ++i) g[c][i] = colour[c].p[i];
             gMax[c] = colourSum;
+            gError[c] = colour[c].error;
         }
     }
     std::array<double, 5> depth{};  // optical depth from the sub-piece's start: ell * integral of tau
@@ -255,8 +257,6 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         const double dd0 = iv.x0 * depthError, dd1 = iv.x1 * depthError;
         // The depth grows along the interval: the transparency on it is at most tHigh.
         const double tHigh = iv.x0 == 0.0 ? 1.0 : std::exp(-(d0 - dd0));
-        double cLow[3], cHigh[3];
-        for (int c = 0; c < 3; ++c) range(colour[c], iv.x0, iv.x1, cLow[c], cHigh[c]);
         if (d1 - d0 <= kResolvedDepth) {
             double K[3], G[3], e[3], worst = 0.0;
             if (lowOrder_)
@@ -269,21 +269,17 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
                 worst = std::max(worst, e[c]);
             }
             if (front * worst <= tolerance_ * width || last) {
-                double tauLow, tauHigh;
-                range(tau, iv.x0, iv.x1, tauLow, tauHigh);
                 for (int c = 0; c < 3; ++c) {
                     const double value = ell * 0.5 * width * K[c];
-                    const double cAbs = std::max(std::abs(cLow[c]), std::abs(cHigh[c]));
-                    const double gError = colourTimesExtinction ? colour[c].error * tauHigh + cAbs * tau.error +
-                                                                      16.0 * kUnit * cAbs * tauHigh
-                                                                : colour[c].error;
                     sum[c] += value;
                     error[c] += e[c];
-                    rounding[c] += ell * width * tHigh * gError + (std::abs(value) + e[c]) * (dd1 + 32.0 * kUnit);
+                    rounding[c] += ell * width * tHigh * gError[c] + (std::abs(value) + e[c]) * (dd1 + 32.0 * kUnit);
                 }
                 continue;
             }
         } else {
+            double cLow[3], cHigh[3];
+            for (int c = 0; c < 3; ++c) range(colour[c], iv.x0, iv.x1, cLow[c], cHigh[c]);
             const double tLow0 = std::exp(-(d0 + dd0)), tHigh1 = std::exp(-(d1 - dd1)), tLow1 = std::exp(-(d1 + dd1));
             const double fLow = colourTimesExtinction ? std::max(0.0, tLow0 - tHigh1) : ell * width * tLow1;
             const double fHigh = colourTimesExtinction ? tHigh - tLow1 : ell * width * tHigh;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
@@ -53,6 +54,19 @@ public:
         const ValueRange r = volume.normalisationRange();
         lo_ = r.lo;
         invRange_ = r.hi > r.lo ? 1.0 / (r.hi - r.lo) : 0.0;
+        // For 8- and 16-bit voxels, the largest raw value up to which a cell whose smallest corner is v
+        // stays invisible: the TF is zero on [s0, s1] only if it is on every sub-interval, so the
+        // bound grows with v and a single pass finds it. The same answers as isInvisible, faster.
+        if constexpr (std::is_same_v<T, std::uint8_t> || std::is_same_v<T, std::uint16_t>) {
+            constexpr int count = 1 << (8 * sizeof(T));
+            invisibleUpTo_.resize(count);
+            int hi = -1;
+            for (int v = 0; v < count; ++v) {
+                hi = std::max(hi, v - 1);
+                while (hi + 1 < count && tf.isInvisible(normalised(v), normalised(hi + 1))) ++hi;
+                invisibleUpTo_[v] = hi;
+            }
+        }
     }
 
     // Integrates the segment from texture coordinate uEntry to uExit, `length` world units long,
@@ -167,7 +181,7 @@ private:
             v[k] = static_cast<double>(p[(k & 1) * stride_[0] + (k >> 1 & 1) * stride_[1] + (k >> 2) * stride_[2]]);
         const auto [vMin, vMax] = std::minmax_element(v.begin(), v.end());
         // The interpolant is a convex combination of the corners: their range bounds it.
-        if (tf_.isInvisible((*vMin - lo_) * invRange_, (*vMax - lo_) * invRange_)) return;
+        if (invisible(*vMin, *vMax)) return;
         ++counts.visible;
         const Cubic raw = trilinearAlongSegment(v, w0, w1);
         Cubic s;
@@ -179,6 +193,12 @@ private:
         ray.addPiece((phiB - phiA) * length, s, sScale);
     }
 
+    double normalised(double raw) const { return (raw - lo_) * invRange_; }
+    bool invisible(double rawLo, double rawHi) const {
+        if (!invisibleUpTo_.empty()) return rawHi <= invisibleUpTo_[static_cast<std::size_t>(rawLo)];
+        return tf_.isInvisible(normalised(rawLo), normalised(rawHi));
+    }
+
     const T* data_;
     const TransferFunction& tf_;
     const OccupancyGrid* occupancy_;
@@ -188,6 +208,7 @@ private:
     double maxCoord_[3];
     int maxBase_[3];
     double lo_, invRange_;
+    std::vector<int> invisibleUpTo_;  // 8- and 16-bit voxels: see the constructor
 };
 
 struct Counters {

@@ -387,3 +387,17 @@ TEST_CASE("exact reference: the bound holds for every extinction from 1e-6 to 1e
                                              EmissionModel::ColourTimesExtinction)};
     CHECK_THROWS_AS(renderExactReference(overflowing, camera), Error);
 }
+
+TEST_CASE("exact reference: 8-bit voxels (a visibility table) give the bits of the same values as float") {
+    const Scene bytes = largeBlob(blobTransferFunction());
+    auto floats = std::make_shared<Volume>(bytes.volume->dims, VoxelType::Float32);
+    for (std::size_t i = 0; i < floats->voxelCount(); ++i)
+        floats->data<float>()[i] = static_cast<float>(bytes.volume->data<std::uint8_t>()[i]);
+    floats->range = ValueRange{0.0, 255.0};
+    const Scene asFloat{floats, std::nullopt, GridConvention::CellCentred, blobTransferFunction()};
+    const Camera camera = blobCamera(bytes);
+    const ExactReference a = renderExactReference(bytes, camera), b = renderExactReference(asFloat, camera);
+    CHECK(a.values == b.values);
+    CHECK(a.bounds == b.bounds);
+    CHECK(a.stats.piecesVisible == b.stats.piecesVisible);
+}
