@@ -112,16 +112,16 @@ public:
             const double phiB = std::min({phi[0], phi[1], phi[2], 1.0});
             if (phiB > phiA) {
                 if (occupancy_ && phiA >= occupiedUntil) {
-                    const auto [empty, phiExit] = brickAlong(entry, delta, 0.5 * (phiA + phiB));
-                    if (empty && phiExit > phiA) {
-                        // Every piece up to the brick's exit face lies in cells of the brick or its margin,
-                        // whose corners the brick's emptiness covers: each would have been invisible.
-                        if (phiExit >= 1.0) return 0.0;
-                        jumpTo(phiExit);
-                        phiA = phiExit;
+                    const EmptyRun run = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
+                    occupiedUntil = run.occupiedUntil;
+                    if (run.until > phiA) {
+                        // Every piece up to there lies in cells of empty bricks or their margins, whose
+                        // corners the bricks' emptiness covers: each would have been invisible.
+                        if (run.until >= 1.0) return 0.0;
+                        jumpTo(run.until);
+                        phiA = run.until;
                         continue;
                     }
-                    occupiedUntil = phiExit;
                 }
                 addPiece(entry, delta, phiA, phiB, length, ray, counts);
                 if (ray.done((1.0 - phiB) * length)) return (1.0 - phiB) * length;
@@ -137,26 +137,41 @@ public:
     }
 
 private:
-    // Whether the occupancy brick that holds the ray's point at phi is empty, and the parameter where
-    // the ray leaves it: its exit face is a plane of integer index, crossed where the walk crosses it.
-    struct BrickVisit {
-        bool empty;
-        double phiExit;
+    // From the occupancy brick that holds the ray's point at phi, the bricks the ray passes while they
+    // are empty (a brick DDA, one division per brick): where the first non-empty one begins (-inf when
+    // the first is not empty; 1 when none is left) and where it ends. Every face is a plane of
+    // integer index, crossed at the parameter the cell walk computes for it.
+    struct EmptyRun {
+        double until, occupiedUntil;
     };
-    BrickVisit brickAlong(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
+    EmptyRun emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
+        constexpr double inf = std::numeric_limits<double>::infinity();
         constexpr int B = OccupancyGrid::kBrick;
         const glm::ivec3 bricks = occupancy_->bricks();
-        std::size_t index = 0;
-        double phiExit = std::numeric_limits<double>::infinity();
-        for (int a = 2; a >= 0; --a) {
+        const std::vector<std::uint8_t>& empty = occupancy_->emptyFlags();
+        int m[3];
+        double exitAt[3];
+        // The first and last bricks also own the clamped region outside the voxel index range.
+        auto exitOf = [&](int a) {
+            if (delta[a] > 0 && m[a] + 1 < bricks[a]) return ((m[a] + 1) * B - entry[a]) / delta[a];
+            if (delta[a] < 0 && m[a] > 0) return (m[a] * B - entry[a]) / delta[a];
+            return inf;
+        };
+        for (int a = 0; a < 3; ++a) {
             const double x = std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a]);
-            const int m = std::min(static_cast<int>(x) >> OccupancyGrid::kBrickShift, bricks[a] - 1);
-            index = index * static_cast<std::size_t>(bricks[a]) + static_cast<std::size_t>(m);
-            // The first and last bricks also own the clamped region outside the voxel index range.
-            if (delta[a] > 0 && m + 1 < bricks[a]) phiExit = std::min(phiExit, ((m + 1) * B - entry[a]) / delta[a]);
-            if (delta[a] < 0 && m > 0) phiExit = std::min(phiExit, (m * B - entry[a]) / delta[a]);
+            m[a] = std::min(static_cast<int>(x) >> OccupancyGrid::kBrickShift, bricks[a] - 1);
+            exitAt[a] = exitOf(a);
         }
-        return {occupancy_->emptyFlags()[index] != 0, phiExit};
+        double until = -inf;  // nothing skipped yet
+        for (;;) {
+            const int a = exitAt[0] <= exitAt[1] ? (exitAt[0] <= exitAt[2] ? 0 : 2) : (exitAt[1] <= exitAt[2] ? 1 : 2);
+            const std::size_t index = (static_cast<std::size_t>(m[2]) * bricks[1] + m[1]) * bricks[0] + m[0];
+            if (!empty[index]) return {until, exitAt[a]};
+            until = exitAt[a];
+            if (!(until < 1.0)) return {1.0, inf};
+            m[a] += delta[a] > 0 ? 1 : -1;
+            exitAt[a] = exitOf(a);
+        }
     }
 
     void addPiece(const glm::dvec3& entry, const glm::dvec3& delta, double phiA, double phiB, double length,
