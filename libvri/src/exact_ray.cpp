@@ -234,8 +234,9 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     // C and tau are linear in s: on an interval their extremes lie where s's do, at its ends or where
     // s' = 0 (a sub-piece is split at TF points only, so s need not be monotone on it).
     double critical[2];
-    const int criticals = criticalPoints(local, 0.0, 1.0, critical);
+    int criticals = -1;  // found when an enclosure first needs them
     auto range = [&](const Linear& f, double x0, double x1, double& lo, double& hi) {
+        if (criticals < 0) criticals = criticalPoints(local, 0.0, 1.0, critical);
         const double at0 = horner(f.p, x0), at1 = horner(f.p, x1);
         lo = std::min(at0, at1);
         hi = std::max(at0, at1);
