@@ -37,6 +37,9 @@ constexpr double kLowOrderTolerance = 1e-8;
 // on 0 while the integral is 1; such an interval is bisected or bounded by an enclosure instead.
 constexpr double kResolvedDepth = 2.0;
 constexpr int kMaxDepth = 40;  // bisections of one sub-piece; reached only by pathological input
+// Intervals of one sub-piece: a tolerance below what rounding allows would otherwise bisect every
+// interval to kMaxDepth (2^40 of them). Past it every interval is accepted with its own error.
+constexpr int kMaxIntervals = 4096;
 constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
 
 template <std::size_t N>
@@ -249,11 +252,11 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         lo -= f.error;
         hi += f.error;
     };
-    while (top > 0) {
+    for (int intervals = 1; top > 0; ++intervals) {
         const Interval iv = stack[--top];
         ++quadratureIntervals;
         const double width = iv.x1 - iv.x0;
-        const bool last = iv.depth >= kMaxDepth;
+        const bool last = iv.depth >= kMaxDepth || intervals >= kMaxIntervals;
         const double d0 = horner(depth, iv.x0), d1 = horner(depth, iv.x1);
         const double dd0 = iv.x0 * depthError, dd1 = iv.x1 * depthError;
         // The depth grows along the interval: the transparency on it is at most tHigh.

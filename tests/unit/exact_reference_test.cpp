@@ -319,6 +319,11 @@ TEST_CASE("exact reference: a looser tolerance costs less and stays within its b
         previousNodes = r.stats.quadratureNodes;
     }
     CHECK(previousNodes < reference.stats.quadratureNodes / 3);
+    // A tolerance far below rounding ends (each sub-piece has an interval budget) within its bound.
+    opt.tolerance = 1e-300;
+    const ExactReference tiny = renderExactReference(scene, camera, opt);
+    checkWithinBounds(reference, tiny);
+    CHECK(tiny.stats.quadratureIntervals <= 4096 * tiny.stats.subPieces);
 }
 
 TEST_CASE("exact reference: the bound holds for every extinction from 1e-6 to 1e300") {
