@@ -60,7 +60,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     std::string output, pngPath, statsPath, logPath, logRay, hMax = "2";
     vri::SceneOptions sceneOptions;
     std::string method = "riemann", placement = "entry", precision = "double", backend = "cpu", device;
-    std::string interpolation = "shader";
+    std::string interpolation = "shader", simd = "on";
     bool listDevicesFlag = false;
     double rate = 0.0, step = 0.0, ert = 0.0;
     vri::PreviewOptions preview;
@@ -90,6 +90,9 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     logRayOpt->needs(adaptiveGroup->get_option("--log"));
     auto* precisionOpt = app.add_option("--precision", precision, "double or float (the Vulkan backend: float only, "
                                                                   "its default)")->capture_default_str();
+    auto* simdOpt = app.add_option("--simd", simd, "on: float riemann and composite on packets of rays, one per SIMD "
+                                                   "lane (bitwise equal to off); off: the scalar path")
+                        ->capture_default_str();
     app.add_option("--backend", backend, "cpu (the raycaster of libvri) or vulkan (compute shaders, float)")
         ->capture_default_str();
     app.add_option("--device", device, "Vulkan device: an index of --list-devices or part of a name (default: the first)");
@@ -120,11 +123,13 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         if (vulkan && !*precisionOpt) precision = "float";
         if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
         if (!vulkan && *interpolationOpt) throw vri::Error("--interpolation: needs --backend vulkan");
+        if (vulkan && *simdOpt) throw vri::Error("--simd: needs --backend cpu");
         const vri::VulkanInterpolation interpolationChoice = vri::parseInterpolation(interpolation, "--interpolation");
         vri::RenderOptions options;
         options.integrator = vri::parseIntegrator(method, "--method");
         options.placement = vri::parsePlacement(placement, "--placement");
         options.precision = vri::parsePrecision(precision, "--precision");
+        options.simd = vri::parseSimd(simd, "--simd");
         if (*stepOpt && !(step > 0.0)) throw vri::Error("--step: must be > 0 voxels, got " + std::to_string(step));
         if (*rateOpt && !(rate > 0.0)) throw vri::Error("--rate: must be > 0 samples per voxel, got " + std::to_string(rate));
         options.samplingRate = *rateOpt ? rate : 1.0 / (*stepOpt ? step : 0.5);
