@@ -48,7 +48,7 @@ struct Reduction {
 };
 
 template <class Ops, class Float>
-Reduction<Ops, Float> reduce(const Ops& o, Float x) {
+[[gnu::always_inline]] inline Reduction<Ops, Float> reduce(const Ops& o, Float x) {
     // NaN compares false and becomes kLowest here; the callers put it back.
     const Float lowest = o.set(kLowest), highest = o.set(kHighest);
     Float xc = o.select(o.less(x, lowest), lowest, x);
@@ -61,7 +61,7 @@ Reduction<Ops, Float> reduce(const Ops& o, Float x) {
 
 // expm1(r) for |r| <= ln 2 / 2: r + r^2 (1/2! + r (1/3! + ... + r / 7!)), Horner.
 template <class Ops, class Float>
-Float expm1Reduced(const Ops& o, Float r) {
+[[gnu::always_inline]] inline Float expm1Reduced(const Ops& o, Float r) {
     Float p = o.set(1.f / 5040.f);
     p = p * r + o.set(1.f / 720.f);
     p = p * r + o.set(1.f / 120.f);
@@ -72,7 +72,7 @@ Float expm1Reduced(const Ops& o, Float r) {
 }
 
 template <class Ops, class Float>
-Float exp(const Ops& o, Float x) {
+[[gnu::always_inline]] inline Float exp(const Ops& o, Float x) {
     const Reduction<Ops, Float> red = reduce(o, x);
     const auto k = o.toInt(red.k);
     // 2^k in two factors, each a normal float for k in [-150, 129]; the first product is exact, so
@@ -83,7 +83,7 @@ Float exp(const Ops& o, Float x) {
 }
 
 template <class Ops, class Float>
-Float expm1(const Ops& o, Float x) {
+[[gnu::always_inline]] inline Float expm1(const Ops& o, Float x) {
     const Reduction<Ops, Float> red = reduce(o, x);
     const auto k = o.toInt(red.k);
     // Below k = -64, 2^k expm1(r) + (2^k - 1) rounds to -1 whatever r is, so k may be clamped there;

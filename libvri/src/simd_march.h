@@ -4,8 +4,9 @@
 // Each lane performs the scalar float path's operations in its order (the placement and empty-space
 // jumps of fixed_step_ray.h, GridSampler's trilinear formula, TransferFunction's bracket and lerp,
 // RayAccumulator's sums with the shared exponential of float_exp.h), so the image is bitwise equal to
-// `--simd off` on every target. A lane whose ray ends takes the next pixel of the tile (lanes are
-// refilled, not masked until the whole packet ends: measured faster, see notes/simd.md).
+// `--simd off` on every target. A packet holds neighbouring pixels of a tile; a lane whose ray has
+// ended is masked until the packet's last ray ends. Empty space is skipped per sample, by the brick
+// of its trilinear stencil, and a lane in an empty brick jumps to the samples leaving it.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -48,6 +49,11 @@ struct PacketScene {
     VoxelType type;
     std::int32_t voxelBytes;
     GridSamplerLayout<float> layout;
+    // The empty-space bricks (OccupancyGrid::emptyFlags(), 1 when empty) as 32-bit words for gathers;
+    // empty when skipping is off.
+    std::vector<std::int32_t> emptyBricks;
+    std::int32_t brickStride[3] = {0, 0, 0};
+    float jumpMargin = 0;  // voxels: far more than the rounding of a sample's position (see samplesInBrick)
     // The transfer function as TransferFunction::operator()<float> reads it: the points' s, and per
     // segment [s_i, s_i+1) its start, width and each channel's value at the start and slope (r, g, b,
     // tau), padded with copies of the last segment to a whole number of the widest vectors.
