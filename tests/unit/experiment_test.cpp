@@ -287,3 +287,16 @@ figures:
         CHECK(md.find(order[i + 1]) != std::string::npos);
     }
 }
+
+TEST_CASE("experiment: simd: on|off passes --simd and names swept runs") {
+    ExperimentDir d;
+    const vri::Experiment e = d.parse(kHead + R"(scenes: {s: {field: linear, convention: node, tf: a.yaml}}
+methods:
+  riemann: {precision: float, simd: [on, off]}
+)");
+    CHECK(ids(e) == std::vector<std::string>{"riemann-simd-on", "riemann-simd-off"});
+    CHECK(e.run("riemann-simd-off").options ==
+          vri::ToolOptions{{"--method", "riemann"}, {"--precision", "float"}, {"--simd", "off"}});
+    CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods: {riemann: {simd: yes}}\n")
+              .find("simd: unknown value 'yes' (expected on or off)") != std::string::npos);
+}
