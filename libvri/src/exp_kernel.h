@@ -33,8 +33,8 @@ namespace HWY_NAMESPACE {
 namespace exp_kernel {
 
 constexpr float kLog2E = 1.44269504088896341f;
-constexpr float kLn2Head = 0.693359375f;      // 0x3f318000: 9 significant bits
-constexpr float kLn2Tail = -2.12194440e-4f;   // ln 2 - kLn2Head
+constexpr float kLn2Head = 0.693359375f;       // 0x3f318000: 9 significant bits
+constexpr float kLn2Tail = -2.12194440e-4f;    // ln 2 - kLn2Head
 constexpr float kRoundToInteger = 12582912.f;  // 1.5 * 2^23: (y + it) - it rounds |y| < 2^22 to an integer
 // exp underflows to 0 below -103.97 and overflows above 88.73: clamping there changes no result
 // and keeps k in [-150, 129].

@@ -44,12 +44,13 @@ struct FixedStepRay {
 
     FixedStepRay(const TextureRay<Real>& ray, const RenderOptions& opt, const Vec& eyeU, const Vec& dims,
                  const GridIndexing& indexMap)
-        : schedule(placeSamples<Real>(opt.placement, ray.entry, ray.exit, eyeU, dims,
-                                      static_cast<Real>(opt.samplingRate))),
+        : schedule(
+              placeSamples<Real>(opt.placement, ray.entry, ray.exit, eyeU, dims, static_cast<Real>(opt.samplingRate))),
           entry(ray.entry),
           du(schedule.count > 0 ? (ray.exit - ray.entry) / schedule.tEnd : Vec(0)),
-          dx(schedule.count > 0 ? schedule.tIncr * static_cast<Real>(ray.worldLength / static_cast<double>(schedule.tEnd))
-                                : Real(0)),
+          dx(schedule.count > 0
+                 ? schedule.tIncr * static_cast<Real>(ray.worldLength / static_cast<double>(schedule.tEnd))
+                 : Real(0)),
           indexRay(glm::dvec3(ray.entry) * indexMap.scale - indexMap.offset, glm::dvec3(du) * indexMap.scale) {}
 
     Vec position(std::int64_t k) const { return entry + schedule.t(k) * du; }
@@ -72,7 +73,8 @@ struct FixedStepRay {
             if (!(brick.tExit < static_cast<double>(s.tEnd))) return s.count;  // the rest of the ray is empty
             auto next = static_cast<std::int64_t>(std::ceil((brick.tExit - s.tStart) / s.tIncr));
             next = std::clamp<std::int64_t>(next, k + 1, s.count);
-            while (next > k + 1 && static_cast<double>(s.t(next - 1)) >= brick.tExit) --next;
+            while (next > k + 1 && static_cast<double>(s.t(next - 1)) >= brick.tExit)
+                --next;
             k = next;
         }
         return k;

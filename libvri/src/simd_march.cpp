@@ -108,8 +108,10 @@ HWY_INLINE Stencil locate(const PacketScene& sc, const VF (&u)[3], MF valid) {
     for (int a = 0; a < 3; ++a) {
         const VF x = st.x[a] = hn::Sub(hn::Mul(u[a], hn::Set(df, g.scale[a])), hn::Set(df, g.offset[a]));
         const VF maxCoord = hn::Set(df, g.maxCoord[a]);
-        const VF c = hn::IfThenElse(hn::Lt(x, hn::Zero(df)), hn::Zero(df), hn::IfThenElse(hn::Lt(maxCoord, x), maxCoord, x));
-        const VI i = hn::IfThenElseZero(hn::RebindMask(di, valid), hn::Min(hn::ConvertTo(di, c), hn::Set(di, g.maxBase[a])));
+        const VF c =
+            hn::IfThenElse(hn::Lt(x, hn::Zero(df)), hn::Zero(df), hn::IfThenElse(hn::Lt(maxCoord, x), maxCoord, x));
+        const VI i =
+            hn::IfThenElseZero(hn::RebindMask(di, valid), hn::Min(hn::ConvertTo(di, c), hn::Set(di, g.maxBase[a])));
         st.w[a] = hn::Sub(c, hn::ConvertTo(df, i));
         st.base = hn::Add(st.base, hn::Mul(i, hn::Set(di, static_cast<std::int32_t>(g.stride[a]))));
         st.cell[a] = hn::ShiftRight<OccupancyGrid::kBrickShift>(i);
@@ -150,7 +152,8 @@ HWY_INLINE VI samplesInBrick(const Stencil& st, const VF (&du)[3], const VF (&sa
     VF samples = hn::Set(df, 1e9f);
     for (int a = 0; a < 3; ++a) {
         const VF lo = hn::ConvertTo(df, hn::ShiftLeft<OccupancyGrid::kBrickShift>(st.cell[a]));
-        const VF room = hn::IfThenElse(hn::Gt(du[a], hn::Zero(df)), hn::Sub(hn::Add(lo, brick), st.x[a]), hn::Sub(st.x[a], lo));
+        const VF room =
+            hn::IfThenElse(hn::Gt(du[a], hn::Zero(df)), hn::Sub(hn::Add(lo, brick), st.x[a]), hn::Sub(st.x[a], lo));
         const VF along = hn::Mul(hn::Sub(room, hn::Set(df, margin)), samplesPerVoxel[a]);
         samples = hn::IfThenElse(hn::Eq(du[a], hn::Zero(df)), samples, hn::Min(samples, along));
     }
@@ -162,7 +165,8 @@ HWY_INLINE VI samplesInBrick(const Stencil& st, const VF (&du)[3], const VF (&sa
 // registers when every segment fits one vector, else from memory.
 class VectorTransferFunction {
 public:
-    explicit VectorTransferFunction(const PacketScene& sc) : sc_(sc), inRegisters_(sc.segmentStart.size() <= hn::Lanes(DF())) {
+    explicit VectorTransferFunction(const PacketScene& sc)
+        : sc_(sc), inRegisters_(sc.segmentStart.size() <= hn::Lanes(DF())) {
         const DF df;
         if (inRegisters_) {
             start_ = hn::LoadU(df, sc.segmentStart.data());
@@ -188,14 +192,17 @@ public:
             const auto idx = hn::IndicesFromVec(df, segment);
             const VF w = hn::Div(hn::Sub(s, hn::TableLookupLanes(start_, idx)), hn::TableLookupLanes(width_, idx));
             for (int c = 0; c < 4; ++c)
-                out[c] = select(above, below, hn::Add(hn::TableLookupLanes(value_[c], idx),
-                                                      hn::Mul(w, hn::TableLookupLanes(slope_[c], idx))), c);
+                out[c] = select(
+                    above, below,
+                    hn::Add(hn::TableLookupLanes(value_[c], idx), hn::Mul(w, hn::TableLookupLanes(slope_[c], idx))), c);
         } else {
             const VF w = hn::Div(hn::Sub(s, hn::GatherIndex(df, sc_.segmentStart.data(), segment)),
                                  hn::GatherIndex(df, sc_.segmentWidth.data(), segment));
             for (int c = 0; c < 4; ++c)
-                out[c] = select(above, below, hn::Add(hn::GatherIndex(df, sc_.value[c].data(), segment),
-                                                      hn::Mul(w, hn::GatherIndex(df, sc_.slope[c].data(), segment))), c);
+                out[c] = select(above, below,
+                                hn::Add(hn::GatherIndex(df, sc_.value[c].data(), segment),
+                                        hn::Mul(w, hn::GatherIndex(df, sc_.slope[c].data(), segment))),
+                                c);
         }
     }
 
@@ -203,7 +210,8 @@ private:
     // Below the first point (or NaN): the first point's value; at or past the last: the last's.
     HWY_INLINE VF select(MF above, MF below, VF inside, int c) const {
         const DF df;
-        return hn::IfThenElse(above, hn::IfThenElse(below, inside, hn::Set(df, sc_.last[c])), hn::Set(df, sc_.first[c]));
+        return hn::IfThenElse(above, hn::IfThenElse(below, inside, hn::Set(df, sc_.last[c])),
+                              hn::Set(df, sc_.first[c]));
     }
 
     const PacketScene& sc_;
@@ -287,7 +295,8 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         MF active = hn::RebindMask(df, hn::Lt(k, count));
         if (hn::AllFalse(df, active)) {
             if (nextPixel >= pixels) break;
-            for (std::size_t lane = 0; lane < n; ++lane) start(lane);
+            for (std::size_t lane = 0; lane < n; ++lane)
+                start(lane);
             k = hn::Load(di, L.k);
             count = hn::Load(di, L.count);
             active = hn::RebindMask(df, hn::Lt(k, count));
@@ -306,9 +315,9 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         MF evaluated = active;
         VI step = hn::IfThenElseZero(hn::RebindMask(di, active), hn::Set(di, 1));
         if (!sc.emptyBricks.empty()) {
-            const MF empty = hn::And(active, hn::RebindMask(df, hn::Ne(hn::GatherIndex(di, sc.emptyBricks.data(),
-                                                                                        stencil.brick),
-                                                                        hn::Zero(di))));
+            const MF empty = hn::And(
+                active,
+                hn::RebindMask(df, hn::Ne(hn::GatherIndex(di, sc.emptyBricks.data(), stencil.brick), hn::Zero(di))));
             evaluated = hn::AndNot(empty, active);
             if (!hn::AllFalse(df, empty)) {
                 const VF samplesPerVoxel[3] = {hn::Load(df, L.samplesPerVoxel[0]), hn::Load(df, L.samplesPerVoxel[1]),
@@ -360,7 +369,8 @@ void marchTileOfType(const PacketScene& sc, int x0, int y0, int x1, int y1, Imag
     const bool composite = sc.options.integrator == Integrator::Composite;
     if (sc.emission == EmissionModel::ColourTimesExtinction) {
         if (composite)
-            marchTile<T, Integrator::Composite, EmissionModel::ColourTimesExtinction>(sc, x0, y0, x1, y1, image, counts);
+            marchTile<T, Integrator::Composite, EmissionModel::ColourTimesExtinction>(sc, x0, y0, x1, y1, image,
+                                                                                      counts);
         else
             marchTile<T, Integrator::Riemann, EmissionModel::ColourTimesExtinction>(sc, x0, y0, x1, y1, image, counts);
     } else {
@@ -373,9 +383,12 @@ void marchTileOfType(const PacketScene& sc, int x0, int y0, int x1, int y1, Imag
 
 void MarchPackets(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
     switch (sc.type) {
-    case VoxelType::UInt8: return marchTileOfType<std::uint8_t>(sc, x0, y0, x1, y1, image, counts);
-    case VoxelType::UInt16: return marchTileOfType<std::uint16_t>(sc, x0, y0, x1, y1, image, counts);
-    case VoxelType::Float32: return marchTileOfType<float>(sc, x0, y0, x1, y1, image, counts);
+        case VoxelType::UInt8:
+            return marchTileOfType<std::uint8_t>(sc, x0, y0, x1, y1, image, counts);
+        case VoxelType::UInt16:
+            return marchTileOfType<std::uint16_t>(sc, x0, y0, x1, y1, image, counts);
+        case VoxelType::Float32:
+            return marchTileOfType<float>(sc, x0, y0, x1, y1, image, counts);
     }
 }
 
@@ -430,7 +443,8 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Occupan
         jumpMargin = 0.01f + 1e-5f * static_cast<float>(std::max({d.x, d.y, d.z}));
     }
     const auto& p = scene.transferFunction.points();
-    for (const auto& q : p) pointS.push_back(static_cast<float>(q.s));
+    for (const auto& q : p)
+        pointS.push_back(static_cast<float>(q.s));
     const auto channels = [](const TransferFunctionPoint& q) { return std::array<double, 4>{q.r, q.g, q.b, q.tau}; };
     for (int c = 0; c < 4; ++c) {
         first[c] = static_cast<float>(channels(p.front())[c]);

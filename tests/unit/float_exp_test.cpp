@@ -25,7 +25,8 @@ double ulpError(float got, double exact) {
 template <class Visit>
 void manyFloats(float lo, float hi, const Visit& visit) {
     constexpr int n = 1 << 21;
-    for (int i = 0; i <= n; ++i) visit(static_cast<float>(lo + (static_cast<double>(hi) - lo) * i / n));
+    for (int i = 0; i <= n; ++i)
+        visit(static_cast<float>(lo + (static_cast<double>(hi) - lo) * i / n));
     for (float x : {lo, hi, 0.f}) {
         float up = x, down = x;
         for (int i = 0; i < 4096; ++i) {
@@ -51,7 +52,8 @@ TEST_CASE("expFloat is within 1.01 ulp of exp wherever the result is a normal fl
 
 TEST_CASE("expFloat rounds subnormal results to within 1 subnormal step and underflows to 0") {
     double worst = 0;
-    for (float x = -87.4f; x > -103.9f; x -= 0.0137f) worst = std::max(worst, ulpError(expFloat(x), std::exp(double(x))));
+    for (float x = -87.4f; x > -103.9f; x -= 0.0137f)
+        worst = std::max(worst, ulpError(expFloat(x), std::exp(double(x))));
     MESSAGE("expFloat subnormal: largest error ", worst, " x 2^-149");
     CHECK(worst <= 1.0);
     CHECK(expFloat(-103.8f) > 0.f);

@@ -78,10 +78,11 @@ TEST_CASE("the packet engine's image equals the scalar float path's bit for bit 
         for (GridConvention convention : {GridConvention::CellCentred, GridConvention::NodeCentred})
             for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour})
                 for (int points : {9, 24}) {
-                    const Scene scene{testVolume(type), std::nullopt, convention, testTransferFunction(emission, points)};
+                    const Scene scene{testVolume(type), std::nullopt, convention,
+                                      testTransferFunction(emission, points)};
                     for (Integrator integrator : {Integrator::Riemann, Integrator::Composite})
-                        for (Placement placement : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,
-                                                    Placement::EntryExitAlignCorner})
+                        for (Placement placement : {Placement::EyeAlign, Placement::EntryAlign,
+                                                    Placement::EntryExitAlign, Placement::EntryExitAlignCorner})
                             for (bool skip : {true, false}) {
                                 RenderOptions opt;
                                 opt.precision = Precision::Float;
