@@ -290,6 +290,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     // A packet is the next n pixels with samples; it ends when its last ray does. (Refilling a lane
     // as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays cross the same
     // bricks, so a packet's lanes jump over empty space and evaluate together.)
+    VI lastBrick = hn::Set(di, -1), lastFlags = hn::Zero(di);  // the empty flags of the bricks last gathered
     for (;;) {
         VI k = hn::Load(di, L.k), count = hn::Load(di, L.count);
         MF active = hn::RebindMask(df, hn::Lt(k, count));
@@ -315,9 +316,13 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         MF evaluated = active;
         VI step = hn::IfThenElseZero(hn::RebindMask(di, active), hn::Set(di, 1));
         if (!sc.emptyBricks.empty()) {
-            const MF empty = hn::And(
-                active,
-                hn::RebindMask(df, hn::Ne(hn::GatherIndex(di, sc.emptyBricks.data(), stencil.brick), hn::Zero(di))));
+            // The lanes often stay in their bricks from one sample to the next (at h = 0.1, about
+            // two times in three for all 16 lanes): then the flags need no new gather.
+            if (!hn::AllTrue(di, hn::Eq(stencil.brick, lastBrick))) {
+                lastBrick = stencil.brick;
+                lastFlags = hn::GatherIndex(di, sc.emptyBricks.data(), stencil.brick);
+            }
+            const MF empty = hn::And(active, hn::RebindMask(df, hn::Ne(lastFlags, hn::Zero(di))));
             evaluated = hn::AndNot(empty, active);
             if (!hn::AllFalse(df, empty)) {
                 const VF samplesPerVoxel[3] = {hn::Load(df, L.samplesPerVoxel[0]), hn::Load(df, L.samplesPerVoxel[1]),
