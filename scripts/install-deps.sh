@@ -7,7 +7,7 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev libopenimageio-dev openimageio-tools
   libyaml-cpp-dev libcli11-dev doctest-dev libtbb-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-tools glslang-tools glslang-dev
-  libglm-dev nlohmann-json3-dev gnuplot-nox
+  libglm-dev nlohmann-json3-dev gnuplot-nox libhwy-dev
 )
 
 missing=()

@@ -71,7 +71,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
     std::string output, pngPath, statsPath, logPath, logRay, hMax = "2";
     vri::SceneOptions sceneOptions;
     std::string method = "riemann", placement = "entry", precision = "double", backend = "cpu", device;
-    std::string interpolation = "shader";
+    std::string interpolation = "shader", simd = "on";
     bool listDevicesFlag = false;
     double rate = 0.0, step = 0.0, ert = 0.0;
     vri::PreviewOptions preview;
@@ -103,6 +103,9 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
     logRayOpt->needs(adaptiveGroup->get_option("--log"));
     auto* precisionOpt = app.add_option("--precision", precision, "double or float (the Vulkan backend: float only, "
                                                                   "its default)")->capture_default_str();
+    auto* simdOpt = app.add_option("--simd", simd, "on: float riemann and composite on packets of rays, one per SIMD "
+                                                   "lane (bitwise equal to off); off: the scalar path")
+                        ->capture_default_str();
     app.add_option("--backend", backend, "cpu (the raycaster of libvri) or vulkan (compute shaders, float)")
         ->capture_default_str();
     app.add_option("--device", device, "Vulkan device: an index of --list-devices or part of a name (default: the first)");
@@ -133,6 +136,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         if (vulkan && !*precisionOpt) precision = "float";
         if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
         if (!vulkan && *interpolationOpt) throw vri::Error("--interpolation: needs --backend vulkan");
+        if (vulkan && *simdOpt) throw vri::Error("--simd: needs --backend cpu");
         const vri::VulkanInterpolation interpolationChoice = vri::parseInterpolation(interpolation, "--interpolation");
         // The exact method is vri-reference's: double on the CPU, rays ended by its tolerance.
         const bool exact = method == "exact";
@@ -153,6 +157,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         if (!exact) options.integrator = vri::parseIntegrator(method, "--method");
         options.placement = vri::parsePlacement(placement, "--placement");
         options.precision = vri::parsePrecision(precision, "--precision");
+        options.simd = vri::parseSimd(simd, "--simd");
         if (*stepOpt && !(step > 0.0)) throw vri::Error("--step: must be > 0 voxels, got " + std::to_string(step));
         if (*rateOpt && !(rate > 0.0)) throw vri::Error("--rate: must be > 0 samples per voxel, got " + std::to_string(rate));
         options.samplingRate = *rateOpt ? rate : 1.0 / (*stepOpt ? step : 0.5);

@@ -66,6 +66,7 @@ const std::vector<RunParameter>& renderParameters() {
         {"step", "--step", "h", positiveNumber},
         {"rate", "--rate", "r", positiveNumber},
         {"precision", "--precision", "", [](auto& v, auto& w) { parsePrecision(v, w); }},
+        {"simd", "--simd", "simd-", [](auto& v, auto& w) { parseSimd(v, w); }},  // float riemann, composite
         {"early_termination", "--early-termination", "ert", nonNegativeNumber},
         {"repeat", "--repeat", "x", positiveCount},  // timing: the stats give the median of the frames
         // Paper B's adaptive Simpson (coupled, decoupled).

@@ -19,6 +19,8 @@
 #include "vri/grid_sampler.h"
 #include "vri/occupancy_grid.h"
 #include "vri/progress.h"
+#include "fixed_step_ray.h"
+#include "simd_march.h"
 
 namespace vri {
 
@@ -28,6 +30,12 @@ Precision parsePrecision(std::string_view name, const std::string& what) {
     if (name == "double") return Precision::Double;
     if (name == "float") return Precision::Float;
     throw Error(what + ": unknown precision '" + std::string(name) + "' (expected double or float)");
+}
+
+bool parseSimd(std::string_view name, const std::string& what) {
+    if (name == "on") return true;
+    if (name == "off") return false;
+    throw Error(what + ": unknown value '" + std::string(name) + "' (expected on or off)");
 }
 
 Box Scene::box() const { return volume ? volumeBox(*volume, convention) : field->box; }
@@ -43,53 +51,25 @@ struct Counters {
 };
 
 
-// One pixel's ray inside the box, in texture coordinates.
-template <class Real>
-struct TextureRay {
-    glm::vec<3, Real> entry, exit;
-    double worldLength;
-};
-
 // Paper A's fixed-step placements, each sample standing for a segment of the ray (Riemann, composite).
 template <class Real, class Sampler>
 RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sample, const OccupancyGrid* occupancy,
                                   const GridIndexing& indexMap, const glm::vec<3, Real>& eyeU, const glm::vec<3, Real>& dims,
                                   const TransferFunction& tf, const RenderOptions& opt, std::uint64_t& placed,
                                   std::uint64_t& evaluated) {
-    using Vec = glm::vec<3, Real>;
     RayAccumulator<Real> acc;
-    const Real rate = static_cast<Real>(opt.samplingRate);
     const Real ert = static_cast<Real>(opt.earlyTermination);
     const EmissionModel emission = tf.emission();
-    const SampleSchedule<Real> s = placeSamples<Real>(opt.placement, ray.entry, ray.exit, eyeU, dims, rate);
-    if (s.count == 0) return acc;
-    const Vec du = (ray.exit - ray.entry) / s.tEnd;
-    const Real dx = s.tIncr * static_cast<Real>(ray.worldLength / static_cast<double>(s.tEnd));
-    const OccupancyGrid::Ray indexRay(glm::dvec3(ray.entry) * indexMap.scale - indexMap.offset,
-                                      glm::dvec3(du) * indexMap.scale);
-    double knownOccupiedUntil = -std::numeric_limits<double>::infinity();
+    FixedStepRay<Real> march(ray, opt, eyeU, dims, indexMap);
+    const std::int64_t count = march.schedule.count;
     std::size_t segment = 0;  // the transfer function's last bracket
     std::int64_t k = 0;
-    while (k < s.count) {
-        const Real t = s.t(k);
-        if (occupancy && static_cast<double>(t) >= knownOccupiedUntil) {
-            const auto brick = occupancy->visit(indexRay, static_cast<double>(t));
-            if (brick.empty) {
-                // Jump to the first sample at or past the exit, counted on the positions we
-                // evaluate; every sample skipped lies before the exit.
-                if (!(brick.tExit < static_cast<double>(s.tEnd))) {
-                    k = s.count;  // the rest of the ray is empty
-                    break;
-                }
-                auto next = static_cast<std::int64_t>(std::ceil((brick.tExit - s.tStart) / s.tIncr));
-                next = std::clamp<std::int64_t>(next, k + 1, s.count);
-                while (next > k + 1 && static_cast<double>(s.t(next - 1)) >= brick.tExit) --next;
-                k = next;
-                continue;
-            }
-            knownOccupiedUntil = brick.tExit;
+    while (k < count) {
+        if (occupancy && march.mayBeEmpty(k)) {
+            k = march.skipEmpty(*occupancy, k);
+            if (k == count) break;
         }
-        acc.add(opt.integrator, emission, tf(sample(ray.entry + t * du), segment), dx);
+        acc.add(opt.integrator, emission, tf(sample(march.position(k)), segment), march.dx);
         ++evaluated;
         ++k;
         if (acc.transparency < ert) break;
@@ -140,6 +120,32 @@ AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler
     return method.integrate(length, evaluate, knownEmpty, counts, log);
 }
 
+// Calls renderTile(x0, y0, x1, y1, counts, adaptive) for every tile of the image, in parallel, and
+// adds up what the tiles counted.
+template <class RenderTile>
+void forEachTile(const RenderOptions& opt, const Image& image, Counters& counters, const RenderTile& renderTile) {
+    const int tile = opt.tileSize;
+    const int tilesX = (image.width + tile - 1) / tile, tilesY = (image.height + tile - 1) / tile;
+    Progress progress("render", static_cast<std::uint64_t>(tilesX) * tilesY, opt.progress);
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1), [&](const auto& tiles) {
+        MarchCounts counts;
+        AdaptiveCounts adaptive;
+        for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
+            for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
+                renderTile(tx * tile, ty * tile, std::min((tx + 1) * tile, image.width),
+                           std::min((ty + 1) * tile, image.height), counts, adaptive);
+                progress.advance(1);
+            }
+        counters.raysHit += counts.raysHit;
+        counters.samplesPlaced += counts.samplesPlaced + adaptive.pointsUsed;
+        counters.samplesEvaluated += counts.samplesEvaluated + adaptive.pointsEvaluated;
+        if (isSimpson(opt.integrator)) {
+            const std::lock_guard lock(counters.adaptiveMutex);
+            counters.adaptive += adaptive;
+        }
+    });
+}
+
 template <class Real, class Sampler>
 void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* occupancy, const GridIndexing& indexMap,
                 const Camera& camera, const RenderOptions& opt, Image& image, Counters& counters,
@@ -151,51 +157,31 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
     const TransferFunction& tf = scene.transferFunction;
     const bool simpson = isSimpson(opt.integrator);
     const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), static_cast<Real>(opt.earlyTermination));
-    const int tile = opt.tileSize;
-    const int tilesX = (image.width + tile - 1) / tile, tilesY = (image.height + tile - 1) / tile;
-    Progress progress("render", static_cast<std::uint64_t>(tilesX) * tilesY, opt.progress);
-
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1), [&](const auto& tiles) {
-        std::uint64_t hit = 0, placed = 0, evaluated = 0;
-        AdaptiveCounts adaptive;
-        for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
-            for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
-                for (int py = ty * tile; py < std::min((ty + 1) * tile, image.height); ++py)
-                    for (int px = tx * tile; px < std::min((tx + 1) * tile, image.width); ++px) {
-                        float* out = &image.at(px, py, 0);
-                        const glm::dvec3 dir = camera.direction(px, py);
-                        const auto segment = clipRay(camera.eye(), dir, box);
-                        if (!segment) continue;
-                        const TextureRay<Real> ray{Vec(box.toTexture(camera.eye() + segment->tNear * dir)),
-                                                   Vec(box.toTexture(camera.eye() + segment->tFar * dir)),
-                                                   segment->tFar - segment->tNear};
-                        if (ray.worldLength > 0) ++hit;
-                        if (simpson) {
-                            const bool logged = rayLog && opt.logPixel == glm::ivec2(px, py);
-                            const AdaptiveResult<Real> r = integrateSimpson(ray, sample, occupancy, indexMap, dims, tf,
-                                                                            method, adaptive, logged ? rayLog : nullptr);
-                            out[0] = static_cast<float>(r.r);
-                            out[1] = static_cast<float>(r.g);
-                            out[2] = static_cast<float>(r.b);
-                            out[3] = static_cast<float>(r.alpha);
-                        } else {
-                            const RayAccumulator<Real> acc = marchSamples(ray, sample, occupancy, indexMap, eyeU, dims,
-                                                                          tf, opt, placed, evaluated);
-                            out[0] = static_cast<float>(acc.r);
-                            out[1] = static_cast<float>(acc.g);
-                            out[2] = static_cast<float>(acc.b);
-                            out[3] = static_cast<float>(acc.alpha());
-                        }
-                    }
-                progress.advance(1);
+    forEachTile(opt, image, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive) {
+        for (int py = y0; py < y1; ++py)
+            for (int px = x0; px < x1; ++px) {
+                float* out = &image.at(px, py, 0);
+                const auto clipped = pixelRay<Real>(camera, box, px, py);
+                if (!clipped) continue;
+                const TextureRay<Real>& ray = *clipped;
+                if (ray.worldLength > 0) ++counts.raysHit;
+                if (simpson) {
+                    const bool logged = rayLog && opt.logPixel == glm::ivec2(px, py);
+                    const AdaptiveResult<Real> r = integrateSimpson(ray, sample, occupancy, indexMap, dims, tf, method,
+                                                                    adaptive, logged ? rayLog : nullptr);
+                    out[0] = static_cast<float>(r.r);
+                    out[1] = static_cast<float>(r.g);
+                    out[2] = static_cast<float>(r.b);
+                    out[3] = static_cast<float>(r.alpha);
+                } else {
+                    const RayAccumulator<Real> acc = marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt,
+                                                                  counts.samplesPlaced, counts.samplesEvaluated);
+                    out[0] = static_cast<float>(acc.r);
+                    out[1] = static_cast<float>(acc.g);
+                    out[2] = static_cast<float>(acc.b);
+                    out[3] = static_cast<float>(acc.alpha());
+                }
             }
-        counters.raysHit += hit;
-        counters.samplesPlaced += placed + adaptive.pointsUsed;
-        counters.samplesEvaluated += evaluated + adaptive.pointsEvaluated;
-        if (simpson) {
-            const std::lock_guard lock(counters.adaptiveMutex);
-            counters.adaptive += adaptive;
-        }
     });
 }
 
@@ -215,6 +201,14 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         occupancy.emplace(volume, scene.convention, scene.transferFunction);
         stats.setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats.emptyBrickFraction = occupancy->emptyFraction();
+    }
+    if (opt.simd && PacketScene::supports(scene, opt)) {
+        const PacketScene packets(scene, camera, occupancy ? &*occupancy : nullptr, opt);
+        stats.simdTarget = packetTargetName();
+        forEachTile(opt, image, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&) {
+            marchPackets(packets, x0, y0, x1, y1, image, counts);
+        });
+        return;
     }
     const GridIndexing indexMap(volume.dims, scene.convention);
     dispatchVoxelType(volume.type, [&](auto voxel) {

@@ -13,6 +13,7 @@ nlohmann::json toJson(const RenderOptions& o) {
                         {"precision", precisionName(o.precision)},
                         {"early_termination", o.earlyTermination},
                         {"skip_empty_space", o.skipEmptySpace},
+                        {"simd", o.simd},
                         {"tile_size", o.tileSize}};
     if (o.integrator == Integrator::Coupled || o.integrator == Integrator::Decoupled) {
         const AdaptiveParameters& a = o.adaptive;
@@ -43,6 +44,7 @@ nlohmann::json toJson(const RenderStats& s) {
                         {"backend", s.backend}};
     if (!s.device.empty()) j["device"] = s.device;
     if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;
+    if (s.backend == "cpu") j["simd_target"] = s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget);
     if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
     return j;
 }

@@ -366,3 +366,16 @@ TEST_CASE("experiment: sweeps are counted against the run limit before they are 
                   "}\n  riemann: {step: 0.5}\n") ==
           "exp.yaml:7:12: methods entry 'riemann' with the 10000 runs before it: needs 10001 runs, limit 10000");
 }
+
+TEST_CASE("experiment: simd: on|off passes --simd and names swept runs") {
+    ExperimentDir d;
+    const vri::Experiment e = d.parse(kHead + R"(scenes: {s: {field: linear, convention: node, tf: a.yaml}}
+methods:
+  riemann: {precision: float, simd: [on, off]}
+)");
+    CHECK(ids(e) == std::vector<std::string>{"riemann-simd-on", "riemann-simd-off"});
+    CHECK(e.run("riemann-simd-off").options ==
+          vri::ToolOptions{{"--method", "riemann"}, {"--precision", "float"}, {"--simd", "off"}});
+    CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods: {riemann: {simd: yes}}\n")
+              .find("simd: unknown value 'yes' (expected on or off)") != std::string::npos);
+}

@@ -34,27 +34,42 @@ struct GridIndexing {
     }
 };
 
+// What GridSampler reads besides the voxels, in its precision: the addressing of GridIndexing and the
+// normalisation of the volume's range to s. The packet engine (simd_march.h) reads the same numbers.
+template <class Real>
+struct GridSamplerLayout {
+    using Vec = glm::vec<3, Real>;
+
+    GridSamplerLayout(const Volume& volume, GridConvention convention) {
+        const GridIndexing g(volume.dims, convention);
+        scale = Vec(g.scale);
+        offset = Vec(g.offset);
+        for (int a = 0; a < 3; ++a) {
+            maxCoord[a] = static_cast<Real>(g.maxCoord[a]);
+            maxBase[a] = g.maxBase[a];
+            stride[a] = g.stride[a];
+        }
+        const ValueRange r = volume.normalisationRange();
+        lo = static_cast<Real>(r.lo);
+        invRange = r.hi > r.lo ? static_cast<Real>(1.0 / (r.hi - r.lo)) : Real(0);
+    }
+
+    Vec scale, offset;
+    Real maxCoord[3];
+    int maxBase[3];
+    std::int64_t stride[3];
+    Real lo, invRange;
+};
+
 template <class T, class Real>
 class GridSampler {
 public:
     using Vec = glm::vec<3, Real>;
 
-    GridSampler(const Volume& volume, GridConvention convention) : data_(volume.data<T>()) {
-        const GridIndexing g(volume.dims, convention);
-        scale_ = Vec(g.scale);
-        offset_ = Vec(g.offset);
-        for (int a = 0; a < 3; ++a) {
-            maxCoord_[a] = static_cast<Real>(g.maxCoord[a]);
-            maxBase_[a] = g.maxBase[a];
-            stride_[a] = g.stride[a];
-        }
-        const ValueRange r = volume.normalisationRange();
-        lo_ = static_cast<Real>(r.lo);
-        invRange_ = r.hi > r.lo ? static_cast<Real>(1.0 / (r.hi - r.lo)) : Real(0);
-    }
+    GridSampler(const Volume& volume, GridConvention convention) : data_(volume.data<T>()), g_(volume, convention) {}
 
     // Continuous voxel index of a texture coordinate: voxel i sits at index i.
-    Vec index(const Vec& u) const { return u * scale_ - offset_; }
+    Vec index(const Vec& u) const { return u * g_.scale - g_.offset; }
 
     Real operator()(const Vec& u) const {
         const Vec x = index(u);
@@ -63,13 +78,13 @@ public:
         for (int a = 0; a < 3; ++a) {
             // Clamp to the outermost voxels (texture "clamp to edge"); exact for node-centred data,
             // whose box ends on the outermost voxels anyway.
-            const Real c = std::clamp(x[a], Real(0), maxCoord_[a]);
-            const int i = std::min(static_cast<int>(c), maxBase_[a]);
+            const Real c = std::clamp(x[a], Real(0), g_.maxCoord[a]);
+            const int i = std::min(static_cast<int>(c), g_.maxBase[a]);
             w[a] = c - static_cast<Real>(i);
-            base += i * stride_[a];
+            base += i * g_.stride[a];
         }
         const T* p = data_ + base;
-        const std::int64_t sx = stride_[0], sy = stride_[1], sz = stride_[2];
+        const std::int64_t sx = g_.stride[0], sy = g_.stride[1], sz = g_.stride[2];
         auto v = [p](std::int64_t o) { return static_cast<Real>(p[o]); };
         auto lerp = [](Real a, Real b, Real t) { return a + t * (b - a); };
         const Real c00 = lerp(v(0), v(sx), w[0]);
@@ -78,16 +93,12 @@ public:
         const Real c11 = lerp(v(sz + sy), v(sz + sy + sx), w[0]);
         const Real c0 = lerp(c00, c10, w[1]);
         const Real c1 = lerp(c01, c11, w[1]);
-        return (lerp(c0, c1, w[2]) - lo_) * invRange_;
+        return (lerp(c0, c1, w[2]) - g_.lo) * g_.invRange;
     }
 
 private:
     const T* data_;
-    std::int64_t stride_[3];
-    Vec scale_{}, offset_{};
-    Real maxCoord_[3];
-    int maxBase_[3];
-    Real lo_, invRange_;
+    GridSamplerLayout<Real> g_;
 };
 
 }  // namespace vri

@@ -4,9 +4,17 @@
 #include <string>
 #include <string_view>
 
+#include "vri/float_exp.h"
 #include "vri/transfer_function.h"
 
 namespace vri {
+
+// The exponentials of the fixed-step integrators: the C library's in double; in float the shared
+// polynomial of float_exp.h, which the packet engine (simd_march.h) evaluates lane by lane alike.
+inline double exponential(double x) { return std::exp(x); }
+inline float exponential(float x) { return expFloat(x); }
+inline double exponentialMinusOne(double x) { return std::expm1(x); }
+inline float exponentialMinusOne(float x) { return expm1Float(x); }
 
 enum class Integrator {
     // Paper A eq. (5)/(6): I = sum_i g_i dx prod_{j<i} exp(-tau_j dx), the Riemann sum of the
@@ -38,12 +46,12 @@ struct RayAccumulator {
         // A sample without extinction or emission would add exactly 0 and multiply by exactly 1:
         // leaving it out saves the exponential and changes no bit.
         if (v.tau == Real(0) && emission == EmissionModel::ColourTimesExtinction) return;
-        const Real attenuation = std::exp(-v.tau * dx);
+        const Real attenuation = exponential(-v.tau * dx);
         Real weight;  // multiplies the colour
         if (integrator == Integrator::Riemann) {
             weight = emission == EmissionModel::ColourTimesExtinction ? v.tau * dx : dx;
         } else {
-            const Real alpha = -std::expm1(-v.tau * dx);
+            const Real alpha = -exponentialMinusOne(-v.tau * dx);
             weight = emission == EmissionModel::ColourTimesExtinction ? alpha
                      : v.tau > Real(0)                                 ? alpha / v.tau
                                                                        : dx;

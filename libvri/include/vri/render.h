@@ -23,6 +23,7 @@ namespace vri {
 enum class Precision { Double, Float };
 std::string_view precisionName(Precision p);  // "double", "float"
 Precision parsePrecision(std::string_view name, const std::string& what);
+bool parseSimd(std::string_view name, const std::string& what);  // "on" or "off"
 
 // What is rendered: a volume under a grid convention, or an analytic field evaluated exactly.
 struct Scene {
@@ -48,6 +49,9 @@ struct RenderOptions {
     // its exit, as accuracy studies need.
     double earlyTermination = 0.0;
     bool skipEmptySpace = true;  // never changes the image (see occupancy_grid.h)
+    // Float Riemann and composite of a volume on packets of rays, one per SIMD lane; bitwise equal to
+    // the scalar float path (false), which stays the reference.
+    bool simd = true;
     int tileSize = 16;
     bool progress = false;  // report progress on stderr
 };
@@ -66,6 +70,7 @@ struct RenderStats {
     std::string backend = "cpu";      // "cpu" or "vulkan" (vulkan_renderer.h)
     std::string device;               // the Vulkan device's name; empty on the CPU
     std::string interpolation;        // the Vulkan backend's: "shader" or "sampler"; empty on the CPU
+    std::string simdTarget;           // the packet engine's Highway target ("AVX2", ...); empty when the scalar path ran
 };
 
 // Throws vri::Error on options render() cannot honour (see render()); shared with the Vulkan backend.

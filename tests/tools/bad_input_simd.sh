@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Bad input to vri-render --simd: one line naming the option, exit 1, nothing written.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
+bin=${VRI_BIN:?}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
+scene=(--volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --stats out.json)
+
+bad 1 "^vri-render: error: --simd: unknown value 'yes' \(expected on or off\)$" -- "$bin/vri-render" "${scene[@]}" --simd yes
+bad 1 "^vri-render: error: --simd: unknown value '' \(expected on or off\)$" -- "$bin/vri-render" "${scene[@]}" --simd ''
+bad 1 "^vri-render: error: --simd: needs --backend cpu$" -- "$bin/vri-render" "${scene[@]}" --backend vulkan --simd on
+bad_done

@@ -1,0 +1,171 @@
+// The packet engine (--simd on) against the scalar float path (--simd off): bitwise equal images and
+// equal sample counts for every placement, integrator, voxel type, grid convention and emission
+// model, with and without empty-space skipping, on odd image sizes (partly filled packets), on every
+// Highway target this CPU runs, and on 1 and 2 threads.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <random>
+#include <string>
+
+#include <hwy/targets.h>
+#include <tbb/global_control.h>
+
+#include "vri/error.h"
+#include "vri/render.h"
+
+using namespace vri;
+
+namespace {
+
+// A 37x21x19 volume (no axis a multiple of the 8-voxel bricks): noise below s = 0.2 (invisible under
+// the transfer functions below) around a ball of structure off to one side, so that rays cross empty
+// bricks, visible bricks and both.
+std::shared_ptr<Volume> testVolume(VoxelType type) {
+    auto v = std::make_shared<Volume>(glm::ivec3(37, 21, 19), type);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> noise(0.0, 1.0);
+    for (int z = 0; z < 19; ++z)
+        for (int y = 0; y < 21; ++y)
+            for (int x = 0; x < 37; ++x) {
+                const double r = std::hypot(x - 28.0, y - 10.0, z - 9.0);
+                const double s = r < 7.5 ? 0.25 + 0.7 * noise(rng) : 0.15 * noise(rng);
+                const std::size_t i = v->index(x, y, z);
+                if (type == VoxelType::UInt8) v->data<std::uint8_t>()[i] = static_cast<std::uint8_t>(s * 255.0);
+                if (type == VoxelType::UInt16) v->data<std::uint16_t>()[i] = static_cast<std::uint16_t>(s * 65535.0);
+                if (type == VoxelType::Float32) v->data<float>()[i] = static_cast<float>(2.0 * s - 0.5);
+            }
+    if (type == VoxelType::Float32) v->range = ValueRange{-0.5, 1.5};
+    return v;
+}
+
+// Zero below s = 0.2; `points` points in all (more than 17 makes the engine read the segments from
+// memory instead of registers).
+TransferFunction testTransferFunction(EmissionModel emission, int points) {
+    std::vector<TransferFunctionPoint> p{{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}};
+    for (int i = 0; i + 2 < points; ++i) {
+        const double s = 0.2 + 0.8 * (i + 1) / (points - 2);
+        p.push_back({s, 0.3 + 0.5 * s, 0.9 - 0.6 * s, 0.2 + 0.1 * (i % 3), 0.2 + 0.6 * s * (1 + i % 2)});
+    }
+    return TransferFunction(p, emission);
+}
+
+Camera testCamera(int width, int height) {
+    CameraSpec spec;
+    spec.eye = glm::dvec3(-30.0, 45.0, -50.0);
+    spec.target = glm::dvec3(18.5, 10.5, 9.5);
+    spec.fovYDegrees = 40.0;
+    spec.width = width;
+    spec.height = height;
+    return Camera(spec);
+}
+
+bool sameBits(const Image& a, const Image& b) {
+    return a.pixels.size() == b.pixels.size() &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("the packet engine's image equals the scalar float path's bit for bit on every target") {
+    const Camera camera = testCamera(37, 23);  // neither a multiple of the 16-pixel tile nor of any lane count
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    REQUIRE(!targets.empty());
+    int renders = 0;
+    for (VoxelType type : {VoxelType::UInt8, VoxelType::UInt16, VoxelType::Float32})
+        for (GridConvention convention : {GridConvention::CellCentred, GridConvention::NodeCentred})
+            for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour})
+                for (int points : {9, 24}) {
+                    const Scene scene{testVolume(type), std::nullopt, convention,
+                                      testTransferFunction(emission, points)};
+                    for (Integrator integrator : {Integrator::Riemann, Integrator::Composite})
+                        for (Placement placement : {Placement::EyeAlign, Placement::EntryAlign,
+                                                    Placement::EntryExitAlign, Placement::EntryExitAlignCorner})
+                            for (bool skip : {true, false}) {
+                                RenderOptions opt;
+                                opt.precision = Precision::Float;
+                                opt.integrator = integrator;
+                                opt.placement = placement;
+                                opt.samplingRate = 2.7;
+                                opt.skipEmptySpace = skip;
+                                opt.simd = false;
+                                RenderStats scalarStats;
+                                const Image scalar = render(scene, camera, opt, &scalarStats);
+                                CHECK(scalarStats.simdTarget.empty());
+                                // Not a blank test: the rays see something, and cross empty bricks.
+                                CHECK(*std::max_element(scalar.pixels.begin(), scalar.pixels.end()) > 0.05f);
+                                CHECK((scalarStats.samplesEvaluated < scalarStats.samplesPlaced) == skip);
+                                opt.simd = true;
+                                for (std::int64_t target : targets) {
+                                    hwy::SetSupportedTargetsForTest(target);
+                                    RenderStats stats;
+                                    const Image packets = render(scene, camera, opt, &stats);
+                                    INFO(hwy::TargetName(target), " ", voxelTypeName(type), " ",
+                                         gridConventionName(convention), " ", integratorName(integrator), " ",
+                                         placementName(placement), " skip ", skip, " points ", points);
+                                    CHECK(stats.simdTarget == hwy::TargetName(target));
+                                    CHECK(sameBits(packets, scalar));
+                                    CHECK(stats.samplesPlaced == scalarStats.samplesPlaced);
+                                    CHECK(stats.samplesEvaluated == scalarStats.samplesEvaluated);
+                                    CHECK(stats.raysHit == scalarStats.raysHit);
+                                    ++renders;
+                                }
+                                hwy::SetSupportedTargetsForTest(0);
+                            }
+                }
+    MESSAGE(renders, " packet renders on ", targets.size(), " targets");
+}
+
+TEST_CASE("the packet engine's image does not depend on the thread count, with early termination too") {
+    const Scene scene{testVolume(VoxelType::UInt8), std::nullopt, GridConvention::CellCentred,
+                      testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
+    const Camera camera = testCamera(53, 41);
+    RenderOptions opt;
+    opt.precision = Precision::Float;
+    opt.samplingRate = 4.0;
+    opt.tileSize = 7;
+    opt.earlyTermination = 0.3;
+    RenderStats one, two;
+    Image a, b;
+    {
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        a = render(scene, camera, opt, &one);
+    }
+    {
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+        b = render(scene, camera, opt, &two);
+    }
+    CHECK(!one.simdTarget.empty());
+    CHECK(sameBits(a, b));
+    CHECK(one.samplesPlaced == two.samplesPlaced);
+    opt.simd = false;
+    RenderStats scalarStats;
+    CHECK(sameBits(render(scene, camera, opt, &scalarStats), a));
+    CHECK(scalarStats.samplesPlaced == one.samplesPlaced);  // early termination stops both at the same sample
+}
+
+TEST_CASE("--simd leaves double precision, the Simpson methods and analytic fields on the scalar path") {
+    const Scene scene{testVolume(VoxelType::UInt8), std::nullopt, GridConvention::CellCentred,
+                      testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
+    const Camera camera = testCamera(9, 7);
+    RenderOptions opt;  // double
+    RenderStats stats;
+    render(scene, camera, opt, &stats);
+    CHECK(stats.simdTarget.empty());
+    opt.precision = Precision::Float;
+    opt.integrator = Integrator::Simpson;
+    render(scene, camera, opt, &stats);
+    CHECK(stats.simdTarget.empty());
+    opt.integrator = Integrator::Riemann;
+    const Scene analytic{nullptr, LinearField{}, GridConvention::NodeCentred, scene.transferFunction};
+    render(analytic, camera, opt, &stats);
+    CHECK(stats.simdTarget.empty());
+}
+
+TEST_CASE("parseSimd takes on and off") {
+    CHECK(parseSimd("on", "--simd"));
+    CHECK(!parseSimd("off", "--simd"));
+    CHECK_THROWS_WITH_AS(parseSimd("yes", "--simd"), "--simd: unknown value 'yes' (expected on or off)", Error);
+}
