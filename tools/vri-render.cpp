@@ -12,6 +12,7 @@
 #include "vri/cli.h"
 #include "vri/frame_timing.h"
 #include "vri/image_io.h"
+#include "vri/nonfinite_option.h"
 #include "vri/preview_options.h"
 #include "vri/provenance.h"
 #include "vri/render.h"
@@ -64,6 +65,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     bool listDevicesFlag = false;
     double rate = 0.0, step = 0.0, ert = 0.0;
     vri::PreviewOptions preview;
+    vri::NonFiniteOption nonfinite;
     bool noSkip = false, quiet = false;
     vri::FrameTiming timing;
     vri::AdaptiveParameters adaptive;
@@ -106,6 +108,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
     app.add_option("--png", pngPath, "8-bit preview PNG");
     preview.addTo(app);
     app.add_option("--stats", statsPath, "write statistics and provenance as JSON ('-' for stdout)");
+    nonfinite.addTo(app);
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
     // Before parsing: listing devices needs none of the options that a render requires.
     for (int i = 1; i < argc; ++i)
@@ -116,6 +119,8 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         std::optional<tbb::global_control> threadLimit;
         timing.limitThreads(threadLimit);
 
+        vri::requireExrOutput({"-o", output});
+        vri::requireDistinctOutputs({{"-o", output}, {"--png", pngPath}, {"--stats", statsPath}, {"--log", logPath}});
         const bool vulkan = vri::parseBackend(backend, "--backend") == vri::Backend::Vulkan;
         if (vulkan && !*precisionOpt) precision = "float";
         if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
@@ -158,6 +163,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
         });
         const vri::Image& image = frame.image;
         const vri::RenderStats& stats = frame.stats;
+        nonfinite.check(stats.nonfinite, "vri-render");
 
         nlohmann::json record = {{"tool", "vri-render"},
                                  {"command", vri::commandLine(argc, argv)},

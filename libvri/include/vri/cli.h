@@ -58,11 +58,28 @@ inline std::optional<int> parseArguments(CLI::App& app, std::string_view tool, i
     return std::nullopt;
 }
 
-// Runs body() and turns an escaping exception into the single line "<tool>: error: <what>".
+// The files a tool writes, each with the option that named it ("-o", "--png", ...).
+struct OutputArgument {
+    std::string option;
+    std::string path;  // empty: not asked for; "-": standard output
+};
+// Throws UsageError "<option>: '<path>' is not an .exr file (...)" unless the path ends in .exr
+// (any case): the float RGBA image is written as OpenEXR whatever the name says.
+void requireExrOutput(const OutputArgument& output);
+// Throws UsageError "<option>: '<path>' is also <other option>'s output" when two outputs name one
+// file, however spelled (./x, a/../x, a symbolic link or a hard link to it): the later write would
+// replace the earlier one.
+void requireDistinctOutputs(const std::vector<OutputArgument>& outputs);
+
+// Runs body() and turns an escaping exception into the single line "<tool>: error: <what>"
+// (exit kExitUsage for a UsageError, kExitError otherwise).
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
     try {
         return body();
+    } catch (const UsageError& e) {
+        std::cerr << tool << ": error: " << e.what() << '\n';
+        return kExitUsage;
     } catch (const Error& e) {
         std::cerr << tool << ": error: " << e.what() << '\n';
     } catch (const std::exception& e) {

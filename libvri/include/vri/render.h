@@ -14,6 +14,7 @@
 #include "vri/grid_convention.h"
 #include "vri/image.h"
 #include "vri/integrator.h"
+#include "vri/nonfinite_pixels.h"
 #include "vri/placement.h"
 #include "vri/transfer_function.h"
 #include "vri/volume.h"
@@ -66,6 +67,7 @@ struct RenderStats {
     std::string backend = "cpu";      // "cpu" or "vulkan" (vulkan_renderer.h)
     std::string device;               // the Vulkan device's name; empty on the CPU
     std::string interpolation;        // the Vulkan backend's: "shader" or "sampler"; empty on the CPU
+    NonFinitePixels nonfinite;        // the image's NaN and infinite pixels, found after the render
 };
 
 // Throws vri::Error on options render() cannot honour (see render()); shared with the Vulkan backend.
