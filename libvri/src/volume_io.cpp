@@ -40,35 +40,6 @@ void requireValidLayout(const fs::path& path, const RawLayout& layout) {
                         " " + exactNumber(s.y) + " " + exactNumber(s.z));
 }
 
-// What every reader's volume must hold, whatever its format says: finite float voxels (a NaN compares
-// false with everything and would reach the image through the transfer function), a normalisation
-// range with lo < hi (metadata of a .vdb included), and a box that a double can span.
-void requireUsableValues(const fs::path& path, const Volume& volume) {
-    if (volume.type == VoxelType::Float32) {
-        const float* v = volume.data<float>();
-        const std::size_t n = volume.voxelCount();
-        const auto isBad = [](float x) { return !std::isfinite(x); };
-        const std::size_t bad = static_cast<std::size_t>(std::find_if(v, v + n, isBad) - v);
-        if (bad < n) {
-            const auto dx = static_cast<std::size_t>(volume.dims.x), dy = static_cast<std::size_t>(volume.dims.y);
-            throw Error(path.string() + ": voxel " + std::to_string(bad) + " (x " + std::to_string(bad % dx) + ", y " +
-                        std::to_string(bad / dx % dy) + ", z " + std::to_string(bad / dx / dy) + ") is " +
-                        exactNumber(v[bad]) + ": float volumes must hold finite values");
-        }
-    }
-    if (volume.range && !(volume.range->lo < volume.range->hi && std::isfinite(volume.range->lo) &&
-                          std::isfinite(volume.range->hi)))
-        throw Error(path.string() + ": value range " + exactNumber(volume.range->lo) + " " +
-                    exactNumber(volume.range->hi) + ": expected finite lo < hi");
-    for (int axis = 0; axis < 3; ++axis) {
-        const double end = volume.origin[axis] + volume.spacing[axis] * volume.dims[axis];
-        if (!std::isfinite(end))
-            throw Error(path.string() + ": the box (origin " + exactNumber(volume.origin[axis]) + " + " +
-                        std::to_string(volume.dims[axis]) + " voxels x spacing " + exactNumber(volume.spacing[axis]) +
-                        " along " + "xyz"[axis] + ") is beyond the range of a double");
-    }
-}
-
 std::optional<glm::ivec3> parseDimsToken(std::string_view token) {
     glm::ivec3 dims;
     for (int axis = 0; axis < 3; ++axis) {
@@ -146,6 +117,35 @@ ValueRange parseValueRange(std::string_view text, const std::string& where) {
 }
 
 }  // namespace detail
+
+// What every reader's volume must hold, whatever its format says: finite float voxels (a NaN compares
+// false with everything and would reach the image through the transfer function), a normalisation
+// range with lo < hi (metadata of a .vdb included), and a box that a double can span.
+void requireUsableValues(const Volume& volume, const std::string& source) {
+    if (volume.type == VoxelType::Float32) {
+        const float* v = volume.data<float>();
+        const std::size_t n = volume.voxelCount();
+        const auto isBad = [](float x) { return !std::isfinite(x); };
+        const std::size_t bad = static_cast<std::size_t>(std::find_if(v, v + n, isBad) - v);
+        if (bad < n) {
+            const auto dx = static_cast<std::size_t>(volume.dims.x), dy = static_cast<std::size_t>(volume.dims.y);
+            throw Error(source + ": voxel " + std::to_string(bad) + " (x " + std::to_string(bad % dx) + ", y " +
+                        std::to_string(bad / dx % dy) + ", z " + std::to_string(bad / dx / dy) + ") is " +
+                        exactNumber(v[bad]) + ": float volumes must hold finite values");
+        }
+    }
+    if (volume.range && !(volume.range->lo < volume.range->hi && std::isfinite(volume.range->lo) &&
+                          std::isfinite(volume.range->hi)))
+        throw Error(source + ": value range " + exactNumber(volume.range->lo) + " " +
+                    exactNumber(volume.range->hi) + ": expected finite lo < hi");
+    for (int axis = 0; axis < 3; ++axis) {
+        const double end = volume.origin[axis] + volume.spacing[axis] * volume.dims[axis];
+        if (!std::isfinite(end))
+            throw Error(source + ": the box (origin " + exactNumber(volume.origin[axis]) + " + " +
+                        std::to_string(volume.dims[axis]) + " voxels x spacing " + exactNumber(volume.spacing[axis]) +
+                        " along " + "xyz"[axis] + ") is beyond the range of a double");
+    }
+}
 
 Volume readRaw(const fs::path& path, const RawLayout& layout) {
     detail::requireRegularFile(path);
@@ -232,7 +232,7 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
                     "--type uint8|uint16|float32) or name it NAME_XxYxZ_TYPE.raw");
     };
     Volume volume = read();
-    requireUsableValues(path, volume);
+    requireUsableValues(volume, path.string());
     return volume;
 }
 

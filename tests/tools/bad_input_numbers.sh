@@ -68,6 +68,9 @@ dat far.dat "Offset: 1e308 0 0" "BasisVector1: 1e308 0 0" "BasisVector2: 0 8 0" 
 bad 1 "far\.dat: the box \(origin 1e\+308 \+ 8 voxels x spacing .* along x\) is beyond the range of a double" -- \
   "$VRI_BIN/vri-convert" --info far.dat
 
+bad 1 "^vri-render: error: --spacing 1,1e308,1: the box \(origin 0 \+ 8 voxels x spacing 1e\+308 along y\) is beyond" -- \
+  "$VRI_BIN/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 16x12 -q -o s.exr --spacing 1,1e308,1
+
 # .nhdr spacings: beyond double once multiplied out, zero, negative, not a number.
 nhdr() {  # nhdr NAME LINE: a detached header for the blob with one extra line (line 8)
   printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 8 8 8\nencoding: raw\ndata file: blob_8x8x8_uint8.raw\n# x\n%s\n' \
