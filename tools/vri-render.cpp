@@ -188,7 +188,10 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         const auto [frame, wallSeconds] = timing.run([&] {
             if (exact) {
                 const vri::ExactReference ref = vri::renderExactReference(scene, camera, exactOptions);
-                return Frame{ref.image(), {}, ref.stats, ref.stats.seconds};
+                vri::Image image = ref.image();
+                vri::RenderStats s;  // only the non-finite count: the exact method has stats of its own
+                s.nonfinite = vri::findNonFinitePixels(image);
+                return Frame{std::move(image), s, ref.stats, ref.stats.seconds};
             }
             vri::RenderStats s;
             vri::Image image = gpu ? gpu->render(scene, camera, options, &s) : vri::render(scene, camera, options, &s);
@@ -209,6 +212,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
                                  {"camera", vri::toJson(cam)},
                                  {"options", exact ? vri::toJson(exactOptions) : vri::toJson(options)},
                                  {"stats", exact ? vri::toJson(*frame.exactStats) : vri::toJson(stats)}};
+        if (exact) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
         record["timing"] = timing.toJson(wallSeconds);
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},
