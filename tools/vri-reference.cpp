@@ -14,6 +14,7 @@
 #include "vri/exact_reference.h"
 #include "vri/exact_reference_json.h"
 #include "vri/image_io.h"
+#include "vri/nonfinite_option.h"
 #include "vri/preview_options.h"
 #include "vri/provenance.h"
 #include "vri/render.h"
@@ -26,6 +27,7 @@ namespace {
 struct Result {
     vri::Image image;
     std::optional<vri::Image> bounds;  // the exact method's per-pixel error bounds
+    vri::NonFinitePixels nonfinite;
     nlohmann::json stats;
     double seconds;
 };
@@ -55,6 +57,7 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
     vri::FrameTiming timing;
     bool quiet = false;
     vri::PreviewOptions preview;
+    vri::NonFiniteOption nonfinite;
     sceneOptions.addTo(app);
     app.add_option("--method", method, "exact (piecewise cubic, with an error bound) or riemann (paper B's reference)")
         ->capture_default_str();
@@ -68,12 +71,17 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
     preview.addTo(app);
     app.add_option("--error-image", errorPath, "exact: per-pixel error bounds as float RGBA OpenEXR");
     app.add_option("--stats", statsPath, "write statistics and provenance as JSON ('-' for stdout)");
+    nonfinite.addTo(app);
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
     if (auto exitCode = vri::parseArguments(app, "vri-reference", argc, argv)) return *exitCode;
 
     return vri::guardedMain("vri-reference", [&] {
         std::optional<tbb::global_control> threadLimit;
         timing.limitThreads(threadLimit);
+        vri::requireExrOutput({"-o", output});
+        if (!errorPath.empty()) vri::requireExrOutput({"--error-image", errorPath});
+        vri::requireDistinctOutputs(
+            {{"-o", output}, {"--png", pngPath}, {"--error-image", errorPath}, {"--stats", statsPath}});
         if (method != "exact" && method != "riemann")
             throw vri::Error("--method: unknown method '" + method + "' (expected exact or riemann)");
         const bool exact = method == "exact";
@@ -100,13 +108,18 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
         auto compute = [&]() -> Result {
             if (exact) {
                 const vri::ExactReference ref = vri::renderExactReference(setup.scene, camera, exactOptions);
-                return {ref.image(), ref.boundImage(), vri::toJson(ref.stats), ref.stats.seconds};
+                vri::Image image = ref.image();
+                const vri::NonFinitePixels found = vri::findNonFinitePixels(image);
+                nlohmann::json stats = vri::toJson(ref.stats);
+                stats["nonfinite_pixels"] = found.count;
+                return {std::move(image), ref.boundImage(), found, std::move(stats), ref.stats.seconds};
             }
             vri::RenderStats stats;
             vri::Image image = vri::render(setup.scene, camera, riemannOptions, &stats);
-            return {std::move(image), std::nullopt, vri::toJson(stats), stats.seconds};
+            return {std::move(image), std::nullopt, stats.nonfinite, vri::toJson(stats), stats.seconds};
         };
         const auto [result, wallSeconds] = timing.run(compute);
+        nonfinite.check(result.nonfinite, "vri-reference");
 
         nlohmann::json record = {{"tool", "vri-reference"},
                                  {"command", vri::commandLine(argc, argv)},

@@ -14,6 +14,7 @@
 #include "vri/exact_reference_json.h"
 #include "vri/frame_timing.h"
 #include "vri/image_io.h"
+#include "vri/nonfinite_option.h"
 #include "vri/preview_options.h"
 #include "vri/provenance.h"
 #include "vri/render.h"
@@ -75,6 +76,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
     bool listDevicesFlag = false;
     double rate = 0.0, step = 0.0, ert = 0.0;
     vri::PreviewOptions preview;
+    vri::NonFiniteOption nonfinite;
     bool noSkip = false, quiet = false;
     vri::FrameTiming timing;
     vri::AdaptiveParameters adaptive;
@@ -122,6 +124,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
     app.add_option("--png", pngPath, "8-bit preview PNG");
     preview.addTo(app);
     app.add_option("--stats", statsPath, "write statistics and provenance as JSON ('-' for stdout)");
+    nonfinite.addTo(app);
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
     // Before parsing: listing devices needs none of the options that a render requires.
     for (int i = 1; i < argc; ++i)
@@ -132,6 +135,8 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         std::optional<tbb::global_control> threadLimit;
         timing.limitThreads(threadLimit);
 
+        vri::requireExrOutput({"-o", output});
+        vri::requireDistinctOutputs({{"-o", output}, {"--png", pngPath}, {"--stats", statsPath}, {"--log", logPath}});
         const bool vulkan = vri::parseBackend(backend, "--backend") == vri::Backend::Vulkan;
         if (vulkan && !*precisionOpt) precision = "float";
         if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
@@ -188,7 +193,10 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         const auto [frame, wallSeconds] = timing.run([&] {
             if (exact) {
                 const vri::ExactReference ref = vri::renderExactReference(scene, camera, exactOptions);
-                return Frame{ref.image(), {}, ref.stats, ref.stats.seconds};
+                vri::Image image = ref.image();
+                vri::RenderStats s;  // only the non-finite count: the exact method has stats of its own
+                s.nonfinite = vri::findNonFinitePixels(image);
+                return Frame{std::move(image), s, ref.stats, ref.stats.seconds};
             }
             vri::RenderStats s;
             vri::Image image = gpu ? gpu->render(scene, camera, options, &s) : vri::render(scene, camera, options, &s);
@@ -196,6 +204,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         });
         const vri::Image& image = frame.image;
         const vri::RenderStats& stats = frame.stats;
+        nonfinite.check(stats.nonfinite, "vri-render");
 
         nlohmann::json record = {{"tool", "vri-render"},
                                  {"command", vri::commandLine(argc, argv)},
@@ -208,6 +217,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
                                  {"camera", vri::toJson(cam)},
                                  {"options", exact ? vri::toJson(exactOptions) : vri::toJson(options)},
                                  {"stats", exact ? vri::toJson(*frame.exactStats) : vri::toJson(stats)}};
+        if (exact) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
         record["timing"] = timing.toJson(wallSeconds);
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},

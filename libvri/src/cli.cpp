@@ -1,5 +1,7 @@
 #include "vri/cli.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -41,6 +43,24 @@ glm::vec<N, double> finiteVector(const std::string& text, const std::string& mes
     for (int i = 0; ok && i < N; ++i) ok = parseNumber(parts[i], v[i]) && std::isfinite(v[i]);
     if (!ok) throw Error(message);
     return v;
+}
+
+namespace fs = std::filesystem;
+
+// The file a path names: absolute, '.' and '..' resolved, and every symbolic link in the part that
+// exists followed, so that two spellings of one file compare equal.
+fs::path fileIdentity(const std::string& path) {
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(path, ec);
+    if (ec) return fs::path(path).lexically_normal();
+    const fs::path resolved = fs::weakly_canonical(absolute, ec);
+    return ec ? absolute.lexically_normal() : resolved;
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+    if (fileIdentity(a) == fileIdentity(b)) return true;
+    std::error_code ec;  // hard links: two names, one inode (false, not an error, when one is missing)
+    return fs::equivalent(a, b, ec) && !ec;
 }
 
 }  // namespace
@@ -143,6 +163,27 @@ std::vector<int> parseIndexList(const std::string& text, const std::string& what
         values.push_back(v);
     }
     return values;
+}
+
+void requireExrOutput(const OutputArgument& output) {
+    std::string extension = fs::path(output.path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension != ".exr")
+        throw UsageError(output.option + ": '" + output.path +
+                         "' is not an .exr file (the image is float RGBA OpenEXR; --png writes an 8-bit preview)");
+}
+
+void requireDistinctOutputs(const std::vector<OutputArgument>& outputs) {
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        if (outputs[i].path.empty() || outputs[i].path == "-") continue;
+        for (std::size_t j = 0; j < i; ++j) {
+            if (outputs[j].path.empty() || outputs[j].path == "-") continue;
+            if (sameFile(outputs[i].path, outputs[j].path))
+                throw UsageError(outputs[i].option + ": '" + outputs[i].path + "' is also " + outputs[j].option +
+                                 "'s output");
+        }
+    }
 }
 
 }  // namespace vri

@@ -81,10 +81,7 @@ Volume readInviwoDat(const fs::path& path) {
         else throw Error(where(*byteOrder) + ": expected LittleEndian or BigEndian, got '" + byteOrder->value + "'");
     }
     if (const DatEntry* offset = find("byteoffset")) {
-        const double bytes = parseNumbers(offset->value, 1, where(*offset))[0];
-        if (bytes < 0 || bytes != std::floor(bytes))
-            throw Error(where(*offset) + ": expected a byte count, got '" + offset->value + "'");
-        layout.headerBytes = static_cast<std::size_t>(bytes);
+        layout.headerBytes = parseByteCount(offset->value, where(*offset));
     }
 
     // Inviwo spans the whole volume with its basis; the distance between samples is the basis
@@ -116,8 +113,7 @@ Volume readInviwoDat(const fs::path& path) {
     }
 
     if (const DatEntry* range = find("datarange")) {
-        const std::vector<double> r = parseNumbers(range->value, 2, where(*range));
-        volume.range = ValueRange{r[0], r[1]};
+        volume.range = parseValueRange(range->value, where(*range));
     }
     if (const DatEntry* offset = find("offset")) {
         const std::vector<double> o = parseNumbers(offset->value, 3, where(*offset));

@@ -71,6 +71,15 @@ std::vector<double> parseVectors(const std::string& text, std::size_t count, con
     return parseNumbers(numbers, count, where);
 }
 
+// Each spacing positive and the box it spans, sizes x spacing, finite (1e308 x 8 voxels is not).
+void requireSpanningSpacing(const RawLayout& layout, const std::string& where) {
+    for (int axis = 0; axis < 3; ++axis)
+        if (!(layout.spacing[axis] > 0.0) || !std::isfinite(layout.spacing[axis] * layout.dims[axis]))
+            throw Error(where + ": spacing " + exactNumber(layout.spacing[axis]) + " along " + "xyz"[axis] +
+                        " must be positive, and times " + std::to_string(layout.dims[axis]) +
+                        " voxels within the range of a double");
+}
+
 }  // namespace
 
 Volume readNrrd(const fs::path& path) {
@@ -130,20 +139,19 @@ Volume readNrrd(const fs::path& path) {
                                 ": only axis-aligned grids with positive directions are supported, got '" +
                                 *directions + "'");
         layout.spacing = {m[0], m[4], m[8]};
+        requireSpanningSpacing(layout, where("space directions"));
     } else if (const std::string* spacings = optionalField("spacings")) {
         const std::vector<double> s = parseNumbers(*spacings, 3, where("spacings"));
         layout.spacing = {s[0], s[1], s[2]};
+        requireSpanningSpacing(layout, where("spacings"));
     }
 
     if (const std::string* lineSkip = optionalField("line skip"); lineSkip && *lineSkip != "0")
         throw Error(where("line skip") + ": skipping lines is not supported");
-    long long byteSkip = 0;
-    if (const std::string* skip = optionalField("byte skip")) {
-        const double value = parseNumbers(*skip, 1, where("byte skip"))[0];
-        if (value < -1 || value != static_cast<long long>(value))
-            throw Error(where("byte skip") + ": expected -1 or a byte count, got '" + *skip + "'");
-        byteSkip = static_cast<long long>(value);
-    }
+    // -1: the data are the file's last bytes; otherwise a byte count.
+    std::optional<std::uintmax_t> byteSkip = 0;
+    if (const std::string* skip = optionalField("byte skip"))
+        byteSkip = trim(*skip) == "-1" ? std::nullopt : std::optional(parseByteCount(*skip, where("byte skip")));
 
     const std::string* dataFile = optionalField("data file");
     if (!dataFile) dataFile = optionalField("datafile");
@@ -161,7 +169,7 @@ Volume readNrrd(const fs::path& path) {
     Volume volume;
     try {
         requireRegularFile(dataPath);
-        if (byteSkip == -1) {  // the data are the last bytes of the file
+        if (!byteSkip) {  // the data are the last bytes of the file
             // Saturating: dims too large for the file leave no header, and readRaw names both sizes.
             const std::uintmax_t voxelBytes =
                 checkedProduct({std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y),
@@ -169,7 +177,10 @@ Volume readNrrd(const fs::path& path) {
                     .value_or(std::numeric_limits<std::uint64_t>::max());
             layout.headerBytes = fs::file_size(dataPath) - std::min(fs::file_size(dataPath), voxelBytes);
         } else {
-            layout.headerBytes = (dataFile ? 0 : *header.dataOffset) + static_cast<std::uintmax_t>(byteSkip);
+            const std::uintmax_t headerEnd = dataFile ? 0 : *header.dataOffset;
+            if (*byteSkip > std::numeric_limits<std::uintmax_t>::max() - headerEnd)
+                throw Error(where("byte skip") + ": " + std::to_string(*byteSkip) + " bytes is too large");
+            layout.headerBytes = headerEnd + *byteSkip;
         }
         volume = readRaw(dataPath, layout);
     } catch (const Error& e) {
@@ -183,10 +194,8 @@ Volume readNrrd(const fs::path& path) {
         volume.origin = {o[0], o[1], o[2]};
     }
     if (const auto range = header.keyValues.find("vri_range"); range != header.keyValues.end()) {
-        const std::vector<double> r = parseNumbers(range->second.value, 2,
-                                                   path.string() + ":" + std::to_string(range->second.line) +
-                                                       ": vri_range");
-        volume.range = ValueRange{r[0], r[1]};
+        volume.range = parseValueRange(range->second.value,
+                                       path.string() + ":" + std::to_string(range->second.line) + ": vri_range");
     }
     return volume;
 }

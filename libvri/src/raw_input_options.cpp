@@ -42,6 +42,7 @@ Volume RawInputOptions::read(const std::string& input) const {
         volume.spacing = parseVec3(spacing_, "--spacing");
         if (!(volume.spacing.x > 0 && volume.spacing.y > 0 && volume.spacing.z > 0))
             throw Error("--spacing: expected positive numbers, got '" + spacing_ + "'");
+        requireUsableValues(volume, "--spacing " + spacing_);
     }
     return volume;
 }

@@ -265,6 +265,21 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
         throw Error("the logged pixel " + std::to_string(options.logPixel->x) + "," +
                     std::to_string(options.logPixel->y) + " is outside the " + std::to_string(camera.width()) + "x" +
                     std::to_string(camera.height()) + " image");
+    // A float render converts the transfer function to float: a value beyond float's range becomes
+    // infinity, and every sample of the segments next to it Inf or NaN (Inf * 0). Nothing the ray
+    // does can save it, so it is refused here; overflows that depend on the ray are found after the
+    // render (nonfinite_pixels.h).
+    if (options.precision == Precision::Float) {
+        const auto& points = scene.transferFunction.points();
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const TransferFunctionPoint& p = points[i];
+            const double largest = std::max({p.r, p.g, p.b, p.tau});
+            if (largest > std::numeric_limits<float>::max())
+                throw Error("transfer function point " + std::to_string(i) + " holds " + exactNumber(largest) +
+                            ", beyond the range of float (" + exactNumber(std::numeric_limits<float>::max()) +
+                            "), the precision of this render: use double precision");
+        }
+    }
     if (scene.convention == GridConvention::NodeCentred && glm::any(glm::lessThan(dims, glm::dvec3(2.0))))
         throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
 }
@@ -289,6 +304,7 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     local.threads = static_cast<int>(std::min<std::size_t>(
         tbb::this_task_arena::max_concurrency(),
         tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+    local.nonfinite = findNonFinitePixels(image);
     if (stats) *stats = local;
     return image;
 }

@@ -46,6 +46,8 @@ nlohmann::json toJson(const RenderStats& s) {
     if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;
     if (s.backend == "cpu") j["simd_target"] = s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget);
     if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
+    j["nonfinite_pixels"] = s.nonfinite.count;
+    if (s.nonfinite.count > 0) j["first_nonfinite_pixel"] = {s.nonfinite.firstX, s.nonfinite.firstY};
     return j;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Private to the volume readers/writers: the per-format entry points that readVolume and
 // writeVolume dispatch to, and the small text helpers the header formats share.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -25,5 +26,11 @@ std::string_view trim(std::string_view text);
 std::string toLower(std::string_view text);
 // Exactly `count` whitespace-separated numbers; throws Error("<where>: ...") otherwise.
 std::vector<double> parseNumbers(std::string_view text, std::size_t count, const std::string& where);
+// A whole number of bytes, read as an integer (never through a double: "1e30" is an error, not an
+// overflowing cast); throws Error("<where>: ...") otherwise.
+std::uintmax_t parseByteCount(std::string_view text, const std::string& where);
+// "lo hi" with lo < hi: an empty or inverted range would map every value to one end of the transfer
+// function (or divide by zero); throws Error("<where>: ...") otherwise.
+ValueRange parseValueRange(std::string_view text, const std::string& where);
 
 }  // namespace vri::detail

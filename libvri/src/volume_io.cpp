@@ -99,7 +99,54 @@ std::vector<double> parseNumbers(std::string_view text, std::size_t count, const
     return numbers;
 }
 
+std::uintmax_t parseByteCount(std::string_view text, const std::string& where) {
+    text = trim(text);
+    std::uintmax_t bytes = 0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), bytes);
+    if (ec == std::errc::result_out_of_range) throw Error(where + ": " + std::string(text) + " bytes is too large");
+    if (text.empty() || ec != std::errc{} || ptr != text.data() + text.size())
+        throw Error(where + ": expected a byte count (a whole number, 0 or more), got '" + std::string(text) + "'");
+    return bytes;
+}
+
+ValueRange parseValueRange(std::string_view text, const std::string& where) {
+    const std::vector<double> r = parseNumbers(text, 2, where);
+    if (!(r[0] < r[1]))
+        throw Error(where + ": expected lo < hi, got '" + std::string(trim(text)) +
+                    "' (an empty or inverted range maps every value to one end)");
+    return {r[0], r[1]};
+}
+
 }  // namespace detail
+
+// What every reader's volume must hold, whatever its format says: finite float voxels (a NaN compares
+// false with everything and would reach the image through the transfer function), a normalisation
+// range with lo < hi (metadata of a .vdb included), and a box that a double can span.
+void requireUsableValues(const Volume& volume, const std::string& source) {
+    if (volume.type == VoxelType::Float32) {
+        const float* v = volume.data<float>();
+        const std::size_t n = volume.voxelCount();
+        const auto isBad = [](float x) { return !std::isfinite(x); };
+        const std::size_t bad = static_cast<std::size_t>(std::find_if(v, v + n, isBad) - v);
+        if (bad < n) {
+            const auto dx = static_cast<std::size_t>(volume.dims.x), dy = static_cast<std::size_t>(volume.dims.y);
+            throw Error(source + ": voxel " + std::to_string(bad) + " (x " + std::to_string(bad % dx) + ", y " +
+                        std::to_string(bad / dx % dy) + ", z " + std::to_string(bad / dx / dy) + ") is " +
+                        exactNumber(v[bad]) + ": float volumes must hold finite values");
+        }
+    }
+    if (volume.range && !(volume.range->lo < volume.range->hi && std::isfinite(volume.range->lo) &&
+                          std::isfinite(volume.range->hi)))
+        throw Error(source + ": value range " + exactNumber(volume.range->lo) + " " +
+                    exactNumber(volume.range->hi) + ": expected finite lo < hi");
+    for (int axis = 0; axis < 3; ++axis) {
+        const double end = volume.origin[axis] + volume.spacing[axis] * volume.dims[axis];
+        if (!std::isfinite(end))
+            throw Error(source + ": the box (origin " + exactNumber(volume.origin[axis]) + " + " +
+                        std::to_string(volume.dims[axis]) + " voxels x spacing " + exactNumber(volume.spacing[axis]) +
+                        " along " + "xyz"[axis] + ") is beyond the range of a double");
+    }
+}
 
 Volume readRaw(const fs::path& path, const RawLayout& layout) {
     detail::requireRegularFile(path);
@@ -174,13 +221,18 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
     if (describesItself && rawLayout)
         throw Error(path.string() + ": dims and voxel type are for raw files; a " + extension +
                     " file describes its own layout");
-    if (extension == ".nhdr" || extension == ".nrrd") return detail::readNrrd(path);
-    if (extension == ".dat") return detail::readInviwoDat(path);
-    if (extension == ".vdb") return readVdb(path);
-    if (rawLayout) return readRaw(path, *rawLayout);
-    if (const auto named = layoutFromFileName(path)) return readRaw(path, *named);
-    throw Error(path.string() + ": raw file of unknown layout: give its dims and voxel type (--dims X,Y,Z "
-                "--type uint8|uint16|float32) or name it NAME_XxYxZ_TYPE.raw");
+    const auto read = [&] {
+        if (extension == ".nhdr" || extension == ".nrrd") return detail::readNrrd(path);
+        if (extension == ".dat") return detail::readInviwoDat(path);
+        if (extension == ".vdb") return readVdb(path);
+        if (rawLayout) return readRaw(path, *rawLayout);
+        if (const auto named = layoutFromFileName(path)) return readRaw(path, *named);
+        throw Error(path.string() + ": raw file of unknown layout: give its dims and voxel type (--dims X,Y,Z "
+                    "--type uint8|uint16|float32) or name it NAME_XxYxZ_TYPE.raw");
+    };
+    Volume volume = read();
+    requireUsableValues(volume, path.string());
+    return volume;
 }
 
 void writeVolume(const fs::path& path, const Volume& volume) {

@@ -351,6 +351,7 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     local.backend = "vulkan";
     local.device = m.context.info().name;
     local.interpolation = interpolationName(m.interpolation);
+    local.nonfinite = findNonFinitePixels(image);
     if (stats) *stats = local;
     return image;
 }

@@ -1,9 +1,68 @@
 #include "yaml_util.h"
 
 #include <fstream>
+#include <map>
+#include <optional>
 #include <sstream>
+#include <vector>
+
+#include <yaml-cpp/eventhandler.h>
 
 namespace vri::yaml {
+
+namespace {
+
+// yaml-cpp 0.7 keeps both entries of a mapping that names a key twice, and a lookup silently takes
+// one of them. The parser's event stream shows every key once, in order, with its position: a
+// single pass over it finds the repeats. Aliases are events too, never expanded, so a document
+// whose anchors nest costs no more than its text.
+class DuplicateKeyFinder : public YAML::EventHandler {
+public:
+    explicit DuplicateKeyFinder(const std::string& source) : source_(source) {}
+
+    void OnDocumentStart(const YAML::Mark&) override {}
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, "~"); }
+    void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, std::nullopt); }
+    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string& value) override {
+        node(mark, value);
+    }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+        node(mark, std::nullopt);
+        open_.push_back({});
+    }
+    void OnSequenceEnd() override { open_.pop_back(); }
+    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+        node(mark, std::nullopt);
+        open_.push_back({true, true, {}});
+    }
+    void OnMapEnd() override { open_.pop_back(); }
+
+private:
+    struct Collection {
+        bool mapping = false;
+        bool nextIsKey = true;            // mappings alternate key, value
+        std::map<std::string, int> keys;  // scalar key -> its line (1-based)
+    };
+
+    // A node starts at `mark`; `scalar` is its text when it is a scalar (a key that can repeat).
+    void node(const YAML::Mark& mark, const std::optional<std::string>& scalar) {
+        if (open_.empty() || !open_.back().mapping) return;
+        Collection& map = open_.back();
+        const bool isKey = map.nextIsKey;
+        map.nextIsKey = !map.nextIsKey;
+        if (!isKey || !scalar) return;
+        const auto [it, inserted] = map.keys.emplace(*scalar, mark.line + 1);
+        if (!inserted)
+            throw Error(source_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1) +
+                        ": duplicate key '" + *scalar + "' (first at line " + std::to_string(it->second) + ")");
+    }
+
+    const std::string& source_;
+    std::vector<Collection> open_;
+};
+
+}  // namespace
 
 std::string where(const std::string& source, const YAML::Node& node) {
     const YAML::Mark m = node.Mark();
@@ -13,6 +72,11 @@ std::string where(const std::string& source, const YAML::Node& node) {
 
 YAML::Node parse(const std::string& text, const std::string& source) {
     try {
+        std::istringstream events(text);
+        YAML::Parser parser(events);
+        DuplicateKeyFinder duplicates(source);
+        while (parser.HandleNextDocument(duplicates)) {
+        }
         return YAML::Load(text);
     } catch (const YAML::Exception& e) {
         throw Error(source + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +

@@ -14,7 +14,8 @@ namespace vri::yaml {
 // "source:line:column" of a node (1-based), or just "source" when the node has no position.
 std::string where(const std::string& source, const YAML::Node& node);
 
-// Parses text; a syntax error becomes vri::Error "source:line:column: malformed YAML: ...".
+// Parses text; a syntax error becomes vri::Error "source:line:column: malformed YAML: ...", a key
+// repeated in one mapping "source:line:column: duplicate key 'k' (first at line N)".
 YAML::Node parse(const std::string& text, const std::string& source);
 YAML::Node load(const std::filesystem::path& path);
 

@@ -75,6 +75,14 @@ TEST_CASE("experiment: an unknown key is named with its line and column") {
     CHECK(d.error(method).starts_with("exp.yaml:6:22: unknown key 'stpe'"));
 }
 
+TEST_CASE("experiment: a key given twice is named with both lines") {
+    ExperimentDir d;
+    CHECK(d.error(kTwoScenes + "methods:\n  composite: {rate: 1}\n")
+              .starts_with("exp.yaml:14:1: duplicate key 'methods' (first at line 7)"));
+    CHECK(d.error(kHead + "scenes:\n  s: {field: linear, convention: node, tf: a.yaml}\n  s: {field: linear}\n")
+              .starts_with("exp.yaml:6:3: duplicate key 's' (first at line 5)"));
+}
+
 TEST_CASE("experiment: a wrong type or a bad value is named with its line and column") {
     ExperimentDir d;
     const std::string scene = "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\n";

@@ -94,3 +94,18 @@ TEST_CASE("transfer function YAML: both point forms, and errors with line and co
                          doctest::Contains("k.yaml:1:1: unknown key 'pionts'"), Error);
     CHECK_THROWS_WITH_AS(loadTransferFunction("/nonexistent/tf.yaml"), doctest::Contains("no such file"), Error);
 }
+
+TEST_CASE("transfer function YAML: a key given twice is an error naming both lines") {
+    // yaml-cpp keeps both entries and a lookup takes one silently; the points below would be lost.
+    CHECK_THROWS_WITH_AS(parseTransferFunction("points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 1, 1, 1]\n"
+                                               "emission: color\npoints:\n  - [0, 1, 1, 1, 9]\n",
+                                               "d.yaml"),
+                         doctest::Contains("d.yaml:5:1: duplicate key 'points' (first at line 1)"), Error);
+    // In a nested mapping (the braces form of a point) and in a flow mapping on one line.
+    CHECK_THROWS_WITH_AS(parseTransferFunction("points:\n  - {s: 0, color: [0, 0, 0], tau: 0, tau: 2}\n", "n.yaml"),
+                         doctest::Contains("n.yaml:2:38: duplicate key 'tau' (first at line 2)"), Error);
+    // Equal keys in different mappings, or an equal value next to a key, are not duplicates.
+    CHECK_NOTHROW(parseTransferFunction("points:\n  - {s: 0, color: [0, 0, 0], tau: 0}\n"
+                                        "  - {s: 1, color: [1, 1, 1], tau: 1}\nemission: color\n",
+                                        "ok.yaml"));
+}

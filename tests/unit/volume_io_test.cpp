@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "vri/error.h"
+#include "vri/format.h"
 #include "vri/volume_io.h"
 
 namespace fs = std::filesystem;
@@ -47,7 +48,7 @@ std::string readBytes(const fs::path& path) {
 }
 
 // Values that exercise each type: zeros (most of them, as in real scans), the extremes, and
-// for float negative, fractional, -0.0 and NaN values.
+// for float negative, fractional, -0.0, the extremes and a denormal (NaN is refused at load).
 vri::Volume testVolume(glm::ivec3 dims, vri::VoxelType type) {
     vri::Volume volume(dims, type);
     vri::dispatchVoxelType(type, [&](auto t) {
@@ -62,7 +63,7 @@ vri::Volume testVolume(glm::ivec3 dims, vri::VoxelType type) {
         }
         if constexpr (std::is_same_v<T, float>) {
             values[1] = -0.0f;
-            values[2] = std::numeric_limits<float>::quiet_NaN();
+            values[2] = std::numeric_limits<float>::lowest();
             values[4] = std::numeric_limits<float>::max();
             values[5] = std::numeric_limits<float>::denorm_min();
         } else {
@@ -426,6 +427,63 @@ TEST_CASE("volume io: bad .dat files name the file and the key") {
     writeBytes(dir / "wrongsize.dat", "Rawfile: small.raw\nResolution: 3 4 6\nFormat: UINT16\n");
     checkMentions(errorOf([&] { vri::readVolume(dir / "wrongsize.dat"); }),
                   {(dir / "wrongsize.dat").string() + ":", "small.raw", "120 bytes", "expected 144"});
+}
+
+TEST_CASE("volume io: a float volume holding NaN or infinity is refused in every format, naming the voxel") {
+    TempDir dir;
+    for (const float bad : {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::infinity()}) {
+        vri::Volume volume({3, 2, 2}, vri::VoxelType::Float32);
+        volume.data<float>()[1] = 5.0f;
+        volume.data<float>()[10] = bad;  // x 1, y 1, z 1
+        for (const std::string name : {"v_3x2x2_float32.raw", "v.nhdr", "v.dat", "v.vdb"}) {
+            CAPTURE(name);
+            vri::writeVolume(dir / name, volume);
+            checkMentions(errorOf([&] { vri::readVolume(dir / name); }),
+                          {(dir / name).string() + ": voxel 10 (x 1, y 1, z 1) is " + vri::exactNumber(bad),
+                           "finite values"});
+        }
+    }
+}
+
+TEST_CASE("volume io: ranges, spacings, byte offsets and boxes out of range are refused with file and line") {
+    TempDir dir;
+    writeSmallBoron(dir);
+    const auto datFile = [&](const std::string& extra) {
+        writeBytes(dir / "x.dat", "Rawfile: small.raw\nResolution: 3 4 5\nFormat: UINT16\n" + extra);
+        return dir / "x.dat";
+    };
+    const auto dat = [&](const std::string& extra) { return errorOf([&] { vri::readVolume(datFile(extra)); }); };
+    const std::string x = (dir / "x.dat").string();
+    checkMentions(dat("DataRange: 5 5\n"), {x + ":4: DataRange: expected lo < hi, got '5 5'"});
+    checkMentions(dat("DataRange: 255 0\n"), {x + ":4: DataRange: expected lo < hi, got '255 0'"});
+    checkMentions(dat("DataRange: 0 inf\n"), {x + ":4: DataRange", "not a finite number"});
+    checkMentions(dat("ByteOffset: 1e30\n"), {x + ":4: ByteOffset: expected a byte count", "'1e30'"});
+    checkMentions(dat("ByteOffset: -2\n"), {x + ":4: ByteOffset: expected a byte count"});
+    checkMentions(dat("ByteOffset: 99999999999999999999999\n"), {x + ":4: ByteOffset", "is too large"});
+    checkMentions(dat("ByteOffset: 18446744073709551615\n"), {x + ":", "header of", "too large"});
+    checkMentions(dat("Offset: 1e308 0 0\nBasisVector1: 1e308 0 0\nBasisVector2: 0 1 0\nBasisVector3: 0 0 1\n"),
+                  {x + ": the box", "along x", "beyond the range of a double"});
+    CHECK(vri::readVolume(datFile("DataRange: 0 1000\nByteOffset: 0\n")).range == vri::ValueRange{0, 1000});
+
+    writeBytes(dir / "v.raw", std::string(8, '\1'));
+    const auto nhdrFile = [&](const std::string& extra) {
+        writeBytes(dir / "v.nhdr", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n"
+                                   "data file: v.raw\n" + extra);
+        return dir / "v.nhdr";
+    };
+    const auto nhdr = [&](const std::string& extra) { return errorOf([&] { vri::readVolume(nhdrFile(extra)); }); };
+    const std::string v = (dir / "v.nhdr").string();
+    checkMentions(nhdr("spacings: 1 1e308 1\n"), {v + ":7: spacings: spacing 1e+308 along y", "times 2 voxels"});
+    checkMentions(nhdr("spacings: 1 0 1\n"), {v + ":7: spacings: spacing 0 along y must be positive"});
+    checkMentions(nhdr("spacings: -1 1 1\n"), {v + ":7: spacings: spacing -1 along x"});
+    checkMentions(nhdr("spacings: 1 nan 1\n"), {v + ":7: spacings", "not a finite number"});
+    checkMentions(nhdr("space directions: (1e308,0,0) (0,1,0) (0,0,1)\n"),
+                  {v + ":7: space directions: spacing 1e+308 along x"});
+    checkMentions(nhdr("vri_range:=3 3\n"), {v + ":7: vri_range: expected lo < hi"});
+    checkMentions(nhdr("byte skip: 1e3\n"), {v + ":7: byte skip: expected a byte count", "'1e3'"});
+    checkMentions(nhdr("byte skip: -2\n"), {v + ":7: byte skip: expected a byte count"});
+    CHECK(vri::readVolume(nhdrFile("byte skip: -1\nspacings: 1e300 1 1\n")).spacing.x == 1e300);
+    CHECK(vri::readVolume(nhdrFile("byte skip: 0\n")).value(1, 1, 1) == 1);
 }
 
 TEST_CASE("volume io: writeVolume refuses unknown extensions and writes nothing") {

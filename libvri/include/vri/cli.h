@@ -59,18 +59,34 @@ inline std::optional<int> parseArguments(CLI::App& app, std::string_view tool, i
     return std::nullopt;
 }
 
+// The files a tool writes, each with the option that named it ("-o", "--png", ...).
+struct OutputArgument {
+    std::string option;
+    std::string path;  // empty: not asked for; "-": standard output
+};
+// Throws UsageError "<option>: '<path>' is not an .exr file (...)" unless the path ends in .exr
+// (any case): the float RGBA image is written as OpenEXR whatever the name says.
+void requireExrOutput(const OutputArgument& output);
+// Throws UsageError "<option>: '<path>' is also <other option>'s output" when two outputs name one
+// file, however spelled (./x, a/../x, a symbolic link or a hard link to it): the later write would
+// replace the earlier one.
+void requireDistinctOutputs(const std::vector<OutputArgument>& outputs);
+
 // The one line for an exception that no check turned into vri::Error (out of memory, a file-system
 // or JSON library failure): said in words and naming the path where there is one, not as a library's
 // raw text.
 std::string describeUnexpected(const std::exception& e);
 
 // Runs body() and turns an escaping exception into the single line "<tool>: error: <what>", its
-// control characters escaped (printable.h).
+// control characters escaped (printable.h); exit kExitUsage for a UsageError, kExitError otherwise.
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
     const auto report = [&](const std::string& what) { std::cerr << tool << ": error: " << printable(what) << '\n'; };
     try {
         return body();
+    } catch (const UsageError& e) {
+        report(e.what());
+        return kExitUsage;
     } catch (const Error& e) {
         report(e.what());
     } catch (const std::exception& e) {

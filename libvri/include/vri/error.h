@@ -11,4 +11,11 @@ public:
     explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
+// A failure of the command line itself (options that contradict each other, an output of the wrong
+// kind): a tool reports it like any Error but exits with the usage code (cli.h's kExitUsage).
+class UsageError : public Error {
+public:
+    using Error::Error;
+};
+
 }  // namespace vri

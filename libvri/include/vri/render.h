@@ -14,6 +14,7 @@
 #include "vri/grid_convention.h"
 #include "vri/image.h"
 #include "vri/integrator.h"
+#include "vri/nonfinite_pixels.h"
 #include "vri/placement.h"
 #include "vri/transfer_function.h"
 #include "vri/volume.h"
@@ -71,6 +72,7 @@ struct RenderStats {
     std::string device;               // the Vulkan device's name; empty on the CPU
     std::string interpolation;        // the Vulkan backend's: "shader" or "sampler"; empty on the CPU
     std::string simdTarget;           // the packet engine's Highway target ("AVX2", ...); empty when the scalar path ran
+    NonFinitePixels nonfinite;        // the image's NaN and infinite pixels, found after the render
 };
 
 // Throws vri::Error on options render() cannot honour (see render()); shared with the Vulkan backend.

@@ -33,8 +33,13 @@ void writeRaw(const std::filesystem::path& path, const Volume& volume, ByteOrder
 // type that vri does not support (e.g. float64).
 std::optional<RawLayout> layoutFromFileName(const std::filesystem::path& path);
 
+// Throws vri::Error "<source>: ..." unless every float voxel is finite, the range (when set) is a finite
+// lo < hi and the box, origin + dims x spacing, stays within double's range along every axis.
+void requireUsableValues(const Volume& volume, const std::string& source);
+
 // Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb; anything
 // else is raw, laid out by `rawLayout` if given, else by layoutFromFileName.
+// The volume read passes requireUsableValues.
 Volume readVolume(const std::filesystem::path& path, const std::optional<RawLayout>& rawLayout = {});
 // Writes by extension: .vdb, .nhdr (header + NAME.raw beside it), .dat (+ NAME.raw), .raw (little endian).
 void writeVolume(const std::filesystem::path& path, const Volume& volume);
