@@ -136,21 +136,13 @@ void writeRaw(const fs::path& path, const Volume& volume, ByteOrder order) {
     if (volume.bytes.size() != volume.byteCount())
         throw Error(path.string() + ": volume holds " + std::to_string(volume.bytes.size()) + " bytes, expected " +
                     std::to_string(volume.byteCount()) + " for " + dimsText(volume.dims));
-    writeAtomically(path, [&](const fs::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        const auto write = [&](const std::vector<std::byte>& bytes) {
-            out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-        };
-        if (order == nativeByteOrder() || voxelSize(volume.type) == 1) {
-            write(volume.bytes);
-        } else {
-            std::vector<std::byte> swapped = volume.bytes;
-            reverseEachVoxel(swapped, voxelSize(volume.type));
-            write(swapped);
-        }
-        out.close();
-        if (!out) throw Error(path.string() + ": cannot write");
-    });
+    const auto write = [&](const std::vector<std::byte>& bytes) {
+        writeTextFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    };
+    if (order == nativeByteOrder() || voxelSize(volume.type) == 1) return write(volume.bytes);
+    std::vector<std::byte> swapped = volume.bytes;
+    reverseEachVoxel(swapped, voxelSize(volume.type));
+    write(swapped);
 }
 
 std::optional<RawLayout> layoutFromFileName(const fs::path& path) {

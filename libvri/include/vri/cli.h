@@ -59,10 +59,13 @@ inline std::optional<int> parseArguments(CLI::App& app, std::string_view tool, i
 }
 
 // Runs body() and turns an escaping exception into the single line "<tool>: error: <what>".
+// What body() printed must have reached stdout: a full disk behind a redirection is a failure too.
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
     try {
-        return body();
+        const int code = body();
+        if (!std::cout.flush()) throw Error("stdout: cannot write what was printed (disk full or output closed?)");
+        return code;
     } catch (const Error& e) {
         std::cerr << tool << ": error: " << e.what() << '\n';
     } catch (const std::exception& e) {
