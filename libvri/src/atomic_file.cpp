@@ -29,7 +29,7 @@ enum class TargetKind { File, Stream, Stdout };
 
 // Where the bytes for a user's output path end up.
 struct Target {
-    fs::path path;                   // the path written: the final target of a symlink
+    fs::path path;  // the path written: the final target of a symlink
     TargetKind kind = TargetKind::File;
     std::optional<mode_t> keptMode;  // permission bits of the regular file being replaced
 };
@@ -135,7 +135,8 @@ fs::path temporaryBeside(const fs::path& target) {
 // Removes a temporary file, and the private directory it lies in if any, unless released.
 class TemporaryFile {
 public:
-    TemporaryFile(fs::path file, fs::path privateDir = {}) : file_(std::move(file)), privateDir_(std::move(privateDir)) {}
+    TemporaryFile(fs::path file, fs::path privateDir = {})
+        : file_(std::move(file)), privateDir_(std::move(privateDir)) {}
     ~TemporaryFile() {
         std::error_code ignored;
         if (!file_.empty()) fs::remove(file_, ignored);
@@ -208,8 +209,7 @@ void requireWritten(const fs::path& tmp, const fs::path& userPath) {
 void writeTextFile(const fs::path& path, std::string_view text) {
     ignoreFileSizeSignal();
     const Target target = resolveTarget(path);
-    if (target.kind != TargetKind::File)
-        return writeStream(target, path, [&](int fd) { writeAll(fd, text, path); });
+    if (target.kind != TargetKind::File) return writeStream(target, path, [&](int fd) { writeAll(fd, text, path); });
     const fs::path tmpPath = temporaryBeside(target.path);
     // A leftover of a dead process that had our PID is ours to replace; O_EXCL then refuses anything
     // put there meanwhile, and O_NOFOLLOW a link planted at the name.

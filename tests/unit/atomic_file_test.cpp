@@ -29,7 +29,8 @@ using vri::test::readBytes;
 
 std::set<std::string> entries(const fs::path& dir) {
     std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename().string());
+    for (const auto& entry : fs::directory_iterator(dir))
+        names.insert(entry.path().filename().string());
     return names;
 }
 
@@ -42,8 +43,7 @@ void writeBoth(const fs::path& target, const std::string& text, bool throughFile
 // Reads everything written to a FIFO, on its own thread, from the moment it is started.
 class FifoReader {
 public:
-    explicit FifoReader(const fs::path& fifo)
-        : thread_([this, fifo] { received_ = readBytes(fifo); }) {}
+    explicit FifoReader(const fs::path& fifo) : thread_([this, fifo] { received_ = readBytes(fifo); }) {}
     std::string received() {
         thread_.join();
         return received_;
@@ -96,8 +96,10 @@ public:
         ::setenv("TMPDIR", dir.c_str(), 1);
     }
     ~TmpDirIs() {
-        if (saved_) ::setenv("TMPDIR", saved_->c_str(), 1);
-        else ::unsetenv("TMPDIR");
+        if (saved_)
+            ::setenv("TMPDIR", saved_->c_str(), 1);
+        else
+            ::unsetenv("TMPDIR");
     }
     TmpDirIs(const TmpDirIs&) = delete;
     TmpDirIs& operator=(const TmpDirIs&) = delete;
@@ -137,7 +139,7 @@ TEST_CASE("output: a symlink stays a link and its target is replaced, through ch
     for (const bool throughFile : {false, true}) {
         fs::create_directories(dir / "data");
         std::ofstream(dir / "data" / "real.exr") << "old";
-        fs::create_symlink("data/real.exr", dir / "first.exr");   // relative to the link's folder
+        fs::create_symlink("data/real.exr", dir / "first.exr");     // relative to the link's folder
         fs::create_symlink(dir / "first.exr", dir / "second.exr");  // absolute, to another link
         writeBoth(dir / "second.exr", "new", throughFile);
         CHECK(fs::is_symlink(dir / "second.exr"));
@@ -227,9 +229,9 @@ TEST_CASE("output: a directory is an error naming the path, and nothing is writt
     vri::test::TempDir dir("atomic-file");
     fs::create_directory(dir / "out.exr");
     for (const bool throughFile : {false, true}) {
-        CHECK_THROWS_WITH_AS(writeBoth(dir / "out.exr", "x", throughFile),
-                             doctest::Contains(((dir / "out.exr").string() + ": cannot write: it is a directory").c_str()),
-                             vri::Error);
+        CHECK_THROWS_WITH_AS(
+            writeBoth(dir / "out.exr", "x", throughFile),
+            doctest::Contains(((dir / "out.exr").string() + ": cannot write: it is a directory").c_str()), vri::Error);
         CHECK(fs::is_directory(dir / "out.exr"));
         CHECK(fs::is_empty(dir / "out.exr"));
         CHECK(entries(dir.path) == std::set<std::string>{"out.exr"});
@@ -240,7 +242,7 @@ TEST_CASE("output: a file size limit (ulimit -f) is an error; the old file stays
     vri::test::TempDir dir("atomic-file");
     const fs::path target = dir / "out.raw";
     std::ofstream(target) << "old";
-    rlimit saved {};
+    rlimit saved{};
     REQUIRE(::getrlimit(RLIMIT_FSIZE, &saved) == 0);
     rlimit limited = saved;
     limited.rlim_cur = 4096;
@@ -259,7 +261,8 @@ TEST_CASE("output: a file size limit (ulimit -f) is an error; the old file stays
                             vri::Error);
         else
             CHECK_THROWS_WITH_AS(vri::writeTextFile(target, tooBig),
-                                 doctest::Contains((target.string() + ": cannot write: File too large").c_str()), vri::Error);
+                                 doctest::Contains((target.string() + ": cannot write: File too large").c_str()),
+                                 vri::Error);
         CHECK(readBytes(target) == "old");
         CHECK(entries(dir.path) == std::set<std::string>{"out.raw"});
     }
