@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -204,25 +205,44 @@ void requireWritten(const fs::path& tmp, const fs::path& userPath) {
         throw Error(userPath.string() + ": cannot write: the writer produced no file");
 }
 
-}  // namespace
-
-void writeTextFile(const fs::path& path, std::string_view text) {
-    ignoreFileSizeSignal();
-    const Target target = resolveTarget(path);
-    if (target.kind != TargetKind::File) return writeStream(target, path, [&](int fd) { writeAll(fd, text, path); });
+// Writes the bytes to a temporary file beside the target, synced and closed: all but the rename.
+std::unique_ptr<TemporaryFile> stageBeside(const Target& target, const OutputBytes& output) {
     const fs::path tmpPath = temporaryBeside(target.path);
     // A leftover of a dead process that had our PID is ours to replace; O_EXCL then refuses anything
     // put there meanwhile, and O_NOFOLLOW a link planted at the name.
     ::unlink(tmpPath.c_str());
     // A new file gets 0666 less the umask, as open() gives; a replaced one keeps its bits.
     Descriptor out(::open(tmpPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666));
-    if (out.get() < 0) fail(path, "cannot create temporary file " + tmpPath.string(), errno);
-    TemporaryFile tmp(tmpPath);
-    if (target.keptMode && ::fchmod(out.get(), *target.keptMode) != 0) fail(path, "cannot keep the file's mode", errno);
-    writeAll(out.get(), text, path);
-    syncDescriptor(out.get(), path, "cannot sync");
-    out.close(path);
-    moveIntoPlace(tmp, target, path);
+    if (out.get() < 0) fail(output.path, "cannot create temporary file " + tmpPath.string(), errno);
+    auto tmp = std::make_unique<TemporaryFile>(tmpPath);
+    if (target.keptMode && ::fchmod(out.get(), *target.keptMode) != 0)
+        fail(output.path, "cannot keep the file's mode", errno);
+    writeAll(out.get(), output.bytes, output.path);
+    syncDescriptor(out.get(), output.path, "cannot sync");
+    out.close(output.path);
+    return tmp;
+}
+
+}  // namespace
+
+void writeTogether(std::span<const OutputBytes> outputs) {
+    ignoreFileSizeSignal();
+    std::vector<Target> targets;
+    for (const OutputBytes& output : outputs)
+        targets.push_back(resolveTarget(output.path));
+    std::vector<std::unique_ptr<TemporaryFile>> staged(outputs.size());
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+        if (targets[i].kind == TargetKind::File) staged[i] = stageBeside(targets[i], outputs[i]);
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+        if (targets[i].kind != TargetKind::File)
+            writeStream(targets[i], outputs[i].path, [&](int fd) { writeAll(fd, outputs[i].bytes, outputs[i].path); });
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+        if (staged[i]) moveIntoPlace(*staged[i], targets[i], outputs[i].path);
+}
+
+void writeTextFile(const fs::path& path, std::string_view text) {
+    const OutputBytes output{path, text};
+    writeTogether({&output, 1});
 }
 
 void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {

@@ -63,6 +63,20 @@ void requireRegularFile(const fs::path& path) {
     if (!fs::is_regular_file(status)) throw Error(path.string() + ": not a regular file");
 }
 
+std::string_view rawBytes(const fs::path& path, const Volume& volume, ByteOrder order,
+                          std::vector<std::byte>& swapped) {
+    if (volume.bytes.size() != volume.byteCount())
+        throw Error(path.string() + ": volume holds " + std::to_string(volume.bytes.size()) + " bytes, expected " +
+                    std::to_string(volume.byteCount()) + " for " + dimsText(volume.dims));
+    const std::vector<std::byte>* bytes = &volume.bytes;
+    if (order != nativeByteOrder() && voxelSize(volume.type) > 1) {
+        swapped = volume.bytes;
+        reverseEachVoxel(swapped, voxelSize(volume.type));
+        bytes = &swapped;
+    }
+    return {reinterpret_cast<const char*>(bytes->data()), bytes->size()};
+}
+
 fs::path rawFileBeside(const fs::path& headerPath) {
     fs::path raw = headerPath;
     return raw.replace_extension(".raw");
@@ -133,16 +147,8 @@ Volume readRaw(const fs::path& path, const RawLayout& layout) {
 }
 
 void writeRaw(const fs::path& path, const Volume& volume, ByteOrder order) {
-    if (volume.bytes.size() != volume.byteCount())
-        throw Error(path.string() + ": volume holds " + std::to_string(volume.bytes.size()) + " bytes, expected " +
-                    std::to_string(volume.byteCount()) + " for " + dimsText(volume.dims));
-    const auto write = [&](const std::vector<std::byte>& bytes) {
-        writeTextFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-    };
-    if (order == nativeByteOrder() || voxelSize(volume.type) == 1) return write(volume.bytes);
-    std::vector<std::byte> swapped = volume.bytes;
-    reverseEachVoxel(swapped, voxelSize(volume.type));
-    write(swapped);
+    std::vector<std::byte> swapped;
+    writeTextFile(path, detail::rawBytes(path, volume, order, swapped));
 }
 
 std::optional<RawLayout> layoutFromFileName(const fs::path& path) {

@@ -69,6 +69,10 @@ rm d.json
 # Outputs that are neither a file, a device, a FIFO nor '-': refused, and left as they are.
 bad 1 "^vri-render: error: taken\.exr: cannot write: it is a directory; expected a regular file" -- render -o taken.exr
 bad 1 "^vri-tf: error: taken\.exr: cannot write: it is a directory" -- "$bin/vri-tf" tf.yaml -o taken.exr
+mkdir taken.nhdr   # the header cannot be written: its raw file is not written either
+bad 1 "^vri-convert: error: taken\.nhdr: cannot write: it is a directory" -- "$bin/vri-convert" noise_32x32x32_uint8.raw \
+    taken.nhdr
+rmdir taken.nhdr
 ln -s loop.csv loop.csv
 bad 1 "^vri-tf: error: loop\.csv: cannot write: Too many levels of symbolic links$" -- "$bin/vri-tf" tf.yaml -o loop.csv
 rm loop.csv

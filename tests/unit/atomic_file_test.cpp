@@ -277,3 +277,32 @@ TEST_CASE("output: a writer that leaves no file is an error, not an empty output
                          vri::Error);
     CHECK(entries(dir.path).empty());
 }
+
+TEST_CASE("output: outputs written together: when one fails, none is replaced") {
+    vri::test::TempDir dir("atomic-file");
+    std::ofstream(dir / "v.raw") << "old raw";
+    std::ofstream(dir / "v.nhdr") << "old header";
+    const std::string bigHeader(10000, 'h');
+    SUBCASE("the second cannot be written (a file size limit)") {
+        rlimit saved{};
+        REQUIRE(::getrlimit(RLIMIT_FSIZE, &saved) == 0);
+        rlimit limited = saved;
+        limited.rlim_cur = 4096;
+        REQUIRE(::setrlimit(RLIMIT_FSIZE, &limited) == 0);
+        const vri::OutputBytes files[] = {{dir / "v.raw", "new raw"}, {dir / "v.nhdr", bigHeader}};
+        CHECK_THROWS_WITH_AS(vri::writeTogether(files),
+                             doctest::Contains(((dir / "v.nhdr").string() + ": cannot write: File too large").c_str()),
+                             vri::Error);
+        REQUIRE(::setrlimit(RLIMIT_FSIZE, &saved) == 0);
+    }
+    SUBCASE("the second has no place to go (a file where its folder should be)") {
+        const vri::OutputBytes files[] = {{dir / "v.raw", "new raw"}, {dir / "v.nhdr" / "inner", "new header"}};
+        CHECK_THROWS_WITH_AS(
+            vri::writeTogether(files),
+            doctest::Contains(((dir / "v.nhdr" / "inner").string() + ": cannot write: Not a directory").c_str()),
+            vri::Error);
+    }
+    CHECK(readBytes(dir / "v.raw") == "old raw");
+    CHECK(readBytes(dir / "v.nhdr") == "old header");
+    CHECK(entries(dir.path) == std::set<std::string>{"v.nhdr", "v.raw"});
+}

@@ -19,12 +19,22 @@
 // a write fail with EFBIG instead of killing the process without a word).
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string_view>
 
 namespace vri {
 
 // Writes `text` to `path` as described above. Any bytes, not only text: raw volumes go through it too.
 void writeTextFile(const std::filesystem::path& path, std::string_view text);
+
+struct OutputBytes {
+    std::filesystem::path path;
+    std::string_view bytes;
+};
+// Writes outputs that belong together (a header and its raw file) so that a failure replaces none
+// of them: every file is written and synced beside its target first, then the streams are written,
+// and only then is each renamed into place.
+void writeTogether(std::span<const OutputBytes> outputs);
 
 // For writers that need a file of their own (a library or program that opens, seeks and closes a
 // path): calls write(tmp), then puts tmp's bytes at `path` as described above. tmp keeps the target's
