@@ -65,6 +65,10 @@ void createParentDirectories(const fs::path& userPath, const fs::path& file) {
 
 Target resolveTarget(const fs::path& userPath) {
     if (userPath == "-") return {userPath, TargetKind::Stdout, std::nullopt};
+    // A device or FIFO is opened through its links: /dev/stdout's /proc/self/fd/1 names no path to walk.
+    struct stat followed {};
+    if (::stat(userPath.c_str(), &followed) == 0 && (S_ISCHR(followed.st_mode) || S_ISFIFO(followed.st_mode)))
+        return {userPath, TargetKind::Stream, std::nullopt};
     fs::path path = userPath;
     for (int hops = 0;; ++hops) {
         struct stat st {};

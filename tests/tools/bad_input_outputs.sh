@@ -125,13 +125,17 @@ cat tf.fifo > tf-from-fifo.csv &
 wait $!
 cmp -s tf.csv tf-from-fifo.csv || fail "vri-tf through a FIFO wrote other bytes"
 [ -p tf.fifo ] || fail "the FIFO is no longer a FIFO"
+ln -s /proc/self/fd/1 stdout.csv   # as /dev/stdout is: the tool's own stdout, a pipe here
+"$bin/vri-tf" ../work/tf.yaml -o stdout.csv | cat > tf-from-stdout.csv
+cmp -s tf.csv tf-from-stdout.csv && [ -L stdout.csv ] || fail "vri-tf through a link to its stdout"
+rm stdout.csv
 ln -s made/real.exr link.exr   # dangling: its target is created, and it stays a link
 "$bin/vri-render" --volume ../work/blob_8x8x8_uint8.raw --tf ../work/tf.yaml --size 64x64 --step 0.5 -q -o link.exr
 [ -L link.exr ] && "$bin/vri-diff" made/real.exr ../work/a.exr --fail 0 > /dev/null ||
   fail "vri-render through a dangling link"
-expected="link.exr made tf-from-fifo.csv tf.csv tf.fifo"
+expected="link.exr made tf-from-fifo.csv tf-from-stdout.csv tf.csv tf.fifo"
 if [ "$(id -u)" -eq 0 ] && mknod null c 1 3 2> /dev/null; then
-  expected="link.exr made null null.vdb tf-from-fifo.csv tf.csv tf.fifo"
+  expected="link.exr made null null.vdb tf-from-fifo.csv tf-from-stdout.csv tf.csv tf.fifo"
   ln -s null null.vdb
   "$bin/vri-convert" ../work/noise_32x32x32_uint8.raw null.vdb -q
   [ -c null ] && [ -L null.vdb ] || fail "vri-convert replaced a link to a device"

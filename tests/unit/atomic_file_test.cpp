@@ -195,6 +195,25 @@ TEST_CASE("output: '-' writes to stdout, after what the process printed before")
     }
 }
 
+TEST_CASE("output: a link to an open pipe (as /dev/stdout is) writes into the pipe") {
+    vri::test::TempDir dir("atomic-file");
+    for (const bool throughFile : {false, true}) {
+        int ends[2];
+        REQUIRE(::pipe(ends) == 0);
+        const fs::path link = dir / "stdout.csv";
+        fs::create_symlink("/proc/self/fd/" + std::to_string(ends[1]), link);
+        writeBoth(link, "through the pipe", throughFile);
+        ::close(ends[1]);
+        char received[64] = {};
+        CHECK(::read(ends[0], received, sizeof received) == 16);
+        ::close(ends[0]);
+        CHECK(std::string(received) == "through the pipe");
+        CHECK(fs::is_symlink(link));
+        CHECK(entries(dir.path) == std::set<std::string>{"stdout.csv"});
+        fs::remove(link);
+    }
+}
+
 TEST_CASE("output: a character device is written in place and stays a device") {
     vri::test::TempDir dir("atomic-file");
     const std::optional<fs::path> null = privateDevice(dir.path, "null", 3);

@@ -11,7 +11,8 @@
 //   - a symbolic link: followed to its final target (through chains of links), which is replaced as
 //     above, so the link stays a link; a dangling link gets its target created.
 //   - a character device, a FIFO, or "-" (stdout): written in place, every write checked; nothing is
-//     created beside it and nothing renamed, so /dev/null stays a device. A FIFO blocks until it has a
+//     created beside it and nothing renamed, so /dev/null stays a device. A link that leads to one
+//     (/dev/stdout's /proc/self/fd/1 too) is opened through the link. A FIFO blocks until it has a
 //     reader, as a shell's redirection does.
 //   - anything else (a directory, a socket, a block device): an error naming the path; nothing is written.
 // Missing parent directories are created. Every failure is a vri::Error naming `path` and saying why
