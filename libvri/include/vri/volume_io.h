@@ -36,7 +36,8 @@ std::optional<RawLayout> layoutFromFileName(const std::filesystem::path& path);
 // Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb; anything
 // else is raw, laid out by `rawLayout` if given, else by layoutFromFileName.
 Volume readVolume(const std::filesystem::path& path, const std::optional<RawLayout>& rawLayout = {});
-// Writes by extension: .vdb, .nhdr (header + NAME.raw beside it), .dat (+ NAME.raw), .raw (little endian).
+// Writes by extension: .vdb, .nhdr (header + NAME.raw beside it), .dat (+ NAME.raw), .raw (little endian),
+// through atomic_file.h; a header and its raw file are written together (neither replaced if one fails).
 void writeVolume(const std::filesystem::path& path, const Volume& volume);
 // The files writeVolume(path, ...) creates or replaces: `path`, and for .nhdr and .dat the raw
 // file beside it. A tool checks them against its input before it overwrites what it reads.
