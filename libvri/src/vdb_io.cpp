@@ -6,7 +6,10 @@
 // equal to it are not stored. Voxel (i,j,k) sits at index (i,j,k); the transform maps index to
 // world as origin + index * spacing. Grid metadata record what the sparse grid cannot: the voxel
 // type, the dense dims (trailing empty slabs have no active voxels) and the normalisation range.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <type_traits>
@@ -16,6 +19,7 @@
 #include <openvdb/tools/Dense.h>
 
 #include "vri/atomic_file.h"
+#include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/volume_io.h"
 #include "volume_formats.h"
@@ -91,6 +95,43 @@ std::string gridDescription(const openvdb::GridBase& grid) {
     return "grid '" + grid.getName() + "' (" + grid.valueType() + ")";
 }
 
+std::string boxText(const openvdb::CoordBBox& box) {
+    const auto coord = [](const openvdb::Coord& c) {
+        return "(" + std::to_string(c.x()) + "," + std::to_string(c.y()) + "," + std::to_string(c.z()) + ")";
+    };
+    return coord(box.min()) + ".." + coord(box.max());
+}
+
+// A sparse grid stores nothing for background voxels and one tile for a constant region, so its file
+// says little about its dense size; metadata claiming 1024^3 voxels in a 10 KB file is still far more
+// likely an error (or an attack) than a volume. Unless VRI_MAX_BYTES states the limit, a dense
+// volume may take 1024 times the file's bytes, or 256 MiB whatever the file.
+constexpr std::uint64_t kPlausibleExpansion = 1024;
+constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
+
+// The dense dims of `box`, checked against the byte limit and the file's size before anything is allocated.
+glm::ivec3 denseDims(const fs::path& path, const std::string& source, const openvdb::CoordBBox& box, VoxelType type) {
+    std::uint64_t extent[3];
+    for (int axis = 0; axis < 3; ++axis) {
+        extent[axis] = static_cast<std::uint64_t>(std::int64_t(box.max()[axis]) - std::int64_t(box.min()[axis]) + 1);
+        if (extent[axis] > std::uint64_t(std::numeric_limits<int>::max()))
+            throw Error(path.string() + ": " + source + " " + boxText(box) + " is wider than " +
+                        std::to_string(std::numeric_limits<int>::max()) + " voxels");
+    }
+    const std::string what = path.string() + ": " + source + " " + std::to_string(extent[0]) + "x" +
+                             std::to_string(extent[1]) + "x" + std::to_string(extent[2]) + " (" +
+                             std::string(voxelTypeName(type)) + ")";
+    const std::uint64_t bytes = checkedBytes(what, {extent[0], extent[1], extent[2], voxelSize(type)});
+    const std::uint64_t fileBytes = fs::file_size(path);
+    const std::uint64_t plausible =
+        std::max(kAlwaysPlausibleBytes, checkedProduct({fileBytes, kPlausibleExpansion}).value_or(UINT64_MAX));
+    if (bytes > plausible && !byteLimitIsExplicit())
+        throw Error(what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
+                    " for a file of " + std::to_string(fileBytes) + " bytes (" + std::to_string(kPlausibleExpansion) +
+                    " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)");
+    return {int(extent[0]), int(extent[1]), int(extent[2])};
+}
+
 Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
     const openvdb::math::Transform& transform = grid.transform();
     const openvdb::Mat3d linear = transform.baseMap()->getAffineMap()->getMat4().getMat3();
@@ -110,13 +151,17 @@ Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
         if (d.x() < 1 || d.y() < 1 || d.z() < 1)
             throw Error(path.string() + ": " + kDimsKey + " must be positive");
         box = indexBox({d.x(), d.y(), d.z()});
+        // vri writes voxel (i,j,k) at index (i,j,k): every active voxel lies inside the dims.
+        const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
+        if (!active.empty() && !box.isInside(active))
+            throw Error(path.string() + ": " + kDimsKey + " " + std::to_string(d.x()) + "x" + std::to_string(d.y()) +
+                        "x" + std::to_string(d.z()) + " does not contain the active voxels " + boxText(active));
     } else {
         box = grid.evalActiveVoxelBoundingBox();
         if (box.empty()) throw Error(path.string() + ": " + gridDescription(grid) + " has no active voxels");
     }
 
-    const openvdb::Coord size = box.dim();
-    Volume volume({size.x(), size.y(), size.z()}, type);
+    Volume volume(denseDims(path, writtenByVri ? kDimsKey : "active voxels", box, type), type);
     const openvdb::Vec3d spacing = transform.voxelSize();
     const openvdb::Vec3d origin = transform.indexToWorld(box.min());
     volume.spacing = {spacing.x(), spacing.y(), spacing.z()};
