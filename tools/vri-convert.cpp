@@ -143,10 +143,17 @@ would unpack to more than 1024 times its file size (and over 256 MiB) is refused
             vri::writeVolume(output, volume);
             const auto done = std::chrono::steady_clock::now();
             const auto seconds = [](auto d) { return text(std::chrono::duration<double>(d).count(), 3); };
+            // Sizes only of regular files: a device or FIFO output has none.
             std::uintmax_t bytes = 0;
-            for (const fs::path& written : vri::filesWrittenBy(output)) bytes += fs::file_size(written);
+            bool allRegular = true;
+            for (const fs::path& written : vri::filesWrittenBy(output)) {
+                std::error_code ec;
+                allRegular = allRegular && fs::is_regular_file(written, ec);
+                if (allRegular) bytes += fs::file_size(written, ec);
+            }
+            const std::string size = allRegular ? " (" + std::to_string(bytes) + " bytes)" : "";
             if (!quiet)
-                std::cerr << "vri-convert: " << output << " (" << bytes << " bytes): read " << seconds(read - start)
+                std::cerr << "vri-convert: " << output << size << ": read " << seconds(read - start)
                           << " s, wrote " << seconds(done - write) << " s\n";
         }
         return vri::kExitOk;

@@ -1,5 +1,6 @@
 #include "vri/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -61,15 +62,27 @@ OIIO::ImageSpec floatSpec(const Image& image) {
     return spec;
 }
 
-// `format` is an OpenImageIO format name ("openexr") or a file name whose extension names it.
+// `format` is an OpenImageIO format name ("openexr") or a file name whose extension names it. The
+// image is encoded into memory, so that every byte then reaches the file through writeTextFile's
+// checked writes: a file writer of OpenImageIO's can lose a failed write (a full disk gave a truncated
+// EXR and success). Formats that cannot encode into memory (SGI, FITS, ...) are refused for that
+// reason. has_error() is not consulted: TIFF leaves an error about its Exif directory behind even
+// when the file it writes is right; the calls' results are what says whether they failed.
 void writeWithOiio(const fs::path& path, const std::string& format, const OIIO::ImageSpec& spec,
                    OIIO::TypeDesc dataType, const void* data) {
-    writeAtomically(path, [&](const fs::path& tmp) {
-        auto out = OIIO::ImageOutput::create(format);
-        if (!out) throw Error(path.string() + ": cannot write image: " + oneLine(OIIO::geterror()));
-        if (!out->open(tmp.string(), spec) || !out->write_image(dataType, data) || !out->close())
-            throw Error(path.string() + ": cannot write image: " + oneLine(out->geterror()));
-    });
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) throw Error(path.string() + ": cannot write image: " + oneLine(OIIO::geterror()));
+    if (!out->supports("ioproxy"))
+        throw Error(path.string() + ": cannot write " + out->format_name() +
+                    " images: OpenImageIO cannot encode them into memory to check every write (use .exr, .tif or "
+                    ".png)");
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput memory(encoded);
+    const bool encodedAll = out->set_ioproxy(&memory) && out->open(path.string(), spec) &&
+                            out->write_image(dataType, data);
+    if (!out->close() || !encodedAll)
+        throw Error(path.string() + ": cannot write image: " + oneLine(out->geterror()));
+    writeTextFile(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 std::uint8_t previewByte(float composited, const PngOptions& options) {

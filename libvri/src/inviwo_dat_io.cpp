@@ -139,8 +139,9 @@ void writeInviwoDat(const fs::path& path, const Volume& volume) {
             "BasisVector2: 0 " + n(extent.y) + " 0\n"
             "BasisVector3: 0 0 " + n(extent.z) + "\n"
             "Offset: " + n(o.x) + " " + n(o.y) + " " + n(o.z) + "\n";
-    writeRaw(rawPath, volume, ByteOrder::Little);
-    writeTextFile(path, text);
+    std::vector<std::byte> swapped;
+    const OutputBytes files[] = {{rawPath, rawBytes(rawPath, volume, ByteOrder::Little, swapped)}, {path, text}};
+    writeTogether(files);
 }
 
 }  // namespace vri::detail

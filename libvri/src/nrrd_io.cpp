@@ -219,8 +219,9 @@ void writeNhdr(const fs::path& path, const Volume& volume) {
                        "encoding: raw\n"
                        "data file: " + rawPath.filename().string() + "\n";
     if (volume.range) text += "vri_range:=" + n(volume.range->lo) + " " + n(volume.range->hi) + "\n";
-    writeRaw(rawPath, volume, ByteOrder::Little);
-    writeTextFile(path, text);
+    std::vector<std::byte> swapped;
+    const OutputBytes files[] = {{rawPath, rawBytes(rawPath, volume, ByteOrder::Little, swapped)}, {path, text}};
+    writeTogether(files);
 }
 
 }  // namespace vri::detail

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <mutex>
+#include <sstream>
 #include <type_traits>
 
 #include <openvdb/io/File.h>
@@ -196,6 +197,16 @@ std::string gridList(openvdb::io::File& file) {
     return names.empty() ? "none" : names;
 }
 
+// io::File::write streams into an std::ofstream it never checks, so a full disk went unnoticed. The
+// same bytes (header, grids and the offsets that let a reader load grids lazily, hence a seekable
+// stream) are encoded into memory instead, and written through writeTextFile's checked writes.
+class SeekableArchive : public openvdb::io::Archive {
+public:
+    void writeTo(std::ostream& out, const openvdb::GridPtrVec& grids) const {
+        Archive::write(out, grids, /*seekable=*/true);
+    }
+};
+
 }  // namespace
 
 Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName) {
@@ -233,16 +244,14 @@ void writeVdb(const fs::path& path, const Volume& volume) {
         throw Error(path.string() + ": volume holds " + std::to_string(volume.bytes.size()) +
                     " bytes, which does not match its dims");
     initializeOpenVdb();
-    const openvdb::GridPtrVec grids{toGrid(volume)};
-    writeAtomically(path, [&](const fs::path& tmp) {
-        try {
-            openvdb::io::File file(tmp.string());
-            file.write(grids);
-            file.close();
-        } catch (const openvdb::Exception& e) {
-            throw Error(path.string() + ": " + e.what());
-        }
-    });
+    std::ostringstream encoded;
+    try {
+        SeekableArchive().writeTo(encoded, {toGrid(volume)});
+    } catch (const openvdb::Exception& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
+    if (!encoded) throw Error(path.string() + ": cannot encode the grid");
+    writeTextFile(path, encoded.view());
 }
 
 }  // namespace vri

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "vri/volume.h"
+#include "vri/volume_io.h"
 
 namespace vri::detail {
 
@@ -21,6 +22,10 @@ void requireRegularFile(const std::filesystem::path& path);
 
 // The raw file written beside a header file: same directory and stem, extension .raw.
 std::filesystem::path rawFileBeside(const std::filesystem::path& headerPath);
+// The voxel bytes as a raw file in `order` holds them: a view of volume.bytes, or of `swapped` once
+// filled with each voxel's bytes reversed. Throws, naming `path`, if the volume disagrees with its dims.
+std::string_view rawBytes(const std::filesystem::path& path, const Volume& volume, ByteOrder order,
+                          std::vector<std::byte>& swapped);
 
 std::string_view trim(std::string_view text);
 std::string toLower(std::string_view text);

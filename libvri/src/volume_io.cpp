@@ -64,6 +64,20 @@ void requireRegularFile(const fs::path& path) {
     if (!fs::is_regular_file(status)) throw Error(path.string() + ": not a regular file");
 }
 
+std::string_view rawBytes(const fs::path& path, const Volume& volume, ByteOrder order,
+                          std::vector<std::byte>& swapped) {
+    if (volume.bytes.size() != volume.byteCount())
+        throw Error(path.string() + ": volume holds " + std::to_string(volume.bytes.size()) + " bytes, expected " +
+                    std::to_string(volume.byteCount()) + " for " + dimsText(volume.dims));
+    const std::vector<std::byte>* bytes = &volume.bytes;
+    if (order != nativeByteOrder() && voxelSize(volume.type) > 1) {
+        swapped = volume.bytes;
+        reverseEachVoxel(swapped, voxelSize(volume.type));
+        bytes = &swapped;
+    }
+    return {reinterpret_cast<const char*>(bytes->data()), bytes->size()};
+}
+
 fs::path rawFileBeside(const fs::path& headerPath) {
     fs::path raw = headerPath;
     return raw.replace_extension(".raw");
@@ -179,24 +193,8 @@ Volume readRaw(const fs::path& path, const RawLayout& layout) {
 }
 
 void writeRaw(const fs::path& path, const Volume& volume, ByteOrder order) {
-    if (volume.bytes.size() != volume.byteCount())
-        throw Error(path.string() + ": volume holds " + std::to_string(volume.bytes.size()) + " bytes, expected " +
-                    std::to_string(volume.byteCount()) + " for " + dimsText(volume.dims));
-    writeAtomically(path, [&](const fs::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        const auto write = [&](const std::vector<std::byte>& bytes) {
-            out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-        };
-        if (order == nativeByteOrder() || voxelSize(volume.type) == 1) {
-            write(volume.bytes);
-        } else {
-            std::vector<std::byte> swapped = volume.bytes;
-            reverseEachVoxel(swapped, voxelSize(volume.type));
-            write(swapped);
-        }
-        out.close();
-        if (!out) throw Error(path.string() + ": cannot write");
-    });
+    std::vector<std::byte> swapped;
+    writeTextFile(path, detail::rawBytes(path, volume, order, swapped));
 }
 
 std::optional<RawLayout> layoutFromFileName(const fs::path& path) {

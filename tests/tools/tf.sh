@@ -49,7 +49,7 @@ row_is 1 0 0 1 "$(awk 'BEGIN { printf "%.17g", 0.5 + 0.27 / 0.77 }')"
 "$tf" "$VRI_SOURCE/experiments/tf/bonsai.yaml" -o - > bonsai.csv
 [ "$(wc -l < bonsai.csv)" -ge 513 ] || fail "default of 512 samples"
 for yaml in "$VRI_SOURCE"/experiments/tf/*.yaml; do
-    "$tf" "$yaml" --samples 16 -o /dev/null || fail "$yaml does not tabulate"
+    "$tf" "$yaml" --samples 16 -o - > /dev/null || fail "$yaml does not tabulate"
 done
 
 # Paper B's transfer functions tabulate into the CSV their plot specs read (the script alone needs no gnuplot).

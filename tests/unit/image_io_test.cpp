@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "file_bytes.h"
 #include "temp_dir.h"
 #include "vri/atomic_file.h"
 #include "vri/error.h"
@@ -16,6 +17,7 @@
 namespace {
 
 namespace fs = std::filesystem;
+using vri::test::readBytes;
 
 // Values a float format must keep bit for bit: fractions with no short decimal form, a denormal,
 // negative zero, huge, tiny and infinite values.
@@ -30,11 +32,6 @@ vri::Image awkwardImage() {
 
 bool bitIdentical(const std::vector<float>& a, const std::vector<float>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
-
-std::string readBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Reads a PNG preview back as bytes (readImage gives byte / 255).
@@ -95,6 +92,10 @@ TEST_CASE("image: writeImage picks the format from the extension") {
     CHECK(vri::readImage(dir / "a.png").channels == 3);
     CHECK_THROWS_WITH_AS(vri::writeImage(dir / "a.nosuchformat", image),
                          doctest::Contains("a.nosuchformat: cannot write image"), vri::Error);
+    // SGI cannot be encoded into memory, so its writes could not all be checked.
+    CHECK_THROWS_WITH_AS(vri::writeImage(dir / "a.sgi", image), doctest::Contains("a.sgi: cannot write sgi images"),
+                         vri::Error);
+    CHECK_FALSE(fs::exists(dir / "a.sgi"));
 }
 
 TEST_CASE("image: PNG preview composites premultiplied colour over the background, rounds to nearest") {

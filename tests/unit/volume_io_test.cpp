@@ -12,11 +12,13 @@
 
 #include <unistd.h>
 
+#include "file_bytes.h"
 #include "vri/error.h"
 #include "vri/format.h"
 #include "vri/volume_io.h"
 
 namespace fs = std::filesystem;
+using vri::test::readBytes;
 
 namespace {
 
@@ -40,11 +42,6 @@ struct TempDir {
 void writeBytes(const fs::path& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary);
     out << bytes;
-}
-
-std::string readBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Values that exercise each type: zeros (most of them, as in real scans), the extremes, and

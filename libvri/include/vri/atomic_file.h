@@ -1,19 +1,48 @@
 #pragma once
-// Outputs are written to a temporary file beside the target and renamed into place, so an
-// interrupted run never leaves a truncated file that a later run would trust.
+// Every output a tool writes goes through here, so that an output never damages what its path names
+// and success is claimed only for bytes that reached the file.
+//
+// What the path names decides how it is written:
+//   - nothing, or a regular file: the bytes go to a temporary file beside it, ".STEM.tmp.PID.EXT"
+//     (the extension kept: image libraries pick the format from it; an existing file's permission bits
+//     kept), which is checked, fsync'ed and renamed over the path; then the directory is fsync'ed.
+//     A failed write leaves the old file as it was and removes the temporary file; a kill -9 can leave
+//     the temporary file behind, never a truncated output.
+//   - a symbolic link: followed to its final target (through chains of links), which is replaced as
+//     above, so the link stays a link; a dangling link gets its target created.
+//   - a character device, a FIFO, or "-" (stdout): written in place, every write checked; nothing is
+//     created beside it and nothing renamed, so /dev/null stays a device. A link that leads to one
+//     (/dev/stdout's /proc/self/fd/1 too) is opened through the link. A FIFO blocks until it has a
+//     reader, as a shell's redirection does.
+//   - anything else (a directory, a socket, a block device): an error naming the path; nothing is written.
+// Missing parent directories are created. Every failure is a vri::Error naming `path` and saying why
+// (a full disk, a file size limit: SIGXFSZ is ignored from the first write on, so `ulimit -f` makes
+// a write fail with EFBIG instead of killing the process without a word).
 #include <filesystem>
 #include <functional>
-#include <string>
+#include <span>
+#include <string_view>
 
 namespace vri {
 
-// Calls write(tmp) with a temporary path in the target's directory that keeps the target's
-// extension (image libraries pick the format from it), then renames tmp to `path`.
-// On any exception the temporary file is removed and `path` is left as it was.
+// Writes `text` to `path` as described above. Any bytes, not only text: raw volumes go through it too.
+void writeTextFile(const std::filesystem::path& path, std::string_view text);
+
+struct OutputBytes {
+    std::filesystem::path path;
+    std::string_view bytes;
+};
+// Writes outputs that belong together (a header and its raw file) so that a failure replaces none
+// of them: every file is written and synced beside its target first, then the streams are written,
+// and only then is each renamed into place.
+void writeTogether(std::span<const OutputBytes> outputs);
+
+// For writers that need a file of their own (a library or program that opens, seeks and closes a
+// path): calls write(tmp), then puts tmp's bytes at `path` as described above. tmp keeps the target's
+// extension and does not exist when write is called; write must create it as a regular file and
+// throw if it fails. For a device, FIFO or "-", tmp lies in the system temporary directory and its
+// bytes are copied to the stream once write has returned; tmp is removed in every case.
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
-
-// Writes `text` to `path` atomically; "-" writes to stdout.
-void writeTextFile(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace vri

@@ -79,11 +79,14 @@ std::string describeUnexpected(const std::exception& e);
 
 // Runs body() and turns an escaping exception into the single line "<tool>: error: <what>", its
 // control characters escaped (printable.h); exit kExitUsage for a UsageError, kExitError otherwise.
+// What body() printed must have reached stdout: a full disk behind a redirection is a failure too.
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
     const auto report = [&](const std::string& what) { std::cerr << tool << ": error: " << printable(what) << '\n'; };
     try {
-        return body();
+        const int code = body();
+        if (!std::cout.flush()) throw Error("stdout: cannot write what was printed (disk full or output closed?)");
+        return code;
     } catch (const UsageError& e) {
         report(e.what());
         return kExitUsage;

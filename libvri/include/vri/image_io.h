@@ -1,6 +1,7 @@
 #pragma once
 // Reading and writing images. Renders are kept as 32-bit float OpenEXR (exact, with provenance in
-// the header); PNG is only a preview for figures and eyes. Every write is atomic.
+// the header); PNG is only a preview for figures and eyes. Every write goes through atomic_file.h
+// (atomic for a file, in place for a device, FIFO or "-").
 #include <array>
 #include <filesystem>
 #include <string>
@@ -39,7 +40,8 @@ struct PngOptions {
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options = {});
 
 // By extension: .exr -> writeExr, .png -> writePng with default options, any other format that
-// OpenImageIO writes gets float data and converts it as that format can.
+// OpenImageIO can encode into memory gets float data and converts it as that format can; the
+// formats it cannot (SGI, FITS, ...) are an error, since their writes could not be checked.
 void writeImage(const std::filesystem::path& path, const Image& image);
 
 }  // namespace vri

@@ -41,7 +41,8 @@ void requireUsableValues(const Volume& volume, const std::string& source);
 // else is raw, laid out by `rawLayout` if given, else by layoutFromFileName.
 // The volume read passes requireUsableValues.
 Volume readVolume(const std::filesystem::path& path, const std::optional<RawLayout>& rawLayout = {});
-// Writes by extension: .vdb, .nhdr (header + NAME.raw beside it), .dat (+ NAME.raw), .raw (little endian).
+// Writes by extension: .vdb, .nhdr (header + NAME.raw beside it), .dat (+ NAME.raw), .raw (little endian),
+// through atomic_file.h; a header and its raw file are written together (neither replaced if one fails).
 void writeVolume(const std::filesystem::path& path, const Volume& volume);
 // The files writeVolume(path, ...) creates or replaces: `path`, and for .nhdr and .dat the raw
 // file beside it. A tool checks them against its input before it overwrites what it reads.
