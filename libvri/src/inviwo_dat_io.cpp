@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 
 #include "vri/atomic_file.h"
@@ -66,7 +67,9 @@ Volume readInviwoDat(const fs::path& path) {
     const DatEntry& resolution = require("resolution", "Resolution");
     const std::vector<double> dims = parseNumbers(resolution.value, 3, where(resolution));
     for (int axis = 0; axis < 3; ++axis) {
-        if (dims[axis] < 1 || dims[axis] != static_cast<int>(dims[axis]))
+        // Compared before the cast: converting a double beyond int's range is undefined.
+        if (!(dims[axis] >= 1 && dims[axis] <= std::numeric_limits<int>::max()) ||
+            dims[axis] != std::floor(dims[axis]))
             throw Error(where(resolution) + ": expected three positive integers, got '" + resolution.value + "'");
         layout.dims[axis] = static_cast<int>(dims[axis]);
     }
@@ -79,7 +82,8 @@ Volume readInviwoDat(const fs::path& path) {
     }
     if (const DatEntry* offset = find("byteoffset")) {
         const double bytes = parseNumbers(offset->value, 1, where(*offset))[0];
-        if (bytes < 0 || bytes != std::floor(bytes))
+        // Compared before the cast: converting a double beyond size_t's range is undefined.
+        if (bytes < 0 || bytes != std::floor(bytes) || bytes >= 0x1p64)
             throw Error(where(*offset) + ": expected a byte count, got '" + offset->value + "'");
         layout.headerBytes = static_cast<std::size_t>(bytes);
     }

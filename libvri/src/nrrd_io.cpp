@@ -2,7 +2,9 @@
 // (.nhdr + data file) or attached (.nrrd, data after the header's blank line).
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -97,7 +99,9 @@ Volume readNrrd(const fs::path& path) {
 
     const std::vector<double> sizes = parseNumbers(requiredField("sizes"), 3, where("sizes"));
     for (int axis = 0; axis < 3; ++axis) {
-        if (sizes[axis] < 1 || sizes[axis] != static_cast<int>(sizes[axis]))
+        // Compared before the cast: converting a double beyond int's range is undefined.
+        if (!(sizes[axis] >= 1 && sizes[axis] <= std::numeric_limits<int>::max()) ||
+            sizes[axis] != std::floor(sizes[axis]))
             throw Error(where("sizes") + ": sizes must be positive integers");
         layout.dims[axis] = static_cast<int>(sizes[axis]);
     }
@@ -135,7 +139,7 @@ Volume readNrrd(const fs::path& path) {
     long long byteSkip = 0;
     if (const std::string* skip = optionalField("byte skip")) {
         const double value = parseNumbers(*skip, 1, where("byte skip"))[0];
-        if (value < -1 || value != static_cast<long long>(value))
+        if (value < -1 || value != std::floor(value) || value >= 0x1p63)
             throw Error(where("byte skip") + ": expected -1 or a byte count, got '" + *skip + "'");
         byteSkip = static_cast<long long>(value);
     }

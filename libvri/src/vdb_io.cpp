@@ -17,6 +17,7 @@
 #include "vri/atomic_file.h"
 #include "vri/error.h"
 #include "vri/volume_io.h"
+#include "vdb_grid_layout.h"
 #include "volume_formats.h"
 
 namespace vri {
@@ -90,51 +91,53 @@ std::string gridDescription(const openvdb::GridBase& grid) {
     return "grid '" + grid.getName() + "' (" + grid.valueType() + ")";
 }
 
-Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
+detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
+    detail::VdbGridFacts facts;
+    facts.description = gridDescription(grid);
+    facts.valueType = grid.isType<openvdb::Int32Grid>()    ? detail::VdbValueType::Int32
+                      : grid.isType<openvdb::DoubleGrid>() ? detail::VdbValueType::Double
+                                                           : detail::VdbValueType::Float;
     const openvdb::math::Transform& transform = grid.transform();
+    facts.linearTransform = transform.isLinear();
     const openvdb::Mat3d linear = transform.baseMap()->getAffineMap()->getMat4().getMat3();
-    if (!transform.isLinear() || !openvdb::math::isDiagonal(linear) || linear(0, 0) <= 0 || linear(1, 1) <= 0 ||
-        linear(2, 2) <= 0)
-        throw Error(path.string() + ": " + gridDescription(grid) +
-                    " has a rotated, flipped or non-linear transform; only axis-aligned grids are supported");
-
-    const auto typeMeta = grid.getMetadata<openvdb::StringMetadata>(kVoxelTypeKey);
-    const auto dimsMeta = grid.getMetadata<openvdb::Vec3IMetadata>(kDimsKey);
-    const bool writtenByVri = typeMeta && dimsMeta;
-    VoxelType type = VoxelType::Float32;
-    openvdb::CoordBBox box;
-    if (writtenByVri) {
-        type = parseVoxelType(typeMeta->value(), path.string() + ": " + kVoxelTypeKey);
-        const openvdb::Vec3i d = dimsMeta->value();
-        if (d.x() < 1 || d.y() < 1 || d.z() < 1)
-            throw Error(path.string() + ": " + kDimsKey + " must be positive");
-        box = indexBox({d.x(), d.y(), d.z()});
-    } else {
-        box = grid.evalActiveVoxelBoundingBox();
-        if (box.empty()) throw Error(path.string() + ": " + gridDescription(grid) + " has no active voxels");
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row) facts.linear[column][row] = linear(row, column);
+    if (const auto type = grid.getMetadata<openvdb::StringMetadata>(kVoxelTypeKey)) facts.voxelTypeMeta = type->value();
+    if (const auto dims = grid.getMetadata<openvdb::Vec3IMetadata>(kDimsKey))
+        facts.dimsMeta = glm::ivec3(dims->value().x(), dims->value().y(), dims->value().z());
+    if (const auto range = grid.getMetadata<openvdb::Vec2DMetadata>(kRangeKey))
+        facts.rangeMeta = glm::dvec2(range->value().x(), range->value().y());
+    if (!facts.voxelTypeMeta || !facts.dimsMeta) {  // only a grid not written by vri is read over its active box
+        const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
+        if (!active.empty()) {
+            facts.activeMin = glm::ivec3(active.min().x(), active.min().y(), active.min().z());
+            facts.activeMax = glm::ivec3(active.max().x(), active.max().y(), active.max().z());
+        }
     }
+    return facts;
+}
 
-    const openvdb::Coord size = box.dim();
-    Volume volume({size.x(), size.y(), size.z()}, type);
+Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
+    const detail::VdbVolumeLayout layout = detail::vdbVolumeLayout(path.string(), gridFacts(grid));
+    const openvdb::Coord boxMin(layout.boxMin.x, layout.boxMin.y, layout.boxMin.z);
+    const openvdb::CoordBBox box(boxMin, boxMin.offsetBy(layout.dims.x - 1, layout.dims.y - 1, layout.dims.z - 1));
+
+    Volume volume(layout.dims, layout.type);
+    const openvdb::math::Transform& transform = grid.transform();
     const openvdb::Vec3d spacing = transform.voxelSize();
     const openvdb::Vec3d origin = transform.indexToWorld(box.min());
     volume.spacing = {spacing.x(), spacing.y(), spacing.z()};
     volume.origin = {origin.x(), origin.y(), origin.z()};
-    if (const auto range = grid.getMetadata<openvdb::Vec2DMetadata>(kRangeKey); range && writtenByVri)
-        volume.range = ValueRange{range->value().x(), range->value().y()};
+    volume.range = layout.range;
 
-    const bool isInt = grid.isType<openvdb::Int32Grid>();
-    if (type == VoxelType::UInt8 && isInt) copyToVolume<std::uint8_t, openvdb::Int32Grid>(grid, box, volume);
-    else if (type == VoxelType::UInt16 && isInt) copyToVolume<std::uint16_t, openvdb::Int32Grid>(grid, box, volume);
-    else if (type == VoxelType::Float32 && grid.isType<openvdb::FloatGrid>())
-        copyToVolume<float, openvdb::FloatGrid>(grid, box, volume);
-    else if (type == VoxelType::Float32 && grid.isType<openvdb::DoubleGrid>() && !writtenByVri)
+    // vdbVolumeLayout has checked that the grid's value type can hold the layout's voxel type.
+    if (grid.isType<openvdb::Int32Grid>())
+        dispatchVoxelType(layout.type,
+                          [&](auto t) { copyToVolume<decltype(t), openvdb::Int32Grid>(grid, box, volume); });
+    else if (grid.isType<openvdb::DoubleGrid>())
         copyToVolume<float, openvdb::DoubleGrid>(grid, box, volume);
-    else if (type == VoxelType::Float32 && isInt && !writtenByVri)
-        copyToVolume<float, openvdb::Int32Grid>(grid, box, volume);
     else
-        throw Error(path.string() + ": " + gridDescription(grid) + " cannot hold " +
-                    std::string(voxelTypeName(type)) + " voxels as its metadata claim");
+        copyToVolume<float, openvdb::FloatGrid>(grid, box, volume);
     return volume;
 }
 
