@@ -6,6 +6,9 @@
 #include <string>
 #include <system_error>
 
+#include "vri/error.h"
+#include "vri/volume_io.h"
+
 namespace vri::fuzz {
 
 namespace fs = std::filesystem;
@@ -53,6 +56,14 @@ fs::path writeInput(const char* name, const std::uint8_t* data, std::size_t size
     const fs::path path = scratchDir() / name;
     writeBytes(path, data, size);
     return path;
+}
+
+void readInputAsVolume(const char* name, const std::uint8_t* data, std::size_t size) {
+    const fs::path path = writeInput(name, data, size);
+    try {
+        readVolume(path);
+    } catch (const Error&) {
+    }
 }
 
 }  // namespace vri::fuzz

@@ -14,4 +14,8 @@ const std::filesystem::path& scratchDir();
 // Writes `size` bytes to scratchDir() / name and returns that path.
 std::filesystem::path writeInput(const char* name, const std::uint8_t* data, std::size_t size);
 
+// Writes the input as scratchDir() / name and reads it with readVolume, as the tools read a volume
+// given on the command line; a vri::Error (a clean rejection) is swallowed, anything else escapes.
+void readInputAsVolume(const char* name, const std::uint8_t* data, std::size_t size);
+
 }  // namespace vri::fuzz

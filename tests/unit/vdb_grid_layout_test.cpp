@@ -12,19 +12,22 @@ using vri::detail::vdbVolumeLayout;
 
 namespace {
 
-VdbGridFacts writtenByVri(const char* type, glm::ivec3 dims, VdbValueType valueType) {
+VdbGridFacts grid(VdbValueType valueType) {
     VdbGridFacts facts;
     facts.description = "grid 'density' (test)";
     facts.valueType = valueType;
+    return facts;
+}
+
+VdbGridFacts writtenByVri(const char* type, glm::ivec3 dims, VdbValueType valueType) {
+    VdbGridFacts facts = grid(valueType);
     facts.voxelTypeMeta = type;
     facts.dimsMeta = dims;
     return facts;
 }
 
 VdbGridFacts foreign(glm::ivec3 min, glm::ivec3 max, VdbValueType valueType = VdbValueType::Float) {
-    VdbGridFacts facts;
-    facts.description = "grid 'density' (test)";
-    facts.valueType = valueType;
+    VdbGridFacts facts = grid(valueType);
     facts.activeMin = min;
     facts.activeMax = max;
     return facts;
