@@ -19,8 +19,10 @@ bool isDiagonalWithPositiveScale(const glm::dmat3& m) {
     double offDiagonal = 0.0;
     for (int column = 0; column < 3; ++column)
         for (int row = 0; row < 3; ++row) {
-            if (column != row) offDiagonal += std::abs(m[column][row]);
-            else if (!(m[column][row] > 0.0)) return false;  // NaN too
+            if (column != row)
+                offDiagonal += std::abs(m[column][row]);
+            else if (!(m[column][row] > 0.0))
+                return false;  // NaN too
         }
     return offDiagonal <= 1e-15;
 }
@@ -56,9 +58,8 @@ VdbVolumeLayout vdbVolumeLayout(const std::string& path, const VdbGridFacts& gri
 
     // uint8 and uint16 voxels live in an Int32Grid, float32 in a FloatGrid; a grid not written by vri is
     // read as float32 from any scalar type.
-    const bool fits = layout.type == VoxelType::Float32
-                          ? grid.valueType == VdbValueType::Float || !writtenByVri
-                          : grid.valueType == VdbValueType::Int32;
+    const bool fits = layout.type == VoxelType::Float32 ? grid.valueType == VdbValueType::Float || !writtenByVri
+                                                        : grid.valueType == VdbValueType::Int32;
     if (!fits)
         throw Error(path + ": " + grid.description + " cannot hold " + std::string(voxelTypeName(layout.type)) +
                     " voxels as its metadata claim");

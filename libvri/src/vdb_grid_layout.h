@@ -22,7 +22,7 @@ struct VdbGridFacts {
     std::string description;  // "grid 'density' (float)", for messages
     VdbValueType valueType = VdbValueType::Float;
     bool linearTransform = true;
-    glm::dmat3 linear{1.0};  // the linear part of the index-to-world map; [column][row] as in GLM
+    glm::dmat3 linear{1.0};                    // the linear part of the index-to-world map; [column][row] as in GLM
     std::optional<std::string> voxelTypeMeta;  // vri_voxel_type
     std::optional<glm::ivec3> dimsMeta;        // vri_dims
     std::optional<glm::dvec2> rangeMeta;       // vri_range

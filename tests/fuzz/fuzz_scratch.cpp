@@ -33,7 +33,8 @@ fs::path makeScratchDir() {
     }
     const fs::path dir = pattern;
     unsigned char voxels[512];
-    for (unsigned i = 0; i < sizeof voxels; ++i) voxels[i] = static_cast<unsigned char>((i * 37 + i / 64 * 11) % 256);
+    for (unsigned i = 0; i < sizeof voxels; ++i)
+        voxels[i] = static_cast<unsigned char>((i * 37 + i / 64 * 11) % 256);
     writeBytes(dir / "data.raw", voxels, sizeof voxels);
     return dir;
 }
@@ -44,9 +45,9 @@ const fs::path& scratchDir() {
     static const fs::path dir = makeScratchDir();
     static const bool removeAtExit = [] {
         return std::atexit([] {
-            std::error_code ignored;
-            fs::remove_all(dir, ignored);
-        }) == 0;
+                   std::error_code ignored;
+                   fs::remove_all(dir, ignored);
+               }) == 0;
     }();
     (void)removeAtExit;
     return dir;

@@ -27,7 +27,8 @@ std::vector<T> numbers(std::string_view text) {
     const char* p = text.data();
     const char* end = text.data() + text.size();
     while (p < end) {
-        while (p < end && *p == ' ') ++p;
+        while (p < end && *p == ' ')
+            ++p;
         T value{};
         const auto [next, ec] = std::from_chars(p, end, value);
         if (ec != std::errc{}) break;
@@ -48,15 +49,19 @@ vri::detail::VdbGridFacts decode(const std::string& text) {
         const std::string key = line.substr(0, colon);
         const std::string_view value = std::string_view(line).substr(colon + 2);
         if (key == "value_type") {
-            if (value == "double") facts.valueType = vri::detail::VdbValueType::Double;
-            else if (value == "int32") facts.valueType = vri::detail::VdbValueType::Int32;
-            else facts.valueType = vri::detail::VdbValueType::Float;
+            if (value == "double")
+                facts.valueType = vri::detail::VdbValueType::Double;
+            else if (value == "int32")
+                facts.valueType = vri::detail::VdbValueType::Int32;
+            else
+                facts.valueType = vri::detail::VdbValueType::Float;
         } else if (key == "transform") {
             facts.linearTransform = value != "nonlinear";
         } else if (key == "matrix") {
             if (const auto m = numbers<double>(value); m.size() == 9)
                 for (int row = 0; row < 3; ++row)
-                    for (int column = 0; column < 3; ++column) facts.linear[column][row] = m[row * 3 + column];
+                    for (int column = 0; column < 3; ++column)
+                        facts.linear[column][row] = m[row * 3 + column];
         } else if (key == "vri_voxel_type") {
             facts.voxelTypeMeta = std::string(value);
         } else if (key == "vri_dims") {
