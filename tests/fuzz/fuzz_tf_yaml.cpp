@@ -1,9 +1,11 @@
 // Fuzz target: transfer-function YAML (parseTransferFunction, what --tf files go through). A function
-// that parses is also evaluated across and beyond [0, 1], where its segment lookup divides by the
-// points' spacing. A vri::Error is a clean rejection; anything else is a finding.
+// that parses is also evaluated, in double and float, at every point, between neighbouring points and
+// beyond both ends, where its segment lookup scales s by the points' span. A vri::Error is a clean
+// rejection; anything else is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "vri/error.h"
 #include "vri/transfer_function.h"
@@ -12,11 +14,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
         const vri::TransferFunction tf = vri::parseTransferFunction(text, "fuzz-tf.yaml");
-        for (const double s : {-1.0, 0.0, 0.25, 0.5, 0.75, 1.0, 2.0}) {
+        const auto& points = tf.points();
+        std::vector<double> at{points.front().s - 1.0, points.back().s + 1.0, 0.0, 0.5, 1.0};
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            at.push_back(points[i].s);
+            if (i + 1 < points.size()) at.push_back(points[i].s + (points[i + 1].s - points[i].s) / 2);
+        }
+        for (const double s : at) {
             tf(s);
             tf(static_cast<float>(s));
         }
-        tf.isInvisible(0.0, 1.0);
+        tf.isInvisible(points.front().s, points.back().s);
     } catch (const vri::Error&) {
     }
     return 0;
