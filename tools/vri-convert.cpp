@@ -99,7 +99,9 @@ int main(int argc, char** argv) {
   vri-convert scan.raw scan.nhdr --dims 512,512,300 --type uint16 --byte-order big --spacing 0.5,0.5,1
 
 Formats by extension: .nhdr/.nrrd (raw encoding), .dat (Inviwo), .vdb; anything else is raw.
-Writes are atomic: on failure no output file is left behind.)");
+Writes are atomic: on failure no output file is left behind.
+A volume may take at most 16 GiB in memory (VRI_MAX_BYTES: a byte count to change it). A .vdb whose dims
+would unpack to more than 1024 times its file size (and over 256 MiB) is refused unless VRI_MAX_BYTES is set.)");
 
     std::string input, output, grid;
     vri::RawInputOptions raw;

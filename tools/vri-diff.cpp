@@ -131,7 +131,7 @@ const CLI::Validator kPositive = numberCheck(false);
 
 // The one-line message of vri::guardedMain, with the exit code that names this kind of failure.
 int exitWith(int code, const std::exception& error) {
-    std::cerr << kTool << ": error: " << error.what() << '\n';
+    std::cerr << kTool << ": error: " << vri::printable(error.what()) << '\n';
     return code;
 }
 

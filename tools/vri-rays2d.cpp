@@ -57,7 +57,9 @@ int run(int argc, char** argv) {
                "\n"
                "The closed form is exact for the grid as stored: f is linear along a ray between the lines "
                "through the voxel samples (and clamped beyond the outermost ones in the cell convention), so "
-               "each piece is integrated exactly. Every output is written atomically.");
+               "each piece is integrated exactly. Every output is written atomically.\n"
+               "Limits: at most 1e6 rays; 1e9 samples over the fan (rays x placements x the sum of the rates x "
+               "the voxels a ray crosses); 1e6 samples in the diagram; 2048x2048 points in the field image.");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     const bool fanWanted = !output.empty() || !errors.empty() || !errorsCsv.empty() || !convergence.empty();

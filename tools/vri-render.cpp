@@ -55,7 +55,11 @@ int main(int argc, char** argv) {
   vri-render --list-devices
 
 Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency
-(Simpson methods: alpha = the integral of extinction times transparency, paper B's fourth channel).)");
+(Simpson methods: alpha = the integral of extinction times transparency, paper B's fourth channel).
+
+Limits, checked before any work: a volume or image may take at most 16 GiB (set VRI_MAX_BYTES to a byte
+count to change it); a ray at most 1e9 samples (--step, --rate) or, for the Simpson methods, 1e9 steps of
+h_min (2^22 in float precision, where a shorter step would no longer advance the ray).)");
 
     std::string output, pngPath, statsPath, logPath, logRay, hMax = "2";
     vri::SceneOptions sceneOptions;

@@ -14,8 +14,10 @@
 #include "vri/experiment_plan.h"
 #include "vri/experiment_reproduce.h"
 #include "vri/experiment_run.h"
+#include "vri/folder_lock.h"
 #include "vri/json_file.h"
 #include "vri/manifest.h"
+#include "vri/stale_temp_files.h"
 
 namespace fs = std::filesystem;
 
@@ -42,8 +44,8 @@ bool reproduce(const Options& options, const vri::Experiment& experiment, const 
     }
     if (!fs::is_regular_file(committed))
         throw vri::Error(committed.string() + ": no such file (record it with vri-run --quick --record)");
-    const std::vector<std::string> problems =
-        vri::reproduceMismatches(experiment, measured, vri::readJsonFile(committed));
+    const std::vector<std::string> problems = vri::readingJsonOf(
+        committed, [&] { return vri::reproduceMismatches(experiment, measured, vri::readJsonFile(committed)); });
     for (const std::string& p : problems) std::cerr << kTool << ": " << experiment.name << ": " << p << '\n';
     if (problems.empty()) std::cerr << kTool << ": " << experiment.name << ": reproduced (" << committed.string() << ")\n";
     return problems.empty();
@@ -66,6 +68,12 @@ int run(const Options& options) {
             continue;
         }
         const auto start = std::chrono::steady_clock::now();
+        const vri::FolderLock lock(plan.commandPath(plan.resultsDir));  // until its manifest is written
+        // Left by a vri-run or a step killed mid-write; a step of a killed vri-run that still runs keeps its own.
+        for (const fs::path& folder : {plan.resultsDir, plan.resultsDir / ".steps"})
+            for (const fs::path& stale : vri::removeStaleTempFiles(folder))
+                std::cerr << kTool << ": removed " << plan.commandPath(stale)
+                          << ", a temporary file of a process that is gone\n";
         vri::FileHasher hasher;
         fs::remove(plan.resultsDir / "manifest.json");  // rewritten only once every step has succeeded
         const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, {toolDir, options.jobs, options.force}, hasher);
@@ -112,7 +120,10 @@ int main(int argc, char** argv) {
     app.add_option("--gallery", options.gallery, "afterwards, write DIR/README.md from DIR/*/manifest.json");
     app.footer(R"(Steps are cached in <results>/<experiment>/.steps/: a step is skipped when its command, tool binary,
 input files (or the steps that write them) and outputs are as when it last succeeded.
-Tools are taken from the directory vri-run is in.
+Tools are taken from the directory vri-run is in. One vri-run at a time works in an experiment's folder
+(it holds <results>/<experiment>/.vri-run.lock): a second one exits 1 naming the process that holds it.
+Temporary files (.NAME.tmp.PID.*) whose process is gone are removed first.
+The sweeps of one file may expand to at most 10000 runs (counted before expanding, --dry-run included).
 
 Examples:
   vri-run experiments/paper-a-fig4.yaml

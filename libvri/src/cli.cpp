@@ -2,8 +2,14 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <new>
 #include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "vri/json_file.h"
 
 namespace vri {
 
@@ -38,6 +44,23 @@ glm::vec<N, double> finiteVector(const std::string& text, const std::string& mes
 }
 
 }  // namespace
+
+std::string describeUnexpected(const std::exception& e) {
+    if (dynamic_cast<const std::bad_alloc*>(&e))
+        return "out of memory: the input asks for more memory than is available (sizes from input are checked "
+               "against VRI_MAX_BYTES, 16 GiB by default; lower it to be refused before allocating)";
+    if (const auto* fsError = dynamic_cast<const std::filesystem::filesystem_error*>(&e))
+        return (fsError->path1().empty() ? std::string("file system") : fsError->path1().string()) + ": " +
+               fsError->code().message();
+    if (const auto* jsonError = dynamic_cast<const nlohmann::json::exception*>(&e)) {
+        constexpr int kInvalidUtf8 = 316;  // nlohmann's type_error.316, raised while writing
+        if (jsonError->id == kInvalidUtf8)
+            return "a file name or text to be written as JSON is not valid UTF-8 (" + jsonExceptionText(*jsonError) +
+                   ")";
+        return "JSON: " + jsonExceptionText(*jsonError);
+    }
+    return e.what();
+}
 
 glm::dvec2 parseVec2(const std::string& text, const std::string& what) {
     return finiteVector<2>(text, what + ": expected two numbers x,y, got '" + text + "'");

@@ -1,13 +1,12 @@
 // `make data`: checking each catalog dataset in the data directory and fetching what is missing.
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "vri/atomic_file.h"
 #include "vri/datasets.h"
 #include "vri/error.h"
-#include "vri/provenance.h"
+#include "vri/process.h"
 
 namespace vri {
 
@@ -18,18 +17,17 @@ namespace {
 // Downloads url into `target` through writeAtomically: the file appears only once it is complete
 // and `accept` (which throws to refuse it) has passed it. Throws vri::Error saying why not.
 void fetch(const std::string& url, const fs::path& target, const std::function<void(const fs::path& tmp)>& accept = {}) {
-    std::string command;
-    // -f: an HTTP error is a failure, not a saved error page.
-    if (commandAvailable("curl")) command = "curl -fsSL --retry 2 -o ";
-    else if (commandAvailable("wget")) command = "wget -q -O ";
-    else throw Error("neither curl nor wget is installed");
+    // -f: an HTTP error is a failure, not a saved error page. "--" ends the options: a URL cannot pass as one.
+    std::string name = "curl";
+    auto program = findProgram(name);
+    if (!program) program = findProgram(name = "wget");
+    if (!program) throw Error("neither curl nor wget is installed");
     writeAtomically(target, [&](const fs::path& tmp) {
-        const int status = std::system((command + shellQuote(tmp.string()) + " " + shellQuote(url)).c_str());
-        if (status != 0) {
-            const int code = WIFEXITED(status) ? WEXITSTATUS(status) : status;
-            throw Error("download of " + url + " failed (" + command.substr(0, command.find(' ')) + " exit status " +
-                        std::to_string(code) + ")");
-        }
+        const std::vector<std::string> words =
+            name == "curl" ? std::vector<std::string>{"curl", "-fsSL", "--retry", "2", "-o", tmp.string(), "--", url}
+                           : std::vector<std::string>{"wget", "-q", "-O", tmp.string(), "--", url};
+        const ExitStatus status = runProcess(*program, words);
+        if (!status.ok()) throw Error("download of " + url + " failed (" + name + " " + status.describe() + ")");
         if (accept) accept(tmp);
     });
 }

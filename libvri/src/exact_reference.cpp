@@ -13,6 +13,7 @@
 #include <tbb/task_arena.h>
 
 #include "exact_ray.h"
+#include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/progress.h"
 
@@ -200,7 +201,11 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
     ExactReference out;
     out.width = camera.width();
     out.height = camera.height();
-    const std::size_t n = static_cast<std::size_t>(out.width) * out.height * 4;
+    // Values and bounds in double: twice the image's bytes each, checked before they are allocated.
+    const std::size_t n = checkedBytes("the exact reference of a " + std::to_string(out.width) + "x" +
+                                           std::to_string(out.height) + " image",
+                                       {std::uint64_t(out.width), std::uint64_t(out.height), 4, 2 * sizeof(double)}) /
+                          (2 * sizeof(double));
     out.values.assign(n, 0.0);
     out.bounds.assign(n, 0.0);
     Counters counters;

@@ -198,6 +198,14 @@ Plan planExperiment(const Experiment& experiment, const fs::path& resultsDir, co
         const Step& step = plan.steps[i];
         if (std::count_if(plan.steps.begin(), plan.steps.end(), [&](const Step& s) { return s.id == step.id; }) > 1)
             throw Error(experiment.source.string() + ": two steps are called '" + step.id + "'");
+        // The reader holds every name to isSafeName; this holds the plan to what that buys: each step's
+        // record and outputs in the experiment's folder, whatever made the Experiment.
+        if (!isSafeName(step.id))
+            throw Error(experiment.source.string() + ": step id '" + step.id + "' is not a safe name");
+        for (const fs::path& out : step.outputs)
+            if (out.parent_path() != plan.resultsDir)
+                throw Error(experiment.source.string() + ": step '" + step.id + "' would write " + out.string() +
+                            ", outside the experiment's folder " + plan.resultsDir.string());
         std::vector<std::size_t> dependencies;
         for (const fs::path& in : step.inputs)
             if (auto w = writer.find(in); w != writer.end() && std::find(dependencies.begin(), dependencies.end(), w->second) == dependencies.end())

@@ -35,10 +35,12 @@ nlohmann::json imageMetrics(const Image& image, const std::vector<std::string>& 
 
 nlohmann::json diffMetrics(const fs::path& diffJson, const std::vector<std::string>& metrics) {
     const nlohmann::json diff = readJsonFile(diffJson);
-    nlohmann::json result = nlohmann::json::object();
-    for (const nlohmann::json& channel : diff.at("channels"))
-        for (const std::string& m : metrics) result[m][channel.at("name").get<std::string>()] = channel.at(m);
-    return result;
+    return readingJsonOf(diffJson, [&] {
+        nlohmann::json result = nlohmann::json::object();
+        for (const nlohmann::json& channel : diff.at("channels"))
+            for (const std::string& m : metrics) result[m][channel.at("name").get<std::string>()] = channel.at(m);
+        return result;
+    });
 }
 
 // Every cell of a CSV file, by column: numbers as numbers, anything else as text.

@@ -1,14 +1,10 @@
 // The scheduler of vri-run: processes for steps, the step cache, progress and failures.
 #include "vri/experiment_run.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -16,9 +12,8 @@
 #include <sstream>
 
 #include "vri/error.h"
+#include "vri/process.h"
 #include "vri/provenance.h"
-
-extern char** environ;
 
 namespace vri {
 
@@ -27,22 +22,6 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Starts `words` (words[0] shown, `executable` run) with stdout and stderr into `log`.
-pid_t launch(const fs::path& executable, const std::vector<std::string>& words, const fs::path& log) {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    std::vector<char*> argv;
-    for (const std::string& w : words) argv.push_back(const_cast<char*>(w.c_str()));
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    const int error = posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (error != 0) throw Error(executable.string() + ": cannot start: " + std::strerror(error));
-    return pid;
-}
 
 // What a step printed, for the message of its failure.
 std::string logText(const fs::path& log) {
@@ -70,7 +49,7 @@ private:
 
     bool startReady();  // starts or settles every step whose dependencies are finished; false when nothing changed
     void settle(std::size_t i, StepOutcome::State how);
-    void finish(pid_t pid, int status);
+    void finish(pid_t pid, const ExitStatus& status);
     void report(std::size_t i, const std::string& how);
 
     const Plan& plan_;
@@ -133,13 +112,14 @@ bool Scheduler::startReady() {
         outcomes_[i].record.command = shellCommand(words);
         fs::path log = record;
         log.replace_extension(".log");
-        running_[launch(tool, words, log)] = Child{i, Clock::now(), log};
+        running_[startProcess(tool, words, {.in = "/dev/null", .out = log, .err = {}, .errToOut = true})] =
+            Child{i, Clock::now(), log};
         state_[i] = Running;
     }
     return changed;
 }
 
-void Scheduler::finish(pid_t pid, int status) {
+void Scheduler::finish(pid_t pid, const ExitStatus& status) {
     const auto found = running_.find(pid);
     if (found == running_.end()) return;
     const Child child = found->second;
@@ -148,12 +128,10 @@ void Scheduler::finish(pid_t pid, int status) {
     const Step& step = plan_.steps[i];
     StepRecord& record = outcomes_[i].record;
     record.wallSeconds = std::chrono::duration<double>(Clock::now() - child.start).count();
-    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    if (!ok) {
-        const std::string how = WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
-                                                  : "signal " + std::to_string(WTERMSIG(status));
+    if (!status.ok()) {
         if (failure_.empty())
-            failure_ = "step '" + step.id + "' failed (" + how + "):\n  " + record.command + "\n" + logText(child.log);
+            failure_ = "step '" + step.id + "' failed (" + status.describe() + "):\n  " + record.command + "\n" +
+                       logText(child.log);
         state_[i] = Finished;
         return;
     }
@@ -180,9 +158,7 @@ std::vector<StepOutcome> Scheduler::run() {
         while (startReady()) {
         }
         if (running_.empty()) break;
-        int status = 0;
-        const pid_t pid = ::waitpid(-1, &status, 0);
-        if (pid < 0) throw Error(std::string("waiting for a step: ") + std::strerror(errno));
+        const auto [pid, status] = waitAnyProcess();
         finish(pid, status);
     }
     if (!failure_.empty()) throw Error(failure_);

@@ -1,6 +1,7 @@
 // Reading experiment files: validation with file:line:col in every message, quick: overrides and
 // the expansion of parameter sweeps into runs.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "vri/adaptive_simpson.h"
+#include "vri/checked_size.h"
 #include "vri/cli.h"
 #include "vri/datasets.h"
 #include "vri/experiment.h"
@@ -79,6 +81,32 @@ const std::vector<RunParameter>& renderParameters() {
         {"warm_up", "--warm-up", "w", positiveCount},         // frames rendered before the timed ones
     };
     return parameters;
+}
+
+constexpr std::string_view kSafeName =
+    "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
+
+// The options with which vri tools write a file: in `commands:` they belong under `outputs:`, where
+// the file lands in the results folder, never under `options:` or `inputs:` (an input named `o`
+// would be overwritten wherever it is). A tool with a new output option adds it here.
+const std::set<std::string, std::less<>> kOutputOptions = {
+    "-o",        "--output",      "--png",       "--stats",      "--json",       "--csv",
+    "--log",     "--diff-image",  "--histogram", "--errors",     "--errors-csv", "--convergence",
+    "--diagram", "--field-image", "--summary",   "--error-image"};
+
+// Whether a command's option value names a file, which `options:` must not (a tool may write to it,
+// relative to where vri-run runs): a path, or a name with a file extension vri reads or writes. A
+// value that reads as another option ("-o", "--csv") would shift the words after it, so it counts too.
+bool namesFile(const std::string& value) {
+    static const std::set<std::string, std::less<>> extensions = {".vdb", ".nhdr", ".nrrd", ".dat", ".raw", ".exr",
+                                                                  ".png", ".svg",  ".gp",   ".csv", ".md",  ".json",
+                                                                  ".txt", ".yaml", ".yml",  ".log"};
+    std::string ext = fs::path(value).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    const bool looksLikeOption =
+        value.size() > 1 && value[0] == '-' && !(std::isdigit(static_cast<unsigned char>(value[1])) || value[1] == '.');
+    return value.find('/') != std::string::npos || value == "." || value == ".." || value.starts_with("~") ||
+           extensions.contains(ext) || looksLikeOption;
 }
 
 // How a tool's option is named on its command line: "-o" for a one-letter key, "--summary" otherwise.
@@ -157,8 +185,8 @@ std::vector<std::pair<std::string, YAML::Node>> ExperimentReader::entries(const 
     std::vector<std::pair<std::string, YAML::Node>> result;
     for (const auto& kv : node) {
         const std::string name = text(kv.first, std::string(what) + " name");
-        if (name.empty() || name.find_first_of("/ \t") != std::string::npos)
-            throw Error(at(kv.first) + ": '" + name + "' is not a usable name (no blanks or '/')");
+        if (!isSafeName(name))
+            throw Error(at(kv.first) + ": " + std::string(what) + ": a name must be " + std::string(kSafeName));
         yaml::requireMap(kv.second, source_, std::string(what) + " '" + name + "'");
         result.emplace_back(name, kv.second);
     }
@@ -202,9 +230,9 @@ std::optional<std::string> ExperimentReader::optionValue(const YAML::Node& node,
 // A file name in the results folder: no folders, not hidden (.steps), not one of vri-run's own files.
 std::string ExperimentReader::resultFile(const YAML::Node& node, const std::string& key) const {
     const std::string name = text(node, "output '" + key + "'");
-    if (name.empty() || name.front() == '.' || name.find('/') != std::string::npos || name == "manifest.json" ||
-        name == "reproduce.json")
-        throw Error(at(node) + ": output '" + key + "' must be a file name in the results folder, got '" + name + "'");
+    if (!isSafeName(name) || name == "manifest.json" || name == "reproduce.json")
+        throw Error(at(node) + ": output '" + key + "' must be a file name in the results folder (" +
+                    std::string(kSafeName) + "; not manifest.json or reproduce.json)");
     return name;
 }
 
@@ -370,6 +398,16 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         if (scenes.empty())
             for (const SceneSpec& s : experiment.scenes) scenes.push_back(s.name);
 
+        // Counted before expanding: the product of the lists' lengths, saturating, and the runs before it.
+        std::uint64_t runs = scenes.size();
+        for (const Axis& axis : axes) runs = checkedProduct({runs, axis.values.size()}).value_or(UINT64_MAX);
+        const std::size_t before = experiment.runs.size();
+        runs = runs > kMaxRuns ? runs : runs + before;
+        if (runs > kMaxRuns)
+            throw Error(at(entry) + ": " + section + " entry '" + prefix + "'" +
+                        (before > 0 ? " with the " + std::to_string(before) + " runs before it" : "") + ": needs " +
+                        (runs == UINT64_MAX ? "more than 2^64" : std::to_string(runs)) + " runs, limit " +
+                        std::to_string(kMaxRuns));
         // The cartesian product, the last axis varying fastest (as nested loops in file order).
         std::vector<std::size_t> index(axes.size(), 0);
         for (const std::string& scene : scenes) {
@@ -389,6 +427,9 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                         if (key != "method" && key != "repeat")
                             throw Error(at(entry) + ": " + key + " does not apply to method exact (vri-reference)");
                 }
+                if (!isSafeName(run.id))  // a swept value is part of the id
+                    throw Error(at(entry) + ": " + section + " entry '" + prefix +
+                                "': a swept value does not fit in a run id (" + std::string(kSafeName) + ")");
                 if (std::any_of(experiment.runs.begin(), experiment.runs.end(), [&](auto& r) { return r.id == run.id; }))
                     throw Error(at(entry) + ": run id '" + run.id + "' is used twice (rename one of the entries)");
                 experiment.runs.push_back(std::move(run));
@@ -455,12 +496,25 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
         if (!command.tool.starts_with("vri-") || command.tool.size() == 4 ||
             command.tool.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-", 4) != std::string::npos)
             throw Error(at(tool) + ": tool must be a vri tool (vri-[a-z0-9-]+), got '" + command.tool + "'");
+        if (command.tool == "vri-run" || command.tool == "vri-data")  // they write outside the results folder
+            throw Error(at(tool) + ": " + command.tool + " cannot be a command's tool");
         if (const YAML::Node options = entry["options"])
             for (const auto& [key, value] : optionEntries(options, "options"))
-                if (const auto v = optionValue(value, key)) command.options.emplace_back(optionWord(key), *v);
+                if (const auto v = optionValue(value, key)) {
+                    if (!v->empty() && kOutputOptions.contains(optionWord(key)))
+                        throw Error(at(value) + ": option '" + key + "' writes a file: name it under outputs:");
+                    if (namesFile(*v))
+                        throw Error(at(value) + ": option '" + key +
+                                    "' names a file or an option: files go under inputs: or outputs:");
+                    command.options.emplace_back(optionWord(key), *v);
+                }
         if (const YAML::Node inputs = entry["inputs"])
-            for (const auto& [key, value] : optionEntries(inputs, "inputs"))
+            for (const auto& [key, value] : optionEntries(inputs, "inputs")) {
+                if (kOutputOptions.contains(optionWord(key)))
+                    throw Error(at(value) + ": input '" + key +
+                                "' is an option that writes a file: name it under outputs:");
                 command.inputs.emplace_back(optionWord(key), existingFile(value, "input '" + key + "'"));
+            }
         const YAML::Node outputs = required(entry, "outputs", what);
         for (const auto& [key, value] : optionEntries(outputs, "outputs"))
             command.outputs.emplace_back(optionWord(key), resultFile(value, key));
@@ -642,8 +696,8 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     experiment.quick = quick;
     const YAML::Node name = required(root, "name", "the experiment");
     experiment.name = text(name, "name");
-    if (experiment.name.empty() || experiment.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_.") != std::string::npos)
-        throw Error(at(name) + ": name must be lowercase letters, digits, '-', '_' or '.', got '" + experiment.name + "'");
+    if (!isSafeName(experiment.name))  // the experiment's folder in the results root
+        throw Error(at(name) + ": name must be " + std::string(kSafeName));
     experiment.title = text(required(root, "title", "the experiment"), "title");
     experiment.paper = readPaper(required(root, "paper", "the experiment"));
     if (root["agreement"]) experiment.agreement = text(root["agreement"], "agreement");
@@ -667,6 +721,15 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
 }
 
 }  // namespace
+
+bool isSafeName(std::string_view name) {
+    const auto alnum = [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    };
+    return !name.empty() && alnum(name.front()) && name.find("..") == std::string_view::npos &&
+           std::all_of(name.begin(), name.end(),
+                       [&](char c) { return alnum(c) || c == '.' || c == '_' || c == '+' || c == '-'; });
+}
 
 const SceneSpec& Experiment::scene(const std::string& sceneName) const {
     for (const SceneSpec& s : scenes)

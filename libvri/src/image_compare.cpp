@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/format.h"
 
@@ -128,6 +129,10 @@ std::vector<double> logBinEdges(double lo, double hi, int binsPerDecade) {
         throw Error("logarithmic bins need 0 < lo < hi and at least one bin per decade, got lo " + exactNumber(lo) +
                     ", hi " + exactNumber(hi) + ", " + std::to_string(binsPerDecade) + " per decade");
     const double firstExponent = std::log10(lo);
+    // A histogram is a CSV row per bin: a million bins are plenty, and keep k well inside an int.
+    requireWithin("logarithmic bins from " + exactNumber(lo) + " to " + exactNumber(hi) + " at " +
+                      std::to_string(binsPerDecade) + " per decade",
+                  std::ceil((std::log10(hi) - firstExponent) * binsPerDecade), 1e6, "bins");
     std::vector<double> edges{lo};
     for (int k = 1;; ++k) {
         const double edge = std::pow(10.0, firstExponent + static_cast<double>(k) / binsPerDecade);

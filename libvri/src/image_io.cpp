@@ -112,6 +112,11 @@ Image readImage(const fs::path& path) {
     if (spec.depth > 1)
         throw Error(path.string() + ": cannot read image: it is a volume image (depth " + std::to_string(spec.depth) +
                     "), not a 2D image");
+    try {
+        imageBytes(spec.width, spec.height, spec.nchannels);  // the header's size, checked before allocating
+    } catch (const Error& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
     Image image(spec.width, spec.height, spec.nchannels);
     for (int c = 0; c < spec.nchannels; ++c)
         if (c < static_cast<int>(spec.channelnames.size()) && !spec.channelnames[c].empty())

@@ -68,9 +68,9 @@ Volume readInviwoDat(const fs::path& path) {
     const std::vector<double> dims = parseNumbers(resolution.value, 3, where(resolution));
     for (int axis = 0; axis < 3; ++axis) {
         // Compared before the cast: converting a double beyond int's range is undefined.
-        if (!(dims[axis] >= 1 && dims[axis] <= std::numeric_limits<int>::max()) ||
-            dims[axis] != std::floor(dims[axis]))
-            throw Error(where(resolution) + ": expected three positive integers, got '" + resolution.value + "'");
+        if (!(dims[axis] >= 1 && dims[axis] <= std::numeric_limits<int>::max()) || dims[axis] != std::floor(dims[axis]))
+            throw Error(where(resolution) + ": expected three positive integers up to " +
+                        std::to_string(std::numeric_limits<int>::max()) + ", got '" + resolution.value + "'");
         layout.dims[axis] = static_cast<int>(dims[axis]);
     }
 

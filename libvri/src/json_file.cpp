@@ -2,8 +2,6 @@
 
 #include <fstream>
 
-#include "vri/error.h"
-
 namespace vri {
 
 nlohmann::json readJsonFile(const std::filesystem::path& path) {
@@ -12,8 +10,14 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
     try {
         return nlohmann::json::parse(in);
     } catch (const nlohmann::json::exception& e) {
-        throw Error(path.string() + ": not valid JSON: " + e.what());
+        throw Error(path.string() + ": not valid JSON: " + jsonExceptionText(e));
     }
+}
+
+std::string jsonExceptionText(const nlohmann::json::exception& e) {
+    const std::string text = e.what();
+    const std::size_t tagEnd = text.starts_with("[json.exception.") ? text.find("] ") : std::string::npos;
+    return tagEnd == std::string::npos ? text : text.substr(tagEnd + 2);
 }
 
 }  // namespace vri

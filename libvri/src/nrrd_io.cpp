@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "vri/atomic_file.h"
+#include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/format.h"
 #include "vri/volume_io.h"
@@ -100,9 +101,9 @@ Volume readNrrd(const fs::path& path) {
     const std::vector<double> sizes = parseNumbers(requiredField("sizes"), 3, where("sizes"));
     for (int axis = 0; axis < 3; ++axis) {
         // Compared before the cast: converting a double beyond int's range is undefined.
-        if (!(sizes[axis] >= 1 && sizes[axis] <= std::numeric_limits<int>::max()) ||
-            sizes[axis] != std::floor(sizes[axis]))
-            throw Error(where("sizes") + ": sizes must be positive integers");
+        if (!(sizes[axis] >= 1 && sizes[axis] <= std::numeric_limits<int>::max()) || sizes[axis] != std::floor(sizes[axis]))
+            throw Error(where("sizes") + ": sizes must be positive integers up to " +
+                        std::to_string(std::numeric_limits<int>::max()) + ", got '" + requiredField("sizes") + "'");
         layout.dims[axis] = static_cast<int>(sizes[axis]);
     }
 
@@ -161,8 +162,11 @@ Volume readNrrd(const fs::path& path) {
     try {
         requireRegularFile(dataPath);
         if (byteSkip == -1) {  // the data are the last bytes of the file
-            const std::uintmax_t voxelBytes = static_cast<std::uintmax_t>(layout.dims.x) * layout.dims.y *
-                                              layout.dims.z * voxelSize(layout.type);
+            // Saturating: dims too large for the file leave no header, and readRaw names both sizes.
+            const std::uintmax_t voxelBytes =
+                checkedProduct({std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y),
+                                std::uint64_t(layout.dims.z), voxelSize(layout.type)})
+                    .value_or(std::numeric_limits<std::uint64_t>::max());
             layout.headerBytes = fs::file_size(dataPath) - std::min(fs::file_size(dataPath), voxelBytes);
         } else {
             layout.headerBytes = (dataFile ? 0 : *header.dataOffset) + static_cast<std::uintmax_t>(byteSkip);

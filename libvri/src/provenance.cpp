@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <ctime>
 #include <fstream>
@@ -88,16 +89,20 @@ nlohmann::json buildInfo() {
             {"tbb", TBB_VERSION_STRING}};
 }
 
-bool commandAvailable(const std::string& name) {
-    return std::system(("command -v " + shellQuote(name) + " >/dev/null 2>&1").c_str()) == 0;
-}
-
 std::string shellQuote(std::string_view word) {
     const auto safe = [](char ch) {
         return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
                std::string_view("_@%+=:,./-").find(ch) != std::string_view::npos;
     };
-    if (!word.empty() && std::all_of(word.begin(), word.end(), safe)) return std::string(word);
+    // As a command's first word, NAME=value is an assignment and %N a job: quoted, they are words anywhere.
+    const auto assignment = word.substr(0, word.find('='));
+    const bool readsAsAssignment = assignment.size() < word.size() && !assignment.empty() &&
+                                   !std::isdigit(static_cast<unsigned char>(assignment.front())) &&
+                                   std::all_of(assignment.begin(), assignment.end(), [](char ch) {
+                                       return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+                                   });
+    if (!word.empty() && word.front() != '%' && !readsAsAssignment && std::all_of(word.begin(), word.end(), safe))
+        return std::string(word);
     std::string quoted = "'";
     for (char ch : word) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
     return quoted + "'";

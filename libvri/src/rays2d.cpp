@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "vri/box.h"
+#include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/grid_sampler.h"
 #include "vri/integrator.h"
@@ -71,9 +72,10 @@ double interpolatedField(const SampleLines& lines, double x) {
 }
 
 Study2D validated(const Study2D& s) {
-    if (!(s.side > 0.0)) throw Error("2D study: the square's side must be positive");
+    if (!(s.side > 0.0) || !std::isfinite(s.side)) throw Error("2D study: the square's side must be positive and finite");
     if (s.gridSize < 2) throw Error("2D study: the grid needs at least 2x2 voxels");
     if (s.rays < 1) throw Error("2D study: at least one ray is needed");
+    checkedCount("2D study: the fan", {std::uint64_t(s.rays)}, kMaxRays2D, "rays");
     if (!(s.fovDegrees > 0.0 && s.fovDegrees < 180.0)) throw Error("2D study: the field of view must be in (0, 180) degrees");
     return s;
 }
@@ -118,6 +120,8 @@ std::vector<Ray2D> Rays2D::closedForm() const {
     }
     return out;
 }
+
+double Rays2D::samplesPerRayAtRate1() const { return std::numbers::sqrt2 * study_.gridSize + 2.0; }
 
 glm::dvec3 Rays2D::toTexture(const glm::dvec2& local) const {
     return glm::dvec3((local + 0.5 * study_.side) / study_.side, 0.5);

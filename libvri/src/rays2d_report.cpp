@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vri/checked_size.h"
 #include "vri/csv.h"
 #include "vri/error.h"
 #include "vri/format.h"
@@ -92,6 +93,14 @@ ErrorSummary summarise(const Fan& fan, std::size_t placement, std::size_t rate) 
 }  // namespace
 
 Fan castFan(const Rays2D& study, const std::vector<Placement>& placements, const std::vector<double>& rates) {
+    double rateSum = 0.0;
+    for (double rate : rates) rateSum += rate;
+    const Study2D& s = study.study();
+    requireWithin("2D study: " + std::to_string(s.rays) + " rays x " + std::to_string(placements.size()) +
+                      " placements at rates summing to " + exactNumber(rateSum) + " on a " +
+                      std::to_string(s.gridSize) + "x" + std::to_string(s.gridSize) + " grid",
+                  double(s.rays) * double(placements.size()) * rateSum * study.samplesPerRayAtRate1(), kMaxFanSamples,
+                  "samples");
     Fan fan{placements, rates, study.closedForm(), {}};
     for (Placement p : placements) {
         auto& perRate = fan.discrete.emplace_back();
@@ -166,6 +175,10 @@ std::string diagramCsv(const Rays2D& study, const std::vector<int>& rays, const 
     for (int ray : rays)
         if (ray < 0 || ray >= s.rays)
             throw Error("diagram: ray " + std::to_string(ray) + " is not in 0.." + std::to_string(s.rays - 1));
+    requireWithin("diagram: " + std::to_string(rays.size()) + " rays x " + std::to_string(placements.size()) +
+                      " placements at rate " + exactNumber(rate),
+                  double(rays.size()) * double(placements.size()) * rate * study.samplesPerRayAtRate1(),
+                  kMaxDiagramSamples, "samples");
     CsvWriter csv({"panel", "kind", "x", "y", "x2", "y2"});
     square(csv, s, "setup");
     const double reach = glm::length(s.eye) + s.side;  // far enough past the square
@@ -181,6 +194,8 @@ std::string diagramCsv(const Rays2D& study, const std::vector<int>& rays, const 
 
 std::string fieldCsv(const Rays2D& study, int resolution) {
     if (resolution < 2) throw Error("field image: the resolution must be at least 2, got " + std::to_string(resolution));
+    checkedCount("field image of " + std::to_string(resolution) + "x" + std::to_string(resolution) + " points",
+                 {std::uint64_t(resolution), std::uint64_t(resolution)}, kMaxFieldPoints, "points (rows)");
     const double h = 0.5 * study.study().side;
     CsvWriter csv({"x", "y", "analytic", "reconstructed"});
     for (int j = 0; j < resolution; ++j)

@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include "vri/error.h"
+#include "vri/format.h"
 #include "vri/grid_sampler.h"
 #include "vri/occupancy_grid.h"
 #include "vri/progress.h"
@@ -251,6 +252,20 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
                     " per voxel would put more than 1e9 samples on a ray through this volume");
     if (options.integrator == Integrator::Coupled || options.integrator == Integrator::Decoupled)
         validate(options.adaptive);
+    // The Simpson methods' sample budget, refused up front as the rate above is: a ray takes at most
+    // length / h_min steps (each tried at most log2(h_max / h_min) + 1 times), so h_min bounds the work
+    // whatever the tolerance. Their position t accumulates step by step, so in float a step below about
+    // 2^-23 of the ray's length would no longer advance t at all and the ray would never end.
+    if (isSimpson(options.integrator)) {
+        const double hMin = simpsonParameters(options).hMin;
+        const bool inFloat = options.precision == Precision::Float;
+        const double maxSteps = inFloat ? 4194304.0 : 1e9;
+        if (!(glm::length(dims) / hMin <= maxSteps))
+            throw Error((options.integrator == Integrator::Simpson ? "step " : "h_min ") + exactNumber(hMin) +
+                        " would allow more than " + (inFloat ? "2^22 steps on a ray through this volume in float "
+                                                               "precision (a shorter step no longer advances the ray)"
+                                                             : "1e9 steps on a ray through this volume"));
+    }
     if (options.logPixel && !(options.logPixel->x >= 0 && options.logPixel->y >= 0 &&
                               options.logPixel->x < camera.width() && options.logPixel->y < camera.height()))
         throw Error("the logged pixel " + std::to_string(options.logPixel->x) + "," +

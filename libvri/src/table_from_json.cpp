@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -63,15 +64,21 @@ std::string formatThreshold(double threshold) {
 }
 
 std::vector<std::string> channelNames(const json& diff, const fs::path& file) {
-    std::vector<std::string> names;
-    for (const json& channel : lookup(diff, "channels", file)) names.push_back(channel.at("name").get<std::string>());
-    return names;
+    return readingJsonOf(file, [&] {
+        std::vector<std::string> names;
+        for (const json& channel : lookup(diff, "channels", file)) names.push_back(channel.at("name").get<std::string>());
+        return names;
+    });
 }
 
 // The % of pixels whose error in `channel` exceeds `threshold`.
 double percentAbove(const json& diff, std::size_t channel, double threshold, const fs::path& file) {
-    for (const json& above : lookup(diff, "channels." + std::to_string(channel) + ".above", file))
-        if (above.at("threshold").get<double>() == threshold) return above.at("percent").get<double>();
+    const std::optional<double> percent = readingJsonOf(file, [&]() -> std::optional<double> {
+        for (const json& above : lookup(diff, "channels." + std::to_string(channel) + ".above", file))
+            if (above.at("threshold").get<double>() == threshold) return above.at("percent").get<double>();
+        return std::nullopt;
+    });
+    if (percent) return *percent;
     throw Error(file.string() + ": no count above " + formatThreshold(threshold) +
                 " (run vri-diff with --threshold including it)");
 }
@@ -102,7 +109,9 @@ Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> 
     const fs::path& first = rows.front().files.at(0);
     const json firstDiff = readJsonFile(first);
     if (thresholds.empty())
-        for (const json& t : lookup(firstDiff, "thresholds", first)) thresholds.push_back(t.get<double>());
+        readingJsonOf(first, [&] {
+            for (const json& t : lookup(firstDiff, "thresholds", first)) thresholds.push_back(t.get<double>());
+        });
     const std::vector<std::string> channels = channelNames(firstDiff, first);
 
     Table table;

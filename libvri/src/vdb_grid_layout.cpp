@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <limits>
 
+#include <glm/vector_relational.hpp>
+
 #include "vri/error.h"
 
 namespace vri::detail {
@@ -27,6 +29,10 @@ bool isDiagonalWithPositiveScale(const glm::dmat3& m) {
     return offDiagonal <= 1e-15;
 }
 
+std::string coordText(glm::ivec3 c) {
+    return "(" + std::to_string(c.x) + "," + std::to_string(c.y) + "," + std::to_string(c.z) + ")";
+}
+
 }  // namespace
 
 VdbVolumeLayout vdbVolumeLayout(const std::string& path, const VdbGridFacts& grid) {
@@ -41,6 +47,13 @@ VdbVolumeLayout vdbVolumeLayout(const std::string& path, const VdbGridFacts& gri
         const glm::ivec3 d = *grid.dimsMeta;
         if (d.x < 1 || d.y < 1 || d.z < 1) throw Error(path + ": " + kDimsKey + " must be positive");
         layout.dims = d;
+        // vri writes voxel (i,j,k) at index (i,j,k): every active voxel lies inside the dims.
+        if (grid.activeMin && grid.activeMax &&
+            (glm::any(glm::lessThan(*grid.activeMin, glm::ivec3(0))) ||
+             glm::any(glm::greaterThanEqual(*grid.activeMax, d))))
+            throw Error(path + ": " + kDimsKey + " " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +
+                        std::to_string(d.z) + " does not contain the active voxels " + coordText(*grid.activeMin) +
+                        ".." + coordText(*grid.activeMax));
         if (grid.rangeMeta) layout.range = ValueRange{grid.rangeMeta->x, grid.rangeMeta->y};
     } else {
         if (!grid.activeMin || !grid.activeMax) throw Error(path + ": " + grid.description + " has no active voxels");

@@ -40,7 +40,8 @@ struct VdbVolumeLayout {
 
 // Grids written by vri (both vri_voxel_type and vri_dims present) come back with their type, dense dims
 // and range; any other grid is read as float32 over its active voxels. Throws vri::Error "<path>: ..."
-// for a rotated, flipped or non-linear transform, metadata that do not fit the grid, or an empty grid.
+// for a rotated, flipped or non-linear transform, metadata that do not fit the grid (its value type, or
+// active voxels outside vri_dims), or an empty grid.
 VdbVolumeLayout vdbVolumeLayout(const std::string& path, const VdbGridFacts& grid);
 
 }  // namespace vri::detail

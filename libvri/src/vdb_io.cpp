@@ -6,7 +6,9 @@
 // equal to it are not stored. Voxel (i,j,k) sits at index (i,j,k); the transform maps index to
 // world as origin + index * spacing. Grid metadata record what the sparse grid cannot: the voxel
 // type, the dense dims (trailing empty slabs have no active voxels) and the normalisation range.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <mutex>
 #include <type_traits>
 
@@ -15,6 +17,7 @@
 #include <openvdb/tools/Dense.h>
 
 #include "vri/atomic_file.h"
+#include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/volume_io.h"
 #include "vdb_grid_layout.h"
@@ -91,6 +94,29 @@ std::string gridDescription(const openvdb::GridBase& grid) {
     return "grid '" + grid.getName() + "' (" + grid.valueType() + ")";
 }
 
+// A sparse grid stores nothing for background voxels and one tile for a constant region, so its file
+// says little about its dense size; metadata claiming 1024^3 voxels in a 10 KB file is still far more
+// likely an error (or an attack) than a volume. Unless VRI_MAX_BYTES states the limit, a dense
+// volume may take 1024 times the file's bytes, or 256 MiB whatever the file.
+constexpr std::uint64_t kPlausibleExpansion = 1024;
+constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
+
+// The dense volume's bytes, checked against the byte limit and the file's size before anything is allocated.
+void requirePlausibleSize(const fs::path& path, const std::string& source, glm::ivec3 dims, VoxelType type) {
+    const std::string what = path.string() + ": " + source + " " + std::to_string(dims.x) + "x" +
+                             std::to_string(dims.y) + "x" + std::to_string(dims.z) + " (" +
+                             std::string(voxelTypeName(type)) + ")";
+    const std::uint64_t bytes = checkedBytes(
+        what, {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), voxelSize(type)});
+    const std::uint64_t fileBytes = fs::file_size(path);
+    const std::uint64_t plausible =
+        std::max(kAlwaysPlausibleBytes, checkedProduct({fileBytes, kPlausibleExpansion}).value_or(UINT64_MAX));
+    if (bytes > plausible && !byteLimitIsExplicit())
+        throw Error(what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
+                    " for a file of " + std::to_string(fileBytes) + " bytes (" + std::to_string(kPlausibleExpansion) +
+                    " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)");
+}
+
 detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
     detail::VdbGridFacts facts;
     facts.description = gridDescription(grid);
@@ -107,18 +133,19 @@ detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
         facts.dimsMeta = glm::ivec3(dims->value().x(), dims->value().y(), dims->value().z());
     if (const auto range = grid.getMetadata<openvdb::Vec2DMetadata>(kRangeKey))
         facts.rangeMeta = glm::dvec2(range->value().x(), range->value().y());
-    if (!facts.voxelTypeMeta || !facts.dimsMeta) {  // only a grid not written by vri is read over its active box
-        const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
-        if (!active.empty()) {
-            facts.activeMin = glm::ivec3(active.min().x(), active.min().y(), active.min().z());
-            facts.activeMax = glm::ivec3(active.max().x(), active.max().y(), active.max().z());
-        }
+    const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
+    if (!active.empty()) {
+        facts.activeMin = glm::ivec3(active.min().x(), active.min().y(), active.min().z());
+        facts.activeMax = glm::ivec3(active.max().x(), active.max().y(), active.max().z());
     }
     return facts;
 }
 
 Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
-    const detail::VdbVolumeLayout layout = detail::vdbVolumeLayout(path.string(), gridFacts(grid));
+    const detail::VdbGridFacts facts = gridFacts(grid);
+    const detail::VdbVolumeLayout layout = detail::vdbVolumeLayout(path.string(), facts);
+    const bool writtenByVri = facts.voxelTypeMeta && facts.dimsMeta;
+    requirePlausibleSize(path, writtenByVri ? kDimsKey : "active voxels", layout.dims, layout.type);
     const openvdb::Coord boxMin(layout.boxMin.x, layout.boxMin.y, layout.boxMin.z);
     const openvdb::CoordBBox box(boxMin, boxMin.offsetBy(layout.dims.x - 1, layout.dims.y - 1, layout.dims.z - 1));
 

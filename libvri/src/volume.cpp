@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "vri/checked_size.h"
 #include "vri/error.h"
 
 namespace vri {
@@ -11,7 +12,12 @@ Volume::Volume(glm::ivec3 d, VoxelType t) : dims(d), type(t) {
     if (d.x < 1 || d.y < 1 || d.z < 1)
         throw Error("volume dimensions must be at least 1x1x1, got " + std::to_string(d.x) + "x" +
                     std::to_string(d.y) + "x" + std::to_string(d.z));
-    bytes.assign(byteCount(), std::byte{0});
+    // Checked before voxelCount() multiplies in size_t, where 2097152 x 2097152 x 4194304 wraps to 0.
+    const std::size_t size = checkedBytes(
+        "a " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z) + " " +
+            std::string(voxelTypeName(t)) + " volume",
+        {std::uint64_t(d.x), std::uint64_t(d.y), std::uint64_t(d.z), voxelSize(t)});
+    bytes.assign(size, std::byte{0});
 }
 
 std::size_t Volume::voxelCount() const {

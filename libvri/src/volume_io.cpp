@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "vri/atomic_file.h"
+#include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/format.h"
 #include "volume_formats.h"
@@ -106,16 +107,14 @@ Volume readRaw(const fs::path& path, const RawLayout& layout) {
     const std::string layoutText = dimsText(layout.dims) + " " + std::string(voxelTypeName(layout.type));
 
     // Checked before allocating, so that a mistyped --dims is an error, not a huge allocation.
-    std::uintmax_t expected = voxelSize(layout.type);
+    const std::optional<std::uint64_t> voxelBytes =
+        checkedProduct({std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y), std::uint64_t(layout.dims.z),
+                        voxelSize(layout.type)});
+    if (!voxelBytes) throw Error(path.string() + ": " + layoutText + " needs more than 2^64 bytes");
     constexpr std::uintmax_t kMax = std::numeric_limits<std::uintmax_t>::max();
-    for (int axis = 0; axis < 3; ++axis) {
-        if (expected > kMax / static_cast<std::uintmax_t>(layout.dims[axis]))
-            throw Error(path.string() + ": " + layoutText + " is too large");
-        expected *= static_cast<std::uintmax_t>(layout.dims[axis]);
-    }
-    if (expected > kMax - layout.headerBytes) throw Error(path.string() + ": header of " +
-                                                          std::to_string(layout.headerBytes) + " bytes is too large");
-    expected += layout.headerBytes;
+    if (*voxelBytes > kMax - layout.headerBytes)
+        throw Error(path.string() + ": header of " + std::to_string(layout.headerBytes) + " bytes is too large");
+    const std::uintmax_t expected = *voxelBytes + layout.headerBytes;
     const std::uintmax_t actual = fs::file_size(path);
     if (actual != expected)
         throw Error(path.string() + ": file is " + std::to_string(actual) + " bytes, expected " +

@@ -10,6 +10,7 @@
 #include <glm/vec4.hpp>
 #include <tbb/parallel_for.h>
 
+#include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/grid_sampler.h"
 #include "vri/occupancy_grid.h"
@@ -226,9 +227,14 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
                                                options.integrator == Integrator::Composite ? 1 : 0, sampler});
     const std::vector<float> tf = transferFunctionTable(scene.transferFunction);
     m.ensure(m.transferFunction, tf.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the transfer function");
-    m.ensure(m.rays, pixels * 32, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's rays");
-    m.ensure(m.output, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image");
-    m.ensure(m.counters, pixels * 32, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's sample counts");
+    // Host-visible buffers per pixel: two vec4 of ray, one vec4 of colour, eight counters.
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    m.ensure(m.rays, checkedBytes("Vulkan: the rays of a " + size + " image", {pixels, 32}),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's rays");
+    m.ensure(m.output, checkedBytes("Vulkan: a " + size + " image", {pixels, 16}), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+             "the image");
+    m.ensure(m.counters, checkedBytes("Vulkan: the sample counts of a " + size + " image", {pixels, 32}),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's sample counts");
     local.setupSeconds = secondsSince(setupStart);
 
     const auto start = std::chrono::steady_clock::now();

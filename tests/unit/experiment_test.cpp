@@ -287,3 +287,82 @@ figures:
         CHECK(md.find(order[i + 1]) != std::string::npos);
     }
 }
+
+TEST_CASE("experiment: names are file names in the results folder, never paths, quotes or code") {
+    CHECK(vri::isSafeName("paper-a-fig4"));
+    CHECK(vri::isSafeName("Riemann_h0.5+x"));
+    CHECK(vri::isSafeName("9"));
+    for (const char* bad :
+         {"", ".", "..", "a..b", ".hidden", "-x", "_x", "a/b", "a b", "it's", "x';system('touch X');x='", "$(touch X)",
+          "`touch X`", "a\nb", "a\\b", "caf\u00e9", "a,b", "a\"b"}) {
+        INFO(bad);
+        CHECK_FALSE(vri::isSafeName(bad));
+    }
+    ExperimentDir d;
+    const std::string head = "title: T\npaper: {paper: A, item: Fig. 4, says: steps}\n";
+    const std::string command = "commands:\n  c: {tool: vri-rays2d, outputs: {o: x.csv}}\n";
+    CHECK(d.error("name: \"..\"\n" + head + command).starts_with("exp.yaml:1:7: name must be letters, digits"));
+    CHECK(d.error("name: \".\"\n" + head + command).starts_with("exp.yaml:1:7: name must be letters, digits"));
+    CHECK(d.error("name: \"x';system('touch${IFS}X');x='\"\n" + head + command)
+              .starts_with("exp.yaml:1:7: name must be"));
+    CHECK(d.error(kHead + "commands:\n  \"../c\": {tool: vri-rays2d, outputs: {o: x.csv}}\n")
+              .starts_with("exp.yaml:5:3: commands: a name must be letters, digits"));
+    CHECK(d.error(kHead +
+                  "commands:\n  c: {tool: vri-rays2d, outputs: {o: x.csv}}\nfigures:\n  \"f'g\": {spec: a.yaml}\n")
+              .starts_with("exp.yaml:7:3: figures: a name must be"));
+    CHECK(d.error(kHead + "scenes:\n  \"a b\": {field: linear, convention: node, tf: a.yaml, size: [8, 8]}\n"
+                          "methods:\n  riemann: {placement: eye}\n")
+              .starts_with("exp.yaml:5:3: scenes: a name must be"));
+    CHECK(d.error(kHead + "scenes:\n  a: {field: linear, convention: node, tf: a.yaml, size: [8, 8]}\n"
+                          "methods:\n  riemann: {placement: eye, backend: vulkan, device: [\"0\", \"../../x\"]}\n")
+              .starts_with("exp.yaml:7:12: methods entry 'riemann': a swept value does not fit in a run id"));
+}
+
+TEST_CASE("experiment: a command writes only into the results folder, through outputs:") {
+    ExperimentDir d;
+    const std::string head = kHead + "commands:\n  c:\n    tool: vri-rays2d\n    outputs: {o: x.csv}\n";
+    CHECK(d.error(head + "    options: {errors: ../outside.md}\n")
+              .starts_with("exp.yaml:8:23: option 'errors' writes a file: name it under outputs:"));
+    CHECK(d.error(head + "    options: {output: x.csv}\n").starts_with("exp.yaml:8:23: option 'output' writes a file"));
+    CHECK(
+        d.error(head + "    options: {rotation: ../x}\n").starts_with("exp.yaml:8:25: option 'rotation' names a file"));
+    CHECK(d.error(head + "    options: {rotation: /tmp/x}\n")
+              .starts_with("exp.yaml:8:25: option 'rotation' names a file"));
+    CHECK(d.error(head + "    options: {rotation: out.csv}\n")
+              .starts_with("exp.yaml:8:25: option 'rotation' names a file"));
+    CHECK(d.error(head + "    options: {rotation: --csv}\n")
+              .starts_with("exp.yaml:8:25: option 'rotation' names a file or an option"));
+    CHECK(d.error(head + "    inputs: {o: a.yaml}\n")
+              .starts_with("exp.yaml:8:17: input 'o' is an option that writes a file"));
+    CHECK(d.error(kHead + "commands:\n  c: {tool: vri-run, outputs: {o: x.csv}}\n")
+              .starts_with("exp.yaml:5:13: vri-run cannot be a command's tool"));
+    CHECK(d.error(head + "    options: {rotation: -0.5, rates: [1, 4]}\n") == "no error");  // numbers are values
+
+    // The plan holds every output in the experiment's folder, whatever made the Experiment.
+    vri::Experiment e = d.parse(kHead + "commands:\n  c: {tool: vri-rays2d, outputs: {o: x.csv}}\n");
+    e.commands[0].outputs[0].second = "../x.csv";
+    CHECK_THROWS_WITH_AS(vri::planExperiment(e, d.dir / "results" / e.name, d.dir),
+                         doctest::Contains("outside the experiment's folder"), vri::Error);
+    e.commands[0].outputs[0].second = "x.csv";
+    e.commands[0].name = "../c";
+    CHECK_THROWS_WITH_AS(vri::planExperiment(e, d.dir / "results" / e.name, d.dir),
+                         doctest::Contains("not a safe name"), vri::Error);
+}
+
+TEST_CASE("experiment: sweeps are counted against the run limit before they are expanded") {
+    ExperimentDir d;
+    std::string ten = "[1, 2, 3, 4, 5, 6, 7, 8, 9, 10]";
+    const std::string scene = "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods:\n";
+    // 10^4 runs are allowed; 10^8 are refused at once, without expanding them.
+    CHECK(d.parse(kHead + scene + "  coupled: {h0: " + ten + ", eps: " + ten + ", h_max: " + ten + ", repeat: " + ten +
+                  "}\n")
+              .runs.size() == vri::kMaxRuns);
+    CHECK(d.error(kHead + scene + "  coupled: {h0: " + ten + ", eps: " + ten + ", h_max: " + ten + ", repeat: " + ten +
+                  ", warm_up: " + ten + ", h_min: " + ten + ", early_termination: [0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, "
+                  "0.7, 0.8, 0.9], accepted: [paper, richardson], device: [a, b, c, d, e]}\n") ==
+          "exp.yaml:6:12: methods entry 'coupled': needs 100000000 runs, limit 10000");
+    // The runs of earlier entries count too.
+    CHECK(d.error(kHead + scene + "  coupled: {h0: " + ten + ", eps: " + ten + ", h_max: " + ten + ", repeat: " + ten +
+                  "}\n  riemann: {step: 0.5}\n") ==
+          "exp.yaml:7:12: methods entry 'riemann' with the 10000 runs before it: needs 10001 runs, limit 10000");
+}

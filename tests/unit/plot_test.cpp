@@ -1,12 +1,13 @@
 // Figure specs and the gnuplot scripts made from them; a real PNG and SVG when gnuplot is installed.
 #include <doctest/doctest.h>
 
-#include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include "temp_dir.h"
 #include "vri/error.h"
 #include "vri/plot.h"
+#include "vri/process.h"
 
 using namespace vri;
 
@@ -73,7 +74,7 @@ TEST_CASE("plot: the gnuplot script") {
         INFO(text);
         CHECK(script.find(text) != std::string::npos);
     };
-    has("if (!exists(\"png_out\")) png_out = 'fig.png'\n");
+    has("png_out = ARGC >= 2 ? ARG1 : 'fig.png'\n");
     has("cd (i > 0 ? script_dir[1:i] : \".\")\n");
     has("$pareto1 << EOD\n1,0.2\n2,0.1\nEOD\n");
     has("set terminal pngcairo size 640,480 noenhanced");
@@ -85,7 +86,7 @@ TEST_CASE("plot: the gnuplot script") {
     has("plot '../data/hist.csv' skip 1 using (($1 > 0 && $2 < 1e300) ? ($1 + $2) / 2 : NaN):($4 / 2):1:2:(0):($4) "
         "with boxxyerror fs transparent solid 0.35 border lc rgb '#ff0000' title 'A'\n");
 
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return;
+    if (!vri::commandAvailable("gnuplot")) return;
     std::filesystem::create_directories(dir / "out");
     drawPlot(spec, dir / "out/fig.png");
     CHECK(std::filesystem::file_size(dir / "out/fig.png") > 1000);
@@ -144,7 +145,7 @@ TEST_CASE("plot: a heatmap from a grid in any order, with its colour bar") {
         INFO(text);
         CHECK(script.find(text) != std::string::npos);
     };
-    has("# f.csv as x,y,z in scan order, which gnuplot's image needs\n"
+    has("# 'f.csv' as x,y,z in scan order, which gnuplot's image needs\n"
         "$heatmap1_1 << EOD\n0,0,0\n1,0,0.2\n0,0.5,0.1\n1,0.5,0.3\nEOD\n");
     has("    set xrange [*:*] noextend\n");
     has("    set size ratio -1\n    unset label\n    set label 'centre' at 0.5,0.25 front\n");
@@ -288,4 +289,49 @@ TEST_CASE("plot: relative data paths from a data directory") {
     const std::string absolute = "series:\n  - {file: " + (dir / "results/a/d.csv").string() + ", x: h, y: err}\n";
     CHECK(parsePlotSpec(absolute, "fig.yaml", dir / "specs", dir / "elsewhere").panels[0].series[0].file ==
           dir / "results/a/d.csv");
+}
+
+TEST_CASE("plot: no character of a title, label, series or file name is read as gnuplot code") {
+    test::TempDir dir("plot");
+    // Each would run `touch` if it reached gnuplot unquoted: a quote that ends a string, a backquote
+    // command, a newline that ends the command, a trailing backslash that continues a comment.
+    const std::string hostile = "it's ';system('touch marker1');x=' `touch marker2` $(touch marker3) @ARG0 \u00e9";
+    const std::string dataName = "d'\n system('touch marker4') \\";
+    std::filesystem::create_directories(dir / "data");
+    writeFile(dir / ("data/" + dataName + ".csv"), "x,y\n1,2\n2,3\n");
+    const std::string quotedData = "\"data/d'\\n system('touch marker4') \\\\.csv\"";
+    const PlotSpec spec = parsePlotSpec("title: \"" + hostile +
+                                            "\\nsecond line\"\n"
+                                            "labels: [{x: 1, y: 2, text: \"" +
+                                            hostile +
+                                            "\"}]\n"
+                                            "series:\n"
+                                            "  - {file: " +
+                                            quotedData + ", x: x, y: y, label: \"" + hostile +
+                                            "\"}\n"
+                                            "  - {file: " +
+                                            quotedData + ", x: x, y: y, where: {x: \"1\\n'\"}}\n",
+                                        "fig.yaml", dir.path);
+    const std::string script = gnuplotScript(spec, dir / "out/fig.gp", "f'ig.png", "f'ig.svg");
+    CHECK(script.find("'it''s '';system(''touch marker1'');x='' `touch marker2` $(touch marker3) @ARG0 \u00e9'") !=
+          std::string::npos);
+    CHECK(script.find("(\'it''s ") != std::string::npos);  // the title's newline splits it into pieces
+    CHECK(script.find(".\"\\012\".'second line')") != std::string::npos);
+    CHECK(script.find("png_out = ARGC >= 2 ? ARG1 : 'f''ig.png'\n") != std::string::npos);
+
+    if (!vri::commandAvailable("gnuplot")) return;
+    std::filesystem::create_directories(dir / "out'; `touch marker5`");
+    const std::filesystem::path png = dir / "out'; `touch marker5`" / "it's $(touch marker6).png";
+    drawPlot(spec, png);
+    CHECK(std::filesystem::file_size(png) > 1000);
+    std::ostringstream svg;
+    svg << std::ifstream(std::filesystem::path(png).replace_extension(".svg")).rdbuf();
+    CHECK(svg.str().find("system(") != std::string::npos);  // the text was drawn, not run
+    for (const char* marker : {"marker1", "marker2", "marker3", "marker4", "marker5", "marker6"}) {
+        INFO(marker);
+        CHECK(!std::filesystem::exists(dir / marker));
+        CHECK(!std::filesystem::exists(dir / "out'; `touch marker5`" / marker));
+        CHECK(!std::filesystem::exists(dir / "data" / marker));
+        CHECK(!std::filesystem::exists(std::filesystem::current_path() / marker));
+    }
 }

@@ -14,6 +14,13 @@ TEST_CASE("provenance: shell quoting leaves plain words alone and quotes the res
     CHECK(vri::shellQuote("two words") == "'two words'");
     CHECK(vri::shellQuote("$HOME*") == "'$HOME*'");
     CHECK(vri::shellQuote("it's") == "'it'\\''s'");
+    // Words that a shell would read otherwise as a command's first word: an assignment, a job.
+    CHECK(vri::shellQuote("build=x/bin/vri-render") == "'build=x/bin/vri-render'");
+    CHECK(vri::shellQuote("_a1=2") == "'_a1=2'");
+    CHECK(vri::shellQuote("%1") == "'%1'");
+    CHECK(vri::shellQuote("1a=2") == "1a=2");
+    CHECK(vri::shellQuote("a\nb") == "'a\nb'");
+    CHECK(vri::shellQuote("$(touch x) `touch y`") == "'$(touch x) `touch y`'");
 }
 
 TEST_CASE("provenance: command line as argv and as a pasteable line") {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "vri/error.h"
 #include "vri/rays2d.h"
 #include "vri/rays2d_report.h"
 
@@ -218,4 +219,18 @@ TEST_CASE("2D study tables: one CSV column per placement and rate, errors over t
     }
     CHECK(*t.cells[2][4] == 0.0);  // corner align leaves no ray without a sample
     CHECK(*t.cells[1][0] < *t.cells[0][0]);  // entry align: rate 4 beats rate 1
+}
+
+TEST_CASE("2D study: the fan, the diagram and the field image are limited before any work") {
+    vri::Study2D study;
+    study.rays = 2000000000;
+    CHECK_THROWS_WITH_AS(vri::Rays2D{study}, "2D study: the fan: needs 2000000000 rays, limit 1000000", vri::Error);
+    const vri::Rays2D rays{vri::Study2D{}};
+    CHECK_THROWS_WITH_AS(vri::castFan(rays, {vri::Placement::EntryAlign}, {1e12}), doctest::Contains("limit 1000000000"),
+                         vri::Error);
+    CHECK_THROWS_WITH_AS(vri::diagramCsv(rays, {0}, {vri::Placement::EntryAlign}, 1e6), doctest::Contains("limit 1000000"),
+                         vri::Error);
+    CHECK_THROWS_WITH_AS(vri::fieldCsv(rays, 2049), "field image of 2049x2049 points: needs 4198401 points (rows), limit 4194304",
+                         vri::Error);
+    CHECK(vri::fieldCsv(rays, 11).size() > 0);
 }

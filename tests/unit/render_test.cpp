@@ -165,6 +165,20 @@ TEST_CASE("render rejects settings it cannot honour") {
     opt.samplingRate = 1e300;
     CHECK_THROWS_WITH_AS(renderBlob(analyticScene(), opt), doctest::Contains("1e9 samples"), std::exception);
     opt.samplingRate = 2.0;
+    // The Simpson methods' budget: h_min bounds the steps of a ray whatever the tolerance; in float
+    // a step below 2^-22 of the ray no longer advances it.
+    opt.integrator = Integrator::Coupled;
+    opt.adaptive.tolerance = 0.0;
+    opt.adaptive.hMin = 1e-300;
+    CHECK_THROWS_WITH_AS(renderBlob(analyticScene(), opt), doctest::Contains("h_min 1e-300 would allow more than 1e9"),
+                         std::exception);
+    opt.adaptive.hMin = 1e-7;
+    opt.precision = Precision::Float;
+    CHECK_THROWS_WITH_AS(renderBlob(analyticScene(), opt), doctest::Contains("2^22 steps"), std::exception);
+    opt.integrator = Integrator::Simpson;
+    opt.samplingRate = 1e7;
+    CHECK_THROWS_WITH_AS(renderBlob(analyticScene(), opt), doctest::Contains("step 1e-07 would allow"), std::exception);
+    opt = RenderOptions{};
     opt.earlyTermination = -0.5;
     CHECK_THROWS_AS(renderBlob(analyticScene(), opt), std::exception);
     auto flat = std::make_shared<Volume>(glm::ivec3(16, 16, 1), VoxelType::UInt8);

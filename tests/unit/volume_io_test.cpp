@@ -454,3 +454,37 @@ TEST_CASE("volume io: the Inviwo boron data set, when present") {
     CHECK(boron.spacing.y == doctest::Approx(5.63039999861 / 150));
     CHECK(boron.spacing.z == doctest::Approx(6.98849999885 / 150));
 }
+
+TEST_CASE("volume io: VDB dims metadata are checked against the active voxels and the file before allocating") {
+    // vri_dims is stored uncompressed: "vri_dims", its type name "vec3i" and size 12, then x, y, z.
+    TempDir dir;
+    vri::Volume volume({4, 3, 2}, vri::VoxelType::UInt8);
+    for (std::size_t i = 0; i < volume.bytes.size(); ++i) volume.bytes[i] = std::byte(i + 1);
+    vri::writeVdb(dir / "v.vdb", volume);
+    const std::string bytes = readBytes(dir / "v.vdb");
+    const std::size_t dimsAt = bytes.find("vri_dims");
+    REQUIRE(dimsAt != std::string::npos);
+    const std::size_t valuesAt = dimsAt + 8 + 4 + 5 + 4;
+    REQUIRE(bytes.compare(dimsAt + 12, 5, "vec3i") == 0);
+    const auto forged = [&](std::int32_t x, std::int32_t y, std::int32_t z) {
+        std::string copy = bytes;
+        for (int axis = 0; axis < 3; ++axis) {
+            const std::int32_t v = axis == 0 ? x : axis == 1 ? y : z;
+            std::memcpy(&copy[valuesAt + 4 * axis], &v, 4);  // little-endian, as OpenVDB writes
+        }
+        writeBytes(dir / "forged.vdb", copy);
+        return dir / "forged.vdb";
+    };
+    CHECK(vri::readVdb(forged(4, 3, 2)) == volume);
+    // Trailing empty slabs are what vri_dims is for.
+    CHECK(vri::readVdb(forged(4, 3, 5)).dims == glm::ivec3(4, 3, 5));
+    // The file: the product wraps to 0 bytes in size_t.
+    CHECK_THROWS_WITH_AS(vri::readVdb(forged(4194304, 4194304, 1048576)),
+                         doctest::Contains("vri_dims 4194304x4194304x1048576 (uint8): needs about 1.84e+19 bytes"),
+                         vri::Error);
+    // 1 GiB claimed by a file of a few KB.
+    CHECK_THROWS_WITH_AS(vri::readVdb(forged(1024, 1024, 1024)),
+                         doctest::Contains("needs 1073741824 bytes, limit 268435456 for a file of"), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::readVdb(forged(2, 3, 2)), doctest::Contains("does not contain the active voxels"),
+                         vri::Error);
+}

@@ -28,8 +28,10 @@ CameraSpec framingCamera(const Box& box, int width, int height, double fovYDegre
 
 class Camera {
 public:
-    // Throws vri::Error on a zero image size, a field of view outside (0, 180), eye == target,
-    // an up vector parallel to the view direction, or a zoom that is not >= 1.
+    // Throws vri::Error on an image size that is not positive or too large for imageBytes(), a field of view
+    // outside (0, 180), a coordinate of eye, target or up that is not finite or above 1e150 in magnitude,
+    // eye and target less than 1e-150 apart, an up vector shorter than that or parallel to the view
+    // direction, or a zoom that is not >= 1.
     explicit Camera(const CameraSpec& spec);
 
     const CameraSpec& spec() const { return spec_; }

@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "vri/error.h"
+#include "vri/printable.h"
 
 namespace vri {
 
@@ -52,21 +53,28 @@ inline std::optional<int> parseArguments(CLI::App& app, std::string_view tool, i
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << tool << ": error: " << e.what() << " (see --help)\n";
+        std::cerr << tool << ": error: " << printable(e.what()) << " (see --help)\n";
         return e.get_exit_code();
     }
     return std::nullopt;
 }
 
-// Runs body() and turns an escaping exception into the single line "<tool>: error: <what>".
+// The one line for an exception that no check turned into vri::Error (out of memory, a file-system
+// or JSON library failure): said in words and naming the path where there is one, not as a library's
+// raw text.
+std::string describeUnexpected(const std::exception& e);
+
+// Runs body() and turns an escaping exception into the single line "<tool>: error: <what>", its
+// control characters escaped (printable.h).
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
+    const auto report = [&](const std::string& what) { std::cerr << tool << ": error: " << printable(what) << '\n'; };
     try {
         return body();
     } catch (const Error& e) {
-        std::cerr << tool << ": error: " << e.what() << '\n';
+        report(e.what());
     } catch (const std::exception& e) {
-        std::cerr << tool << ": error: " << e.what() << '\n';
+        report(describeUnexpected(e));
     }
     return kExitError;
 }

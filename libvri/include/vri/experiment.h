@@ -4,8 +4,10 @@
 //
 // Values that end up on a tool's command line are kept as the scalar text of the YAML file
 // ("0.5", not 0.500000), so that the commands a reader sees are the ones the file reads.
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -30,6 +32,10 @@ struct SceneSpec {
     std::vector<std::filesystem::path> files;  // volume and transfer function, absolute: hashed for the cache
     ToolOptions options;                    // vri-render's scene options, paths as absolute paths
 };
+
+// The most runs the sweeps of one experiment file may expand to (the largest of experiments/ has
+// under 100): a few lines of YAML can multiply out to 10^8 runs, refused before expanding.
+inline constexpr std::uint64_t kMaxRuns = 10000;
 
 // One invocation of a run tool (vri-render today; vri-reference tomorrow): a point of a sweep.
 struct RunSpec {
@@ -118,6 +124,13 @@ struct Experiment {
     const SceneSpec& scene(const std::string& name) const;
     const RunSpec& run(const std::string& id) const;
 };
+
+// Names become file names in the results folder (the experiment's folder, run ids, tables, figures,
+// command outputs) and step ids in .steps/: letters, digits, '.', '_', '+' and '-', starting with a
+// letter or a digit, never "..". So no name is a path, hidden, "." or "..", and none holds a quote,
+// a blank, a shell or gnuplot character or a control character. Every name an experiment file gives
+// is held to this, with an error naming the file, line, column and key.
+bool isSafeName(std::string_view name);
 
 // Parses and validates; every problem is a vri::Error "file:line:col: ...". Relative paths are
 // resolved against `baseDir` (the experiment file's folder) and must exist. With `quick`, the

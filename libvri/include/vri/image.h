@@ -6,6 +6,11 @@
 
 namespace vri {
 
+// The bytes of a w x h float image of n channels; throws vri::Error on a size that is not positive or
+// whose bytes exceed byteLimit() (checked_size.h). Callers that size other buffers per pixel check
+// with it before they allocate.
+std::size_t imageBytes(int w, int h, int n = 4);
+
 struct Image {
     int width = 0;
     int height = 0;
@@ -14,7 +19,8 @@ struct Image {
     std::vector<float> pixels;  // width * height * channels
 
     Image() = default;
-    // Zero-filled RGBA image (or `n` channels named R, G, B, A, then C4, ...); throws vri::Error on a zero size.
+    // Zero-filled RGBA image (or `n` channels named R, G, B, A, then C4, ...); throws vri::Error on a zero
+    // size or one whose pixels exceed imageBytes()' limit.
     Image(int w, int h, int n = 4);
 
     float& at(int x, int y, int c) { return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c]; }

@@ -121,12 +121,15 @@ PlotSpec parsePlotSpec(const std::string& yamlText, const std::string& source, c
 
 // The gnuplot script for a figure whose script will be `scriptPath`: data paths are written
 // relative to the script's folder (the script changes into it), and it writes pngName and
-// svgName there unless the variables png_out and svg_out are set (gnuplot -e).
+// svgName there, or to its two arguments (`gnuplot -c fig.gp PNG SVG`, which gnuplot never parses).
+// Every text and file name in it is quoted so that gnuplot reads it as that text and nothing else.
 std::string gnuplotScript(const PlotSpec& spec, const std::filesystem::path& scriptPath, const std::string& pngName,
                           const std::string& svgName);
 
-// Writes png (must end in .png), and beside it the .svg and the .gp script, all atomically.
-// Throws vri::Error when gnuplot is not installed or fails.
+// Writes png (must end in .png), and beside it the .svg and the .gp script, all atomically: each
+// appears only once gnuplot has succeeded and the PNG and SVG it wrote are whole (PNG signature to
+// IEND chunk, SVG to its closing tag). Throws vri::Error naming the figure when gnuplot is not
+// installed, fails, or leaves an incomplete image.
 void drawPlot(const PlotSpec& spec, const std::filesystem::path& png);
 // Writes only the .gp script beside `png` (no gnuplot needed).
 void writePlotScript(const PlotSpec& spec, const std::filesystem::path& png);

@@ -18,12 +18,10 @@ nlohmann::json buildInfo();
 // {"argv": [...], "shell": a command line that a POSIX shell reads back into the same argv}.
 nlohmann::json commandLine(int argc, char** argv);
 
-// `word` as one POSIX shell word: unchanged when it holds only characters no shell treats
+// `word` as one POSIX shell word, for a command line printed for a person to read or paste (vri
+// never runs one through a shell): unchanged when it holds only characters no shell treats
 // specially, else in single quotes.
 std::string shellQuote(std::string_view word);
-
-// Whether the shell finds `name` as a command (gnuplot, curl, ...).
-bool commandAvailable(const std::string& name);
 
 // Now, UTC, ISO 8601 to the second: "2025-01-31T23:59:59Z".
 std::string utcTimestamp();

@@ -15,6 +15,14 @@
 
 namespace vri {
 
+// The study's limits: rays in the fan, and samples of all its discrete sums together (or of the
+// diagram's rays), so that a mistyped --rays or --rates is refused instead of running for hours.
+inline constexpr std::uint64_t kMaxRays2D = 1000000;
+inline constexpr double kMaxFanSamples = 1e9;
+inline constexpr double kMaxDiagramSamples = 1e6;
+// Points of the field image (2048 x 2048), a CSV row each.
+inline constexpr std::uint64_t kMaxFieldPoints = std::uint64_t(1) << 22;
+
 struct Study2D {
     glm::dvec2 eye{-9.0, 0.0};
     double rotationRadians = 3.14159265358979323846 / 7.0;  // of the square about the origin
@@ -57,6 +65,7 @@ struct RaySamples {
 
 class Rays2D {
 public:
+    // Throws vri::Error on a study that is not valid or exceeds kMaxRays2D.
     explicit Rays2D(const Study2D& study);
     const Study2D& study() const { return study_; }
 
@@ -72,6 +81,9 @@ public:
     DiscreteRay discrete(int rayIndex, Placement placement, double samplingRate) const;
 
     RaySamples samples(int rayIndex, Placement placement, double samplingRate) const;
+    // An upper bound on the samples a placement puts on one ray at sampling rate 1: the longest ray
+    // through the square crosses sqrt(2) gridSize voxels; a placement may add one sample at each end.
+    double samplesPerRayAtRate1() const;
 
     // At a point of the square's own frame ([-side/2, side/2]^2): f itself, and as the grid
     // reconstructs it.

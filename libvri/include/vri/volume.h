@@ -21,7 +21,8 @@ struct ValueRange {
 class Volume {
 public:
     Volume() = default;
-    // Zero-filled volume; throws vri::Error when a dimension is < 1.
+    // Zero-filled volume; throws vri::Error when a dimension is < 1 or the bytes exceed byteLimit()
+    // (checked_size.h).
     Volume(glm::ivec3 dims, VoxelType type);
 
     glm::ivec3 dims{0, 0, 0};

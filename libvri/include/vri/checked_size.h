@@ -1,0 +1,37 @@
+#pragma once
+// Sizes taken from input (dims, image sizes, sizes in file metadata, counts on the command line) are
+// checked before anything is allocated or looped over: the product must not overflow and must stay
+// within a stated limit, or the input is refused with one line that names it and says how much it
+// asks for ("<what>: needs N bytes, limit M"). A wrapped product or a bare std::bad_alloc says neither.
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace vri {
+
+// The most bytes one buffer sized from input may take: 2^34 (16 GiB), or the byte count in the
+// environment variable VRI_MAX_BYTES. Throws vri::Error when that variable is not a positive integer.
+inline constexpr std::uint64_t kDefaultByteLimit = std::uint64_t(1) << 34;
+std::uint64_t byteLimit();
+// True when VRI_MAX_BYTES is set: the user has stated the limit and plausibility guesses step aside.
+bool byteLimitIsExplicit();
+
+// The product of `factors`, or nullopt when it does not fit in 64 bits.
+std::optional<std::uint64_t> checkedProduct(std::initializer_list<std::uint64_t> factors);
+
+// The product of `factors` as a count of `unit` (samples, runs, rows); throws
+// vri::Error("<what>: needs N <unit>, limit M") when it overflows or exceeds `limit`.
+std::uint64_t checkedCount(const std::string& what, std::initializer_list<std::uint64_t> factors, std::uint64_t limit,
+                           std::string_view unit);
+
+// The product of `factors` as a byte count within byteLimit() (and within size_t); the message
+// names VRI_MAX_BYTES, the way to raise the limit.
+std::size_t checkedBytes(const std::string& what, std::initializer_list<std::uint64_t> factors);
+
+// For work estimated in floating point (a rate times a length): throws
+// vri::Error("<what>: needs N <unit>, limit M") unless 0 <= amount <= limit.
+void requireWithin(const std::string& what, double amount, double limit, std::string_view unit);
+
+}  // namespace vri

@@ -1,0 +1,13 @@
+#pragma once
+// Text from input files and arguments, made safe to show in a one-line message: a control character
+// (a newline, an escape sequence's ESC, a C1 control) would split the line or drive the terminal.
+#include <string>
+#include <string_view>
+
+namespace vri {
+
+// `text` with every C0 control character, DEL and UTF-8-encoded C1 control written as \xNN (the C1
+// controls as their code point, \x80..\x9f); everything else, other UTF-8 included, unchanged.
+std::string printable(std::string_view text);
+
+}  // namespace vri

@@ -1,0 +1,62 @@
+#pragma once
+// Starting other programs (gnuplot, git, curl, the tools of an experiment's steps) with an argument
+// vector and posix_spawn: no shell ever reads a word, so no character of a name or path can run as
+// code. Standard streams are inherited unless redirected to a file.
+#include <sys/types.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vri {
+
+// How a child's standard streams are set up; an empty path inherits the stream from this process.
+struct ProcessStreams {
+    std::filesystem::path in;   // read from this file
+    std::filesystem::path out;  // created or truncated (mode 0644)
+    std::filesystem::path err;  // likewise; ignored when errToOut
+    bool errToOut = false;      // stderr joins stdout (the same file, or the same captured text)
+};
+
+// How a child ended, from waitpid's status.
+struct ExitStatus {
+    bool exited = false;  // by exit(): `code` holds its status; else killed by `signal`
+    int code = 0;
+    int signal = 0;
+
+    static ExitStatus fromWaitStatus(int status);
+    bool ok() const { return exited && code == 0; }
+    std::string describe() const;  // "exit status 3", "signal 9"
+};
+
+// The file `name` names as a program: a name with a '/' is taken as it is, any other is looked up
+// in the folders of $PATH as execvp would (an empty entry is the current folder). nullopt when no
+// executable regular file is found.
+std::optional<std::filesystem::path> findProgram(const std::string& name);
+
+// Whether findProgram finds `name` (gnuplot, curl, ...).
+bool commandAvailable(const std::string& name);
+
+// Starts `program` (a path, not looked up in PATH) with argv = words (words[0] is what the child sees
+// as its name). Throws vri::Error naming the program when it cannot be started.
+pid_t startProcess(const std::filesystem::path& program, const std::vector<std::string>& words,
+                   const ProcessStreams& streams = {});
+
+// Waits for the child `pid` (retrying on EINTR).
+ExitStatus waitProcess(pid_t pid);
+// Waits for any child of this process: which one, and how it ended.
+std::pair<pid_t, ExitStatus> waitAnyProcess();
+
+// Starts `program` and waits for it.
+ExitStatus runProcess(const std::filesystem::path& program, const std::vector<std::string>& words,
+                      const ProcessStreams& streams = {});
+
+// Runs `program` with its stdout captured (streams.out is ignored; streams.errToOut captures stderr
+// too): its exit status and everything it printed.
+std::pair<ExitStatus, std::string> captureProcess(const std::filesystem::path& program,
+                                                  const std::vector<std::string>& words,
+                                                  const ProcessStreams& streams = {});
+
+}  // namespace vri

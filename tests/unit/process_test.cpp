@@ -1,0 +1,69 @@
+// Child processes: argv reaches the program word for word (no shell), redirections, exit statuses.
+#include <doctest/doctest.h>
+
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "temp_dir.h"
+#include "vri/error.h"
+#include "vri/process.h"
+
+using namespace vri;
+
+TEST_CASE("process: PATH lookup without a shell") {
+    REQUIRE(findProgram("printf"));
+    CHECK(findProgram("printf")->is_absolute());
+    CHECK(commandAvailable("printf"));
+    CHECK_FALSE(commandAvailable("vri-no-such-program"));
+    CHECK_FALSE(commandAvailable("printf; touch x"));  // a name is a file name, never a command line
+    CHECK_FALSE(commandAvailable(""));
+    CHECK(findProgram("/bin/sh") == std::filesystem::path("/bin/sh"));
+    CHECK_FALSE(findProgram("/etc/passwd"));  // not executable
+}
+
+TEST_CASE("process: every word reaches the program as it is") {
+    test::TempDir dir("process");
+    const auto printf = findProgram("printf");
+    REQUIRE(printf);
+    const std::string hostile =
+        "$(touch " + (dir / "m1").string() + ") `touch " + (dir / "m2").string() + "` ';touch m3;' \"\n*";
+    const auto [status, output] = captureProcess(*printf, {"printf", "[%s]", hostile, ""});
+    CHECK(status.ok());
+    CHECK(output == "[" + hostile + "][]");
+    CHECK_FALSE(std::filesystem::exists(dir / "m1"));
+    CHECK_FALSE(std::filesystem::exists(dir / "m2"));
+}
+
+TEST_CASE("process: redirections and exit statuses") {
+    test::TempDir dir("process");
+    const auto printf = findProgram("printf");
+    REQUIRE(printf);
+    const ExitStatus written =
+        runProcess(*printf, {"printf", "out"}, {.in = {}, .out = dir / "o.txt", .err = {}, .errToOut = false});
+    CHECK(written.ok());
+    std::ostringstream text;
+    text << std::ifstream(dir / "o.txt").rdbuf();
+    CHECK(text.str() == "out");
+
+    const auto falseProgram = findProgram("false");
+    REQUIRE(falseProgram);
+    const ExitStatus failed = runProcess(*falseProgram, {"false"});
+    CHECK_FALSE(failed.ok());
+    CHECK(failed.describe() == "exit status 1");
+
+    const auto sleep = findProgram("sleep");
+    REQUIRE(sleep);
+    const pid_t pid = startProcess(*sleep, {"sleep", "30"});
+    ::kill(pid, SIGKILL);
+    const ExitStatus killed = waitProcess(pid);
+    CHECK_FALSE(killed.ok());
+    CHECK(killed.describe() == "signal 9");
+
+    CHECK_THROWS_WITH_AS(startProcess(dir / "missing", {"missing"}), doctest::Contains("cannot start"), Error);
+    CHECK_THROWS_AS(
+        startProcess(*printf, {"printf"}, {.in = dir / "no-such-input", .out = {}, .err = {}, .errToOut = false}),
+        Error);
+}
