@@ -100,7 +100,7 @@ bad 1 "${E}--size: expected a positive image size WIDTHxHEIGHT, got '0x8'" -- \
 bad 1 "${E}--eye: expected three numbers x,y,z, got '1,2'" -- "${render[@]}" --eye 1,2
 bad 1 "${E}--eye: expected three numbers x,y,z, got '1,2,nan'" -- "${render[@]}" --eye 1,2,nan
 bad 1 "${E}--background: expected three numbers" -- "${render[@]}" --background 1,2
-bad 1 "${E}camera up vector is parallel to the view direction" -- "${render[@]}" --up 0,0,0
+bad 1 "${E}camera up vector 0,0,0 is zero or shorter than" -- "${render[@]}" --up 0,0,0
 bad 1 "${E}camera eye and target coincide" -- "${render[@]}" --eye 4,4,4 --target 4,4,4
 bad 1 "${E}field of view must be in \(0, 180\) degrees" -- "${render[@]}" --fov 180
 bad 104 "${E}Could not convert: --fov = abc" -- "${render[@]}" --fov abc
@@ -254,7 +254,7 @@ bad 108 "${E}--record excludes --check" -- "${run[@]}" --record --check exp/good
 bad 1 "${E}exp/missing.yaml: no such file$" -- "${run[@]}" exp/missing.yaml
 bad 1 "${E}exp/unclosed.yaml:2:1: malformed YAML" -- "${run[@]}" exp/unclosed.yaml
 bad 1 "${E}exp/list.yaml:1:1: an experiment must be a mapping" -- "${run[@]}" exp/list.yaml
-bad 1 "${E}exp/bad_name.yaml:1:7: name must be lowercase letters, digits" -- "${run[@]}" exp/bad_name.yaml
+bad 1 "${E}exp/bad_name.yaml:1:7: name must be letters, digits, '.', '_', '\+' or '-'" -- "${run[@]}" exp/bad_name.yaml
 bad 1 "${E}exp/unknown_key.yaml:2:1: unknown key 'colour'" -- "${run[@]}" exp/unknown_key.yaml
 bad 1 "${E}exp/bad_method.yaml:12:11: methods entry 'wobble' has no method.*unknown method 'wobble'" -- \
     "${run[@]}" exp/bad_method.yaml
