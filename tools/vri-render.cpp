@@ -10,6 +10,8 @@
 
 #include "vri/atomic_file.h"
 #include "vri/cli.h"
+#include "vri/exact_reference.h"
+#include "vri/exact_reference_json.h"
 #include "vri/frame_timing.h"
 #include "vri/image_io.h"
 #include "vri/preview_options.h"
@@ -53,7 +55,12 @@ int main(int argc, char** argv) {
   vri-render --backend vulkan --interpolation sampler --volume bonsai_256x256x256_uint8.raw \
              --tf experiments/tf/paper-b-bonsai.yaml --step 0.1 -o riemann-sampler.exr
   vri-render --list-devices
+  vri-render --volume bonsai_256x256x256_uint8.raw --tf experiments/tf/paper-b-bonsai.yaml --method exact \
+             --tolerance 1e-7 -o exact.exr --stats exact.json
 
+exact: vri-reference's method (pieces on which the field is a cubic, Gauss-Kronrod quadrature), in double
+on the CPU; --tolerance is the error allowed per transfer-function piece (default 1e-7 for exact) and the
+stats give the per-pixel error bound ("error_bound": max and mean per channel).
 Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency
 (Simpson methods: alpha = the integral of extinction times transparency, paper B's fourth channel).
 
@@ -75,15 +82,17 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
 
     sceneOptions.addTo(app);
     app.add_option("--method", method, "riemann (paper A eq. 5), composite (opacity-corrected), simpson (uniform "
-                                       "steps of --step), coupled or decoupled (paper B's adaptive Simpson)")
+                                       "steps of --step), coupled or decoupled (paper B's adaptive Simpson), exact "
+                                       "(with a per-pixel error bound)")
         ->capture_default_str();
     app.add_option("--placement", placement, "eye, entry, entry-exit or entry-exit-corner (paper A)")
         ->capture_default_str();
     auto* stepOpt = app.add_option("--step", step, "step h in voxels (default 0.5)");
     auto* rateOpt = app.add_option("--rate", rate, "sampling rate in samples per voxel (= 1 / step)")->excludes(stepOpt);
     auto* adaptiveGroup = app.add_option_group("adaptive", "coupled and decoupled (paper B), steps in voxels");
-    adaptiveGroup->add_option("--tolerance,--eps", adaptive.tolerance, "error tolerance eps at the step h0")
-        ->capture_default_str();
+    auto* toleranceOpt = adaptiveGroup->add_option("--tolerance,--eps", adaptive.tolerance,
+                                                   "error tolerance eps at the step h0 (exact: per piece)")
+                             ->capture_default_str();
     adaptiveGroup->add_option("--h0", adaptive.h0, "initial step")->capture_default_str();
     adaptiveGroup->add_option("--h-min", adaptive.hMin, "smallest step (taken whatever the error)")->capture_default_str();
     adaptiveGroup->add_option("--h-max", hMax, "largest step, or 'none'")->capture_default_str();
@@ -125,8 +134,23 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
         if (!vulkan && *interpolationOpt) throw vri::Error("--interpolation: needs --backend vulkan");
         const vri::VulkanInterpolation interpolationChoice = vri::parseInterpolation(interpolation, "--interpolation");
+        // The exact method is vri-reference's: double on the CPU, rays ended by its tolerance.
+        const bool exact = method == "exact";
+        vri::ExactReferenceOptions exactOptions;
+        if (exact) {
+            if (vulkan) throw vri::Error("--method exact: runs on --backend cpu only");
+            if (*precisionOpt && precision != "double") throw vri::Error("--precision: --method exact is double only");
+            if (*stepOpt || *rateOpt) throw vri::Error("--step, --rate: --method exact has no step");
+            if (ert != 0.0) throw vri::Error("--early-termination: --method exact ends rays by its --tolerance");
+            if (!logRay.empty()) throw vri::Error("--log-ray: applies to coupled and decoupled only");
+            exactOptions.tolerance = *toleranceOpt ? adaptive.tolerance : 1e-7;
+            if (!(exactOptions.tolerance > 0.0))
+                throw vri::Error("--tolerance: must be > 0 for --method exact, got " + std::to_string(adaptive.tolerance));
+            exactOptions.skipEmptySpace = !noSkip;
+            exactOptions.progress = !quiet;
+        }
         vri::RenderOptions options;
-        options.integrator = vri::parseIntegrator(method, "--method");
+        if (!exact) options.integrator = vri::parseIntegrator(method, "--method");
         options.placement = vri::parsePlacement(placement, "--placement");
         options.precision = vri::parsePrecision(precision, "--precision");
         if (*stepOpt && !(step > 0.0)) throw vri::Error("--step: must be > 0 voxels, got " + std::to_string(step));
@@ -153,12 +177,17 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         struct Frame {
             vri::Image image;
             vri::RenderStats stats;
+            std::optional<vri::ExactReferenceStats> exactStats;  // --method exact
             double seconds;
         };
         const auto [frame, wallSeconds] = timing.run([&] {
+            if (exact) {
+                const vri::ExactReference ref = vri::renderExactReference(scene, camera, exactOptions);
+                return Frame{ref.image(), {}, ref.stats, ref.stats.seconds};
+            }
             vri::RenderStats s;
             vri::Image image = gpu ? gpu->render(scene, camera, options, &s) : vri::render(scene, camera, options, &s);
-            return Frame{std::move(image), s, s.seconds};
+            return Frame{std::move(image), s, std::nullopt, s.seconds};
         });
         const vri::Image& image = frame.image;
         const vri::RenderStats& stats = frame.stats;
@@ -172,8 +201,8 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
                                  {"scene", vri::describeScene(scene)},
                                  {"transfer_function", vri::toJson(scene.transferFunction)},
                                  {"camera", vri::toJson(cam)},
-                                 {"options", vri::toJson(options)},
-                                 {"stats", vri::toJson(stats)}};
+                                 {"options", exact ? vri::toJson(exactOptions) : vri::toJson(options)},
+                                 {"stats", exact ? vri::toJson(*frame.exactStats) : vri::toJson(stats)}};
         record["timing"] = timing.toJson(wallSeconds);
         vri::writeExr(output, image, {{"vri:command", record["command"]["shell"].get<std::string>()},
                                       {"vri:options", record["options"].dump()},
@@ -181,7 +210,12 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         if (!pngPath.empty()) vri::writePng(pngPath, image, png);
         if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
         if (!logPath.empty()) vri::writeTextFile(logPath, vri::adaptiveLogCsv(stats.rayLog));
-        if (!quiet)
+        if (!quiet && exact)
+            std::cerr << "vri-render: exact, " << image.width << "x" << image.height << ", "
+                      << frame.exactStats->piecesVisible << " visible pieces in " << timing.summary(wallSeconds)
+                      << " on " << frame.exactStats->threads << " threads; error bound max "
+                      << record["stats"]["error_bound"]["max"].dump() << "\n";
+        else if (!quiet)
             std::cerr << "vri-render: " << image.width << "x" << image.height << ", " << stats.samplesEvaluated
                       << " samples in " << timing.summary(wallSeconds) << " on "
                       << (vulkan ? stats.device : std::to_string(stats.threads) + " threads") << "\n";

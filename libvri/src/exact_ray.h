@@ -12,7 +12,9 @@ namespace vri {
 
 class ExactRay {
 public:
-    // Allocates all the scratch space a ray needs: the per-ray calls allocate nothing.
+    // Allocates all the scratch space a ray needs: the per-ray calls allocate nothing. `tolerance`
+    // is the error allowed per transfer-function sub-piece (in the pixel's units); it also chooses
+    // the quadrature rule and where a ray may end early (see done()).
     ExactRay(const TransferFunction& tf, double tolerance);
 
     void begin();  // starts a new ray
@@ -20,24 +22,28 @@ public:
     // [0, 1] from the piece's start to its end. `sScale` bounds the magnitudes whose rounding went
     // into the cubic's coefficients (see the error analysis in exact_ray.cpp).
     void addPiece(double length, const Cubic& s, double sScale);
-    // True once the transparency is below 2^-60: the rest of the ray can change the colour by at
-    // most 2^-60 times its colour (and length, for emission = colour), and alpha not at all in double.
-    bool opaque() const { return opticalDepth_ >= kOpaqueDepth; }
-    // Ends the ray, `remainingLength` world units of which were left out after opaque(): RGBA and
+    // True once what the rest of the ray, `remainingLength` world units, could still add is at most
+    // the tolerance in every channel: the transparency T times the largest colour (g = C tau adds at
+    // most C_max T; g = C at most C_max T times the length), and T to alpha. finish() adds that to the
+    // bound. Also true once T < 2^-60, where a cut changes alpha by nothing in double.
+    bool done(double remainingLength) const;
+    // Ends the ray, `remainingLength` world units of which were left out after done(): RGBA and
     // a bound on each channel's error.
     void finish(double remainingLength, double value[4], double bound[4]) const;
 
-    std::uint64_t subPieces = 0, quadratureIntervals = 0;  // counted over all rays
+    std::uint64_t subPieces = 0, quadratureIntervals = 0, quadratureNodes = 0;  // counted over all rays
 
 private:
     static constexpr double kOpaqueDepth = 41.588830833596716;  // 60 ln 2
 
-    struct Segment;  // one linear part of the transfer function, as polynomial data
     void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale);
 
     const TransferFunction& tf_;
     EmissionModel emission_;
     double tolerance_;
+    bool lowOrder_;                // Gauss-Kronrod 3-7 instead of 7-15 (see integrateSubPiece)
+    double terminationDepth_;      // g = C tau: done() once the optical depth reaches this
+    double largestColour_;         // max(1, C_max over channels): what bounds a tail per unit T
     std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
     std::vector<double> levels_;   // the distinct s of the TF points: where a piece is split
     std::vector<double> splits_;   // scratch: a piece's split points in sigma

@@ -5,7 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <type_traits>
 
+#include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 #include <tbb/blocked_range2d.h>
 #include <tbb/global_control.h>
@@ -15,6 +18,8 @@
 #include "exact_ray.h"
 #include "vri/checked_size.h"
 #include "vri/error.h"
+#include "vri/format.h"
+#include "vri/occupancy_grid.h"
 #include "vri/progress.h"
 
 namespace vri {
@@ -32,8 +37,10 @@ struct PieceCounts {
 template <class T>
 class GridWalker {
 public:
-    GridWalker(const Volume& volume, GridConvention convention, const TransferFunction& tf)
-        : data_(volume.data<T>()), tf_(tf) {
+    // `occupancy`, when given, lets the walk jump over bricks on which the transfer function is zero.
+    GridWalker(const Volume& volume, GridConvention convention, const TransferFunction& tf,
+               const OccupancyGrid* occupancy)
+        : data_(volume.data<T>()), tf_(tf), occupancy_(occupancy) {
         const bool cell = convention == GridConvention::CellCentred;
         for (int a = 0; a < 3; ++a) {
             n_[a] = volume.dims[a];
@@ -48,10 +55,23 @@ public:
         const ValueRange r = volume.normalisationRange();
         lo_ = r.lo;
         invRange_ = r.hi > r.lo ? 1.0 / (r.hi - r.lo) : 0.0;
+        // For 8- and 16-bit voxels, the largest raw value up to which a cell whose smallest corner is v
+        // stays invisible: the TF is zero on [s0, s1] only if it is on every sub-interval, so the
+        // bound grows with v and a single pass finds it. The same answers as isInvisible, faster.
+        if constexpr (std::is_same_v<T, std::uint8_t> || std::is_same_v<T, std::uint16_t>) {
+            constexpr int count = 1 << (8 * sizeof(T));
+            invisibleUpTo_.resize(count);
+            int hi = -1;
+            for (int v = 0; v < count; ++v) {
+                hi = std::max(hi, v - 1);
+                while (hi + 1 < count && tf.isInvisible(normalised(v), normalised(hi + 1))) ++hi;
+                invisibleUpTo_[v] = hi;
+            }
+        }
     }
 
     // Integrates the segment from texture coordinate uEntry to uExit, `length` world units long,
-    // into `ray` until it is opaque; returns the length left out.
+    // into `ray` until it is done(); returns the length left out.
     double walk(const glm::dvec3& uEntry, const glm::dvec3& uExit, double length, ExactRay& ray,
                 PieceCounts& counts) const {
         constexpr double inf = std::numeric_limits<double>::infinity();
@@ -60,11 +80,12 @@ public:
         const glm::dvec3 exit = entry + delta;
         int next[3], step[3];
         double phi[3];
+        auto planeAt = [&](int a, int plane) { return (plane - entry[a]) / delta[a]; };
         // The parameter where axis a crosses the integer next[a], or inf when no plane is left before the exit.
         auto crossing = [&](int a) {
             const bool left = step[a] > 0 ? next[a] <= n_[a] - 1 && next[a] < exit[a]
                                           : step[a] < 0 && next[a] >= 0 && next[a] > exit[a];
-            return left ? (next[a] - entry[a]) / delta[a] : inf;
+            return left ? planeAt(a, next[a]) : inf;
         };
         for (int a = 0; a < 3; ++a) {
             step[a] = delta[a] > 0 ? 1 : delta[a] < 0 ? -1 : 0;
@@ -72,12 +93,39 @@ public:
                                   : std::min(static_cast<int>(std::ceil(entry[a])) - 1, n_[a] - 1);
             phi[a] = crossing(a);
         }
-        double phiA = 0.0;
+        // Puts every axis where the plane-by-plane walk would be once it has passed the event at phiJump:
+        // on the first plane crossed after it. Crossings grow with the plane index, so a short search
+        // from the plane under the jump's point finds it.
+        auto jumpTo = [&](double phiJump) {
+            for (int a = 0; a < 3; ++a) {
+                if (step[a] == 0) continue;
+                const double x = entry[a] + phiJump * delta[a];
+                int plane = step[a] > 0 ? std::max(static_cast<int>(std::floor(x)), next[a])
+                                        : std::min(static_cast<int>(std::ceil(x)), next[a]);
+                while (planeAt(a, plane) <= phiJump) plane += step[a];
+                while (plane != next[a] && planeAt(a, plane - step[a]) > phiJump) plane -= step[a];
+                next[a] = plane;
+                phi[a] = crossing(a);
+            }
+        };
+        double phiA = 0.0, occupiedUntil = -inf;
         for (;;) {
             const double phiB = std::min({phi[0], phi[1], phi[2], 1.0});
             if (phiB > phiA) {
+                if (occupancy_ && phiA >= occupiedUntil) {
+                    const EmptyRun run = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
+                    occupiedUntil = run.occupiedUntil;
+                    if (run.until > phiA) {
+                        // Every piece up to there lies in cells of empty bricks or their margins, whose
+                        // corners the bricks' emptiness covers: each would have been invisible.
+                        if (run.until >= 1.0) return 0.0;
+                        jumpTo(run.until);
+                        phiA = run.until;
+                        continue;
+                    }
+                }
                 addPiece(entry, delta, phiA, phiB, length, ray, counts);
-                if (ray.opaque()) return (1.0 - phiB) * length;
+                if (ray.done((1.0 - phiB) * length)) return (1.0 - phiB) * length;
             }
             if (phiB >= 1.0) return 0.0;
             for (int a = 0; a < 3; ++a)
@@ -90,6 +138,43 @@ public:
     }
 
 private:
+    // From the occupancy brick that holds the ray's point at phi, the bricks the ray passes while they
+    // are empty (a brick DDA, one division per brick): where the first non-empty one begins (-inf when
+    // the first is not empty; 1 when none is left) and where it ends. Every face is a plane of
+    // integer index, crossed at the parameter the cell walk computes for it.
+    struct EmptyRun {
+        double until, occupiedUntil;
+    };
+    EmptyRun emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        constexpr int B = OccupancyGrid::kBrick;
+        const glm::ivec3 bricks = occupancy_->bricks();
+        const std::vector<std::uint8_t>& empty = occupancy_->emptyFlags();
+        int m[3];
+        double exitAt[3];
+        // The first and last bricks also own the clamped region outside the voxel index range.
+        auto exitOf = [&](int a) {
+            if (delta[a] > 0 && m[a] + 1 < bricks[a]) return ((m[a] + 1) * B - entry[a]) / delta[a];
+            if (delta[a] < 0 && m[a] > 0) return (m[a] * B - entry[a]) / delta[a];
+            return inf;
+        };
+        for (int a = 0; a < 3; ++a) {
+            const double x = std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a]);
+            m[a] = std::min(static_cast<int>(x) >> OccupancyGrid::kBrickShift, bricks[a] - 1);
+            exitAt[a] = exitOf(a);
+        }
+        double until = -inf;  // nothing skipped yet
+        for (;;) {
+            const int a = exitAt[0] <= exitAt[1] ? (exitAt[0] <= exitAt[2] ? 0 : 2) : (exitAt[1] <= exitAt[2] ? 1 : 2);
+            const std::size_t index = (static_cast<std::size_t>(m[2]) * bricks[1] + m[1]) * bricks[0] + m[0];
+            if (!empty[index]) return {until, exitAt[a]};
+            until = exitAt[a];
+            if (!(until < 1.0)) return {1.0, inf};
+            m[a] += delta[a] > 0 ? 1 : -1;
+            exitAt[a] = exitOf(a);
+        }
+    }
+
     void addPiece(const glm::dvec3& entry, const glm::dvec3& delta, double phiA, double phiB, double length,
                   ExactRay& ray, PieceCounts& counts) const {
         ++counts.pieces;
@@ -112,7 +197,7 @@ private:
             v[k] = static_cast<double>(p[(k & 1) * stride_[0] + (k >> 1 & 1) * stride_[1] + (k >> 2) * stride_[2]]);
         const auto [vMin, vMax] = std::minmax_element(v.begin(), v.end());
         // The interpolant is a convex combination of the corners: their range bounds it.
-        if (tf_.isInvisible((*vMin - lo_) * invRange_, (*vMax - lo_) * invRange_)) return;
+        if (invisible(*vMin, *vMax)) return;
         ++counts.visible;
         const Cubic raw = trilinearAlongSegment(v, w0, w1);
         Cubic s;
@@ -124,18 +209,26 @@ private:
         ray.addPiece((phiB - phiA) * length, s, sScale);
     }
 
+    double normalised(double raw) const { return (raw - lo_) * invRange_; }
+    bool invisible(double rawLo, double rawHi) const {
+        if (!invisibleUpTo_.empty()) return rawHi <= invisibleUpTo_[static_cast<std::size_t>(rawLo)];
+        return tf_.isInvisible(normalised(rawLo), normalised(rawHi));
+    }
+
     const T* data_;
     const TransferFunction& tf_;
+    const OccupancyGrid* occupancy_;
     int n_[3];
     std::int64_t stride_[3];
     glm::dvec3 scale_, offset_;
     double maxCoord_[3];
     int maxBase_[3];
     double lo_, invRange_;
+    std::vector<int> invisibleUpTo_;  // 8- and 16-bit voxels: see the constructor
 };
 
 struct Counters {
-    std::atomic<std::uint64_t> raysHit{0}, pieces{0}, visible{0}, subPieces{0}, intervals{0}, opaque{0};
+    std::atomic<std::uint64_t> raysHit{0}, pieces{0}, visible{0}, subPieces{0}, intervals{0}, nodes{0}, opaque{0};
 };
 
 // Calls walk(uEntry, uExit, length, ray, counts) -> length left out, for every pixel's ray that
@@ -175,6 +268,7 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
         counters.visible += counts.visible;
         counters.subPieces += ray.subPieces;
         counters.intervals += ray.quadratureIntervals;
+        counters.nodes += ray.quadratureNodes;
     });
 }
 
@@ -198,6 +292,15 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
         glm::any(glm::lessThan(scene.volume->dims, glm::ivec3(2))))
         throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
 
+    // Each piece's optical depth must be a finite double: refuse extinctions near the top of its range.
+    double largestTau = 0.0;
+    for (const TransferFunctionPoint& p : scene.transferFunction.points()) largestTau = std::max(largestTau, p.tau);
+    const Box box = scene.box();
+    const double diagonal = glm::length(box.size());
+    if (!std::isfinite(64.0 * largestTau * diagonal))
+        throw Error("transfer function: extinction " + exactNumber(largestTau) + " per unit length over a box " +
+                    exactNumber(diagonal) + " long: the optical depth overflows double");
+
     ExactReference out;
     out.width = camera.width();
     out.height = camera.height();
@@ -212,8 +315,11 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
     const auto start = std::chrono::steady_clock::now();
     if (scene.volume) {
         const Volume& volume = *scene.volume;
+        std::optional<OccupancyGrid> occupancy;
+        if (options.skipEmptySpace) occupancy.emplace(volume, scene.convention, scene.transferFunction);
         dispatchVoxelType(volume.type, [&](auto voxel) {
-            const GridWalker<decltype(voxel)> walker(volume, scene.convention, scene.transferFunction);
+            const GridWalker<decltype(voxel)> walker(volume, scene.convention, scene.transferFunction,
+                                                     occupancy ? &*occupancy : nullptr);
             traceRays(scene, camera, options, [&](const glm::dvec3& a, const glm::dvec3& b, double length, ExactRay& ray,
                                                   PieceCounts& counts) { return walker.walk(a, b, length, ray, counts); },
                       out, counters);
@@ -230,6 +336,13 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
         }, out, counters);
     }
 
+    for (std::size_t i = 0; i < n; ++i)
+        if (!std::isfinite(out.values[i]) || !std::isfinite(out.bounds[i]))
+            throw Error("exact method: pixel " + std::to_string(i / 4 % out.width) + "," +
+                        std::to_string(i / 4 / out.width) + " has a " +
+                        (std::isfinite(out.values[i]) ? "non-finite error bound" : "non-finite value") +
+                        " (an extinction or transfer-function slope too large for double)");
+
     ExactReferenceStats& st = out.stats;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     st.rays = static_cast<std::uint64_t>(out.width) * out.height;
@@ -238,6 +351,7 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
     st.piecesVisible = counters.visible;
     st.subPieces = counters.subPieces;
     st.quadratureIntervals = counters.intervals;
+    st.quadratureNodes = counters.nodes;
     st.raysOpaque = counters.opaque;
     // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
     st.threads = static_cast<int>(std::min<std::size_t>(

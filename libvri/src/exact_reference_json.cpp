@@ -16,6 +16,7 @@ nlohmann::json toJson(const ExactReferenceStats& s) {
             {"pieces_visible", s.piecesVisible},
             {"sub_pieces", s.subPieces},
             {"quadrature_intervals", s.quadratureIntervals},
+            {"quadrature_nodes", s.quadratureNodes},
             // Per channel R, G, B, A, over all pixels (rays that miss the box have bound 0).
             {"error_bound", {{"channels", {"R", "G", "B", "A"}}, {"max", s.maxBound}, {"mean", s.meanBound}}}};
 }

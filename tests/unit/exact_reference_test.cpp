@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 
 #include "vri/cubic.h"
+#include "vri/error.h"
 #include "vri/exact_reference.h"
 
 using namespace vri;
@@ -239,4 +240,169 @@ TEST_CASE("exact reference does not depend on the thread count") {
     CHECK(one.values == many.values);
     CHECK(one.bounds == many.bounds);
     CHECK(one.stats.subPieces == many.stats.subPieces);
+}
+
+namespace {
+
+// |a - b| <= a's bound + b's bound + the rounding of the comparison, pixel by pixel and channel by channel.
+void checkWithinBounds(const ExactReference& a, const ExactReference& b) {
+    REQUIRE(a.values.size() == b.values.size());
+    int outside = 0;
+    for (std::size_t i = 0; i < a.values.size(); ++i)
+        if (std::abs(a.values[i] - b.values[i]) > a.bounds[i] + b.bounds[i] + 1e-16 * std::abs(b.values[i])) ++outside;
+    CHECK(outside == 0);
+}
+
+Scene largeBlob(TransferFunction tf) {  // 40^3: its corners are empty bricks of the occupancy grid
+    return Scene{noisyBlob(glm::ivec3(40), VoxelType::UInt8, V(1.0)), std::nullopt, GridConvention::CellCentred,
+                 std::move(tf)};
+}
+
+// The blob's transfer function with every extinction multiplied by `k`.
+TransferFunction scaledBlobTransferFunction(double k) {
+    std::vector<TransferFunctionPoint> points = blobTransferFunction().points();
+    for (TransferFunctionPoint& p : points) p.tau *= k;
+    return TransferFunction(points, EmissionModel::ColourTimesExtinction);
+}
+
+}  // namespace
+
+TEST_CASE("exact reference: jumping over empty bricks changes no bit and walks fewer pieces") {
+    for (GridConvention convention : {GridConvention::CellCentred, GridConvention::NodeCentred}) {
+        Scene scene = largeBlob(blobTransferFunction());
+        scene.convention = convention;
+        CameraSpec spec = framingCamera(scene.box(), 48, 40, 35.0);
+        for (const V& offset : {V(70.0, 45.0, 90.0), V(-3.0, 2.0, 95.0), V(0.5, -80.0, 0.25)}) {
+            spec.eye = scene.box().centre() + offset;
+            const Camera camera(spec);
+            ExactReferenceOptions walkAll;
+            walkAll.skipEmptySpace = false;
+            const ExactReference skipping = renderExactReference(scene, camera);
+            const ExactReference all = renderExactReference(scene, camera, walkAll);
+            CHECK(skipping.values == all.values);
+            CHECK(skipping.bounds == all.bounds);
+            CHECK(skipping.stats.piecesVisible == all.stats.piecesVisible);
+            CHECK(skipping.stats.subPieces == all.stats.subPieces);
+            CHECK(skipping.stats.pieces < all.stats.pieces);
+        }
+    }
+}
+
+TEST_CASE("exact reference: rays end early within the stated bound") {
+    const Scene scene = largeBlob(scaledBlobTransferFunction(20.0));
+    const Camera camera = blobCamera(scene);
+    ExactReferenceOptions tight, loose;
+    tight.tolerance = 1e-14;
+    loose.tolerance = 1e-6;
+    const ExactReference a = renderExactReference(scene, camera, tight);
+    const ExactReference b = renderExactReference(scene, camera, loose);
+    CHECK(b.stats.raysOpaque > b.stats.raysHit / 10);
+    CHECK(b.stats.piecesVisible < a.stats.piecesVisible);
+    checkWithinBounds(a, b);
+    CHECK(maxBound(a) < 1e-12);
+}
+
+TEST_CASE("exact reference: a looser tolerance costs less and stays within its bound") {
+    const Scene scene = largeBlob(scaledBlobTransferFunction(4.0));
+    const Camera camera = blobCamera(scene);
+    ExactReferenceOptions opt;
+    opt.tolerance = 1e-13;
+    const ExactReference reference = renderExactReference(scene, camera, opt);
+    std::uint64_t previousNodes = reference.stats.quadratureNodes;
+    for (double tolerance : {1e-11, 1e-9, 1e-7, 1e-5, 1e-3}) {
+        CAPTURE(tolerance);
+        opt.tolerance = tolerance;
+        const ExactReference r = renderExactReference(scene, camera, opt);
+        checkWithinBounds(reference, r);
+        CHECK(maxBound(r) <= 100.0 * tolerance);
+        CHECK(r.stats.quadratureNodes <= previousNodes);
+        previousNodes = r.stats.quadratureNodes;
+    }
+    CHECK(previousNodes < reference.stats.quadratureNodes / 3);
+    // A tolerance far below rounding ends (each sub-piece has an interval budget) within its bound.
+    opt.tolerance = 1e-300;
+    const ExactReference tiny = renderExactReference(scene, camera, opt);
+    checkWithinBounds(reference, tiny);
+    CHECK(tiny.stats.quadratureIntervals <= 4096 * tiny.stats.subPieces);
+}
+
+TEST_CASE("exact reference: the bound holds for every extinction from 1e-6 to 1e300") {
+    CameraSpec spec;
+    spec.eye = V(-4.0, 1.5, 2.5);
+    spec.target = V(0.1, -0.2, 0.0);
+    spec.fovYDegrees = 40.0;
+    spec.width = 12;
+    spec.height = 9;
+    const Camera camera(spec);
+    // A constant field of s = 1 (a cell-centred 2^3 volume filling the linear field's box) under a
+    // constant TF, g = C tau: colour C (1 - exp(-tau L)). The linear field s = u.x under C = s,
+    // tau = k s, g = C: with F = k L (s_entry + s_exit) / 2, colour (1 - exp(-F)) / k.
+    auto constant = std::make_shared<Volume>(glm::ivec3(2), VoxelType::Float32);
+    for (int i = 0; i < 8; ++i) constant->data<float>()[i] = 1.0f;
+    constant->range = ValueRange{0.0, 1.0};
+    constant->spacing = V(1.5);
+    constant->origin = V(-1.5);
+    const LinearField field;
+    for (int e = -6; e <= 300; e += 6) {
+        const double k = std::pow(10.0, e);
+        CAPTURE(k);
+        const double C[3] = {0.9, 0.5, 0.25};
+        const Scene uniform{constant, std::nullopt, GridConvention::CellCentred,
+                            TransferFunction({{0, C[0], C[1], C[2], k}, {1, C[0], C[1], C[2], k}},
+                                             EmissionModel::ColourTimesExtinction)};
+        const Scene linear{nullptr, field, GridConvention::NodeCentred,
+                           TransferFunction({{0, 0, 0, 0, 0}, {1, 1, 1, 1, k}}, EmissionModel::Colour)};
+        const ExactReference a = renderExactReference(uniform, camera), b = renderExactReference(linear, camera);
+        REQUIRE(uniform.box().lo == field.box.lo);
+        REQUIRE(uniform.box().hi == field.box.hi);
+        int outside = 0, hit = 0;
+        double worst = 0.0;
+        for (int py = 0; py < spec.height; ++py)
+            for (int px = 0; px < spec.width; ++px) {
+                const V dir = camera.direction(px, py);
+                const auto seg = clipRay(camera.eye(), dir, field.box);
+                if (!seg || !(seg->tFar > seg->tNear)) continue;
+                ++hit;
+                const double L = seg->tFar - seg->tNear;
+                const double opacity = -std::expm1(-k * L);
+                const double F = k * L * (field(camera.eye() + seg->tNear * dir) + field(camera.eye() + seg->tFar * dir)) / 2;
+                const double linearAlpha = -std::expm1(-F);
+                const std::size_t at = (static_cast<std::size_t>(py) * spec.width + px) * 4;
+                // The closed forms in double carry a few roundings of their own (and of L, F).
+                auto check = [&](const ExactReference& r, int c, double truth) {
+                    const double error = std::abs(r.values[at + c] - truth);
+                    worst = std::max(worst, r.bounds[at + c]);
+                    if (error > r.bounds[at + c] + 1e-14 * std::abs(truth)) ++outside;
+                };
+                for (int c = 0; c < 3; ++c) {
+                    check(a, c, C[c] * opacity);
+                    check(b, c, linearAlpha / k);
+                }
+                check(a, 3, opacity);
+                check(b, 3, linearAlpha);
+            }
+        CHECK(hit > 0);
+        CHECK(outside == 0);
+        // The bound stays useful up to 1e4 per unit length; beyond, the allowance for a split misplaced by
+        // rounding (4 u length max g) grows with tau until [0, C_max] caps it.
+        if (k <= 1e4) CHECK(worst < 1e-9);
+    }
+    const Scene overflowing{constant, std::nullopt, GridConvention::CellCentred,
+                            TransferFunction({{0, 1, 1, 1, 1e307}, {1, 1, 1, 1, 1e307}},
+                                             EmissionModel::ColourTimesExtinction)};
+    CHECK_THROWS_AS(renderExactReference(overflowing, camera), Error);
+}
+
+TEST_CASE("exact reference: 8-bit voxels (a visibility table) give the bits of the same values as float") {
+    const Scene bytes = largeBlob(blobTransferFunction());
+    auto floats = std::make_shared<Volume>(bytes.volume->dims, VoxelType::Float32);
+    for (std::size_t i = 0; i < floats->voxelCount(); ++i)
+        floats->data<float>()[i] = static_cast<float>(bytes.volume->data<std::uint8_t>()[i]);
+    floats->range = ValueRange{0.0, 255.0};
+    const Scene asFloat{floats, std::nullopt, GridConvention::CellCentred, blobTransferFunction()};
+    const Camera camera = blobCamera(bytes);
+    const ExactReference a = renderExactReference(bytes, camera), b = renderExactReference(asFloat, camera);
+    CHECK(a.values == b.values);
+    CHECK(a.bounds == b.bounds);
+    CHECK(a.stats.piecesVisible == b.stats.piecesVisible);
 }

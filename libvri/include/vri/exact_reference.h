@@ -19,8 +19,13 @@ namespace vri {
 
 struct ExactReferenceOptions {
     // Each transfer-function sub-piece is subdivided until the quadrature error estimate for the
-    // pixel (|K15 - G7|, weighted by the transparency in front of it) is below this.
+    // pixel (|K - G|, weighted by the transparency in front of it) is below this; from 1e-8 up the
+    // 3-7 Gauss-Kronrod rule replaces the 7-15 one. A ray also ends once the transparency times the
+    // largest colour (and the transparency itself, for alpha) is below it; that tail is in the bound.
     double tolerance = 1e-13;
+    // Jump over the bricks of the occupancy grid on which the transfer function is zero (the image
+    // and the bounds do not change by a bit; off only to test that).
+    bool skipEmptySpace = true;
     int tileSize = 16;
     bool progress = false;  // report progress on stderr
 };
@@ -31,8 +36,9 @@ struct ExactReferenceStats {
     std::uint64_t pieces = 0;             // cell pieces walked (the scalar is one cubic on each)
     std::uint64_t piecesVisible = 0;      // of those, the ones not skipped as invisible
     std::uint64_t subPieces = 0;          // transfer-function sub-pieces integrated
-    std::uint64_t quadratureIntervals = 0;  // Gauss-Kronrod rules applied (sub-pieces plus subdivisions)
-    std::uint64_t raysOpaque = 0;         // rays ended once their transparency fell below 2^-60
+    std::uint64_t quadratureIntervals = 0;  // intervals integrated (sub-pieces plus subdivisions)
+    std::uint64_t quadratureNodes = 0;    // integrand evaluations of the Gauss-Kronrod rules (7 or 15 each)
+    std::uint64_t raysOpaque = 0;         // rays ended early: what was left could add at most the tolerance
     double seconds = 0.0;
     int threads = 0;
     // Per channel R, G, B, A over all pixels: the largest and the mean error bound.
@@ -52,7 +58,8 @@ struct ExactReference {
 };
 
 // The same rays as render(scene, camera, ...). Throws vri::Error on a scene without volume or field,
-// a node-centred volume thinner than 2 voxels, or a tolerance that is not positive.
+// a node-centred volume thinner than 2 voxels, a tolerance that is not positive, an extinction whose
+// optical depth across the box overflows double, or any pixel whose value or bound is not finite.
 ExactReference renderExactReference(const Scene& scene, const Camera& camera,
                                     const ExactReferenceOptions& options = {});
 

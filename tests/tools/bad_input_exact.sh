@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Bad input to the exact method (vri-render --method exact, vri-reference): one line, exit code, nothing written.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
+bin=$VRI_BIN
+source "$VRI_SOURCE/tests/tools/lib/blob.sh" && write_blob_scene
+cat > huge.yaml <<'YAML'
+points:
+  - [0.0, 1.0, 1.0, 1.0, 1e307]
+  - [1.0, 1.0, 1.0, 1.0, 1e307]
+YAML
+blob=(--volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --stats out.json)
+bad 1 '^vri-render: error: --method exact: runs on --backend cpu only$' -- "$bin/vri-render" "${blob[@]}" --method exact --backend vulkan
+bad 1 '^vri-render: error: --precision: --method exact is double only$' -- "$bin/vri-render" "${blob[@]}" --method exact --precision float
+bad 1 '^vri-render: error: --step, --rate: --method exact has no step$' -- "$bin/vri-render" "${blob[@]}" --method exact --step 0.5
+bad 1 '^vri-render: error: --early-termination: ' -- "$bin/vri-render" "${blob[@]}" --method exact --early-termination 0.01
+bad 1 '^vri-render: error: --tolerance: must be > 0 for --method exact' -- "$bin/vri-render" "${blob[@]}" --method exact --tolerance 0
+bad 1 '^vri-render: error: transfer function: extinction 1e\+307 per unit length over a box .* overflows double$' -- \
+    "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf huge.yaml --size 8x6 -q -o out.exr --method exact
+bad 1 '^vri-reference: error: transfer function: extinction 1e\+307 per unit length over a box .* overflows double$' -- \
+    "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf huge.yaml --size 8x6 -q -o out.exr
+bad_done
