@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -20,8 +21,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// "pid 1234: vri-run --quick exp.yaml" from the lock file and /proc, as much as can be found; control
-// characters of the command shown as '?', so that the message stays one line.
+// "pid 1234: vri-run --quick exp.yaml" from the lock file and /proc, as much as can be found (guardedMain
+// escapes any control character of the command).
 std::string holder(int fd) {
     char text[32] = {};
     const ssize_t n = ::pread(fd, text, sizeof text - 1, 0);
@@ -34,11 +35,7 @@ std::string holder(int fd) {
     while (!command.empty() && command.back() == '\0')
         command.pop_back();
     if (command.size() > 300) command = command.substr(0, 300) + "...";
-    for (char& c : command)
-        if (c == '\0')
-            c = ' ';
-        else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-            c = '?';
+    std::replace(command.begin(), command.end(), '\0', ' ');  // between the words
     return "pid " + pid + (command.empty() ? "" : ": " + command);
 }
 

@@ -53,13 +53,10 @@ std::string incompleteImage(const fs::path& png, const fs::path& svg) {
     return "";
 }
 
-// gnuplot's last line of complaint, for a one-line message.
+// gnuplot's last line of complaint, for a one-line message (guardedMain escapes control characters).
 std::string lastLine(const std::string& messages) {
     const std::string trimmed = withoutTrailingBlanks(messages);
-    std::string text = trimmed.substr(trimmed.find_last_of('\n') + 1);
-    for (char& c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    return text;
+    return trimmed.substr(trimmed.find_last_of('\n') + 1);
 }
 
 }  // namespace
