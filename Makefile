@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 VRI_DATA_DIR ?= $(if $(wildcard ../shared/data/volumes),$(abspath ../shared/data/volumes),$(abspath data))
 export VRI_DATA_DIR
 
-.PHONY: all deps build test experiments experiments-quick clean
+.PHONY: all deps deps-fuzz build test test-sanitize fuzz experiments experiments-quick clean
 
 all: build
 
@@ -22,6 +22,32 @@ build: deps $(BUILD)/build.ninja
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
+# Every test again, built with ASan + UBSan (float-to-integer casts included); the first report fails
+# its test. About 30 min on 2 cores, so not part of .ci/run (README, Testing).
+SANITIZE_BUILD ?= build-sanitize
+$(SANITIZE_BUILD)/build.ninja: | deps
+	cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DVRI_SANITIZE=ON
+
+test-sanitize: deps $(SANITIZE_BUILD)/build.ninja
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
+
+# The parsers' libFuzzer targets (tests/fuzz), FUZZ_SECONDS each, built with clang in $(FUZZ_BUILD).
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?= nhdr dat tf_yaml experiment_yaml vdb_metadata
+FUZZ_CXX ?= clang++-14
+deps-fuzz:
+	@scripts/install-deps.sh fuzz
+
+$(FUZZ_BUILD)/build.ninja: | deps-fuzz
+	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DVRI_FUZZ=ON -DCMAKE_CXX_COMPILER=$(FUZZ_CXX)
+
+fuzz: deps-fuzz $(FUZZ_BUILD)/build.ninja
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
 # Every experiment file (experiments/datasets.yaml is the dataset catalog, not an experiment).
 EXPERIMENTS ?= $(filter-out experiments/datasets.yaml,$(wildcard experiments/*.yaml))
 
@@ -34,7 +60,7 @@ experiments-quick: build
 	$(BUILD)/bin/vri-run --quick --results $(BUILD)/experiments-quick --gallery $(BUILD)/experiments-quick $(EXPERIMENTS)
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)
 
 # The datasets: checks each one of experiments/datasets.yaml in $(VRI_DATA_DIR) (size, SHA-512) and
 # downloads the missing ones there from their published URLs; fails on MISSING or MISMATCH.

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages vri builds and runs with, if any is missing (apt-get, as root or via sudo).
+#   scripts/install-deps.sh          what make test and make experiments need
+#   scripts/install-deps.sh fuzz     that and clang with libFuzzer, for make fuzz
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,9 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools glslang-tools glslang-dev
   libglm-dev nlohmann-json3-dev gnuplot-nox libhwy-dev
 )
+if [ "${1:-}" = fuzz ]; then
+  packages+=(clang-14 libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

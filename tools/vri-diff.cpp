@@ -112,17 +112,22 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const std:
     std::cout << verdict << '\n';
 }
 
-// CLI11's own NonNegativeNumber prints the largest double in full when it rejects a value.
-const CLI::Validator kNonNegative(
-    [](std::string& text) -> std::string {
-        try {
-            std::size_t used = 0;
-            if (std::stod(text, &used) >= 0 && used == text.size()) return {};
-        } catch (const std::exception&) {
-        }
-        return "must be a number >= 0, got '" + text + "'";
-    },
-    "NONNEGATIVE");
+// CLI11's own PositiveNumber and NonNegativeNumber print the largest double in full when they reject a value.
+CLI::Validator numberCheck(bool zeroAllowed) {
+    return CLI::Validator(
+        [zeroAllowed](std::string& text) -> std::string {
+            try {
+                std::size_t used = 0;
+                const double value = std::stod(text, &used);
+                if (used == text.size() && (value > 0 || (zeroAllowed && value == 0))) return {};
+            } catch (const std::exception&) {
+            }
+            return std::string("must be a number ") + (zeroAllowed ? ">= 0" : "> 0") + ", got '" + text + "'";
+        },
+        zeroAllowed ? "NONNEGATIVE" : "POSITIVE");
+}
+const CLI::Validator kNonNegative = numberCheck(true);
+const CLI::Validator kPositive = numberCheck(false);
 
 // The one-line message of vri::guardedMain, with the exit code that names this kind of failure.
 int exitWith(int code, const std::exception& error) {
@@ -148,7 +153,7 @@ int run(int argc, char** argv) {
         app.add_option("--diff-image", options.diffImage, "write the per-channel |A - B| image (.exr keeps it exact)");
     app.add_option("--diff-scale", options.diffScale, "multiply the difference image by this (a PNG then shows an "
                                                       "error of 1/K as full white; PNG keeps R, G, B only)")
-        ->check(CLI::PositiveNumber)
+        ->check(kPositive)
         ->needs(diffImage)
         ->capture_default_str();
     app.add_option("--histogram", options.histogram, "write per-channel error histograms as CSV "
@@ -158,7 +163,7 @@ int run(int argc, char** argv) {
         ->expected(2)
         ->capture_default_str();
     app.add_option("--bins-per-decade", options.binsPerDecade, "histogram bins per factor of ten")
-        ->check(CLI::PositiveNumber)
+        ->check(kPositive)
         ->capture_default_str();
     app.add_option("--fail", options.fail, "failure threshold on the absolute error")
         ->check(kNonNegative)

@@ -33,7 +33,9 @@ TransferFunction::TransferFunction(std::vector<TransferFunctionPoint> points, Em
         validateTransferFunctionPoint(points_[i], i > 0 ? &points_[i - 1] : nullptr,
                                       source + ": point " + std::to_string(i));
     const double span = points_.back().s - points_.front().s;
-    binScale_ = span > 0 ? kBins / span : 0.0;
+    // A span below kBins times the smallest double (a subnormal span) makes the scale infinite, and the bin of
+    // an s inside it (s - s0) * inf, which no int holds: such a function is searched from its first point.
+    binScale_ = span > 0 && std::isfinite(kBins / span) ? kBins / span : 0.0;
     binStart_.assign(kBins, 0);
     std::size_t i = 0;
     for (int bin = 0; bin < kBins; ++bin) {

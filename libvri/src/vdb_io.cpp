@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <mutex>
 #include <sstream>
 #include <type_traits>
@@ -22,6 +21,7 @@
 #include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/volume_io.h"
+#include "vdb_grid_layout.h"
 #include "volume_formats.h"
 
 namespace vri {
@@ -95,13 +95,6 @@ std::string gridDescription(const openvdb::GridBase& grid) {
     return "grid '" + grid.getName() + "' (" + grid.valueType() + ")";
 }
 
-std::string boxText(const openvdb::CoordBBox& box) {
-    const auto coord = [](const openvdb::Coord& c) {
-        return "(" + std::to_string(c.x()) + "," + std::to_string(c.y()) + "," + std::to_string(c.z()) + ")";
-    };
-    return coord(box.min()) + ".." + coord(box.max());
-}
-
 // A sparse grid stores nothing for background voxels and one tile for a constant region, so its file
 // says little about its dense size; metadata claiming 1024^3 voxels in a 10 KB file is still far more
 // likely an error (or an attack) than a volume. Unless VRI_MAX_BYTES states the limit, a dense
@@ -109,19 +102,13 @@ std::string boxText(const openvdb::CoordBBox& box) {
 constexpr std::uint64_t kPlausibleExpansion = 1024;
 constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
 
-// The dense dims of `box`, checked against the byte limit and the file's size before anything is allocated.
-glm::ivec3 denseDims(const fs::path& path, const std::string& source, const openvdb::CoordBBox& box, VoxelType type) {
-    std::uint64_t extent[3];
-    for (int axis = 0; axis < 3; ++axis) {
-        extent[axis] = static_cast<std::uint64_t>(std::int64_t(box.max()[axis]) - std::int64_t(box.min()[axis]) + 1);
-        if (extent[axis] > std::uint64_t(std::numeric_limits<int>::max()))
-            throw Error(path.string() + ": " + source + " " + boxText(box) + " is wider than " +
-                        std::to_string(std::numeric_limits<int>::max()) + " voxels");
-    }
-    const std::string what = path.string() + ": " + source + " " + std::to_string(extent[0]) + "x" +
-                             std::to_string(extent[1]) + "x" + std::to_string(extent[2]) + " (" +
+// The dense volume's bytes, checked against the byte limit and the file's size before anything is allocated.
+void requirePlausibleSize(const fs::path& path, const std::string& source, glm::ivec3 dims, VoxelType type) {
+    const std::string what = path.string() + ": " + source + " " + std::to_string(dims.x) + "x" +
+                             std::to_string(dims.y) + "x" + std::to_string(dims.z) + " (" +
                              std::string(voxelTypeName(type)) + ")";
-    const std::uint64_t bytes = checkedBytes(what, {extent[0], extent[1], extent[2], voxelSize(type)});
+    const std::uint64_t bytes = checkedBytes(
+        what, {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), voxelSize(type)});
     const std::uint64_t fileBytes = fs::file_size(path);
     const std::uint64_t plausible =
         std::max(kAlwaysPlausibleBytes, checkedProduct({fileBytes, kPlausibleExpansion}).value_or(UINT64_MAX));
@@ -129,58 +116,56 @@ glm::ivec3 denseDims(const fs::path& path, const std::string& source, const open
         throw Error(what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
                     " for a file of " + std::to_string(fileBytes) + " bytes (" + std::to_string(kPlausibleExpansion) +
                     " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)");
-    return {int(extent[0]), int(extent[1]), int(extent[2])};
+}
+
+detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
+    detail::VdbGridFacts facts;
+    facts.description = gridDescription(grid);
+    facts.valueType = grid.isType<openvdb::Int32Grid>()    ? detail::VdbValueType::Int32
+                      : grid.isType<openvdb::DoubleGrid>() ? detail::VdbValueType::Double
+                                                           : detail::VdbValueType::Float;
+    const openvdb::math::Transform& transform = grid.transform();
+    facts.linearTransform = transform.isLinear();
+    const openvdb::Mat3d linear = transform.baseMap()->getAffineMap()->getMat4().getMat3();
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row) facts.linear[column][row] = linear(row, column);
+    if (const auto type = grid.getMetadata<openvdb::StringMetadata>(kVoxelTypeKey)) facts.voxelTypeMeta = type->value();
+    if (const auto dims = grid.getMetadata<openvdb::Vec3IMetadata>(kDimsKey))
+        facts.dimsMeta = glm::ivec3(dims->value().x(), dims->value().y(), dims->value().z());
+    if (const auto range = grid.getMetadata<openvdb::Vec2DMetadata>(kRangeKey))
+        facts.rangeMeta = glm::dvec2(range->value().x(), range->value().y());
+    const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
+    if (!active.empty()) {
+        facts.activeMin = glm::ivec3(active.min().x(), active.min().y(), active.min().z());
+        facts.activeMax = glm::ivec3(active.max().x(), active.max().y(), active.max().z());
+    }
+    return facts;
 }
 
 Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
+    const detail::VdbGridFacts facts = gridFacts(grid);
+    const detail::VdbVolumeLayout layout = detail::vdbVolumeLayout(path.string(), facts);
+    const bool writtenByVri = facts.voxelTypeMeta && facts.dimsMeta;
+    requirePlausibleSize(path, writtenByVri ? kDimsKey : "active voxels", layout.dims, layout.type);
+    const openvdb::Coord boxMin(layout.boxMin.x, layout.boxMin.y, layout.boxMin.z);
+    const openvdb::CoordBBox box(boxMin, boxMin.offsetBy(layout.dims.x - 1, layout.dims.y - 1, layout.dims.z - 1));
+
+    Volume volume(layout.dims, layout.type);
     const openvdb::math::Transform& transform = grid.transform();
-    const openvdb::Mat3d linear = transform.baseMap()->getAffineMap()->getMat4().getMat3();
-    if (!transform.isLinear() || !openvdb::math::isDiagonal(linear) || linear(0, 0) <= 0 || linear(1, 1) <= 0 ||
-        linear(2, 2) <= 0)
-        throw Error(path.string() + ": " + gridDescription(grid) +
-                    " has a rotated, flipped or non-linear transform; only axis-aligned grids are supported");
-
-    const auto typeMeta = grid.getMetadata<openvdb::StringMetadata>(kVoxelTypeKey);
-    const auto dimsMeta = grid.getMetadata<openvdb::Vec3IMetadata>(kDimsKey);
-    const bool writtenByVri = typeMeta && dimsMeta;
-    VoxelType type = VoxelType::Float32;
-    openvdb::CoordBBox box;
-    if (writtenByVri) {
-        type = parseVoxelType(typeMeta->value(), path.string() + ": " + kVoxelTypeKey);
-        const openvdb::Vec3i d = dimsMeta->value();
-        if (d.x() < 1 || d.y() < 1 || d.z() < 1)
-            throw Error(path.string() + ": " + kDimsKey + " must be positive");
-        box = indexBox({d.x(), d.y(), d.z()});
-        // vri writes voxel (i,j,k) at index (i,j,k): every active voxel lies inside the dims.
-        const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
-        if (!active.empty() && !box.isInside(active))
-            throw Error(path.string() + ": " + kDimsKey + " " + std::to_string(d.x()) + "x" + std::to_string(d.y()) +
-                        "x" + std::to_string(d.z()) + " does not contain the active voxels " + boxText(active));
-    } else {
-        box = grid.evalActiveVoxelBoundingBox();
-        if (box.empty()) throw Error(path.string() + ": " + gridDescription(grid) + " has no active voxels");
-    }
-
-    Volume volume(denseDims(path, writtenByVri ? kDimsKey : "active voxels", box, type), type);
     const openvdb::Vec3d spacing = transform.voxelSize();
     const openvdb::Vec3d origin = transform.indexToWorld(box.min());
     volume.spacing = {spacing.x(), spacing.y(), spacing.z()};
     volume.origin = {origin.x(), origin.y(), origin.z()};
-    if (const auto range = grid.getMetadata<openvdb::Vec2DMetadata>(kRangeKey); range && writtenByVri)
-        volume.range = ValueRange{range->value().x(), range->value().y()};
+    volume.range = layout.range;
 
-    const bool isInt = grid.isType<openvdb::Int32Grid>();
-    if (type == VoxelType::UInt8 && isInt) copyToVolume<std::uint8_t, openvdb::Int32Grid>(grid, box, volume);
-    else if (type == VoxelType::UInt16 && isInt) copyToVolume<std::uint16_t, openvdb::Int32Grid>(grid, box, volume);
-    else if (type == VoxelType::Float32 && grid.isType<openvdb::FloatGrid>())
-        copyToVolume<float, openvdb::FloatGrid>(grid, box, volume);
-    else if (type == VoxelType::Float32 && grid.isType<openvdb::DoubleGrid>() && !writtenByVri)
+    // vdbVolumeLayout has checked that the grid's value type can hold the layout's voxel type.
+    if (grid.isType<openvdb::Int32Grid>())
+        dispatchVoxelType(layout.type,
+                          [&](auto t) { copyToVolume<decltype(t), openvdb::Int32Grid>(grid, box, volume); });
+    else if (grid.isType<openvdb::DoubleGrid>())
         copyToVolume<float, openvdb::DoubleGrid>(grid, box, volume);
-    else if (type == VoxelType::Float32 && isInt && !writtenByVri)
-        copyToVolume<float, openvdb::Int32Grid>(grid, box, volume);
     else
-        throw Error(path.string() + ": " + gridDescription(grid) + " cannot hold " +
-                    std::string(voxelTypeName(type)) + " voxels as its metadata claim");
+        copyToVolume<float, openvdb::FloatGrid>(grid, box, volume);
     return volume;
 }
 

@@ -1,0 +1,282 @@
+#!/usr/bin/env bash
+# Bad input that every tool already rejects cleanly, kept that way: bad flags, missing and malformed
+# files, malformed numbers and lists, unknown names, options that do not go together. Each case asserts
+# the exit code (1 for a bad input or value, CLI11's own codes 105-114 for what its parser rejects,
+# vri-diff's idiff-style 3 and 4), the one line on stderr, and that the work directory is unchanged.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh"
+
+bin="$VRI_BIN"
+
+# The inputs, in the work directory (the harness checks that no case changes them).
+write_blob_scene
+"$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x8 -o a.exr -q
+"$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 4x4 -o small.exr -q --stats stats.json
+"$bin/vri-diff" a.exr a.exr --json diff.json > /dev/null
+echo "not an image" > junk.exr
+printf 'not a vdb' > junk.vdb
+printf '{"a": 1\n' > broken.json
+printf 'points:\n  - [0, 0, 0, 0, -1]\n' > negative_tau.yaml
+printf 'points: [[0, 0, 0, 0, 0]\n' > unclosed_tf.yaml
+printf 'NRRD0004\ntype: uint8\ndimension: 2\nsizes: 8 8\nencoding: raw\ndata file: blob_8x8x8_uint8.raw\n' > flat.nhdr
+printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: gzip\ndata file: blob_8x8x8_uint8.raw\n' > gzip.nhdr
+printf 'Rawfile: blob_8x8x8_uint8.raw\nResolution: 8 8\nFormat: UINT8\n' > two_dims.dat
+printf 'Rawfile: blob_8x8x8_uint8.raw\nResolution: 8 8 8\nFormat: FLOAT64\n' > float64.dat
+printf 'Rawfile: missing.raw\nResolution: 8 8 8\nFormat: UINT8\n' > no_raw.dat
+cp blob_8x8x8_uint8.raw noname.raw
+printf 'a,b\n1,2\n2,3\n' > data.csv
+printf 'bogus: 1\n' > unknown_key_spec.yaml
+printf 'panels: [\n' > unclosed_spec.yaml
+printf 'panels:\n  - title: x\n    series:\n      - {file: missing.csv, x: a, y: b, style: line}\n' > no_data_spec.yaml
+printf 'panels:\n  - title: x\n    series:\n      - {file: data.csv, x: a, y: c, style: line}\n' > no_column_spec.yaml
+printf 'panels:\n  - title: x\n    series:\n      - {file: data.csv, x: a, y: b, style: wiggly}\n' > bad_style_spec.yaml
+printf 'panels:\n  - title: x\n    series:\n      - {file: data.csv, x: a, y: b, style: line}\n' > spec.yaml
+printf 'datasets: [\n' > unclosed_catalog.yaml
+printf 'bogus: 1\n' > unknown_key_catalog.yaml
+mkdir -p exp/tf
+cp tf.yaml exp/tf/
+cat > exp/good.yaml <<'YAML'
+name: good
+title: a tiny experiment
+paper: {paper: A, item: none, says: nothing}
+scenes:
+  cube:
+    field: linear
+    convention: node
+    tf: tf/tf.yaml
+    camera: {eye: [-8, 4, 0], target: [0, 0, 0], up: [0, 0, 1], fov: 30}
+    size: [4, 4]
+methods:
+  riemann: {rate: 1}
+YAML
+variant() { sed "$2" exp/good.yaml > "exp/$1.yaml"; }
+variant bad_name 's/^name: good/name: Bad Name/'
+variant bad_method 's/riemann: {rate: 1}/wobble: {rate: 1}/'
+variant bad_rate 's/riemann: {rate: 1}/riemann: {rate: 0}/'
+variant no_tf 's|tf/tf.yaml|tf/none.yaml|'
+variant bad_convention 's/convention: node/convention: corner/'
+variant bad_fov 's/fov: 30/fov: wide/'
+variant bad_size 's/size: \[4, 4\]/size: [4]/'
+variant bad_eye 's/eye: \[-8, 4, 0\]/eye: [-8, 4]/'
+variant unknown_key 's/^title: a tiny experiment/colour: red/'
+variant bad_field 's/field: linear/field: wavy/'
+{ cat exp/good.yaml; printf 'comparisons:\n  vs: {reference: nobody, thresholds: [0.1]}\n'; } > exp/bad_reference.yaml
+{ cat exp/good.yaml; printf 'figures:\n  f: {spec: plots/none.yaml, data: [x.csv]}\n'; } > exp/no_spec.yaml
+printf 'name: [\n' > exp/unclosed.yaml
+printf -- '- 1\n' > exp/list.yaml
+
+E='^vri-render: error: '
+render=("$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x8 -o out.exr -q)
+bad 109 "${E}The following argument was not expected: --bogus" -- "${render[@]}" --bogus
+bad 106 "${E}--tf is required" -- "$bin/vri-render" --volume blob_8x8x8_uint8.raw -o out.exr
+bad 106 "${E}Exactly 1 option from \[--volume,--field\] is required \(" -- "$bin/vri-render" --tf tf.yaml -o out.exr
+bad 106 "${E}Exactly 1 option from \[--volume,--field\] is required and 2 were given" -- \
+    "${render[@]}" --field linear
+bad 1 "${E}missing.raw: no such file$" -- "$bin/vri-render" --volume missing.raw --tf tf.yaml -o out.exr
+bad 1 "${E}\.: not a regular file$" -- "$bin/vri-render" --volume . --tf tf.yaml -o out.exr
+bad 1 "${E}missing.yaml: no such file$" -- "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf missing.yaml -o out.exr
+bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- \
+    "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf negative_tau.yaml -o out.exr
+bad 1 "${E}unclosed_tf.yaml:2:1: malformed YAML" -- \
+    "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf unclosed_tf.yaml -o out.exr
+bad 1 "${E}junk.vdb: .*not a VDB file" -- "$bin/vri-render" --volume junk.vdb --tf tf.yaml -o out.exr
+bad 1 "${E}gzip.nhdr:5: encoding: 'gzip' is not supported" -- "$bin/vri-render" --volume gzip.nhdr --tf tf.yaml -o out.exr
+bad 1 "${E}float64.dat:3: Format: unknown voxel type 'FLOAT64'" -- \
+    "$bin/vri-render" --volume float64.dat --tf tf.yaml -o out.exr
+bad 1 "${E}--field: unknown analytic field 'quadratic'" -- "$bin/vri-render" --field quadratic --tf tf.yaml -o out.exr
+bad 1 "${E}--method: unknown method 'bogus'" -- "${render[@]}" --method bogus
+bad 1 "${E}--placement: unknown placement 'sideways'" -- "${render[@]}" --placement sideways
+bad 1 "${E}--precision: unknown precision 'half'" -- "${render[@]}" --precision half
+bad 1 "${E}--backend: unknown backend 'metal'" -- "${render[@]}" --backend metal
+bad 1 "${E}--convention: unknown grid convention 'corner'" -- "${render[@]}" --convention corner
+bad 1 "${E}--accepted-value: unknown accepted value 'median'" -- "${render[@]}" --method coupled --accepted-value median
+bad 1 "${E}--interpolation: needs --backend vulkan" -- "${render[@]}" --interpolation sampler
+bad 1 "${E}the Vulkan backend renders in single precision only" -- "${render[@]}" --backend vulkan --precision double
+bad 1 "${E}--size: expected a positive image size WIDTHxHEIGHT, got '8by8'" -- \
+    "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml -o out.exr --size 8by8
+bad 1 "${E}--size: expected a positive image size WIDTHxHEIGHT, got '0x8'" -- \
+    "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml -o out.exr --size 0x8
+bad 1 "${E}--eye: expected three numbers x,y,z, got '1,2'" -- "${render[@]}" --eye 1,2
+bad 1 "${E}--eye: expected three numbers x,y,z, got '1,2,nan'" -- "${render[@]}" --eye 1,2,nan
+bad 1 "${E}--background: expected three numbers" -- "${render[@]}" --background 1,2
+bad 1 "${E}camera up vector 0,0,0 is zero or shorter than" -- "${render[@]}" --up 0,0,0
+bad 1 "${E}camera eye and target coincide" -- "${render[@]}" --eye 4,4,4 --target 4,4,4
+bad 1 "${E}field of view must be in \(0, 180\) degrees" -- "${render[@]}" --fov 180
+bad 104 "${E}Could not convert: --fov = abc" -- "${render[@]}" --fov abc
+bad 104 "${E}Could not convert: --threads = two" -- "${render[@]}" --threads two
+bad 1 "${E}--threads: expected a positive count, got -1" -- "${render[@]}" --threads -1
+bad 1 "${E}--repeat: expected a positive count, got 0" -- "${render[@]}" --repeat 0
+bad 1 "${E}--step: must be > 0 voxels" -- "${render[@]}" --step 0
+bad 108 "${E}--step excludes --rate" -- "${render[@]}" --step 0.5 --rate 2
+bad 1 "${E}early termination threshold must be in \[0, 1\)" -- "${render[@]}" --early-termination 2
+bad 1 "${E}zoom must be a finite factor >= 1" -- "${render[@]}" --zoom 0
+bad 1 "${E}the tolerance must be >= 0 and finite, got nan" -- "${render[@]}" --method coupled --tolerance nan
+bad 1 "${E}h_min must be positive and finite" -- "${render[@]}" --method coupled --h-min -1
+bad 1 "${E}the initial step h0 must be finite and at least h_min" -- "${render[@]}" --method coupled --h0 0
+bad 1 "${E}--h-max: expected a positive number or 'none', got 'zero'" -- "${render[@]}" --method coupled --h-max zero
+bad 107 "${E}--log requires --log-ray" -- "${render[@]}" --log ray.csv
+bad 1 "${E}the logged pixel 100,100 is outside the 8x8 image" -- \
+    "${render[@]}" --method coupled --log-ray 100,100 --log ray.csv
+bad 1 "${E}--range: expected lo,hi with hi > lo, got '5,1'" -- "${render[@]}" --range 5,1
+bad 1 "${E}--dims and --type go together" -- "${render[@]}" --dims 8,8,8
+bad 1 "${E}--dims: expected three positive integers X,Y,Z, got '8,8,8,8'" -- "${render[@]}" --dims 8,8,8,8 --type uint8
+bad 1 "${E}--type: unknown voxel type 'int64'" -- "${render[@]}" --dims 8,8,8 --type int64
+bad 1 "${E}blob_8x8x8_uint8.raw: file is 512 bytes, expected 576 for 9x8x8 uint8" -- \
+    "${render[@]}" --dims 9,8,8 --type uint8
+bad 1 "${E}--header-bytes: expected a byte count, got -4" -- "${render[@]}" --dims 8,8,8 --type uint8 --header-bytes -4
+bad 1 "${E}--byte-order: expected little or big, got 'middle'" -- "${render[@]}" --byte-order middle
+bad 1 "${E}--spacing: expected positive numbers, got '1,0,1'" -- "${render[@]}" --spacing 1,0,1
+
+E='^vri-reference: error: '
+reference=("$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x8 -o out.exr -q)
+bad 106 "${E}--output is required" -- "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml
+bad 1 "${E}--method: unknown method 'bogus' \(expected exact or riemann\)" -- "${reference[@]}" --method bogus
+bad 1 "${E}--step: must be > 0 voxels" -- "${reference[@]}" --method riemann --step 0
+bad 1 "${E}--tolerance: must be > 0" -- "${reference[@]}" --tolerance -1
+bad 1 "${E}--error-image needs --method exact" -- "${reference[@]}" --method riemann --error-image bound.exr
+bad 1 "${E}missing.raw: no such file$" -- "$bin/vri-reference" --volume missing.raw --tf tf.yaml -o out.exr
+bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- \
+    "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf negative_tau.yaml -o out.exr
+
+E='^vri-tf: error: '
+bad 106 "${E}--tf is required" -- "$bin/vri-tf"
+bad 106 "${E}--output is required" -- "$bin/vri-tf" --tf tf.yaml
+bad 109 "${E}The following argument was not expected: tf.yaml" -- "$bin/vri-tf" tf.yaml tf.yaml -o out.csv
+bad 1 "${E}missing.yaml: no such file$" -- "$bin/vri-tf" missing.yaml -o out.csv
+bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- "$bin/vri-tf" negative_tau.yaml -o out.csv
+bad 1 "${E}unclosed_tf.yaml:2:1: malformed YAML" -- "$bin/vri-tf" unclosed_tf.yaml -o out.csv
+bad 105 "${E}--samples: Value 1 not in range 2 to 1000000" -- "$bin/vri-tf" tf.yaml --samples 1 -o out.csv
+bad 105 "${E}--samples: Value many not in range" -- "$bin/vri-tf" tf.yaml --samples many -o out.csv
+
+E='^vri-sampler-probe: error: '
+bad 109 "${E}The following argument was not expected: --bogus" -- "$bin/vri-sampler-probe" --bogus
+bad 1 "${E}--types: unknown voxel type 'uint32'" -- "$bin/vri-sampler-probe" --types uint32 -o out.csv
+
+E='^vri-diff: error: '
+bad 106 "${E}B is required" -- "$bin/vri-diff" a.exr
+bad 4 "${E}missing.exr: no such file$" -- "$bin/vri-diff" a.exr missing.exr
+bad 4 "${E}junk.exr: cannot read image" -- "$bin/vri-diff" a.exr junk.exr
+bad 4 "${E}\.: cannot read image" -- "$bin/vri-diff" . a.exr
+bad 3 "${E}images differ in shape: 8x8 with 4 channels vs 4x4 with 4 channels" -- "$bin/vri-diff" a.exr small.exr
+bad 105 "${E}--threshold: must be a number >= 0, got '-1'" -- "$bin/vri-diff" a.exr a.exr --threshold -1
+bad 105 "${E}--threshold: must be a number >= 0, got 'x'" -- "$bin/vri-diff" a.exr a.exr --threshold 0.1,x
+bad 105 "${E}--failpercent: Value 101 not in range" -- "$bin/vri-diff" a.exr a.exr --failpercent 101
+bad 105 "${E}--warnpercent: Value -1 not in range" -- "$bin/vri-diff" a.exr a.exr --warnpercent -1
+bad 105 "${E}--diff-scale: must be a number > 0, got '0'" -- "$bin/vri-diff" a.exr a.exr --diff-scale 0 --diff-image d.exr
+bad 105 "${E}--bins-per-decade: must be a number > 0, got '0'" -- \
+    "$bin/vri-diff" a.exr a.exr --bins-per-decade 0 --histogram h.csv
+bad 107 "${E}--diff-scale requires --diff-image" -- "$bin/vri-diff" a.exr a.exr --diff-scale 2
+bad 64 "${E}logarithmic bins need 0 < lo < hi" -- "$bin/vri-diff" a.exr a.exr --histogram-range 1 0.1 --histogram h.csv
+
+E='^vri-convert: error: '
+bad 106 "${E}input is required" -- "$bin/vri-convert"
+bad 1 "${E}give an output file, or --info to summarise the input" -- "$bin/vri-convert" blob_8x8x8_uint8.raw
+bad 1 "${E}missing.raw: no such file$" -- "$bin/vri-convert" missing.raw out.vdb
+bad 1 "${E}flat.nhdr:3: dimension: must be 3" -- "$bin/vri-convert" flat.nhdr --info
+bad 1 "${E}gzip.nhdr:5: encoding: 'gzip' is not supported \(only raw\)" -- "$bin/vri-convert" gzip.nhdr out.vdb
+bad 1 "${E}two_dims.dat:2: Resolution: expected 3 numbers, got 2" -- "$bin/vri-convert" two_dims.dat --info
+bad 1 "${E}float64.dat:3: Format: unknown voxel type 'FLOAT64'" -- "$bin/vri-convert" float64.dat --info
+bad 1 "${E}no_raw.dat: Rawfile missing.raw: no such file" -- "$bin/vri-convert" no_raw.dat --info
+bad 1 "${E}junk.vdb: .*not a VDB file" -- "$bin/vri-convert" junk.vdb --info
+bad 1 "${E}out.xyz: cannot write '.xyz' files" -- "$bin/vri-convert" blob_8x8x8_uint8.raw out.xyz
+bad 1 "${E}blob_8x8x8_uint8.raw: writing blob_8x8x8_uint8.raw would overwrite the input" -- \
+    "$bin/vri-convert" blob_8x8x8_uint8.raw blob_8x8x8_uint8.raw
+bad 1 "${E}--grid applies to .vdb input only" -- "$bin/vri-convert" blob_8x8x8_uint8.raw --grid density --info
+bad 1 "${E}--dims: expected three positive integers X,Y,Z, got '8,8'" -- \
+    "$bin/vri-convert" blob_8x8x8_uint8.raw --dims 8,8 --type uint8 --info
+bad 1 "${E}blob_8x8x8_uint8.raw: file is 512 bytes, expected 64 for 4x4x4 uint8" -- \
+    "$bin/vri-convert" blob_8x8x8_uint8.raw --dims 4,4,4 --type uint8 --info
+bad 1 "${E}--spacing: expected three numbers x,y,z, got '1,1'" -- "$bin/vri-convert" blob_8x8x8_uint8.raw --spacing 1,1 --info
+bad 1 "${E}noname.raw: raw file of unknown layout" -- "$bin/vri-convert" noname.raw --info
+
+E='^vri-rays2d: error: '
+bad 109 "${E}The following argument was not expected: --bogus" -- "$bin/vri-rays2d" --bogus
+bad 1 "${E}nothing to write: give -o" -- "$bin/vri-rays2d"
+bad 1 "${E}2D study: at least one ray is needed" -- "$bin/vri-rays2d" --rays 0 -o rays.csv
+bad 1 "${E}--convention: unknown grid convention 'corner'" -- "$bin/vri-rays2d" --convention corner -o rays.csv
+bad 1 "${E}--placements: unknown placement 'sideways'" -- "$bin/vri-rays2d" --placements eye,sideways -o rays.csv
+bad 1 "${E}--rates: expected positive numbers separated by commas, got '1,0'" -- "$bin/vri-rays2d" --rates 1,0 -o rays.csv
+bad 1 "${E}--rates: expected positive numbers separated by commas, got '1,,2'" -- \
+    "$bin/vri-rays2d" --rates 1,,2 -o rays.csv
+bad 1 "${E}--eye: expected two numbers x,y, got '1'" -- "$bin/vri-rays2d" --eye 1 -o rays.csv
+bad 1 "${E}2D study: the field of view must be in \(0, 180\) degrees" -- "$bin/vri-rays2d" --fov 0 -o rays.csv
+bad 1 "${E}2D study: the square's side must be positive" -- "$bin/vri-rays2d" --side -3 -o rays.csv
+bad 1 "${E}2D study: the grid needs at least 2x2 voxels" -- "$bin/vri-rays2d" --grid 1 -o rays.csv
+bad 1 "${E}--diagram-rays: expected indices in 0..119" -- "$bin/vri-rays2d" --diagram-rays 500 --diagram d.csv
+bad 1 "${E}--diagram-rate: expected a positive sampling rate" -- "$bin/vri-rays2d" --diagram-rate 0 --diagram d.csv
+bad 1 "${E}field image: the resolution must be at least 2, got 1" -- \
+    "$bin/vri-rays2d" --field-resolution 1 --field-image f.csv
+
+E='^vri-tabulate: error: '
+bad 106 "${E}--layout is required" -- "$bin/vri-tabulate" -o table.md
+bad 105 "${E}--layout: pie not in \{thresholds,matrix,tradeoff\}" -- "$bin/vri-tabulate" --layout pie -o table.md
+bad 1 "${E}--layout thresholds needs --row LABEL FILE" -- "$bin/vri-tabulate" --layout thresholds -o table.md
+bad 1 "${E}missing.json: no such file$" -- "$bin/vri-tabulate" --layout thresholds --row A missing.json -o table.md
+bad 1 "${E}broken.json: not valid JSON" -- "$bin/vri-tabulate" --layout thresholds --row A broken.json -o table.md
+bad 1 "${E}stats.json: has no 'thresholds'" -- "$bin/vri-tabulate" --layout thresholds --row A stats.json -o table.md
+bad 1 "${E}diff.json: no count above 0.5" -- \
+    "$bin/vri-tabulate" --layout thresholds --row A diff.json --thresholds 0.5 -o table.md
+bad 105 "${E}--precision: Value 18 not in range 0 to 17" -- \
+    "$bin/vri-tabulate" --layout thresholds --row A diff.json --precision 18 -o table.md
+bad 1 "${E}--layout matrix needs --value EXPR" -- "$bin/vri-tabulate" --layout matrix --cell A B stats.json -o table.md
+bad 1 "${E}stats.json: has no 'stats.nothing'" -- \
+    "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.nothing -o table.md
+bad 1 "${E}value '1/': expected a dotted JSON path" -- \
+    "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value 1/ -o table.md
+bad 1 "${E}--row belongs to --layout thresholds" -- "$bin/vri-tabulate" --layout tradeoff --row A diff.json -o table.md
+bad 1 "${E}--cell belongs to --layout matrix" -- \
+    "$bin/vri-tabulate" --layout thresholds --row A diff.json --cell A B stats.json -o table.md
+bad 1 "${E}diff.json: no count above 0.7" -- \
+    "$bin/vri-tabulate" --layout tradeoff --run a stats.json diff.json --threshold 0.7 -o table.md
+
+E='^vri-plot: error: '
+bad 106 "${E}SPEC is required" -- "$bin/vri-plot" -o fig.png
+bad 1 "${E}missing.yaml: no such file$" -- "$bin/vri-plot" missing.yaml -o fig.png
+bad 1 "${E}unknown_key_spec.yaml:1:1: unknown key 'bogus'" -- "$bin/vri-plot" unknown_key_spec.yaml -o fig.png --script-only
+bad 1 "${E}unclosed_spec.yaml:2:1: malformed YAML" -- "$bin/vri-plot" unclosed_spec.yaml -o fig.png --script-only
+bad 1 "${E}no_data_spec.yaml:4:16: data file missing.csv does not exist" -- \
+    "$bin/vri-plot" no_data_spec.yaml -o fig.png --script-only
+bad 1 "${E}no_column_spec.yaml:4:35: column 'c' is not in data.csv \(it has: a, b\)" -- \
+    "$bin/vri-plot" no_column_spec.yaml -o fig.png --script-only
+bad 1 "${E}bad_style_spec.yaml:4:[0-9]+: panels\[0\].series\[0\].style 'wiggly' is unknown" -- \
+    "$bin/vri-plot" bad_style_spec.yaml -o fig.png --script-only
+bad 1 "${E}fig.jpg: the figure's name must end in .png" -- "$bin/vri-plot" spec.yaml -o fig.jpg --script-only
+bad 105 "${E}--data-dir: Directory does not exist: missingdir" -- \
+    "$bin/vri-plot" spec.yaml -o fig.png --data-dir missingdir --script-only
+
+E='^vri-run: error: '
+run=("$bin/vri-run" --dry-run --results results)
+bad 1 "${E}nothing to do: name experiment files or --gallery DIR" -- "$bin/vri-run"
+bad 109 "${E}The following argument was not expected: --bogus" -- "${run[@]}" --bogus exp/good.yaml
+bad 1 "${E}--record and --check apply to quick runs \(add --quick\)" -- "${run[@]}" --record exp/good.yaml
+bad 108 "${E}--record excludes --check" -- "${run[@]}" --record --check exp/good.yaml
+bad 1 "${E}exp/missing.yaml: no such file$" -- "${run[@]}" exp/missing.yaml
+bad 1 "${E}exp/unclosed.yaml:2:1: malformed YAML" -- "${run[@]}" exp/unclosed.yaml
+bad 1 "${E}exp/list.yaml:1:1: an experiment must be a mapping" -- "${run[@]}" exp/list.yaml
+bad 1 "${E}exp/bad_name.yaml:1:7: name must be letters, digits, '.', '_', '\+' or '-'" -- "${run[@]}" exp/bad_name.yaml
+bad 1 "${E}exp/unknown_key.yaml:2:1: unknown key 'colour'" -- "${run[@]}" exp/unknown_key.yaml
+bad 1 "${E}exp/bad_method.yaml:12:11: methods entry 'wobble' has no method.*unknown method 'wobble'" -- \
+    "${run[@]}" exp/bad_method.yaml
+bad 1 "${E}exp/bad_rate.yaml:12:19: rate: expected a number > 0, got '0'" -- "${run[@]}" exp/bad_rate.yaml
+bad 1 "${E}exp/no_tf.yaml:8:9: tf: no such file: exp/tf/none.yaml" -- "${run[@]}" exp/no_tf.yaml
+bad 1 "${E}exp/bad_convention.yaml:7:17: convention: unknown grid convention 'corner'" -- \
+    "${run[@]}" exp/bad_convention.yaml
+bad 1 "${E}exp/bad_fov.yaml:9:70: fov must be a number" -- "${run[@]}" exp/bad_fov.yaml
+bad 1 "${E}exp/bad_size.yaml:10:11: size must be \[width, height\]" -- "${run[@]}" exp/bad_size.yaml
+bad 1 "${E}exp/bad_eye.yaml:9:19: eye must be \[x, y, z\]" -- "${run[@]}" exp/bad_eye.yaml
+bad 1 "${E}exp/bad_field.yaml:6:12: unknown analytic field 'wavy'" -- "${run[@]}" exp/bad_field.yaml
+bad 1 "${E}exp/bad_reference.yaml:14:19: unknown run 'nobody'" -- "${run[@]}" exp/bad_reference.yaml
+bad 1 "${E}exp/no_spec.yaml:14:13: spec: no such file: exp/plots/none.yaml" -- "${run[@]}" exp/no_spec.yaml
+
+E='^vri-data: error: '
+bad 109 "${E}The following argument was not expected: --bogus" -- "$bin/vri-data" --bogus
+bad 1 "${E}missing.yaml: no such file$" -- "$bin/vri-data" --catalog missing.yaml --data-dir . --no-download
+bad 1 "${E}unclosed_catalog.yaml:2:1: malformed YAML" -- \
+    "$bin/vri-data" --catalog unclosed_catalog.yaml --data-dir . --no-download
+bad 1 "${E}unknown_key_catalog.yaml:1:1: unknown key 'bogus' \(expected one of: datasets\)" -- \
+    "$bin/vri-data" --catalog unknown_key_catalog.yaml --data-dir . --no-download
+bad 1 "${E}--only: unknown dataset 'nosuch'" -- \
+    "$bin/vri-data" --catalog "$VRI_SOURCE/experiments/datasets.yaml" --data-dir . --only nosuch --no-download
+
+bad_done
