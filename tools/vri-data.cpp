@@ -53,7 +53,11 @@ int run(int argc, char** argv) {
         std::cout << std::left << std::setw(11) << vri::datasetStateName(check.state) << std::setw(15) << info.name
                   << check.detail << (info.status == "exact" ? "" : " [" + info.status + "]") << std::endl;
     }
-    return failures == 0 ? vri::kExitOk : vri::kExitError;
+    if (failures > 0)
+        throw vri::Error(std::to_string(failures) + " dataset" + (failures == 1 ? " is" : "s are") +
+                         " missing or mismatched in " + dir.string() +
+                         (noDownload ? " (without --no-download they are fetched)" : ""));
+    return vri::kExitOk;
 }
 
 }  // namespace

@@ -128,7 +128,13 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
     // Before parsing: listing devices needs none of the options that a render requires.
     for (int i = 1; i < argc; ++i)
-        if (std::string_view(argv[i]) == "--list-devices") return listDevices();
+        if (std::string_view(argv[i]) == "--list-devices") {
+            if (argc != 2) {
+                std::cerr << "vri-render: error: --list-devices takes no other argument (see --help)\n";
+                return vri::kExitUsage;
+            }
+            return vri::guardedMain("vri-render", [] { return listDevices(); });
+        }
     if (auto exitCode = vri::parseArguments(app, "vri-render", argc, argv)) return *exitCode;
 
     return vri::guardedMain("vri-render", [&] {

@@ -85,10 +85,13 @@ YAML::Node parse(const std::string& text, const std::string& source) {
 }
 
 YAML::Node load(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": is a directory, expected a YAML file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path.string() + ": no such file");
     std::ostringstream text;
     text << in.rdbuf();
+    if (in.bad()) throw Error(path.string() + ": cannot read");
     return parse(text.str(), path.string());
 }
 

@@ -144,6 +144,7 @@ bad 106 "${E}--tf is required" -- "$bin/vri-tf"
 bad 106 "${E}--output is required" -- "$bin/vri-tf" --tf tf.yaml
 bad 109 "${E}The following argument was not expected: tf.yaml" -- "$bin/vri-tf" tf.yaml tf.yaml -o out.csv
 bad 1 "${E}missing.yaml: no such file$" -- "$bin/vri-tf" missing.yaml -o out.csv
+bad 1 "${E}\.: is a directory, expected a YAML file$" -- "$bin/vri-tf" . -o out.csv
 bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- "$bin/vri-tf" negative_tau.yaml -o out.csv
 bad 1 "${E}unclosed_tf.yaml:2:1: malformed YAML" -- "$bin/vri-tf" unclosed_tf.yaml -o out.csv
 bad 105 "${E}--samples: Value 1 not in range 2 to 1000000" -- "$bin/vri-tf" tf.yaml --samples 1 -o out.csv
@@ -278,5 +279,7 @@ bad 1 "${E}unknown_key_catalog.yaml:1:1: unknown key 'bogus' \(expected one of: 
     "$bin/vri-data" --catalog unknown_key_catalog.yaml --data-dir . --no-download
 bad 1 "${E}--only: unknown dataset 'nosuch'" -- \
     "$bin/vri-data" --catalog "$VRI_SOURCE/experiments/datasets.yaml" --data-dir . --only nosuch --no-download
+
+bad 64 "^vri-render: error: --list-devices takes no other argument" -- "$bin/vri-render" --list-devices --bogus
 
 bad_done

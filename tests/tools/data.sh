@@ -27,6 +27,8 @@ run_data() {  # sets rc; stdout in out.txt, stderr in err.txt
 run_data --no-download
 [[ $rc -ne 0 ]] || fail "a missing dataset passed"
 grep -q '^MISSING *tiny' out.txt || fail "no MISSING line: $(cat out.txt)"
+[ "$(wc -l < err.txt)" -eq 1 ] && grep -q "error: 1 dataset is missing or mismatched in volumes" err.txt ||
+    fail "missing without a one-line error: $(cat err.txt)"
 
 # Missing, downloaded and verified.
 if command -v curl >/dev/null || command -v wget >/dev/null; then
