@@ -21,7 +21,7 @@ run_data() {  # sets rc; stdout in out.txt, stderr in err.txt
     VRI_DATA_DIR=volumes "$data" --catalog catalog.yaml "$@" >out.txt 2>err.txt || rc=$?
 }
 
-"$data" --help | grep -q "Example" || fail "--help shows no example"
+grep -q "Example" <<<"$("$data" --help)" || fail "--help shows no example"
 
 # Missing, not downloaded.
 run_data --no-download

@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 plot="$VRI_BIN/vri-plot"
 
-"$plot" --help | grep -q "Example" || fail "--help shows no example"
+grep -q "Example" <<<"$("$plot" --help)" || fail "--help shows no example"
 
 mkdir -p data figs
 printf 'method,seconds,error\nriemann,2,0.1\ncoupled,1,0.2\nslow,3,0.3\n' > data/speed.csv

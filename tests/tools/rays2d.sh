@@ -5,7 +5,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 rays2d="$VRI_BIN/vri-rays2d"
 
-"$rays2d" --help | grep -q "Examples" || fail "--help shows no example"
+grep -q "Examples" <<<"$("$rays2d" --help)" || fail "--help shows no example"
 
 "$rays2d" -o rays.csv --errors errors.md --errors-csv errors.csv --convergence conv.csv \
     --diagram fig1.csv --field-image field.csv --field-resolution 11

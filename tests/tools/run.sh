@@ -93,5 +93,5 @@ set +e; "$bin/vri-run" --dry-run typo.yaml > /dev/null 2> err.txt; rc=$?; set -e
 { grep -q "Two scenes, two placements" auto/README.md && grep -q "small/red-riemann-entry.png" auto/README.md &&
   grep -qF "$(head -1 auto/small/errors.md)" auto/README.md; } || { cat auto/README.md; exit 1; }
 
-"$bin/vri-run" --help | grep -q "Examples"
+grep -q "Examples" <<<"$("$bin/vri-run" --help)"
 echo "run: all checks passed"

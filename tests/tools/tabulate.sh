@@ -5,7 +5,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 tabulate="$VRI_BIN/vri-tabulate"
 
-"$tabulate" --help | grep -q "Example" || fail "--help shows no example"
+grep -q "Example" <<<"$("$tabulate" --help)" || fail "--help shows no example"
 
 # vri-diff JSON as it is written: channels R and A, thresholds 0.01 and 0.001, maximum errors (default 0.5).
 diff_json() {  # diff_json FILE R01 A01 R001 A001 [MAX_R MAX_A]

@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 tf="$VRI_BIN/vri-tf"
 
-"$tf" --help | grep -q "Examples" || fail "--help shows no example"
+grep -q "Examples" <<<"$("$tf" --help)" || fail "--help shows no example"
 
 # Breakpoints at 0.1 and 0.5 (on the grid of 11 samples), 0.35 (off it) and a jump at 0.73; a last
 # point beyond 1 is not a row, but shapes the values up to s = 1.
