@@ -28,10 +28,18 @@ SANITIZE_BUILD ?= build-sanitize
 $(SANITIZE_BUILD)/build.ninja: | deps
 	cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DVRI_SANITIZE=ON
 
+# Two passes. Mesa's lavapipe leaks a few hundred bytes per Vulkan instance from a driver the loader has
+# unloaded by exit, so LeakSanitizer can neither name nor suppress them: every test runs first with no
+# Vulkan driver visible (the Vulkan tests skip) and leak checking on, then the Vulkan tests run on the
+# device with leak checking off; ASan and UBSan stop at their first report in both.
+SANITIZE_ENV = UBSAN_OPTIONS=print_stacktrace=1 VK_DRIVER_FILES=/nonexistent.json VK_ICD_FILENAMES=/nonexistent.json
+VULKAN_TESTS = Vulkan|tool[.](vulkan|sampler_probe|render_tau_sweep)$$
 test-sanitize: deps $(SANITIZE_BUILD)/build.ninja
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
-	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	$(SANITIZE_ENV) ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
+	UBSAN_OPTIONS=print_stacktrace=1 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS) -R '$(VULKAN_TESTS)'
 
 # The parsers' libFuzzer targets (tests/fuzz), FUZZ_SECONDS each, built with clang in $(FUZZ_BUILD).
 FUZZ_BUILD ?= build-fuzz

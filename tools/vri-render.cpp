@@ -189,7 +189,10 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
 
         // The Vulkan device is opened once; the volume is uploaded by the first render and reused by repeats.
         std::optional<vri::VulkanRenderer> gpu;
-        if (vulkan) gpu.emplace(device, interpolationChoice);
+        if (vulkan) {
+            vri::VulkanRenderer::validateOptions(options);
+            gpu.emplace(device, interpolationChoice);
+        }
         struct Frame {
             vri::Image image;
             vri::RenderStats stats;

@@ -198,11 +198,15 @@ const VulkanDeviceInfo& VulkanRenderer::device() const { return impl_->context.i
 
 SamplerProbe VulkanRenderer::probeSampler(VoxelType type) { return vri::probeSampler(impl_->context, type); }
 
-Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
-    validateRender(scene, camera, options);
+void VulkanRenderer::validateOptions(const RenderOptions& options) {
     if (options.precision != Precision::Float)
         throw Error("the Vulkan backend renders in single precision only (precision float)");
     if (options.logPixel) throw Error("the Vulkan backend does not log a ray (the per-ray log is CPU only)");
+}
+
+Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
+    validateRender(scene, camera, options);
+    validateOptions(options);
     Impl& m = *impl_;
     const bool simpson = isSimpson(options.integrator);
     const int width = camera.width(), height = camera.height();

@@ -77,6 +77,9 @@ public:
     // Throws vri::Error on what render() rejects, on Precision::Double, a log pixel, or a volume
     // larger than the device's largest storage buffer (or 3D image, or a format the device cannot filter).
     Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats = nullptr);
+    // Throws vri::Error on the options no Vulkan device can honour (double precision, a logged ray):
+    // tools check them before opening a device, so the message does not depend on having one.
+    static void validateOptions(const RenderOptions& options);
 
 private:
     struct Impl;
