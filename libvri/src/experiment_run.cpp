@@ -5,13 +5,12 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "vri/error.h"
+#include "vri/file_text.h"
 #include "vri/process.h"
 #include "vri/provenance.h"
 
@@ -22,13 +21,6 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// What a step printed, for the message of its failure.
-std::string logText(const fs::path& log) {
-    std::ostringstream text;
-    text << std::ifstream(log).rdbuf();
-    return text.str();
-}
 
 class Scheduler {
 public:
@@ -131,7 +123,7 @@ void Scheduler::finish(pid_t pid, const ExitStatus& status) {
     if (!status.ok()) {
         if (failure_.empty())
             failure_ = "step '" + step.id + "' failed (" + status.describe() + "):\n  " + record.command + "\n" +
-                       logText(child.log);
+                       tryReadFileText(child.log).value_or("");
         state_[i] = Finished;
         return;
     }
@@ -143,7 +135,7 @@ void Scheduler::finish(pid_t pid, const ExitStatus& status) {
     for (const FileDigest& out : record.outputs)
         if (out.sha512 == "missing" && failure_.empty())
             failure_ = "step '" + step.id + "' succeeded but did not write " + out.path + ":\n  " + record.command + "\n" +
-                       logText(child.log);
+                       tryReadFileText(child.log).value_or("");
     if (failure_.empty()) writeRecord(recordPath(plan_, step), record);
     fs::remove(child.log);
     state_[i] = Finished;

@@ -1,11 +1,10 @@
 // Running gnuplot on a figure's script, with every output written atomically.
 #include <array>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "vri/atomic_file.h"
 #include "vri/error.h"
+#include "vri/file_text.h"
 #include "vri/plot.h"
 #include "vri/process.h"
 
@@ -27,18 +26,12 @@ std::string withoutTrailingBlanks(std::string text) {
     return text;
 }
 
-std::string fileText(const fs::path& path) {
-    std::ostringstream text;
-    text << std::ifstream(path, std::ios::binary).rdbuf();
-    return text.str();
-}
-
 // What gnuplot drew is only trusted once it reads as a whole image: a PNG from its signature to its
 // IEND chunk, an SVG to its closing tag. A full disk or a killed gnuplot leaves less.
 std::string incompleteImage(const fs::path& png, const fs::path& svg) {
     static constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     static constexpr std::array<unsigned char, 12> kEnd = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
-    const std::string image = fileText(png);
+    const std::string image = tryReadFileText(png).value_or("");
     const auto bytesAre = [&](std::size_t at, const auto& bytes) {
         return image.size() >= at + bytes.size() &&
                std::equal(bytes.begin(), bytes.end(), image.begin() + at,
@@ -47,7 +40,7 @@ std::string incompleteImage(const fs::path& png, const fs::path& svg) {
     if (image.size() < kSignature.size() + kEnd.size() || !bytesAre(0, kSignature) ||
         !bytesAre(image.size() - kEnd.size(), kEnd))
         return "the PNG it wrote is not a complete PNG (" + std::to_string(image.size()) + " bytes)";
-    const std::string drawing = withoutTrailingBlanks(fileText(svg));
+    const std::string drawing = withoutTrailingBlanks(tryReadFileText(svg).value_or(""));
     if (!drawing.starts_with("<?xml") || !drawing.ends_with("</svg>"))
         return "the SVG it wrote is not a complete SVG (" + std::to_string(drawing.size()) + " bytes)";
     return "";
@@ -86,7 +79,7 @@ void drawPlot(const PlotSpec& spec, const fs::path& png) {
                     *gnuplot,
                     {"gnuplot", "-c", tmpScript.string(), fs::absolute(tmpPng).string(), fs::absolute(tmpSvg).string()},
                     {.in = "/dev/null", .out = log, .err = {}, .errToOut = true});
-                const std::string messages = fileText(log);
+                const std::string messages = tryReadFileText(log).value_or("");
                 std::error_code ignored;
                 fs::remove(log, ignored);
                 std::string reason;

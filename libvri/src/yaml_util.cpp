@@ -1,12 +1,13 @@
 #include "yaml_util.h"
 
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <vector>
 
 #include <yaml-cpp/eventhandler.h>
+
+#include "vri/file_text.h"
 
 namespace vri::yaml {
 
@@ -85,14 +86,7 @@ YAML::Node parse(const std::string& text, const std::string& source) {
 }
 
 YAML::Node load(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": is a directory, expected a YAML file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path.string() + ": no such file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw Error(path.string() + ": cannot read");
-    return parse(text.str(), path.string());
+    return parse(readFileText(path, "a YAML file"), path.string());
 }
 
 void requireMap(const YAML::Node& node, const std::string& source, std::string_view what) {

@@ -1,0 +1,23 @@
+#include <doctest/doctest.h>
+
+#include <fstream>
+
+#include "temp_dir.h"
+#include "vri/error.h"
+#include "vri/file_text.h"
+
+TEST_CASE("file text: a file's bytes, or one error naming what is wrong with the path") {
+    vri::test::TempDir dir("file-text");
+    const std::string bytes("a\0b\r\nlast", 9);
+    std::ofstream(dir / "x.txt", std::ios::binary) << bytes;
+    std::ofstream(dir / "empty.txt", std::ios::binary).close();
+
+    CHECK(vri::readFileText(dir / "x.txt", "a text file") == bytes);
+    CHECK(vri::tryReadFileText(dir / "empty.txt") == std::string());
+    CHECK_FALSE(vri::tryReadFileText(dir / "missing.txt"));
+    CHECK_FALSE(vri::tryReadFileText(dir.path));
+    CHECK_THROWS_WITH_AS(vri::readFileText(dir / "missing.txt", "a text file"),
+                         ((dir / "missing.txt").string() + ": no such file").c_str(), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::readFileText(dir.path, "a YAML file"),
+                         (dir.path.string() + ": is a directory, expected a YAML file").c_str(), vri::Error);
+}
