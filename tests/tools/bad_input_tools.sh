@@ -106,14 +106,14 @@ bad 1 "${E}field of view must be in \(0, 180\) degrees" -- "${render[@]}" --fov 
 bad 104 "${E}Could not convert: --fov = abc" -- "${render[@]}" --fov abc
 bad 104 "${E}Could not convert: --threads = two" -- "${render[@]}" --threads two
 bad 1 "${E}--threads: expected a positive count, got -1" -- "${render[@]}" --threads -1
-bad 1 "${E}--repeat: expected a positive count, got 0" -- "${render[@]}" --repeat 0
-bad 1 "${E}--step: must be > 0 voxels" -- "${render[@]}" --step 0
+bad 1 "${E}--repeat: expected a whole number >= 1, got '0'$" -- "${render[@]}" --repeat 0
+bad 1 "${E}--step: expected a number > 0, got '0'$" -- "${render[@]}" --step 0
 bad 108 "${E}--step excludes --rate" -- "${render[@]}" --step 0.5 --rate 2
 bad 1 "${E}early termination threshold must be in \[0, 1\)" -- "${render[@]}" --early-termination 2
 bad 1 "${E}zoom must be a finite factor >= 1" -- "${render[@]}" --zoom 0
-bad 1 "${E}the tolerance must be >= 0 and finite, got nan" -- "${render[@]}" --method coupled --tolerance nan
-bad 1 "${E}h_min must be positive and finite" -- "${render[@]}" --method coupled --h-min -1
-bad 1 "${E}the initial step h0 must be finite and at least h_min" -- "${render[@]}" --method coupled --h0 0
+bad 1 "${E}--tolerance: expected a number >= 0, got 'nan'$" -- "${render[@]}" --method coupled --tolerance nan
+bad 1 "${E}--h-min: expected a number > 0, got '-1'$" -- "${render[@]}" --method coupled --h-min -1
+bad 1 "${E}--h0: expected a number > 0, got '0'$" -- "${render[@]}" --method coupled --h0 0
 bad 1 "${E}--h-max: expected a positive number or 'none', got 'zero'" -- "${render[@]}" --method coupled --h-max zero
 bad 107 "${E}--log requires --log-ray" -- "${render[@]}" --log ray.csv
 bad 1 "${E}the logged pixel 100,100 is outside the 8x8 image" -- \
@@ -132,8 +132,9 @@ E='^vri-reference: error: '
 reference=("$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x8 -o out.exr -q)
 bad 106 "${E}--output is required" -- "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml
 bad 1 "${E}--method: unknown method 'bogus' \(expected exact or riemann\)" -- "${reference[@]}" --method bogus
-bad 1 "${E}--step: must be > 0 voxels" -- "${reference[@]}" --method riemann --step 0
-bad 1 "${E}--tolerance: must be > 0" -- "${reference[@]}" --tolerance -1
+bad 1 "${E}--step: expected a number > 0, got '0'$" -- "${reference[@]}" --method riemann --step 0
+bad 1 "${E}--tolerance: expected a number >= 0, got '-1'$" -- "${reference[@]}" --tolerance -1
+bad 1 "${E}--tolerance: must be > 0 for --method exact, got 0$" -- "${reference[@]}" --tolerance 0
 bad 1 "${E}--error-image needs --method exact" -- "${reference[@]}" --method riemann --error-image bound.exr
 bad 1 "${E}missing.raw: no such file$" -- "$bin/vri-reference" --volume missing.raw --tf tf.yaml -o out.exr
 bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- \
@@ -259,7 +260,7 @@ bad 1 "${E}exp/bad_name.yaml:1:7: name must be letters, digits, '.', '_', '\+' o
 bad 1 "${E}exp/unknown_key.yaml:2:1: unknown key 'colour'" -- "${run[@]}" exp/unknown_key.yaml
 bad 1 "${E}exp/bad_method.yaml:12:11: methods entry 'wobble' has no method.*unknown method 'wobble'" -- \
     "${run[@]}" exp/bad_method.yaml
-bad 1 "${E}exp/bad_rate.yaml:12:19: rate: expected a number > 0, got '0'" -- "${run[@]}" exp/bad_rate.yaml
+bad 1 "${E}exp/bad_rate.yaml:12:19: rate: expected a number > 0, got '0'$" -- "${run[@]}" exp/bad_rate.yaml
 bad 1 "${E}exp/no_tf.yaml:8:9: tf: no such file: exp/tf/none.yaml" -- "${run[@]}" exp/no_tf.yaml
 bad 1 "${E}exp/bad_convention.yaml:7:17: convention: unknown grid convention 'corner'" -- \
     "${run[@]}" exp/bad_convention.yaml

@@ -37,7 +37,7 @@ expect_error() {  # expect_error PATTERN ARGS...
   grep -q -- "$pattern" err.txt || { echo "expected '$pattern' for: $*"; cat err.txt; exit 1; }
   if ls bad.* > /dev/null 2>&1; then echo "output written despite failure: $*"; exit 1; fi
 }
-expect_error "h_min" --method coupled --h-min 0
+expect_error "--h-min" --method coupled --h-min 0
 expect_error "h_max" --method coupled --h-max 0.2
 expect_error "--h-max" --method coupled --h-max lots
 expect_error "tolerance" --method coupled --tolerance -1

@@ -2,10 +2,6 @@
 
 namespace vri {
 
-nlohmann::json toJson(const ExactReferenceOptions& o) {
-    return {{"method", "exact"}, {"precision", "double"}, {"tolerance", o.tolerance}, {"tile_size", o.tileSize}};
-}
-
 nlohmann::json toJson(const ExactReferenceStats& s) {
     return {{"wall_seconds", s.seconds},
             {"threads", s.threads},

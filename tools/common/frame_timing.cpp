@@ -8,18 +8,16 @@ namespace vri {
 
 void FrameTiming::addTo(CLI::App& app) {
     app.add_option("--threads", threads_, "worker threads (default: all cores)");
-    app.add_option("--warm-up", warmUp_, "render N untimed frames first (caches, clocks, a GPU's pipelines)")
-        ->capture_default_str();
-    app.add_option("--repeat", repeat_, "render N times for timing: the stats give every wall time and their median, "
-                                        "and any image that differs from the first is an error")
-        ->capture_default_str();
 }
 
 void FrameTiming::limitThreads(std::optional<tbb::global_control>& control) const {
     if (threads_ < 0) throw Error("--threads: expected a positive count, got " + std::to_string(threads_));
-    if (repeat_ < 1) throw Error("--repeat: expected a positive count, got " + std::to_string(repeat_));
-    if (warmUp_ < 0) throw Error("--warm-up: expected a count >= 0, got " + std::to_string(warmUp_));
     if (threads_ > 0) control.emplace(tbb::global_control::max_allowed_parallelism, threads_);
+}
+
+void FrameTiming::setFrames(int warmUp, int repeat) {
+    warmUp_ = warmUp;
+    repeat_ = repeat;
 }
 
 nlohmann::json FrameTiming::toJson(const std::vector<double>& wallSeconds) const {

@@ -1,6 +1,6 @@
 #pragma once
-// What the tools that render for timing share: --threads, --warm-up and --repeat, the frames those
-// ask for (every timed frame must equal the first, bit for bit), and the stats' timing record.
+// What the tools that render for timing share: --threads, the frames --warm-up and --repeat ask for
+// (render_option_table.h; every timed frame must equal the first, bit for bit), and the stats' timing record.
 #include <optional>
 #include <string>
 #include <utility>
@@ -16,9 +16,11 @@ namespace vri {
 
 class FrameTiming {
 public:
-    void addTo(CLI::App& app);
-    // Checks the counts and, with --threads, limits oneTBB for as long as `control` lives.
+    void addTo(CLI::App& app);  // --threads
+    // Checks the count and, with --threads, limits oneTBB for as long as `control` lives.
     void limitThreads(std::optional<tbb::global_control>& control) const;
+    // The untimed frames, then the timed ones (>= 1).
+    void setFrames(int warmUp, int repeat);
 
     // frame() returns a result with `image` (vri::Image) and `seconds` (its wall time). Runs the
     // warm-up frames untimed, then the timed ones; returns the first result and every wall time.

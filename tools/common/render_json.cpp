@@ -1,6 +1,6 @@
 #include "common/render_json.h"
 
-#include <cmath>
+#include <variant>
 
 namespace vri {
 
@@ -8,25 +8,10 @@ namespace {
 nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
-nlohmann::json toJson(const RenderOptions& o) {
-    nlohmann::json j = {{"method", integratorName(o.integrator)},
-                        {"precision", precisionName(o.precision)},
-                        {"early_termination", o.earlyTermination},
-                        {"skip_empty_space", o.skipEmptySpace},
-                        {"simd", o.simd},
-                        {"tile_size", o.tileSize}};
-    if (o.integrator == Integrator::Coupled || o.integrator == Integrator::Decoupled) {
-        const AdaptiveParameters& a = o.adaptive;
-        j["tolerance"] = a.tolerance;
-        j["h0_voxels"] = a.h0;
-        j["h_min_voxels"] = a.hMin;
-        j["h_max_voxels"] = std::isfinite(a.hMax) ? nlohmann::json(a.hMax) : nlohmann::json("none");
-        j["accepted_value"] = acceptedValueName(a.accepted);
-    } else {
-        j["sampling_rate"] = o.samplingRate;
-        j["step_voxels"] = 1.0 / o.samplingRate;
-        if (!isSimpson(o.integrator)) j["placement"] = placementName(o.placement);
-    }
+nlohmann::json toJson(const RenderRequest& request) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const Setting& s : settingsRecord(request))
+        std::visit([&](const auto& value) { j[std::string(s.name)] = value; }, s.value);
     return j;
 }
 

@@ -4,10 +4,12 @@
 
 #include "vri/core/camera.h"
 #include "vri/core/cpu_renderer.h"
+#include "vri/core/render_option_table.h"
 
 namespace vri {
 
-nlohmann::json toJson(const RenderOptions& options);
+// The settings record of a render (settingsRecord(), render_option_table.h) as a JSON object.
+nlohmann::json toJson(const RenderRequest& request);
 nlohmann::json toJson(const RenderStats& stats);
 nlohmann::json toJson(const AdaptiveCounts& counts);
 nlohmann::json toJson(const CameraSpec& camera);

@@ -3,16 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <functional>
 #include <optional>
 #include <set>
-#include <sstream>
 
-#include "vri/core/adaptive_simpson.h"
-#include "vri/core/backend.h"
-#include "vri/core/cpu_renderer.h"
-#include "vri/core/integrator.h"
-#include "vri/core/placement.h"
+#include "vri/core/render_option_table.h"
 #include "vri/core/transfer_function.h"
 #include "vri/experiment/datasets.h"
 #include "vri/experiment/experiment_plan.h"
@@ -30,61 +24,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A parameter of a run tool that the file may set or sweep: its command-line option, how it is
-// checked, and how its value reads in a run id ("h" + "0.5"; an empty prefix shows the value alone).
-// A new method parameter (paper B's eps, h_min, h_max) is one more row.
-struct RunParameter {
-    std::string_view key, option, idPrefix;
-    std::function<void(const std::string& value, const std::string& where)> check;
-};
-
-void positiveNumber(const std::string& value, const std::string& where) {
-    double v = 0;
-    std::istringstream in(value);
-    if (!(in >> v) || !in.eof() || !(v > 0) || !std::isfinite(v))
-        throw Error(where + ": expected a number > 0, got '" + value + "'");
-}
-
-void positiveCount(const std::string& value, const std::string& where) {
-    int v = 0;
-    std::istringstream in(value);
-    if (!(in >> v) || !in.eof() || v < 1) throw Error(where + ": expected a whole number >= 1, got '" + value + "'");
-}
-
-void nonNegativeNumber(const std::string& value, const std::string& where) {
-    double v = 0;
-    std::istringstream in(value);
-    if (!(in >> v) || !in.eof() || !(v >= 0) || !std::isfinite(v))
-        throw Error(where + ": expected a number >= 0, got '" + value + "'");
-}
-
 // `method: exact` is vri-reference's accurate solution (a reference, not a vri-render method).
 constexpr std::string_view kExactMethod = "exact";
-
-const std::vector<RunParameter>& renderParameters() {
-    static const std::vector<RunParameter> parameters{
-        {"method", "--method", "", [](auto& v, auto& w) { if (v != kExactMethod) parseIntegrator(v, w); }},
-        {"placement", "--placement", "", [](auto& v, auto& w) { parsePlacement(v, w); }},
-        {"step", "--step", "h", positiveNumber},
-        {"rate", "--rate", "r", positiveNumber},
-        {"precision", "--precision", "", [](auto& v, auto& w) { parsePrecision(v, w); }},
-        {"simd", "--simd", "simd-", [](auto& v, auto& w) { parseSimd(v, w); }},  // float riemann, composite
-        {"early_termination", "--early-termination", "ert", nonNegativeNumber},
-        {"repeat", "--repeat", "x", positiveCount},  // timing: the stats give the median of the frames
-        // Paper B's adaptive Simpson (coupled, decoupled).
-        {"eps", "--tolerance", "eps", nonNegativeNumber},
-        {"h0", "--h0", "h0-", positiveNumber},
-        {"h_min", "--h-min", "hmin", positiveNumber},
-        {"h_max", "--h-max", "hmax", [](auto& v, auto& w) { parseLimit(v, w); }},
-        {"accepted", "--accepted-value", "", [](auto& v, auto& w) { parseAcceptedValue(v, w); }},
-        {"log_ray", "--log-ray", "ray", [](auto& v, auto& w) { parsePixel(v, w); }},  // + --log <run>-ray.csv
-        {"backend", "--backend", "", [](auto& v, auto& w) { parseBackend(v, w); }},
-        {"device", "--device", "dev", [](auto&, auto&) {}},  // a Vulkan device: index or part of its name
-        {"interpolation", "--interpolation", "", [](auto& v, auto& w) { parseInterpolation(v, w); }},  // Vulkan
-        {"warm_up", "--warm-up", "w", positiveCount},         // frames rendered before the timed ones
-    };
-    return parameters;
-}
 
 constexpr std::string_view kSafeName =
     "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
@@ -342,7 +283,7 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
         yaml::requireKeys(png, source_, {"invert", "exposure", "background"});
         if (png["invert"] && flag(png["invert"], "png.invert")) scene.options.emplace_back("--png-invert", "");
         if (const YAML::Node e = png["exposure"]) {
-            positiveNumber(number(e, "png.exposure"), at(e) + ": png.exposure");
+            parsePositive(number(e, "png.exposure"), at(e) + ": png.exposure");
             scene.options.emplace_back("--png-exposure", e.Scalar());
         }
         if (png["background"]) scene.options.emplace_back("--background", vec3(png["background"], "png.background"));
@@ -355,7 +296,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
     for (const auto& [prefix, entry] : entries(node, section)) {
         // The parameters, each a list of values (a scalar is a list of one that does not show in ids).
         struct Axis {
-            const RunParameter* parameter;
+            const RenderOptionRow* row;
             std::vector<std::string> values;
             bool swept;
         };
@@ -372,19 +313,20 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                         throw Error(at(kv.second) + ": unknown scene '" + scenes[i] + "'");
                 continue;
             }
-            const auto& known = renderParameters();
-            const auto parameter = std::find_if(known.begin(), known.end(), [&](auto& p) { return p.key == key; });
-            if (parameter == known.end()) {
+            const RenderOptionRow* row = findRenderOption(key);
+            if (!row) {
                 std::string list = "scenes";
-                for (const RunParameter& p : known) list += ", " + std::string(p.key);
+                for (const RenderOptionRow& r : renderOptionTable())
+                    if (!r.key.empty()) list += ", " + std::string(r.key);
                 throw Error(at(kv.first) + ": unknown key '" + key + "' (expected one of: " + list + ")");
             }
             hasMethod = hasMethod || key == "method";
-            Axis axis{&*parameter, {}, kv.second.IsSequence()};
+            Axis axis{row, {}, kv.second.IsSequence()};
             if (axis.swept && kv.second.size() == 0) throw Error(at(kv.second) + ": " + key + ": an empty list");
             const auto value = [&](const YAML::Node& v) {
                 if (!v.IsScalar()) throw Error(at(v) + ": " + key + " must be a value or a list of values");
-                parameter->check(v.Scalar(), at(v) + ": " + key);
+                RenderRequest scratch(RenderTool::Render);  // the row's own check, where the value is
+                row->apply(v.Scalar(), at(v) + ": " + key, scratch);
                 axis.values.push_back(v.Scalar());
             };
             if (axis.swept)
@@ -394,9 +336,11 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             axes.push_back(std::move(axis));
         }
         if (!hasMethod) {  // the entry's name is the method, as in `riemann: {step: [...]}`
-            static const RunParameter& method = renderParameters().front();
-            method.check(prefix, at(entry) + ": " + section + " entry '" + prefix + "' has no method, and its name");
-            axes.insert(axes.begin(), Axis{&method, {prefix}, false});
+            static const RenderOptionRow* method = findRenderOption("method");
+            RenderRequest scratch(RenderTool::Render);
+            method->apply(prefix, at(entry) + ": " + section + " entry '" + prefix + "' has no method, and its name",
+                          scratch);
+            axes.insert(axes.begin(), Axis{method, {prefix}, false});
         }
         if (scenes.empty())
             for (const SceneSpec& s : experiment.scenes) scenes.push_back(s.name);
@@ -416,19 +360,26 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         for (const std::string& scene : scenes) {
             for (bool more = true; more;) {
                 RunSpec run{experiment.scenes.size() > 1 ? scene + "-" + prefix : prefix, "vri-render", scene, reference, {}, {}};
+                const auto method = std::find_if(axes.begin(), axes.end(), [](auto& a) { return a.row->key == "method"; });
+                const bool exact = method->values[index[method - axes.begin()]] == kExactMethod;
+                if (exact) run.tool = "vri-reference";
+                RenderRequest request(exact ? RenderTool::Reference : RenderTool::Render);
                 for (std::size_t a = 0; a < axes.size(); ++a) {
+                    const RenderOptionRow& row = *axes[a].row;
                     const std::string& v = axes[a].values[index[a]];
-                    run.parameters.emplace_back(axes[a].parameter->key, v);
-                    run.options.emplace_back(axes[a].parameter->option, v);
-                    if (axes[a].swept) run.id.append("-").append(axes[a].parameter->idPrefix).append(v);
+                    if (!row.takenBy(request.tool))
+                        throw Error(at(entry) + ": " + std::string(row.key) + " does not apply to method exact (vri-reference)");
+                    row.apply(v, std::string(row.key), request);
+                    request.given.push_back(row.flag());
+                    run.parameters.emplace_back(row.key, v);
+                    if (row.kind != OptionValueKind::Flag) run.options.emplace_back(row.flag(), v);
+                    else if (v == "true") run.options.emplace_back(row.flag(), "");  // a flag has no value
+                    if (axes[a].swept) run.id.append("-").append(row.idPrefix).append(v);
                 }
-                const auto method = std::find_if(run.parameters.begin(), run.parameters.end(),
-                                                 [](auto& kv) { return kv.first == "method"; });
-                if (method->second == kExactMethod) {
-                    run.tool = "vri-reference";
-                    for (const auto& [key, value] : run.parameters)
-                        if (key != "method" && key != "repeat")
-                            throw Error(at(entry) + ": " + key + " does not apply to method exact (vri-reference)");
+                try {  // the rules between the options, as the tool will check them
+                    finishRenderRequest(request);
+                } catch (const Error& e) {
+                    throw Error(at(entry) + ": " + section + " entry '" + prefix + "': " + e.what());
                 }
                 if (!isSafeName(run.id))  // a swept value is part of the id
                     throw Error(at(entry) + ": " + section + " entry '" + prefix +
@@ -465,7 +416,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             if (!t.IsSequence() || t.size() == 0) throw Error(at(t) + ": thresholds must be a list of numbers");
             base.thresholds.clear();
             for (const YAML::Node& v : t) {
-                nonNegativeNumber(number(v, "thresholds"), at(v) + ": thresholds");
+                parseNonNegative(number(v, "thresholds"), at(v) + ": thresholds");
                 base.thresholds.push_back(v.Scalar());
             }
         }
@@ -478,7 +429,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
         if (const YAML::Node k = entry["diff_scale"]) {
             if (base.diffImage.empty()) throw Error(at(k) + ": diff_scale needs diff_image");
             base.diffScale = number(k, "diff_scale");
-            positiveNumber(base.diffScale, at(k) + ": diff_scale");
+            parsePositive(base.diffScale, at(k) + ": diff_scale");
         }
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
         for (const std::string& run : runs) {
@@ -578,7 +529,7 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
         if (const YAML::Node t = entry["threshold"]) {
             if (table.layout != "tradeoff") throw Error(at(t) + ": threshold applies to layout tradeoff");
             table.threshold = number(t, "threshold");
-            nonNegativeNumber(table.threshold, at(t) + ": threshold");
+            parseNonNegative(table.threshold, at(t) + ": threshold");
         }
         if (const YAML::Node r = entry["rows"]) {
             if (table.layout != "thresholds") throw Error(at(r) + ": rows applies to layout thresholds");

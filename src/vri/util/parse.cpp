@@ -84,6 +84,27 @@ glm::ivec2 parsePixel(const std::string& text, const std::string& what) {
     return v;
 }
 
+double parsePositive(const std::string& text, const std::string& what) {
+    double v;
+    if (!parseNumber(text, v) || !std::isfinite(v) || !(v > 0.0))
+        throw Error(what + ": expected a number > 0, got '" + text + "'");
+    return v;
+}
+
+double parseNonNegative(const std::string& text, const std::string& what) {
+    double v;
+    if (!parseNumber(text, v) || !std::isfinite(v) || !(v >= 0.0))
+        throw Error(what + ": expected a number >= 0, got '" + text + "'");
+    return v;
+}
+
+int parseCount(const std::string& text, const std::string& what, int least) {
+    int v;
+    if (!parseNumber(text, v) || v < least)
+        throw Error(what + ": expected a whole number >= " + std::to_string(least) + ", got '" + text + "'");
+    return v;
+}
+
 double parseLimit(const std::string& text, const std::string& what) {
     if (text == "none") return std::numeric_limits<double>::infinity();
     double v;

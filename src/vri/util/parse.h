@@ -21,6 +21,12 @@ glm::dvec2 parseRange(const std::string& text, const std::string& what);
 glm::ivec2 parseSize(const std::string& text, const std::string& what);
 // "X,Y" -> a pixel; throws vri::Error naming `what` unless both are integers >= 0.
 glm::ivec2 parsePixel(const std::string& text, const std::string& what);
+// A finite number > 0 (parsePositive) or >= 0 (parseNonNegative); throws vri::Error
+// "<what>: expected a number > 0, got '<text>'" otherwise.
+double parsePositive(const std::string& text, const std::string& what);
+double parseNonNegative(const std::string& text, const std::string& what);
+// A whole number >= `least`; throws vri::Error "<what>: expected a whole number >= <least>, got '<text>'" otherwise.
+int parseCount(const std::string& text, const std::string& what, int least);
 // A positive finite number, or "none" -> +infinity (no limit); throws vri::Error naming `what` otherwise.
 double parseLimit(const std::string& text, const std::string& what);
 

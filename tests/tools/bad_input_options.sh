@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Bad render options, as the option table (src/vri/core/render_option_table.cpp) checks them: the same
+# row's check on vri-render's and vri-reference's command lines and in an experiment file's methods,
+# and the rules between options, also applied when an experiment file is read. One line, exit 1,
+# nothing written.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
+bin=${VRI_BIN:?}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
+render=("$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --stats out.json)
+reference=("$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr)
+E='^vri-render: error: '
+
+# Each row's check, on the command line.
+bad 1 "${E}--rate: expected a number > 0, got '-2'$" -- "${render[@]}" --rate -2
+bad 1 "${E}--step: expected a number > 0, got 'inf'$" -- "${render[@]}" --step inf
+bad 1 "${E}--early-termination: expected a number >= 0, got '-0.1'$" -- "${render[@]}" --early-termination -0.1
+bad 1 "${E}--warm-up: expected a whole number >= 0, got '-1'$" -- "${render[@]}" --warm-up -1
+bad 1 "${E}--tolerance: expected a number >= 0, got '-1'$" -- "${render[@]}" --method coupled --eps -1
+bad 1 "${E}--h-min: expected a number > 0, got '0'$" -- "${render[@]}" --method decoupled --h-min 0
+bad 1 "${E}--log-ray: expected two integers|${E}--log-ray: " -- "${render[@]}" --method coupled --log-ray x --log r.csv
+bad 1 "${E}--device: needs --backend vulkan$" -- "${render[@]}" --device 0
+bad 1 "^vri-reference: error: --method: unknown method 'coupled' \(expected exact or riemann\)$" -- \
+    "${reference[@]}" --method coupled
+bad 1 "^vri-reference: error: --tolerance applies to --method exact only$" -- "${reference[@]}" --method riemann --tolerance 1e-6
+bad 1 "^vri-reference: error: --repeat: expected a whole number >= 1, got '0'$" -- "${reference[@]}" --repeat 0
+# What the row checks, the library's own checks still follow: h0 within [h_min, h_max].
+bad 1 "${E}the initial step h0 must be finite and at least h_min" -- "${render[@]}" --method coupled --h0 0.05
+# Options that only one tool takes stay unknown to the other.
+bad 109 "^vri-reference: error: The following arguments? (was|were) not expected: .*--placement" -- "${reference[@]}" --placement eye
+
+# The same rows read an experiment file's methods: the value's place, the row's words.
+mkdir -p exp/tf && cp tf.yaml exp/tf/tf.yaml
+experiment() {  # experiment NAME METHODS-LINE
+  cat > "exp/$1.yaml" <<YAML
+name: options
+title: option checks
+paper: {paper: none, item: none, says: nothing}
+scenes:
+  blob: {field: linear, convention: node, tf: tf/tf.yaml, size: [4, 4]}
+methods:
+  $2
+YAML
+}
+experiment h0 'coupled: {h0: [0.5, 0]}'
+experiment warm 'riemann: {warm_up: -1}'
+experiment flagword 'riemann: {simd: maybe, precision: float}'
+experiment device 'riemann: {device: 0}'
+experiment both 'riemann: {step: 0.5, rate: 2}'
+experiment exact 'exact: {method: exact, log_ray: "1,1"}'
+R='^vri-run: error: '
+bad 1 "${R}exp/h0\.yaml:7:23: h0: expected a number > 0, got '0'$" -- "$bin/vri-run" --dry-run exp/h0.yaml
+bad 1 "${R}exp/warm\.yaml:7:22: warm_up: expected a whole number >= 0, got '-1'$" -- "$bin/vri-run" --dry-run exp/warm.yaml
+bad 1 "${R}exp/flagword\.yaml:7:19: simd: unknown value 'maybe' \(expected on or off\)$" -- "$bin/vri-run" --dry-run exp/flagword.yaml
+bad 1 "${R}exp/device\.yaml:7:12: methods entry 'riemann': --device: needs --backend vulkan$" -- \
+    "$bin/vri-run" --dry-run exp/device.yaml
+bad 1 "${R}exp/both\.yaml:7:12: methods entry 'riemann': --rate: cannot be given with --step$" -- \
+    "$bin/vri-run" --dry-run exp/both.yaml
+bad 1 "${R}exp/exact\.yaml:7:10: log_ray does not apply to method exact \(vri-reference\)$" -- \
+    "$bin/vri-run" --dry-run exp/exact.yaml
+bad_done

@@ -1,0 +1,31 @@
+#pragma once
+// The backends behind --backend: the CPU raycaster, and the Vulkan renderer when the build has it
+// (-DVRI_VULKAN=ON, VRI_HAVE_VULKAN). The one place the tools choose between them.
+#include <memory>
+#include <string_view>
+
+#include "vri/core/render_option_table.h"
+
+namespace vri {
+
+class RenderBackend {
+public:
+    // Checks the request against the backend it names (Vulkan: float only, no logged ray) before any
+    // device is opened, so the message does not depend on having one; then opens the Vulkan device.
+    explicit RenderBackend(const RenderRequest& request);
+    ~RenderBackend();
+    RenderBackend(const RenderBackend&) = delete;
+    RenderBackend& operator=(const RenderBackend&) = delete;
+
+    Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats);
+
+private:
+    struct Vulkan;
+    std::unique_ptr<Vulkan> vulkan_;  // the device, opened once; the volume is uploaded by the first render
+};
+
+// --list-devices: one line per Vulkan device on stdout, "INDEX<TAB>NAME<TAB>TYPE<TAB>API VERSION";
+// returns the exit code (an error line on stderr when there is none).
+int listVulkanDevices(std::string_view tool);
+
+}  // namespace vri

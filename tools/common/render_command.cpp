@@ -1,0 +1,197 @@
+#include "common/render_command.h"
+
+#include <iostream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include "common/cli.h"
+#include "common/exact_reference_json.h"
+#include "common/render_backend.h"
+#include "common/render_json.h"
+#include "vri/core/exact_reference.h"
+#include "vri/io/adaptive_log_csv.h"
+#include "vri/io/image_io.h"
+#include "vri/io/provenance.h"
+#include "vri/util/atomic_file.h"
+
+namespace vri {
+
+namespace {
+
+// One computation of the image: what it gave and what the stats file says about it.
+struct Frame {
+    Image image;
+    std::optional<Image> bounds;  // the exact method's per-pixel error bounds, when --error-image asks for them
+    RenderStats stats;            // the exact method: only the non-finite count (it has stats of its own)
+    std::optional<ExactReferenceStats> exactStats;
+    double seconds;
+};
+
+}  // namespace
+
+RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int argc, char** argv)
+    : tool_(tool),
+      name_(tool == RenderTool::Render ? "vri-render" : "vri-reference"),
+      argc_(argc),
+      argv_(argv),
+      app_(std::string(help.description)) {
+    app_.footer(std::string(help.footer));
+    // Before parsing: listing devices needs none of the options that a render requires.
+    for (int i = 1; tool_ == RenderTool::Render && i < argc; ++i)
+        if (std::string_view(argv[i]) == "--list-devices") {
+            if (argc != 2) {
+                std::cerr << name_ << ": error: --list-devices takes no other argument (see --help)\n";
+                exitCode_ = kExitUsage;
+            } else {
+                exitCode_ = guardedMain(name_, [&] { return listVulkanDevices(name_); });
+            }
+            return;
+        }
+
+    scene_.addTo(app_);
+    const RenderRequest defaults(tool_);
+    std::map<std::string_view, CLI::Option_group*> groups;
+    std::map<std::string_view, CLI::Option*> byFlag;
+    slots_.reserve(renderOptionTable().size());  // CLI11 keeps pointers into them
+    for (const RenderOptionRow& row : renderOptionTable()) {
+        if (!row.takenBy(tool_)) continue;
+        CLI::App* target = &app_;
+        if (!row.group.empty()) {
+            auto& group = groups[row.group];
+            if (!group) group = app_.add_option_group(std::string(row.group), std::string(renderOptionGroupHelp(row.group)));
+            target = group;
+        }
+        const std::string names(row.names), help(row.help);
+        CLI::Option* option = nullptr;
+        switch (row.kind) {
+        case OptionValueKind::Number:
+            option = target->add_option(names, std::get<double>(slots_.emplace_back(0.0)), help);
+            break;
+        case OptionValueKind::Count:
+            option = target->add_option(names, std::get<int>(slots_.emplace_back(0)), help);
+            break;
+        case OptionValueKind::Text:
+            option = target->add_option(names, std::get<std::string>(slots_.emplace_back(std::string())), help);
+            break;
+        case OptionValueKind::Flag:
+            option = target->add_flag(names, std::get<bool>(slots_.emplace_back(false)), help);
+            break;
+        }
+        if (const std::string shown = row.shownDefault(defaults); !shown.empty()) option->default_str(shown);
+        tableOptions_.push_back({&row, option});
+        byFlag[row.flag()] = option;
+    }
+    for (const TableOption& t : tableOptions_)
+        if (!t.row->excludes.empty()) t.option->excludes(byFlag.at(t.row->excludes));
+    if (tool_ == RenderTool::Render) {
+        app_.add_flag("--list-devices")->description("list the Vulkan devices (index, name, type, API version) and exit");
+        CLI::Option* logRay = byFlag.at("--log-ray");
+        CLI::Option* log = groups.at("adaptive")
+                               ->add_option("--log", logPath_, "CSV of the logged ray's tries (with --log-ray)")
+                               ->needs(logRay);
+        logRay->needs(log);
+    }
+    timing_.addTo(app_);
+    app_.add_option("-o,--output", output_, "output image (.exr: float RGBA)")->required();
+    app_.add_option("--png", pngPath_, "8-bit preview PNG");
+    preview_.addTo(app_);
+    app_.add_option("--error-image", errorImagePath_, "exact: per-pixel error bounds as float RGBA OpenEXR");
+    app_.add_option("--stats", statsPath_, "write statistics and provenance as JSON ('-' for stdout)");
+    nonfinite_.addTo(app_);
+    app_.add_flag("-q,--quiet", quiet_, "no progress on stderr");
+    exitCode_ = parseArguments(app_, name_, argc, argv);
+}
+
+RenderRequest RenderCommand::request() const {
+    RenderRequest request(tool_);
+    for (const TableOption& t : tableOptions_) {
+        if (t.option->count() == 0) continue;
+        const std::string text = t.row->kind == OptionValueKind::Flag ? "true" : t.option->as<std::string>();
+        t.row->apply(text, std::string(t.row->flag()), request);
+        request.given.push_back(t.row->flag());
+    }
+    request.options.progress = !quiet_;
+    finishRenderRequest(request);
+    return request;
+}
+
+int RenderCommand::run() {
+    if (exitCode_) return *exitCode_;
+    return guardedMain(name_, [&] {
+        std::optional<tbb::global_control> threadLimit;
+        timing_.limitThreads(threadLimit);
+        requireExrOutput({"-o", output_});
+        if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
+        requireDistinctOutputs({{"-o", output_},
+                                {"--png", pngPath_},
+                                {"--error-image", errorImagePath_},
+                                {"--stats", statsPath_},
+                                {"--log", logPath_}});
+        // Every option is checked before the render, so that a mistake never leaves some outputs written.
+        const RenderRequest request = this->request();
+        if (!errorImagePath_.empty() && !request.exact)
+            throw Error("--error-image needs --method exact (no other method has an error bound)");
+        timing_.setFrames(request.warmUp, request.repeat);
+        const PngOptions png = preview_.get();
+
+        const SceneSetup setup = scene_.load();
+        const Scene& scene = setup.scene;
+        const Camera camera(setup.camera);
+        RenderBackend backend(request);
+        const auto [frame, wallSeconds] = timing_.run([&] {
+            if (request.exact) {
+                const ExactReference ref = renderExactReference(scene, camera, request.exactOptions());
+                Frame f{ref.image(), std::nullopt, {}, ref.stats, ref.stats.seconds};
+                if (!errorImagePath_.empty()) f.bounds = ref.boundImage();
+                f.stats.nonfinite = findNonFinitePixels(f.image);
+                return f;
+            }
+            Frame f{{}, std::nullopt, {}, std::nullopt, 0.0};
+            f.image = backend.render(scene, camera, request.options, &f.stats);
+            f.seconds = f.stats.seconds;
+            return f;
+        });
+        const Image& image = frame.image;
+        const RenderStats& stats = frame.stats;
+        nonfinite_.check(stats.nonfinite, name_);
+
+        // The provenance record: what was run, on what, with which settings, and what it measured.
+        nlohmann::json record = {{"tool", name_},
+                                 {"command", commandLine(argc_, argv_)},
+                                 {"time_utc", utcTimestamp()},
+                                 {"build", buildInfo()},
+                                 {"machine", machineInfo()},
+                                 {"inputs", setup.inputs},
+                                 {"scene", describeScene(scene)},
+                                 {"transfer_function", toJson(scene.transferFunction)},
+                                 {"camera", toJson(setup.camera)},
+                                 {"options", toJson(request)},
+                                 {"stats", frame.exactStats ? toJson(*frame.exactStats) : toJson(stats)}};
+        if (frame.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
+        record["timing"] = timing_.toJson(wallSeconds);
+        const ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
+                                        {"vri:options", record["options"].dump()},
+                                        {"vri:scene", record["scene"].dump()}};
+        writeExr(output_, image, metadata);
+        if (!pngPath_.empty()) writePng(pngPath_, image, png);
+        if (frame.bounds) writeExr(errorImagePath_, *frame.bounds, metadata);
+        if (!statsPath_.empty()) writeTextFile(statsPath_, record.dump(2) + "\n");
+        if (!logPath_.empty()) writeTextFile(logPath_, adaptiveLogCsv(stats.rayLog));
+        if (!quiet_) {
+            std::cerr << name_ << ": " << record["options"]["method"].get<std::string>() << ", " << image.width << "x"
+                      << image.height << ", ";
+            if (frame.exactStats)
+                std::cerr << frame.exactStats->piecesVisible << " visible pieces in " << timing_.summary(wallSeconds)
+                          << " on " << frame.exactStats->threads << " threads; error bound max "
+                          << record["stats"]["error_bound"]["max"].dump() << "\n";
+            else
+                std::cerr << stats.samplesEvaluated << " samples in " << timing_.summary(wallSeconds) << " on "
+                          << (stats.device.empty() ? std::to_string(stats.threads) + " threads" : stats.device) << "\n";
+        }
+        return kExitOk;
+    });
+}
+
+}  // namespace vri
