@@ -170,6 +170,7 @@ int RenderCommand::run() {
                                  {"options", toJson(request)},
                                  {"stats", frame.exactStats ? toJson(*frame.exactStats) : toJson(stats)}};
         if (frame.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
+        record["stats"]["out_of_range_pixels"] = toJson(findOutOfRangePixels(image));
         record["timing"] = timing_.toJson(wallSeconds);
         const ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
                                         {"vri:options", record["options"].dump()},

@@ -43,6 +43,14 @@ nlohmann::json toJson(const AdaptiveCounts& c) {
             {"points_used", c.pointsUsed},       {"points_evaluated", c.pointsEvaluated}};
 }
 
+nlohmann::json toJson(const OutOfRangePixels& o) {
+    return {{"pixels", o.pixels},
+            {"channels_above_1", o.channelsAbove},
+            {"channels_below_0", o.channelsBelow},
+            {"max", o.max},
+            {"min", o.min}};
+}
+
 nlohmann::json toJson(const CameraSpec& c) {
     return {{"eye", vec(c.eye)},           {"target", vec(c.target)}, {"up", vec(c.up)},
             {"fov_y_degrees", c.fovYDegrees}, {"width", c.width},     {"height", c.height},

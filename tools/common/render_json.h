@@ -4,6 +4,7 @@
 
 #include "vri/core/camera.h"
 #include "vri/core/cpu_renderer.h"
+#include "vri/core/out_of_range_pixels.h"
 #include "vri/core/render_option_table.h"
 
 namespace vri {
@@ -12,6 +13,8 @@ namespace vri {
 nlohmann::json toJson(const RenderRequest& request);
 nlohmann::json toJson(const RenderStats& stats);
 nlohmann::json toJson(const AdaptiveCounts& counts);
+// {"pixels", "channels_above_1", "channels_below_0", "max", "min"}
+nlohmann::json toJson(const OutOfRangePixels& found);
 nlohmann::json toJson(const CameraSpec& camera);
 nlohmann::json toJson(const TransferFunction& tf);
 nlohmann::json describeScene(const Scene& scene);  // kind, dims, voxel type, spacing, box, convention, range
