@@ -29,7 +29,7 @@ Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alph
 (Simpson methods: alpha = the integral of extinction times transparency, paper B's fourth channel).
 A quadrature can return colour and alpha above 1: the Simpson methods overshoot on steep rises (decoupled
 without --h-max most), a Riemann sum where tau * h is large; the stats count such pixels and give the
-largest value ("out_of_range_pixels").
+largest value ("out_of_range_pixels"); --clamp clamps them to [0, 1] after counting.
 
 Limits, checked before any work: a volume or image may take at most 16 GiB (set VRI_MAX_BYTES to a byte
 count to change it); a ray at most 1e9 samples (--step, --rate) or, for the Simpson methods, 1e9 steps of

@@ -48,6 +48,7 @@ experiment flagword 'riemann: {simd: maybe, precision: float}'
 experiment device 'riemann: {device: 0}'
 experiment both 'riemann: {step: 0.5, rate: 2}'
 experiment exact 'exact: {method: exact, log_ray: "1,1"}'
+experiment clamp 'riemann: {clamp: maybe}'
 R='^vri-run: error: '
 bad 1 "${R}exp/h0\.yaml:7:23: h0: expected a number > 0, got '0'$" -- "$bin/vri-run" --dry-run exp/h0.yaml
 bad 1 "${R}exp/warm\.yaml:7:22: warm_up: expected a whole number >= 0, got '-1'$" -- "$bin/vri-run" --dry-run exp/warm.yaml
@@ -58,4 +59,5 @@ bad 1 "${R}exp/both\.yaml:7:12: methods entry 'riemann': --rate: cannot be given
     "$bin/vri-run" --dry-run exp/both.yaml
 bad 1 "${R}exp/exact\.yaml:7:10: log_ray does not apply to method exact \(vri-reference\)$" -- \
     "$bin/vri-run" --dry-run exp/exact.yaml
+bad 1 "${R}exp/clamp\.yaml:7:20: clamp: expected true or false, got 'maybe'$" -- "$bin/vri-run" --dry-run exp/clamp.yaml
 bad_done

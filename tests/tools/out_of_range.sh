@@ -30,4 +30,20 @@ for method in simpson coupled decoupled; do
   "$bin/vri-render" "${scene[@]}" --tf dense.yaml --method $method -o m.exr --stats m.json
   [ "$(field m.json pixels)" != null ] || fail "$method: no out_of_range_pixels in the stats"
 done
-echo "out-of-range counts ok"
+grep -q '"clamp": false' dense.json || fail "the settings do not say clamp: false"
+
+# --clamp: the image clamped to [0, 1] after the count, which still says what the method returned.
+"$bin/vri-render" "${scene[@]}" --tf dense.yaml --step 2 --clamp -o clamped.exr --stats clamped.json
+grep -q '"clamp": true' clamped.json || fail "the settings do not say clamp: true"
+[ "$(jq -c .stats.out_of_range_pixels clamped.json)" = "$(jq -c .stats.out_of_range_pixels dense.json)" ] ||
+  fail "--clamp changed the out-of-range count"
+# Clamping lowers the largest value to 1: the largest change is max - 1, over all channels.
+"$bin/vri-diff" dense.exr clamped.exr --json diff.json > /dev/null || true
+awk -v d="$(jq '[.channels[].max_abs] | max' diff.json)" -v m="$(field dense.json max)" \
+  'BEGIN { e = d - (m - 1); exit !(e < 1e-6 && e > -1e-6) }' || fail "clamped by $(jq '[.channels[].max_abs] | max' diff.json), not max - 1"
+# Within range, --clamp changes no bit.
+"$bin/vri-render" "${scene[@]}" --tf tf.yaml --step 0.25 --clamp -o faint-clamped.exr
+"$bin/vri-diff" faint.exr faint-clamped.exr --fail 0 > /dev/null || fail "--clamp changed an image within [0, 1]"
+"$bin/vri-reference" "${scene[@]}" --tf dense.yaml --clamp -o exact-clamped.exr
+"$bin/vri-diff" exact.exr exact-clamped.exr --fail 0 > /dev/null || fail "--clamp changed the exact image"
+echo "out-of-range counts and --clamp ok"

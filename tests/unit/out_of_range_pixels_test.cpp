@@ -23,3 +23,15 @@ TEST_CASE("out-of-range pixels: counted per pixel and per channel, with the extr
     CHECK(none.max == 0.0f);
     CHECK(none.min == 0.0f);
 }
+
+TEST_CASE("clampToUnitRange: every channel into [0, 1], NaN left as it is") {
+    vri::Image image(2, 1);
+    const float values[] = {1.5f, -0.25f, 0.5f, 1.0f, 0.0f, std::numeric_limits<float>::quiet_NaN(), 2.0f, 0.75f};
+    std::copy(std::begin(values), std::end(values), image.pixels.begin());
+    vri::clampToUnitRange(image);
+    const float expected[] = {1.0f, 0.0f, 0.5f, 1.0f, 0.0f, 0.0f, 1.0f, 0.75f};
+    for (int i = 0; i < 8; ++i)
+        if (i == 5) CHECK(std::isnan(image.pixels[i]));
+        else CHECK(image.pixels[i] == expected[i]);
+    CHECK(vri::findOutOfRangePixels(image).pixels == 0);
+}

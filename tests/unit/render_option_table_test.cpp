@@ -63,12 +63,12 @@ TEST_CASE("render option table: values land in the request as the tools had them
 TEST_CASE("render option table: the settings record names what applies to the method") {
     CHECK(names(vri::settingsRecord(vri::RenderRequest(vri::RenderTool::Render))) ==
           std::set<std::string>{"method", "placement", "sampling_rate", "step_voxels", "precision", "simd",
-                                "early_termination", "skip_empty_space", "tile_size"});
+                                "early_termination", "skip_empty_space", "clamp", "tile_size"});
     CHECK(names(vri::settingsRecord(given(vri::RenderTool::Render, {{"--method", "coupled"}}))) ==
           std::set<std::string>{"method", "precision", "simd", "early_termination", "tolerance", "h0_voxels",
-                                "h_min_voxels", "h_max_voxels", "accepted_value", "skip_empty_space", "tile_size"});
+                                "h_min_voxels", "h_max_voxels", "accepted_value", "skip_empty_space", "clamp", "tile_size"});
     CHECK(names(vri::settingsRecord(vri::RenderRequest(vri::RenderTool::Reference))) ==
-          std::set<std::string>{"method", "precision", "tolerance", "tile_size"});
+          std::set<std::string>{"method", "precision", "tolerance", "clamp", "tile_size"});
     for (const vri::Setting& s : vri::settingsRecord(given(vri::RenderTool::Render, {{"--method", "decoupled"},
                                                                                     {"--h-max", "none"}})))
         if (s.name == "h_max_voxels") CHECK(std::get<std::string>(s.value) == "none");

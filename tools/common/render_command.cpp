@@ -140,7 +140,7 @@ int RenderCommand::run() {
         const Scene& scene = setup.scene;
         const Camera camera(setup.camera);
         RenderBackend backend(request);
-        const auto [frame, wallSeconds] = timing_.run([&] {
+        auto [frame, wallSeconds] = timing_.run([&] {
             if (request.exact) {
                 const ExactReference ref = renderExactReference(scene, camera, request.exactOptions());
                 Frame f{ref.image(), std::nullopt, {}, ref.stats, ref.stats.seconds};
@@ -153,9 +153,11 @@ int RenderCommand::run() {
             f.seconds = f.stats.seconds;
             return f;
         });
-        const Image& image = frame.image;
         const RenderStats& stats = frame.stats;
         nonfinite_.check(stats.nonfinite, name_);
+        const OutOfRangePixels outOfRange = findOutOfRangePixels(frame.image);  // what the method returned
+        if (request.clamp) clampToUnitRange(frame.image);
+        const Image& image = frame.image;
 
         // The provenance record: what was run, on what, with which settings, and what it measured.
         nlohmann::json record = {{"tool", name_},
@@ -170,7 +172,7 @@ int RenderCommand::run() {
                                  {"options", toJson(request)},
                                  {"stats", frame.exactStats ? toJson(*frame.exactStats) : toJson(stats)}};
         if (frame.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
-        record["stats"]["out_of_range_pixels"] = toJson(findOutOfRangePixels(image));
+        record["stats"]["out_of_range_pixels"] = toJson(outOfRange);
         record["timing"] = timing_.toJson(wallSeconds);
         const ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
                                         {"vri:options", record["options"].dump()},

@@ -24,4 +24,8 @@ OutOfRangePixels findOutOfRangePixels(const Image& image) {
     return found;
 }
 
+void clampToUnitRange(Image& image) {
+    for (float& v : image.pixels) v = v > 1.0f ? 1.0f : v < 0.0f ? 0.0f : v;
+}
+
 }  // namespace vri

@@ -20,5 +20,7 @@ struct OutOfRangePixels {
 };
 
 OutOfRangePixels findOutOfRangePixels(const Image& image);
+// Clamps every channel to [0, 1] (--clamp); NaN stays NaN.
+void clampToUnitRange(Image& image);
 
 }  // namespace vri

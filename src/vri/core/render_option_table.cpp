@@ -194,6 +194,12 @@ const RenderOptionRow kRows[] = {
      [](const RenderRequest& r, std::vector<Setting>& s) {
          if (!r.exact) s.push_back({"skip_empty_space", r.options.skipEmptySpace});
      }},
+    {"--clamp", "clamp", "clamp-", OptionValueKind::Flag,
+     "clamp each pixel's colour and alpha to [0, 1] after the render (the stats count what was outside first); off "
+     "for accuracy studies",
+     "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) { r.clamp = flagValue(text, where); },
+     noDefault, [](const RenderRequest& r, std::vector<Setting>& s) { s.push_back({"clamp", r.clamp}); }},
 };
 
 const RenderOptionRow& row(std::string_view flag) {
