@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <type_traits>
 
 #include <glm/geometric.hpp>
@@ -19,7 +18,6 @@
 #include "vri/checked_size.h"
 #include "vri/error.h"
 #include "vri/format.h"
-#include "vri/occupancy_grid.h"
 #include "vri/progress.h"
 
 namespace vri {
@@ -37,10 +35,9 @@ struct PieceCounts {
 template <class T>
 class GridWalker {
 public:
-    // `occupancy`, when given, lets the walk jump over bricks on which the transfer function is zero.
-    GridWalker(const Volume& volume, GridConvention convention, const TransferFunction& tf,
-               const OccupancyGrid* occupancy)
-        : data_(volume.data<T>()), tf_(tf), occupancy_(occupancy) {
+    // `skipEmpty` lets the walk jump over blocks of cells on which the transfer function is zero.
+    GridWalker(const Volume& volume, GridConvention convention, const TransferFunction& tf, bool skipEmpty)
+        : data_(volume.data<T>()), tf_(tf) {
         const bool cell = convention == GridConvention::CellCentred;
         for (int a = 0; a < 3; ++a) {
             n_[a] = volume.dims[a];
@@ -68,6 +65,7 @@ public:
                 invisibleUpTo_[v] = hi;
             }
         }
+        if (skipEmpty) findEmptyBlocks(volume);
     }
 
     // Integrates the segment from texture coordinate uEntry to uExit, `length` world units long,
@@ -112,7 +110,7 @@ public:
         for (;;) {
             const double phiB = std::min({phi[0], phi[1], phi[2], 1.0});
             if (phiB > phiA) {
-                if (occupancy_ && phiA >= occupiedUntil) {
+                if (!emptyBlock_.empty() && phiA >= occupiedUntil) {
                     const EmptyRun run = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
                     occupiedUntil = run.occupiedUntil;
                     if (run.until > phiA) {
@@ -138,36 +136,79 @@ public:
     }
 
 private:
-    // From the occupancy brick that holds the ray's point at phi, the bricks the ray passes while they
-    // are empty (a brick DDA, one division per brick): where the first non-empty one begins (-inf when
-    // the first is not empty; 1 when none is left) and where it ends. Every face is a plane of
-    // integer index, crossed at the parameter the cell walk computes for it.
+    // Cells are grouped in blocks of kBlock^3 by their base (lowest) corner: block m of an axis holds the
+    // cells with base index [m B, (m + 1) B), whose corners are the voxels [m B, min((m + 1) B, n - 1)]; the
+    // first and last blocks also own the clamped region outside the index range. A block is empty when
+    // the corner range of all its cells is invisible (the same test addPiece makes per cell), so a piece
+    // in it would add nothing. 4^3 cells (5^3 voxels) follow the bonsai's leaves and twigs far closer
+    // than the fixed-step methods' 8^3 bricks with their margins, and a block costs one division to cross.
+    static constexpr int kBlockShift = 2;
+    static constexpr int kBlock = 1 << kBlockShift;
+
+    // The raw min and max over each block's corner voxels, one axis at a time (each pass reduces runs of
+    // kBlock + 1 along one axis to one value per block), then the emptiness of each block.
+    void findEmptyBlocks(const Volume& volume) {
+        glm::ivec3 n = volume.dims;
+        for (int a = 0; a < 3; ++a) blocks_[a] = maxBase_[a] / kBlock + 1;
+        std::vector<T> lo, hi;  // the reduced arrays after each pass (the volume itself before the first)
+        for (int a = 0; a < 3; ++a) {
+            const T* srcLo = a == 0 ? data_ : lo.data();
+            const T* srcHi = a == 0 ? data_ : hi.data();
+            // Reduce axis a of the (n[0], n[1], n[2]) arrays to blocks_[a] entries.
+            glm::ivec3 m = n;
+            m[a] = blocks_[a];
+            const std::int64_t inner = a == 0 ? 1 : a == 1 ? n[0] : std::int64_t(n[0]) * n[1];
+            const std::int64_t outer = a == 0 ? std::int64_t(n[1]) * n[2] : a == 1 ? n[2] : 1;
+            std::vector<T> lo2(static_cast<std::size_t>(m[0]) * m[1] * m[2]), hi2(lo2.size());
+            tbb::parallel_for(std::int64_t(0), outer, [&](std::int64_t o) {
+                for (std::int64_t i = 0; i < inner; ++i)
+                    for (int b = 0; b < blocks_[a]; ++b) {
+                        const int first = b * kBlock, last = std::min(first + kBlock, n[a] - 1);
+                        const std::int64_t from = (o * n[a] + first) * inner + i;
+                        T mn = srcLo[from], mx = srcHi[from];
+                        for (int k = 1; k <= last - first; ++k) {
+                            mn = std::min(mn, srcLo[from + k * inner]);
+                            mx = std::max(mx, srcHi[from + k * inner]);
+                        }
+                        const std::size_t to = static_cast<std::size_t>((o * blocks_[a] + b) * inner + i);
+                        lo2[to] = mn;
+                        hi2[to] = mx;
+                    }
+            });
+            lo.swap(lo2);
+            hi.swap(hi2);
+            n = m;
+        }
+        emptyBlock_.resize(lo.size());
+        for (std::size_t i = 0; i < lo.size(); ++i) emptyBlock_[i] = invisible(lo[i], hi[i]);
+    }
+
+    // From the block that holds the ray's point at phi, the blocks the ray passes while they are empty
+    // (a block DDA, one division per block): where the first non-empty one begins (-inf when the first
+    // is not empty; 1 when none is left) and where it ends. Every face is a plane of integer index,
+    // crossed at the parameter the cell walk computes for it, so a jump lands exactly on a cell face.
     struct EmptyRun {
         double until, occupiedUntil;
     };
     EmptyRun emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
         constexpr double inf = std::numeric_limits<double>::infinity();
-        constexpr int B = OccupancyGrid::kBrick;
-        const glm::ivec3 bricks = occupancy_->bricks();
-        const std::vector<std::uint8_t>& empty = occupancy_->emptyFlags();
         int m[3];
         double exitAt[3];
-        // The first and last bricks also own the clamped region outside the voxel index range.
         auto exitOf = [&](int a) {
-            if (delta[a] > 0 && m[a] + 1 < bricks[a]) return ((m[a] + 1) * B - entry[a]) / delta[a];
-            if (delta[a] < 0 && m[a] > 0) return (m[a] * B - entry[a]) / delta[a];
+            if (delta[a] > 0 && m[a] + 1 < blocks_[a]) return ((m[a] + 1) * kBlock - entry[a]) / delta[a];
+            if (delta[a] < 0 && m[a] > 0) return (m[a] * kBlock - entry[a]) / delta[a];
             return inf;
         };
         for (int a = 0; a < 3; ++a) {
             const double x = std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a]);
-            m[a] = std::min(static_cast<int>(x) >> OccupancyGrid::kBrickShift, bricks[a] - 1);
+            m[a] = std::min(static_cast<int>(x) >> kBlockShift, blocks_[a] - 1);
             exitAt[a] = exitOf(a);
         }
         double until = -inf;  // nothing skipped yet
         for (;;) {
             const int a = exitAt[0] <= exitAt[1] ? (exitAt[0] <= exitAt[2] ? 0 : 2) : (exitAt[1] <= exitAt[2] ? 1 : 2);
-            const std::size_t index = (static_cast<std::size_t>(m[2]) * bricks[1] + m[1]) * bricks[0] + m[0];
-            if (!empty[index]) return {until, exitAt[a]};
+            const std::size_t index = (static_cast<std::size_t>(m[2]) * blocks_[1] + m[1]) * blocks_[0] + m[0];
+            if (!emptyBlock_[index]) return {until, exitAt[a]};
             until = exitAt[a];
             if (!(until < 1.0)) return {1.0, inf};
             m[a] += delta[a] > 0 ? 1 : -1;
@@ -217,7 +258,6 @@ private:
 
     const T* data_;
     const TransferFunction& tf_;
-    const OccupancyGrid* occupancy_;
     int n_[3];
     std::int64_t stride_[3];
     glm::dvec3 scale_, offset_;
@@ -225,6 +265,8 @@ private:
     int maxBase_[3];
     double lo_, invRange_;
     std::vector<int> invisibleUpTo_;  // 8- and 16-bit voxels: see the constructor
+    int blocks_[3] = {};
+    std::vector<std::uint8_t> emptyBlock_;  // per block, x fastest; empty when not skipping
 };
 
 struct Counters {
@@ -315,11 +357,9 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
     const auto start = std::chrono::steady_clock::now();
     if (scene.volume) {
         const Volume& volume = *scene.volume;
-        std::optional<OccupancyGrid> occupancy;
-        if (options.skipEmptySpace) occupancy.emplace(volume, scene.convention, scene.transferFunction);
         dispatchVoxelType(volume.type, [&](auto voxel) {
             const GridWalker<decltype(voxel)> walker(volume, scene.convention, scene.transferFunction,
-                                                     occupancy ? &*occupancy : nullptr);
+                                                     options.skipEmptySpace);
             traceRays(scene, camera, options, [&](const glm::dvec3& a, const glm::dvec3& b, double length, ExactRay& ray,
                                                   PieceCounts& counts) { return walker.walk(a, b, length, ray, counts); },
                       out, counters);
