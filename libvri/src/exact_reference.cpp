@@ -106,23 +106,24 @@ public:
                 phi[a] = crossing(a);
             }
         };
-        double phiA = 0.0, occupiedUntil = -inf;
+        double phiA = 0.0;
         for (;;) {
             const double phiB = std::min({phi[0], phi[1], phi[2], 1.0});
             if (phiB > phiA) {
-                if (!emptyBlock_.empty() && phiA >= occupiedUntil) {
-                    const EmptyRun run = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
-                    occupiedUntil = run.occupiedUntil;
-                    if (run.until > phiA) {
-                        // Every piece up to there lies in cells of empty bricks or their margins, whose
-                        // corners the bricks' emptiness covers: each would have been invisible.
-                        if (run.until >= 1.0) return 0.0;
-                        jumpTo(run.until);
-                        phiA = run.until;
+                int cell[3];
+                cellOf(entry, delta, 0.5 * (phiA + phiB), cell);
+                if (!emptyBlock_.empty() && emptyBlock_[blockOfCell(cell)]) {
+                    // The piece's block is empty: every piece up to the end of the run of empty blocks
+                    // lies in cells whose corners the blocks' emptiness covers, each invisible.
+                    const double until = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
+                    if (until >= 1.0) return 0.0;
+                    if (until > phiA) {  // (a rounding error cannot stop the walk)
+                        jumpTo(until);
+                        phiA = until;
                         continue;
                     }
                 }
-                addPiece(entry, delta, phiA, phiB, length, ray, counts);
+                addPiece(entry, delta, cell, phiA, phiB, length, ray, counts);
                 if (ray.done((1.0 - phiB) * length)) return (1.0 - phiB) * length;
             }
             if (phiB >= 1.0) return 0.0;
@@ -183,14 +184,11 @@ private:
         for (std::size_t i = 0; i < lo.size(); ++i) emptyBlock_[i] = invisible(lo[i], hi[i]);
     }
 
-    // From the block that holds the ray's point at phi, the blocks the ray passes while they are empty
-    // (a block DDA, one division per block): where the first non-empty one begins (-inf when the first
-    // is not empty; 1 when none is left) and where it ends. Every face is a plane of integer index,
-    // crossed at the parameter the cell walk computes for it, so a jump lands exactly on a cell face.
-    struct EmptyRun {
-        double until, occupiedUntil;
-    };
-    EmptyRun emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
+    // From the empty block that holds the ray's point at phi, the blocks the ray passes while they are
+    // empty (a block DDA, one division per block): where the first non-empty one begins (1 when none is
+    // left). Every face is a plane of integer index, crossed at the parameter the cell walk computes for
+    // it, so a jump lands exactly on a cell face.
+    double emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
         constexpr double inf = std::numeric_limits<double>::infinity();
         int m[3];
         double exitAt[3];
@@ -204,28 +202,40 @@ private:
             m[a] = std::min(static_cast<int>(x) >> kBlockShift, blocks_[a] - 1);
             exitAt[a] = exitOf(a);
         }
-        double until = -inf;  // nothing skipped yet
         for (;;) {
             const int a = exitAt[0] <= exitAt[1] ? (exitAt[0] <= exitAt[2] ? 0 : 2) : (exitAt[1] <= exitAt[2] ? 1 : 2);
-            const std::size_t index = (static_cast<std::size_t>(m[2]) * blocks_[1] + m[1]) * blocks_[0] + m[0];
-            if (!emptyBlock_[index]) return {until, exitAt[a]};
-            until = exitAt[a];
-            if (!(until < 1.0)) return {1.0, inf};
+            const double until = exitAt[a];
+            if (!(until < 1.0)) return 1.0;
             m[a] += delta[a] > 0 ? 1 : -1;
+            if (!emptyBlock_[blockIndex(m)]) return until;
             exitAt[a] = exitOf(a);
         }
     }
 
-    void addPiece(const glm::dvec3& entry, const glm::dvec3& delta, double phiA, double phiB, double length,
-                  ExactRay& ray, PieceCounts& counts) const {
+    // The block of block coordinates m, or of the cell whose base corner is `cell`.
+    std::size_t blockIndex(const int m[3]) const {
+        return (static_cast<std::size_t>(m[2]) * blocks_[1] + m[1]) * blocks_[0] + m[0];
+    }
+    std::size_t blockOfCell(const int cell[3]) const {
+        const int m[3] = {cell[0] >> kBlockShift, cell[1] >> kBlockShift, cell[2] >> kBlockShift};
+        return blockIndex(m);
+    }
+
+    // The base corner of the cell that holds the ray's point at phi (clamped where the axis is).
+    void cellOf(const glm::dvec3& entry, const glm::dvec3& delta, double phi, int cell[3]) const {
+        for (int a = 0; a < 3; ++a)
+            cell[a] = std::min(static_cast<int>(std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a])), maxBase_[a]);
+    }
+
+    // The piece between phiA and phiB, in the cell from its middle: the weights at its ends (clamped
+    // where the axis is), its cubic, into `ray`.
+    void addPiece(const glm::dvec3& entry, const glm::dvec3& delta, const int cell[3], double phiA, double phiB,
+                  double length, ExactRay& ray, PieceCounts& counts) const {
         ++counts.pieces;
-        // The cell from the piece's middle, the weights at its ends (clamped where the axis is).
-        const double phiM = 0.5 * (phiA + phiB);
         std::int64_t base = 0;
         glm::dvec3 w0(0.0), w1(0.0);
         for (int a = 0; a < 3; ++a) {
-            const double c = std::clamp(entry[a] + phiM * delta[a], 0.0, maxCoord_[a]);
-            const int i = std::min(static_cast<int>(c), maxBase_[a]);
+            const int i = cell[a];
             base += i * stride_[a];
             auto weight = [&](double phi) {
                 return std::clamp(std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a]) - i, 0.0, 1.0);
