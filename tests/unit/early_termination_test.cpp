@@ -10,8 +10,8 @@
 #include <cstring>
 #include <memory>
 
-#include "vri/error.h"
-#include "vri/render.h"
+#include "vri/core/cpu_renderer.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 
