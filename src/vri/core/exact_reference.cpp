@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "vri/core/block_ranges.h"
 #include "vri/core/exact_ray.h"
 #include "vri/util/checked_size.h"
 #include "vri/util/error.h"
@@ -146,42 +147,13 @@ private:
     static constexpr int kBlockShift = 2;
     static constexpr int kBlock = 1 << kBlockShift;
 
-    // The raw min and max over each block's corner voxels, one axis at a time (each pass reduces runs of
-    // kBlock + 1 along one axis to one value per block), then the emptiness of each block.
+    // Each block's emptiness from the raw range of its cells' corners.
     void findEmptyBlocks(const Volume& volume) {
-        glm::ivec3 n = volume.dims;
         for (int a = 0; a < 3; ++a) blocks_[a] = maxBase_[a] / kBlock + 1;
-        std::vector<T> lo, hi;  // the reduced arrays after each pass (the volume itself before the first)
-        for (int a = 0; a < 3; ++a) {
-            const T* srcLo = a == 0 ? data_ : lo.data();
-            const T* srcHi = a == 0 ? data_ : hi.data();
-            // Reduce axis a of the (n[0], n[1], n[2]) arrays to blocks_[a] entries.
-            glm::ivec3 m = n;
-            m[a] = blocks_[a];
-            const std::int64_t inner = a == 0 ? 1 : a == 1 ? n[0] : std::int64_t(n[0]) * n[1];
-            const std::int64_t outer = a == 0 ? std::int64_t(n[1]) * n[2] : a == 1 ? n[2] : 1;
-            std::vector<T> lo2(static_cast<std::size_t>(m[0]) * m[1] * m[2]), hi2(lo2.size());
-            tbb::parallel_for(std::int64_t(0), outer, [&](std::int64_t o) {
-                for (std::int64_t i = 0; i < inner; ++i)
-                    for (int b = 0; b < blocks_[a]; ++b) {
-                        const int first = b * kBlock, last = std::min(first + kBlock, n[a] - 1);
-                        const std::int64_t from = (o * n[a] + first) * inner + i;
-                        T mn = srcLo[from], mx = srcHi[from];
-                        for (int k = 1; k <= last - first; ++k) {
-                            mn = std::min(mn, srcLo[from + k * inner]);
-                            mx = std::max(mx, srcHi[from + k * inner]);
-                        }
-                        const std::size_t to = static_cast<std::size_t>((o * blocks_[a] + b) * inner + i);
-                        lo2[to] = mn;
-                        hi2[to] = mx;
-                    }
-            });
-            lo.swap(lo2);
-            hi.swap(hi2);
-            n = m;
-        }
-        emptyBlock_.resize(lo.size());
-        for (std::size_t i = 0; i < lo.size(); ++i) emptyBlock_[i] = invisible(lo[i], hi[i]);
+        const BlockRanges<T> ranges = blockRanges(data_, volume.dims, glm::ivec3(blocks_[0], blocks_[1], blocks_[2]),
+                                                  kBlock, 0, 0);
+        emptyBlock_.resize(ranges.lo.size());
+        for (std::size_t i = 0; i < ranges.lo.size(); ++i) emptyBlock_[i] = invisible(ranges.lo[i], ranges.hi[i]);
     }
 
     // From the empty block that holds the ray's point at phi, the blocks the ray passes while they are
