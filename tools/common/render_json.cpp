@@ -1,5 +1,6 @@
 #include "common/render_json.h"
 
+#include <algorithm>
 #include <variant>
 
 namespace vri {
@@ -10,8 +11,12 @@ nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 nlohmann::json toJson(const RenderRequest& request) {
     nlohmann::json j = nlohmann::json::object();
-    for (const Setting& s : settingsRecord(request))
-        std::visit([&](const auto& value) { j[std::string(s.name)] = value; }, s.value);
+    // A dotted name ("early_termination.bound") is a member of an object.
+    for (const Setting& s : settingsRecord(request)) {
+        std::string pointer = "/" + std::string(s.name);
+        std::replace(pointer.begin(), pointer.end(), '.', '/');
+        std::visit([&](const auto& value) { j[nlohmann::json::json_pointer(pointer)] = value; }, s.value);
+    }
     return j;
 }
 
@@ -26,6 +31,9 @@ nlohmann::json toJson(const RenderStats& s) {
                         {"samples_evaluated", s.samplesEvaluated},
                         {"samples_per_second", samplesPerSecond},
                         {"empty_brick_fraction", s.emptyBrickFraction},
+                        // Rays ended early, and the most their samples left out could add to a channel.
+                        {"rays_terminated", s.raysTerminated},
+                        {"termination_left_out_max", s.terminationLeftOut},
                         {"backend", s.backend}};
     if (!s.device.empty()) j["device"] = s.device;
     if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;

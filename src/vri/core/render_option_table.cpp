@@ -90,14 +90,18 @@ const RenderOptionRow kRows[] = {
      [](const RenderRequest& r, std::vector<Setting>& s) {
          if (!r.exact) s.push_back({"simd", r.options.simd});
      }},
-    {"--early-termination", "early_termination", "ert", OptionValueKind::Number,
-     "stop rays whose transparency drops below this (0 = off)", "", "", kRenderOnly, kBothBackends,
+    {"--early-termination", "early_termination", "ert", OptionValueKind::Text,
+     "stop rays whose transparency drops below this (0 = off), or 'auto' (once the rest can change no channel by more "
+     "than 1e-4; 'auto:BOUND' for another bound), the most left out in the stats",
+     "", "", kRenderOnly, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) {
-         r.options.earlyTermination = parseNonNegative(text, where);
+         parseEarlyTermination(text, where, r.options);
      },
      [](const RenderRequest& r) { return exactNumber(r.options.earlyTermination); },
      [](const RenderRequest& r, std::vector<Setting>& s) {
-         if (!r.exact) s.push_back({"early_termination", r.options.earlyTermination});
+         if (r.exact) return;
+         if (r.options.terminationBound > 0.0) s.push_back({"early_termination.bound", r.options.terminationBound});
+         else s.push_back({"early_termination", r.options.earlyTermination});
      }},
     {"--repeat", "repeat", "x", OptionValueKind::Count,
      "render N times for timing: the stats give every wall time and their median, and any image that differs from "
@@ -255,7 +259,7 @@ void finishRenderRequest(RenderRequest& r) {
         if (r.wasGiven("--precision") && r.options.precision != Precision::Double)
             throw Error("--precision: --method exact is double only");
         if (r.wasGiven("--step") || r.wasGiven("--rate")) throw Error("--step, --rate: --method exact has no step");
-        if (r.options.earlyTermination != 0.0)
+        if (r.wasGiven("--early-termination"))
             throw Error("--early-termination: --method exact ends rays by its --tolerance");
         if (r.options.logPixel) throw Error("--log-ray: applies to coupled and decoupled only");
     }
