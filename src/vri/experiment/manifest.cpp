@@ -39,13 +39,10 @@ std::string firstLineOfGit(const fs::path& dir, std::vector<std::string> args) {
     }
 }
 
-// The commit of the experiment file's work tree, and whether tracked files differ from it.
 nlohmann::json sourceTree(const fs::path& experimentFile) {
-    const fs::path dir = fs::absolute(experimentFile).parent_path();
-    const std::string commit = firstLineOfGit(dir, {"rev-parse", "HEAD"});
-    if (commit.empty()) return {{"commit", "unknown"}};
-    const bool modified = !firstLineOfGit(dir, {"status", "--porcelain", "--untracked-files=no"}).empty();
-    return {{"commit", commit}, {"modified_files", modified}};
+    const std::optional<WorkTree> tree = workTreeOf(experimentFile);
+    if (!tree) return {{"commit", "unknown"}};
+    return {{"commit", tree->commit}, {"modified_files", tree->modified}};
 }
 
 std::string stateName(StepOutcome::State state) {
@@ -70,7 +67,26 @@ std::string galleryList(const Step& step, const fs::path& file) {
     return "";
 }
 
+// "commit 0123456789ab" (12 digits, as git shows short ids), with "(tracked files modified)" when the
+// tree was dirty: what the gallery says an experiment's results were made from.
+std::string commitNote(const nlohmann::json& sourceTree) {
+    const std::string commit = sourceTree.at("commit").get<std::string>();
+    if (commit == "unknown") return "commit unknown";
+    std::string note = "commit `" + commit.substr(0, 12) + "`";
+    if (sourceTree.value("modified_files", false)) note += " (tracked files modified)";
+    return note;
+}
+
 }  // namespace
+
+std::optional<WorkTree> workTreeOf(const fs::path& file) {
+    const fs::path dir = fs::absolute(file).parent_path();
+    const std::string commit = firstLineOfGit(dir, {"rev-parse", "HEAD"});
+    const std::string top = firstLineOfGit(dir, {"rev-parse", "--show-toplevel"});
+    if (commit.empty() || top.empty()) return std::nullopt;
+    const bool modified = !firstLineOfGit(dir, {"status", "--porcelain", "--untracked-files=no"}).empty();
+    return WorkTree{top, commit, modified};
+}
 
 void writeManifest(const Experiment& experiment, const Plan& plan, const std::vector<StepOutcome>& outcomes,
                    const fs::path& toolDir, FileHasher& hasher) {
@@ -169,8 +185,8 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
         gallery(outputs.at("figures"));
         if (!e.at("agreement").get<std::string>().empty())
             md << "**Ours against the paper:** " << e.at("agreement").get<std::string>() << "\n\n";
-        md << "Experiment file `" << e.at("source").get<std::string>() << "`, manifest [" << dir << "/manifest.json]("
-           << dir << "/manifest.json).\n";
+        md << "Experiment file `" << e.at("source").get<std::string>() << "`, " << commitNote(m.at("source_tree"))
+           << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json).\n";
     });
     return md.str();
 }

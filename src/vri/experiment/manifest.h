@@ -3,6 +3,7 @@
 // the source tree and build, the machine, and for every step its exact command, parameters,
 // input and output digests and wall time. The gallery (results/README.md) is read from manifests.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,15 @@
 #include "vri/experiment/experiment_spec.h"
 
 namespace vri {
+
+// The git work tree that holds a file: its top folder, its HEAD commit, and whether tracked files
+// differ from that commit (untracked ones do not count). nullopt outside a work tree or without git.
+struct WorkTree {
+    std::filesystem::path top;
+    std::string commit;
+    bool modified = false;
+};
+std::optional<WorkTree> workTreeOf(const std::filesystem::path& file);
 
 // Writes <plan.resultsDir>/manifest.json atomically.
 void writeManifest(const Experiment& experiment, const Plan& plan, const std::vector<StepOutcome>& outcomes,
