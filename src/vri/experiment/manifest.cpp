@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vri/experiment/caption_numbers.h"
 #include "vri/io/provenance.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/error.h"
@@ -184,7 +185,8 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
                 md << in.rdbuf() << "\n";
         gallery(outputs.at("figures"));
         if (!e.at("agreement").get<std::string>().empty())
-            md << "**Ours against the paper:** " << e.at("agreement").get<std::string>() << "\n\n";
+            md << "**Ours against the paper:** "
+               << fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path()) << "\n\n";
         md << "Experiment file `" << e.at("source").get<std::string>() << "`, " << commitNote(m.at("source_tree"))
            << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json).\n";
     });

@@ -27,7 +27,8 @@ void writeManifest(const Experiment& experiment, const Plan& plan, const std::ve
                    const std::filesystem::path& toolDir, FileHasher& hasher);
 
 // Markdown for results/README.md from every <resultsRoot>/*/manifest.json, in name order; image
-// and table links are relative to resultsRoot.
+// and table links are relative to resultsRoot. Each agreement text has its {{table:...}} numbers filled
+// from its experiment's CSV tables (caption_numbers.h); one that does not resolve is a vri::Error.
 std::string galleryMarkdown(const std::filesystem::path& resultsRoot);
 
 }  // namespace vri

@@ -1,0 +1,68 @@
+// Captions whose numbers are read from the experiment's tables.
+#include "vri/experiment/caption_numbers.h"
+
+#include <algorithm>
+#include <map>
+#include <vector>
+
+#include "vri/util/csv.h"
+#include "vri/util/error.h"
+#include "vri/experiment/experiment_spec.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> splitParts(const std::string& reference) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t colon; (colon = reference.find(':', start)) != std::string::npos; start = colon + 1)
+        parts.push_back(reference.substr(start, colon - start));
+    parts.push_back(reference.substr(start));
+    return parts;
+}
+
+}  // namespace
+
+std::string fillCaptionNumbers(const std::string& text, const fs::path& folder) {
+    std::map<std::string, CsvFile> tables;  // a table read once however often it is cited
+    std::string out;
+    std::size_t at = 0;
+    for (std::size_t open; (open = text.find("{{", at)) != std::string::npos;) {
+        out.append(text, at, open - at);
+        const std::size_t close = text.find("}}", open + 2);
+        if (close == std::string::npos) throw Error("caption: '" + text.substr(open, 40) + "': no closing }}");
+        const std::string reference = text.substr(open + 2, close - open - 2);
+        const std::string cited = "caption: {{" + reference + "}}";
+        const std::vector<std::string> parts = splitParts(reference);
+        if (parts.size() != 4 || parts[0] != "table" ||
+            std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
+            throw Error(cited + ": expected {{table:NAME:ROW:COLUMN}}");
+        if (!isSafeName(parts[1])) throw Error(cited + ": '" + parts[1] + "' is not a table name");
+        auto table = tables.find(parts[1]);
+        const std::string file = (folder / (parts[1] + ".csv")).string();
+        if (table == tables.end()) try {
+                table = tables.emplace(parts[1], readCsv(file)).first;
+            } catch (const Error& e) {
+                throw Error(cited + ": " + e.what());
+            }
+        const CsvFile& csv = table->second;
+        const auto column = std::find(csv.header.begin(), csv.header.end(), parts[3]);
+        if (column == csv.header.end() || column == csv.header.begin())
+            throw Error(cited + ": " + file + " has no column '" + parts[3] + "'");
+        const auto row = std::find_if(csv.rows.begin(), csv.rows.end(),
+                                      [&](const std::vector<std::string>& r) { return !r.empty() && r[0] == parts[2]; });
+        if (row == csv.rows.end()) throw Error(cited + ": " + file + " has no row '" + parts[2] + "'");
+        const std::size_t index = static_cast<std::size_t>(column - csv.header.begin());
+        if (index >= row->size() || (*row)[index].empty())
+            throw Error(cited + ": " + file + " has no value there");
+        out += (*row)[index];
+        at = close + 2;
+    }
+    out.append(text, at);
+    return out;
+}
+
+}  // namespace vri

@@ -1,0 +1,25 @@
+// Caption numbers filled from an experiment's CSV tables: each reference becomes its cell as printed,
+// and a reference that names no table, row, column or value fails instead of leaving a stale number.
+#include <doctest/doctest.h>
+
+#include <fstream>
+
+#include "temp_dir.h"
+#include "vri/experiment/caption_numbers.h"
+#include "vri/util/error.h"
+
+using namespace vri;
+
+TEST_CASE("caption numbers are read from the experiment's tables") {
+    const test::TempDir dir("caption");
+    std::ofstream(dir / "time.csv") << "Method,bonsai,\"teapot, 8 bit\"\nRiemann (h = 0.1),2.86,1.95\ncoupled-eps0.01,1.96,\n";
+    CHECK(fillCaptionNumbers("no numbers", dir.path) == "no numbers");
+    CHECK(fillCaptionNumbers("{{table:time:coupled-eps0.01:bonsai}} s against {{table:time:Riemann (h = 0.1):bonsai}} s "
+                             "({{table:time:Riemann (h = 0.1):teapot, 8 bit}})",
+                             dir.path) == "1.96 s against 2.86 s (1.95)");
+    for (const char* bad : {"{{table:time:coupled-eps0.01:bonsai", "{{json:time:a:b}}", "{{table:time:bonsai}}",
+                            "{{table:none:coupled-eps0.01:bonsai}}", "{{table:time:riemann:bonsai}}",
+                            "{{table:time:coupled-eps0.01:engine}}", "{{table:time:coupled-eps0.01:Method}}",
+                            "{{table:time:coupled-eps0.01:teapot, 8 bit}}", "{{table:../time:a:b}}", "{{table::a:b}}"})
+        CHECK_THROWS_AS(fillCaptionNumbers(std::string("x ") + bad, dir.path), Error);
+}
