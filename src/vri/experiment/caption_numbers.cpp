@@ -5,8 +5,11 @@
 #include <map>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "vri/util/csv.h"
 #include "vri/util/error.h"
+#include "vri/util/json_file.h"
 #include "vri/experiment/experiment_spec.h"
 
 namespace vri {
@@ -15,13 +18,31 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> splitParts(const std::string& reference) {
+std::vector<std::string> splitAt(const std::string& text, char separator) {
     std::vector<std::string> parts;
     std::size_t start = 0;
-    for (std::size_t colon; (colon = reference.find(':', start)) != std::string::npos; start = colon + 1)
-        parts.push_back(reference.substr(start, colon - start));
-    parts.push_back(reference.substr(start));
+    for (std::size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1)
+        parts.push_back(text.substr(start, at - start));
+    parts.push_back(text.substr(start));
     return parts;
+}
+
+// The number at a dotted path of a JSON file (a part that is a number indexes an array), as the
+// file spells it: an integer as itself, any other number as nlohmann prints it (the shortest text
+// that reads back to the same double).
+std::string jsonNumberText(const fs::path& file, const std::string& path, const std::string& cited) {
+    return readingJsonOf(file, [&] {
+        const nlohmann::json root = readJsonFile(file);
+        const nlohmann::json* node = &root;
+        for (const std::string& part : splitAt(path, '.')) {
+            const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+            if (node->is_array() && index && std::stoull(part) < node->size()) node = &(*node)[std::stoull(part)];
+            else if (node->is_object() && node->contains(part)) node = &(*node)[part];
+            else throw Error(cited + ": " + file.string() + " has no '" + path + "'");
+        }
+        if (!node->is_number()) throw Error(cited + ": " + file.string() + ": '" + path + "' is not a number");
+        return node->dump();
+    });
 }
 
 }  // namespace
@@ -36,11 +57,17 @@ std::string fillCaptionNumbers(const std::string& text, const fs::path& folder) 
         if (close == std::string::npos) throw Error("caption: '" + text.substr(open, 40) + "': no closing }}");
         const std::string reference = text.substr(open + 2, close - open - 2);
         const std::string cited = "caption: {{" + reference + "}}";
-        const std::vector<std::string> parts = splitParts(reference);
-        if (parts.size() != 4 || parts[0] != "table" ||
+        const std::vector<std::string> parts = splitAt(reference, ':');
+        const bool isJson = parts.size() == 3 && parts[0] == "json";
+        if (!(isJson || (parts.size() == 4 && parts[0] == "table")) ||
             std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
-            throw Error(cited + ": expected {{table:NAME:ROW:COLUMN}}");
-        if (!isSafeName(parts[1])) throw Error(cited + ": '" + parts[1] + "' is not a table name");
+            throw Error(cited + ": expected {{table:NAME:ROW:COLUMN}} or {{json:NAME:PATH}}");
+        if (!isSafeName(parts[1])) throw Error(cited + ": '" + parts[1] + "' is not a file name");
+        if (isJson) {
+            out += jsonNumberText(folder / (parts[1] + ".json"), parts[2], cited);
+            at = close + 2;
+            continue;
+        }
         auto table = tables.find(parts[1]);
         const std::string file = (folder / (parts[1] + ".csv")).string();
         if (table == tables.end()) try {
