@@ -2,6 +2,7 @@
 #include "vri/experiment/caption_numbers.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <vector>
 
@@ -27,9 +28,8 @@ std::vector<std::string> splitAt(const std::string& text, char separator) {
     return parts;
 }
 
-// The number at a dotted path of a JSON file (a part that is a number indexes an array), as the
-// file spells it: an integer as itself, any other number as nlohmann prints it (the shortest text
-// that reads back to the same double).
+// The number at a dotted path of a JSON file (a part that is a number indexes an array): an integer
+// as itself, any other number to 4 significant digits, as the tables print errors and times.
 std::string jsonNumberText(const fs::path& file, const std::string& path, const std::string& cited) {
     return readingJsonOf(file, [&] {
         const nlohmann::json root = readJsonFile(file);
@@ -41,7 +41,10 @@ std::string jsonNumberText(const fs::path& file, const std::string& path, const 
             else throw Error(cited + ": " + file.string() + " has no '" + path + "'");
         }
         if (!node->is_number()) throw Error(cited + ": " + file.string() + ": '" + path + "' is not a number");
-        return node->dump();
+        if (node->is_number_integer()) return node->dump();
+        char text[32];
+        std::snprintf(text, sizeof text, "%.4g", node->get<double>());
+        return std::string(text);
     });
 }
 

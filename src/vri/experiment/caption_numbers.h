@@ -2,7 +2,8 @@
 // Numbers in a caption that come from the data: the gallery writes an experiment's agreement text
 // with every reference `{{table:NAME:ROW:COLUMN}}` replaced by that cell of NAME.csv in the
 // experiment's results folder, as vri-tabulate printed it, and every `{{json:NAME:PATH}}` by the
-// number at the dotted PATH of NAME.json there (a run's stats, a comparison). A caption so written
+// number at the dotted PATH of NAME.json there (a run's stats, a comparison; an integer whole, any
+// other number to 4 significant digits). A caption so written
 // cannot drift from its data when the experiment is run again.
 #include <filesystem>
 #include <string>
