@@ -36,7 +36,9 @@ bad_done
 "$bin/vri-run" --allow-dirty experiments/tiny.yaml 2> /dev/null
 grep -q '"modified_files": true' results/tiny/manifest.json || fail "a dirty run's manifest does not say so"
 git_q commit -q -am "the change"
-"$bin/vri-run" --gallery results experiments/tiny.yaml 2> /dev/null
+git_q add results && git_q commit -q -m results
+# Results that change do not make the tree dirty: they are what vri-run writes.
+"$bin/vri-run" --force --gallery results experiments/tiny.yaml 2> /dev/null
 head=$(git rev-parse HEAD)
 grep -q '"modified_files": false' results/tiny/manifest.json || fail "a clean run's manifest says modified"
 grep -q "commit \`${head:0:12}\`, manifest" results/README.md || fail "the gallery does not name commit ${head:0:12}"

@@ -85,7 +85,11 @@ std::optional<WorkTree> workTreeOf(const fs::path& file) {
     const std::string commit = firstLineOfGit(dir, {"rev-parse", "HEAD"});
     const std::string top = firstLineOfGit(dir, {"rev-parse", "--show-toplevel"});
     if (commit.empty() || top.empty()) return std::nullopt;
-    const bool modified = !firstLineOfGit(dir, {"status", "--porcelain", "--untracked-files=no"}).empty();
+    // results/ itself is left out: it is what vri-run writes, and one experiment's new results must not
+    // make the next one's tree dirty.
+    const bool modified =
+        !firstLineOfGit(dir, {"status", "--porcelain", "--untracked-files=no", "--", ":/", ":(top,exclude)results"})
+             .empty();
     return WorkTree{top, commit, modified};
 }
 

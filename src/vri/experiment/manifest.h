@@ -14,7 +14,8 @@
 namespace vri {
 
 // The git work tree that holds a file: its top folder, its HEAD commit, and whether tracked files
-// differ from that commit (untracked ones do not count). nullopt outside a work tree or without git.
+// outside results/ differ from that commit (untracked ones and results/ do not count). nullopt
+// outside a work tree or without git.
 struct WorkTree {
     std::filesystem::path top;
     std::string commit;
