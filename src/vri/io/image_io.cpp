@@ -85,11 +85,17 @@ void writeWithOiio(const fs::path& path, const std::string& format, const OIIO::
     writeTextFile(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
+// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1]: every viewer reads an
+// 8-bit PNG as sRGB, so linear bytes would show the data darker than they are.
+double srgbEncoded(double linear) {
+    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
 std::uint8_t previewByte(float composited, const PngOptions& options) {
     float v = std::isnan(composited) ? 0.0f : composited * options.exposure;
     if (options.invert) v = 1.0f - v;
     v = std::clamp(v, 0.0f, 1.0f);
-    return static_cast<std::uint8_t>(std::floor(v * 255.0f + 0.5f));
+    return static_cast<std::uint8_t>(std::floor(srgbEncoded(v) * 255.0 + 0.5));
 }
 
 std::vector<std::uint8_t> previewRgb8(const Image& image, const PngOptions& options) {
@@ -160,6 +166,7 @@ void writePng(const fs::path& path, const Image& image, const PngOptions& option
     requireConsistent(image, path);
     const std::vector<std::uint8_t> rgb = previewRgb8(image, options);
     OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");  // the PNG says so (its sRGB chunk)
     writeWithOiio(path, "png", spec, OIIO::TypeDesc::UINT8, rgb.data());
 }
 
