@@ -427,8 +427,8 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                                                  [](auto& kv) { return kv.first == "method"; });
                 if (method->second == kExactMethod) {
                     run.tool = "vri-reference";
-                    for (const auto& [key, value] : run.parameters)
-                        if (key != "method" && key != "repeat")
+                    for (const auto& [key, value] : run.parameters)  // eps: vri-reference's --tolerance
+                        if (key != "method" && key != "repeat" && key != "warm_up" && key != "eps")
                             throw Error(at(entry) + ": " + key + " does not apply to method exact (vri-reference)");
                 }
                 if (!isSafeName(run.id))  // a swept value is part of the id
@@ -530,7 +530,7 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
 void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "tables")) {
         yaml::requireKeys(entry, source_, {"title", "layout", "comparisons", "runs", "rows", "value", "column",
-                                           "group_by", "threshold", "precision"});
+                                           "group_by", "threshold", "baseline", "channels", "precision"});
         TableSpec table;
         table.name = table.title = name;
         if (entry["value"]) table.value = text(entry["value"], "value");
@@ -576,10 +576,27 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
         for (const char* key : {"value", "column"})
             if (entry[key] && table.layout != "matrix")
                 throw Error(at(entry[key]) + ": " + key + " applies to a table of values (runs)");
-        if (const YAML::Node t = entry["threshold"]) {
-            if (table.layout != "tradeoff") throw Error(at(t) + ": threshold applies to layout tradeoff");
-            table.threshold = number(t, "threshold");
-            nonNegativeNumber(table.threshold, at(t) + ": threshold");
+        for (const char* key : {"threshold", "baseline", "channels"})
+            if (entry[key] && table.layout != "tradeoff") throw Error(at(entry[key]) + ": " + key + " applies to layout tradeoff");
+        if (const YAML::Node t = entry["threshold"]) {  // a value or a list of them
+            table.thresholds.clear();
+            for (const YAML::Node& v : t.IsSequence() ? std::vector<YAML::Node>(t.begin(), t.end()) : std::vector{t}) {
+                table.thresholds.push_back(number(v, "threshold"));
+                nonNegativeNumber(table.thresholds.back(), at(v) + ": threshold");
+            }
+            if (table.thresholds.empty()) throw Error(at(t) + ": threshold: an empty list");
+        }
+        if (const YAML::Node b = entry["baseline"]) {
+            table.baseline = text(b, "baseline");
+            if (std::none_of(experiment.comparisons.begin(), experiment.comparisons.end(), [&](auto& c) {
+                    return c.run == table.baseline && std::ranges::count(table.comparisons, c.group) > 0;
+                }))
+                throw Error(at(b) + ": baseline '" + table.baseline + "' is not a run of the table's comparisons");
+        }
+        if (const YAML::Node c = entry["channels"]) {
+            table.channels = text(c, "channels");
+            if (table.channels != "all" && table.channels != "worst")
+                throw Error(at(c) + ": channels must be all or worst, got '" + table.channels + "'");
         }
         if (const YAML::Node r = entry["rows"]) {
             if (table.layout != "thresholds") throw Error(at(r) + ": rows applies to layout thresholds");
@@ -608,10 +625,11 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
                                                       [&](auto& x) { return x.group == group; })->thresholds;
                 std::string counted;
                 for (const std::string& t : thresholds) counted += (counted.empty() ? "" : ", ") + t;
-                if (std::none_of(thresholds.begin(), thresholds.end(),
-                                 [&](const std::string& t) { return std::stod(t) == std::stod(table.threshold); }))
-                    throw Error(at(entry["threshold"] ? entry["threshold"] : entry) + ": threshold " + table.threshold +
-                                " is not one that comparison '" + group + "' counts (" + counted + ")");
+                for (const std::string& wanted : table.thresholds)
+                    if (std::none_of(thresholds.begin(), thresholds.end(),
+                                     [&](const std::string& t) { return std::stod(t) == std::stod(wanted); }))
+                        throw Error(at(entry["threshold"] ? entry["threshold"] : entry) + ": threshold " + wanted +
+                                    " is not one that comparison '" + group + "' counts (" + counted + ")");
             }
         experiment.tables.push_back(std::move(table));
     }
