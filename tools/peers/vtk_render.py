@@ -138,7 +138,8 @@ def arguments(argv):
         raise UsageError("--fov %g: expected degrees in (0, 180)" % a.fov)
     if not 0 < a.step < float("inf"):
         raise UsageError("--step %g: expected a number > 0" % a.step)
-    for name, value, lowest in (("--warm-up", a.warm_up, 0), ("--repeat", a.repeat, 1), ("--threads", a.threads, 1)):
+    for name, value, lowest in (("--warm-up", a.warm_up, 0), ("--repeat", a.repeat, 1),
+                                ("--threads", a.threads, 1)):
         if value is not None and not lowest <= value <= 1000:
             raise UsageError("%s %d: expected a whole number in %d..1000" % (name, value, lowest))
     if a.image == "raycast" and a.method != "vtk-fixed-point":
@@ -158,12 +159,15 @@ def arguments(argv):
 # --- Outputs: written beside themselves and renamed into place once complete (vri's atomic_file.h rule). ---
 
 def check_output_path(path):
-    """Only a regular file (or a link to one) is ever replaced; its folder must exist."""
+    """Only a regular file (or a link to one) is ever replaced; its folder must exist. Checked before any work."""
     target = os.path.realpath(path)
+    if os.path.isdir(target):
+        raise InputError("%s: cannot write: it is a directory; expected a regular file" % printable(path))
     if os.path.lexists(target) and not os.path.isfile(target):
-        raise UsageError("%s: exists and is not a regular file (only regular files are replaced)" % printable(path))
+        raise InputError("%s: cannot write: it is not a regular file (a device, FIFO or socket); %s writes regular "
+                         "files only" % (printable(path), TOOL))
     if not os.path.isdir(os.path.dirname(target) or "."):
-        raise UsageError("%s: no such folder" % printable(path))
+        raise InputError("%s: cannot write: no such folder" % printable(path))
 
 
 def write_atomically(path, write):
@@ -195,7 +199,8 @@ def write_image(path, rgba, eight_bit):
     def write(temporary):
         height, width, _ = rgba.shape
         # The preview is colour over black, as vri-render's with its default background.
-        spec = oiio.ImageSpec(width, height, 3, oiio.UINT8) if eight_bit else oiio.ImageSpec(width, height, 4, oiio.FLOAT)
+        spec = oiio.ImageSpec(width, height, 3, oiio.UINT8) if eight_bit else \
+            oiio.ImageSpec(width, height, 4, oiio.FLOAT)
         out = oiio.ImageOutput.create(path)
         if out is None or not out.open(temporary, spec):
             raise InputError("%s: cannot write: %s" % (printable(path), oiio.geterror()))
@@ -257,7 +262,8 @@ def read_volume(a, folder):
         raise InputError("the node-centred convention needs at least 2 voxels along every axis")
     data = np.fromfile(voxels, dtype=dtype)
     if data.size != nx * ny * nz:
-        raise InputError("%s: vri-convert wrote %d voxels, expected %d" % (printable(a.volume), data.size, nx * ny * nz))
+        raise InputError("%s: vri-convert wrote %d voxels, expected %d"
+                         % (printable(a.volume), data.size, nx * ny * nz))
     return data.reshape(nz, ny, nx), info
 
 
