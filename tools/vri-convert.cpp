@@ -11,10 +11,10 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "vri/cli.h"
-#include "vri/raw_input_options.h"
-#include "vri/volume_io.h"
-#include "vri/volume_stats.h"
+#include "common/cli.h"
+#include "common/raw_input_options.h"
+#include "vri/core/volume_stats.h"
+#include "vri/io/volume_io.h"
 
 namespace fs = std::filesystem;
 

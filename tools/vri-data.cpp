@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "vri/cli.h"
-#include "vri/datasets.h"
+#include "common/cli.h"
+#include "vri/experiment/datasets.h"
 
 namespace {
 

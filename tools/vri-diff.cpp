@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "vri/atomic_file.h"
-#include "vri/cli.h"
-#include "vri/image_compare.h"
-#include "vri/image_compare_json.h"
-#include "vri/image_io.h"
-#include "vri/provenance.h"
+#include "common/cli.h"
+#include "common/image_compare_json.h"
+#include "vri/core/image_compare.h"
+#include "vri/io/image_io.h"
+#include "vri/io/provenance.h"
+#include "vri/util/atomic_file.h"
 
 namespace {
 

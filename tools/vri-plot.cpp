@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "vri/cli.h"
-#include "vri/plot.h"
+#include "common/cli.h"
+#include "vri/report/plot.h"
 
 namespace {
 

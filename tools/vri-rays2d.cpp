@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "vri/atomic_file.h"
-#include "vri/cli.h"
-#include "vri/rays2d_report.h"
+#include "common/cli.h"
+#include "vri/report/rays2d_report.h"
+#include "vri/util/atomic_file.h"
 
 namespace {
 

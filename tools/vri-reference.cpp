@@ -8,18 +8,18 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
-#include "vri/atomic_file.h"
-#include "vri/cli.h"
-#include "vri/frame_timing.h"
-#include "vri/exact_reference.h"
-#include "vri/exact_reference_json.h"
-#include "vri/image_io.h"
-#include "vri/nonfinite_option.h"
-#include "vri/preview_options.h"
-#include "vri/provenance.h"
-#include "vri/render.h"
-#include "vri/render_json.h"
-#include "vri/scene_options.h"
+#include "common/cli.h"
+#include "common/exact_reference_json.h"
+#include "common/frame_timing.h"
+#include "common/nonfinite_option.h"
+#include "common/preview_options.h"
+#include "common/render_json.h"
+#include "common/scene_options.h"
+#include "vri/core/cpu_renderer.h"
+#include "vri/core/exact_reference.h"
+#include "vri/io/image_io.h"
+#include "vri/io/provenance.h"
+#include "vri/util/atomic_file.h"
 
 namespace {
 

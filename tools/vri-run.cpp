@@ -8,16 +8,16 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "vri/atomic_file.h"
-#include "vri/cli.h"
-#include "vri/experiment.h"
-#include "vri/experiment_plan.h"
-#include "vri/experiment_reproduce.h"
-#include "vri/experiment_run.h"
-#include "vri/folder_lock.h"
-#include "vri/json_file.h"
-#include "vri/manifest.h"
-#include "vri/stale_temp_files.h"
+#include "common/cli.h"
+#include "vri/experiment/experiment_plan.h"
+#include "vri/experiment/experiment_reproduce.h"
+#include "vri/experiment/experiment_run.h"
+#include "vri/experiment/experiment_spec.h"
+#include "vri/experiment/manifest.h"
+#include "vri/util/atomic_file.h"
+#include "vri/util/folder_lock.h"
+#include "vri/util/json_file.h"
+#include "vri/util/stale_temp_files.h"
 
 namespace fs = std::filesystem;
 

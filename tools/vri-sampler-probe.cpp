@@ -7,14 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "vri/atomic_file.h"
-#include "vri/cli.h"
-#include "vri/csv.h"
-#include "vri/error.h"
-#include "vri/format.h"
-#include "vri/table.h"
-#include "vri/voxel_type.h"
-#include "vri/vulkan_renderer.h"
+#include "common/cli.h"
+#include "vri/core/voxel_type.h"
+#include "vri/report/table.h"
+#include "vri/util/atomic_file.h"
+#include "vri/util/csv.h"
+#include "vri/util/error.h"
+#include "vri/util/format.h"
+#include "vri/vulkan/vulkan_renderer.h"
 
 namespace {
 

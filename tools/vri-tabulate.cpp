@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "vri/atomic_file.h"
-#include "vri/cli.h"
-#include "vri/table.h"
+#include "common/cli.h"
+#include "vri/report/table.h"
+#include "vri/util/atomic_file.h"
 
 namespace {
 

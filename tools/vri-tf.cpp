@@ -5,11 +5,12 @@
 #include <string>
 #include <vector>
 
-#include "vri/atomic_file.h"
-#include "vri/cli.h"
-#include "vri/csv.h"
-#include "vri/format.h"
-#include "vri/transfer_function.h"
+#include "common/cli.h"
+#include "vri/core/transfer_function.h"
+#include "vri/io/transfer_function_yaml.h"
+#include "vri/util/atomic_file.h"
+#include "vri/util/csv.h"
+#include "vri/util/format.h"
 
 namespace {
 

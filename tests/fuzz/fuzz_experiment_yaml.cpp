@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "vri/error.h"
-#include "vri/experiment.h"
+#include "vri/experiment/experiment_spec.h"
+#include "vri/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

@@ -6,8 +6,8 @@
 #include <string>
 #include <system_error>
 
-#include "vri/error.h"
-#include "vri/volume_io.h"
+#include "vri/io/volume_io.h"
+#include "vri/util/error.h"
 
 namespace vri::fuzz {
 

@@ -16,8 +16,8 @@
 #include <string_view>
 #include <vector>
 
-#include "vdb_grid_layout.h"
-#include "vri/error.h"
+#include "vri/io/vdb_grid_layout.h"
+#include "vri/util/error.h"
 
 namespace {
 

@@ -10,10 +10,10 @@
 #include <random>
 #include <vector>
 
-#include "vri/adaptive_simpson.h"
-#include "vri/error.h"
-#include "vri/exact_reference.h"
-#include "vri/render.h"
+#include "vri/core/adaptive_simpson.h"
+#include "vri/core/cpu_renderer.h"
+#include "vri/core/exact_reference.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "vri/box.h"
+#include "vri/core/box.h"
 
 using namespace vri;
 using V = glm::dvec3;

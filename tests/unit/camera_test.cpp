@@ -3,8 +3,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "vri/camera.h"
-#include "vri/error.h"
+#include "vri/core/camera.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 

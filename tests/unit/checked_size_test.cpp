@@ -7,11 +7,11 @@
 #include <optional>
 #include <string>
 
-#include "vri/camera.h"
-#include "vri/checked_size.h"
-#include "vri/error.h"
-#include "vri/image.h"
-#include "vri/volume.h"
+#include "vri/core/camera.h"
+#include "vri/core/image.h"
+#include "vri/core/volume.h"
+#include "vri/util/checked_size.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 

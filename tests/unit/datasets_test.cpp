@@ -4,9 +4,9 @@
 #include <fstream>
 
 #include "temp_dir.h"
-#include "vri/datasets.h"
-#include "vri/error.h"
-#include "vri/hash.h"
+#include "vri/experiment/datasets.h"
+#include "vri/util/error.h"
+#include "vri/util/sha512.h"
 
 using namespace vri;
 

@@ -11,9 +11,9 @@
 #include <glm/geometric.hpp>
 #include <tbb/global_control.h>
 
-#include "vri/cubic.h"
-#include "vri/error.h"
-#include "vri/exact_reference.h"
+#include "vri/core/cubic.h"
+#include "vri/core/exact_reference.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 using V = glm::dvec3;

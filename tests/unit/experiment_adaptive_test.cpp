@@ -7,9 +7,9 @@
 #include <string>
 
 #include "temp_dir.h"
-#include "vri/error.h"
-#include "vri/experiment.h"
-#include "vri/experiment_plan.h"
+#include "vri/experiment/experiment_plan.h"
+#include "vri/experiment/experiment_spec.h"
+#include "vri/util/error.h"
 
 namespace {
 

@@ -7,12 +7,12 @@
 #include <fstream>
 #include <string>
 
-#include "vri/error.h"
-#include "vri/experiment.h"
-#include "vri/experiment_plan.h"
-#include "vri/experiment_run.h"
-#include "vri/manifest.h"
-#include "vri/step_cache.h"
+#include "vri/experiment/experiment_plan.h"
+#include "vri/experiment/experiment_run.h"
+#include "vri/experiment/experiment_spec.h"
+#include "vri/experiment/manifest.h"
+#include "vri/experiment/step_cache.h"
+#include "vri/util/error.h"
 
 namespace fs = std::filesystem;
 

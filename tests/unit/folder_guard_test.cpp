@@ -9,10 +9,10 @@
 #include <string>
 
 #include "temp_dir.h"
-#include "vri/error.h"
-#include "vri/folder_lock.h"
-#include "vri/process.h"
-#include "vri/stale_temp_files.h"
+#include "vri/util/error.h"
+#include "vri/util/folder_lock.h"
+#include "vri/util/process.h"
+#include "vri/util/stale_temp_files.h"
 
 namespace fs = std::filesystem;
 

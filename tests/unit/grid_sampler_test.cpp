@@ -3,8 +3,8 @@
 
 #include <random>
 
-#include "vri/analytic_field.h"
-#include "vri/grid_sampler.h"
+#include "vri/core/analytic_field.h"
+#include "vri/core/grid_sampler.h"
 
 using namespace vri;
 using V = glm::dvec3;

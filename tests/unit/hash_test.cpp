@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "temp_dir.h"
-#include "vri/error.h"
-#include "vri/hash.h"
+#include "vri/util/error.h"
+#include "vri/util/sha512.h"
 
 namespace {
 

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 
-#include "vri/error.h"
-#include "vri/image_compare.h"
-#include "vri/image_compare_json.h"
+#include "common/image_compare_json.h"
+#include "vri/core/image_compare.h"
+#include "vri/util/error.h"
 
 namespace {
 

@@ -10,9 +10,9 @@
 
 #include "file_bytes.h"
 #include "temp_dir.h"
-#include "vri/atomic_file.h"
-#include "vri/error.h"
-#include "vri/image_io.h"
+#include "vri/io/image_io.h"
+#include "vri/util/atomic_file.h"
+#include "vri/util/error.h"
 
 namespace {
 

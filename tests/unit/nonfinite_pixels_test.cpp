@@ -2,9 +2,9 @@
 
 #include <limits>
 
-#include "vri/error.h"
-#include "vri/nonfinite_pixels.h"
-#include "vri/render.h"
+#include "vri/core/cpu_renderer.h"
+#include "vri/core/nonfinite_pixels.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 

@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "temp_dir.h"
-#include "vri/cli.h"
+#include "common/cli.h"
 
 using namespace vri;
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "temp_dir.h"
-#include "vri/error.h"
-#include "vri/plot.h"
-#include "vri/process.h"
+#include "vri/report/plot.h"
+#include "vri/util/error.h"
+#include "vri/util/process.h"
 
 using namespace vri;
 

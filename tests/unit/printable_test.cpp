@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "vri/printable.h"
+#include "vri/util/printable.h"
 
 using vri::printable;
 

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "temp_dir.h"
-#include "vri/error.h"
-#include "vri/process.h"
+#include "vri/util/error.h"
+#include "vri/util/process.h"
 
 using namespace vri;
 

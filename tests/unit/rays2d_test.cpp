@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "vri/error.h"
-#include "vri/rays2d.h"
-#include "vri/rays2d_report.h"
+#include "vri/core/rays2d.h"
+#include "vri/report/rays2d_report.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 

@@ -13,8 +13,8 @@
 #include <hwy/targets.h>
 #include <tbb/global_control.h>
 
-#include "vri/error.h"
-#include "vri/render.h"
+#include "vri/core/cpu_renderer.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 

@@ -5,8 +5,9 @@
 #include <limits>
 
 #include "temp_dir.h"
-#include "vri/error.h"
-#include "vri/table.h"
+#include "vri/report/table.h"
+#include "vri/util/error.h"
+#include "vri/util/statistics.h"
 
 using namespace vri;
 

@@ -3,8 +3,9 @@
 
 #include <cstdint>
 
-#include "vri/error.h"
-#include "vri/transfer_function.h"
+#include "vri/core/transfer_function.h"
+#include "vri/io/transfer_function_yaml.h"
+#include "vri/util/error.h"
 
 using namespace vri;
 

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "vri/cli.h"
-#include "vri/json_file.h"
+#include "common/cli.h"
+#include "vri/util/json_file.h"
 
 TEST_CASE("unexpected errors: bad_alloc, file-system and JSON failures in words") {
     CHECK(vri::describeUnexpected(std::bad_alloc()).starts_with("out of memory:"));

@@ -3,8 +3,8 @@
 #include <limits>
 #include <string>
 
-#include "vdb_grid_layout.h"
-#include "vri/error.h"
+#include "vri/io/vdb_grid_layout.h"
+#include "vri/util/error.h"
 
 using vri::detail::VdbGridFacts;
 using vri::detail::VdbValueType;

@@ -13,9 +13,9 @@
 #include <unistd.h>
 
 #include "file_bytes.h"
-#include "vri/error.h"
-#include "vri/format.h"
-#include "vri/volume_io.h"
+#include "vri/io/volume_io.h"
+#include "vri/util/error.h"
+#include "vri/util/format.h"
 
 namespace fs = std::filesystem;
 using vri::test::readBytes;

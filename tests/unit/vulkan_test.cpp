@@ -17,10 +17,10 @@
 #include <random>
 #include <utility>
 
-#include "vri/error.h"
-#include "vri/image_compare.h"
-#include "vri/render.h"
-#include "vri/vulkan_renderer.h"
+#include "vri/core/cpu_renderer.h"
+#include "vri/core/image_compare.h"
+#include "vri/util/error.h"
+#include "vri/vulkan/vulkan_renderer.h"
 
 using namespace vri;
 

@@ -1,0 +1,57 @@
+#pragma once
+// The emission-absorption integral along one ray whose scalar is a cubic on each piece, solved to
+// near double precision with a bound on its error (see exact_reference.h for the method).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "vri/core/cubic.h"
+#include "vri/core/transfer_function.h"
+
+namespace vri {
+
+class ExactRay {
+public:
+    // Allocates all the scratch space a ray needs: the per-ray calls allocate nothing. `tolerance`
+    // is the error allowed per transfer-function sub-piece (in the pixel's units); it also chooses
+    // the quadrature rule and where a ray may end early (see done()).
+    ExactRay(const TransferFunction& tf, double tolerance);
+
+    void begin();  // starts a new ray
+    // The next piece, front to back: `length` world units over which s = cubic(sigma), sigma in
+    // [0, 1] from the piece's start to its end. `sScale` bounds the magnitudes whose rounding went
+    // into the cubic's coefficients (see the error analysis in exact_ray.cpp).
+    void addPiece(double length, const Cubic& s, double sScale);
+    // True once what the rest of the ray, `remainingLength` world units, could still add is at most
+    // the tolerance in every channel: the transparency T times the largest colour (g = C tau adds at
+    // most C_max T; g = C at most C_max T times the length), and T to alpha. finish() adds that to the
+    // bound. Also true once T < 2^-60, where a cut changes alpha by nothing in double.
+    bool done(double remainingLength) const;
+    // Ends the ray, `remainingLength` world units of which were left out after done(): RGBA and
+    // a bound on each channel's error.
+    void finish(double remainingLength, double value[4], double bound[4]) const;
+
+    std::uint64_t subPieces = 0, quadratureIntervals = 0, quadratureNodes = 0;  // counted over all rays
+
+private:
+    static constexpr double kOpaqueDepth = 41.588830833596716;  // 60 ln 2
+
+    void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale);
+
+    const TransferFunction& tf_;
+    EmissionModel emission_;
+    double tolerance_;
+    bool lowOrder_;                // Gauss-Kronrod 3-7 instead of 7-15 (see integrateSubPiece)
+    double terminationDepth_;      // g = C tau: done() once the optical depth reaches this
+    double largestColour_;         // max(1, C_max over channels): what bounds a tail per unit T
+    std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
+    std::vector<double> levels_;   // the distinct s of the TF points: where a piece is split
+    std::vector<double> splits_;   // scratch: a piece's split points in sigma
+    std::array<double, 3> maxColour_{};
+
+    // The ray so far.
+    double opticalDepth_ = 0.0, depthError_ = 0.0;
+    std::array<double, 3> colour_{}, quadratureError_{}, roundingError_{};
+};
+
+}  // namespace vri

@@ -1,0 +1,66 @@
+#pragma once
+// The accurate reference: the volume rendering integral along each pixel's ray solved to near double
+// precision, with a bound on its own error. The ray (the same as render()'s) is split at every plane
+// where the trilinear interpolant changes form (integer voxel-index planes, including the clamp
+// planes at index 0 and n - 1), so that on each piece the scalar is a cubic in t; each piece is split
+// again where the cubic crosses a transfer-function breakpoint, so that extinction and colour are
+// cubics too. The optical depth is then an exact quartic, and only the outer integral is computed
+// numerically, by adaptive Gauss-Kronrod (7-15) quadrature. Paper B's own reference, a Riemann sum
+// with a 0.01-voxel step, is render() with those options.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "vri/core/camera.h"
+#include "vri/core/cpu_renderer.h"
+#include "vri/core/image.h"
+
+namespace vri {
+
+struct ExactReferenceOptions {
+    // Each transfer-function sub-piece is subdivided until the quadrature error estimate for the
+    // pixel (|K - G|, weighted by the transparency in front of it) is below this; from 1e-8 up the
+    // 3-7 Gauss-Kronrod rule replaces the 7-15 one. A ray also ends once the transparency times the
+    // largest colour (and the transparency itself, for alpha) is below it; that tail is in the bound.
+    double tolerance = 1e-13;
+    // Jump over the bricks of the occupancy grid on which the transfer function is zero (the image
+    // and the bounds do not change by a bit; off only to test that).
+    bool skipEmptySpace = true;
+    int tileSize = 16;
+    bool progress = false;  // report progress on stderr
+};
+
+struct ExactReferenceStats {
+    std::uint64_t rays = 0;               // pixels
+    std::uint64_t raysHit = 0;            // rays whose segment in the box has positive length
+    std::uint64_t pieces = 0;             // cell pieces walked (the scalar is one cubic on each)
+    std::uint64_t piecesVisible = 0;      // of those, the ones not skipped as invisible
+    std::uint64_t subPieces = 0;          // transfer-function sub-pieces integrated
+    std::uint64_t quadratureIntervals = 0;  // intervals integrated (sub-pieces plus subdivisions)
+    std::uint64_t quadratureNodes = 0;    // integrand evaluations of the Gauss-Kronrod rules (7 or 15 each)
+    std::uint64_t raysOpaque = 0;         // rays ended early: what was left could add at most the tolerance
+    double seconds = 0.0;
+    int threads = 0;
+    // Per channel R, G, B, A over all pixels: the largest and the mean error bound.
+    std::array<double, 4> maxBound{}, meanBound{};
+};
+
+// The result in double, pixel-interleaved RGBA with row 0 at the top like render()'s Image, and for
+// every pixel and channel a bound on |value - exact integral along the ray|.
+struct ExactReference {
+    int width = 0, height = 0;
+    std::vector<double> values;  // width * height * 4
+    std::vector<double> bounds;  // width * height * 4
+    ExactReferenceStats stats;
+
+    Image image() const;       // the values as float RGBA (rounding to float dwarfs the bound)
+    Image boundImage() const;  // the bounds as float, channels R, G, B, A
+};
+
+// The same rays as render(scene, camera, ...). Throws vri::Error on a scene without volume or field,
+// a node-centred volume thinner than 2 voxels, a tolerance that is not positive, an extinction whose
+// optical depth across the box overflows double, or any pixel whose value or bound is not finite.
+ExactReference renderExactReference(const Scene& scene, const Camera& camera,
+                                    const ExactReferenceOptions& options = {});
+
+}  // namespace vri

@@ -1,0 +1,71 @@
+#pragma once
+// Empty-space skipping that cannot change a result: bricks of the volume over which the transfer
+// function has neither emission nor extinction. A sample there adds exactly 0 to the colour and
+// multiplies the transparency by exactly exp(0) = 1, so skipping it leaves every bit of the image
+// as it was. The test that a brick is empty is conservative: it looks at the brick's voxels plus a
+// one-voxel margin (more than the trilinear stencil needs) and widens the scalar range slightly, so
+// rounding in sample positions or in a float sampler cannot make it wrong.
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "vri/core/grid_convention.h"
+#include "vri/core/transfer_function.h"
+#include "vri/core/volume.h"
+
+namespace vri {
+
+class OccupancyGrid {
+public:
+    static constexpr int kBrickShift = 3;
+    static constexpr int kBrick = 1 << kBrickShift;  // voxels per brick edge
+
+    OccupancyGrid(const Volume& volume, GridConvention convention, const TransferFunction& tf);
+
+    // An index-space ray x0 + t * dxdt, with what visit() needs precomputed once per ray.
+    struct Ray {
+        Ray(const glm::dvec3& x0, const glm::dvec3& dxdt) : x0(x0), dxdt(dxdt), invD(1.0 / dxdt) {}
+        glm::dvec3 x0, dxdt, invD;
+    };
+
+    // The brick that holds the ray's point at parameter t, whether it is empty, and the parameter
+    // where the ray leaves it. The exit may be off by rounding: the one-voxel margin of the emptiness
+    // test covers samples that sit a rounding error beyond the brick.
+    struct Visit {
+        bool empty;
+        double tExit;
+    };
+    Visit visit(const Ray& ray, double t) const {
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        std::size_t cell = 0;
+        double tExit = inf;
+        for (int a = 2; a >= 0; --a) {
+            const double x = std::clamp(ray.x0[a] + t * ray.dxdt[a], 0.0, maxIndex_[a]);
+            const int m = std::min(static_cast<int>(x) >> kBrickShift, bricks_[a] - 1);
+            cell = cell * static_cast<std::size_t>(bricks_[a]) + static_cast<std::size_t>(m);
+            // The first and last bricks also own the clamped region outside the voxel index range.
+            if (ray.dxdt[a] > 0 && m + 1 < bricks_[a])
+                tExit = std::min(tExit, ((m + 1) * kBrick - ray.x0[a]) * ray.invD[a]);
+            else if (ray.dxdt[a] < 0 && m > 0)
+                tExit = std::min(tExit, (m * kBrick - ray.x0[a]) * ray.invD[a]);
+        }
+        return {empty_[cell] != 0, tExit};
+    }
+
+    glm::ivec3 bricks() const { return bricks_; }
+    glm::dvec3 maxIndex() const { return maxIndex_; }
+    // Per brick, x fastest, 1 when empty: what visit() reads, for the Vulkan backend to upload.
+    const std::vector<std::uint8_t>& emptyFlags() const { return empty_; }
+    double emptyFraction() const;
+
+private:
+    glm::ivec3 dims_;
+    glm::dvec3 maxIndex_;  // dims - 1
+    glm::ivec3 bricks_;
+    std::vector<std::uint8_t> empty_;
+};
+
+}  // namespace vri

@@ -1,0 +1,26 @@
+#pragma once
+// A summary of a volume's values: what `vri-convert --info` prints, and what a transfer function
+// designer wants to see before choosing control points.
+#include <cstdint>
+#include <vector>
+
+#include "vri/core/volume.h"
+
+namespace vri {
+
+struct VolumeStats {
+    ValueRange data;           // min..max over all voxels
+    ValueRange normalisation;  // the raw values that s = 0..1 spans, Volume::normalisationRange()
+    double mean = 0.0;
+    double zeroFraction = 0.0;  // voxels equal to 0, i.e. empty space under most transfer functions
+    // Equal-width bins over the normalisation range (its hi value falls in the last bin), and the
+    // voxels outside it, NaN counted as below.
+    std::vector<std::uint64_t> histogram;
+    std::uint64_t below = 0;
+    std::uint64_t above = 0;
+};
+
+// Throws vri::Error when bins < 1.
+VolumeStats computeVolumeStats(const Volume& volume, int bins = 16);
+
+}  // namespace vri

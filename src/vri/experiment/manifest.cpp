@@ -1,0 +1,178 @@
+// manifest.json of an experiment, and the results gallery read back from the manifests.
+#include "vri/experiment/manifest.h"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "vri/io/provenance.h"
+#include "vri/util/atomic_file.h"
+#include "vri/util/error.h"
+#include "vri/util/json_file.h"
+#include "vri/util/process.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The first line `git -C dir ARGS...` prints, or "" when it cannot run (no git, not a work tree).
+std::string firstLineOfGit(const fs::path& dir, std::vector<std::string> args) {
+    const auto git = findProgram("git");
+    if (!git) return "";
+    std::vector<std::string> words{"git", "-C", dir.string()};
+    words.insert(words.end(), std::make_move_iterator(args.begin()), std::make_move_iterator(args.end()));
+    try {
+        auto [status, output] =
+            captureProcess(*git, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false});
+        if (!status.ok()) return "";
+        output = output.substr(0, output.find('\n'));
+        if (!output.empty() && output.back() == '\r') output.pop_back();
+        return output;
+    } catch (const Error&) {
+        return "";  // git could not be started: the source tree is unknown, not a failed experiment
+    }
+}
+
+// The commit of the experiment file's work tree, and whether tracked files differ from it.
+nlohmann::json sourceTree(const fs::path& experimentFile) {
+    const fs::path dir = fs::absolute(experimentFile).parent_path();
+    const std::string commit = firstLineOfGit(dir, {"rev-parse", "HEAD"});
+    if (commit.empty()) return {{"commit", "unknown"}};
+    const bool modified = !firstLineOfGit(dir, {"status", "--porcelain", "--untracked-files=no"}).empty();
+    return {{"commit", commit}, {"modified_files", modified}};
+}
+
+std::string stateName(StepOutcome::State state) {
+    switch (state) {
+    case StepOutcome::State::Ran: return "ran";
+    case StepOutcome::State::Cached: return "cached";
+    case StepOutcome::State::Unavailable: return "tool not built";
+    }
+    return "unknown";
+}
+
+// The list of the manifest's "outputs" (what the gallery shows) that a step's output file belongs
+// to, or "" for none: previews and command images, diff images, Markdown tables, figures.
+std::string galleryList(const Step& step, const fs::path& file) {
+    const std::string ext = file.extension().string();
+    const bool madeImage = step.kind == "render" || step.kind == "command";
+    const bool madeTable = step.kind == "table" || step.kind == "command";
+    if (ext == ".png" && madeImage) return "images";
+    if (ext == ".png" && step.kind == "diff") return "diff_images";
+    if (ext == ".md" && madeTable) return "tables";
+    if (ext == ".png" && step.kind == "figure") return "figures";
+    return "";
+}
+
+}  // namespace
+
+void writeManifest(const Experiment& experiment, const Plan& plan, const std::vector<StepOutcome>& outcomes,
+                   const fs::path& toolDir, FileHasher& hasher) {
+    nlohmann::json steps = nlohmann::json::array();
+    nlohmann::json tools = nlohmann::json::object();
+    nlohmann::json outputs = {{"images", nlohmann::json::array()}, {"diff_images", nlohmann::json::array()},
+                              {"tables", nlohmann::json::array()}, {"figures", nlohmann::json::array()}};
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+        const Step& step = plan.steps[i];
+        const StepOutcome& outcome = outcomes.at(i);
+        nlohmann::json parameters = nlohmann::json::object();
+        for (const auto& [key, value] : step.parameters) parameters[key] = value;
+        steps.push_back({{"id", step.id},
+                         {"kind", step.kind},
+                         {"state", stateName(outcome.state)},
+                         {"command", outcome.record.command},
+                         {"parameters", parameters},
+                         {"inputs", toJson(outcome.record.inputs)},
+                         {"outputs", toJson(outcome.record.outputs)},
+                         {"wall_seconds", outcome.record.wallSeconds},
+                         {"ran_utc", outcome.record.ranUtc}});
+        if (outcome.state == StepOutcome::State::Unavailable) continue;
+        tools[step.tool] = hasher.digest(toolDir / step.tool);
+        for (const fs::path& out : step.outputs)
+            if (const std::string list = galleryList(step, out); !list.empty())
+                outputs[list].push_back({{"id", step.id}, {"file", out.lexically_relative(plan.resultsDir).string()}});
+    }
+    nlohmann::json datasets = nlohmann::json::array();
+    for (const SceneSpec& scene : experiment.scenes)
+        if (!scene.dataset.empty())
+            datasets.push_back({{"scene", scene.name}, {"dataset", scene.dataset}, {"status", scene.datasetStatus},
+                                {"note", scene.datasetNote}});
+    const nlohmann::json manifest = {
+        {"experiment",
+         {{"name", experiment.name},
+          {"title", experiment.title},
+          {"paper", {{"paper", experiment.paper.paper}, {"item", experiment.paper.item}, {"says", experiment.paper.says}}},
+          {"agreement", experiment.agreement},
+          {"source", plan.commandPath(fs::absolute(experiment.source).lexically_normal())},
+          {"source_sha512", hasher.digest(experiment.source)},
+          {"quick", experiment.quick}}},
+        {"source_tree", sourceTree(experiment.source)},
+        {"build", buildInfo()},
+        {"machine", machineInfo()},
+        {"tools", tools},
+        {"datasets", datasets},
+        {"outputs", outputs},
+        {"steps", steps}};
+    writeTextFile(plan.resultsDir / "manifest.json", manifest.dump(2) + "\n");
+}
+
+std::string galleryMarkdown(const fs::path& resultsRoot) {
+    std::vector<fs::path> manifests;
+    for (const fs::directory_entry& entry : fs::directory_iterator(resultsRoot))
+        if (fs::is_regular_file(entry.path() / "manifest.json")) manifests.push_back(entry.path() / "manifest.json");
+    std::sort(manifests.begin(), manifests.end());
+
+    std::ostringstream md;
+    md << "# Results\n\n"
+          "Generated by `vri-run --gallery` from each experiment's `manifest.json`; regenerate everything with\n"
+          "`make experiments`. Each experiment's folder holds its images, tables, figures and the manifest with the\n"
+          "exact commands, input digests, build, machine and wall times.\n";
+    for (const fs::path& path : manifests) readingJsonOf(path, [&] {
+        const nlohmann::json m = readJsonFile(path);
+        const nlohmann::json& e = m.at("experiment");
+        const std::string dir = path.parent_path().filename().string();
+        md << "\n## " << e.at("title").get<std::string>() << "\n\n";
+        const nlohmann::json& paper = e.at("paper");
+        if (paper.at("paper") != "none")
+            md << "**Paper " << paper.at("paper").get<std::string>() << ", " << paper.at("item").get<std::string>()
+               << ":** " << paper.at("says").get<std::string>() << "\n\n";
+        std::set<std::string> noted;  // a dataset shown in several scenes is noted once
+        for (const nlohmann::json& d : m.at("datasets"))
+            if (d.at("status") != "exact" && noted.insert(d.at("dataset").get<std::string>()).second)
+                md << "*Dataset " << d.at("dataset").get<std::string>() << " is " << d.at("status").get<std::string>()
+                   << ":* " << d.at("note").get<std::string>() << "\n\n";
+        const auto gallery = [&](const nlohmann::json& list) {
+            if (list.empty()) return;
+            md << "|";
+            for (const nlohmann::json& item : list) md << " " << item.at("id").get<std::string>() << " |";
+            md << "\n|";
+            for (std::size_t i = 0; i < list.size(); ++i) md << "---|";
+            md << "\n|";
+            for (const nlohmann::json& item : list)
+                md << " ![" << item.at("id").get<std::string>() << "](" << dir << "/" << item.at("file").get<std::string>()
+                   << ") |";
+            md << "\n\n";
+        };
+        const nlohmann::json& outputs = m.at("outputs");
+        gallery(outputs.at("images"));
+        gallery(outputs.at("diff_images"));
+        for (const nlohmann::json& table : outputs.at("tables"))
+            // An empty file would leave `md` failed, and the rest of the gallery unwritten.
+            if (std::ifstream in(path.parent_path() / table.at("file").get<std::string>()); in.peek() != EOF)
+                md << in.rdbuf() << "\n";
+        gallery(outputs.at("figures"));
+        if (!e.at("agreement").get<std::string>().empty())
+            md << "**Ours against the paper:** " << e.at("agreement").get<std::string>() << "\n\n";
+        md << "Experiment file `" << e.at("source").get<std::string>() << "`, manifest [" << dir << "/manifest.json]("
+           << dir << "/manifest.json).\n";
+    });
+    return md.str();
+}
+
+}  // namespace vri

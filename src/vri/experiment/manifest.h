@@ -1,0 +1,23 @@
+#pragma once
+// The manifest of an experiment's results (<results>/manifest.json): what the experiment shows,
+// the source tree and build, the machine, and for every step its exact command, parameters,
+// input and output digests and wall time. The gallery (results/README.md) is read from manifests.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "vri/experiment/experiment_plan.h"
+#include "vri/experiment/experiment_run.h"
+#include "vri/experiment/experiment_spec.h"
+
+namespace vri {
+
+// Writes <plan.resultsDir>/manifest.json atomically.
+void writeManifest(const Experiment& experiment, const Plan& plan, const std::vector<StepOutcome>& outcomes,
+                   const std::filesystem::path& toolDir, FileHasher& hasher);
+
+// Markdown for results/README.md from every <resultsRoot>/*/manifest.json, in name order; image
+// and table links are relative to resultsRoot.
+std::string galleryMarkdown(const std::filesystem::path& resultsRoot);
+
+}  // namespace vri

@@ -1,0 +1,242 @@
+// OpenVDB .vdb files. The only translation unit that includes OpenVDB: its headers cost about
+// half a gigabyte of compiler memory, so nothing else may pull them in.
+//
+// A vri volume is stored as one sparse grid named "density": float32 in a FloatGrid, uint8 and
+// uint16 in an Int32Grid (OpenVDB registers no 8- or 16-bit grid types). Background 0, and voxels
+// equal to it are not stored. Voxel (i,j,k) sits at index (i,j,k); the transform maps index to
+// world as origin + index * spacing. Grid metadata record what the sparse grid cannot: the voxel
+// type, the dense dims (trailing empty slabs have no active voxels) and the normalisation range.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <mutex>
+#include <sstream>
+#include <type_traits>
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Dense.h>
+
+#include "vri/io/vdb_grid_layout.h"
+#include "vri/io/volume_formats.h"
+#include "vri/io/volume_io.h"
+#include "vri/util/atomic_file.h"
+#include "vri/util/checked_size.h"
+#include "vri/util/error.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kGridName = "density";
+constexpr const char* kVoxelTypeKey = "vri_voxel_type";
+constexpr const char* kDimsKey = "vri_dims";
+constexpr const char* kRangeKey = "vri_range";
+
+void initializeOpenVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+openvdb::CoordBBox indexBox(glm::ivec3 dims) {
+    return {openvdb::Coord(0, 0, 0), openvdb::Coord(dims.x - 1, dims.y - 1, dims.z - 1)};
+}
+
+// copyFromDense drops the values it finds approximately equal to the background: besides 0 that
+// is -0.0f (== 0.0f) and NaN (every comparison with it is false). Put those voxels back so that
+// the round trip stays bitwise exact.
+void restoreBackgroundLookalikes(const Volume& volume, openvdb::FloatGrid& grid) {
+    const float* values = volume.data<float>();
+    auto accessor = grid.getAccessor();
+    for (int z = 0; z < volume.dims.z; ++z)
+        for (int y = 0; y < volume.dims.y; ++y)
+            for (int x = 0; x < volume.dims.x; ++x) {
+                const float value = values[volume.index(x, y, z)];
+                if ((value == 0.0f && std::signbit(value)) || std::isnan(value))
+                    accessor.setValueOn(openvdb::Coord(x, y, z), value);
+            }
+}
+
+template <class T>
+openvdb::GridBase::Ptr sparseGrid(const Volume& volume) {
+    using GridT = std::conditional_t<std::is_same_v<T, float>, openvdb::FloatGrid, openvdb::Int32Grid>;
+    using ValueT = typename GridT::ValueType;
+    typename GridT::Ptr grid = GridT::create(ValueT(0));
+    const openvdb::tools::Dense<const T, openvdb::tools::LayoutXYZ> dense(indexBox(volume.dims), volume.data<T>());
+    openvdb::tools::copyFromDense(dense, *grid, ValueT(0), /*serial=*/false);
+    if constexpr (std::is_same_v<T, float>) restoreBackgroundLookalikes(volume, *grid);
+    return grid;
+}
+
+openvdb::GridBase::Ptr toGrid(const Volume& volume) {
+    openvdb::GridBase::Ptr grid =
+        dispatchVoxelType(volume.type, [&](auto t) { return sparseGrid<decltype(t)>(volume); });
+    grid->setName(kGridName);
+    grid->insertMeta(kVoxelTypeKey, openvdb::StringMetadata(std::string(voxelTypeName(volume.type))));
+    grid->insertMeta(kDimsKey, openvdb::Vec3IMetadata(openvdb::Vec3i(volume.dims.x, volume.dims.y, volume.dims.z)));
+    if (volume.range)
+        grid->insertMeta(kRangeKey, openvdb::Vec2DMetadata(openvdb::Vec2d(volume.range->lo, volume.range->hi)));
+    const glm::dvec3 s = volume.spacing;
+    const glm::dvec3 o = volume.origin;
+    grid->setTransform(std::make_shared<openvdb::math::Transform>(std::make_shared<openvdb::math::ScaleTranslateMap>(
+        openvdb::Vec3d(s.x, s.y, s.z), openvdb::Vec3d(o.x, o.y, o.z))));
+    return grid;
+}
+
+template <class T, class GridT>
+void copyToVolume(const openvdb::GridBase& grid, const openvdb::CoordBBox& box, Volume& volume) {
+    openvdb::tools::Dense<T, openvdb::tools::LayoutXYZ> dense(box, volume.data<T>());
+    openvdb::tools::copyToDense(static_cast<const GridT&>(grid), dense, /*serial=*/false);
+}
+
+std::string gridDescription(const openvdb::GridBase& grid) {
+    return "grid '" + grid.getName() + "' (" + grid.valueType() + ")";
+}
+
+// A sparse grid stores nothing for background voxels and one tile for a constant region, so its file
+// says little about its dense size; metadata claiming 1024^3 voxels in a 10 KB file is still far more
+// likely an error (or an attack) than a volume. Unless VRI_MAX_BYTES states the limit, a dense
+// volume may take 1024 times the file's bytes, or 256 MiB whatever the file.
+constexpr std::uint64_t kPlausibleExpansion = 1024;
+constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
+
+// The dense volume's bytes, checked against the byte limit and the file's size before anything is allocated.
+void requirePlausibleSize(const fs::path& path, const std::string& source, glm::ivec3 dims, VoxelType type) {
+    const std::string what = path.string() + ": " + source + " " + std::to_string(dims.x) + "x" +
+                             std::to_string(dims.y) + "x" + std::to_string(dims.z) + " (" +
+                             std::string(voxelTypeName(type)) + ")";
+    const std::uint64_t bytes = checkedBytes(
+        what, {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), voxelSize(type)});
+    const std::uint64_t fileBytes = fs::file_size(path);
+    const std::uint64_t plausible =
+        std::max(kAlwaysPlausibleBytes, checkedProduct({fileBytes, kPlausibleExpansion}).value_or(UINT64_MAX));
+    if (bytes > plausible && !byteLimitIsExplicit())
+        throw Error(what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
+                    " for a file of " + std::to_string(fileBytes) + " bytes (" + std::to_string(kPlausibleExpansion) +
+                    " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)");
+}
+
+detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
+    detail::VdbGridFacts facts;
+    facts.description = gridDescription(grid);
+    facts.valueType = grid.isType<openvdb::Int32Grid>()    ? detail::VdbValueType::Int32
+                      : grid.isType<openvdb::DoubleGrid>() ? detail::VdbValueType::Double
+                                                           : detail::VdbValueType::Float;
+    const openvdb::math::Transform& transform = grid.transform();
+    facts.linearTransform = transform.isLinear();
+    const openvdb::Mat3d linear = transform.baseMap()->getAffineMap()->getMat4().getMat3();
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row) facts.linear[column][row] = linear(row, column);
+    if (const auto type = grid.getMetadata<openvdb::StringMetadata>(kVoxelTypeKey)) facts.voxelTypeMeta = type->value();
+    if (const auto dims = grid.getMetadata<openvdb::Vec3IMetadata>(kDimsKey))
+        facts.dimsMeta = glm::ivec3(dims->value().x(), dims->value().y(), dims->value().z());
+    if (const auto range = grid.getMetadata<openvdb::Vec2DMetadata>(kRangeKey))
+        facts.rangeMeta = glm::dvec2(range->value().x(), range->value().y());
+    const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
+    if (!active.empty()) {
+        facts.activeMin = glm::ivec3(active.min().x(), active.min().y(), active.min().z());
+        facts.activeMax = glm::ivec3(active.max().x(), active.max().y(), active.max().z());
+    }
+    return facts;
+}
+
+Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
+    const detail::VdbGridFacts facts = gridFacts(grid);
+    const detail::VdbVolumeLayout layout = detail::vdbVolumeLayout(path.string(), facts);
+    const bool writtenByVri = facts.voxelTypeMeta && facts.dimsMeta;
+    requirePlausibleSize(path, writtenByVri ? kDimsKey : "active voxels", layout.dims, layout.type);
+    const openvdb::Coord boxMin(layout.boxMin.x, layout.boxMin.y, layout.boxMin.z);
+    const openvdb::CoordBBox box(boxMin, boxMin.offsetBy(layout.dims.x - 1, layout.dims.y - 1, layout.dims.z - 1));
+
+    Volume volume(layout.dims, layout.type);
+    const openvdb::math::Transform& transform = grid.transform();
+    const openvdb::Vec3d spacing = transform.voxelSize();
+    const openvdb::Vec3d origin = transform.indexToWorld(box.min());
+    volume.spacing = {spacing.x(), spacing.y(), spacing.z()};
+    volume.origin = {origin.x(), origin.y(), origin.z()};
+    volume.range = layout.range;
+
+    // vdbVolumeLayout has checked that the grid's value type can hold the layout's voxel type.
+    if (grid.isType<openvdb::Int32Grid>())
+        dispatchVoxelType(layout.type,
+                          [&](auto t) { copyToVolume<decltype(t), openvdb::Int32Grid>(grid, box, volume); });
+    else if (grid.isType<openvdb::DoubleGrid>())
+        copyToVolume<float, openvdb::DoubleGrid>(grid, box, volume);
+    else
+        copyToVolume<float, openvdb::FloatGrid>(grid, box, volume);
+    return volume;
+}
+
+bool isScalarGrid(const openvdb::GridBase& grid) {
+    return grid.isType<openvdb::FloatGrid>() || grid.isType<openvdb::DoubleGrid>() ||
+           grid.isType<openvdb::Int32Grid>();
+}
+
+std::string gridList(openvdb::io::File& file) {
+    std::string names;
+    const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
+    for (const openvdb::GridBase::Ptr& grid : *grids)
+        names += (names.empty() ? "" : ", ") + gridDescription(*grid);
+    return names.empty() ? "none" : names;
+}
+
+// io::File::write streams into an std::ofstream it never checks, so a full disk went unnoticed. The
+// same bytes (header, grids and the offsets that let a reader load grids lazily, hence a seekable
+// stream) are encoded into memory instead, and written through writeTextFile's checked writes.
+class SeekableArchive : public openvdb::io::Archive {
+public:
+    void writeTo(std::ostream& out, const openvdb::GridPtrVec& grids) const {
+        Archive::write(out, grids, /*seekable=*/true);
+    }
+};
+
+}  // namespace
+
+Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName) {
+    detail::requireRegularFile(path);
+    initializeOpenVdb();
+    try {
+        openvdb::io::File file(path.string());
+        file.open(/*delayLoad=*/false);
+        openvdb::GridBase::Ptr grid;
+        if (gridName) {
+            if (!file.hasGrid(*gridName))
+                throw Error(path.string() + ": no grid named '" + *gridName + "' (grids: " + gridList(file) + ")");
+            grid = file.readGrid(*gridName);
+            if (!isScalarGrid(*grid))
+                throw Error(path.string() + ": " + gridDescription(*grid) + " is not a float, double or int32 grid");
+        } else {
+            const openvdb::GridPtrVecPtr candidates = file.readAllGridMetadata();
+            for (const openvdb::GridBase::Ptr& candidate : *candidates)
+                if (isScalarGrid(*candidate)) {
+                    grid = file.readGrid(candidate->getName());
+                    break;
+                }
+            if (!grid)
+                throw Error(path.string() + ": no float, double or int32 grid (grids: " + gridList(file) + ")");
+        }
+        file.close();
+        return toVolume(path, *grid);
+    } catch (const openvdb::Exception& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
+}
+
+void writeVdb(const fs::path& path, const Volume& volume) {
+    if (volume.bytes.size() != volume.byteCount() || volume.voxelCount() == 0)
+        throw Error(path.string() + ": volume holds " + std::to_string(volume.bytes.size()) +
+                    " bytes, which does not match its dims");
+    initializeOpenVdb();
+    std::ostringstream encoded;
+    try {
+        SeekableArchive().writeTo(encoded, {toGrid(volume)});
+    } catch (const openvdb::Exception& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
+    if (!encoded) throw Error(path.string() + ": cannot encode the grid");
+    writeTextFile(path, encoded.view());
+}
+
+}  // namespace vri

@@ -1,0 +1,57 @@
+#pragma once
+// Reading and writing volumes: headerless raw files, NRRD (.nhdr/.nrrd), Inviwo .dat and OpenVDB .vdb.
+// Every failure is a vri::Error whose one-line message starts with the offending file's path.
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "vri/core/volume.h"
+#include "vri/core/voxel_type.h"
+
+namespace vri {
+
+// How the voxels of a headerless raw file are laid out (x fastest, then y, then z).
+struct RawLayout {
+    glm::ivec3 dims{0, 0, 0};
+    VoxelType type = VoxelType::UInt8;
+    ByteOrder order = ByteOrder::Little;
+    glm::dvec3 spacing{1.0, 1.0, 1.0};
+    std::size_t headerBytes = 0;  // bytes to skip before the first voxel
+};
+
+// Reads a raw file whose size must be exactly headerBytes + voxel count * voxel size.
+Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
+// Writes the voxels only (no header), atomically.
+void writeRaw(const std::filesystem::path& path, const Volume& volume, ByteOrder order = ByteOrder::Little);
+
+// The Open SciVis naming convention NAME_XxYxZ_TYPE.raw (little endian, unit spacing).
+// Returns nullopt when the name does not follow it; throws when it does but names a voxel
+// type that vri does not support (e.g. float64).
+std::optional<RawLayout> layoutFromFileName(const std::filesystem::path& path);
+
+// Throws vri::Error "<source>: ..." unless every float voxel is finite, the range (when set) is a finite
+// lo < hi and the box, origin + dims x spacing, stays within double's range along every axis.
+void requireUsableValues(const Volume& volume, const std::string& source);
+
+// Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb; anything
+// else is raw, laid out by `rawLayout` if given, else by layoutFromFileName.
+// The volume read passes requireUsableValues.
+Volume readVolume(const std::filesystem::path& path, const std::optional<RawLayout>& rawLayout = {});
+// Writes by extension: .vdb, .nhdr (header + NAME.raw beside it), .dat (+ NAME.raw), .raw (little endian),
+// through atomic_file.h; a header and its raw file are written together (neither replaced if one fails).
+void writeVolume(const std::filesystem::path& path, const Volume& volume);
+// The files writeVolume(path, ...) creates or replaces: `path`, and for .nhdr and .dat the raw
+// file beside it. A tool checks them against its input before it overwrites what it reads.
+std::vector<std::filesystem::path> filesWrittenBy(const std::filesystem::path& path);
+
+// OpenVDB. Volumes written by writeVdb come back exactly (type, dims, spacing, origin, range).
+// For other .vdb files the first float, double or int32 grid (or the one named `gridName`) is
+// read as float32 over its active voxels' bounding box.
+Volume readVdb(const std::filesystem::path& path, const std::optional<std::string>& gridName = {});
+void writeVdb(const std::filesystem::path& path, const Volume& volume);
+
+}  // namespace vri

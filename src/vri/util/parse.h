@@ -1,0 +1,34 @@
+#pragma once
+// Text to values, as command-line options and experiment files spell them: every function throws
+// vri::Error naming `what` (an option or a field) and quoting the text when it is not what is expected.
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace vri {
+
+// "x,y" -> vector; throws vri::Error naming `what` unless there are exactly two finite numbers.
+glm::dvec2 parseVec2(const std::string& text, const std::string& what);
+// "x,y,z" -> vector; throws vri::Error naming `what` unless there are exactly three finite numbers.
+glm::dvec3 parseVec3(const std::string& text, const std::string& what);
+// "x,y,z" -> integer dims; throws vri::Error naming `what` unless all three are integers in [1, 1e9].
+glm::ivec3 parseDims(const std::string& text, const std::string& what);
+// "lo,hi" -> pair; throws vri::Error naming `what` unless both are finite and hi > lo.
+glm::dvec2 parseRange(const std::string& text, const std::string& what);
+// "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive integers.
+glm::ivec2 parseSize(const std::string& text, const std::string& what);
+// "X,Y" -> a pixel; throws vri::Error naming `what` unless both are integers >= 0.
+glm::ivec2 parsePixel(const std::string& text, const std::string& what);
+// A positive finite number, or "none" -> +infinity (no limit); throws vri::Error naming `what` otherwise.
+double parseLimit(const std::string& text, const std::string& what);
+
+// "a,b,c" -> the words between the commas (empty words are an error naming `what`).
+std::vector<std::string> parseWordList(const std::string& text, const std::string& what);
+// "1,4,16" -> positive finite numbers; throws vri::Error naming `what` otherwise.
+std::vector<double> parsePositiveList(const std::string& text, const std::string& what);
+// "3,17" -> integers in [0, count); throws vri::Error naming `what` otherwise.
+std::vector<int> parseIndexList(const std::string& text, const std::string& what, int count);
+
+}  // namespace vri

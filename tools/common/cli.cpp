@@ -1,0 +1,75 @@
+#include "common/cli.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <new>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "vri/util/json_file.h"
+
+namespace vri {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The file a path names: absolute, '.' and '..' resolved, and every symbolic link in the part that
+// exists followed, so that two spellings of one file compare equal.
+fs::path fileIdentity(const std::string& path) {
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(path, ec);
+    if (ec) return fs::path(path).lexically_normal();
+    const fs::path resolved = fs::weakly_canonical(absolute, ec);
+    return ec ? absolute.lexically_normal() : resolved;
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+    if (fileIdentity(a) == fileIdentity(b)) return true;
+    std::error_code ec;  // hard links: two names, one inode (false, not an error, when one is missing)
+    return fs::equivalent(a, b, ec) && !ec;
+}
+
+}  // namespace
+
+std::string describeUnexpected(const std::exception& e) {
+    if (dynamic_cast<const std::bad_alloc*>(&e))
+        return "out of memory: the input asks for more memory than is available (sizes from input are checked "
+               "against VRI_MAX_BYTES, 16 GiB by default; lower it to be refused before allocating)";
+    if (const auto* fsError = dynamic_cast<const std::filesystem::filesystem_error*>(&e))
+        return (fsError->path1().empty() ? std::string("file system") : fsError->path1().string()) + ": " +
+               fsError->code().message();
+    if (const auto* jsonError = dynamic_cast<const nlohmann::json::exception*>(&e)) {
+        constexpr int kInvalidUtf8 = 316;  // nlohmann's type_error.316, raised while writing
+        if (jsonError->id == kInvalidUtf8)
+            return "a file name or text to be written as JSON is not valid UTF-8 (" + jsonExceptionText(*jsonError) +
+                   ")";
+        return "JSON: " + jsonExceptionText(*jsonError);
+    }
+    return e.what();
+}
+
+void requireExrOutput(const OutputArgument& output) {
+    std::string extension = fs::path(output.path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension != ".exr")
+        throw UsageError(output.option + ": '" + output.path +
+                         "' is not an .exr file (the image is float RGBA OpenEXR; --png writes an 8-bit preview)");
+}
+
+void requireDistinctOutputs(const std::vector<OutputArgument>& outputs) {
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        if (outputs[i].path.empty() || outputs[i].path == "-") continue;
+        for (std::size_t j = 0; j < i; ++j) {
+            if (outputs[j].path.empty() || outputs[j].path == "-") continue;
+            if (sameFile(outputs[i].path, outputs[j].path))
+                throw UsageError(outputs[i].option + ": '" + outputs[i].path + "' is also " + outputs[j].option +
+                                 "'s output");
+        }
+    }
+}
+
+}  // namespace vri

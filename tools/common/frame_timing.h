@@ -1,0 +1,48 @@
+#pragma once
+// What the tools that render for timing share: --threads, --warm-up and --repeat, the frames those
+// ask for (every timed frame must equal the first, bit for bit), and the stats' timing record.
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include "vri/util/error.h"
+
+namespace vri {
+
+class FrameTiming {
+public:
+    void addTo(CLI::App& app);
+    // Checks the counts and, with --threads, limits oneTBB for as long as `control` lives.
+    void limitThreads(std::optional<tbb::global_control>& control) const;
+
+    // frame() returns a result with `image` (vri::Image) and `seconds` (its wall time). Runs the
+    // warm-up frames untimed, then the timed ones; returns the first result and every wall time.
+    template <class Frame>
+    auto run(const Frame& frame) const {
+        for (int i = 0; i < warmUp_; ++i) frame();
+        auto first = frame();
+        std::vector<double> wallSeconds{first.seconds};
+        for (int i = 1; i < repeat_; ++i) {
+            const auto again = frame();
+            if (again.image.pixels != first.image.pixels)
+                throw Error("--repeat: frame " + std::to_string(i + 1) + " differs from the first");
+            wallSeconds.push_back(again.seconds);
+        }
+        return std::pair{std::move(first), std::move(wallSeconds)};
+    }
+
+    // {"warm_up_frames", "repeats", "wall_seconds", "median_wall_seconds"}
+    nlohmann::json toJson(const std::vector<double>& wallSeconds) const;
+    // For the tools' closing line: "0.94 s", or "0.94 s (median of 3)".
+    std::string summary(const std::vector<double>& wallSeconds) const;
+
+private:
+    int threads_ = 0, repeat_ = 1, warmUp_ = 0;
+};
+
+}  // namespace vri

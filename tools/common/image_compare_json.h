@@ -1,0 +1,16 @@
+#pragma once
+// ImageDiff as JSON, kept apart from image_compare.h so that its many includers do not pay for
+// nlohmann/json. Include <nlohmann/json.hpp> where the result is used.
+#include <nlohmann/json_fwd.hpp>
+
+#include "vri/core/image_compare.h"
+
+namespace vri {
+
+// {"width", "height", "pixels", "pixels_counted": "all", "thresholds": [...],
+//  "channels": [{"name", "max_abs", "max_at": [x, y], "mean_abs", "rmse",
+//                "above": [{"threshold", "count", "percent"}, ...]}, ...]}
+// Infinite errors (NaN against a number) have no JSON number and appear as null.
+nlohmann::json toJson(const ImageDiff& diff);
+
+}  // namespace vri

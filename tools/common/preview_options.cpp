@@ -1,0 +1,24 @@
+#include "common/preview_options.h"
+
+#include "common/cli.h"
+#include "vri/util/format.h"
+
+namespace vri {
+
+void PreviewOptions::addTo(CLI::App& app) {
+    app.add_option("--png-exposure", exposure_, "preview: multiply colours by this")->capture_default_str();
+    app.add_flag("--png-invert", invert_, "preview: 1 - colour (darker = higher intensity)");
+    app.add_option("--background", background_, "preview: background colour R,G,B")->capture_default_str();
+}
+
+PngOptions PreviewOptions::get() const {
+    if (!(exposure_ > 0.0)) throw Error("--png-exposure: must be > 0, got " + exactNumber(exposure_));
+    PngOptions png;
+    png.exposure = static_cast<float>(exposure_);
+    png.invert = invert_;
+    const glm::dvec3 bg = parseVec3(background_, "--background");
+    png.background = {float(bg.x), float(bg.y), float(bg.z)};
+    return png;
+}
+
+}  // namespace vri

@@ -1,0 +1,93 @@
+#include "common/render_json.h"
+
+#include <cmath>
+
+namespace vri {
+
+namespace {
+nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+}  // namespace
+
+nlohmann::json toJson(const RenderOptions& o) {
+    nlohmann::json j = {{"method", integratorName(o.integrator)},
+                        {"precision", precisionName(o.precision)},
+                        {"early_termination", o.earlyTermination},
+                        {"skip_empty_space", o.skipEmptySpace},
+                        {"simd", o.simd},
+                        {"tile_size", o.tileSize}};
+    if (o.integrator == Integrator::Coupled || o.integrator == Integrator::Decoupled) {
+        const AdaptiveParameters& a = o.adaptive;
+        j["tolerance"] = a.tolerance;
+        j["h0_voxels"] = a.h0;
+        j["h_min_voxels"] = a.hMin;
+        j["h_max_voxels"] = std::isfinite(a.hMax) ? nlohmann::json(a.hMax) : nlohmann::json("none");
+        j["accepted_value"] = acceptedValueName(a.accepted);
+    } else {
+        j["sampling_rate"] = o.samplingRate;
+        j["step_voxels"] = 1.0 / o.samplingRate;
+        if (!isSimpson(o.integrator)) j["placement"] = placementName(o.placement);
+    }
+    return j;
+}
+
+nlohmann::json toJson(const RenderStats& s) {
+    const double samplesPerSecond = s.seconds > 0 ? s.samplesEvaluated / s.seconds : 0.0;
+    nlohmann::json j = {{"wall_seconds", s.seconds},
+                        {"setup_seconds", s.setupSeconds},
+                        {"threads", s.threads},
+                        {"rays", s.rays},
+                        {"rays_hit", s.raysHit},
+                        {"samples_placed", s.samplesPlaced},
+                        {"samples_evaluated", s.samplesEvaluated},
+                        {"samples_per_second", samplesPerSecond},
+                        {"empty_brick_fraction", s.emptyBrickFraction},
+                        {"backend", s.backend}};
+    if (!s.device.empty()) j["device"] = s.device;
+    if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;
+    if (s.backend == "cpu") j["simd_target"] = s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget);
+    if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
+    j["nonfinite_pixels"] = s.nonfinite.count;
+    if (s.nonfinite.count > 0) j["first_nonfinite_pixel"] = {s.nonfinite.firstX, s.nonfinite.firstY};
+    return j;
+}
+
+nlohmann::json toJson(const AdaptiveCounts& c) {
+    return {{"inner_tries", c.innerTries},       {"inner_failures", c.innerFailures},
+            {"outer_tries", c.outerTries},       {"outer_failures", c.outerFailures},
+            {"outer_steps", c.outerSteps},       {"accepted_at_h_min_above_tolerance", c.acceptedAtMinimum},
+            {"points_used", c.pointsUsed},       {"points_evaluated", c.pointsEvaluated}};
+}
+
+nlohmann::json toJson(const CameraSpec& c) {
+    return {{"eye", vec(c.eye)},           {"target", vec(c.target)}, {"up", vec(c.up)},
+            {"fov_y_degrees", c.fovYDegrees}, {"width", c.width},     {"height", c.height},
+            {"zoom", c.zoom},
+            {"zoom_centre", c.zoomCentre ? nlohmann::json{c.zoomCentre->x, c.zoomCentre->y} : nlohmann::json()}};
+}
+
+nlohmann::json toJson(const TransferFunction& tf) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& p : tf.points()) points.push_back({p.s, p.r, p.g, p.b, p.tau});
+    return {{"emission", emissionModelName(tf.emission())}, {"points_s_r_g_b_tau", points}};
+}
+
+nlohmann::json describeScene(const Scene& scene) {
+    const Box box = scene.box();
+    nlohmann::json j = {{"convention", gridConventionName(scene.convention)},
+                        {"box_lo", vec(box.lo)},
+                        {"box_hi", vec(box.hi)},
+                        {"dims", vec(scene.dims())}};
+    if (scene.volume) {
+        const ValueRange r = scene.volume->normalisationRange();
+        j["kind"] = "volume";
+        j["voxel_type"] = voxelTypeName(scene.volume->type);
+        j["spacing"] = vec(scene.volume->spacing);
+        j["normalisation_range"] = {r.lo, r.hi};
+    } else {
+        j["kind"] = "analytic";
+        j["field"] = "linear: f = (x - box_lo.x) / (box_hi.x - box_lo.x)";
+    }
+    return j;
+}
+
+}  // namespace vri

@@ -1,0 +1,73 @@
+#include "common/scene_options.h"
+
+#include <memory>
+#include <optional>
+
+#include "common/cli.h"
+#include "vri/core/analytic_field.h"
+#include "vri/io/transfer_function_yaml.h"
+#include "vri/util/sha512.h"
+
+namespace vri {
+
+void SceneOptions::addTo(CLI::App& app) {
+    auto* input = app.add_option_group("input", "what to render (one of)");
+    input->add_option("--volume", volumePath_, "volume file: .raw, .nhdr, .dat, .vdb");
+    input->add_option("--field", field_, "analytic field: linear (paper A's f = (x + 1.5) / 3)");
+    input->require_option(1);
+    raw_.addTo(app);
+    app.add_option("--range", range_, "raw value range lo,hi that maps to s = 0..1 (default: the type's range, "
+                                      "or min..max for float)");
+    app.add_option("--field-dims", fieldDims_, "the grid an analytic field stands for, X,Y,Z")->capture_default_str();
+    app.add_flag("--field-as-grid", fieldAsGrid_, "sample the analytic field onto that grid and render the grid");
+    app.add_option("--convention", convention_, "grid convention: cell (texture style) or node (dim - 1)")
+        ->capture_default_str();
+    app.add_option("--tf", tfPath_, "transfer function YAML")->required();
+    app.add_option("--size", size_, "image size WIDTHxHEIGHT")->capture_default_str();
+    app.add_option("--eye", eye_, "camera position X,Y,Z (default: in front of the box, +z)");
+    app.add_option("--target", target_, "point looked at X,Y,Z (default: box centre)");
+    app.add_option("--up", up_, "up vector X,Y,Z")->capture_default_str();
+    app.add_option("--fov", fov_, "vertical field of view, degrees")->capture_default_str();
+    app.add_option("--zoom", zoom_, "close-up: magnify the frame this many times about --zoom-centre")
+        ->capture_default_str();
+    app.add_option("--zoom-centre", zoomCentre_, "the point zoomed into, X,Y in pixels of the full frame "
+                                                 "(default: the image centre)");
+}
+
+SceneSetup SceneOptions::load() const {
+    const glm::ivec2 imageSize = parseSize(size_, "--size");
+    const GridConvention conv = parseGridConvention(convention_, "--convention");
+
+    nlohmann::json inputs = nlohmann::json::array();
+    std::shared_ptr<Volume> volume;
+    std::optional<LinearField> linear;
+    if (!volumePath_.empty()) {
+        volume = std::make_shared<Volume>(raw_.read(volumePath_));
+        inputs.push_back({{"path", volumePath_}, {"sha512", sha512File(volumePath_)}});
+    } else {
+        if (field_ != "linear") throw Error("--field: unknown analytic field '" + field_ + "' (expected linear)");
+        linear.emplace();
+        linear->dims = parseDims(fieldDims_, "--field-dims");
+        if (fieldAsGrid_) {
+            volume = std::make_shared<Volume>(sampleOntoGrid(*linear, conv));
+            linear.reset();
+        }
+    }
+    if (!range_.empty()) {
+        if (!volume) throw Error("--range applies to volumes only");
+        const glm::dvec2 r = parseRange(range_, "--range");
+        volume->range = ValueRange{r.x, r.y};
+    }
+    Scene scene{volume, linear, conv, loadTransferFunction(tfPath_)};
+    inputs.push_back({{"path", tfPath_}, {"sha512", sha512File(tfPath_)}});
+
+    CameraSpec cam = framingCamera(scene.box(), imageSize.x, imageSize.y, fov_);
+    if (!target_.empty()) cam.target = parseVec3(target_, "--target");
+    if (!eye_.empty()) cam.eye = parseVec3(eye_, "--eye");
+    cam.up = parseVec3(up_, "--up");
+    cam.zoom = zoom_;
+    if (!zoomCentre_.empty()) cam.zoomCentre = parseVec2(zoomCentre_, "--zoom-centre");
+    return {std::move(scene), cam, std::move(inputs)};
+}
+
+}  // namespace vri

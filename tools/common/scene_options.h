@@ -1,0 +1,40 @@
+#pragma once
+// The command-line options every tool that renders shares: what is rendered (a volume or an
+// analytic field, its grid convention and value range, the transfer function) and the camera.
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "common/raw_input_options.h"
+#include "vri/core/camera.h"
+#include "vri/core/cpu_renderer.h"
+
+namespace vri {
+
+// What the options describe, with the input files named and hashed for provenance.
+struct SceneSetup {
+    Scene scene;
+    CameraSpec camera;
+    nlohmann::json inputs;  // [{"path", "sha512"}, ...]: the volume file (if any), then the transfer function
+};
+
+class SceneOptions {
+public:
+    // Adds --volume or --field (one of them required), the raw input options, --range, --field-dims,
+    // --field-as-grid, --convention, --tf (required), --size, --eye, --target, --up, --fov, --zoom
+    // and --zoom-centre to `app`.
+    void addTo(CLI::App& app);
+    // Checks the options, reads the volume and the transfer function and frames the camera; throws
+    // vri::Error naming the option or file that is wrong. The cheap checks come before any reading.
+    SceneSetup load() const;
+
+private:
+    std::string volumePath_, field_, tfPath_, range_, fieldDims_ = "5,5,5";
+    RawInputOptions raw_;
+    std::string convention_ = "cell", size_ = "800x600", eye_, target_, up_ = "0,1,0", zoomCentre_;
+    double fov_ = 30.0, zoom_ = 1.0;
+    bool fieldAsGrid_ = false;
+};
+
+}  // namespace vri
