@@ -10,6 +10,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev doctest-dev libtbb-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-tools glslang-tools glslang-dev
   libglm-dev nlohmann-json3-dev gnuplot-nox libhwy-dev
+  python3-vtk9 python3-numpy python3-openimageio python3-yaml xvfb xauth   # tools/peers: VTK as a peer
 )
 if [ "${1:-}" = fuzz ]; then
   packages+=(clang-14 libclang-rt-14-dev)

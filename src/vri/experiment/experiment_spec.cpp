@@ -61,9 +61,22 @@ void nonNegativeNumber(const std::string& value, const std::string& where) {
 // `method: exact` is vri-reference's accurate solution (a reference, not a vri-render method).
 constexpr std::string_view kExactMethod = "exact";
 
+// Peer renderers (tools/peers/): a method of another renderer, run by its adapter with vri-render's scene options,
+// --method, --step (voxels), --repeat and --warm-up, and the same outputs.
+struct PeerMethod {
+    std::string_view method, tool;
+};
+constexpr PeerMethod kPeerMethods[] = {{"vtk-fixed-point", "vri-peer-vtk"}, {"vtk-gpu", "vri-peer-vtk"}};
+
+const PeerMethod* peerMethod(std::string_view method) {
+    for (const PeerMethod& peer : kPeerMethods)
+        if (peer.method == method) return &peer;
+    return nullptr;
+}
+
 const std::vector<RunParameter>& renderParameters() {
     static const std::vector<RunParameter> parameters{
-        {"method", "--method", "", [](auto& v, auto& w) { if (v != kExactMethod) parseIntegrator(v, w); }},
+        {"method", "--method", "", [](auto& v, auto& w) { if (v != kExactMethod && !peerMethod(v)) parseIntegrator(v, w); }},
         {"placement", "--placement", "", [](auto& v, auto& w) { parsePlacement(v, w); }},
         {"step", "--step", "h", positiveNumber},
         {"rate", "--rate", "r", positiveNumber},
@@ -430,6 +443,25 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     for (const auto& [key, value] : run.parameters)  // eps: vri-reference's --tolerance
                         if (key != "method" && key != "repeat" && key != "warm_up" && key != "eps")
                             throw Error(at(entry) + ": " + key + " does not apply to method exact (vri-reference)");
+                } else if (const PeerMethod* peer = peerMethod(method->second)) {
+                    run.tool = peer->tool;
+                    for (const auto& [key, value] : run.parameters)
+                        if (key != "method" && key != "step" && key != "repeat" && key != "warm_up")
+                            throw Error(at(entry) + ": " + key + " does not apply to method " + method->second +
+                                        " (" + run.tool + ": step, repeat and warm_up)");
+                    // A peer renders a volume with an explicit camera; zoom, previews' looks and fields are vri's.
+                    static const std::set<std::string, std::less<>> peerSceneOptions = {
+                        "--volume", "--dims", "--type", "--byte-order", "--spacing", "--convention",
+                        "--tf",     "--size", "--eye",  "--target",     "--up",      "--fov"};
+                    const std::string peerRuns = at(entry) + ": method " + method->second + " (" + run.tool + ")";
+                    const ToolOptions& given = experiment.scene(scene).options;
+                    for (const auto& [option, value] : given)
+                        if (!peerSceneOptions.contains(option))
+                            throw Error(peerRuns + " cannot render scene '" + scene + "' with " + option +
+                                        " (a peer takes a volume, a camera and a size)");
+                    for (const std::string option : {"--eye", "--target"})
+                        if (std::none_of(given.begin(), given.end(), [&](auto& o) { return o.first == option; }))
+                            throw Error(peerRuns + " needs scene '" + scene + "' to set camera." + option.substr(2));
                 }
                 if (!isSafeName(run.id))  // a swept value is part of the id
                     throw Error(at(entry) + ": " + section + " entry '" + prefix +
