@@ -15,6 +15,7 @@
 #include "common/preview_options.h"
 #include "common/render_json.h"
 #include "common/scene_options.h"
+#include "vri/core/backend.h"
 #include "vri/core/cpu_renderer.h"
 #include "vri/core/exact_reference.h"
 #include "vri/io/adaptive_log_csv.h"
