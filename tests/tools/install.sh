@@ -19,6 +19,9 @@ bin="$prefix/bin"
 config=$(find "$prefix" -name vriConfig.cmake)
 pc=$(find "$prefix" -name vri.pc)
 [ -n "$config" ] && [ -n "$pc" ] || fail "no vriConfig.cmake or vri.pc under the prefix: $(cd "$prefix" && find . -type f)"
+for doc in LICENSE CITATION.cff; do
+  [ -n "$(find "$prefix/share/doc" -name "$doc")" ] || fail "$doc not installed under share/doc"
+done
 
 # Every tool: "<tool> (vri) <version>", then the commit, the build type and the compiler.
 version=$(sed -n 's/^project(vri VERSION \([0-9.]*\) .*/\1/p' "$VRI_SOURCE/CMakeLists.txt")
