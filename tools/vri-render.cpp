@@ -15,20 +15,33 @@
 #include "common/preview_options.h"
 #include "common/render_json.h"
 #include "common/scene_options.h"
+#include "vri/core/backend.h"
 #include "vri/core/cpu_renderer.h"
 #include "vri/core/exact_reference.h"
 #include "vri/io/adaptive_log_csv.h"
 #include "vri/io/image_io.h"
 #include "vri/io/provenance.h"
 #include "vri/util/atomic_file.h"
+#if VRI_HAVE_VULKAN
 #include "vri/vulkan/vulkan_renderer.h"
+#endif
 
 namespace fs = std::filesystem;
 
 namespace {
 
+#if !VRI_HAVE_VULKAN
+// What an option that needs the Vulkan backend says in a build without it.
+vri::Error noVulkanBackend(const std::string& option) {
+    return vri::Error(option + ": this build has no Vulkan backend (configured with -DVRI_VULKAN=OFF)");
+}
+#endif
+
 // --list-devices: one line per Vulkan device, "INDEX<TAB>NAME<TAB>TYPE<TAB>API VERSION".
 int listDevices() {
+#if !VRI_HAVE_VULKAN
+    throw noVulkanBackend("--list-devices");
+#else
     const std::vector<vri::VulkanDeviceInfo> devices = vri::VulkanRenderer::listDevices();
     if (devices.empty()) {
         std::cerr << "vri-render: error: no Vulkan device found\n";
@@ -37,6 +50,7 @@ int listDevices() {
     for (const vri::VulkanDeviceInfo& d : devices)
         std::cout << d.index << '\t' << d.name << '\t' << d.type << '\t' << d.apiVersion << '\n';
     return vri::kExitOk;
+#endif
 }
 
 }  // namespace
@@ -149,11 +163,16 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         vri::requireExrOutput({"-o", output});
         vri::requireDistinctOutputs({{"-o", output}, {"--png", pngPath}, {"--stats", statsPath}, {"--log", logPath}});
         const bool vulkan = vri::parseBackend(backend, "--backend") == vri::Backend::Vulkan;
+#if !VRI_HAVE_VULKAN
+        if (vulkan) throw noVulkanBackend("--backend vulkan");
+#endif
         if (vulkan && !*precisionOpt) precision = "float";
         if (!vulkan && !device.empty()) throw vri::Error("--device: needs --backend vulkan");
         if (!vulkan && *interpolationOpt) throw vri::Error("--interpolation: needs --backend vulkan");
         if (vulkan && *simdOpt) throw vri::Error("--simd: needs --backend cpu");
-        const vri::VulkanInterpolation interpolationChoice = vri::parseInterpolation(interpolation, "--interpolation");
+        // Checked in every build; only the Vulkan backend uses it.
+        [[maybe_unused]] const vri::VulkanInterpolation interpolationChoice =
+            vri::parseInterpolation(interpolation, "--interpolation");
         // The exact method is vri-reference's: double on the CPU, rays ended by its tolerance.
         const bool exact = method == "exact";
         vri::ExactReferenceOptions exactOptions;
@@ -192,12 +211,14 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         const vri::CameraSpec& cam = setup.camera;
         const vri::Camera camera(cam);
 
+#if VRI_HAVE_VULKAN
         // The Vulkan device is opened once; the volume is uploaded by the first render and reused by repeats.
         std::optional<vri::VulkanRenderer> gpu;
         if (vulkan) {
             vri::VulkanRenderer::validateOptions(options);
             gpu.emplace(device, interpolationChoice);
         }
+#endif
         struct Frame {
             vri::Image image;
             vri::RenderStats stats;
@@ -213,7 +234,13 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
                 return Frame{std::move(image), s, ref.stats, ref.stats.seconds};
             }
             vri::RenderStats s;
-            vri::Image image = gpu ? gpu->render(scene, camera, options, &s) : vri::render(scene, camera, options, &s);
+#if VRI_HAVE_VULKAN
+            if (gpu) {
+                vri::Image image = gpu->render(scene, camera, options, &s);
+                return Frame{std::move(image), s, std::nullopt, s.seconds};
+            }
+#endif
+            vri::Image image = vri::render(scene, camera, options, &s);
             return Frame{std::move(image), s, std::nullopt, s.seconds};
         });
         const vri::Image& image = frame.image;
