@@ -17,6 +17,7 @@ namespace vri::detail {
 Volume readNrrd(const std::filesystem::path& path);  // .nhdr (detached) or .nrrd (attached or detached)
 // .nhdr: a detached header and NAME.raw beside it; .nrrd: the header with the data attached.
 void writeNrrd(const std::filesystem::path& path, const Volume& volume);
+Volume readMetaImage(const std::filesystem::path& path);  // .mhd (detached) or .mha (LOCAL data)
 Volume readInviwoDat(const std::filesystem::path& path);
 void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);
 
