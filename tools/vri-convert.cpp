@@ -96,7 +96,7 @@ void printInfo(const fs::path& path, const vri::Volume& volume, const vri::Volum
 
 int main(int argc, char** argv) {
     CLI::App app{"Convert a volume between raw, NRRD (.nhdr/.nrrd), Inviwo .dat and OpenVDB (.vdb), read MetaImage "
-                 "(.mhd/.mha), or summarise it."};
+                 "(.mhd/.mha) and TIFF stacks (.tif), or summarise it."};
     app.footer(R"(Examples:
   vri-convert bonsai_256x256x256_uint8.raw bonsai.vdb
       dims and type come from the Open SciVis file name; the .vdb stores only non-zero voxels
@@ -107,8 +107,8 @@ int main(int argc, char** argv) {
   vri-convert --info --json bonsai.vdb
   vri-convert scan.raw scan.nhdr --dims 512,512,300 --type uint16 --byte-order big --spacing 0.5,0.5,1
 
-Formats by extension: .nhdr/.nrrd (raw or gzip), .dat (Inviwo), .vdb, .mhd/.mha (read only); anything else
-is raw. int8, int16, int32, uint32 and float64 voxels are read as float32 (README.md, "Formats").
+Formats by extension: .nhdr/.nrrd (raw or gzip), .dat (Inviwo), .vdb, .mhd/.mha and .tif/.tiff (read
+only); anything else is raw. int8, int16, int32, uint32 and float64 voxels are read as float32 (README.md, "Formats").
 Writes are atomic: on failure no output file is left behind.
 A volume may take at most 16 GiB in memory (VRI_MAX_BYTES: a byte count to change it). A .vdb whose dims
 would unpack to more than 1024 times its file size (and over 256 MiB) is refused unless VRI_MAX_BYTES is set.)");
@@ -116,7 +116,7 @@ would unpack to more than 1024 times its file size (and over 256 MiB) is refused
     std::string input, output, grid;
     vri::RawInputOptions raw;
     bool info = false, json = false, quiet = false;
-    app.add_option("input", input, "volume to read: .raw, .nhdr, .nrrd, .dat, .vdb, .mhd or .mha")->required();
+    app.add_option("input", input, "volume to read: .raw, .nhdr, .nrrd, .dat, .vdb, .mhd, .mha or .tif")->required();
     app.add_option("output", output, "volume to write: .vdb, .nhdr, .nrrd, .dat or .raw (not needed with --info)");
     raw.addTo(app);
     app.add_option("--grid", grid, ".vdb input: the grid to read (default: the first scalar grid)");

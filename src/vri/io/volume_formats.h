@@ -18,6 +18,7 @@ Volume readNrrd(const std::filesystem::path& path);  // .nhdr (detached) or .nrr
 // .nhdr: a detached header and NAME.raw beside it; .nrrd: the header with the data attached.
 void writeNrrd(const std::filesystem::path& path, const Volume& volume);
 Volume readMetaImage(const std::filesystem::path& path);  // .mhd (detached) or .mha (LOCAL data)
+Volume readTiffStack(const std::filesystem::path& path);  // .tif/.tiff: one page per z slice
 Volume readInviwoDat(const std::filesystem::path& path);
 void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);
 

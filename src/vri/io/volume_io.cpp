@@ -241,7 +241,8 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
     detail::requireRegularFile(path);
     const std::string extension = detail::toLower(path.extension().string());
     const bool describesItself = extension == ".nhdr" || extension == ".nrrd" || extension == ".dat" ||
-                                 extension == ".vdb" || extension == ".mhd" || extension == ".mha";
+                                 extension == ".vdb" || extension == ".mhd" || extension == ".mha" ||
+                                 extension == ".tif" || extension == ".tiff";
     if (describesItself && rawLayout)
         throw Error(path.string() + ": dims and voxel type are for raw files; a " + extension +
                     " file describes its own layout");
@@ -249,6 +250,7 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
         if (extension == ".nhdr" || extension == ".nrrd") return detail::readNrrd(path);
         if (extension == ".dat") return detail::readInviwoDat(path);
         if (extension == ".mhd" || extension == ".mha") return detail::readMetaImage(path);
+        if (extension == ".tif" || extension == ".tiff") return detail::readTiffStack(path);
         if (extension == ".vdb") return readVdb(path);
         if (rawLayout) return readRaw(path, *rawLayout);
         if (const auto named = layoutFromFileName(path)) return readRaw(path, *named);

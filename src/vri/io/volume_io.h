@@ -1,6 +1,6 @@
 #pragma once
 // Reading and writing volumes: headerless raw files, NRRD (.nhdr/.nrrd), Inviwo .dat, OpenVDB .vdb and
-// (read only) MetaImage .mhd/.mha. README.md's "formats" table says what each holds and where its voxels sit.
+// (read only) MetaImage .mhd/.mha and TIFF stacks. README.md's "formats" table says what each holds and where its voxels sit.
 // Every failure is a vri::Error whose one-line message starts with the offending file's path.
 #include <cstddef>
 #include <filesystem>
@@ -38,7 +38,8 @@ std::optional<RawLayout> layoutFromFileName(const std::filesystem::path& path);
 // lo < hi and the box, origin + dims x spacing, stays within double's range along every axis.
 void requireUsableValues(const Volume& volume, const std::string& source);
 
-// Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb, .mhd/.mha; anything
+// Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb, .mhd/.mha, .tif/.tiff;
+// anything
 // else is raw, laid out by `rawLayout` if given, else by layoutFromFileName.
 // The volume read passes requireUsableValues.
 Volume readVolume(const std::filesystem::path& path, const std::optional<RawLayout>& rawLayout = {});
