@@ -75,7 +75,8 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
     std::string method = "riemann", placement = "entry", precision = "double", backend = "cpu", device;
     std::string interpolation = "shader", simd = "on";
     bool listDevicesFlag = false;
-    double rate = 0.0, step = 0.0, ert = 0.0;
+    double rate = 0.0, step = 0.0;
+    std::string ert = "0";
     vri::PreviewOptions preview;
     vri::NonFiniteOption nonfinite;
     bool noSkip = false, quiet = false;
@@ -117,8 +118,11 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
                                                          "or sampler (the device's 3D texture filtering)")
             ->capture_default_str();
     app.add_flag("--list-devices", listDevicesFlag, "list the Vulkan devices (index, name, type, API version) and exit");
-    app.add_option("--early-termination", ert, "stop rays whose transparency drops below this (0 = off)")
-        ->capture_default_str();
+    auto* ertOpt = app.add_option("--early-termination", ert,
+                                  "stop rays whose transparency drops below this (0 = off), or 'auto' (once the rest "
+                                  "can change no channel by more than 1e-4; 'auto:BOUND' for another bound), the "
+                                  "most left out in the stats")
+                       ->capture_default_str();
     app.add_flag("--no-skip-empty", noSkip, "march through empty space too (the image does not change)");
     timing.addTo(app);
     app.add_option("-o,--output", output, "output image (.exr: float RGBA)")->required();
@@ -157,7 +161,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
             if (vulkan) throw vri::Error("--method exact: runs on --backend cpu only");
             if (*precisionOpt && precision != "double") throw vri::Error("--precision: --method exact is double only");
             if (*stepOpt || *rateOpt) throw vri::Error("--step, --rate: --method exact has no step");
-            if (ert != 0.0) throw vri::Error("--early-termination: --method exact ends rays by its --tolerance");
+            if (*ertOpt) throw vri::Error("--early-termination: --method exact ends rays by its --tolerance");
             if (!logRay.empty()) throw vri::Error("--log-ray: applies to coupled and decoupled only");
             exactOptions.tolerance = *toleranceOpt ? adaptive.tolerance : 1e-7;
             if (!(exactOptions.tolerance > 0.0))
@@ -177,7 +181,7 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
         adaptive.accepted = vri::parseAcceptedValue(accepted, "--accepted-value");
         options.adaptive = adaptive;
         if (!logRay.empty()) options.logPixel = vri::parsePixel(logRay, "--log-ray");
-        options.earlyTermination = ert;
+        vri::parseEarlyTermination(ert, "--early-termination", options);
         options.skipEmptySpace = !noSkip;
         options.progress = !quiet;
         // Every option is checked before the render, so that a mistake never leaves some outputs written.

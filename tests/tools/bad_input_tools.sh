@@ -109,7 +109,7 @@ bad 1 "${E}--threads: expected a positive count, got -1" -- "${render[@]}" --thr
 bad 1 "${E}--repeat: expected a positive count, got 0" -- "${render[@]}" --repeat 0
 bad 1 "${E}--step: must be > 0 voxels" -- "${render[@]}" --step 0
 bad 108 "${E}--step excludes --rate" -- "${render[@]}" --step 0.5 --rate 2
-bad 1 "${E}early termination threshold must be in \[0, 1\)" -- "${render[@]}" --early-termination 2
+bad 1 "${E}--early-termination: expected a transparency in \[0, 1\), .auto. or .auto:BOUND." -- "${render[@]}" --early-termination 2
 bad 1 "${E}zoom must be a finite factor >= 1" -- "${render[@]}" --zoom 0
 bad 1 "${E}the tolerance must be >= 0 and finite, got nan" -- "${render[@]}" --method coupled --tolerance nan
 bad 1 "${E}h_min must be positive and finite" -- "${render[@]}" --method coupled --h-min -1

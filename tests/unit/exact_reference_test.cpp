@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 
 #include "vri/core/cubic.h"
+#include "vri/core/exact_ray.h"
 #include "vri/core/exact_reference.h"
 #include "vri/util/error.h"
 
@@ -405,4 +406,38 @@ TEST_CASE("exact reference: 8-bit voxels (a visibility table) give the bits of t
     CHECK(a.values == b.values);
     CHECK(a.bounds == b.bounds);
     CHECK(a.stats.piecesVisible == b.stats.piecesVisible);
+}
+
+TEST_CASE("exact ray: the table of zero spans answers as TransferFunction::isInvisible, jumps included") {
+    const std::vector<TransferFunction> tfs = {
+        TransferFunction({{0.0, 0, 0, 0, 0}, {0.15, 0, 0, 0, 0}, {0.3, 0.2, 0.6, 0.1, 0.15}, {1.0, 1, 1, 1, 1}},
+                         EmissionModel::ColourTimesExtinction),
+        // A jump out of zero at 0.5 and into zero at 0.7, a zero point inside, zero colour with extinction.
+        TransferFunction({{0.2, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}, {0.5, 1, 0, 0, 2}, {0.7, 1, 0, 0, 2}, {0.7, 0, 0, 0, 0},
+                          {0.8, 0, 0, 0, 0}, {0.9, 0, 0, 0, 1}, {0.95, 1, 0, 0, 0}},
+                         EmissionModel::ColourTimesExtinction),
+        // g = C: colour alone makes a point visible.
+        TransferFunction({{0.0, 0, 0, 0, 0}, {0.4, 0, 0, 0, 0}, {0.6, 0.5, 0, 0, 0}, {0.8, 0, 0, 0, 0}},
+                         EmissionModel::Colour)};
+    std::vector<double> s = {-1.0, 1.5};
+    for (const TransferFunction& tf : tfs)
+        for (const auto& p : tf.points())
+            for (double d : {-1e-3, 0.0, 1e-3}) {
+                s.push_back(p.s + d);
+                s.push_back(std::nextafter(p.s + d, -1.0));
+                s.push_back(std::nextafter(p.s + d, 2.0));
+            }
+    std::sort(s.begin(), s.end());
+    for (const TransferFunction& tf : tfs) {
+        const ExactRay ray(tf, 1e-7);
+        int agree = 0;
+        for (std::size_t i = 0; i < s.size(); ++i)
+            for (std::size_t j = i; j < s.size(); ++j) {
+                CAPTURE(s[i]);
+                CAPTURE(s[j]);
+                CHECK(ray.invisible(s[i], s[j]) == tf.isInvisible(s[i], s[j]));
+                agree += ray.invisible(s[i], s[j]);
+            }
+        CHECK(agree > 0);
+    }
 }

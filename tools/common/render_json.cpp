@@ -11,7 +11,8 @@ nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 nlohmann::json toJson(const RenderOptions& o) {
     nlohmann::json j = {{"method", integratorName(o.integrator)},
                         {"precision", precisionName(o.precision)},
-                        {"early_termination", o.earlyTermination},
+                        {"early_termination", o.terminationBound > 0.0 ? nlohmann::json{{"bound", o.terminationBound}}
+                                                                       : nlohmann::json(o.earlyTermination)},
                         {"skip_empty_space", o.skipEmptySpace},
                         {"simd", o.simd},
                         {"tile_size", o.tileSize}};
@@ -41,6 +42,9 @@ nlohmann::json toJson(const RenderStats& s) {
                         {"samples_evaluated", s.samplesEvaluated},
                         {"samples_per_second", samplesPerSecond},
                         {"empty_brick_fraction", s.emptyBrickFraction},
+                        // Rays ended early, and the most their samples left out could add to a channel.
+                        {"rays_terminated", s.raysTerminated},
+                        {"termination_left_out_max", s.terminationLeftOut},
                         {"backend", s.backend}};
     if (!s.device.empty()) j["device"] = s.device;
     if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;

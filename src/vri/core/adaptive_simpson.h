@@ -115,6 +115,7 @@ template <class Real>
 struct AdaptiveResult {
     Real r = 0, g = 0, b = 0, alpha = 0;
     Real transparency = 1;
+    bool terminated = false;  // ended by early termination before its length
 };
 
 // The five points t + k h / 4 of one Simpson try, remembered so that the next try reuses what it
@@ -206,6 +207,7 @@ public:
             }
             t = end;
         }
+        out.terminated = t < length;
         return out;
     }
 

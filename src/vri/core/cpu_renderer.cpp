@@ -14,12 +14,15 @@
 #include <glm/vector_relational.hpp>
 #include <glm/geometric.hpp>
 
+#include "vri/core/early_termination.h"
 #include "vri/core/fixed_step_ray.h"
 #include "vri/core/grid_sampler.h"
 #include "vri/core/occupancy_grid.h"
 #include "vri/core/simd_march.h"
+#include "vri/util/csv.h"
 #include "vri/util/error.h"
 #include "vri/util/format.h"
+#include "vri/util/printable.h"
 #include "vri/util/progress.h"
 
 namespace vri {
@@ -38,6 +41,20 @@ bool parseSimd(std::string_view name, const std::string& what) {
     throw Error(what + ": unknown value '" + std::string(name) + "' (expected on or off)");
 }
 
+void parseEarlyTermination(const std::string& text, const std::string& what, RenderOptions& options) {
+    options.earlyTermination = options.terminationBound = 0.0;
+    if (text == "auto") {
+        options.terminationBound = kAutoTerminationBound;
+        return;
+    }
+    const bool bound = text.rfind("auto:", 0) == 0;
+    const std::optional<double> v = parseNumber(bound ? text.substr(5) : text);
+    if (!v || !(*v >= 0.0 && *v < 1.0) || (bound && !(*v > 0.0)))
+        throw Error(what + ": expected a transparency in [0, 1), 'auto' or 'auto:BOUND' with a bound in (0, 1), got '" +
+                    printable(text) + "'");
+    (bound ? options.terminationBound : options.earlyTermination) = *v;
+}
+
 Box Scene::box() const { return volume ? volumeBox(*volume, convention) : field->box; }
 
 glm::dvec3 Scene::dims() const { return glm::dvec3(volume ? volume->dims : field->dims); }
@@ -45,9 +62,10 @@ glm::dvec3 Scene::dims() const { return glm::dvec3(volume ? volume->dims : field
 namespace {
 
 struct Counters {
-    std::atomic<std::uint64_t> raysHit{0}, samplesPlaced{0}, samplesEvaluated{0};
-    std::mutex adaptiveMutex;
+    std::atomic<std::uint64_t> raysHit{0}, samplesPlaced{0}, samplesEvaluated{0}, raysTerminated{0};
+    std::mutex mutex;  // guards the rest
     AdaptiveCounts adaptive;
+    double terminationLeftOut = 0.0;
 };
 
 
@@ -55,13 +73,13 @@ struct Counters {
 template <class Real, class Sampler>
 RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sample, const OccupancyGrid* occupancy,
                                   const GridIndexing& indexMap, const glm::vec<3, Real>& eyeU, const glm::vec<3, Real>& dims,
-                                  const TransferFunction& tf, const RenderOptions& opt, std::uint64_t& placed,
-                                  std::uint64_t& evaluated) {
+                                  const TransferFunction& tf, const RenderOptions& opt,
+                                  const TerminationRule& termination, MarchCounts& counts) {
     RayAccumulator<Real> acc;
-    const Real ert = static_cast<Real>(opt.earlyTermination);
     const EmissionModel emission = tf.emission();
     FixedStepRay<Real> march(ray, opt, eyeU, dims, indexMap);
     const std::int64_t count = march.schedule.count;
+    const Real ert = termination.threshold<Real>(march.dx, count);
     std::size_t segment = 0;  // the transfer function's last bracket
     std::int64_t k = 0;
     while (k < count) {
@@ -70,11 +88,12 @@ RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sa
             if (k == count) break;
         }
         acc.add(opt.integrator, emission, tf(sample(march.position(k)), segment), march.dx);
-        ++evaluated;
+        ++counts.samplesEvaluated;
         ++k;
         if (acc.transparency < ert) break;
     }
-    placed += static_cast<std::uint64_t>(k);
+    counts.samplesPlaced += static_cast<std::uint64_t>(k);
+    if (k < count) counts.terminated(termination.leftOut(acc.transparency, march.dx, count));
     return acc;
 }
 
@@ -139,10 +158,10 @@ void forEachTile(const RenderOptions& opt, const Image& image, Counters& counter
         counters.raysHit += counts.raysHit;
         counters.samplesPlaced += counts.samplesPlaced + adaptive.pointsUsed;
         counters.samplesEvaluated += counts.samplesEvaluated + adaptive.pointsEvaluated;
-        if (isSimpson(opt.integrator)) {
-            const std::lock_guard lock(counters.adaptiveMutex);
-            counters.adaptive += adaptive;
-        }
+        counters.raysTerminated += counts.raysTerminated;
+        const std::lock_guard lock(counters.mutex);
+        counters.terminationLeftOut = std::max(counters.terminationLeftOut, counts.terminationLeftOut);
+        if (isSimpson(opt.integrator)) counters.adaptive += adaptive;
     });
 }
 
@@ -156,7 +175,8 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
     const Vec eyeU(box.toTexture(camera.eye()));
     const TransferFunction& tf = scene.transferFunction;
     const bool simpson = isSimpson(opt.integrator);
-    const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), static_cast<Real>(opt.earlyTermination));
+    const TerminationRule termination(tf, opt, glm::length(box.size()));
+    const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), static_cast<Real>(termination.simpsonThreshold()));
     forEachTile(opt, image, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive) {
         for (int py = y0; py < y1; ++py)
             for (int px = x0; px < x1; ++px) {
@@ -173,9 +193,10 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                     out[1] = static_cast<float>(r.g);
                     out[2] = static_cast<float>(r.b);
                     out[3] = static_cast<float>(r.alpha);
+                    if (r.terminated) counts.terminated(termination.simpsonLeftOut(r.transparency));
                 } else {
-                    const RayAccumulator<Real> acc = marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt,
-                                                                  counts.samplesPlaced, counts.samplesEvaluated);
+                    const RayAccumulator<Real> acc =
+                        marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt, termination, counts);
                     out[0] = static_cast<float>(acc.r);
                     out[1] = static_cast<float>(acc.g);
                     out[2] = static_cast<float>(acc.b);
@@ -239,6 +260,10 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
     if (!scene.volume && !scene.field) throw Error("scene has neither a volume nor an analytic field");
     if (!(options.earlyTermination >= 0.0 && options.earlyTermination < 1.0))
         throw Error("early termination threshold must be in [0, 1), got " + std::to_string(options.earlyTermination));
+    if (!(options.terminationBound >= 0.0 && options.terminationBound < 1.0))
+        throw Error("early termination bound must be in [0, 1), got " + std::to_string(options.terminationBound));
+    if (options.earlyTermination > 0.0 && options.terminationBound > 0.0)
+        throw Error("early termination takes a transparency threshold or a bound, not both");
     const glm::dvec3 dims = scene.dims();
     // The longest ray crosses |dims| voxels; keep its sample count well inside an int64 and a float.
     if (options.samplingRate * glm::length(dims) > 1e9)
@@ -299,6 +324,8 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     local.raysHit = counters.raysHit;
     local.samplesPlaced = counters.samplesPlaced;
     local.samplesEvaluated = counters.samplesEvaluated;
+    local.raysTerminated = counters.raysTerminated;
+    local.terminationLeftOut = counters.terminationLeftOut;
     if (isSimpson(options.integrator)) local.adaptive = counters.adaptive;
     // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
     local.threads = static_cast<int>(std::min<std::size_t>(

@@ -25,6 +25,12 @@ enum class Precision { Double, Float };
 std::string_view precisionName(Precision p);  // "double", "float"
 Precision parsePrecision(std::string_view name, const std::string& what);
 bool parseSimd(std::string_view name, const std::string& what);  // "on" or "off"
+struct RenderOptions;
+// --early-termination: a transparency in [0, 1) below which rays stop (0: off), `auto` (rays stop once
+// what is left can change no channel by more than kAutoTerminationBound) or `auto:BOUND` with a bound in
+// (0, 1); sets options.earlyTermination or options.terminationBound.
+void parseEarlyTermination(const std::string& text, const std::string& what, RenderOptions& options);
+constexpr double kAutoTerminationBound = 1e-4;  // a tenth of the finest error threshold the tables count
 
 // What is rendered: a volume under a grid convention, or an analytic field evaluated exactly.
 struct Scene {
@@ -49,6 +55,9 @@ struct RenderOptions {
     // Stop a ray once its transparency falls below this; 0 (the default) integrates every ray to
     // its exit, as accuracy studies need.
     double earlyTermination = 0.0;
+    // Or stop a ray once the samples left could change no channel by more than this (0: off; see
+    // libvri/src/early_termination.h). The stats give the most any ended ray left out.
+    double terminationBound = 0.0;
     bool skipEmptySpace = true;  // never changes the image (see occupancy_grid.h)
     // Float Riemann and composite of a volume on packets of rays, one per SIMD lane; bitwise equal to
     // the scalar float path (false), which stays the reference.
@@ -66,6 +75,10 @@ struct RenderStats {
     double setupSeconds = 0.0;           // CPU: building the empty-space grid; Vulkan: upload and pipelines
     int threads = 0;
     double emptyBrickFraction = 0.0;
+    // Early termination: the rays ended before their last sample, and the most the samples they left
+    // out could have added to any channel (max over those rays; 0 when none ended early).
+    std::uint64_t raysTerminated = 0;
+    double terminationLeftOut = 0.0;
     std::optional<AdaptiveCounts> adaptive;  // Simpson methods: tries, failures, steps and points of all rays
     std::vector<AdaptiveTry> rayLog;  // the tries along RenderOptions::logPixel's ray
     std::string backend = "cpu";      // "cpu" or "vulkan" (vulkan_renderer.h)

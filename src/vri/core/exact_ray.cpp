@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vri {
 
@@ -56,26 +57,39 @@ double absSum(const std::array<double, N>& p) {
     return r;
 }
 
-// One Gauss-Kronrod rule on [x0, x1] for the three channels of g exp(-depth): the Kronrod sums in K,
-// the Gauss sums in G (both to be multiplied by the half-width).
+// One Gauss-Kronrod rule on [x0, x1] for the three channels of g exp(-depth), g = C tau or C: the
+// Kronrod sums in K, the Gauss sums in G (both to be multiplied by the half-width). C and tau are
+// evaluated as the cubics they are and multiplied at each node, fewer operations (and roundings) than
+// the degree-6 product.
 template <int N>
 void applyRule(const KronrodRule<N>& rule, double x0, double x1, const std::array<double, 5>& depth,
-               const std::array<double, 7> (&g)[3], double K[3], double G[3]) {
+               const std::array<double, 4>& tau, const std::array<double, 4> (&colour)[3], bool colourTimesExtinction,
+               double K[3], double G[3]) {
+    constexpr int kNodes = 2 * N - 1;
     const double half = 0.5 * (x1 - x0), centre = 0.5 * (x0 + x1);
-    for (int c = 0; c < 3; ++c) K[c] = G[c] = 0.0;
-    auto add = [&](double x, int i) {
-        const double t = std::exp(-horner(depth, x));
-        for (int c = 0; c < 3; ++c) {
-            const double f = horner(g[c], x) * t;
-            K[c] += rule.kronrod[i] * f;
-            if (i % 2 == 1) G[c] += rule.gauss[i / 2] * f;
-        }
-    };
+    // Node j < N - 1 is centre - half node[j], N - 1 + j is centre + half node[j], the last the centre.
+    double x[kNodes];
     for (int i = 0; i < N - 1; ++i) {
-        add(centre - half * rule.node[i], i);
-        add(centre + half * rule.node[i], i);
+        x[i] = centre - half * rule.node[i];
+        x[N - 1 + i] = centre + half * rule.node[i];
     }
-    add(centre, N - 1);
+    x[kNodes - 1] = centre;
+    double t[kNodes];
+    for (int j = 0; j < kNodes; ++j) {
+        t[j] = std::exp(-horner(depth, x[j]));
+        if (colourTimesExtinction) t[j] *= horner(tau, x[j]);
+    }
+    for (int c = 0; c < 3; ++c) {
+        double k = 0.0, gauss = 0.0;
+        for (int i = 0; i < N; ++i) {
+            const double f = i < N - 1 ? horner(colour[c], x[i]) * t[i] + horner(colour[c], x[N - 1 + i]) * t[N - 1 + i]
+                                       : horner(colour[c], x[kNodes - 1]) * t[kNodes - 1];
+            k += rule.kronrod[i] * f;
+            if (i % 2 == 1) gauss += rule.gauss[i / 2] * f;
+        }
+        K[c] = k;
+        G[c] = gauss;
+    }
 }
 
 }  // namespace
@@ -88,6 +102,29 @@ ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
         maxColour_ = {std::max(maxColour_[0], p.r), std::max(maxColour_[1], p.g), std::max(maxColour_[2], p.b)};
     }
     largestColour_ = std::max({1.0, maxColour_[0], maxColour_[1], maxColour_[2]});
+    // The spans of s on which the TF is zero: each maximal run of zero points i..j (the TF is zero
+    // between them and, past the first or last point, beyond). At a jump out of the run at p[j].s the
+    // value there is the next point's, so the span stops an ulp short of it.
+    const auto& points = tf.points();
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    auto zero = [&](const TransferFunctionPoint& p) {
+        return p.tau == 0.0 && (colourTimesExtinction || (p.r == 0.0 && p.g == 0.0 && p.b == 0.0));
+    };
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < points.size();) {
+        if (!zero(points[i])) {
+            ++i;
+            continue;
+        }
+        std::size_t j = i;
+        while (j + 1 < points.size() && zero(points[j + 1])) ++j;
+        const double lo = i == 0 ? -inf : points[i].s;
+        const double hi = j + 1 == points.size() ? inf
+                          : points[j + 1].s == points[j].s ? std::nextafter(points[j].s, -inf)
+                                                            : points[j].s;
+        if (lo <= hi) invisibleSpans_.push_back({lo, hi});
+        i = j + 1;
+    }
     // With g = C tau the rest of a ray adds at most C_max T to a colour and T to alpha, so a ray may end
     // once T <= tolerance / max(1, C_max); with g = C that is necessary, not sufficient (see done()).
     terminationDepth_ = std::min(kOpaqueDepth, std::log(largestColour_ / tolerance));
@@ -102,6 +139,12 @@ bool ExactRay::done(double remainingLength) const {
     if (depth < terminationDepth_) return false;
     return emission_ == EmissionModel::ColourTimesExtinction ||
            std::exp(-depth) * std::max(1.0, largestColour_ * remainingLength) <= tolerance_;
+}
+
+bool ExactRay::invisible(double s0, double s1) const {
+    for (const auto& [lo, hi] : invisibleSpans_)
+        if (s0 >= lo && s1 <= hi) return true;
+    return false;
 }
 
 void ExactRay::begin() {
@@ -119,7 +162,7 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     const int parts = nc + 1;
     for (int i = 0; i <= parts; ++i) values[i] = s(ends[i]);
     const auto [lo, hi] = std::minmax_element(values, values + parts + 1);
-    if (tf_.isInvisible(*lo, *hi)) return;  // neither extinction nor emission anywhere on the piece
+    if (invisible(*lo, *hi)) return;  // neither extinction nor emission anywhere on the piece
 
     // Split where s crosses a transfer-function point: within a monotone part at most once per level,
     // in the order of the levels when s rises and in reverse when it falls.
@@ -203,18 +246,14 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     const Linear colour[3] = {alongSegment(A.r, B.r), alongSegment(A.g, B.g), alongSegment(A.b, B.b)};
     const double tauSum = absSum(tau.p);
 
-    std::array<double, 7> g[3];  // the emission of each channel
+    // Bounds on the emission g of each channel and on its error where the rule evaluates it.
     double gMax[3], gError[3];
     for (int c = 0; c < 3; ++c) {
-        g[c] = {};
         const double colourSum = absSum(colour[c].p);
         if (colourTimesExtinction) {
-            for (int i = 0; i < 4; ++i)
-                for (int j = 0; j < 4; ++j) g[c][i + j] += colour[c].p[i] * tau.p[j];
             gMax[c] = colourSum * tauSum;
             gError[c] = colour[c].error * tauSum + colourSum * tau.error + 16.0 * kUnit * gMax[c];
         } else {
-            for (int i = 0; i < 4; ++i) g[c][i] = colour[c].p[i];
             gMax[c] = colourSum;
             gError[c] = colour[c].error;
         }
@@ -263,10 +302,11 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         const double tHigh = iv.x0 == 0.0 ? 1.0 : std::exp(-(d0 - dd0));
         if (d1 - d0 <= kResolvedDepth) {
             double K[3], G[3], e[3], worst = 0.0;
+            const std::array<double, 4> colours[3] = {colour[0].p, colour[1].p, colour[2].p};
             if (lowOrder_)
-                applyRule(kKronrod7, iv.x0, iv.x1, depth, g, K, G);
+                applyRule(kKronrod7, iv.x0, iv.x1, depth, tau.p, colours, colourTimesExtinction, K, G);
             else
-                applyRule(kKronrod15, iv.x0, iv.x1, depth, g, K, G);
+                applyRule(kKronrod15, iv.x0, iv.x1, depth, tau.p, colours, colourTimesExtinction, K, G);
             quadratureNodes += lowOrder_ ? 7 : 15;
             for (int c = 0; c < 3; ++c) {
                 e[c] = ell * 0.5 * width * std::abs(K[c] - G[c]);

@@ -3,6 +3,7 @@
 // near double precision with a bound on its error (see exact_reference.h for the method).
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "vri/core/cubic.h"
@@ -31,6 +32,10 @@ public:
     // a bound on each channel's error.
     void finish(double remainingLength, double value[4], double bound[4]) const;
 
+    // Whether the TF is zero on all of [s0, s1]: tf.isInvisible(s0, s1) from a table of the spans where
+    // it is zero, not a search (true only where that is; an ulp short of a jump out of zero).
+    bool invisible(double s0, double s1) const;
+
     std::uint64_t subPieces = 0, quadratureIntervals = 0, quadratureNodes = 0;  // counted over all rays
 
 private:
@@ -47,6 +52,7 @@ private:
     std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
     std::vector<double> levels_;   // the distinct s of the TF points: where a piece is split
     std::vector<double> splits_;   // scratch: a piece's split points in sigma
+    std::vector<std::pair<double, double>> invisibleSpans_;  // closed spans of s where the TF is zero
     std::array<double, 3> maxColour_{};
 
     // The ray so far.

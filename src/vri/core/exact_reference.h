@@ -23,8 +23,8 @@ struct ExactReferenceOptions {
     // 3-7 Gauss-Kronrod rule replaces the 7-15 one. A ray also ends once the transparency times the
     // largest colour (and the transparency itself, for alpha) is below it; that tail is in the bound.
     double tolerance = 1e-13;
-    // Jump over the bricks of the occupancy grid on which the transfer function is zero (the image
-    // and the bounds do not change by a bit; off only to test that).
+    // Jump over blocks of 4^3 cells on which the transfer function is zero (the image and the bounds
+    // do not change by a bit; off only to test that).
     bool skipEmptySpace = true;
     int tileSize = 16;
     bool progress = false;  // report progress on stderr

@@ -226,6 +226,7 @@ struct Lanes {
     HWY_ALIGN float tStart[kMaxLanes], tIncr[kMaxLanes];
     HWY_ALIGN float entry[3][kMaxLanes], du[3][kMaxLanes], dx[kMaxLanes], samplesPerVoxel[3][kMaxLanes];
     HWY_ALIGN float r[kMaxLanes], g[kMaxLanes], b[kMaxLanes], transparency[kMaxLanes];
+    HWY_ALIGN float terminateBelow[kMaxLanes];  // the transparency that ends the ray (early_termination.h)
     HWY_ALIGN std::int32_t k[kMaxLanes], count[kMaxLanes], finished[kMaxLanes];
     int pixel[kMaxLanes];
 };
@@ -237,7 +238,6 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     const VectorOps ops{df, di};
     const std::size_t n = hn::Lanes(df);
     const VectorTransferFunction tf(sc);
-    const float ert = static_cast<float>(sc.options.earlyTermination);
     const int width = x1 - x0, pixels = width * (y1 - y0);
     Lanes L{};
     int nextPixel = 0;
@@ -265,6 +265,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                     1.0 / std::abs(static_cast<double>(ray.du[a]) * sc.layout.scale[a] * ray.schedule.tIncr));
             }
             L.dx[lane] = ray.dx;
+            L.terminateBelow[lane] = sc.termination.threshold<float>(ray.dx, ray.schedule.count);
             L.r[lane] = L.g[lane] = L.b[lane] = 0;
             L.transparency[lane] = 1;
             return;
@@ -277,6 +278,8 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         out[2] = L.b[lane];
         out[3] = 1.f - L.transparency[lane];
         counts.samplesPlaced += static_cast<std::uint64_t>(L.k[lane]);
+        if (L.k[lane] < L.count[lane])
+            counts.terminated(sc.termination.leftOut(L.transparency[lane], L.dx[lane], L.count[lane]));
         L.k[lane] = L.count[lane] = 0;
     };
 
@@ -361,7 +364,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             const VF after = hn::IfThenElse(contributes, hn::Mul(transparency, attenuation), transparency);
             hn::Store(after, df, L.transparency);
             counts.samplesEvaluated += hn::CountTrue(df, evaluated);
-            done = hn::Or(done, hn::Lt(after, hn::Set(df, ert)));
+            done = hn::Or(done, hn::Lt(after, hn::Load(df, L.terminateBelow)));
         }
         done = hn::And(active, done);
         if (!hn::AllFalse(df, done)) finishLanes(done);
@@ -432,6 +435,7 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Occupan
       indexMap(scene.volume->dims, scene.convention),
       occupancy(occupancy),
       options(options),
+      termination(scene.transferFunction, options, glm::length(box.size())),
       emission(scene.transferFunction.emission()),
       voxels(scene.volume->bytes.data()),
       type(scene.volume->type),

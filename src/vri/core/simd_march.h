@@ -7,6 +7,7 @@
 // `--simd off` on every target. A packet holds neighbouring pixels of a tile; a lane whose ray has
 // ended is masked until the packet's last ray ends. Empty space is skipped per sample, by the brick
 // of its trilinear stencil, and a lane in an empty brick jumps to the samples leaving it.
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "vri/core/box.h"
 #include "vri/core/camera.h"
 #include "vri/core/cpu_renderer.h"
+#include "vri/core/early_termination.h"
 #include "vri/core/grid_sampler.h"
 #include "vri/core/image.h"
 #include "vri/core/occupancy_grid.h"
@@ -24,6 +26,14 @@ namespace vri {
 
 struct MarchCounts {
     std::uint64_t raysHit = 0, samplesPlaced = 0, samplesEvaluated = 0;
+    std::uint64_t raysTerminated = 0;  // rays ended early with samples left (early_termination.h)
+    double terminationLeftOut = 0.0;   // the most those samples could have added to a channel
+
+    // A ray ended early, leaving out samples that could have added at most `leftOut` to a channel.
+    void terminated(double leftOut) {
+        ++raysTerminated;
+        terminationLeftOut = std::max(terminationLeftOut, leftOut);
+    }
 };
 
 // A scene as the packet engine reads it, built once per render.
@@ -43,6 +53,7 @@ struct PacketScene {
     GridIndexing indexMap;
     const OccupancyGrid* occupancy;
     RenderOptions options;
+    TerminationRule termination;
     EmissionModel emission;
     // The volume.
     const std::byte* voxels;

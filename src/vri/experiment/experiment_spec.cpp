@@ -69,7 +69,8 @@ const std::vector<RunParameter>& renderParameters() {
         {"rate", "--rate", "r", positiveNumber},
         {"precision", "--precision", "", [](auto& v, auto& w) { parsePrecision(v, w); }},
         {"simd", "--simd", "simd-", [](auto& v, auto& w) { parseSimd(v, w); }},  // float riemann, composite
-        {"early_termination", "--early-termination", "ert", nonNegativeNumber},
+        {"early_termination", "--early-termination", "ert",
+         [](auto& v, auto& w) { RenderOptions o; parseEarlyTermination(v, w, o); }},  // a transparency or auto[:BOUND]
         {"repeat", "--repeat", "x", positiveCount},  // timing: the stats give the median of the frames
         // Paper B's adaptive Simpson (coupled, decoupled).
         {"eps", "--tolerance", "eps", nonNegativeNumber},

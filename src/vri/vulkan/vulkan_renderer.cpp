@@ -187,6 +187,8 @@ void VulkanRenderer::validateOptions(const RenderOptions& options) {
     if (options.precision != Precision::Float)
         throw Error("the Vulkan backend renders in single precision only (precision float)");
     if (options.logPixel) throw Error("the Vulkan backend does not log a ray (the per-ray log is CPU only)");
+    if (options.terminationBound > 0.0)
+        throw Error("early termination 'auto': the Vulkan backend takes a transparency threshold only");
 }
 
 Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
