@@ -15,14 +15,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct MetaEntry {
-    std::string key;  // as written, for messages
-    std::string value;
-    int line = 0;
-};
-
 struct MetaHeader {
-    std::map<std::string, MetaEntry> entries;  // by lower-cased key
+    std::map<std::string, HeaderEntry> entries;  // by lower-cased key
     std::uintmax_t dataOffset = 0;             // the byte after the ElementDataFile line
 };
 
@@ -63,7 +57,7 @@ StoredType parseElementType(const std::string& name, const std::string& where) {
     return it->second;
 }
 
-bool parseBool(const MetaEntry& entry, const std::string& where) {
+bool parseBool(const HeaderEntry& entry, const std::string& where) {
     const std::string v = toLower(entry.value);
     if (v == "true" || v == "1") return true;
     if (v == "false" || v == "0") return false;
@@ -75,27 +69,27 @@ bool parseBool(const MetaEntry& entry, const std::string& where) {
 Volume readMetaImage(const fs::path& path) {
     requireRegularFile(path);
     const MetaHeader header = parseHeader(path);
-    const auto find = [&](const std::string& key) -> const MetaEntry* {
+    const auto find = [&](const std::string& key) -> const HeaderEntry* {
         const auto it = header.entries.find(key);
         return it == header.entries.end() ? nullptr : &it->second;
     };
-    const auto where = [&](const MetaEntry& entry) {
+    const auto where = [&](const HeaderEntry& entry) {
         return path.string() + ":" + std::to_string(entry.line) + ": " + entry.key;
     };
-    const auto require = [&](const std::string& key, const std::string& spelling) -> const MetaEntry& {
-        if (const MetaEntry* entry = find(key)) return *entry;
+    const auto require = [&](const std::string& key, const std::string& spelling) -> const HeaderEntry& {
+        if (const HeaderEntry* entry = find(key)) return *entry;
         throw Error(path.string() + ": required key '" + spelling + "' is missing");
     };
 
-    if (const MetaEntry* type = find("objecttype"); type && toLower(type->value) != "image")
+    if (const HeaderEntry* type = find("objecttype"); type && toLower(type->value) != "image")
         throw Error(where(*type) + ": expected Image, got '" + type->value + "'");
-    const MetaEntry& ndims = require("ndims", "NDims");
+    const HeaderEntry& ndims = require("ndims", "NDims");
     if (trim(ndims.value) != "3") throw Error(where(ndims) + ": must be 3 (a scalar volume), got " + ndims.value);
-    if (const MetaEntry* channels = find("elementnumberofchannels"); channels && trim(channels->value) != "1")
+    if (const HeaderEntry* channels = find("elementnumberofchannels"); channels && trim(channels->value) != "1")
         throw Error(where(*channels) + ": must be 1 (a scalar volume), got " + channels->value);
 
     VoxelData data;
-    const MetaEntry& dimSize = require("dimsize", "DimSize");
+    const HeaderEntry& dimSize = require("dimsize", "DimSize");
     const std::vector<double> dims = parseNumbers(dimSize.value, 3, where(dimSize));
     for (int axis = 0; axis < 3; ++axis) {
         // Compared before the cast: converting a double beyond int's range is undefined.
@@ -104,18 +98,18 @@ Volume readMetaImage(const fs::path& path) {
                         dimSize.value + "'");
         data.dims[axis] = static_cast<int>(dims[axis]);
     }
-    const MetaEntry& elementType = require("elementtype", "ElementType");
+    const HeaderEntry& elementType = require("elementtype", "ElementType");
     data.type = parseElementType(std::string(trim(elementType.value)), where(elementType));
 
     for (const char* key : {"binarydatabyteordermsb", "elementbyteordermsb"})
-        if (const MetaEntry* msb = find(key)) data.order = parseBool(*msb, where(*msb)) ? ByteOrder::Big : ByteOrder::Little;
-    if (const MetaEntry* binary = find("binarydata"); binary && !parseBool(*binary, where(*binary)))
+        if (const HeaderEntry* msb = find(key)) data.order = parseBool(*msb, where(*msb)) ? ByteOrder::Big : ByteOrder::Little;
+    if (const HeaderEntry* binary = find("binarydata"); binary && !parseBool(*binary, where(*binary)))
         throw Error(where(*binary) + ": ASCII voxel data are not supported (BinaryData = True)");
-    if (const MetaEntry* compressed = find("compresseddata")) data.gzip = parseBool(*compressed, where(*compressed));
+    if (const HeaderEntry* compressed = find("compresseddata")) data.gzip = parseBool(*compressed, where(*compressed));
 
     // Direction cosines other than the identity rotate or flip the grid.
     for (const char* key : {"transformmatrix", "rotation", "orientation"})
-        if (const MetaEntry* matrix = find(key)) {
+        if (const HeaderEntry* matrix = find(key)) {
             const std::vector<double> m = parseNumbers(matrix->value, 9, where(*matrix));
             for (int i = 0; i < 9; ++i)
                 if (m[i] != (i % 4 == 0 ? 1.0 : 0.0))
@@ -124,7 +118,7 @@ Volume readMetaImage(const fs::path& path) {
         }
 
     glm::dvec3 spacing{1.0};
-    if (const MetaEntry* s = find("elementspacing")) {
+    if (const HeaderEntry* s = find("elementspacing")) {
         const std::vector<double> v = parseNumbers(s->value, 3, where(*s));
         for (int axis = 0; axis < 3; ++axis) {
             if (!(v[axis] > 0.0))
@@ -133,7 +127,7 @@ Volume readMetaImage(const fs::path& path) {
         }
     }
 
-    const MetaEntry& dataFile = require("elementdatafile", "ElementDataFile");
+    const HeaderEntry& dataFile = require("elementdatafile", "ElementDataFile");
     fs::path dataPath = path;
     if (toLower(dataFile.value) == "local") {
         data.offset = header.dataOffset;
@@ -144,7 +138,7 @@ Volume readMetaImage(const fs::path& path) {
                         "'");
         dataPath = fs::path(dataFile.value).is_absolute() ? fs::path(dataFile.value) : path.parent_path() / dataFile.value;
         data.offset = 0;
-        if (const MetaEntry* headerSize = find("headersize")) {
+        if (const HeaderEntry* headerSize = find("headersize")) {
             if (trim(headerSize->value) == "-1") {
                 if (data.gzip) throw Error(where(*headerSize) + ": -1 (the last bytes) with compressed data is not supported");
                 data.offset.reset();
@@ -163,7 +157,7 @@ Volume readMetaImage(const fs::path& path) {
     }
     volume.spacing = spacing;
     for (const char* key : {"offset", "origin", "position"})
-        if (const MetaEntry* offset = find(key)) {
+        if (const HeaderEntry* offset = find(key)) {
             const std::vector<double> o = parseNumbers(offset->value, 3, where(*offset));
             volume.origin = glm::dvec3(o[0], o[1], o[2]) - 0.5 * spacing;
         }

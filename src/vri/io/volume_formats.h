@@ -44,6 +44,13 @@ std::filesystem::path rawFileBeside(const std::filesystem::path& headerPath);
 std::string_view rawBytes(const std::filesystem::path& path, const Volume& volume, ByteOrder order,
                           std::vector<std::byte>& swapped);
 
+// One "Key: value" (.dat) or "Key = Value" (MetaImage) header line.
+struct HeaderEntry {
+    std::string key;  // as written, for messages
+    std::string value;
+    int line = 0;
+};
+
 std::string_view trim(std::string_view text);
 std::string toLower(std::string_view text);
 // Exactly `count` whitespace-separated numbers; throws Error("<where>: ...") otherwise.
