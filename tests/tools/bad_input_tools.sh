@@ -20,7 +20,7 @@ printf '{"a": 1\n' > broken.json
 printf 'points:\n  - [0, 0, 0, 0, -1]\n' > negative_tau.yaml
 printf 'points: [[0, 0, 0, 0, 0]\n' > unclosed_tf.yaml
 printf 'NRRD0004\ntype: uint8\ndimension: 2\nsizes: 8 8\nencoding: raw\ndata file: blob_8x8x8_uint8.raw\n' > flat.nhdr
-printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: gzip\ndata file: blob_8x8x8_uint8.raw\n' > gzip.nhdr
+printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: bzip2\ndata file: blob_8x8x8_uint8.raw\n' > bzip2.nhdr
 printf 'Rawfile: blob_8x8x8_uint8.raw\nResolution: 8 8\nFormat: UINT8\n' > two_dims.dat
 printf 'Rawfile: blob_8x8x8_uint8.raw\nResolution: 8 8 8\nFormat: FLOAT64\n' > float64.dat
 printf 'Rawfile: missing.raw\nResolution: 8 8 8\nFormat: UINT8\n' > no_raw.dat
@@ -81,7 +81,7 @@ bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- 
 bad 1 "${E}unclosed_tf.yaml:2:1: malformed YAML" -- \
     "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf unclosed_tf.yaml -o out.exr
 bad 1 "${E}junk.vdb: .*not a VDB file" -- "$bin/vri-render" --volume junk.vdb --tf tf.yaml -o out.exr
-bad 1 "${E}gzip.nhdr:5: encoding: 'gzip' is not supported" -- "$bin/vri-render" --volume gzip.nhdr --tf tf.yaml -o out.exr
+bad 1 "${E}bzip2.nhdr:5: encoding: 'bzip2' is not supported" -- "$bin/vri-render" --volume bzip2.nhdr --tf tf.yaml -o out.exr
 bad 1 "${E}float64.dat:3: Format: unknown voxel type 'FLOAT64'" -- \
     "$bin/vri-render" --volume float64.dat --tf tf.yaml -o out.exr
 bad 1 "${E}--field: unknown analytic field 'quadratic'" -- "$bin/vri-render" --field quadratic --tf tf.yaml -o out.exr
@@ -179,7 +179,7 @@ bad 64 "${E}input is required" -- "$bin/vri-convert"
 bad 1 "${E}give an output file, or --info to summarise the input" -- "$bin/vri-convert" blob_8x8x8_uint8.raw
 bad 1 "${E}missing.raw: no such file$" -- "$bin/vri-convert" missing.raw out.vdb
 bad 1 "${E}flat.nhdr:3: dimension: must be 3" -- "$bin/vri-convert" flat.nhdr --info
-bad 1 "${E}gzip.nhdr:5: encoding: 'gzip' is not supported \(only raw\)" -- "$bin/vri-convert" gzip.nhdr out.vdb
+bad 1 "${E}bzip2.nhdr:5: encoding: 'bzip2' is not supported \(raw or gzip\)" -- "$bin/vri-convert" bzip2.nhdr out.vdb
 bad 1 "${E}two_dims.dat:2: Resolution: expected 3 numbers, got 2" -- "$bin/vri-convert" two_dims.dat --info
 bad 1 "${E}float64.dat:3: Format: unknown voxel type 'FLOAT64'" -- "$bin/vri-convert" float64.dat --info
 bad 1 "${E}no_raw.dat: Rawfile missing.raw: no such file" -- "$bin/vri-convert" no_raw.dat --info
