@@ -125,6 +125,11 @@ def arguments(argv):
     p.add_argument("--png", help="8-bit preview PNG")
     p.add_argument("--stats", help="statistics and provenance as JSON")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
+    # As vri's tools (CLI11) do: an unknown option is named before any missing required one.
+    for word in argv:
+        name = word.split("=", 1)[0]
+        if name.startswith("-") and name != "-" and name not in p._option_string_actions:
+            raise UsageError("The following argument was not expected: " + word)
     a = p.parse_args(argv)
 
     a.width, a.height = parse_size(a.size)
@@ -549,8 +554,18 @@ def rerun_under_xvfb(a):
     sys.exit(done.returncode)
 
 
+def version_text():
+    """vri's --version form: the adapter carries the version and build of the vri tools beside it."""
+    convert = subprocess.run([vri_tool("vri-convert"), "--version"], capture_output=True, text=True, check=True)
+    lines = convert.stdout.splitlines()
+    return "\n".join([lines[0].replace("vri-convert", TOOL, 1)] + lines[1:])
+
+
 def main():
     try:
+        if "--version" in sys.argv[1:]:
+            print(version_text())
+            return 0
         a = arguments(sys.argv[1:])
         rerun_under_xvfb(a)
         render(a)

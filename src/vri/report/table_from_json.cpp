@@ -98,12 +98,15 @@ std::string medianNote(std::size_t fewest, std::size_t most) {
 }
 
 // A run's method family from its stats, what one series of a chart draws: "riemann float SIMD",
-// "coupled double", "riemann float vulkan", "exact" (vri-reference's stats name no backend).
+// "coupled double", "riemann float vulkan", "exact" (vri-reference's stats name no backend), "vtk-gpu".
 std::string methodFamily(const json& stats, const fs::path& file) {
     return readingJsonOf(file, [&] {
         const std::string method = stats.at("options").at("method").get<std::string>();
         if (method == "exact") return method;
-        std::string family = method + " " + stats.at("options").at("precision").get<std::string>();
+        // A peer renderer (vri-peer-vtk) has no precision option: its family is its method.
+        const json& options = stats.at("options");
+        if (!options.contains("precision")) return method;
+        std::string family = method + " " + options.at("precision").get<std::string>();
         const json& run = stats.at("stats");
         if (run.value("backend", "cpu") == "vulkan") family += " vulkan";
         else if (run.contains("simd_target") && !run["simd_target"].is_null()) family += " SIMD";
