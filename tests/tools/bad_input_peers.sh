@@ -15,7 +15,7 @@ mkfifo stream.exr
 scene=(--volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 --eye 4,4,-20 --target 4,4,4 -q)
 
 bad 64 '^vri-peer-vtk: error: the following arguments are required: --volume' -- "$peer" --tf tf.yaml -o out.exr
-bad 64 '^vri-peer-vtk: error: unrecognized arguments: --zoom 2' -- "$peer" "${scene[@]}" --zoom 2 -o out.exr
+bad 64 '^vri-peer-vtk: error: The following argument was not expected: --zoom' -- "$peer" "${scene[@]}" --zoom 2 -o out.exr
 bad 64 "^vri-peer-vtk: error: argument --method: invalid choice: 'vtk-raycast'" -- \
     "$peer" "${scene[@]}" --method vtk-raycast -o out.exr
 bad 64 "^vri-peer-vtk: error: --size '0x6': expected WIDTHxHEIGHT" -- "$peer" "${scene[@]}" --size 0x6 -o out.exr

@@ -129,7 +129,7 @@ def arguments(argv):
     for word in argv:
         name = word.split("=", 1)[0]
         if name.startswith("-") and name != "-" and name not in p._option_string_actions:
-            raise UsageError("The following argument was not expected: " + word)
+            raise UsageError("The following argument was not expected: " + word + " (see --help)")
     a = p.parse_args(argv)
 
     a.width, a.height = parse_size(a.size)
