@@ -6,10 +6,12 @@ JOBS ?= $(shell nproc)
 VRI_DATA_DIR ?= $(if $(wildcard ../shared/data/volumes),$(abspath ../shared/data/volumes),$(abspath data))
 export VRI_DATA_DIR
 
-.PHONY: all deps deps-fuzz build test test-sanitize fuzz experiments experiments-quick clean
+.PHONY: all deps deps-fuzz build test test-no-vulkan test-sanitize fuzz install experiments experiments-quick clean
 
 all: build
 
+# The Debian packages the build and the tests need (scripts/install-deps.sh); build, test and
+# experiments depend on it, so it runs first everywhere.
 deps:
 	@scripts/install-deps.sh
 
@@ -21,6 +23,21 @@ build: deps $(BUILD)/build.ninja
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# The tools, libraries, headers, vriConfig.cmake and vri.pc under PREFIX (README, "Using vri as a library").
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD) --prefix "$(PREFIX)"
+
+# Everything without the Vulkan backend (-DVRI_VULKAN=OFF) in $(NOVULKAN_BUILD): it must configure,
+# build and pass every test that does not need Vulkan (those skip).
+NOVULKAN_BUILD ?= build-novulkan
+$(NOVULKAN_BUILD)/build.ninja: | deps
+	cmake -S . -B $(NOVULKAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DVRI_VULKAN=OFF
+
+test-no-vulkan: deps $(NOVULKAN_BUILD)/build.ninja
+	cmake --build $(NOVULKAN_BUILD) -j $(JOBS)
+	ctest --test-dir $(NOVULKAN_BUILD) --output-on-failure -j $(JOBS)
 
 # Every test again, built with ASan + UBSan (float-to-integer casts included); the first report fails
 # its test. About 30 min on 2 cores, so not part of .ci/run (README, Testing).
@@ -44,7 +61,7 @@ test-sanitize: deps $(SANITIZE_BUILD)/build.ninja
 # The parsers' libFuzzer targets (tests/fuzz), FUZZ_SECONDS each, built with clang in $(FUZZ_BUILD).
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS ?= nhdr dat tf_yaml experiment_yaml vdb_metadata
+FUZZ_TARGETS ?= nhdr mhd dat tf_yaml experiment_yaml vdb_metadata
 FUZZ_CXX ?= clang++-14
 deps-fuzz:
 	@scripts/install-deps.sh fuzz
@@ -68,7 +85,7 @@ experiments-quick: build
 	$(BUILD)/bin/vri-run --quick --results $(BUILD)/experiments-quick --gallery $(BUILD)/experiments-quick $(EXPERIMENTS)
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(NOVULKAN_BUILD)
 
 # The datasets: checks each one of experiments/datasets.yaml in $(VRI_DATA_DIR) (size, SHA-512) and
 # downloads the missing ones there from their published URLs; fails on MISSING or MISMATCH.

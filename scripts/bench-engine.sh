@@ -2,10 +2,12 @@
 # Interleaved timings of the CPU engines on paper B's Bonsai scene (experiments/paper-b-cpu.yaml: 800x600,
 # its camera and TF): each configuration renders --warm-up 1 --repeat 1 per round, ROUNDS rounds in turn,
 # so that a load on the machine falls on every configuration alike. Prints each configuration's median
-# seconds and its ratio to scalar double Riemann h = 0.5 of the same run.
-#   scripts/bench-engine.sh [BUILD_DIR] [ROUNDS] [THREADS]      (VRI_DATA_DIR: the volumes)
+# seconds and its ratio to scalar double Riemann h = 0.5 of the same build in the same run.
+#   scripts/bench-engine.sh [BUILD_DIRS] [ROUNDS] [THREADS]      (VRI_DATA_DIR: the volumes)
+# BUILD_DIRS: one build folder, or several separated by commas (before,after), timed in turn;
+# BENCH_CONFIGS: 'name|options;name|options...' instead of the default set (the first is the baseline).
 set -euo pipefail
-build=${1:-build}
+IFS=, read -ra builds <<< "${1:-build}"
 rounds=${2:-5}
 threads=${3:-2}
 data=${VRI_DATA_DIR:-../shared/data/volumes}
@@ -21,29 +23,38 @@ configs=(
     "riemann-float-simd-h0.1|--step 0.1 --precision float"
     "exact-1e-7|--method exact --tolerance 1e-7"
     "exact-1e-6|--method exact --tolerance 1e-6"
+    "riemann-double-h0.5-auto|--step 0.5 --early-termination auto"
+    "riemann-float-simd-h0.1-auto|--step 0.1 --precision float --early-termination auto"
 )
 [[ -n ${BENCH_CONFIGS:-} ]] && mapfile -t configs < <(printf '%s\n' "$BENCH_CONFIGS" | tr ';' '\n')
 for ((r = 0; r < rounds; ++r)); do
     for c in "${configs[@]}"; do
         name=${c%%|*}
         read -ra extra <<< "${c#*|}"
-        "$build/bin/vri-render" "${scene[@]}" "${extra[@]}" --warm-up 1 -o "$work/$name.exr" --stats "$work/$name.$r.json"
+        for ((b = 0; b < ${#builds[@]}; ++b)); do
+            "${builds[b]}/bin/vri-render" "${scene[@]}" "${extra[@]}" --warm-up 1 -o "$work/$name.$b.exr" \
+                --stats "$work/$name.$b.$r.json" 2> "$work/stderr" || true  # an option the build lacks: no row
+        done
     done
 done
-python3 - "$work" "$rounds" "${configs[@]}" <<'PY'
-import json, statistics, sys
-work, rounds, configs = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
-med = {}
-for c in configs:
-    name = c.split('|')[0]
-    runs = [json.load(open(f"{work}/{name}.{r}.json")) for r in range(rounds)]
-    med[name] = statistics.median(j["timing"]["median_wall_seconds"] for j in runs)
-    extra = runs[0]["stats"].get("error_bound", {}).get("max")
-    med[name, "bound"] = max(extra) if extra else None
-base = med[configs[0].split('|')[0]]
-print(f"{'configuration':28s} {'median s':>9s} {'ratio':>7s}  bound")
-for c in configs:
-    name = c.split('|')[0]
-    b = med[name, "bound"]
-    print(f"{name:28s} {med[name]:9.3f} {med[name] / base:7.3f}  {'' if b is None else f'{b:.3g}'}")
+python3 - "$work" "$rounds" "${#builds[@]}" "${builds[@]}" "${configs[@]}" <<'PY'
+import json, os, statistics, sys
+work, rounds, nb = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+builds, configs = sys.argv[4:4 + nb], [c.split('|')[0] for c in sys.argv[4 + nb:]]
+def row(name, b):
+    files = [f"{work}/{name}.{b}.{r}.json" for r in range(rounds)]
+    if not all(os.path.exists(f) for f in files): return None
+    runs = [json.load(open(f)) for f in files]
+    bound = runs[0]["stats"].get("error_bound", {}).get("max")
+    left = runs[0]["stats"].get("termination_left_out_max")
+    return statistics.median(j["timing"]["median_wall_seconds"] for j in runs), max(bound) if bound else left
+print(f"{'configuration':28s}" + "".join(f" {b[-16:]:>16s} s  ratio  bound  " for b in builds))
+base = [row(configs[0], b) for b in range(nb)]
+for name in configs:
+    line = f"{name:28s}"
+    for b in range(nb):
+        r = row(name, b)
+        line += f" {'':>18s}      {'':>6s}" if r is None or base[b] is None else \
+                f" {r[0]:18.3f} {r[0] / base[b][0]:6.3f}  {'' if r[1] is None else f'{r[1]:.2g}':6s}"
+    print(line)
 PY

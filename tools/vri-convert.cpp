@@ -48,6 +48,10 @@ nlohmann::json infoJson(const fs::path& path, const vri::Volume& volume, const v
             {"normalisation_source", normalisationSource(volume)},
             {"mean", stats.mean},
             {"zero_fraction", stats.zeroFraction},
+            {"active_voxels", stats.activeVoxels},
+            {"brick_size", vri::kStatsBrickSize},
+            {"bricks", stats.bricks},
+            {"active_bricks", stats.activeBricks},
             {"histogram",
              {{"range", {stats.normalisation.lo, stats.normalisation.hi}},
               {"counts", stats.histogram},
@@ -70,6 +74,10 @@ void printInfo(const fs::path& path, const vri::Volume& volume, const vri::Volum
               << "normalise    " << text(n.lo) << " .. " << text(n.hi) << " (" << normalisationSource(volume) << ")\n"
               << "mean         " << text(stats.mean) << "\n"
               << "zero voxels  " << percent(stats.zeroFraction * voxels) << "\n"
+              << "active       " << stats.activeVoxels << " voxels not 0, in " << stats.activeBricks << " of "
+              << stats.bricks << " bricks of " << vri::kStatsBrickSize << "^3 ("
+              << text(100.0 * static_cast<double>(stats.activeBricks) / static_cast<double>(stats.bricks), 3)
+              << "%)\n"
               << "histogram    " << stats.histogram.size() << " bins over " << text(n.lo) << " .. " << text(n.hi)
               << "\n";
     const double width = (n.hi - n.lo) / static_cast<double>(stats.histogram.size());
@@ -87,18 +95,20 @@ void printInfo(const fs::path& path, const vri::Volume& volume, const vri::Volum
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Convert a volume between raw, NRRD (.nhdr), Inviwo .dat and OpenVDB (.vdb), or summarise it."};
+    CLI::App app{"Convert a volume between raw, NRRD (.nhdr/.nrrd), Inviwo .dat and OpenVDB (.vdb), read MetaImage "
+                 "(.mhd/.mha) and TIFF stacks (.tif), or summarise it."};
     app.footer(R"(Examples:
   vri-convert bonsai_256x256x256_uint8.raw bonsai.vdb
       dims and type come from the Open SciVis file name; the .vdb stores only non-zero voxels
   vri-convert bonsai.vdb bonsai_256x256x256_uint8.raw
       and back, byte for byte
   vri-convert --info boron.dat
-      dims, type, spacing, value range, mean, empty fraction and a 16-bin histogram
+      dims, type, spacing, value range, mean, empty fraction, active voxels and 8^3 bricks, a 16-bin histogram
   vri-convert --info --json bonsai.vdb
   vri-convert scan.raw scan.nhdr --dims 512,512,300 --type uint16 --byte-order big --spacing 0.5,0.5,1
 
-Formats by extension: .nhdr/.nrrd (raw encoding), .dat (Inviwo), .vdb; anything else is raw.
+Formats by extension: .nhdr/.nrrd (raw or gzip), .dat (Inviwo), .vdb, .mhd/.mha and .tif/.tiff (read
+only); anything else is raw. int8, int16, int32, uint32 and float64 voxels are read as float32 (README.md, "Formats").
 Writes are atomic: on failure no output file is left behind.
 A volume may take at most 16 GiB in memory (VRI_MAX_BYTES: a byte count to change it). A .vdb whose dims
 would unpack to more than 1024 times its file size (and over 256 MiB) is refused unless VRI_MAX_BYTES is set.)");
@@ -106,8 +116,8 @@ would unpack to more than 1024 times its file size (and over 256 MiB) is refused
     std::string input, output, grid;
     vri::RawInputOptions raw;
     bool info = false, json = false, quiet = false;
-    app.add_option("input", input, "volume to read: .raw, .nhdr, .nrrd, .dat or .vdb")->required();
-    app.add_option("output", output, "volume to write: .vdb, .nhdr, .dat or .raw (not needed with --info)");
+    app.add_option("input", input, "volume to read: .raw, .nhdr, .nrrd, .dat, .vdb, .mhd, .mha or .tif")->required();
+    app.add_option("output", output, "volume to write: .vdb, .nhdr, .nrrd, .dat or .raw (not needed with --info)");
     raw.addTo(app);
     app.add_option("--grid", grid, ".vdb input: the grid to read (default: the first scalar grid)");
     app.add_flag("--info", info, "print a summary of the input: dims, type, spacing, range, mean, histogram");

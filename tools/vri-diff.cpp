@@ -1,5 +1,5 @@
 // vri-diff: per-channel error statistics between two images, with a pass/warn/fail verdict whose
-// exit codes follow OpenImageIO's idiff.
+// exit codes follow OpenImageIO's idiff, one up: 1 stays every tool's failure (README, "Exit codes").
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -21,12 +21,13 @@ namespace {
 
 constexpr const char* kTool = "vri-diff";
 
-// idiff's codes (its ErrOK, ErrWarn, ErrFail, ErrDifferentSize, ErrFile).
-constexpr int kExitPass = 0;
-constexpr int kExitWarn = 1;
-constexpr int kExitFail = 2;
-constexpr int kExitDifferentShape = 3;
-constexpr int kExitFileError = 4;
+// idiff's ErrOK, ErrWarn, ErrFail and ErrDifferentSize are 0 to 3, and its ErrFile 4; here the verdicts
+// are idiff's plus one, so that a warning never reads as a failure to read or write a file, which is
+// exit 1 as in every tool.
+constexpr int kExitPass = vri::kExitOk;
+constexpr int kExitWarn = 2;
+constexpr int kExitFail = 3;
+constexpr int kExitDifferentShape = 4;
 
 struct Options {
     std::string a, b;
@@ -178,8 +179,8 @@ int run(int argc, char** argv) {
         ->check(CLI::Range(0.0, 100.0))
         ->capture_default_str();
     app.footer(
-        "Exit codes (as idiff): 0 pass, 1 warning, 2 failure, 3 images differ in size or channel count,\n"
-        "4 a file is missing or unreadable (or an output cannot be written); bad arguments exit >= 64.\n"
+        "Exit codes (idiff's, one up): 0 pass, 2 warning, 3 failure, 4 images differ in size or channel count;\n"
+        "1 a file is missing or unreadable (or an output cannot be written), 64 bad arguments.\n"
         "Percentages of --failpercent/--warnpercent are over all pixel-channels (pixels x channels).\n"
         "\n"
         "Examples:\n"
@@ -201,13 +202,9 @@ int run(int argc, char** argv) {
         }
     }
 
-    vri::Image a, b;
-    try {
-        a = vri::readImage(options.a);
-        b = vri::readImage(options.b);
-    } catch (const vri::Error& e) {
-        return exitWith(kExitFileError, e);
-    }
+    // A file that cannot be read or written is guardedMain's failure, exit 1.
+    const vri::Image a = vri::readImage(options.a);
+    const vri::Image b = vri::readImage(options.b);
     try {
         vri::requireSameShape(a, b);
     } catch (const vri::Error& e) {
@@ -228,23 +225,19 @@ int run(int argc, char** argv) {
         verdict = describe("WARN", warnCheck);
     }
 
-    try {
-        if (!options.diffImage.empty()) vri::writeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale));
-        if (!options.histogram.empty())
-            vri::writeTextFile(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges)));
-        if (!options.json.empty()) {
-            nlohmann::json json = vri::toJson(diff);
-            json["a"] = options.a;
-            json["b"] = options.b;
-            json["verdict"] = code == kExitPass ? "pass" : code == kExitWarn ? "warn" : "fail";
-            json["exit_code"] = code;
-            json["fail"] = toJson(failCheck);
-            json["warn"] = toJson(warnCheck);
-            json["command"] = vri::commandLine(argc, argv);
-            vri::writeTextFile(options.json, json.dump(2) + "\n");
-        }
-    } catch (const vri::Error& e) {
-        return exitWith(kExitFileError, e);
+    if (!options.diffImage.empty()) vri::writeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale));
+    if (!options.histogram.empty())
+        vri::writeTextFile(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges)));
+    if (!options.json.empty()) {
+        nlohmann::json json = vri::toJson(diff);
+        json["a"] = options.a;
+        json["b"] = options.b;
+        json["verdict"] = code == kExitPass ? "pass" : code == kExitWarn ? "warn" : "fail";
+        json["exit_code"] = code;
+        json["fail"] = toJson(failCheck);
+        json["warn"] = toJson(warnCheck);
+        json["command"] = vri::commandLine(argc, argv);
+        vri::writeTextFile(options.json, json.dump(2) + "\n");
     }
     if (options.json != "-") printSummary(options, diff, verdict);
     return code;

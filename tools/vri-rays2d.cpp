@@ -80,7 +80,9 @@ int run(int argc, char** argv) {
     if (fanWanted) {
         const vri::Fan fan = vri::castFan(rays2d, chosen, sampleRates);
         if (!output.empty()) vri::writeTextFile(output, vri::fanCsv(fan));
-        const vri::Table table = vri::fanErrorTable(fan);
+        vri::Table table = vri::fanErrorTable(fan);
+        // Two such tables often sit side by side (node and cell): the title says which grid it is.
+        table.title += ", " + std::string(vri::gridConventionName(study.convention)) + "-centred grid";
         if (!errors.empty()) vri::writeTextFile(errors, vri::toMarkdown(table));
         if (!errorsCsv.empty()) vri::writeTextFile(errorsCsv, vri::toCsv(table));
         if (!convergence.empty()) vri::writeTextFile(convergence, vri::convergenceCsv(fan));

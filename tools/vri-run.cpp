@@ -2,6 +2,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,7 @@ constexpr const char* kTool = "vri-run";
 
 struct Options {
     std::vector<std::string> experiments;
-    bool quick = false, dryRun = false, force = false, record = false, check = false;
+    bool quick = false, dryRun = false, force = false, record = false, check = false, allowDirty = false;
     std::string results, committed = "results", gallery;
     int jobs = 1;
 };
@@ -51,6 +52,21 @@ bool reproduce(const Options& options, const vri::Experiment& experiment, const 
     return problems.empty();
 }
 
+// Committed results come from a commit: writing into a work tree's results/ while its tracked files
+// differ from HEAD is refused unless --allow-dirty (the manifest then says modified_files: true).
+void requireCleanTree(const Options& options, const vri::Experiment& experiment, const fs::path& resultsRoot) {
+    if (options.allowDirty) return;
+    const std::optional<vri::WorkTree> tree = vri::workTreeOf(experiment.source);
+    if (!tree || !tree->modified) return;
+    const auto resolved = [](const fs::path& p) {  // absolute, links resolved, without a trailing '/'
+        const fs::path q = fs::weakly_canonical(fs::absolute(p));
+        return q.has_filename() ? q : q.parent_path();
+    };
+    if (resolved(resultsRoot) != resolved(tree->top / "results")) return;
+    throw vri::Error(resultsRoot.string() + ": tracked files of " + tree->top.string() + " differ from commit " +
+                     tree->commit.substr(0, 12) + "; commit them, or pass --allow-dirty");
+}
+
 int run(const Options& options) {
     if ((options.record || options.check) && !options.quick)
         throw vri::Error("--record and --check apply to quick runs (add --quick)");
@@ -67,6 +83,7 @@ int run(const Options& options) {
                 std::cout << vri::shellCommand(vri::commandWords(plan, step, toolDir)) << '\n';
             continue;
         }
+        requireCleanTree(options, experiment, resultsRoot);
         const auto start = std::chrono::steady_clock::now();
         const vri::FolderLock lock(plan.commandPath(plan.resultsDir));  // until its manifest is written
         // Left by a vri-run or a step killed mid-write; a step of a killed vri-run that still runs keeps its own.
@@ -111,6 +128,8 @@ int main(int argc, char** argv) {
     app.add_flag("--dry-run", options.dryRun, "print the commands, one per line, runnable from here; run nothing");
     app.add_flag("--force", options.force, "run every step even when its cache record vouches for it");
     app.add_option("--results", options.results, "results root (default: results, with --quick build/experiments-quick)");
+    app.add_flag("--allow-dirty", options.allowDirty,
+                 "write into the work tree's results/ even when its tracked files differ from the commit");
     app.add_option("--jobs", options.jobs, "steps run at once")->capture_default_str();
     app.add_flag("--record", options.record, "with --quick: write the reproduce: numbers to COMMITTED/<experiment>/reproduce.json");
     app.add_flag("--check", options.check, "with --quick: compare the reproduce: numbers with the committed ones; exit 1 on a mismatch")
@@ -122,6 +141,8 @@ int main(int argc, char** argv) {
 input files (or the steps that write them) and outputs are as when it last succeeded.
 Tools are taken from the directory vri-run is in. One vri-run at a time works in an experiment's folder
 (it holds <results>/<experiment>/.vri-run.lock): a second one exits 1 naming the process that holds it.
+Writing into results/ of the git work tree that holds the experiment file is refused while its
+tracked files differ from HEAD (--allow-dirty overrides; each manifest records the commit).
 Temporary files (.NAME.tmp.PID.*) whose process is gone are removed first.
 The sweeps of one file may expand to at most 10000 runs (counted before expanding, --dry-run included).
 

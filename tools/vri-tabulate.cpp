@@ -20,7 +20,8 @@ struct Options {
     std::optional<std::string> rowHeader;
     std::optional<int> precision;
     std::vector<double> thresholds;
-    std::optional<double> threshold;
+    std::vector<double> tradeoffThresholds;
+    std::string baseline, channels;
     std::vector<std::vector<std::string>> rows, cells, columnValues, columnPrecisions, runs;
     std::string value;
 };
@@ -50,7 +51,9 @@ void requireLayoutOptions(const Options& options) {
         {"--column-value", "matrix", !options.columnValues.empty()},
         {"--column-precision", "matrix", !options.columnPrecisions.empty()},
         {"--run", "tradeoff", !options.runs.empty()},
-        {"--threshold", "tradeoff", options.threshold.has_value()},
+        {"--threshold", "tradeoff", !options.tradeoffThresholds.empty()},
+        {"--baseline", "tradeoff", !options.baseline.empty()},
+        {"--channels", "tradeoff", !options.channels.empty()},
     };
     for (const auto& o : owned)
         if (o.given && options.layout != o.layout)
@@ -70,7 +73,12 @@ vri::Table buildTable(const Options& options) {
         requireWords(options.runs, 3, "--run needs LABEL STATS DIFF");
         std::vector<vri::TradeoffRow> rows;
         for (const auto& run : options.runs) rows.push_back({run[0], run[1], run[2]});
-        return vri::tradeoffTable(rows, options.threshold.value_or(0.001), options.precision.value_or(4));
+        vri::TradeoffOptions tradeoff;
+        if (!options.tradeoffThresholds.empty()) tradeoff.thresholds = options.tradeoffThresholds;
+        tradeoff.precision = options.precision.value_or(4);
+        tradeoff.baseline = options.baseline;
+        tradeoff.perChannel = options.channels != "worst";
+        return vri::tradeoffTable(rows, tradeoff);
     }
     if (options.cells.empty() || options.value.empty())
         throw vri::Error("--layout matrix needs --value EXPR and --cell ROW COLUMN FILE...");
@@ -129,8 +137,15 @@ int run(int argc, char** argv) {
     app.add_option("--run", options.runs, "tradeoff: LABEL STATS DIFF, one row: the run's vri-render stats "
                                           "(timing.median_wall_seconds) and its vri-diff JSON against the reference")
         ->expected(3);
-    app.add_option("--threshold", options.threshold, "tradeoff: the error threshold of the % columns (default 0.001); "
-                                                     "one of those the diffs counted");
+    app.add_option("--threshold", options.tradeoffThresholds,
+                   "tradeoff: the error thresholds of the % columns, comma separated (default 0.001), each one the "
+                   "diffs counted; the first is the % front's")
+        ->delimiter(',');
+    app.add_option("--baseline", options.baseline,
+                   "tradeoff: a run's LABEL; adds 'time ratio', every run's seconds over the baseline's");
+    app.add_option("--channels", options.channels,
+                   "tradeoff: all (default: % and max per channel and the worst) or worst (the worst channel only)")
+        ->check(CLI::IsMember({"all", "worst"}));
     app.footer(
         "Labels may hold spaces (quote them). Markdown and CSV are written atomically; the Markdown ends with\n"
         "notes saying what the numbers are and, for medians, of how many runs.\n"
@@ -147,7 +162,10 @@ int run(int argc, char** argv) {
         "      --column-precision 'GPU (fps)' 0 --cell Coupled 'CPU (s)' cpu.json --cell Coupled 'GPU (fps)' gpu.json -o -\n"
         "  vri-tabulate --layout tradeoff --threshold 0.001 --title 'Bonsai: seconds per frame against error' \\\n"
         "      --run riemann-h0.5 riemann-h0.5.json vs-exact-riemann-h0.5.json \\\n"
-        "      --run simpson-e0.001 simpson-e0.001.json vs-exact-simpson-e0.001.json -o tradeoff.md --csv tradeoff.csv");
+        "      --run simpson-e0.001 simpson-e0.001.json vs-exact-simpson-e0.001.json -o tradeoff.md --csv tradeoff.csv\n"
+        "  vri-tabulate --layout tradeoff --threshold 0.001,0.01 --channels worst --baseline riemann-h0.5 \\\n"
+        "      --run riemann-h0.5 riemann-h0.5.json vs-exact-riemann-h0.5.json \\\n"
+        "      --run riemann-float-h0.5 riemann-float-h0.5.json vs-exact-riemann-float-h0.5.json -o bench.md");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     vri::Table table = buildTable(options);

@@ -2,8 +2,9 @@
 // plain values instead of .vdb files: OpenVDB's own reader is not instrumented, so fuzzing whole files
 // would mostly exercise code that is not vri's. The input is text, one "key: values" line per fact
 // (see corpus/vdb_metadata); unknown keys and malformed values leave that fact at its default.
-//   value_type: float | double | int32     transform: linear | nonlinear     matrix: 9 numbers, row by row
-//   vri_voxel_type: NAME     vri_dims: X Y Z     vri_range: LO HI     active: X0 Y0 Z0 X1 Y1 Z1
+//   value_type: float | double | int32 | int64     transform: linear | nonlinear     matrix: 9 numbers, row by row
+//   vri_voxel_type: NAME     vri_dims: X Y Z     vri_range: LO HI     vri_format_version: N
+//   active: X0 Y0 Z0 X1 Y1 Z1
 // A vri::Error is a clean rejection. A layout that is accepted must describe a box whose corners fit
 // OpenVDB's 32-bit coordinates (the reader builds a CoordBBox from it); anything else is a finding.
 #include <charconv>
@@ -53,6 +54,8 @@ vri::detail::VdbGridFacts decode(const std::string& text) {
                 facts.valueType = vri::detail::VdbValueType::Double;
             else if (value == "int32")
                 facts.valueType = vri::detail::VdbValueType::Int32;
+            else if (value == "int64")
+                facts.valueType = vri::detail::VdbValueType::Int64;
             else
                 facts.valueType = vri::detail::VdbValueType::Float;
         } else if (key == "transform") {
@@ -68,6 +71,8 @@ vri::detail::VdbGridFacts decode(const std::string& text) {
             if (const auto d = numbers<int>(value); d.size() == 3) facts.dimsMeta = glm::ivec3(d[0], d[1], d[2]);
         } else if (key == "vri_range") {
             if (const auto r = numbers<double>(value); r.size() == 2) facts.rangeMeta = glm::dvec2(r[0], r[1]);
+        } else if (key == "vri_format_version") {
+            if (const auto v = numbers<int>(value); v.size() == 1) facts.formatVersionMeta = v[0];
         } else if (key == "active") {
             if (const auto b = numbers<int>(value); b.size() == 6) {
                 facts.activeMin = glm::ivec3(b[0], b[1], b[2]);

@@ -10,7 +10,9 @@ points:
   - [1.0, 1.0, 1.0, 1.0, 1e307]
 YAML
 blob=(--volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --stats out.json)
-bad 1 '^vri-render: error: --method exact: runs on --backend cpu only$' -- "$bin/vri-render" "${blob[@]}" --method exact --backend vulkan
+if built_with_vulkan; then
+  bad 1 '^vri-render: error: --method exact: runs on --backend cpu only$' -- "$bin/vri-render" "${blob[@]}" --method exact --backend vulkan
+fi
 bad 1 '^vri-render: error: --precision: --method exact is double only$' -- "$bin/vri-render" "${blob[@]}" --method exact --precision float
 bad 1 '^vri-render: error: --step, --rate: --method exact has no step$' -- "$bin/vri-render" "${blob[@]}" --method exact --step 0.5
 bad 1 '^vri-render: error: --early-termination: ' -- "$bin/vri-render" "${blob[@]}" --method exact --early-termination 0.01

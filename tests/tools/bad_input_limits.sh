@@ -101,7 +101,7 @@ bad 1 'camera eye and target are only [0-9.e+-]+ apart, below the 1e-150 the cam
 bad 1 'camera eye [0-9.e+,-]+: coordinates must be finite and at most 1e\+150' -- \
   "$bin/vri-render" --volume v_2x2x2_uint8.raw --tf "$tf" -q -o out.exr --spacing 1e300,1e300,1e300
 bad 1 "escape\.dat:3: Format: unknown voxel type 'UINT8\\\\x1b\[2J'" -- "$bin/vri-convert" --info escape.dat
-bad 1 "bell\.nhdr:2: type: unknown voxel type 'uchar\\\\x07'" -- "$bin/vri-convert" --info bell.nhdr
+bad 1 "bell\.nhdr:2: type: 'uchar\\\\x07' is not supported" -- "$bin/vri-convert" --info bell.nhdr
 bad 1 "escape-tf\.yaml:3:1: unknown key 'po\\\\x1bints'" -- "$bin/vri-render" --field linear --tf escape-tf.yaml -q -o out.exr
 bad 1 "--method: unknown method 'x\\\\x0ay'" -- render --method $'x\ny'
 bad nonzero "--size: expected a positive image size WIDTHxHEIGHT, got '1x\\\\x1b1'" -- render --size $'1x\e1'

@@ -55,9 +55,9 @@ for ext in nhdr dat; do   # the raw file beside the header is the large one
   bad 1 "^vri-convert: error: out\.raw: $efbig" -- limited 8 "$bin/vri-convert" noise_32x32x32_uint8.raw out.$ext
 done
 bad 1 "^vri-tf: error: out\.csv: $efbig" -- limited 8 "$bin/vri-tf" tf.yaml -o out.csv
-bad 4 "^vri-diff: error: out\.json: $efbig" -- limited 1 "$bin/vri-diff" a.exr a.exr --json out.json
-bad 4 "^vri-diff: error: out\.csv: $efbig" -- limited 1 "$bin/vri-diff" a.exr a.exr --histogram out.csv
-bad 4 "^vri-diff: error: out\.exr: $efbig" -- limited 1 "$bin/vri-diff" a.exr b.exr --diff-image out.exr
+bad 1 "^vri-diff: error: out\.json: $efbig" -- limited 1 "$bin/vri-diff" a.exr a.exr --json out.json
+bad 1 "^vri-diff: error: out\.csv: $efbig" -- limited 1 "$bin/vri-diff" a.exr a.exr --histogram out.csv
+bad 1 "^vri-diff: error: out\.exr: $efbig" -- limited 1 "$bin/vri-diff" a.exr b.exr --diff-image out.exr
 bad 1 "^vri-rays2d: error: out\.csv: $efbig" -- limited 1 "$bin/vri-rays2d" --placements entry --rates 2 -o out.csv
 "$bin/vri-diff" a.exr a.exr --json d.json > /dev/null
 rows=()

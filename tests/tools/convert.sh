@@ -28,6 +28,13 @@ info=$("$convert" --info tiny.vdb)
 grep -q "4 x 3 x 2" <<<"$info" || fail "--info does not show the dims: $info"
 grep -q "uint8" <<<"$info" || fail "--info does not show the voxel type: $info"
 grep -q "histogram" <<<"$info" || fail "--info does not show a histogram: $info"
+grep -q "^active       12 voxels not 0, in 1 of 1 bricks of 8^3" <<<"$info" || fail "--info active voxels: $info"
+# 17 voxels along x: bricks 0..7, 8..15, 16; only voxel 16 is not 0.
+printf '\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\007' > line_17x1x1_uint8.raw
+json=$("$convert" --info --json line_17x1x1_uint8.raw)
+grep -q '"active_voxels": 1,' <<<"$json" || fail "--json active_voxels: $json"
+grep -q '"active_bricks": 1,' <<<"$json" || fail "--json active_bricks: $json"
+grep -q '"bricks": 3,' <<<"$json" || fail "--json bricks: $json"
 json=$("$convert" --info --json noise.nhdr)
 grep -q '"voxel_type": "uint16"' <<<"$json" || fail "--json does not show the voxel type: $json"
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# vri-diff end to end: statistics, outputs, and idiff's exit codes (0 pass, 1 warn, 2 fail,
-# 3 different shapes, 4 missing or unreadable file).
+# vri-diff end to end: statistics, outputs, and idiff's exit codes one up (0 pass, 2 warn, 3 fail,
+# 4 different shapes; 1 a missing or unreadable file, as in every tool; 64 bad usage).
 set -euo pipefail
 
 command -v oiiotool >/dev/null || { echo "oiiotool not installed: skipping"; exit 77; }
@@ -46,7 +46,7 @@ grep -q PASS out.txt || fail "identical images: no PASS in the summary"
 
 # A changed pixel: failure with the default --fail 1e-6, outputs written.
 run_diff a.exr changed.exr --json changed.json --diff-image err.exr --histogram hist.csv
-expect_rc 2 "changed image, default --fail"
+expect_rc 3 "changed image, default --fail"
 grep -q FAIL out.txt || fail "changed image: no FAIL in the summary"
 [[ $(json_value changed.json 'j["channels"][0]["max_at"]') == "[3, 2]" ]] || fail "max not located at (3,2)"
 [[ $(json_value changed.json 'j["channels"][0]["above"][0]["count"]') == 1 ]] || fail "count above 0.01"
@@ -65,46 +65,46 @@ run_diff err.exr err2.exr --json - --threshold 0.3
 [[ $(python3 -c 'import json, sys; c = json.load(sys.stdin)["channels"][0]; print(c["max_abs"] > 0)' <out.txt) == True ]] ||
     fail "--diff-scale 2 gives the same image"
 run_diff a.exr changed.exr --diff-scale 2
-[[ $rc -ne 0 && $rc -ne 2 ]] || fail "--diff-scale without --diff-image: exit $rc, expected a usage error"
+expect_rc 64 "--diff-scale without --diff-image"
 grep -q -- "--diff-image" err.txt || fail "--diff-scale without --diff-image: $(cat err.txt)"
 
 # Tolerances: within --failpercent passes; --fail relaxed but --warn strict warns.
 run_diff a.exr changed.exr --failpercent 0.5
-expect_rc 1 "one pixel-channel in 256 with --failpercent 0.5 (still above --warn)"
+expect_rc 2 "one pixel-channel in 256 with --failpercent 0.5 (still above --warn)"
 run_diff a.exr changed.exr --failpercent 0.5 --warnpercent 0.5
 expect_rc 0 "one pixel-channel in 256 with --failpercent 0.5 --warnpercent 0.5"
 run_diff a.exr changed.exr --fail 0.3 --warn 0.1
-expect_rc 1 "error 0.25 with --fail 0.3 --warn 0.1"
+expect_rc 2 "error 0.25 with --fail 0.3 --warn 0.1"
 grep -q WARN out.txt || fail "no WARN in the summary"
 run_diff a.exr changed.exr --fail 0.25 --warn 0.25
 expect_rc 0 "an error equal to --fail is not above it"
 
 # --json - prints JSON only.
 run_diff a.exr changed.exr --json -
-expect_rc 2 "--json -"
+expect_rc 3 "--json -"
 json_value out.txt 'j["verdict"]' | grep -qx fail || fail "--json - did not print the JSON verdict"
 
-# Different sizes or channel counts: 3, one line on stderr.
+# Different sizes or channel counts: 4, one line on stderr.
 run_diff a.exr small.exr
-expect_rc 3 "different sizes"
+expect_rc 4 "different sizes"
 [[ $(wc -l <err.txt) -eq 1 ]] || fail "different sizes: stderr is not one line"
 run_diff a.exr rgb.exr
-expect_rc 3 "different channel counts"
+expect_rc 4 "different channel counts"
 
-# Missing or unreadable file: 4, one line on stderr naming it.
+# Missing or unreadable file: 1, one line on stderr naming it.
 run_diff a.exr missing.exr
-expect_rc 4 "missing file"
+expect_rc 1 "missing file"
 [[ $(wc -l <err.txt) -eq 1 ]] || fail "missing file: stderr is not one line"
 grep -q "missing.exr" err.txt || fail "missing file not named"
 echo "not an image" >garbage.exr
 run_diff garbage.exr a.exr
-expect_rc 4 "unreadable file"
+expect_rc 1 "unreadable file"
 [[ $(wc -l <err.txt) -eq 1 ]] || fail "unreadable file: stderr is not one line"
 
 # Help: exit 0, exit codes and examples.
 run_diff --help
 expect_rc 0 "--help"
 grep -q "Example" out.txt || fail "--help has no examples"
-grep -q "3 images differ" out.txt || fail "--help does not state the exit codes"
+grep -q "4 images differ" out.txt || fail "--help does not state the exit codes"
 
 echo "diff.sh: all checks passed"

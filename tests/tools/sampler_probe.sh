@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # vri-sampler-probe end to end: the CSV of every reading, the Markdown summary with one row per voxel
 # type, exact readings at the texel centres, and a bad --types giving one error line. Skipped (77) when
-# there is no Vulkan device.
+# there is no Vulkan device or the build has no Vulkan backend.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
+built_with_vulkan || { echo "built without the Vulkan backend: skipping"; exit 77; }
 "$VRI_BIN/vri-render" --list-devices > /dev/null 2>&1 || { echo "no Vulkan device: skipping"; exit 77; }
 
 "$VRI_BIN/vri-sampler-probe" -o probe.csv --summary probe.md 2> log.txt || fail "probe failed: $(cat log.txt)"

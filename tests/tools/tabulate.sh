@@ -7,12 +7,13 @@ tabulate="$VRI_BIN/vri-tabulate"
 
 grep -q "Example" <<<"$("$tabulate" --help)" || fail "--help shows no example"
 
-# vri-diff JSON as it is written: channels R and A, thresholds 0.01 and 0.001, maximum errors (default 0.5).
+# vri-diff JSON as it is written: channels R and A, thresholds 0.01 and 0.001, maximum errors (default 0.5),
+# RMSE 0.01 and 0.02.
 diff_json() {  # diff_json FILE R01 A01 R001 A001 [MAX_R MAX_A]
     cat > "$1" <<JSON
 {"thresholds": [0.01, 0.001], "pixels": 100, "pixels_counted": "all", "channels": [
- {"name": "R", "max_abs": ${6:-0.5}, "above": [{"threshold": 0.01, "count": 1, "percent": $2}, {"threshold": 0.001, "count": 1, "percent": $4}]},
- {"name": "A", "max_abs": ${7:-0.5}, "above": [{"threshold": 0.01, "count": 1, "percent": $3}, {"threshold": 0.001, "count": 1, "percent": $5}]}]}
+ {"name": "R", "max_abs": ${6:-0.5}, "rmse": 0.01, "above": [{"threshold": 0.01, "count": 1, "percent": $2}, {"threshold": 0.001, "count": 1, "percent": $4}]},
+ {"name": "A", "max_abs": ${7:-0.5}, "rmse": 0.02, "above": [{"threshold": 0.01, "count": 1, "percent": $3}, {"threshold": 0.001, "count": 1, "percent": $5}]}]}
 JSON
 }
 diff_json riemann.json 0.11389 12.766 12.4298 41.13684
@@ -52,7 +53,10 @@ printf ',CPU (s),GPU (fps)\nRiemann h = 0.5,2.00,0.5\n' | diff -u - t3.csv || fa
 
 # Speed against accuracy: per run its seconds (stats) and errors (diff) at 0.001; Simpson is faster and
 # better in % than h = 0.5, but its infinite maximum error keeps it off the max front.
-timing_json() { echo "{\"timing\": {\"repeats\": 3, \"median_wall_seconds\": $2}}" > "$1"; }
+timing_json() {  # timing_json FILE SECONDS: 2e6 samples of Riemann in double on the CPU's scalar path
+    echo "{\"timing\": {\"repeats\": 3, \"median_wall_seconds\": $2}, \"options\": {\"method\": \"riemann\", \"precision\": \"double\"}," \
+         "\"stats\": {\"backend\": \"cpu\", \"simd_target\": null, \"samples_evaluated\": 2e6}}" > "$1"
+}
 timing_json riemann-h1.json 0.1 && diff_json vs-riemann-h1.json 30 20 20 10 0.3 0.2
 timing_json riemann-h0.5.json 0.4 && diff_json vs-riemann-h0.5.json 9 2 5 1 0.05 0.1
 timing_json simpson.json 0.2 && diff_json vs-simpson.json 0 0 0 0.5 0.001 null
@@ -62,27 +66,28 @@ timing_json simpson.json 0.2 && diff_json vs-simpson.json 0 0 0 0.5 0.001 null
 cat > expected.md <<'MD'
 **Speed against accuracy**
 
-| run | seconds | R > 0.001 | A > 0.001 | worst > 0.001 | max R | max A | max | pareto % | pareto max |
-|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|
-| riemann-h1 | 0.1 | 20.0000 | 10.0000 | 20.0000 | 0.3 | 0.2 | 0.3 | 1 | 1 |
-| riemann-h0.5 | 0.4 | 5.0000 | 1.0000 | 5.0000 | 0.05 | 0.1 | 0.1 | 0 | 1 |
-| simpson-e0.001 | 0.2 | 0.0000 | 0.5000 | 0.5000 | 0.001 | inf | inf | 1 | 0 |
+| run | method | seconds | Msamples/s | R > 0.001 | A > 0.001 | worst > 0.001 | max R | max A | max | rmse | pareto % | pareto max |
+|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
+| riemann-h1 | riemann double | 0.1 | 20 | 20.0000 | 10.0000 | 20.0000 | 0.3 | 0.2 | 0.3 | 0.02 | 1 | 1 |
+| riemann-h0.5 | riemann double | 0.4 | 5 | 5.0000 | 1.0000 | 5.0000 | 0.05 | 0.1 | 0.1 | 0.02 | 0 | 1 |
+| simpson-e0.001 | riemann double | 0.2 | 10 | 0.0000 | 0.5000 | 0.5000 | 0.001 | inf | inf | 0.02 | 1 | 0 |
 
-seconds: median wall time per frame (the run's timing.median_wall_seconds).
-R > 0.001 ... worst > 0.001: % of rays (all pixels, background included) whose absolute error exceeds 0.001, per channel and in the worst channel; max R ... max: the largest absolute error, per channel and over all.
+method: the run's method and precision, SIMD where the float packets ran, vulkan on that backend. seconds: median wall time per frame (the run's timing.median_wall_seconds).
+Msamples/s: millions of samples evaluated per second (stats.samples_evaluated over seconds; - where the method counts none).
+R > t ... worst > t: % of rays (all pixels, background included) whose absolute error exceeds t (t = 0.001), per channel and in the worst channel; max R ... max: the largest absolute error, per channel and over all; rmse: the largest root mean square error of a channel.
 pareto % (pareto max): 1 on the Pareto front of seconds against worst > 0.001 (against max), where no other row is at least as fast and as accurate and better in one; an infinite error is never on it.
 MD
 diff -u expected.md speed.md || fail "tradeoff Markdown"
 cat > expected.csv <<'CSV'
-run,seconds,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,pareto %,pareto max
-riemann-h1,0.1,20.0000,10.0000,20.0000,0.3,0.2,0.3,1,1
-riemann-h0.5,0.4,5.0000,1.0000,5.0000,0.05,0.1,0.1,0,1
-simpson-e0.001,0.2,0.0000,0.5000,0.5000,0.001,inf,inf,1,0
+run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,pareto max
+riemann-h1,riemann double,0.1,20,20.0000,10.0000,20.0000,0.3,0.2,0.3,0.02,1,1
+riemann-h0.5,riemann double,0.4,5,5.0000,1.0000,5.0000,0.05,0.1,0.1,0.02,0,1
+simpson-e0.001,riemann double,0.2,10,0.0000,0.5000,0.5000,0.001,inf,inf,0.02,1,0
 CSV
 diff -u expected.csv speed.csv || fail "tradeoff CSV"
 # Another threshold the diffs counted, other decimals and row heading.
 "$tabulate" --layout tradeoff --threshold 0.01 --precision 1 --row-header Method \
-    --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o - | grep -q "^| Method | seconds | R > 0.01 | A > 0.01 | worst > 0.01 |" ||
+    --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o - | grep -q "^| Method | method | seconds | Msamples/s | R > 0.01 | A > 0.01 | worst > 0.01 |" ||
     fail "tradeoff at 0.01"
 
 # Failures: one line, non-zero exit, nothing written.
@@ -106,6 +111,10 @@ expect_failure "needs --run LABEL STATS DIFF" --layout tradeoff -o t1.md
 expect_failure "vs-riemann-h1.json: no count above 0.005" --layout tradeoff --threshold 0.005 \
     --run R riemann-h1.json vs-riemann-h1.json -o t1.md --csv t1.csv
 expect_failure "riemann.json: has no 'timing'" --layout tradeoff --run R riemann.json vs-riemann-h1.json -o t1.md
+expect_failure "baseline 'riemann-h2': no row of that name" --layout tradeoff --baseline riemann-h2 \
+    --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o t1.md --csv t1.csv
+expect_failure "channels: some not in" --layout tradeoff --channels some --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o t1.md
+expect_failure "baseline belongs to --layout tradeoff" --layout thresholds --baseline R --row R riemann.json -o t1.md
 expect_failure "run needs LABEL STATS DIFF" --layout tradeoff --run R riemann-h1.json -o t1.md
 expect_failure "column-value needs COLUMN EXPR" --layout matrix --value x --cell a b run1.json --column-value b -o t1.md
 expect_failure "layout" --layout pie --row R riemann.json -o t1.md

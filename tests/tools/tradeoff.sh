@@ -49,6 +49,13 @@ tables:
     title: Seconds per frame against error
     comparisons: [vs-riemann, vs-composite]
     threshold: 0.001
+  bench:
+    layout: tradeoff
+    title: Each time over Riemann h = 1's
+    comparisons: [vs-riemann, vs-composite]
+    threshold: [0.001, 0.01]
+    baseline: riemann-h1
+    channels: worst
 YAML
 # The figure needs gnuplot; without it the table is checked alone.
 drawing=$(command -v gnuplot || true)
@@ -59,15 +66,16 @@ grep -q -- "vri-tabulate --layout tradeoff --title 'Seconds per frame against er
     fail "the table's command: $(grep vri-tabulate commands.sh)"
 "$VRI_BIN/vri-run" --results out exp.yaml 2> first.txt || fail "the run failed: $(cat first.txt)"
 table=out/small/speed.csv
-[[ $(head -1 $table) == "run,seconds,R > 0.001,G > 0.001,B > 0.001,A > 0.001,worst > 0.001,max R,max G,max B,max A,max,pareto %,pareto max" ]] ||
+[[ $(head -1 $table) == "run,method,seconds,Msamples/s,R > 0.001,G > 0.001,B > 0.001,A > 0.001,worst > 0.001,max R,max G,max B,max A,max,rmse,pareto %,pareto max" ]] ||
     fail "header: $(head -1 $table)"
 [[ $(cut -d, -f1 $table | tail -n +2 | tr '\n' ' ') == "riemann-h1 riemann-h0.5 riemann-h0.25 composite-h1 composite-h0.25 " ]] ||
     fail "rows: $(cut -d, -f1 $table)"
-grep -q "^| riemann-h0.25 | " out/small/speed.md || fail "Markdown: $(cat out/small/speed.md)"
+grep -q "^| riemann-h0.25 | riemann double | " out/small/speed.md || fail "Markdown: $(cat out/small/speed.md)"
+grep -q "^composite-h1,composite double," $table || fail "method of composite-h1: $(grep composite-h1 $table)"
 
 # Each flag as the numbers say: 1 exactly when no other row is at least as fast and as accurate and
-# better in one (seconds: column 2; worst %: column 7; max: column 12; flags: columns 13 and 14).
-awk -F, 'NR > 1 { n++; t[n] = $2; p[n] = $7; m[n] = $12; fp[n] = $13; fm[n] = $14 }
+# better in one (seconds: column 3; worst %: column 9; max: column 14; flags: columns 16 and 17).
+awk -F, 'NR > 1 { n++; t[n] = $3; p[n] = $9; m[n] = $14; fp[n] = $16; fm[n] = $17 }
          function dominated(i, e,   j) {
              for (j = 1; j <= n; j++)
                  if (j != i && t[j] <= t[i] && e[j] <= e[i] && (t[j] < t[i] || e[j] < e[i])) return 1
@@ -75,6 +83,20 @@ awk -F, 'NR > 1 { n++; t[n] = $2; p[n] = $7; m[n] = $12; fp[n] = $13; fm[n] = $1
          END { for (i = 1; i <= n; i++)
                    if (fp[i] != 1 - dominated(i, p) || fm[i] != 1 - dominated(i, m)) { print "row " i; bad = 1 }
                exit bad }' $table || fail "Pareto flags disagree with the numbers: $(cat $table)"
+
+# The benchmark form: each run's time over the baseline's, measured in the same run; the worst channel at
+# both thresholds; samples per second from the stats.
+bench=out/small/bench.csv
+[[ $(head -1 $bench) == "run,method,seconds,time ratio,Msamples/s,worst > 0.001,worst > 0.01,max,rmse,pareto %,pareto max" ]] ||
+    fail "bench header: $(head -1 $bench)"
+base=$(awk -F, '$1 == "riemann-h1" { print $3 }' $bench)
+awk -F, -v base="$base" 'NR > 1 { r = $3 / base; if ((r - $4) / r > 5e-4 || ($4 - r) / r > 5e-4) { print $1; bad = 1 } }
+                          END { exit bad }' $bench || fail "time ratios disagree with the seconds: $(cat $bench)"
+grep -q "^riemann-h1,riemann double,[0-9.e-]*,1," $bench || fail "the baseline's ratio is not 1: $(cat $bench)"
+number() { grep -o "\"$1\": [0-9.e+-]*" out/small/riemann-h0.5.json | head -1 | cut -d' ' -f2; }
+evaluated=$(number samples_evaluated) median=$(number median_wall_seconds)
+awk -F, -v n="$evaluated" -v t="$median" '$1 == "riemann-h0.5" { s = n / t / 1e6; d = ($5 - s) / s; exit !(d < 5e-4 && d > -5e-4) }' $bench ||
+    fail "Msamples/s of riemann-h0.5: $(grep riemann-h0.5 $bench), stats say $evaluated samples in $median s"
 
 "$VRI_BIN/vri-run" --results out exp.yaml 2> second.txt
 grep -q "0 ran" second.txt || fail "a second run ran steps: $(cat second.txt)"

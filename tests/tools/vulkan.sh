@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # vri-render's Vulkan backend end to end: --list-devices, a render of a tiny volume compared with the
 # CPU in float, the stats naming the device, a repeat that reuses the uploaded volume, the hardware
-# sampler's interpolation, and bad --device/--backend/--precision/--interpolation giving one error line. Skipped (77) when there is no Vulkan device.
+# sampler's interpolation, and bad --device/--backend/--precision/--interpolation giving one error line. Skipped (77) when there is no Vulkan device or the build has no Vulkan backend.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
+built_with_vulkan || { echo "built without the Vulkan backend: skipping"; exit 77; }
 "$VRI_BIN/vri-render" --list-devices > devices.txt 2> /dev/null || { echo "no Vulkan device: skipping"; exit 77; }
 # One line per device: index, name, type and API version, tab separated.
 awk -F'\t' 'NF != 4 || $1 != NR - 1 { exit 1 }' devices.txt || fail "bad --list-devices output: $(cat devices.txt)"

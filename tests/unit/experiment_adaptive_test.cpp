@@ -67,6 +67,16 @@ TEST_CASE("experiment files: adaptive parameters reach vri-render and swept ones
     const vri::Step& exact = plan.step("exact");
     CHECK(exact.tool == "vri-reference");
     CHECK(has(exact.arguments, "--method", "exact"));
+
+    // The exact method as a timed method run: vri-reference at a tolerance, after a warm-up frame.
+    const vri::Experiment timed = d.parse("references:\n  exact: {method: exact}\nmethods:\n"
+                                          "  timed: {method: exact, eps: [1e-6, 1e-7], warm_up: 1, repeat: 5}\n");
+    const vri::Plan timedPlan = vri::planExperiment(timed, d.dir / "results/b", d.dir.path);
+    const vri::Step& loose = timedPlan.step("timed-eps1e-6");
+    CHECK(loose.tool == "vri-reference");
+    CHECK(has(loose.arguments, "--tolerance", "1e-6"));
+    CHECK(has(loose.arguments, "--warm-up", "1"));
+    CHECK(has(loose.arguments, "--repeat", "5"));
 }
 
 TEST_CASE("experiment files: bad adaptive parameters and exact with method options are errors with a place") {

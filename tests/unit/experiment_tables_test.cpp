@@ -58,7 +58,7 @@ TEST_CASE("experiment tables: a tradeoff table takes rows from several compariso
                                       "    precision: 2\n");
     REQUIRE(e.tables.size() == 1);
     CHECK(e.tables[0].layout == "tradeoff");
-    CHECK(e.tables[0].threshold == "0.001");
+    CHECK(e.tables[0].thresholds == std::vector<std::string>{"0.001"});
     const vri::Plan plan = vri::planExperiment(e, d.dir / "results/t", d.dir.path);
     const vri::Step& step = plan.step("table-speed");
     const std::vector<std::string> expected{
@@ -76,9 +76,19 @@ TEST_CASE("experiment tables: a tradeoff table takes rows from several compariso
     CHECK(after == std::vector<std::string>{"fine", "riemann-h0.5", "riemann-h1", "vs-fine-fine",
                                             "vs-riemann-riemann-h0.5", "vs-riemann-riemann-h1"});
 
+    // Several thresholds, a baseline and the worst channel only reach vri-tabulate as its options.
+    const vri::Experiment bench = d.parse("  speed: {layout: tradeoff, comparisons: [vs-riemann, vs-fine], "
+                                          "threshold: [1e-3, 0.01], baseline: riemann-h1, channels: worst}\n");
+    const vri::Plan benchPlan = vri::planExperiment(bench, d.dir / "results/t", d.dir.path);
+    const std::vector<std::string>& words = benchPlan.step("table-speed").arguments;
+    REQUIRE(words.size() > 10);
+    const std::vector<std::string> head(words.begin(), words.begin() + 10);
+    CHECK(head == std::vector<std::string>{"--layout", "tradeoff", "--title", "speed", "--threshold", "1e-3,0.01",
+                                           "--baseline", "riemann-h1", "--channels", "worst"});
+
     // The threshold defaults to 0.001, and matches a comparison's threshold by value, not by spelling.
     const vri::Experiment plain = d.parse("  speed: {layout: tradeoff, comparisons: [vs-fine]}\n");
-    CHECK(plain.tables[0].threshold == "0.001");
+    CHECK(plain.tables[0].thresholds == std::vector<std::string>{"0.001"});
     // Without a layout, comparisons still make a threshold table and runs a table of values.
     const vri::Experiment implied = d.parse("  a: {comparisons: vs-fine}\n  b: {runs: fine}\n");
     CHECK(implied.tables[0].layout == "thresholds");
@@ -95,8 +105,18 @@ TEST_CASE("experiment tables: wrong keys and values of a tradeoff table are name
           "exp.yaml:15:19: layout tradeoff takes comparisons, not runs");
     CHECK(d.error("  speed: {layout: matrix, comparisons: [vs-fine]}\n") ==
           "exp.yaml:15:19: layout matrix takes runs, not comparisons");
-    CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], threshold: [0.01]}\n")
-              .starts_with("exp.yaml:15:64: threshold"));
+    CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], threshold: [0.01, x]}\n") ==
+          "exp.yaml:15:71: threshold must be a number");
+    CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], threshold: []}\n") ==
+          "exp.yaml:15:64: threshold: an empty list");
+    CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], threshold: [0.01, 0.005]}\n") ==
+          "exp.yaml:15:64: threshold 0.005 is not one that comparison 'vs-fine' counts (0.01, 1e-3)");
+    CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], baseline: riemann-h1}\n") ==
+          "exp.yaml:15:63: baseline 'riemann-h1' is not a run of the table's comparisons");
+    CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], channels: some}\n") ==
+          "exp.yaml:15:63: channels must be all or worst, got 'some'");
+    CHECK(d.error("  speed: {comparisons: [vs-fine], baseline: fine}\n") ==
+          "exp.yaml:15:45: baseline applies to layout tradeoff");
     CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], threshold: -1}\n") ==
           "exp.yaml:15:64: threshold: expected a number >= 0, got '-1'");
     CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-riemann, vs-fine], threshold: 0.005}\n") ==

@@ -98,18 +98,18 @@ TEST_CASE("image: writeImage picks the format from the extension") {
     CHECK_FALSE(fs::exists(dir / "a.sgi"));
 }
 
-TEST_CASE("image: PNG preview composites premultiplied colour over the background, rounds to nearest") {
+TEST_CASE("image: PNG preview composites premultiplied colour over the background, encodes sRGB, rounds to nearest") {
     vri::test::TempDir dir("image-io");
-    SUBCASE("opaque pixels: 0.5 -> 127.5 rounds up to 128, 0.25 -> 63.75 -> 64, above 1 clamps") {
+    SUBCASE("opaque pixels: sRGB(0.5) = 0.7354 -> 187.5 rounds up to 188, 0.25 -> 0.5371 -> 137, above 1 clamps") {
         vri::writePng(dir / "p.png", onePixel(0.5f, 0.25f, 1.5f, 1.0f));
-        CHECK(previewBytes(dir / "p.png") == std::vector<int>{128, 64, 255});
+        CHECK(previewBytes(dir / "p.png") == std::vector<int>{188, 137, 255});
     }
     SUBCASE("half transparent over a coloured background: c + (1 - A) * bg") {
         vri::PngOptions options;
         options.background = {1.0f, 0.5f, 0.0f};
         vri::writePng(dir / "p.png", onePixel(0.25f, 0.0f, 0.5f, 0.5f), options);
-        // 0.75 -> 191.25 -> 191, 0.25 -> 64, 0.5 -> 128
-        CHECK(previewBytes(dir / "p.png") == std::vector<int>{191, 64, 128});
+        // 0.75 -> sRGB 0.8808 -> 225, 0.25 -> 137, 0.5 -> 188
+        CHECK(previewBytes(dir / "p.png") == std::vector<int>{225, 137, 188});
     }
     SUBCASE("exposure, then invert, then clamp") {
         vri::PngOptions options;
@@ -117,7 +117,7 @@ TEST_CASE("image: PNG preview composites premultiplied colour over the backgroun
         options.invert = true;
         vri::writePng(dir / "p.png", onePixel(0.25f, 0.125f, 0.75f, 1.0f), options);
         // x2 -> 0.5, 0.25, 1.5; inverted -> 0.5, 0.75, -0.5
-        CHECK(previewBytes(dir / "p.png") == std::vector<int>{128, 191, 0});
+        CHECK(previewBytes(dir / "p.png") == std::vector<int>{188, 225, 0});
     }
     SUBCASE("NaN shows as 0, negative clamps to 0") {
         vri::writePng(dir / "p.png", onePixel(std::nanf(""), -3.0f, 0.0f, 1.0f));
@@ -128,7 +128,7 @@ TEST_CASE("image: PNG preview composites premultiplied colour over the backgroun
         grey.channelNames = {"Y"};
         grey.pixels = {0.25f, 1.0f};
         vri::writePng(dir / "p.png", grey);
-        CHECK(previewBytes(dir / "p.png") == std::vector<int>{64, 64, 64, 255, 255, 255});
+        CHECK(previewBytes(dir / "p.png") == std::vector<int>{137, 137, 137, 255, 255, 255});
     }
 }
 

@@ -134,7 +134,7 @@ namespace {
 // A vri-diff JSON whose channels R and A were counted above 0.001 (and 0.01); a maximum may be null.
 std::string tradeoffDiff(double percentR, double percentA, const std::string& maxR, const std::string& maxA) {
     auto channel = [](const char* name, double percent, const std::string& max) {
-        return std::string("{\"name\": \"") + name + "\", \"max_abs\": " + max + ", \"above\": [" +
+        return std::string("{\"name\": \"") + name + "\", \"max_abs\": " + max + ", \"rmse\": " + max + ", \"above\": [" +
                "{\"threshold\": 0.01, \"count\": 0, \"percent\": 0}, " +
                "{\"threshold\": 0.001, \"count\": 1, \"percent\": " + std::to_string(percent) + "}]}";
     };
@@ -142,8 +142,10 @@ std::string tradeoffDiff(double percentR, double percentA, const std::string& ma
            channel("A", percentA, maxA) + "]}";
 }
 
-std::string timingJson(double seconds) {
-    return "{\"timing\": {\"repeats\": 1, \"median_wall_seconds\": " + std::to_string(seconds) + "}}";
+// A run's stats: its median time per frame, its method and, where it counts them, its samples evaluated.
+std::string timingJson(double seconds, const std::string& options, const std::string& stats) {
+    return "{\"timing\": {\"repeats\": 1, \"median_wall_seconds\": " + std::to_string(seconds) +
+           "}, \"options\": " + options + ", \"stats\": " + stats + "}";
 }
 
 }  // namespace
@@ -151,48 +153,85 @@ std::string timingJson(double seconds) {
 TEST_CASE("table: tradeoff layout, seconds against errors with the Pareto fronts flagged") {
     test::TempDir dir("table");
     std::vector<TradeoffRow> rows;
+    const std::string riemann = R"({"method": "riemann", "precision": "double"})";
+    const std::string cpu = R"({"backend": "cpu", "simd_target": null, "samples_evaluated": 4e6})";
     auto add = [&](const std::string& run, double seconds, double percentR, double percentA, const std::string& maxR,
-                   const std::string& maxA) {
-        writeFile(dir / (run + ".json"), timingJson(seconds));
+                   const std::string& maxA, const std::string& options, const std::string& stats) {
+        writeFile(dir / (run + ".json"), timingJson(seconds, options, stats));
         writeFile(dir / ("vs-" + run + ".json"), tradeoffDiff(percentR, percentA, maxR, maxA));
         rows.push_back({run, dir / (run + ".json"), dir / ("vs-" + run + ".json")});
     };
-    add("riemann-h1", 0.1, 20, 10, "0.3", "0.2");
-    add("riemann-h0.5", 0.2, 5, 1, "0.05", "0.1");
-    add("riemann-h0.25", 0.4, 6, 1, "0.01", "0.001");       // slower than h0.5 with more rays above
-    add("simpson-e0.01", 0.2, 1, 5, "0.001", "0.0001");     // as fast as h0.5, as many rays above: both on the % front
-    add("simpson-e0.001", 0.3, 0, 0, "0.0001", "null");     // an infinite error: never on the max front
-    const Table table = tradeoffTable(rows, 0.001, 2);
+    add("riemann-h1", 0.1, 20, 10, "0.3", "0.2", riemann, cpu);
+    add("riemann-h0.5", 0.2, 5, 1, "0.05", "0.1", riemann, cpu);
+    // slower than h0.5 with more rays above; float on the packets of rays
+    add("riemann-h0.25", 0.4, 6, 1, "0.01", "0.001", R"({"method": "riemann", "precision": "float"})",
+        R"({"backend": "cpu", "simd_target": "AVX2", "samples_evaluated": 4e6})");
+    // as fast as h0.5, as many rays above: both on the % front; on the Vulkan backend
+    add("simpson-e0.01", 0.2, 1, 5, "0.001", "0.0001", R"({"method": "coupled", "precision": "float"})",
+        R"({"backend": "vulkan", "samples_evaluated": 4e6})");
+    // an infinite error: never on the max front; vri-reference's stats count no samples
+    add("exact", 0.3, 0, 0, "0.0001", "null", R"({"method": "exact", "precision": "double"})", "{}");
+    TradeoffOptions twoDecimals;
+    twoDecimals.precision = 2;
+    const Table table = tradeoffTable(rows, twoDecimals);
     CHECK(toCsv(table) ==
-          "run,seconds,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,pareto %,pareto max\n"
-          "riemann-h1,0.1,20.00,10.00,20.00,0.3,0.2,0.3,1,1\n"
-          "riemann-h0.5,0.2,5.00,1.00,5.00,0.05,0.1,0.1,1,0\n"
-          "riemann-h0.25,0.4,6.00,1.00,6.00,0.01,0.001,0.01,0,0\n"
-          "simpson-e0.01,0.2,1.00,5.00,5.00,0.001,0.0001,0.001,1,1\n"
-          "simpson-e0.001,0.3,0.00,0.00,0.00,0.0001,inf,inf,1,0\n");
+          "run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,pareto max\n"
+          "riemann-h1,riemann double,0.1,40,20.00,10.00,20.00,0.3,0.2,0.3,0.3,1,1\n"
+          "riemann-h0.5,riemann double,0.2,20,5.00,1.00,5.00,0.05,0.1,0.1,0.1,1,0\n"
+          "riemann-h0.25,riemann float SIMD,0.4,10,6.00,1.00,6.00,0.01,0.001,0.01,0.01,0,0\n"
+          "simpson-e0.01,coupled float vulkan,0.2,20,1.00,5.00,5.00,0.001,0.0001,0.001,0.001,1,1\n"
+          "exact,exact,0.3,,0.00,0.00,0.00,0.0001,inf,inf,inf,1,0\n");
     const std::string markdown = toMarkdown(table);
-    CHECK(markdown.starts_with("| run | seconds | R > 0.001 | A > 0.001 | worst > 0.001 | max R | max A | max | "
-                               "pareto % | pareto max |\n|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n"));
-    CHECK(markdown.find("whose absolute error exceeds 0.001") != std::string::npos);
+    CHECK(markdown.starts_with("| run | method | seconds | Msamples/s | R > 0.001 | A > 0.001 | worst > 0.001 | max R | "
+                               "max A | max | rmse | pareto % | pareto max |\n"
+                               "|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n"));
+    CHECK(markdown.find("| exact | exact | 0.3 | - | ") != std::string::npos);
+    CHECK(markdown.find("whose absolute error exceeds t (t = 0.001)") != std::string::npos);
     CHECK(markdown.find("pareto % (pareto max): 1 on the Pareto front of seconds against worst > 0.001 (against max)") !=
           std::string::npos);
 
     SUBCASE("a single run is on both fronts; times and errors keep 4 significant digits") {
-        add("alone", 1.23456, 0.5, 0.25, "1.234567e-07", "0");
-        CHECK(toCsv(tradeoffTable({rows.back()}, 0.001)) ==
-              "run,seconds,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,pareto %,pareto max\n"
-              "alone,1.235,0.5000,0.2500,0.5000,1.235e-07,0,1.235e-07,1,1\n");
+        add("alone", 1.23456, 0.5, 0.25, "1.234567e-07", "0", riemann, cpu);
+        CHECK(toCsv(tradeoffTable({rows.back()})) ==
+              "run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,"
+              "pareto max\n"
+              "alone,riemann double,1.235,3.24,0.5000,0.2500,0.5000,1.235e-07,0,1.235e-07,1.235e-07,1,1\n");
+    }
+    SUBCASE("a benchmark's table: each time over the baseline's, two thresholds, the worst channel only") {
+        TradeoffOptions options;
+        options.thresholds = {0.001, 0.01};
+        options.precision = 1;
+        options.baseline = "riemann-h0.5";
+        options.perChannel = false;
+        const Table bench = tradeoffTable(rows, options);
+        CHECK(toCsv(bench) ==
+              "run,method,seconds,time ratio,Msamples/s,worst > 0.001,worst > 0.01,max,rmse,pareto %,pareto max\n"
+              "riemann-h1,riemann double,0.1,0.5,40,20.0,0.0,0.3,0.3,1,1\n"
+              "riemann-h0.5,riemann double,0.2,1,20,5.0,0.0,0.1,0.1,1,0\n"
+              "riemann-h0.25,riemann float SIMD,0.4,2,10,6.0,0.0,0.01,0.01,0,0\n"
+              "simpson-e0.01,coupled float vulkan,0.2,1,20,5.0,0.0,0.001,0.001,1,1\n"
+              "exact,exact,0.3,1.5,,0.0,0.0,inf,inf,1,0\n");
+        CHECK(toMarkdown(bench).find("time ratio: seconds over those of riemann-h0.5, timed in the same run.") !=
+              std::string::npos);
+        options.baseline = "riemann-h2";
+        CHECK_THROWS_WITH_AS(tradeoffTable(rows, options),
+                             doctest::Contains("baseline 'riemann-h2': no row of that name"), Error);
     }
     SUBCASE("errors name the file") {
-        CHECK_THROWS_WITH_AS(tradeoffTable(rows, 0.005), doctest::Contains("vs-riemann-h1.json: no count above 0.005"),
-                             Error);
+        TradeoffOptions unknownThreshold;
+        unknownThreshold.thresholds = {0.005};
+        CHECK_THROWS_WITH_AS(tradeoffTable(rows, unknownThreshold),
+                             doctest::Contains("vs-riemann-h1.json: no count above 0.005"), Error);
         writeFile(dir / "old.json", statsJson(1));
-        CHECK_THROWS_WITH_AS(tradeoffTable({{"old", dir / "old.json", rows[0].diff}}, 0.001),
+        CHECK_THROWS_WITH_AS(tradeoffTable({{"old", dir / "old.json", rows[0].diff}}),
                              doctest::Contains("old.json: has no 'timing'"), Error);
+        writeFile(dir / "no-method.json", "{\"timing\": {\"median_wall_seconds\": 1}}");
+        CHECK_THROWS_WITH_AS(tradeoffTable({{"no-method", dir / "no-method.json", rows[0].diff}}),
+                             doctest::Contains("no-method.json: "), Error);
         writeFile(dir / "gray.json", "{\"channels\": [{\"name\": \"Y\", \"max_abs\": 0, \"above\": []}]}");
         rows.push_back({"gray", rows[0].stats, dir / "gray.json"});
-        CHECK_THROWS_WITH_AS(tradeoffTable(rows, 0.001), doctest::Contains("gray.json: its channels differ from those of"),
+        CHECK_THROWS_WITH_AS(tradeoffTable(rows), doctest::Contains("gray.json: its channels differ from those of"),
                              Error);
-        CHECK_THROWS_WITH_AS(tradeoffTable({}, 0.001), doctest::Contains("at least one row"), Error);
+        CHECK_THROWS_WITH_AS(tradeoffTable({}), doctest::Contains("at least one row"), Error);
     }
 }

@@ -93,6 +93,22 @@ TEST_CASE("vdbVolumeLayout: transforms other than a positive axis-aligned scale 
     requireRefused(rounded, "rotated, flipped or non-linear transform");
 }
 
+TEST_CASE("vdbVolumeLayout: version 2 keeps every voxel type in a FloatGrid indexed at voxel centres") {
+    VdbGridFacts facts = writtenByVri("uint8", {4, 3, 2}, VdbValueType::Float);
+    facts.formatVersionMeta = vri::detail::kVdbFormatVersion;
+    const auto layout = vdbVolumeLayout("g.vdb", facts);
+    CHECK(layout.type == vri::VoxelType::UInt8);
+    CHECK(layout.indexAtVoxelCentres);
+    // Version 1 (no vri_format_version): uint8 in an Int32Grid, index at the box corner.
+    CHECK_FALSE(vdbVolumeLayout("g.vdb", writtenByVri("uint8", {4, 3, 2}, VdbValueType::Int32)).indexAtVoxelCentres);
+    // Other programs' grids: OpenVDB's meaning, whatever the value type.
+    CHECK(vdbVolumeLayout("g.vdb", foreign({0, 0, 0}, {1, 1, 1}, VdbValueType::Int64)).indexAtVoxelCentres);
+    facts.valueType = VdbValueType::Int32;
+    requireRefused(facts, "cannot hold uint8 voxels");
+    facts.formatVersionMeta = 3;
+    requireRefused(facts, "vri_format_version 3");
+}
+
 TEST_CASE("vdbVolumeLayout: metadata that do not fit the grid are refused before anything is allocated") {
     requireRefused(writtenByVri("uint8", {8, 8, 8}, VdbValueType::Float), "cannot hold uint8 voxels");
     requireRefused(writtenByVri("float32", {8, 8, 8}, VdbValueType::Int32), "cannot hold float32 voxels");

@@ -196,8 +196,11 @@ TEST_CASE("volume io: VDB round trip is exact") {
             for (int y = 0; y < 17; ++y)
                 for (int x = 0; x < 21; ++x)
                     vri::dispatchVoxelType(type, [&](auto t) { volume.data<decltype(t)>()[volume.index(x, y, z)] = 0; });
+        // The file holds the first voxel's centre, origin + spacing / 2: exact here, so the origin comes
+        // back bit for bit (otherwise to within the rounding of that sum). 2/3 checks that the spacing is
+        // kept exactly even where a translation is added to it.
         volume.spacing = {0.5, 0.75, 2.0 / 3.0};
-        volume.origin = {-1.25, 3.0, 1e-3};
+        volume.origin = {-1.25, 3.0, -1.0 / 3.0};
         volume.range = vri::ValueRange{0.1, 1234.5};
 
         const fs::path path = dir / "v.vdb";
@@ -327,8 +330,65 @@ TEST_CASE("volume io: NRRD headers from other programs") {
     const vri::Volume attached = vri::readVolume(dir / "attached.nrrd");
     CHECK(attached.dims == glm::ivec3(1, 2, 3));
     CHECK(attached.spacing == glm::dvec3(2, 3, 4));
-    CHECK(attached.origin == glm::dvec3(10, 20, 30));
+    // The space origin is the first sample's centre; without "centers" the samples are cells, so the box
+    // starts half a spacing before it.
+    CHECK(attached.origin == glm::dvec3(9, 18.5, 28));
     CHECK(attached.value(0, 1, 2) == 6);
+
+    // A node axis starts on its first sample.
+    std::string text = readBytes(dir / "attached.nrrd");
+    text.insert(text.find("encoding"), "centers: node cell ???\n");
+    writeBytes(dir / "centred.nrrd", text);
+    CHECK(vri::readVolume(dir / "centred.nrrd").origin == glm::dvec3(10, 18.5, 28));
+}
+
+TEST_CASE("volume io: NRRD types beyond uint8, uint16 and float32 become float32 by the stated rule") {
+    TempDir dir;
+    const auto read = [&](const std::string& type, const std::string& bytes, const std::string& extra = "") {
+        writeBytes(dir / "v.raw", bytes);
+        writeBytes(dir / "v.nhdr", "NRRD0004\ntype: " + type + "\ndimension: 3\nsizes: 2 1 1\nencoding: raw\n"
+                                   "endian: little\ndata file: v.raw\n" + extra);
+        return vri::readVolume(dir / "v.nhdr");
+    };
+    const vri::Volume int8 = read("signed char", std::string("\x80\x7f", 2));
+    CHECK(int8.type == vri::VoxelType::Float32);
+    CHECK(int8.value(0, 0, 0) == -128);
+    CHECK(int8.value(1, 0, 0) == 127);
+    CHECK(int8.range == vri::ValueRange{-128, 127});  // the stored type's full range, as for uint8
+    const vri::Volume int16 = read("short", std::string("\x18\xfc\xb8\x0b", 4), "vri_range:=-1000 3000\n");
+    CHECK(int16.value(0, 0, 0) == -1000);
+    CHECK(int16.value(1, 0, 0) == 3000);
+    CHECK(int16.range == vri::ValueRange{-1000, 3000});  // the file's range wins
+    const vri::Volume uint32 = read("uint", std::string("\x01\x00\x00\x01\xff\xff\xff\xff", 8));
+    CHECK(uint32.value(0, 0, 0) == 16777217.0f);  // rounded to the nearest float: 2^24 + 1 is not one
+    CHECK(uint32.value(0, 0, 0) == 16777216.0);
+    CHECK(uint32.value(1, 0, 0) == 4294967296.0);
+    CHECK(uint32.range == vri::ValueRange{0, 4294967295.0});
+    double d[2] = {0.1, -2.5};
+    const vri::Volume float64 = read("double", std::string(reinterpret_cast<const char*>(d), 16));
+    CHECK(float64.value(0, 0, 0) == double(0.1f));
+    CHECK(float64.value(1, 0, 0) == -2.5);
+    CHECK_FALSE(float64.range);  // min..max, as for float32
+    d[1] = 1e300;
+    checkMentions(errorOf([&] { read("double", std::string(reinterpret_cast<const char*>(d), 16)); }),
+                  {"v.raw", "voxel 1", "beyond float32's range"});
+}
+
+TEST_CASE("volume io: vri's NRRD files say where their samples are") {
+    TempDir dir;
+    vri::Volume volume = testVolume({3, 2, 2}, vri::VoxelType::UInt16);
+    volume.spacing = {0.5, 2, 0.25};
+    volume.origin = {-1, 4, 8};
+    for (const char* name : {"v.nhdr", "v.nrrd"}) {
+        CAPTURE(name);
+        vri::writeVolume(dir / name, volume);
+        const std::string text = readBytes(dir / name);
+        CHECK(text.find("centers: cell cell cell\n") != std::string::npos);
+        CHECK(text.find("space origin: (-0.75,5,8.125)\n") != std::string::npos);
+        CHECK(vri::readVolume(dir / name) == volume);
+    }
+    CHECK(readBytes(dir / "v.nrrd").find("data file") == std::string::npos);  // attached
+    CHECK(vri::filesWrittenBy(dir / "v.nrrd") == std::vector<fs::path>{dir / "v.nrrd"});
 }
 
 TEST_CASE("volume io: bad NRRD headers name the file and the field") {
@@ -342,10 +402,18 @@ TEST_CASE("volume io: bad NRRD headers name the file and the field") {
     std::string path = header("uchar", "raw", "");
     CHECK(vri::readVolume(path).value(1, 1, 1) == 1);
 
-    path = header("uchar", "gzip", "");
-    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "encoding", "gzip"});
-    path = header("double", "raw", "");
-    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "type", "double"});
+    path = header("uchar", "ascii", "");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "encoding", "ascii"});
+    path = header("uchar", "gzip", "");  // v.raw is not deflated
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "v.raw", "gzip"});
+    path = header("uchar", "gzip", "byte skip: 2\n");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "byte skip", "gzip"});
+    path = header("int64", "raw", "");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "type", "int64"});
+    path = header("uchar", "raw", "centers: cell cell\n");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "centers", "expected 3"});
+    path = header("uchar", "raw", "centers: cell middle cell\n");
+    checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "centers", "middle"});
     path = header("uchar", "raw", "space directions: (1,0.5,0) (0,1,0) (0,0,1)\n");
     checkMentions(errorOf([&] { vri::readVolume(path); }), {path + ":", "space directions"});
     path = header("uint16", "raw", "");

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vri/io/provenance.h"
 #include "vri/util/json_file.h"
 
 namespace vri {
@@ -33,6 +34,32 @@ bool sameFile(const std::string& a, const std::string& b) {
 }
 
 }  // namespace
+
+std::string versionText(std::string_view tool) {
+    const nlohmann::json build = buildInfo();
+#if VRI_HAVE_VULKAN
+    constexpr const char* kVulkan = "with";
+#else
+    constexpr const char* kVulkan = "without";
+#endif
+    return std::string(tool) + " (vri) " + build["vri_version"].get<std::string>() + "\ngit commit " +
+           build["git_commit"].get<std::string>() + " (when configured), " + build["build_type"].get<std::string>() +
+           " build, " + build["compiler"].get<std::string>() + ", " + kVulkan + " the Vulkan backend";
+}
+
+std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv) {
+    app.set_version_flag("--version", [tool] { return versionText(tool); },
+                         "print the version, git commit, build type and compiler, and exit");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {  // --help, --help-all, --version
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << tool << ": error: " << printable(e.what()) << " (see --help)\n";
+        return kExitUsage;
+    }
+    return std::nullopt;
+}
 
 std::string describeUnexpected(const std::exception& e) {
     if (dynamic_cast<const std::bad_alloc*>(&e))

@@ -15,26 +15,21 @@
 
 namespace vri {
 
-// Exit codes shared by all tools (vri-diff adds its own comparison codes, in the spirit of idiff).
+// Exit codes shared by all tools (README, "Exit codes"); vri-diff's comparison verdicts add 2 to 4.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitUsage = 64;  // bad argument (CLI11 parse errors use their own code, also non-zero)
 inline constexpr int kExitError = 1;   // bad input file, failed computation
+// A command line CLI11 refuses (unknown, missing or unconvertible option, options that exclude each
+// other) or a UsageError; BSD's EX_USAGE.
+inline constexpr int kExitUsage = 64;
 
-// Parses the command line; a usage error becomes the one line "<tool>: error: <what>"
-// (exit code CLI11's), --help prints the help (exit 0). Returns the exit code to leave with, if any.
-inline std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv) {
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << tool << ": error: " << printable(e.what()) << " (see --help)\n";
-        return e.get_exit_code();
-    }
-    return std::nullopt;
-}
+// What --version prints: "<tool> (vri) <version>" and a line with the git commit at configure time,
+// the build type, the compiler and whether the Vulkan backend is built.
+std::string versionText(std::string_view tool);
+
+// Parses the command line, after adding --version; a usage error becomes the one line
+// "<tool>: error: <what> (see --help)" and exit kExitUsage, --help and --version print on stdout
+// (exit 0). Returns the exit code to leave with, if any.
+std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv);
 
 // The files a tool writes, each with the option that named it ("-o", "--png", ...).
 struct OutputArgument {

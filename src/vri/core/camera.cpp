@@ -82,9 +82,14 @@ Camera::Camera(const CameraSpec& spec) : spec_(spec) {
     tanHalfX_ = tanHalfY_ * static_cast<double>(spec.width) / spec.height;
 }
 
+CameraBasis Camera::basis() const {
+    return {forward_, right_, up_, tanHalfX_, tanHalfY_,
+            spec_.zoomCentre.value_or(glm::dvec2(0.5 * spec_.width, 0.5 * spec_.height))};
+}
+
 glm::dvec3 Camera::direction(int px, int py) const {
     // The pixel's centre in the full frame; with zoom 1 about the centre this is exactly px + 0.5.
-    const glm::dvec2 centre = spec_.zoomCentre.value_or(glm::dvec2(0.5 * spec_.width, 0.5 * spec_.height));
+    const glm::dvec2 centre = basis().centre;
     const double fx = centre.x + (px + 0.5 - 0.5 * spec_.width) / spec_.zoom;
     const double fy = centre.y + (py + 0.5 - 0.5 * spec_.height) / spec_.zoom;
     const double x = (2.0 * fx / spec_.width - 1.0) * tanHalfX_;

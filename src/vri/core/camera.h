@@ -26,6 +26,15 @@ struct CameraSpec {
 // Looks at the box centre along -z (+y up) from just far enough for the whole box to fit the view.
 CameraSpec framingCamera(const Box& box, int width, int height, double fovYDegrees);
 
+// What Camera::direction computes from: the orthonormal view basis, the tangents of half the fields of
+// view and the zoom centre in pixels. A port of direction() (the Vulkan shaders make their rays from it)
+// reproduces it from these and the spec's zoom.
+struct CameraBasis {
+    glm::dvec3 forward, right, up;
+    double tanHalfX, tanHalfY;
+    glm::dvec2 centre;
+};
+
 class Camera {
 public:
     // Throws vri::Error on an image size that is not positive or too large for imageBytes(), a field of view
@@ -40,6 +49,7 @@ public:
     const glm::dvec3& eye() const { return spec_.eye; }
     // Unit direction of the ray through the centre of pixel (px, py).
     glm::dvec3 direction(int px, int py) const;
+    CameraBasis basis() const;
 
 private:
     CameraSpec spec_;

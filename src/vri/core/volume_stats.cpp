@@ -21,6 +21,10 @@ VolumeStats computeVolumeStats(const Volume& volume, int bins) {
     const double binsPerValue = hi > lo ? bins / (hi - lo) : 0.0;
     double sum = 0.0;
     std::size_t zeros = 0;
+    const auto bricksAlong = [](int n) { return static_cast<std::size_t>((n + kStatsBrickSize - 1) / kStatsBrickSize); };
+    const std::size_t bx = bricksAlong(volume.dims.x), by = bricksAlong(volume.dims.y);
+    // One flag per brick: at most a 512th of the voxel count.
+    std::vector<bool> brickActive(bx * by * bricksAlong(volume.dims.z), false);
     dispatchVoxelType(volume.type, [&](auto t) {
         using T = decltype(t);
         const T* values = volume.data<T>();
@@ -28,6 +32,11 @@ VolumeStats computeVolumeStats(const Volume& volume, int bins) {
             const double v = static_cast<double>(values[i]);
             sum += v;
             zeros += v == 0.0;
+            if (v != 0.0) {
+                const std::size_t x = i % volume.dims.x, y = i / volume.dims.x % volume.dims.y,
+                                  z = i / volume.dims.x / volume.dims.y;
+                brickActive[(z / kStatsBrickSize * by + y / kStatsBrickSize) * bx + x / kStatsBrickSize] = true;
+            }
             if (!(v >= lo)) {
                 ++stats.below;
             } else if (v > hi) {
@@ -40,6 +49,9 @@ VolumeStats computeVolumeStats(const Volume& volume, int bins) {
     });
     stats.mean = sum / static_cast<double>(count);
     stats.zeroFraction = static_cast<double>(zeros) / static_cast<double>(count);
+    stats.activeVoxels = count - zeros;
+    stats.bricks = brickActive.size();
+    stats.activeBricks = static_cast<std::uint64_t>(std::count(brickActive.begin(), brickActive.end(), true));
     return stats;
 }
 

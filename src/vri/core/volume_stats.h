@@ -13,12 +13,19 @@ struct VolumeStats {
     ValueRange normalisation;  // the raw values that s = 0..1 spans, Volume::normalisationRange()
     double mean = 0.0;
     double zeroFraction = 0.0;  // voxels equal to 0, i.e. empty space under most transfer functions
+    // What a sparse copy needs: the voxels other than 0 (those a .vdb stores), and the bricks of
+    // kStatsBrickSize^3 voxels (OpenVDB's leaf nodes, aligned to voxel 0) holding at least one of them.
+    std::uint64_t activeVoxels = 0;
+    std::uint64_t bricks = 0;
+    std::uint64_t activeBricks = 0;
     // Equal-width bins over the normalisation range (its hi value falls in the last bin), and the
     // voxels outside it, NaN counted as below.
     std::vector<std::uint64_t> histogram;
     std::uint64_t below = 0;
     std::uint64_t above = 0;
 };
+
+inline constexpr int kStatsBrickSize = 8;
 
 // Throws vri::Error when bins < 1.
 VolumeStats computeVolumeStats(const Volume& volume, int bins = 16);

@@ -22,6 +22,13 @@ std::string displayPath(const fs::path& path, const fs::path& workDir) {
     return relative.string();
 }
 
+// Values as one option word: "0.01,0.005,0.001".
+std::string commaList(const std::vector<std::string>& values) {
+    std::string list;
+    for (const std::string& v : values) list += (list.empty() ? "" : ",") + v;
+    return list;
+}
+
 // Absolute, normal, without a trailing separator (which would count as one more component).
 fs::path normalDirectory(const fs::path& dir) {
     fs::path normal = fs::absolute(dir).lexically_normal();
@@ -93,9 +100,7 @@ void Planner::addDiff(const ComparisonSpec& c) {
     Step step{c.id, "diff", "vri-diff", {}, {}, {}, {{"reference", c.reference}, {"run", c.run}}};
     input(step, "", renderImage(plan_, c.reference));
     input(step, "", renderImage(plan_, c.run));
-    std::string thresholds;
-    for (const std::string& t : c.thresholds) thresholds += (thresholds.empty() ? "" : ",") + t;
-    step.arguments.insert(step.arguments.end(), {"--threshold", thresholds});
+    step.arguments.insert(step.arguments.end(), {"--threshold", commaList(c.thresholds)});
     // Measure only: a difference is the result here, not a failure of the step.
     step.arguments.insert(step.arguments.end(), {"--failpercent", "100", "--warnpercent", "100"});
     output(step, "--json", result(c.id + ".json"));
@@ -118,7 +123,11 @@ void Planner::addTable(const TableSpec& table) {
     if (table.layout != "matrix") {
         const bool tradeoff = table.layout == "tradeoff";
         step.arguments = {"--layout", table.layout, "--title", table.title};
-        if (tradeoff) step.arguments.insert(step.arguments.end(), {"--threshold", table.threshold});
+        if (tradeoff) {
+            step.arguments.insert(step.arguments.end(), {"--threshold", commaList(table.thresholds)});
+            if (!table.baseline.empty()) step.arguments.insert(step.arguments.end(), {"--baseline", table.baseline});
+            if (table.channels != "all") step.arguments.insert(step.arguments.end(), {"--channels", table.channels});
+        }
         if (table.rows.empty()) {  // one row per compared run
             for (const std::string& group : table.comparisons)
                 for (const ComparisonSpec& c : experiment_.comparisons)

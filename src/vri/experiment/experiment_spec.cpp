@@ -27,6 +27,19 @@ namespace {
 // `method: exact` is vri-reference's accurate solution (a reference, not a vri-render method).
 constexpr std::string_view kExactMethod = "exact";
 
+// Peer renderers (tools/peers/): a method of another renderer, run by its adapter with vri-render's scene options,
+// --method, --step (voxels), --repeat and --warm-up, and the same outputs.
+struct PeerMethod {
+    std::string_view method, tool;
+};
+constexpr PeerMethod kPeerMethods[] = {{"vtk-fixed-point", "vri-peer-vtk"}, {"vtk-gpu", "vri-peer-vtk"}};
+
+const PeerMethod* peerMethod(std::string_view method) {
+    for (const PeerMethod& peer : kPeerMethods)
+        if (peer.method == method) return &peer;
+    return nullptr;
+}
+
 constexpr std::string_view kSafeName =
     "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
 
@@ -326,7 +339,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             const auto value = [&](const YAML::Node& v) {
                 if (!v.IsScalar()) throw Error(at(v) + ": " + key + " must be a value or a list of values");
                 RenderRequest scratch(RenderTool::Render);  // the row's own check, where the value is
-                row->apply(v.Scalar(), at(v) + ": " + key, scratch);
+                if (!(key == "method" && peerMethod(v.Scalar()))) row->apply(v.Scalar(), at(v) + ": " + key, scratch);
                 axis.values.push_back(v.Scalar());
             };
             if (axis.swept)
@@ -361,25 +374,51 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             for (bool more = true; more;) {
                 RunSpec run{experiment.scenes.size() > 1 ? scene + "-" + prefix : prefix, "vri-render", scene, reference, {}, {}};
                 const auto method = std::find_if(axes.begin(), axes.end(), [](auto& a) { return a.row->key == "method"; });
-                const bool exact = method->values[index[method - axes.begin()]] == kExactMethod;
+                const std::string& methodName = method->values[index[method - axes.begin()]];
+                const bool exact = methodName == kExactMethod;
+                const PeerMethod* peer = peerMethod(methodName);
                 if (exact) run.tool = "vri-reference";
+                if (peer) run.tool = std::string(peer->tool);
                 RenderRequest request(exact ? RenderTool::Reference : RenderTool::Render);
                 for (std::size_t a = 0; a < axes.size(); ++a) {
                     const RenderOptionRow& row = *axes[a].row;
                     const std::string& v = axes[a].values[index[a]];
-                    if (!row.takenBy(request.tool))
-                        throw Error(at(entry) + ": " + std::string(row.key) + " does not apply to method exact (vri-reference)");
-                    row.apply(v, std::string(row.key), request);
-                    request.given.push_back(row.flag());
+                    if (peer) {  // a peer's adapter takes vri-render's scene options and these only
+                        if (row.key != "method" && row.key != "step" && row.key != "repeat" && row.key != "warm_up")
+                            throw Error(at(entry) + ": " + std::string(row.key) + " does not apply to method " +
+                                        methodName + " (" + run.tool + ": step, repeat and warm_up)");
+                    } else {
+                        if (!row.takenBy(request.tool))
+                            throw Error(at(entry) + ": " + std::string(row.key) +
+                                        " does not apply to method exact (vri-reference)");
+                        row.apply(v, std::string(row.key), request);
+                        request.given.push_back(row.flag());
+                    }
                     run.parameters.emplace_back(row.key, v);
                     if (row.kind != OptionValueKind::Flag) run.options.emplace_back(row.flag(), v);
                     else if (v == "true") run.options.emplace_back(row.flag(), "");  // a flag has no value
                     if (axes[a].swept) run.id.append("-").append(row.idPrefix).append(v);
                 }
-                try {  // the rules between the options, as the tool will check them
-                    finishRenderRequest(request);
-                } catch (const Error& e) {
-                    throw Error(at(entry) + ": " + section + " entry '" + prefix + "': " + e.what());
+                if (peer) {
+                    // A peer renders a volume with an explicit camera; zoom, previews' looks and fields are vri's.
+                    static const std::set<std::string, std::less<>> peerSceneOptions = {
+                        "--volume", "--dims", "--type", "--byte-order", "--spacing", "--convention",
+                        "--tf",     "--size", "--eye",  "--target",     "--up",      "--fov"};
+                    const std::string peerRuns = at(entry) + ": method " + methodName + " (" + run.tool + ")";
+                    const ToolOptions& given = experiment.scene(scene).options;
+                    for (const auto& [option, value] : given)
+                        if (!peerSceneOptions.contains(option))
+                            throw Error(peerRuns + " cannot render scene '" + scene + "' with " + option +
+                                        " (a peer takes a volume, a camera and a size)");
+                    for (const std::string option : {"--eye", "--target"})
+                        if (std::none_of(given.begin(), given.end(), [&](auto& o) { return o.first == option; }))
+                            throw Error(peerRuns + " needs scene '" + scene + "' to set camera." + option.substr(2));
+                } else {
+                    try {  // the rules between the options, as the tool will check them
+                        finishRenderRequest(request);
+                    } catch (const Error& e) {
+                        throw Error(at(entry) + ": " + section + " entry '" + prefix + "': " + e.what());
+                    }
                 }
                 if (!isSafeName(run.id))  // a swept value is part of the id
                     throw Error(at(entry) + ": " + section + " entry '" + prefix +
@@ -480,7 +519,7 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
 void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "tables")) {
         yaml::requireKeys(entry, source_, {"title", "layout", "comparisons", "runs", "rows", "value", "column",
-                                           "group_by", "threshold", "precision"});
+                                           "group_by", "threshold", "baseline", "channels", "precision"});
         TableSpec table;
         table.name = table.title = name;
         if (entry["value"]) table.value = text(entry["value"], "value");
@@ -526,10 +565,27 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
         for (const char* key : {"value", "column"})
             if (entry[key] && table.layout != "matrix")
                 throw Error(at(entry[key]) + ": " + key + " applies to a table of values (runs)");
-        if (const YAML::Node t = entry["threshold"]) {
-            if (table.layout != "tradeoff") throw Error(at(t) + ": threshold applies to layout tradeoff");
-            table.threshold = number(t, "threshold");
-            parseNonNegative(table.threshold, at(t) + ": threshold");
+        for (const char* key : {"threshold", "baseline", "channels"})
+            if (entry[key] && table.layout != "tradeoff") throw Error(at(entry[key]) + ": " + key + " applies to layout tradeoff");
+        if (const YAML::Node t = entry["threshold"]) {  // a value or a list of them
+            table.thresholds.clear();
+            for (const YAML::Node& v : t.IsSequence() ? std::vector<YAML::Node>(t.begin(), t.end()) : std::vector{t}) {
+                table.thresholds.push_back(number(v, "threshold"));
+                parseNonNegative(table.thresholds.back(), at(v) + ": threshold");
+            }
+            if (table.thresholds.empty()) throw Error(at(t) + ": threshold: an empty list");
+        }
+        if (const YAML::Node b = entry["baseline"]) {
+            table.baseline = text(b, "baseline");
+            if (std::none_of(experiment.comparisons.begin(), experiment.comparisons.end(), [&](auto& c) {
+                    return c.run == table.baseline && std::ranges::count(table.comparisons, c.group) > 0;
+                }))
+                throw Error(at(b) + ": baseline '" + table.baseline + "' is not a run of the table's comparisons");
+        }
+        if (const YAML::Node c = entry["channels"]) {
+            table.channels = text(c, "channels");
+            if (table.channels != "all" && table.channels != "worst")
+                throw Error(at(c) + ": channels must be all or worst, got '" + table.channels + "'");
         }
         if (const YAML::Node r = entry["rows"]) {
             if (table.layout != "thresholds") throw Error(at(r) + ": rows applies to layout thresholds");
@@ -558,10 +614,11 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
                                                       [&](auto& x) { return x.group == group; })->thresholds;
                 std::string counted;
                 for (const std::string& t : thresholds) counted += (counted.empty() ? "" : ", ") + t;
-                if (std::none_of(thresholds.begin(), thresholds.end(),
-                                 [&](const std::string& t) { return std::stod(t) == std::stod(table.threshold); }))
-                    throw Error(at(entry["threshold"] ? entry["threshold"] : entry) + ": threshold " + table.threshold +
-                                " is not one that comparison '" + group + "' counts (" + counted + ")");
+                for (const std::string& wanted : table.thresholds)
+                    if (std::none_of(thresholds.begin(), thresholds.end(),
+                                     [&](const std::string& t) { return std::stod(t) == std::stod(wanted); }))
+                        throw Error(at(entry["threshold"] ? entry["threshold"] : entry) + ": threshold " + wanted +
+                                    " is not one that comparison '" + group + "' counts (" + counted + ")");
             }
         experiment.tables.push_back(std::move(table));
     }

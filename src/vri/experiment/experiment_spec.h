@@ -83,7 +83,12 @@ struct TableSpec {
     std::vector<std::pair<std::string, std::vector<std::string>>> rows;
     std::string value = "stats.wall_seconds";  // matrix layout: the dotted JSON path in the stats file
     std::string column = "seconds";            // matrix layout: its column heading
-    std::string threshold = "0.001";           // tradeoff layout: as the file spells it
+    // Tradeoff layout: the thresholds of its % columns as the file spells them (the first is the %
+    // front's); `baseline:`, a compared run whose time the others' are divided by; `channels:`, "all"
+    // or "worst" (only the worst channel's columns).
+    std::vector<std::string> thresholds{"0.001"};
+    std::string baseline;
+    std::string channels = "all";
     std::string precision;  // decimals, "" for vri-tabulate's default
     bool byScene = false;  // matrix layout, `group_by: scene`: one column per scene, rows the runs without the scene
 };

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string_view>
 
+#include "vri/io/oiio_input.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/error.h"
 
@@ -18,24 +19,6 @@ namespace vri {
 namespace fs = std::filesystem;
 
 namespace {
-
-// OpenImageIO's messages may span lines; our errors are one line.
-std::string oneLine(std::string message) {
-    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
-    std::string line;
-    for (char ch : message) {
-        if (ch == '\n') line += "; ";
-        else line += ch;
-    }
-    return line.empty() ? "unknown error" : line;
-}
-
-std::unique_ptr<OIIO::ImageInput> openForReading(const fs::path& path) {
-    if (!fs::exists(path)) throw Error(path.string() + ": no such file");
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw Error(path.string() + ": cannot read image: " + oneLine(OIIO::geterror()));
-    return in;
-}
 
 // A hand-built Image can disagree with itself; writing it would read past the pixel array.
 void requireConsistent(const Image& image, const fs::path& path) {
@@ -71,7 +54,7 @@ OIIO::ImageSpec floatSpec(const Image& image) {
 void writeWithOiio(const fs::path& path, const std::string& format, const OIIO::ImageSpec& spec,
                    OIIO::TypeDesc dataType, const void* data) {
     auto out = OIIO::ImageOutput::create(format);
-    if (!out) throw Error(path.string() + ": cannot write image: " + oneLine(OIIO::geterror()));
+    if (!out) throw Error(path.string() + ": cannot write image: " + detail::oneLine(OIIO::geterror()));
     if (!out->supports("ioproxy"))
         throw Error(path.string() + ": cannot write " + out->format_name() +
                     " images: OpenImageIO cannot encode them into memory to check every write (use .exr, .tif or "
@@ -81,15 +64,21 @@ void writeWithOiio(const fs::path& path, const std::string& format, const OIIO::
     const bool encodedAll = out->set_ioproxy(&memory) && out->open(path.string(), spec) &&
                             out->write_image(dataType, data);
     if (!out->close() || !encodedAll)
-        throw Error(path.string() + ": cannot write image: " + oneLine(out->geterror()));
+        throw Error(path.string() + ": cannot write image: " + detail::oneLine(out->geterror()));
     writeTextFile(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
+}
+
+// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1]: every viewer reads an
+// 8-bit PNG as sRGB, so linear bytes would show the data darker than they are.
+double srgbEncoded(double linear) {
+    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
 std::uint8_t previewByte(float composited, const PngOptions& options) {
     float v = std::isnan(composited) ? 0.0f : composited * options.exposure;
     if (options.invert) v = 1.0f - v;
     v = std::clamp(v, 0.0f, 1.0f);
-    return static_cast<std::uint8_t>(std::floor(v * 255.0f + 0.5f));
+    return static_cast<std::uint8_t>(std::floor(srgbEncoded(v) * 255.0 + 0.5));
 }
 
 std::vector<std::uint8_t> previewRgb8(const Image& image, const PngOptions& options) {
@@ -120,7 +109,7 @@ std::string lowercaseExtension(const fs::path& path) {
 }  // namespace
 
 Image readImage(const fs::path& path) {
-    auto in = openForReading(path);
+    auto in = detail::openImageInput(path);
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.depth > 1)
         throw Error(path.string() + ": cannot read image: it is a volume image (depth " + std::to_string(spec.depth) +
@@ -135,13 +124,13 @@ Image readImage(const fs::path& path) {
         if (c < static_cast<int>(spec.channelnames.size()) && !spec.channelnames[c].empty())
             image.channelNames[c] = spec.channelnames[c];
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-        throw Error(path.string() + ": cannot read image: " + oneLine(in->geterror()));
+        throw Error(path.string() + ": cannot read image: " + detail::oneLine(in->geterror()));
     in->close();
     return image;
 }
 
 ImageMetadata readImageMetadata(const fs::path& path) {
-    auto in = openForReading(path);
+    auto in = detail::openImageInput(path);
     ImageMetadata metadata;
     for (const OIIO::ParamValue& attribute : in->spec().extra_attribs)
         if (attribute.type() == OIIO::TypeDesc::STRING)
@@ -160,6 +149,7 @@ void writePng(const fs::path& path, const Image& image, const PngOptions& option
     requireConsistent(image, path);
     const std::vector<std::uint8_t> rgb = previewRgb8(image, options);
     OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");  // the PNG says so (its sRGB chunk)
     writeWithOiio(path, "png", spec, OIIO::TypeDesc::UINT8, rgb.data());
 }
 

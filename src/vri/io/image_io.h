@@ -34,7 +34,9 @@ struct PngOptions {
 
 // 8-bit RGB preview, no alpha. Per pixel and colour channel, c being premultiplied:
 //   v = (c + (1 - A) * background) * exposure;  v = 1 - v if invert;  clamp to [0, 1];
-//   byte = floor(v * 255 + 0.5) (round to nearest, halves up); NaN becomes 0 before inverting.
+//   byte = floor(sRGB(v) * 255 + 0.5) (IEC 61966-2-1's encoding, rounded to nearest, halves up);
+// NaN becomes 0 before inverting. The file is marked sRGB. Only the preview is encoded: the EXR
+// keeps the linear values.
 // The colour comes from the channels named R, G, B; without all three, the first channel that
 // is not A is shown as grey. Without an A channel, A = 1 (no background shows through).
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options = {});

@@ -19,16 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct DatEntry {
-    std::string key;  // as written, for messages
-    std::string value;
-    int line = 0;
-};
-
-std::map<std::string, DatEntry> parseDat(const fs::path& path) {
+std::map<std::string, HeaderEntry> parseDat(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path.string() + ": cannot open");
-    std::map<std::string, DatEntry> entries;
+    std::map<std::string, HeaderEntry> entries;
     std::string line;
     for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
         const std::string_view text = trim(line);
@@ -47,24 +41,24 @@ std::map<std::string, DatEntry> parseDat(const fs::path& path) {
 
 Volume readInviwoDat(const fs::path& path) {
     requireRegularFile(path);
-    const std::map<std::string, DatEntry> entries = parseDat(path);
-    const auto find = [&](const std::string& key) -> const DatEntry* {
+    const std::map<std::string, HeaderEntry> entries = parseDat(path);
+    const auto find = [&](const std::string& key) -> const HeaderEntry* {
         const auto it = entries.find(key);
         return it == entries.end() ? nullptr : &it->second;
     };
-    const auto require = [&](const std::string& key, const std::string& spelling) -> const DatEntry& {
-        if (const DatEntry* entry = find(key)) return *entry;
+    const auto require = [&](const std::string& key, const std::string& spelling) -> const HeaderEntry& {
+        if (const HeaderEntry* entry = find(key)) return *entry;
         throw Error(path.string() + ": required key '" + spelling + "' is missing");
     };
-    const auto where = [&](const DatEntry& entry) {
+    const auto where = [&](const HeaderEntry& entry) {
         return path.string() + ":" + std::to_string(entry.line) + ": " + entry.key;
     };
 
     RawLayout layout;
-    const DatEntry& format = require("format", "Format");
+    const HeaderEntry& format = require("format", "Format");
     layout.type = parseVoxelType(format.value, where(format));
 
-    const DatEntry& resolution = require("resolution", "Resolution");
+    const HeaderEntry& resolution = require("resolution", "Resolution");
     const std::vector<double> dims = parseNumbers(resolution.value, 3, where(resolution));
     for (int axis = 0; axis < 3; ++axis) {
         // Compared before the cast: converting a double beyond int's range is undefined.
@@ -74,19 +68,19 @@ Volume readInviwoDat(const fs::path& path) {
         layout.dims[axis] = static_cast<int>(dims[axis]);
     }
 
-    if (const DatEntry* byteOrder = find("byteorder")) {
+    if (const HeaderEntry* byteOrder = find("byteorder")) {
         const std::string order = toLower(byteOrder->value);
         if (order == "littleendian" || order == "little") layout.order = ByteOrder::Little;
         else if (order == "bigendian" || order == "big") layout.order = ByteOrder::Big;
         else throw Error(where(*byteOrder) + ": expected LittleEndian or BigEndian, got '" + byteOrder->value + "'");
     }
-    if (const DatEntry* offset = find("byteoffset")) {
+    if (const HeaderEntry* offset = find("byteoffset")) {
         layout.headerBytes = parseByteCount(offset->value, where(*offset));
     }
 
     // Inviwo spans the whole volume with its basis; the distance between samples is the basis
     // vector's length over the resolution along that axis.
-    const DatEntry* basis[3] = {find("basisvector1"), find("basisvector2"), find("basisvector3")};
+    const HeaderEntry* basis[3] = {find("basisvector1"), find("basisvector2"), find("basisvector3")};
     if (basis[0] || basis[1] || basis[2]) {
         for (int axis = 0; axis < 3; ++axis) {
             if (!basis[axis])
@@ -102,7 +96,7 @@ Volume readInviwoDat(const fs::path& path) {
         }
     }
 
-    const DatEntry& rawFile = require("rawfile", "Rawfile");
+    const HeaderEntry& rawFile = require("rawfile", "Rawfile");
     const fs::path rawPath = fs::path(rawFile.value).is_absolute() ? fs::path(rawFile.value)
                                                                    : path.parent_path() / rawFile.value;
     Volume volume;
@@ -112,10 +106,10 @@ Volume readInviwoDat(const fs::path& path) {
         throw Error(path.string() + ": Rawfile " + e.what());
     }
 
-    if (const DatEntry* range = find("datarange")) {
+    if (const HeaderEntry* range = find("datarange")) {
         volume.range = parseValueRange(range->value, where(*range));
     }
-    if (const DatEntry* offset = find("offset")) {
+    if (const HeaderEntry* offset = find("offset")) {
         const std::vector<double> o = parseNumbers(offset->value, 3, where(*offset));
         volume.origin = {o[0], o[1], o[2]};
     }

@@ -1,5 +1,10 @@
-// NRRD (teem.sourceforge.net/nrrd/format.html): 3D scalar volumes with raw encoding, detached
+// NRRD (teem.sourceforge.net/nrrd/format.html): 3D scalar volumes, raw or gzip encoded, detached
 // (.nhdr + data file) or attached (.nrrd, data after the header's blank line).
+//
+// Positions: NRRD's "space origin" is the centre of the first sample, whatever the centering; vri's
+// Volume::origin is the corner of the box. An axis whose "centers" is cell (or unstated: teem's default,
+// and what 3D Slicer and ITK mean) starts half a spacing before its first sample; a node axis starts on
+// it. vri writes "centers: cell cell cell", its default convention, and the first sample's centre.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -64,6 +69,30 @@ NrrdHeader parseHeader(const fs::path& path) {
     return header;
 }
 
+// NRRD's type names (format.html, "type:"), with the integer types vri converts (stored_voxels.h).
+StoredType parseNrrdType(const std::string& name, const std::string& where) {
+    static const std::map<std::string, StoredType> kTypes = {
+        {"signed char", StoredType::Int8},      {"int8", StoredType::Int8},
+        {"int8_t", StoredType::Int8},           {"uchar", StoredType::UInt8},
+        {"unsigned char", StoredType::UInt8},   {"uint8", StoredType::UInt8},
+        {"uint8_t", StoredType::UInt8},         {"short", StoredType::Int16},
+        {"short int", StoredType::Int16},       {"signed short", StoredType::Int16},
+        {"signed short int", StoredType::Int16}, {"int16", StoredType::Int16},
+        {"int16_t", StoredType::Int16},         {"ushort", StoredType::UInt16},
+        {"unsigned short", StoredType::UInt16}, {"unsigned short int", StoredType::UInt16},
+        {"uint16", StoredType::UInt16},         {"uint16_t", StoredType::UInt16},
+        {"int", StoredType::Int32},             {"signed int", StoredType::Int32},
+        {"int32", StoredType::Int32},           {"int32_t", StoredType::Int32},
+        {"uint", StoredType::UInt32},           {"unsigned int", StoredType::UInt32},
+        {"uint32", StoredType::UInt32},         {"uint32_t", StoredType::UInt32},
+        {"float", StoredType::Float32},         {"double", StoredType::Float64},
+    };
+    const auto it = kTypes.find(toLower(trim(name)));
+    if (it == kTypes.end())
+        throw Error(where + ": '" + name + "' is not supported (8-, 16- or 32-bit integers, float or double)");
+    return it->second;
+}
+
 // "(1,0,0) (0,2,0) (0,0,3)" → its numbers.
 std::vector<double> parseVectors(const std::string& text, std::size_t count, const std::string& where) {
     std::string numbers = text;
@@ -103,9 +132,7 @@ Volume readNrrd(const fs::path& path) {
         throw Error(where("dimension") + ": must be 3 (a scalar volume), got " + requiredField("dimension"));
 
     RawLayout layout;
-    std::string typeName = toLower(requiredField("type"));
-    if (typeName == "unsigned short int") typeName = "unsigned short";
-    layout.type = parseVoxelType(typeName, where("type"));
+    const StoredType storedType = parseNrrdType(requiredField("type"), where("type"));
 
     const std::vector<double> sizes = parseNumbers(requiredField("sizes"), 3, where("sizes"));
     for (int axis = 0; axis < 3; ++axis) {
@@ -117,17 +144,18 @@ Volume readNrrd(const fs::path& path) {
     }
 
     const std::string encoding = toLower(requiredField("encoding"));
-    if (encoding != "raw")
-        throw Error(where("encoding") + ": '" + encoding + "' is not supported (only raw)");
+    if (encoding != "raw" && encoding != "gzip" && encoding != "gz")
+        throw Error(where("encoding") + ": '" + encoding + "' is not supported (raw or gzip)");
+    const bool gzip = encoding != "raw";
 
     if (const std::string* endian = optionalField("endian")) {
         const std::string order = toLower(*endian);
         if (order != "little" && order != "big")
             throw Error(where("endian") + ": expected little or big, got '" + *endian + "'");
         layout.order = order == "little" ? ByteOrder::Little : ByteOrder::Big;
-    } else if (voxelSize(layout.type) > 1) {
+    } else if (storedSize(storedType) > 1) {
         throw Error(path.string() + ": required field 'endian' is missing (" +
-                    std::string(voxelTypeName(layout.type)) + " voxels)");
+                    std::string(storedTypeName(storedType)) + " voxels)");
     }
 
     if (const std::string* directions = optionalField("space directions")) {
@@ -152,6 +180,29 @@ Volume readNrrd(const fs::path& path) {
     std::optional<std::uintmax_t> byteSkip = 0;
     if (const std::string* skip = optionalField("byte skip"))
         byteSkip = trim(*skip) == "-1" ? std::nullopt : std::optional(parseByteCount(*skip, where("byte skip")));
+    // teem skips those bytes of the inflated data, a layout no writer vri knows of uses.
+    if (gzip && byteSkip != std::uintmax_t{0})
+        throw Error(where("byte skip") + ": skipping bytes of gzip-encoded data is not supported");
+
+    // Per axis, how far the box starts before the first sample: half a spacing (cell) or none (node).
+    glm::dvec3 firstSampleInset{0.5};
+    if (const std::string* centers = optionalField("centers"); centers || optionalField("centerings")) {
+        const std::string& text = centers ? *centers : *optionalField("centerings");
+        const std::string at = where(centers ? "centers" : "centerings");
+        std::vector<std::string> words;
+        for (std::size_t i = 0; i < text.size();) {
+            const std::size_t end = std::min(text.find_first_of(" \t", i), text.size());
+            if (end > i) words.push_back(toLower(std::string_view(text).substr(i, end - i)));
+            i = end + 1;
+        }
+        if (words.size() != 3)
+            throw Error(at + ": expected 3 centerings (cell, node, ??? or none), got '" + text + "'");
+        for (int axis = 0; axis < 3; ++axis) {
+            if (words[axis] == "node") firstSampleInset[axis] = 0.0;
+            else if (words[axis] != "cell" && words[axis] != "???" && words[axis] != "none")
+                throw Error(at + ": expected cell, node, ??? or none, got '" + words[axis] + "'");
+        }
+    }
 
     const std::string* dataFile = optionalField("data file");
     if (!dataFile) dataFile = optionalField("datafile");
@@ -168,30 +219,24 @@ Volume readNrrd(const fs::path& path) {
 
     Volume volume;
     try {
-        requireRegularFile(dataPath);
-        if (!byteSkip) {  // the data are the last bytes of the file
-            // Saturating: dims too large for the file leave no header, and readRaw names both sizes.
-            const std::uintmax_t voxelBytes =
-                checkedProduct({std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y),
-                                std::uint64_t(layout.dims.z), voxelSize(layout.type)})
-                    .value_or(std::numeric_limits<std::uint64_t>::max());
-            layout.headerBytes = fs::file_size(dataPath) - std::min(fs::file_size(dataPath), voxelBytes);
-        } else {
+        std::optional<std::uintmax_t> offset;  // nullopt: the data are the last bytes of the file
+        if (byteSkip) {
             const std::uintmax_t headerEnd = dataFile ? 0 : *header.dataOffset;
             if (*byteSkip > std::numeric_limits<std::uintmax_t>::max() - headerEnd)
                 throw Error(where("byte skip") + ": " + std::to_string(*byteSkip) + " bytes is too large");
-            layout.headerBytes = headerEnd + *byteSkip;
+            offset = headerEnd + *byteSkip;
         }
-        volume = readRaw(dataPath, layout);
+        volume = readVoxelData(dataPath, {layout.dims, storedType, layout.order, offset, gzip});
     } catch (const Error& e) {
         // The data file's own message, prefixed by the header that sent us there.
         if (dataPath == path) throw;
         throw Error(path.string() + ": data file " + e.what());
     }
+    volume.spacing = layout.spacing;
 
     if (const std::string* origin = optionalField("space origin")) {
         const std::vector<double> o = parseVectors(*origin, 3, where("space origin"));
-        volume.origin = {o[0], o[1], o[2]};
+        volume.origin = glm::dvec3(o[0], o[1], o[2]) - firstSampleInset * volume.spacing;
     }
     if (const auto range = header.keyValues.find("vri_range"); range != header.keyValues.end()) {
         volume.range = parseValueRange(range->second.value,
@@ -200,11 +245,12 @@ Volume readNrrd(const fs::path& path) {
     return volume;
 }
 
-void writeNhdr(const fs::path& path, const Volume& volume) {
+void writeNrrd(const fs::path& path, const Volume& volume) {
+    const bool attached = toLower(path.extension().string()) == ".nrrd";
     const fs::path rawPath = rawFileBeside(path);
     const std::string nrrdType = volume.type == VoxelType::Float32 ? "float" : std::string(voxelTypeName(volume.type));
     const glm::dvec3 s = volume.spacing;
-    const glm::dvec3 o = volume.origin;
+    const glm::dvec3 c = volume.origin + 0.5 * s;  // the first sample's centre, cell-centred
     const auto n = [](double value) { return exactNumber(value); };
     std::string text = "NRRD0004\n"
                        "# written by vri\n"
@@ -212,15 +258,21 @@ void writeNhdr(const fs::path& path, const Volume& volume) {
                        "dimension: 3\n"
                        "sizes: " + std::to_string(volume.dims.x) + " " + std::to_string(volume.dims.y) + " " +
                        std::to_string(volume.dims.z) + "\n"
+                       "centers: cell cell cell\n"
                        "space dimension: 3\n"
                        "space directions: (" + n(s.x) + ",0,0) (0," + n(s.y) + ",0) (0,0," + n(s.z) + ")\n"
-                       "space origin: (" + n(o.x) + "," + n(o.y) + "," + n(o.z) + ")\n"
+                       "space origin: (" + n(c.x) + "," + n(c.y) + "," + n(c.z) + ")\n"
                        "endian: little\n"
-                       "encoding: raw\n"
-                       "data file: " + rawPath.filename().string() + "\n";
+                       "encoding: raw\n";
+    if (!attached) text += "data file: " + rawPath.filename().string() + "\n";
     if (volume.range) text += "vri_range:=" + n(volume.range->lo) + " " + n(volume.range->hi) + "\n";
     std::vector<std::byte> swapped;
-    const OutputBytes files[] = {{rawPath, rawBytes(rawPath, volume, ByteOrder::Little, swapped)}, {path, text}};
+    const std::string_view voxels = rawBytes(attached ? path : rawPath, volume, ByteOrder::Little, swapped);
+    if (attached) {
+        writeTextFile(path, text + "\n" + std::string(voxels));
+        return;
+    }
+    const OutputBytes files[] = {{rawPath, voxels}, {path, text}};
     writeTogether(files);
 }
 

@@ -83,6 +83,7 @@ nlohmann::json machineInfo() {
 nlohmann::json buildInfo() {
     return {{"vri_version", VRI_VERSION},
             {"git_commit", VRI_GIT_COMMIT},
+            {"build_type", VRI_BUILD_TYPE},
             {"compiler", VRI_COMPILER},
             {"openimageio", OIIO_VERSION_STRING},
             {"openvdb", OPENVDB_LIBRARY_VERSION_STRING},

@@ -43,6 +43,11 @@ VdbVolumeLayout vdbVolumeLayout(const std::string& path, const VdbGridFacts& gri
     VdbVolumeLayout layout;
     const bool writtenByVri = grid.voxelTypeMeta && grid.dimsMeta;
     if (writtenByVri) {
+        const int version = grid.formatVersionMeta.value_or(1);
+        if (version != 1 && version != kVdbFormatVersion)
+            throw Error(path + ": vri_format_version " + std::to_string(version) + " is not one this vri reads (1 or " +
+                        std::to_string(kVdbFormatVersion) + ")");
+        layout.indexAtVoxelCentres = version == kVdbFormatVersion;
         layout.type = parseVoxelType(*grid.voxelTypeMeta, path + ": " + kVoxelTypeKey);
         const glm::ivec3 d = *grid.dimsMeta;
         if (d.x < 1 || d.y < 1 || d.z < 1) throw Error(path + ": " + kDimsKey + " must be positive");
@@ -69,10 +74,13 @@ VdbVolumeLayout vdbVolumeLayout(const std::string& path, const VdbGridFacts& gri
         }
     }
 
-    // uint8 and uint16 voxels live in an Int32Grid, float32 in a FloatGrid; a grid not written by vri is
-    // read as float32 from any scalar type.
-    const bool fits = layout.type == VoxelType::Float32 ? grid.valueType == VdbValueType::Float || !writtenByVri
-                                                        : grid.valueType == VdbValueType::Int32;
+    // Every voxel type lives in a FloatGrid since version 2 (float holds every uint8 and uint16 value
+    // exactly); version 1 kept uint8 and uint16 in an Int32Grid. A grid not written by vri is read as
+    // float32 from any scalar type.
+    const VdbValueType expected = layout.type == VoxelType::Float32 || layout.indexAtVoxelCentres
+                                      ? VdbValueType::Float
+                                      : VdbValueType::Int32;
+    const bool fits = !writtenByVri || grid.valueType == expected;
     if (!fits)
         throw Error(path + ": " + grid.description + " cannot hold " + std::string(voxelTypeName(layout.type)) +
                     " voxels as its metadata claim");

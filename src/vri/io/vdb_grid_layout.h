@@ -14,8 +14,14 @@
 
 namespace vri::detail {
 
-// The scalar grid types the reader accepts.
-enum class VdbValueType { Float, Double, Int32 };
+// The scalar grid types the reader accepts. A FloatGrid saved with half-float compression on disk is a
+// FloatGrid once read.
+enum class VdbValueType { Float, Double, Int32, Int64 };
+
+// vri_format_version of the grids vri writes now: a FloatGrid whose index (i,j,k) is voxel (i,j,k)'s
+// centre, as OpenVDB and the programs that read it assume. Grids with vri's metadata but no version
+// are the earlier layout: uint8/uint16 in an Int32Grid, index (0,0,0) at the box's corner.
+inline constexpr int kVdbFormatVersion = 2;
 
 // What is known about a grid before any voxel is copied.
 struct VdbGridFacts {
@@ -26,6 +32,7 @@ struct VdbGridFacts {
     std::optional<std::string> voxelTypeMeta;  // vri_voxel_type
     std::optional<glm::ivec3> dimsMeta;        // vri_dims
     std::optional<glm::dvec2> rangeMeta;       // vri_range
+    std::optional<int> formatVersionMeta;      // vri_format_version
     // The active voxels' bounding box, min and max inclusive; nullopt when no voxel is active.
     std::optional<glm::ivec3> activeMin, activeMax;
 };
@@ -36,12 +43,15 @@ struct VdbVolumeLayout {
     glm::ivec3 dims{0, 0, 0};
     VoxelType type = VoxelType::Float32;
     std::optional<ValueRange> range;
+    // Whether index (i,j,k) maps to the voxel's centre (OpenVDB's meaning, and vri's since format
+    // version 2; the box corner is then half a voxel below index boxMin) or to the box corner (version 1).
+    bool indexAtVoxelCentres = true;
 };
 
 // Grids written by vri (both vri_voxel_type and vri_dims present) come back with their type, dense dims
 // and range; any other grid is read as float32 over its active voxels. Throws vri::Error "<path>: ..."
-// for a rotated, flipped or non-linear transform, metadata that do not fit the grid (its value type, or
-// active voxels outside vri_dims), or an empty grid.
+// for a rotated, flipped or non-linear transform, metadata that do not fit the grid (its value type, an
+// unknown vri_format_version, or active voxels outside vri_dims), or an empty grid.
 VdbVolumeLayout vdbVolumeLayout(const std::string& path, const VdbGridFacts& grid);
 
 }  // namespace vri::detail

@@ -1,14 +1,17 @@
 // OpenVDB .vdb files. The only translation unit that includes OpenVDB: its headers cost about
 // half a gigabyte of compiler memory, so nothing else may pull them in.
 //
-// A vri volume is stored as one sparse grid named "density": float32 in a FloatGrid, uint8 and
-// uint16 in an Int32Grid (OpenVDB registers no 8- or 16-bit grid types). Background 0, and voxels
-// equal to it are not stored. Voxel (i,j,k) sits at index (i,j,k); the transform maps index to
-// world as origin + index * spacing. Grid metadata record what the sparse grid cannot: the voxel
-// type, the dense dims (trailing empty slabs have no active voxels) and the normalisation range.
+// A vri volume is stored the way other programs expect a density: one FloatGrid named "density" of
+// class fog volume, holding the raw voxel values (float holds every uint8 and uint16 value exactly).
+// Background 0, and voxels equal to it are not stored. Voxel (i,j,k) sits at index (i,j,k), and the
+// transform maps an index to the world position of that voxel's centre (OpenVDB's meaning of an index,
+// and vri's cell-centred reading of the box): corner + (index + 1/2) * spacing. Grid metadata record what
+// the sparse grid cannot: the voxel type, the dense dims (trailing empty slabs have no active voxels),
+// the normalisation range and vri_format_version (vdb_grid_layout.h; version 1 files still read).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <type_traits>
@@ -23,6 +26,7 @@
 #include "vri/util/atomic_file.h"
 #include "vri/util/checked_size.h"
 #include "vri/util/error.h"
+#include "vri/util/format.h"
 
 namespace vri {
 
@@ -34,6 +38,7 @@ constexpr const char* kGridName = "density";
 constexpr const char* kVoxelTypeKey = "vri_voxel_type";
 constexpr const char* kDimsKey = "vri_dims";
 constexpr const char* kRangeKey = "vri_range";
+constexpr const char* kFormatVersionKey = "vri_format_version";
 
 void initializeOpenVdb() {
     static std::once_flag once;
@@ -60,39 +65,74 @@ void restoreBackgroundLookalikes(const Volume& volume, openvdb::FloatGrid& grid)
 }
 
 template <class T>
-openvdb::GridBase::Ptr sparseGrid(const Volume& volume) {
-    using GridT = std::conditional_t<std::is_same_v<T, float>, openvdb::FloatGrid, openvdb::Int32Grid>;
-    using ValueT = typename GridT::ValueType;
-    typename GridT::Ptr grid = GridT::create(ValueT(0));
+openvdb::FloatGrid::Ptr sparseGrid(const Volume& volume) {
+    openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
     const openvdb::tools::Dense<const T, openvdb::tools::LayoutXYZ> dense(indexBox(volume.dims), volume.data<T>());
-    openvdb::tools::copyFromDense(dense, *grid, ValueT(0), /*serial=*/false);
+    openvdb::tools::copyFromDense(dense, *grid, 0.0f, /*serial=*/false);
     if constexpr (std::is_same_v<T, float>) restoreBackgroundLookalikes(volume, *grid);
     return grid;
 }
 
 openvdb::GridBase::Ptr toGrid(const Volume& volume) {
-    openvdb::GridBase::Ptr grid =
+    openvdb::FloatGrid::Ptr grid =
         dispatchVoxelType(volume.type, [&](auto t) { return sparseGrid<decltype(t)>(volume); });
     grid->setName(kGridName);
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
     grid->insertMeta(kVoxelTypeKey, openvdb::StringMetadata(std::string(voxelTypeName(volume.type))));
     grid->insertMeta(kDimsKey, openvdb::Vec3IMetadata(openvdb::Vec3i(volume.dims.x, volume.dims.y, volume.dims.z)));
+    grid->insertMeta(kFormatVersionKey, openvdb::Int32Metadata(detail::kVdbFormatVersion));
     if (volume.range)
         grid->insertMeta(kRangeKey, openvdb::Vec2DMetadata(openvdb::Vec2d(volume.range->lo, volume.range->hi)));
     const glm::dvec3 s = volume.spacing;
-    const glm::dvec3 o = volume.origin;
-    grid->setTransform(std::make_shared<openvdb::math::Transform>(std::make_shared<openvdb::math::ScaleTranslateMap>(
-        openvdb::Vec3d(s.x, s.y, s.z), openvdb::Vec3d(o.x, o.y, o.z))));
+    const glm::dvec3 centre0 = volume.origin + 0.5 * s;
+    // Scale first, then translate: Transform's constructor simplifies a ScaleTranslateMap through its
+    // affine matrix and recovers the scale as (translation + scale) - translation, which rounds; the
+    // translation added afterwards keeps both exactly.
+    auto transform = std::make_shared<openvdb::math::Transform>(
+        std::make_shared<openvdb::math::ScaleMap>(openvdb::Vec3d(s.x, s.y, s.z)));
+    transform->postTranslate(openvdb::Vec3d(centre0.x, centre0.y, centre0.z));
+    grid->setTransform(transform);
     return grid;
-}
-
-template <class T, class GridT>
-void copyToVolume(const openvdb::GridBase& grid, const openvdb::CoordBBox& box, Volume& volume) {
-    openvdb::tools::Dense<T, openvdb::tools::LayoutXYZ> dense(box, volume.data<T>());
-    openvdb::tools::copyToDense(static_cast<const GridT&>(grid), dense, /*serial=*/false);
 }
 
 std::string gridDescription(const openvdb::GridBase& grid) {
     return "grid '" + grid.getName() + "' (" + grid.valueType() + ")";
+}
+
+// Every value a grid can yield (its background and each active voxel or tile) must be one that T holds
+// exactly for integer T, or within float's range for float: copyToDense converts with a plain cast,
+// undefined beyond the target's range. A uint8 volume stored as floats must hold whole numbers 0..255.
+template <class T, class GridT>
+void requireRepresentable(const fs::path& path, const GridT& grid) {
+    const std::string expected = std::is_same_v<T, std::uint8_t>    ? "a whole number 0..255 (uint8)"
+                                 : std::is_same_v<T, std::uint16_t> ? "a whole number 0..65535 (uint16)"
+                                                                    : "within float32's range";
+    const auto refuse = [&](double value, const std::string& where) {
+        throw Error(path.string() + ": " + gridDescription(grid) + " holds " + exactNumber(value) + where +
+                    ", expected " + expected);
+    };
+    const auto fits = [](double value) {
+        if constexpr (std::is_integral_v<T>)
+            return value >= 0.0 && value <= double(std::numeric_limits<T>::max()) && value == std::floor(value);
+        else
+            return !std::isfinite(value) || std::abs(value) <= double(std::numeric_limits<float>::max());
+    };
+    if (!fits(double(grid.background()))) refuse(double(grid.background()), " as its background");
+    for (auto it = grid.cbeginValueOn(); it; ++it)
+        if (!fits(double(*it))) {
+            const openvdb::Coord c = it.getCoord();
+            refuse(double(*it), " at index (" + std::to_string(c.x()) + "," + std::to_string(c.y()) + "," +
+                                    std::to_string(c.z()) + ")");
+        }
+}
+
+template <class T, class GridT>
+void copyToVolume(const fs::path& path, const openvdb::GridBase& grid, const openvdb::CoordBBox& box,
+                  Volume& volume) {
+    const GridT& typed = static_cast<const GridT&>(grid);
+    if constexpr (!std::is_same_v<T, typename GridT::ValueType>) requireRepresentable<T>(path, typed);
+    openvdb::tools::Dense<T, openvdb::tools::LayoutXYZ> dense(box, volume.data<T>());
+    openvdb::tools::copyToDense(typed, dense, /*serial=*/false);
 }
 
 // A sparse grid stores nothing for background voxels and one tile for a constant region, so its file
@@ -122,6 +162,7 @@ detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
     detail::VdbGridFacts facts;
     facts.description = gridDescription(grid);
     facts.valueType = grid.isType<openvdb::Int32Grid>()    ? detail::VdbValueType::Int32
+                      : grid.isType<openvdb::Int64Grid>()  ? detail::VdbValueType::Int64
                       : grid.isType<openvdb::DoubleGrid>() ? detail::VdbValueType::Double
                                                            : detail::VdbValueType::Float;
     const openvdb::math::Transform& transform = grid.transform();
@@ -134,6 +175,8 @@ detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
         facts.dimsMeta = glm::ivec3(dims->value().x(), dims->value().y(), dims->value().z());
     if (const auto range = grid.getMetadata<openvdb::Vec2DMetadata>(kRangeKey))
         facts.rangeMeta = glm::dvec2(range->value().x(), range->value().y());
+    if (const auto version = grid.getMetadata<openvdb::Int32Metadata>(kFormatVersionKey))
+        facts.formatVersionMeta = version->value();
     const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
     if (!active.empty()) {
         facts.activeMin = glm::ivec3(active.min().x(), active.min().y(), active.min().z());
@@ -153,25 +196,27 @@ Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
     Volume volume(layout.dims, layout.type);
     const openvdb::math::Transform& transform = grid.transform();
     const openvdb::Vec3d spacing = transform.voxelSize();
-    const openvdb::Vec3d origin = transform.indexToWorld(box.min());
+    const openvdb::Vec3d first = transform.indexToWorld(box.min());
     volume.spacing = {spacing.x(), spacing.y(), spacing.z()};
-    volume.origin = {origin.x(), origin.y(), origin.z()};
+    // The box's corner is half a voxel below the first voxel's centre (cell-centred, vri's default).
+    volume.origin = glm::dvec3(first.x(), first.y(), first.z()) - (layout.indexAtVoxelCentres ? 0.5 : 0.0) * volume.spacing;
     volume.range = layout.range;
 
-    // vdbVolumeLayout has checked that the grid's value type can hold the layout's voxel type.
-    if (grid.isType<openvdb::Int32Grid>())
-        dispatchVoxelType(layout.type,
-                          [&](auto t) { copyToVolume<decltype(t), openvdb::Int32Grid>(grid, box, volume); });
-    else if (grid.isType<openvdb::DoubleGrid>())
-        copyToVolume<float, openvdb::DoubleGrid>(grid, box, volume);
-    else
-        copyToVolume<float, openvdb::FloatGrid>(grid, box, volume);
+    // vdbVolumeLayout has checked that the grid's value type can hold the layout's voxel type; the
+    // values themselves are checked on the way (requireRepresentable).
+    const auto copy = [&]<class GridT>(GridT*) {
+        dispatchVoxelType(layout.type, [&](auto t) { copyToVolume<decltype(t), GridT>(path, grid, box, volume); });
+    };
+    if (grid.isType<openvdb::Int32Grid>()) copy(static_cast<openvdb::Int32Grid*>(nullptr));
+    else if (grid.isType<openvdb::Int64Grid>()) copy(static_cast<openvdb::Int64Grid*>(nullptr));
+    else if (grid.isType<openvdb::DoubleGrid>()) copy(static_cast<openvdb::DoubleGrid*>(nullptr));
+    else copy(static_cast<openvdb::FloatGrid*>(nullptr));
     return volume;
 }
 
 bool isScalarGrid(const openvdb::GridBase& grid) {
     return grid.isType<openvdb::FloatGrid>() || grid.isType<openvdb::DoubleGrid>() ||
-           grid.isType<openvdb::Int32Grid>();
+           grid.isType<openvdb::Int32Grid>() || grid.isType<openvdb::Int64Grid>();
 }
 
 std::string gridList(openvdb::io::File& file) {
@@ -206,7 +251,7 @@ Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName)
                 throw Error(path.string() + ": no grid named '" + *gridName + "' (grids: " + gridList(file) + ")");
             grid = file.readGrid(*gridName);
             if (!isScalarGrid(*grid))
-                throw Error(path.string() + ": " + gridDescription(*grid) + " is not a float, double or int32 grid");
+                throw Error(path.string() + ": " + gridDescription(*grid) + " is not a float, double, int32 or int64 grid");
         } else {
             const openvdb::GridPtrVecPtr candidates = file.readAllGridMetadata();
             for (const openvdb::GridBase::Ptr& candidate : *candidates)
@@ -215,7 +260,7 @@ Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName)
                     break;
                 }
             if (!grid)
-                throw Error(path.string() + ": no float, double or int32 grid (grids: " + gridList(file) + ")");
+                throw Error(path.string() + ": no float, double, int32 or int64 grid (grids: " + gridList(file) + ")");
         }
         file.close();
         return toVolume(path, *grid);

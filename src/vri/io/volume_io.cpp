@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 
+#include "vri/io/gzip_inflate.h"
 #include "vri/io/volume_formats.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/checked_size.h"
@@ -76,6 +77,52 @@ std::string_view rawBytes(const fs::path& path, const Volume& volume, ByteOrder 
         bytes = &swapped;
     }
     return {reinterpret_cast<const char*>(bytes->data()), bytes->size()};
+}
+
+Volume readVoxelData(const fs::path& path, const VoxelData& data) {
+    requireRegularFile(path);
+    const std::string layoutText = dimsText(data.dims) + " " + std::string(storedTypeName(data.type));
+    // Checked before allocating, so that a mistyped --dims or header is an error, not a huge allocation.
+    const std::optional<std::uint64_t> voxelBytes =
+        checkedProduct({std::uint64_t(data.dims.x), std::uint64_t(data.dims.y), std::uint64_t(data.dims.z),
+                        storedSize(data.type)});
+    if (!voxelBytes) throw Error(path.string() + ": " + layoutText + " needs more than 2^64 bytes");
+    const std::uintmax_t fileBytes = fs::file_size(path);
+    // The data as the last bytes: whatever precedes them is header (none when the file is too short, and
+    // the size check below names both sizes).
+    const std::uintmax_t offset = data.offset.value_or(fileBytes - std::min<std::uintmax_t>(fileBytes, *voxelBytes));
+    const std::string after = offset > 0 ? " after a " + std::to_string(offset) + "-byte header" : "";
+    if (data.gzip) {
+        if (offset > fileBytes)
+            throw Error(path.string() + ": file is " + std::to_string(fileBytes) + " bytes, its compressed data start at byte " +
+                        std::to_string(offset));
+        checkedBytes(path.string() + ": " + layoutText, {*voxelBytes});
+        // The output of a stored type that vri converts is a second buffer beside the volume.
+        const std::vector<std::byte> bytes = inflateFile(path, offset, *voxelBytes, path.string() + ": gzip data of " + layoutText);
+        return decodeVoxels(path.string(), data.dims, data.type, data.order,
+                            {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+    }
+    constexpr std::uintmax_t kMax = std::numeric_limits<std::uintmax_t>::max();
+    if (*voxelBytes > kMax - offset)
+        throw Error(path.string() + ": header of " + std::to_string(offset) + " bytes is too large");
+    if (fileBytes != *voxelBytes + offset)
+        throw Error(path.string() + ": file is " + std::to_string(fileBytes) + " bytes, expected " +
+                    std::to_string(*voxelBytes + offset) + " for " + layoutText + after);
+
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(offset));
+    const VoxelType volumeType = volumeTypeFor(data.type);
+    if (storedTypeOf(volumeType) == data.type) {  // kept as stored: read straight into the volume
+        Volume volume(data.dims, volumeType);
+        in.read(reinterpret_cast<char*>(volume.bytes.data()), static_cast<std::streamsize>(volume.bytes.size()));
+        if (!in) throw Error(path.string() + ": read failed");
+        if (data.order != nativeByteOrder()) reverseEachVoxel(volume.bytes, voxelSize(volumeType));
+        return volume;
+    }
+    std::string bytes(checkedBytes(path.string() + ": " + layoutText, {*voxelBytes}), '\0');
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!in) throw Error(path.string() + ": read failed");
+    return decodeVoxels(path.string(), data.dims, data.type, data.order, bytes);
 }
 
 fs::path rawFileBeside(const fs::path& headerPath) {
@@ -165,30 +212,9 @@ void requireUsableValues(const Volume& volume, const std::string& source) {
 Volume readRaw(const fs::path& path, const RawLayout& layout) {
     detail::requireRegularFile(path);
     requireValidLayout(path, layout);
-    const std::string layoutText = dimsText(layout.dims) + " " + std::string(voxelTypeName(layout.type));
-
-    // Checked before allocating, so that a mistyped --dims is an error, not a huge allocation.
-    const std::optional<std::uint64_t> voxelBytes =
-        checkedProduct({std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y), std::uint64_t(layout.dims.z),
-                        voxelSize(layout.type)});
-    if (!voxelBytes) throw Error(path.string() + ": " + layoutText + " needs more than 2^64 bytes");
-    constexpr std::uintmax_t kMax = std::numeric_limits<std::uintmax_t>::max();
-    if (*voxelBytes > kMax - layout.headerBytes)
-        throw Error(path.string() + ": header of " + std::to_string(layout.headerBytes) + " bytes is too large");
-    const std::uintmax_t expected = *voxelBytes + layout.headerBytes;
-    const std::uintmax_t actual = fs::file_size(path);
-    if (actual != expected)
-        throw Error(path.string() + ": file is " + std::to_string(actual) + " bytes, expected " +
-                    std::to_string(expected) + " for " + layoutText +
-                    (layout.headerBytes > 0 ? " after a " + std::to_string(layout.headerBytes) + "-byte header" : ""));
-
-    Volume volume(layout.dims, layout.type);
+    Volume volume = detail::readVoxelData(
+        path, {layout.dims, detail::storedTypeOf(layout.type), layout.order, layout.headerBytes, false});
     volume.spacing = layout.spacing;
-    std::ifstream in(path, std::ios::binary);
-    in.seekg(static_cast<std::streamoff>(layout.headerBytes));
-    in.read(reinterpret_cast<char*>(volume.bytes.data()), static_cast<std::streamsize>(volume.bytes.size()));
-    if (!in) throw Error(path.string() + ": read failed");
-    if (layout.order != nativeByteOrder()) reverseEachVoxel(volume.bytes, voxelSize(layout.type));
     return volume;
 }
 
@@ -215,13 +241,16 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
     detail::requireRegularFile(path);
     const std::string extension = detail::toLower(path.extension().string());
     const bool describesItself = extension == ".nhdr" || extension == ".nrrd" || extension == ".dat" ||
-                                 extension == ".vdb";
+                                 extension == ".vdb" || extension == ".mhd" || extension == ".mha" ||
+                                 extension == ".tif" || extension == ".tiff";
     if (describesItself && rawLayout)
         throw Error(path.string() + ": dims and voxel type are for raw files; a " + extension +
                     " file describes its own layout");
     const auto read = [&] {
         if (extension == ".nhdr" || extension == ".nrrd") return detail::readNrrd(path);
         if (extension == ".dat") return detail::readInviwoDat(path);
+        if (extension == ".mhd" || extension == ".mha") return detail::readMetaImage(path);
+        if (extension == ".tif" || extension == ".tiff") return detail::readTiffStack(path);
         if (extension == ".vdb") return readVdb(path);
         if (rawLayout) return readRaw(path, *rawLayout);
         if (const auto named = layoutFromFileName(path)) return readRaw(path, *named);
@@ -236,10 +265,10 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
 void writeVolume(const fs::path& path, const Volume& volume) {
     const std::string extension = detail::toLower(path.extension().string());
     if (extension == ".vdb") return writeVdb(path, volume);
-    if (extension == ".nhdr") return detail::writeNhdr(path, volume);
+    if (extension == ".nhdr" || extension == ".nrrd") return detail::writeNrrd(path, volume);
     if (extension == ".dat") return detail::writeInviwoDat(path, volume);
     if (extension == ".raw") return writeRaw(path, volume);
-    throw Error(path.string() + ": cannot write '" + extension + "' files (expected .vdb, .nhdr, .dat or .raw)");
+    throw Error(path.string() + ": cannot write '" + extension + "' files (expected .vdb, .nhdr, .nrrd, .dat or .raw)");
 }
 
 std::vector<fs::path> filesWrittenBy(const fs::path& path) {

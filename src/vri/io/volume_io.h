@@ -1,5 +1,6 @@
 #pragma once
-// Reading and writing volumes: headerless raw files, NRRD (.nhdr/.nrrd), Inviwo .dat and OpenVDB .vdb.
+// Reading and writing volumes: headerless raw files, NRRD (.nhdr/.nrrd), Inviwo .dat, OpenVDB .vdb and
+// (read only) MetaImage .mhd/.mha and TIFF stacks. README.md's "formats" table says what each holds and where its voxels sit.
 // Every failure is a vri::Error whose one-line message starts with the offending file's path.
 #include <cstddef>
 #include <filesystem>
@@ -37,20 +38,23 @@ std::optional<RawLayout> layoutFromFileName(const std::filesystem::path& path);
 // lo < hi and the box, origin + dims x spacing, stays within double's range along every axis.
 void requireUsableValues(const Volume& volume, const std::string& source);
 
-// Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb; anything
+// Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb, .mhd/.mha, .tif/.tiff;
+// anything
 // else is raw, laid out by `rawLayout` if given, else by layoutFromFileName.
 // The volume read passes requireUsableValues.
 Volume readVolume(const std::filesystem::path& path, const std::optional<RawLayout>& rawLayout = {});
-// Writes by extension: .vdb, .nhdr (header + NAME.raw beside it), .dat (+ NAME.raw), .raw (little endian),
+// Writes by extension: .vdb, .nhdr (header + NAME.raw beside it), .nrrd (data attached), .dat (+ NAME.raw),
+// .raw (little endian),
 // through atomic_file.h; a header and its raw file are written together (neither replaced if one fails).
 void writeVolume(const std::filesystem::path& path, const Volume& volume);
 // The files writeVolume(path, ...) creates or replaces: `path`, and for .nhdr and .dat the raw
 // file beside it. A tool checks them against its input before it overwrites what it reads.
 std::vector<std::filesystem::path> filesWrittenBy(const std::filesystem::path& path);
 
-// OpenVDB. Volumes written by writeVdb come back exactly (type, dims, spacing, origin, range).
-// For other .vdb files the first float, double or int32 grid (or the one named `gridName`) is
-// read as float32 over its active voxels' bounding box.
+// OpenVDB. Volumes written by writeVdb come back with their type, voxel values (bit for bit), dims, spacing
+// and range; the origin is kept as the first voxel's centre, origin + spacing / 2, exact whenever that sum
+// is. For other .vdb files the first float, double, int32 or int64 grid (or the one named `gridName`) is
+// read as float32 over its active voxels' bounding box, index (i,j,k) the centre of a cell-centred voxel.
 Volume readVdb(const std::filesystem::path& path, const std::optional<std::string>& gridName = {});
 void writeVdb(const std::filesystem::path& path, const Volume& volume);
 

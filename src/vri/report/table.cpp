@@ -32,8 +32,12 @@ std::string markdownCell(const std::string& text) {
 
 void requireConsistent(const Table& table) {
     if (table.cells.size() != table.rows.size() || table.precision.size() != table.columns.size() ||
-        (!table.significant.empty() && table.significant.size() != table.columns.size()))
+        (!table.significant.empty() && table.significant.size() != table.columns.size()) ||
+        (!table.textColumns.empty() && table.texts.size() != table.rows.size()))
         throw Error("table '" + table.title + "': rows, columns and cells disagree in size");
+    for (const auto& row : table.texts)
+        if (row.size() != table.textColumns.size())
+            throw Error("table '" + table.title + "': a row has the wrong number of texts");
     for (const auto& row : table.cells)
         if (row.size() != table.columns.size())
             throw Error("table '" + table.title + "': a row has the wrong number of cells");
@@ -46,12 +50,16 @@ std::string toMarkdown(const Table& table) {
     std::string out;
     if (!table.title.empty()) out += "**" + markdownCell(table.title) + "**\n\n";
     out += "| " + markdownCell(table.rowHeader) + " |";
+    for (const std::string& column : table.textColumns) out.append(" ").append(markdownCell(column)).append(" |");
     for (const std::string& column : table.columns) out.append(" ").append(markdownCell(column)).append(" |");
     out += "\n|:--|";
+    for (std::size_t c = 0; c < table.textColumns.size(); ++c) out += ":--|";
     for (std::size_t c = 0; c < table.columns.size(); ++c) out += "--:|";
     out += "\n";
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         out += "| " + markdownCell(table.rows[r]) + " |";
+        if (!table.textColumns.empty())
+            for (const std::string& text : table.texts[r]) out.append(" ").append(markdownCell(text)).append(" |");
         for (std::size_t c = 0; c < table.columns.size(); ++c)
             out.append(" ").append(formatNumber(table, c, table.cells[r][c], "-")).append(" |");
         out += "\n";
@@ -64,10 +72,13 @@ std::string toMarkdown(const Table& table) {
 std::string toCsv(const Table& table) {
     requireConsistent(table);
     std::string out = csvField(table.rowHeader);
+    for (const std::string& column : table.textColumns) out.append(",").append(csvField(column));
     for (const std::string& column : table.columns) out.append(",").append(csvField(column));
     out += "\n";
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         out += csvField(table.rows[r]);
+        if (!table.textColumns.empty())
+            for (const std::string& text : table.texts[r]) out.append(",").append(csvField(text));
         for (std::size_t c = 0; c < table.columns.size(); ++c)
             out.append(",").append(formatNumber(table, c, table.cells[r][c], ""));
         out += "\n";

@@ -14,6 +14,10 @@ namespace vri {
 struct Table {
     std::string title;                // printed in bold above the Markdown table; not in the CSV
     std::string rowHeader;            // heading of the label column, e.g. "Method"
+    // Columns of text after the label column, before the numbers (a run's method, say): their
+    // headings, and per row one text each.
+    std::vector<std::string> textColumns;
+    std::vector<std::vector<std::string>> texts;  // [row][text column]; empty when there are none
     std::vector<std::string> columns;
     std::vector<std::string> rows;
     std::vector<std::vector<std::optional<double>>> cells;  // [row][column]
@@ -67,13 +71,24 @@ struct TradeoffRow {
     std::filesystem::path stats;   // vri-render --stats: timing.median_wall_seconds
     std::filesystem::path diff;    // vri-diff --json of the run against its reference
 };
-// Columns: "seconds"; "R > t", ... per channel and "worst > t", the largest of them: the % of rays
-// whose error exceeds `threshold` (`precision` decimals); "max R", ... and "max": the largest
-// absolute error per channel and of all; "pareto %" and "pareto max": 1 for the rows on the Pareto
-// front of seconds against "worst > t" or against "max" (see paretoFront), else 0. Throws vri::Error
-// naming the file when a diff lacks the threshold or its channels differ from the first diff's.
-Table tradeoffTable(const std::vector<TradeoffRow>& rows, double threshold, int precision = 4);
-
+struct TradeoffOptions {
+    std::vector<double> thresholds{0.001};  // the % columns, in this order; the first is the % front's
+    int precision = 4;                      // decimals of the % columns
+    // A row's label, or empty: then a "time ratio" column gives each row's seconds over that row's,
+    // a gain that reads the same on any machine when all rows were timed in one run.
+    std::string baseline;
+    bool perChannel = true;  // false: only the worst channel's % and the largest error, a compact table
+};
+// Columns: "method", text: the run's method family from its stats ("riemann float SIMD", "coupled
+// double", "riemann float vulkan", "exact"), which a chart draws as one series; "seconds"; "time
+// ratio" with a baseline; "Msamples/s", the samples evaluated per second in millions (empty where the
+// stats count none, as vri-reference's); per threshold t "R > t", ... per channel and "worst > t", the
+// largest of them: the % of rays whose error exceeds t (`precision` decimals); "max R", ... and "max":
+// the largest absolute error per channel and of all; "rmse", the largest channel's root mean square
+// error; "pareto %" and "pareto max": 1 for the rows on the Pareto front of seconds against "worst > t"
+// (the first threshold) or against "max" (see paretoFront), else 0. Throws vri::Error naming the file
+// when a diff lacks a threshold or its channels differ from the first diff's, or when no row is the baseline.
+Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions& options = {});
 
 // A value expression applied to one JSON file: the number it names (see MatrixOptions).
 double readJsonValue(const std::filesystem::path& file, const std::string& expression);

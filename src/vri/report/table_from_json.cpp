@@ -97,6 +97,23 @@ std::string medianNote(std::size_t fewest, std::size_t most) {
     return "Each cell is the median of " + count + " runs.";
 }
 
+// A run's method family from its stats, what one series of a chart draws: "riemann float SIMD",
+// "coupled double", "riemann float vulkan", "exact" (vri-reference's stats name no backend), "vtk-gpu".
+std::string methodFamily(const json& stats, const fs::path& file) {
+    return readingJsonOf(file, [&] {
+        const std::string method = stats.at("options").at("method").get<std::string>();
+        if (method == "exact") return method;
+        // A peer renderer (vri-peer-vtk) has no precision option: its family is its method.
+        const json& options = stats.at("options");
+        if (!options.contains("precision")) return method;
+        std::string family = method + " " + options.at("precision").get<std::string>();
+        const json& run = stats.at("stats");
+        if (run.value("backend", "cpu") == "vulkan") family += " vulkan";
+        else if (run.contains("simd_target") && !run["simd_target"].is_null()) family += " SIMD";
+        return family;
+    });
+}
+
 }  // namespace
 
 double readJsonValue(const fs::path& file, const std::string& expression) {
@@ -195,50 +212,83 @@ Table matrixTable(const std::vector<MatrixCell>& cells, const MatrixOptions& opt
     return table;
 }
 
-Table tradeoffTable(const std::vector<TradeoffRow>& rows, double threshold, int precision) {
+Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions& options) {
     if (rows.empty()) throw Error("a tradeoff table needs at least one row");
+    if (options.thresholds.empty()) throw Error("a tradeoff table needs at least one threshold");
     const fs::path& first = rows.front().diff;
     const std::vector<std::string> channels = channelNames(readJsonFile(first), first);
     if (channels.empty()) throw Error(first.string() + ": has no channels");
-    const std::string above = " > " + formatThreshold(threshold);
-    constexpr int kDigits = 4;  // significant digits of times and maximum errors
+    const auto above = [](double t) { return " > " + formatThreshold(t); };
+    constexpr int kDigits = 4;  // significant digits of times, rates and errors
+    const auto baseline = std::ranges::find(rows, options.baseline, &TradeoffRow::label);
+    if (!options.baseline.empty() && baseline == rows.end())
+        throw Error("baseline '" + options.baseline + "': no row of that name");
 
     Table table;
     table.rowHeader = "run";
+    table.textColumns = {"method"};
     auto addColumn = [&](const std::string& name, int digits, bool significant) {
         table.columns.push_back(name);
         table.precision.push_back(digits);
         table.significant.push_back(significant);
     };
     addColumn("seconds", kDigits, true);
-    for (const std::string& channel : channels) addColumn(channel + above, precision, false);
-    addColumn("worst" + above, precision, false);
-    for (const std::string& channel : channels) addColumn("max " + channel, kDigits, true);
+    if (!options.baseline.empty()) addColumn("time ratio", kDigits, true);
+    addColumn("Msamples/s", kDigits, true);
+    for (double t : options.thresholds) {
+        if (options.perChannel)
+            for (const std::string& channel : channels) addColumn(channel + above(t), options.precision, false);
+        addColumn("worst" + above(t), options.precision, false);
+    }
+    if (options.perChannel)
+        for (const std::string& channel : channels) addColumn("max " + channel, kDigits, true);
     addColumn("max", kDigits, true);
+    addColumn("rmse", kDigits, true);
     addColumn("pareto %", 0, false);
     addColumn("pareto max", 0, false);
 
+    const auto secondsOf = [](const TradeoffRow& row) {
+        return numberAt(readJsonFile(row.stats), "timing.median_wall_seconds", row.stats);
+    };
+    const double baselineSeconds = options.baseline.empty() ? 0.0 : secondsOf(*baseline);
+    if (!options.baseline.empty() && !(baselineSeconds > 0))
+        throw Error(baseline->stats.string() + ": the baseline's time per frame is not positive");
     std::vector<std::pair<double, double>> byPercent, byMax;  // (seconds, error) per row
     for (const TradeoffRow& row : rows) {
         const json diff = readJsonFile(row.diff);
         if (channelNames(diff, row.diff) != channels)
             throw Error(row.diff.string() + ": its channels differ from those of " + first.string());
-        const double seconds = numberAt(readJsonFile(row.stats), "timing.median_wall_seconds", row.stats);
+        const json stats = readJsonFile(row.stats);
+        const double seconds = numberAt(stats, "timing.median_wall_seconds", row.stats);
         table.rows.push_back(row.label);
+        table.texts.push_back({methodFamily(stats, row.stats)});
         auto& cells = table.cells.emplace_back();
         cells.push_back(seconds);
-        double worstPercent = 0, worstMax = 0;
-        for (std::size_t c = 0; c < channels.size(); ++c) {
-            cells.push_back(percentAbove(diff, c, threshold, row.diff));
-            worstPercent = std::max(worstPercent, *cells.back());
+        if (!options.baseline.empty()) cells.push_back(seconds / baselineSeconds);
+        const json* samples = stats.contains("stats") ? &stats["stats"] : nullptr;
+        if (samples && samples->contains("samples_evaluated") && seconds > 0)
+            cells.push_back(numberAt(stats, "stats.samples_evaluated", row.stats) / seconds / 1e6);
+        else
+            cells.emplace_back();
+        for (std::size_t t = 0; t < options.thresholds.size(); ++t) {
+            double worst = 0;
+            for (std::size_t c = 0; c < channels.size(); ++c) {
+                const double percent = percentAbove(diff, c, options.thresholds[t], row.diff);
+                worst = std::max(worst, percent);
+                if (options.perChannel) cells.push_back(percent);
+            }
+            cells.push_back(worst);
+            if (t == 0) byPercent.emplace_back(seconds, worst);
         }
-        cells.push_back(worstPercent);
+        double worstMax = 0, worstRmse = 0;
         for (std::size_t c = 0; c < channels.size(); ++c) {
-            cells.push_back(numberAt(diff, "channels." + std::to_string(c) + ".max_abs", row.diff));
-            worstMax = std::max(worstMax, *cells.back());
+            const double max = numberAt(diff, "channels." + std::to_string(c) + ".max_abs", row.diff);
+            worstMax = std::max(worstMax, max);
+            worstRmse = std::max(worstRmse, numberAt(diff, "channels." + std::to_string(c) + ".rmse", row.diff));
+            if (options.perChannel) cells.push_back(max);
         }
         cells.push_back(worstMax);
-        byPercent.emplace_back(seconds, worstPercent);
+        cells.push_back(worstRmse);
         byMax.emplace_back(seconds, worstMax);
     }
     std::vector<double> onPercent(rows.size(), 0), onMax(rows.size(), 0);
@@ -249,12 +299,26 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, double threshold, int 
         table.cells[r].push_back(onMax[r]);
     }
 
-    table.notes.push_back("seconds: median wall time per frame (the run's timing.median_wall_seconds).");
-    table.notes.push_back(channels.front() + above + " ... worst" + above +
-                          ": % of rays (all pixels, background included) whose absolute error exceeds " +
-                          formatThreshold(threshold) + ", per channel and in the worst channel; max " +
-                          channels.front() + " ... max: the largest absolute error, per channel and over all.");
-    table.notes.push_back("pareto % (pareto max): 1 on the Pareto front of seconds against worst" + above +
+    const std::string front = "worst" + above(options.thresholds.front());
+    table.notes.push_back("method: the run's method and precision, SIMD where the float packets ran, vulkan on that "
+                          "backend. seconds: median wall time per frame (the run's timing.median_wall_seconds)." +
+                          (options.baseline.empty() ? std::string()
+                                                    : " time ratio: seconds over those of " + options.baseline +
+                                                          ", timed in the same run."));
+    table.notes.push_back("Msamples/s: millions of samples evaluated per second (stats.samples_evaluated over "
+                          "seconds; - where the method counts none).");
+    std::string percents;
+    for (double t : options.thresholds) percents += (percents.empty() ? "" : ", ") + formatThreshold(t);
+    const std::string rays = "% of rays (all pixels, background included) whose absolute error exceeds t (t = " +
+                             percents + ")";
+    if (options.perChannel)
+        table.notes.push_back(channels.front() + " > t ... worst > t: " + rays + ", per channel and in the worst "
+                              "channel; max " + channels.front() + " ... max: the largest absolute error, per channel "
+                              "and over all; rmse: the largest root mean square error of a channel.");
+    else
+        table.notes.push_back("worst > t: " + rays + " in the worst channel; max: the largest absolute error; rmse: "
+                              "the largest root mean square error of a channel.");
+    table.notes.push_back("pareto % (pareto max): 1 on the Pareto front of seconds against " + front +
                           " (against max), where no other row is at least as fast and as accurate and better in one; "
                           "an infinite error is never on it.");
     return table;

@@ -190,8 +190,13 @@ void VulkanContext::open(const std::string& selector) {
 
     const float priority = 1.0f;
     const VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &priority};
+    // 64-bit floats where the device has them: the renderer's shaders make their rays in double.
+    VkPhysicalDeviceFeatures supported{}, enabled{};
+    vkGetPhysicalDeviceFeatures(physical, &supported);
+    enabled.shaderFloat64 = supported.shaderFloat64;
+    hasFloat64_ = supported.shaderFloat64 == VK_TRUE;
     const VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, nullptr, 0, 1, &queueInfo, 0, nullptr,
-                                        0, nullptr, nullptr};
+                                        0, nullptr, &enabled};
     vkCheck(vkCreateDevice(physical, &deviceInfo, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, family, 0, &queue_);
     const VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,

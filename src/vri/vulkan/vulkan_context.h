@@ -63,6 +63,7 @@ public:
     VkQueue queue() const { return queue_; }
     VkCommandPool commandPool() const { return pool_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    bool hasFloat64() const { return hasFloat64_; }  // shaderFloat64, enabled when the device has it
     const VkPhysicalDeviceMemoryProperties& memory() const { return memory_; }
     const VulkanDeviceInfo& info() const { return info_; }
     // The index of a memory type among `typeBits` with all of `wanted`, or -1.
@@ -86,6 +87,7 @@ private:
     std::vector<VkPhysicalDevice> physical_;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;  // the opened one
     VkPhysicalDeviceProperties properties_{};
+    bool hasFloat64_ = false;
     VkPhysicalDeviceMemoryProperties memory_{};
     VulkanDeviceInfo info_;
     VkDevice device_ = VK_NULL_HANDLE;

@@ -2,13 +2,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <vector>
-
-#include <glm/geometric.hpp>
-#include <glm/vec4.hpp>
-#include <tbb/parallel_for.h>
 
 #include "vri/core/grid_sampler.h"
 #include "vri/core/occupancy_grid.h"
@@ -38,10 +35,18 @@ struct Params {
     std::int32_t bricks[4];  // w: 1 when skipping empty space
     float maxIndex[4];
     float texel[4];  // the sampler: 1 / dims, and in w the voxel value of a texel that reads 1
+    float padding[4];  // std140 aligns a dvec4 to 32 bytes
+    // The camera and the box, in double for the shader's rays (common.glsl's makeRay).
+    double eye[4], forward[4], right[4], up[4], boxLo[4], boxHi[4];
 };
-static_assert(sizeof(Params) == 208);
+static_assert(sizeof(Params) == 416 && offsetof(Params, eye) == 224);
 
-enum Binding { kParams, kVolume, kTransferFunction, kRays, kOutput, kCounters, kOccupancy, kVolumeTexture, kBindings };
+enum Binding { kParams, kVolume, kTransferFunction, kTotals, kOutput, kOccupancy, kVolumeTexture, kBindings };
+
+// The frame's counters that the shaders sum (common.glsl's Totals): each a 64-bit count in two 32-bit
+// words. Simpson's eight are AdaptiveCounts in the order of simpson.comp; marching uses the first two.
+constexpr int kTotalCount = 9;
+constexpr int kTotalRaysHit = 8;
 
 std::vector<VkDescriptorType> bindingTypes() {
     std::vector<VkDescriptorType> types(kBindings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -92,13 +97,18 @@ struct VulkanRenderer::Impl {
     // binding needs a valid descriptor.
     VulkanBuffer volumeBuffer;
     VulkanTexture3D volumeTexture;
-    VulkanBuffer params, transferFunction, rays, output, counters, occupancy;
+    VulkanBuffer params, transferFunction, totals, output, occupancy;
 
     Impl(const std::string& selector, VulkanInterpolation interpolation)
         : context(selector), interpolation(interpolation), kernels(context, bindingTypes()),
           march(kernels.module(march_spv, sizeof(march_spv))),
           simpson(kernels.module(simpson_spv, sizeof(simpson_spv))),
-          params(context, sizeof(Params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, false) {}
+          params(context, sizeof(Params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, false) {
+        // The shaders make their rays in double (common.glsl's makeRay), so that they are the CPU's.
+        if (!context.hasFloat64())
+            throw Error("Vulkan device '" + context.info().name +
+                        "' has no 64-bit floats (shaderFloat64), which the renderer's ray setup needs");
+    }
 
     ~Impl() { vkDeviceWaitIdle(context.device()); }  // before the buffers go
 
@@ -160,7 +170,7 @@ struct VulkanRenderer::Impl {
     }
 
     void bind() const {
-        const VulkanBuffer* buffers[] = {&params, &volumeBuffer, &transferFunction, &rays, &output, &counters, &occupancy};
+        const VulkanBuffer* buffers[] = {&params, &volumeBuffer, &transferFunction, &totals, &output, &occupancy};
         for (std::uint32_t b = 0; b < kVolumeTexture; ++b) kernels.bind(b, *buffers[b]);
         kernels.bind(kVolumeTexture, volumeTexture);
     }
@@ -218,14 +228,11 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
                                                options.integrator == Integrator::Composite ? 1 : 0, sampler});
     const std::vector<float> tf = transferFunctionTable(scene.transferFunction);
     m.ensure(m.transferFunction, tf.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the transfer function");
-    // Host-visible buffers per pixel: two vec4 of ray, one vec4 of colour, eight counters.
+    // Host-visible buffers: one vec4 of colour per pixel, and the frame's counters.
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
-    m.ensure(m.rays, checkedBytes("Vulkan: the rays of a " + size + " image", {pixels, 32}),
-             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's rays");
     m.ensure(m.output, checkedBytes("Vulkan: a " + size + " image", {pixels, 16}), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
              "the image");
-    m.ensure(m.counters, checkedBytes("Vulkan: the sample counts of a " + size + " image", {pixels, 32}),
-             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the image's sample counts");
+    m.ensure(m.totals, 2 * kTotalCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the counters");
     local.setupSeconds = secondsSince(setupStart);
 
     const auto start = std::chrono::steady_clock::now();
@@ -265,6 +272,20 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     p.height = height;
     p.tfCount = static_cast<std::int32_t>(scene.transferFunction.points().size());
     p.accepted = adaptive.accepted == AcceptedValue::Richardson ? 0 : 1;
+    const CameraBasis basis = camera.basis();
+    for (int a = 0; a < 3; ++a) {
+        p.eye[a] = camera.eye()[a];
+        p.forward[a] = basis.forward[a];
+        p.right[a] = basis.right[a];
+        p.up[a] = basis.up[a];
+        p.boxLo[a] = box.lo[a];
+        p.boxHi[a] = box.hi[a];
+    }
+    p.eye[3] = camera.spec().zoom;
+    p.forward[3] = basis.tanHalfX;
+    p.right[3] = basis.tanHalfY;
+    p.up[3] = basis.centre.x;
+    p.boxLo[3] = basis.centre.y;
     // Empty-space skipping: the CPU's bricks, built here as render() builds them, inside the timed part.
     std::vector<std::uint8_t> empty(4, 0);  // a placeholder when not skipping: the binding needs a buffer
     if (scene.volume && options.skipEmptySpace) {
@@ -282,62 +303,35 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     std::memcpy(m.occupancy.mapped(), empty.data(), empty.size());
     std::memcpy(m.params.mapped(), &p, sizeof p);
     std::memcpy(m.transferFunction.mapped(), tf.data(), tf.size() * sizeof(float));
-    for (const VulkanBuffer* b : {&m.occupancy, &m.params, &m.transferFunction}) b->flush();
+    std::memset(m.totals.mapped(), 0, m.totals.size());
+    for (const VulkanBuffer* b : {&m.occupancy, &m.params, &m.transferFunction, &m.totals}) b->flush();
 
-    // The rays, clipped in double as render() clips them, with the world length per unit of the ray's
-    // parameter (texture units for the placements, voxels for Simpson) that render() derives in float.
-    auto* rays = static_cast<glm::vec4*>(m.rays.mapped());
-    const glm::dvec3 eye = camera.eye();
-    tbb::parallel_for(0, height, [&](int py) {
-        for (int px = 0; px < width; ++px) {
-            glm::vec4* out = rays + 2 * (std::size_t(py) * width + px);
-            const glm::dvec3 dir = camera.direction(px, py);
-            const auto segment = clipRay(eye, dir, box);
-            if (!segment) {
-                out[0] = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
-                out[1] = glm::vec4(0.0f);
-                continue;
-            }
-            const Vec entry(box.toTexture(eye + segment->tNear * dir));
-            const Vec exit(box.toTexture(eye + segment->tFar * dir));
-            const double worldLength = segment->tFar - segment->tNear;
-            const float length = simpson ? glm::length((exit - entry) * dims) : glm::length(exit - entry);
-            out[0] = glm::vec4(entry, length > 0.0f ? static_cast<float>(worldLength / double(length)) : 0.0f);
-            out[1] = glm::vec4(exit, static_cast<float>(worldLength));
-        }
-    });
-
-    m.rays.flush();
+    // The shaders make and clip each pixel's ray (in double, as render() does) and sum the counters.
     m.bind();
     m.kernels.dispatch(pipeline, groupsX, groupsY);
     m.output.invalidate();
-    m.counters.invalidate();
+    m.totals.invalidate();
 
     Image image(width, height);
     std::memcpy(image.pixels.data(), m.output.mapped(), pixels * 16);
-    const auto* c = static_cast<const std::uint32_t*>(m.counters.mapped());
-    AdaptiveCounts counts;
-    std::uint64_t placed = 0, evaluated = 0;
-    for (VkDeviceSize i = 0; i < pixels; ++i, c += 8) {
-        if (rays[2 * i].w >= 0.0f && rays[2 * i + 1].w > 0.0f) ++local.raysHit;
-        if (simpson) {
-            counts.pointsUsed += c[0];
-            counts.pointsEvaluated += c[1];
-            counts.innerTries += c[2];
-            counts.innerFailures += c[3];
-            counts.outerTries += c[4];
-            counts.outerFailures += c[5];
-            counts.outerSteps += c[6];
-            counts.acceptedAtMinimum += c[7];
-        } else {
-            placed += c[0];
-            evaluated += c[1];
-        }
-    }
+    const auto* words = static_cast<const std::uint32_t*>(m.totals.mapped());
+    const auto total = [&](int i) { return std::uint64_t(words[2 * i]) | std::uint64_t(words[2 * i + 1]) << 32; };
     local.seconds = secondsSince(start);
+    local.raysHit = total(kTotalRaysHit);
+    AdaptiveCounts counts;
+    if (simpson) {
+        counts.pointsUsed = total(0);
+        counts.pointsEvaluated = total(1);
+        counts.innerTries = total(2);
+        counts.innerFailures = total(3);
+        counts.outerTries = total(4);
+        counts.outerFailures = total(5);
+        counts.outerSteps = total(6);
+        counts.acceptedAtMinimum = total(7);
+    }
     local.rays = pixels;
-    local.samplesPlaced = placed + counts.pointsUsed;
-    local.samplesEvaluated = evaluated + counts.pointsEvaluated;
+    local.samplesPlaced = simpson ? counts.pointsUsed : total(0);
+    local.samplesEvaluated = simpson ? counts.pointsEvaluated : total(1);
     if (simpson) local.adaptive = counts;
     local.backend = "vulkan";
     local.device = m.context.info().name;

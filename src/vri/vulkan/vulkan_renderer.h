@@ -5,9 +5,11 @@
 // What differs from vri::render() with Precision::Float: float arithmetic whose rounding the device
 // chooses (exp, division), no per-ray log, and, with VulkanInterpolation::Sampler, the device's own
 // trilinear filtering. Empty space is skipped as on the CPU (the same bricks),
-// which never changes an image, only the samples evaluated. The rays themselves
-// (entry and exit points, world length per unit of ray) are clipped on the CPU in double precision
-// exactly as render() does, so both backends integrate along the same segments.
+// which never changes an image, only the samples evaluated. The shaders make and clip each pixel's
+// ray themselves in double precision with render()'s operations in its order (entry and exit points,
+// world length per unit of ray), so both backends integrate along the same segments; this needs a
+// device with 64-bit floats (shaderFloat64). The frame's counters are summed on the device too, so
+// stats->seconds is the device's work, the empty-space bricks and the image's copy back.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -65,6 +67,7 @@ public:
     // the same Volume object is rendered; upload and pipeline creation are not in stats->seconds.
     // Throws vri::Error on what render() rejects, on Precision::Double, a log pixel, or a volume
     // larger than the device's largest storage buffer (or 3D image, or a format the device cannot filter).
+    // The constructor throws vri::Error on a device without 64-bit floats.
     Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats = nullptr);
     // Throws vri::Error on the options no Vulkan device can honour (double precision, a logged ray):
     // tools check them before opening a device, so the message does not depend on having one.

@@ -1,5 +1,6 @@
-// Shared by the compute shaders of the Vulkan backend (libvri/src/vulkan_renderer.cpp): the bindings,
-// the volume sampler and the transfer function, each a port of the CPU code in float.
+// Shared by the compute shaders of the Vulkan backend (vulkan_renderer.cpp): the bindings, the rays, the
+// volume sampler, the transfer function and the frame's counters, each a port of the CPU code in float
+// (the rays in double, as the CPU makes them).
 //
 // The volume is read from a storage buffer in its native type and interpolated here with the
 // formula and clamping of grid_sampler.h, not with a hardware sampler: texture units filter with
@@ -32,22 +33,85 @@ layout(std140, binding = 0) uniform Params {
     ivec4 bricks;   // empty-space bricks per axis (occupancy_grid.h); w: 1 when skipping empty space
     vec4 maxIndex;  // dims - 1, the voxel index range the bricks cover
     vec4 texel;     // the sampler: 1 / dims, and in w the voxel value of a texel that reads 1 (255 for R8 unorm)
+    // The camera (Camera's basis, in double) and the box in world units, for the rays.
+    dvec4 eye;      // w: zoom
+    dvec4 forward;  // w: tan of half the horizontal field of view
+    dvec4 right;    // w: tan of half the vertical field of view
+    dvec4 up;       // w: the zoom centre's x, in pixels of the full frame
+    dvec4 boxLo;    // w: the zoom centre's y
+    dvec4 boxHi;
 } P;
 
 layout(std430, binding = 1) readonly buffer Volume { uint words[]; };
 // Per transfer function point i: s, r, g, b, tau, then the differences to point i + 1 as the CPU
 // computes them (in double, then rounded to float).
 layout(std430, binding = 2) readonly buffer TransferFunction { float tf[]; };
-// Per pixel: (entry, world units per unit of the ray's parameter; < 0: no hit), (exit, world length:
-// read by the CPU for the stats only).
-layout(std430, binding = 3) readonly buffer Rays { vec4 rays[]; };
+// The frame's counters, summed here: per counter a 64-bit count as (low word, high word), zero before
+// the dispatch. Which counter is which, the shader says (TOTAL_*).
+layout(std430, binding = 3) coherent buffer Totals { uint totals[]; };
 layout(std430, binding = 4) writeonly buffer Output { vec4 pixels[]; };
-layout(std430, binding = 5) writeonly buffer Counters { uvec4 counters[]; };  // two per pixel
 // OccupancyGrid::emptyFlags(), one byte per brick, x fastest: 1 where the transfer function gives
 // nothing to any sample that the brick (and a one-voxel margin) can produce.
-layout(std430, binding = 6) readonly buffer Occupancy { uint emptyWords[]; };
+layout(std430, binding = 5) readonly buffer Occupancy { uint emptyWords[]; };
 // The voxels again, as a 3D image filtered linearly and clamped to the edge (used when SAMPLER = 1).
-layout(binding = 7) uniform sampler3D volumeTexture;
+layout(binding = 6) uniform sampler3D volumeTexture;
+
+// Adds v to counter i, carrying into its high word when the low word wraps: the adder whose
+// atomicAdd wraps it, and only that one, sees the sum come out below the old value.
+void addTotal(int i, uint v) {
+    if (v == 0u) return;
+    uint old = atomicAdd(totals[2 * i], v);
+    if (old + v < old) atomicAdd(totals[2 * i + 1], 1u);
+}
+const int TOTAL_RAYS_HIT = 8;  // after the shaders' eight counters
+
+// The ray of a pixel, made as the CPU makes it, in double: Camera::direction (glm::normalize is
+// v * (1 / sqrt(dot(v, v))), the dot product summed x, y, z), clipRay against the box, and the entry and
+// exit points in texture coordinates rounded to float (Box::toTexture). With every operation correctly
+// rounded, as IEEE double addition, multiplication, division and square root are on the device (Vulkan
+// requires shaderFloat64; lavapipe computes them on the CPU's units), these are the CPU's segments bit
+// for bit. False when the ray misses the box.
+bool makeRay(ivec2 pixel, out vec3 entry, out vec3 exit, out double worldLength) {
+    precise double zoom = P.eye.w;
+    precise double fx = P.up.w + (double(pixel.x) + 0.5 - 0.5 * double(P.width)) / zoom;
+    precise double fy = P.boxLo.w + (double(pixel.y) + 0.5 - 0.5 * double(P.height)) / zoom;
+    precise double x = (2.0 * fx / double(P.width) - 1.0) * P.forward.w;
+    precise double y = (1.0 - 2.0 * fy / double(P.height)) * P.right.w;
+    precise dvec3 v = P.forward.xyz + x * P.right.xyz + y * P.up.xyz;
+    precise double norm = v.x * v.x + v.y * v.y + v.z * v.z;
+    precise double inverse = 1.0 / sqrt(norm);
+    precise dvec3 dir = v * inverse;
+    dvec3 eye = P.eye.xyz;
+    double tNear = 0.0, tFar = 1.0 / 0.0;
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] == 0.0) {
+            if (eye[a] < P.boxLo[a] || eye[a] > P.boxHi[a]) return false;
+            continue;
+        }
+        precise double t0 = (P.boxLo[a] - eye[a]) / dir[a];
+        precise double t1 = (P.boxHi[a] - eye[a]) / dir[a];
+        if (t0 > t1) {
+            double swap = t0;
+            t0 = t1;
+            t1 = swap;
+        }
+        tNear = max(tNear, t0);
+        tFar = min(tFar, t1);
+        if (tNear > tFar) return false;
+    }
+    precise dvec3 extent = P.boxHi.xyz - P.boxLo.xyz;
+    precise dvec3 near = eye + tNear * dir, far = eye + tFar * dir;
+    entry = vec3((near - P.boxLo.xyz) / extent);
+    exit = vec3((far - P.boxLo.xyz) / extent);
+    worldLength = tFar - tNear;
+    return true;
+}
+
+// The world length per unit of the ray's parameter (texture units, or voxels in `length`), as render()
+// derives it: the float length of the ray's parameter range, the world length divided by it in double.
+float worldPerUnit(double worldLength, float length) {
+    return length > 0.0 ? float(worldLength / double(length)) : 0.0;
+}
 
 const int BRICK_SHIFT = 3;  // OccupancyGrid::kBrickShift
 

@@ -19,16 +19,13 @@ precise float expm1(float x) {
     return um1 * x / log(u);
 }
 
-void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (pixel.x >= P.width || pixel.y >= P.height) return;
-    int id = pixel.y * P.width + pixel.x;
-    vec4 a = rays[2 * id], b = rays[2 * id + 1];
-    counters[2 * id] = uvec4(0u);
-    counters[2 * id + 1] = uvec4(0u);
+// The ray of one pixel; its samples placed and evaluated go to the counters.
+void trace(ivec2 pixel, int id) {
     pixels[id] = vec4(0.0);
-    if (a.w < 0.0) return;  // the ray misses the box
-    vec3 entry = a.xyz, exit = b.xyz;
+    vec3 entry, exit;
+    double worldLength;
+    if (!makeRay(pixel, entry, exit, worldLength)) return;  // the ray misses the box
+    if (worldLength > 0.0) addTotal(TOTAL_RAYS_HIT, 1u);
 
     // placeSamples
     precise vec3 ray = exit - entry;
@@ -58,9 +55,9 @@ void main() {
         count = n;
     }
 
-    // marchSamples: a.w is the world length per texture unit of the ray.
+    // marchSamples
     precise vec3 du = ray / tEnd;
-    precise float dx = tIncr * a.w;
+    precise float dx = tIncr * worldPerUnit(worldLength, tEnd);
     precise float r = 0.0, g = 0.0, bl = 0.0, transparency = 1.0;
     precise vec3 x0 = entry * P.scale.xyz - P.offset.xyz;  // the ray in voxel index space, as the bricks
     precise vec3 dxdt = du * P.scale.xyz;
@@ -105,5 +102,11 @@ void main() {
         if (transparency < P.earlyTermination) break;
     }
     pixels[id] = vec4(r, g, bl, 1.0 - transparency);
-    counters[2 * id] = uvec4(uint(k), uint(evaluated), 0u, 0u);  // samples placed, evaluated
+    addTotal(0, uint(k));  // samples placed
+    addTotal(1, uint(evaluated));
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel.x < P.width && pixel.y < P.height) trace(pixel, pixel.y * P.width + pixel.x);
 }

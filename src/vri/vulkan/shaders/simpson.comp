@@ -152,25 +152,20 @@ void integrateOuter(float t, float end, inout Control control) {
     }
 }
 
-void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (pixel.x >= P.width || pixel.y >= P.height) return;
-    int id = pixel.y * P.width + pixel.x;
-    vec4 ra = rays[2 * id], rb = rays[2 * id + 1];
-    counters[2 * id] = uvec4(0u);
-    counters[2 * id + 1] = uvec4(0u);
+// The ray of one pixel, as integrateSimpson, in voxels of ray; its counts go to the counters.
+void trace(ivec2 pixel, int id) {
     pixels[id] = vec4(0.0);
-    if (ra.w < 0.0) return;  // the ray misses the box
-
-    // integrateSimpson: the ray in voxels; ra.w is the world length per voxel of ray.
-    entry = ra.xyz;
-    precise vec3 along = rb.xyz - entry;
+    vec3 exit;
+    double worldLength;
+    if (!makeRay(pixel, entry, exit, worldLength)) return;  // the ray misses the box
+    if (worldLength > 0.0) addTotal(TOTAL_RAYS_HIT, 1u);
+    precise vec3 along = exit - entry;
     precise float rayLength = length(along * P.dims.xyz);
     if (!(rayLength > 0.0)) return;
     du = along / rayLength;
     x0 = entry * P.scale.xyz - P.offset.xyz;
     dxdt = du * P.scale.xyz;
-    worldPerVoxel = ra.w;
+    worldPerVoxel = worldPerUnit(worldLength, rayLength);
 
     // AdaptiveSimpsonRay::integrate
     float h0 = min(P.h0, P.hMax);
@@ -201,6 +196,12 @@ void main() {
         t = end;
     }
     pixels[id] = vec4(outR, outG, outB, outAlpha);
-    counters[2 * id] = uvec4(pointsUsed, pointsEvaluated, innerTries, innerFailures);
-    counters[2 * id + 1] = uvec4(outerTries, outerFailures, outerSteps, acceptedAtMinimum);
+    uint counts[8] = uint[8](pointsUsed, pointsEvaluated, innerTries, innerFailures, outerTries, outerFailures,
+                             outerSteps, acceptedAtMinimum);
+    for (int i = 0; i < 8; ++i) addTotal(i, counts[i]);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel.x < P.width && pixel.y < P.height) trace(pixel, pixel.y * P.width + pixel.x);
 }
