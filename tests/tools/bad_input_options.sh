@@ -14,7 +14,7 @@ E='^vri-render: error: '
 # Each row's check, on the command line.
 bad 1 "${E}--rate: expected a number > 0, got '-2'$" -- "${render[@]}" --rate -2
 bad 1 "${E}--step: expected a number > 0, got 'inf'$" -- "${render[@]}" --step inf
-bad 1 "${E}--early-termination: expected a number >= 0, got '-0.1'$" -- "${render[@]}" --early-termination -0.1
+bad 1 "${E}--early-termination: expected a transparency in \[0, 1\), 'auto' or 'auto:BOUND' with a bound in \(0, 1\), got '-0.1'$" -- "${render[@]}" --early-termination -0.1
 bad 1 "${E}--warm-up: expected a whole number >= 0, got '-1'$" -- "${render[@]}" --warm-up -1
 bad 1 "${E}--tolerance: expected a number >= 0, got '-1'$" -- "${render[@]}" --method coupled --eps -1
 bad 1 "${E}--h-min: expected a number > 0, got '0'$" -- "${render[@]}" --method decoupled --h-min 0
