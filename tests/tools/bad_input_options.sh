@@ -27,7 +27,7 @@ bad 1 "^vri-reference: error: --repeat: expected a whole number >= 1, got '0'$" 
 # What the row checks, the library's own checks still follow: h0 within [h_min, h_max].
 bad 1 "${E}the initial step h0 must be finite and at least h_min" -- "${render[@]}" --method coupled --h0 0.05
 # Options that only one tool takes stay unknown to the other.
-bad 109 "^vri-reference: error: The following arguments? (was|were) not expected: .*--placement" -- "${reference[@]}" --placement eye
+bad 64 "^vri-reference: error: The following arguments? (was|were) not expected: .*--placement" -- "${reference[@]}" --placement eye
 
 # The same rows read an experiment file's methods: the value's place, the row's words.
 mkdir -p exp/tf && cp tf.yaml exp/tf/tf.yaml
