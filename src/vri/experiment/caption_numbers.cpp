@@ -33,12 +33,11 @@ std::vector<std::string> splitAt(const std::string& text, char separator) {
 std::string jsonNumberText(const fs::path& file, const std::string& path, const std::string& cited) {
     return readingJsonOf(file, [&] {
         const nlohmann::json root = readJsonFile(file);
-        const nlohmann::json* node = &root;
-        for (const std::string& part : splitAt(path, '.')) {
-            const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
-            if (node->is_array() && index && std::stoull(part) < node->size()) node = &(*node)[std::stoull(part)];
-            else if (node->is_object() && node->contains(part)) node = &(*node)[part];
-            else throw Error(cited + ": " + file.string() + " has no '" + path + "'");
+        const nlohmann::json* node = nullptr;
+        try {
+            node = &jsonAtPath(root, path, file);
+        } catch (const Error& e) {
+            throw Error(cited + ": " + e.what());
         }
         if (!node->is_number()) throw Error(cited + ": " + file.string() + ": '" + path + "' is not a number");
         if (node->is_number_integer()) return node->dump();

@@ -22,24 +22,8 @@ using nlohmann::json;
 
 namespace {
 
-// Follows a dotted path; a part that is a number indexes an array.
-const json& lookup(const json& root, const std::string& path, const fs::path& file) {
-    const json* node = &root;
-    std::size_t start = 0;
-    while (start <= path.size()) {
-        const std::size_t end = std::min(path.find('.', start), path.size());
-        const std::string part = path.substr(start, end - start);
-        const bool isIndex = !part.empty() && std::all_of(part.begin(), part.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
-        if (node->is_array() && isIndex && std::stoul(part) < node->size()) node = &(*node)[std::stoul(part)];
-        else if (node->is_object() && node->contains(part)) node = &(*node)[part];
-        else throw Error(file.string() + ": has no '" + path.substr(0, end) + "'");
-        start = end + 1;
-    }
-    return *node;
-}
-
 double numberAt(const json& root, const std::string& path, const fs::path& file) {
-    const json& node = lookup(root, path, file);
+    const json& node = jsonAtPath(root, path, file);
     // vri-diff writes infinite errors as null: JSON has no infinity.
     if (node.is_null()) return std::numeric_limits<double>::infinity();
     if (!node.is_number()) throw Error(file.string() + ": '" + path + "' is not a number");
@@ -67,7 +51,7 @@ std::string formatThreshold(double threshold) {
 std::vector<std::string> channelNames(const json& diff, const fs::path& file) {
     return readingJsonOf(file, [&] {
         std::vector<std::string> names;
-        for (const json& channel : lookup(diff, "channels", file)) names.push_back(channel.at("name").get<std::string>());
+        for (const json& channel : jsonAtPath(diff, "channels", file)) names.push_back(channel.at("name").get<std::string>());
         return names;
     });
 }
@@ -75,7 +59,7 @@ std::vector<std::string> channelNames(const json& diff, const fs::path& file) {
 // The % of pixels whose error in `channel` exceeds `threshold`.
 double percentAbove(const json& diff, std::size_t channel, double threshold, const fs::path& file) {
     const std::optional<double> percent = readingJsonOf(file, [&]() -> std::optional<double> {
-        for (const json& above : lookup(diff, "channels." + std::to_string(channel) + ".above", file))
+        for (const json& above : jsonAtPath(diff, "channels." + std::to_string(channel) + ".above", file))
             if (above.at("threshold").get<double>() == threshold) return above.at("percent").get<double>();
         return std::nullopt;
     });
@@ -128,7 +112,7 @@ Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> 
     const json firstDiff = readJsonFile(first);
     if (thresholds.empty())
         readingJsonOf(first, [&] {
-            for (const json& t : lookup(firstDiff, "thresholds", first)) thresholds.push_back(t.get<double>());
+            for (const json& t : jsonAtPath(firstDiff, "thresholds", first)) thresholds.push_back(t.get<double>());
         });
     const std::vector<std::string> channels = channelNames(firstDiff, first);
 

@@ -12,6 +12,10 @@ namespace vri {
 // The file's JSON; throws vri::Error naming the file when it is missing or not valid JSON.
 nlohmann::json readJsonFile(const std::filesystem::path& path);
 
+// The value at a dotted path ("stats.rmse.0": a part that is a number indexes an array); throws
+// vri::Error "<file>: has no '<path so far>'" where the path leaves the document.
+const nlohmann::json& jsonAtPath(const nlohmann::json& root, const std::string& path, const std::filesystem::path& file);
+
 // nlohmann's message without its "[json.exception.type_error.302] " tag: "type must be string, but is number".
 std::string jsonExceptionText(const nlohmann::json::exception& e);
 
