@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "vri/core/gauss_error_bound.h"
+
 namespace vri {
 
 namespace {
@@ -42,6 +44,9 @@ constexpr int kMaxDepth = 40;  // bisections of one sub-piece; reached only by p
 // interval to kMaxDepth (2^40 of them). Past it every interval is accepted with its own error.
 constexpr int kMaxIntervals = 4096;
 constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
+// The most equal panels of the Gauss rule with a derivative bound (integrateSubPiece's first try);
+// beyond that the adaptive Gauss-Kronrod quadrature is cheaper.
+constexpr int kMaxGaussPanels = 4;
 
 template <std::size_t N>
 double horner(const std::array<double, N>& p, double x) {
@@ -90,6 +95,53 @@ void applyRule(const KronrodRule<N>& rule, double x0, double x1, const std::arra
         K[c] = k;
         G[c] = gauss;
     }
+}
+
+struct GaussPanels {
+    int panels = 0, nodes = 0;  // none: no rule within reach
+};
+
+// The cheapest n-point Gauss rule on k equal panels of [0, 1] (n <= 3, k <= kMaxGaussPanels) whose
+// rigorous error bound (gauss_error_bound.h) is at most `allowed` in every channel, its results added
+// to sum, error and rounding (in units of the transparency in front, like the adaptive quadrature's).
+// The rounding terms are the adaptive path's for an interval, with the transparency on it at most
+// transparencyMax = 1 + 2 depthError (>= exp(depthError), the most the rounding of D can lift it).
+GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std::array<double, 4> (&colour)[3],
+                        bool colourTimesExtinction, const double gError[3], const std::array<double, 5>& depth,
+                        double depthError, double allowed, double sum[3], double error[3], double rounding[3]) {
+    if (!(depthError <= 0.5)) return {};
+    const double transparencyMax = 1.0 + 2.0 * depthError;
+    const std::array<double, 3> bound = gaussErrorBounds(colour, tau, colourTimesExtinction, ell, transparencyMax);
+    // k^-2n for k = 1..kMaxGaussPanels (rows) and n = 1..3; tried in the order of their cost n k.
+    static constexpr double kShrink[kMaxGaussPanels][3] = {
+        {1.0, 1.0, 1.0}, {0x1p-2, 0x1p-4, 0x1p-6}, {1.0 / 9, 1.0 / 81, 1.0 / 729}, {0x1p-4, 0x1p-8, 0x1p-12}};
+    static constexpr int kTries[][2] = {{1, 1}, {2, 1}, {1, 2}, {3, 1}, {1, 3}, {2, 2}, {1, 4}};  // {n, k}
+    int bestN = 0, bestK = 0;
+    for (const auto& [n, k] : kTries)
+        if (ell * bound[n - 1] * kShrink[k - 1][n - 1] <= allowed) {
+            bestN = n;
+            bestK = k;
+            break;
+        }
+    if (bestN == 0) return {};
+    const GaussRule& rule = gaussRule(bestN);
+    const double width = 1.0 / bestK, shrink = kShrink[bestK - 1][bestN - 1];
+    for (int p = 0; p < bestK; ++p) {
+        double f[3] = {};
+        for (int i = 0; i < bestN; ++i) {
+            const double x = (p + rule.node[i]) * width;
+            double t = rule.weight[i] * std::exp(-horner(depth, x));
+            if (colourTimesExtinction) t *= horner(tau, x);
+            for (int c = 0; c < 3; ++c) f[c] += horner(colour[c], x) * t;
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double value = ell * width * f[c], e = ell * bound[bestN - 1] * shrink / bestK;
+            sum[c] += value;
+            error[c] += e;
+            rounding[c] += ell * width * transparencyMax * gError[c] + (std::abs(value) + e) * (depthError + 32.0 * kUnit);
+        }
+    }
+    return {bestK, bestN * bestK};
 }
 
 }  // namespace
@@ -160,9 +212,13 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     for (int i = 0; i < nc; ++i) ends[i + 1] = critical[i];
     ends[nc + 1] = 1.0;
     const int parts = nc + 1;
-    for (int i = 0; i <= parts; ++i) values[i] = s(ends[i]);
-    const auto [lo, hi] = std::minmax_element(values, values + parts + 1);
-    if (invisible(*lo, *hi)) return;  // neither extinction nor emission anywhere on the piece
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int i = 0; i <= parts; ++i) {
+        values[i] = s(ends[i]);
+        lo = std::min(lo, values[i]);
+        hi = std::max(hi, values[i]);
+    }
+    if (invisible(lo, hi)) return;  // neither extinction nor emission anywhere on the piece
 
     // Split where s crosses a transfer-function point: within a monotone part at most once per level,
     // in the order of the levels when s rises and in reverse when it falls.
@@ -262,17 +318,23 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     for (int k = 0; k < 4; ++k) depth[k + 1] = ell * tau.p[k] / (k + 1);
     const double depthError = ell * (tau.error + 8.0 * kUnit * tauSum);  // at lambda = 1; lambda times it at lambda
 
-    // Adaptive quadrature on [0, 1], all channels together (they share the transparency). The sums are
-    // in units of the transparency in front of the sub-piece, `front`.
+    // The sums are in units of the transparency in front of the sub-piece, `front`. First the Gauss
+    // rule whose error bound is in reach; where none is, adaptive quadrature on [0, 1], all channels
+    // together (they share the transparency).
     const double front = std::exp(-opticalDepth_);
+    double sum[3] = {}, error[3] = {}, rounding[3] = {};
+    const std::array<double, 4> colours[3] = {colour[0].p, colour[1].p, colour[2].p};
+    const GaussPanels panels = gaussPanels(ell, tau.p, colours, colourTimesExtinction, gError, depth, depthError,
+                                           tolerance_ / front, sum, error, rounding);
+    quadratureIntervals += panels.panels;
+    quadratureNodes += panels.nodes;
     struct Interval {
         double x0, x1;
         int depth;
     };
     Interval stack[kMaxDepth + 2];
     int top = 0;
-    stack[top++] = {0.0, 1.0, 0};
-    double sum[3] = {}, error[3] = {}, rounding[3] = {};
+    if (panels.panels == 0) stack[top++] = {0.0, 1.0, 0};
     // C and tau are linear in s: on an interval their extremes lie where s's do, at its ends or where
     // s' = 0 (a sub-piece is split at TF points only, so s need not be monotone on it).
     double critical[2];
@@ -302,7 +364,6 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         const double tHigh = iv.x0 == 0.0 ? 1.0 : std::exp(-(d0 - dd0));
         if (d1 - d0 <= kResolvedDepth) {
             double K[3], G[3], e[3], worst = 0.0;
-            const std::array<double, 4> colours[3] = {colour[0].p, colour[1].p, colour[2].p};
             if (lowOrder_)
                 applyRule(kKronrod7, iv.x0, iv.x1, depth, tau.p, colours, colourTimesExtinction, K, G);
             else

@@ -50,6 +50,7 @@ public:
         stride_[0] = n_[0] > 1 ? 1 : 0;  // a single layer: both taps read it
         stride_[1] = n_[1] > 1 ? std::int64_t(n_[0]) : 0;
         stride_[2] = n_[2] > 1 ? std::int64_t(n_[0]) * n_[1] : 0;
+        for (int k = 0; k < 8; ++k) corner_[k] = (k & 1) * stride_[0] + (k >> 1 & 1) * stride_[1] + (k >> 2) * stride_[2];
         const ValueRange r = volume.normalisationRange();
         lo_ = r.lo;
         invRange_ = r.hi > r.lo ? 1.0 / (r.hi - r.lo) : 0.0;
@@ -77,14 +78,22 @@ public:
         const glm::dvec3 entry = uEntry * scale_ - offset_;
         const glm::dvec3 delta = (uExit * scale_ - offset_) - entry;
         const glm::dvec3 exit = entry + delta;
-        int next[3], step[3];
+        int next[3], step[3], cell[3];
         double phi[3];
-        auto planeAt = [&](int a, int plane) { return (plane - entry[a]) / delta[a]; };
+        // Each axis's crossings from its reciprocal (a multiplication on the walk's critical path, not a
+        // division); emptyFrom() computes a block face's crossing the same way, so a jump lands on one.
+        const glm::dvec3 inverse = 1.0 / delta;
+        auto planeAt = [&](int a, int plane) { return (plane - entry[a]) * inverse[a]; };
         // The parameter where axis a crosses the integer next[a], or inf when no plane is left before the exit.
         auto crossing = [&](int a) {
             const bool left = step[a] > 0 ? next[a] <= n_[a] - 1 && next[a] < exit[a]
                                           : step[a] < 0 && next[a] >= 0 && next[a] > exit[a];
             return left ? planeAt(a, next[a]) : inf;
+        };
+        // The base corner of the cell between the planes the axis last crossed and next[a] (clamped like
+        // cellOf; an axis the ray does not move along keeps the entry's).
+        auto cellBetween = [&](int a) {
+            return std::clamp(step[a] > 0 ? next[a] - 1 : next[a], 0, maxBase_[a]);
         };
         for (int a = 0; a < 3; ++a) {
             step[a] = delta[a] > 0 ? 1 : delta[a] < 0 ? -1 : 0;
@@ -92,6 +101,9 @@ public:
                                   : std::min(static_cast<int>(std::ceil(entry[a])) - 1, n_[a] - 1);
             phi[a] = crossing(a);
         }
+        cellOf(entry, delta, 0.0, cell);
+        for (int a = 0; a < 3; ++a)
+            if (step[a] != 0) cell[a] = cellBetween(a);
         // Puts every axis where the plane-by-plane walk would be once it has passed the event at phiJump:
         // on the first plane crossed after it. Crossings grow with the plane index, so a short search
         // from the plane under the jump's point finds it.
@@ -105,18 +117,17 @@ public:
                 while (plane != next[a] && planeAt(a, plane - step[a]) > phiJump) plane -= step[a];
                 next[a] = plane;
                 phi[a] = crossing(a);
+                cell[a] = cellBetween(a);
             }
         };
         double phiA = 0.0;
         for (;;) {
             const double phiB = std::min({phi[0], phi[1], phi[2], 1.0});
             if (phiB > phiA) {
-                int cell[3];
-                cellOf(entry, delta, 0.5 * (phiA + phiB), cell);
                 if (!emptyBlock_.empty() && emptyBlock_[blockOfCell(cell)]) {
                     // The piece's block is empty: every piece up to the end of the run of empty blocks
                     // lies in cells whose corners the blocks' emptiness covers, each invisible.
-                    const double until = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
+                    const double until = emptyFrom(entry, delta, inverse, 0.5 * (phiA + phiB));
                     if (until >= 1.0) return 0.0;
                     if (until > phiA) {  // (a rounding error cannot stop the walk)
                         jumpTo(until);
@@ -132,6 +143,7 @@ public:
                 if (phi[a] == phiB) {
                     next[a] += step[a];
                     phi[a] = crossing(a);
+                    cell[a] = cellBetween(a);
                 }
             phiA = phiB;
         }
@@ -160,13 +172,13 @@ private:
     // empty (a block DDA, one division per block): where the first non-empty one begins (1 when none is
     // left). Every face is a plane of integer index, crossed at the parameter the cell walk computes for
     // it, so a jump lands exactly on a cell face.
-    double emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
+    double emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, const glm::dvec3& inverse, double phi) const {
         constexpr double inf = std::numeric_limits<double>::infinity();
         int m[3];
         double exitAt[3];
         auto exitOf = [&](int a) {
-            if (delta[a] > 0 && m[a] + 1 < blocks_[a]) return ((m[a] + 1) * kBlock - entry[a]) / delta[a];
-            if (delta[a] < 0 && m[a] > 0) return (m[a] * kBlock - entry[a]) / delta[a];
+            if (delta[a] > 0 && m[a] + 1 < blocks_[a]) return ((m[a] + 1) * kBlock - entry[a]) * inverse[a];
+            if (delta[a] < 0 && m[a] > 0) return (m[a] * kBlock - entry[a]) * inverse[a];
             return inf;
         };
         for (int a = 0; a < 3; ++a) {
@@ -216,17 +228,20 @@ private:
         }
         const T* p = data_ + base;
         std::array<double, 8> v;
-        for (int k = 0; k < 8; ++k)
-            v[k] = static_cast<double>(p[(k & 1) * stride_[0] + (k >> 1 & 1) * stride_[1] + (k >> 2) * stride_[2]]);
-        const auto [vMin, vMax] = std::minmax_element(v.begin(), v.end());
-        // The interpolant is a convex combination of the corners: their range bounds it.
-        if (invisible(*vMin, *vMax)) return;
+        for (int k = 0; k < 8; ++k) v[k] = static_cast<double>(p[corner_[k]]);
+        // The interpolant is a convex combination of the corners: their range bounds it. (A tree of
+        // min and max, without the branches of std::minmax_element, which mispredict on noisy data.)
+        const double vMin = std::min(std::min(std::min(v[0], v[1]), std::min(v[2], v[3])),
+                                     std::min(std::min(v[4], v[5]), std::min(v[6], v[7])));
+        const double vMax = std::max(std::max(std::max(v[0], v[1]), std::max(v[2], v[3])),
+                                     std::max(std::max(v[4], v[5]), std::max(v[6], v[7])));
+        if (invisible(vMin, vMax)) return;
         ++counts.visible;
         const Cubic raw = trilinearAlongSegment(v, w0, w1);
         Cubic s;
         s.c[0] = (raw.c[0] - lo_) * invRange_;
         for (int k = 1; k < 4; ++k) s.c[k] = raw.c[k] * invRange_;
-        const double magnitude = std::max(std::abs(*vMin), std::abs(*vMax));
+        const double magnitude = std::max(std::abs(vMin), std::abs(vMax));
         const double sScale = std::abs(s.c[0]) + std::abs(s.c[1]) + std::abs(s.c[2]) + std::abs(s.c[3]) +
                               (magnitude + std::abs(lo_)) * invRange_;
         ray.addPiece((phiB - phiA) * length, s, sScale);
@@ -242,6 +257,7 @@ private:
     const TransferFunction& tf_;
     int n_[3];
     std::int64_t stride_[3];
+    std::int64_t corner_[8];  // offset of corner (dx, dy, dz) = k & 1, k >> 1 & 1, k >> 2 from a cell's base
     glm::dvec3 scale_, offset_;
     double maxCoord_[3];
     int maxBase_[3];
