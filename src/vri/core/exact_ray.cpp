@@ -45,8 +45,8 @@ constexpr int kMaxDepth = 40;  // bisections of one sub-piece; reached only by p
 constexpr int kMaxIntervals = 4096;
 constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
 // The most equal panels of the Gauss rule with a derivative bound (integrateSubPiece's first try);
-// beyond that the adaptive Gauss-Kronrod quadrature is cheaper.
-constexpr int kMaxGaussPanels = 4;
+// a sub-piece that would need more goes to the adaptive Gauss-Kronrod quadrature.
+constexpr int kMaxGaussPanels = 64;
 
 template <std::size_t N>
 double horner(const std::array<double, N>& p, double x) {
@@ -112,20 +112,38 @@ GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std:
     if (!(depthError <= 0.5)) return {};
     const double transparencyMax = 1.0 + 2.0 * depthError;
     const std::array<double, 3> bound = gaussErrorBounds(colour, tau, colourTimesExtinction, ell, transparencyMax);
-    // k^-2n for k = 1..kMaxGaussPanels (rows) and n = 1..3; tried in the order of their cost n k.
-    static constexpr double kShrink[kMaxGaussPanels][3] = {
+    // k^-2n for k = 1..4 (rows) and n = 1..3; the few panels of a short sub-piece are tried in the order
+    // of their cost n k; a long one (the analytic field's, a thick medium's) gets the fewest panels of
+    // the 2- and 3-point rules that reach the tolerance, up to kMaxGaussPanels.
+    static constexpr double kShrink[4][3] = {
         {1.0, 1.0, 1.0}, {0x1p-2, 0x1p-4, 0x1p-6}, {1.0 / 9, 1.0 / 81, 1.0 / 729}, {0x1p-4, 0x1p-8, 0x1p-12}};
     static constexpr int kTries[][2] = {{1, 1}, {2, 1}, {1, 2}, {3, 1}, {1, 3}, {2, 2}, {1, 4}};  // {n, k}
     int bestN = 0, bestK = 0;
+    double shrink = 1.0;
     for (const auto& [n, k] : kTries)
         if (ell * bound[n - 1] * kShrink[k - 1][n - 1] <= allowed) {
             bestN = n;
             bestK = k;
+            shrink = kShrink[k - 1][n - 1];
             break;
         }
-    if (bestN == 0) return {};
+    if (bestN == 0) {
+        for (int n = 3; n >= 2; --n) {
+            const double ratio = ell * bound[n - 1] / allowed;  // k^2n must reach it
+            if (!(ratio < std::pow(double(kMaxGaussPanels), 2 * n))) continue;
+            int k = std::max(1, static_cast<int>(std::pow(ratio, 1.0 / (2 * n))));
+            auto shrinkOf = [n](int panels) { return std::pow(static_cast<double>(panels), -2 * n); };
+            while (k < kMaxGaussPanels && !(ell * bound[n - 1] * shrinkOf(k) <= allowed)) ++k;
+            if (!(ell * bound[n - 1] * shrinkOf(k) <= allowed)) continue;
+            if (bestN == 0 || n * k < bestN * bestK) {
+                bestN = n;
+                bestK = k;
+                shrink = shrinkOf(k);
+            }
+        }
+    }
     const GaussRule& rule = gaussRule(bestN);
-    const double width = 1.0 / bestK, shrink = kShrink[bestK - 1][bestN - 1];
+    const double width = 1.0 / bestK;
     for (int p = 0; p < bestK; ++p) {
         double f[3] = {};
         for (int i = 0; i < bestN; ++i) {
