@@ -156,7 +156,8 @@ GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std:
             const double value = ell * width * f[c], e = ell * bound[bestN - 1] * shrink / bestK;
             sum[c] += value;
             error[c] += e;
-            rounding[c] += ell * width * transparencyMax * gError[c] + (std::abs(value) + e) * (depthError + 32.0 * kUnit);
+            rounding[c] +=
+                ell * width * transparencyMax * gError[c] + (std::abs(value) + e) * (depthError + 32.0 * kUnit);
         }
     }
     return {bestK, bestN * bestK};
@@ -260,7 +261,10 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
 // Error analysis. The result is exact for the model (trilinear field, piecewise-linear TF, along the
 // ray as computed) up to (1) the quadrature and (2) rounding, bounded with u = 2^-53 as follows, the
 // constants being generous counts of the operations involved:
-//  - quadrature: on an interval across which the optical depth grows by at most kResolvedDepth, the
+//  - quadrature, Gauss rule (gaussPanels): the remainder bound of gauss_error_bound.h holds for the
+//    computed polynomials whatever their size; exp(-D) <= 1 + 2 depthError on [0, 1] covers a D that
+//    the rounding of tau takes below 0.
+//  - quadrature, adaptive: on an interval across which the optical depth grows by at most kResolvedDepth, the
 //    integrand is smooth at the interval's scale and |K - G| estimates the error (an overestimate: the
 //    Kronrod rule is far more accurate than its Gauss rule). Elsewhere, or where that estimate stays
 //    too large, an enclosure that holds for any extinction: with C_low..C_high the range of C on
