@@ -32,8 +32,10 @@ long double gauss(int n, int k, const Cubic4& colour, const Cubic4& tau, bool ti
     const GaussRule& rule = gaussRule(n);
     long double sum = 0.0L;
     for (int p = 0; p < k; ++p)
-        for (int i = 0; i < n; ++i)
-            sum += rule.weight[i] * integrand(colour, tau, timesTau, ell, (p + static_cast<long double>(rule.node[i])) / k);
+        for (int i = 0; i < n; ++i) {
+            const long double x = (p + static_cast<long double>(rule.node[i])) / k;
+            sum += rule.weight[i] * integrand(colour, tau, timesTau, ell, x);
+        }
     return sum / k;
 }
 
