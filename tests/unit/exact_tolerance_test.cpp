@@ -1,11 +1,12 @@
 // The exact method at every tolerance against itself at 1e-12, on paper B's Bonsai scene (when the data
 // set is present) and on the analytic linear field: each image lies within the sum of the two stated
-// bounds, pixel by pixel, and a looser tolerance never evaluates more quadrature nodes.
+// bounds, pixel by pixel, and from 1e-9 to 1e-4 a looser tolerance never evaluates more quadrature nodes.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #include "vri/core/exact_reference.h"
@@ -22,7 +23,9 @@ void checkTolerances(const Scene& scene, const Camera& camera) {
     ExactReferenceOptions options;
     options.tolerance = 1e-12;
     const ExactReference reference = renderExactReference(scene, camera, options);
-    std::uint64_t previousNodes = reference.stats.quadratureNodes;
+    // The node counts fall from 1e-9 on (1e-12 runs the adaptive quadrature only, whose nodes on a
+    // long smooth piece can be fewer than the Gauss panels' at 1e-9).
+    std::uint64_t previousNodes = std::numeric_limits<std::uint64_t>::max(), firstNodes = 0;
     double previousBound = 0.0;
     for (double tolerance : {1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4}) {
         CAPTURE(tolerance);
@@ -37,10 +40,11 @@ void checkTolerances(const Scene& scene, const Camera& camera) {
         CHECK(outside == 0);
         CHECK(r.stats.quadratureNodes <= previousNodes);
         CHECK(largestBound >= previousBound);
+        if (firstNodes == 0) firstNodes = r.stats.quadratureNodes;
         previousNodes = r.stats.quadratureNodes;
         previousBound = largestBound;
     }
-    CHECK(previousNodes < reference.stats.quadratureNodes / 2);
+    CHECK(previousNodes < firstNodes / 2);
 }
 
 }  // namespace

@@ -47,6 +47,9 @@ constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
 // The most equal panels of the Gauss rule with a derivative bound (integrateSubPiece's first try);
 // a sub-piece that would need more goes to the adaptive Gauss-Kronrod quadrature.
 constexpr int kMaxGaussPanels = 64;
+// Below this tolerance (vri-reference's 1e-13) only the adaptive Gauss-Kronrod quadrature runs: the
+// references, and every result compared against them, keep their bits.
+constexpr double kGaussTolerance = 1e-10;
 
 template <std::size_t N>
 double horner(const std::array<double, N>& p, double x) {
@@ -346,8 +349,10 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     const double front = std::exp(-opticalDepth_);
     double sum[3] = {}, error[3] = {}, rounding[3] = {};
     const std::array<double, 4> colours[3] = {colour[0].p, colour[1].p, colour[2].p};
-    const GaussPanels panels = gaussPanels(ell, tau.p, colours, colourTimesExtinction, gError, depth, depthError,
-                                           tolerance_ / front, sum, error, rounding);
+    const GaussPanels panels =
+        tolerance_ < kGaussTolerance ? GaussPanels{}
+                                     : gaussPanels(ell, tau.p, colours, colourTimesExtinction, gError, depth,
+                                                   depthError, tolerance_ / front, sum, error, rounding);
     quadratureIntervals += panels.panels;
     quadratureNodes += panels.nodes;
     struct Interval {

@@ -81,10 +81,7 @@ public:
         const glm::dvec3 exit = entry + delta;
         int next[3], step[3], cell[3];
         double phi[3];
-        // Each axis's crossings from its reciprocal (a multiplication on the walk's critical path, not a
-        // division); emptyFrom() computes a block face's crossing the same way, so a jump lands on one.
-        const glm::dvec3 inverse = 1.0 / delta;
-        auto planeAt = [&](int a, int plane) { return (plane - entry[a]) * inverse[a]; };
+        auto planeAt = [&](int a, int plane) { return (plane - entry[a]) / delta[a]; };
         // The parameter where axis a crosses the integer next[a], or inf when no plane is left before the exit.
         auto crossing = [&](int a) {
             const bool left = step[a] > 0 ? next[a] <= n_[a] - 1 && next[a] < exit[a]
@@ -128,7 +125,7 @@ public:
                 if (!emptyBlock_.empty() && emptyBlock_[blockOfCell(cell)]) {
                     // The piece's block is empty: every piece up to the end of the run of empty blocks
                     // lies in cells whose corners the blocks' emptiness covers, each invisible.
-                    const double until = emptyFrom(entry, delta, inverse, 0.5 * (phiA + phiB));
+                    const double until = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
                     if (until >= 1.0) return 0.0;
                     if (until > phiA) {  // (a rounding error cannot stop the walk)
                         jumpTo(until);
@@ -173,13 +170,13 @@ private:
     // empty (a block DDA, one division per block): where the first non-empty one begins (1 when none is
     // left). Every face is a plane of integer index, crossed at the parameter the cell walk computes for
     // it, so a jump lands exactly on a cell face.
-    double emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, const glm::dvec3& inverse, double phi) const {
+    double emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
         constexpr double inf = std::numeric_limits<double>::infinity();
         int m[3];
         double exitAt[3];
         auto exitOf = [&](int a) {
-            if (delta[a] > 0 && m[a] + 1 < blocks_[a]) return ((m[a] + 1) * kBlock - entry[a]) * inverse[a];
-            if (delta[a] < 0 && m[a] > 0) return (m[a] * kBlock - entry[a]) * inverse[a];
+            if (delta[a] > 0 && m[a] + 1 < blocks_[a]) return ((m[a] + 1) * kBlock - entry[a]) / delta[a];
+            if (delta[a] < 0 && m[a] > 0) return (m[a] * kBlock - entry[a]) / delta[a];
             return inf;
         };
         for (int a = 0; a < 3; ++a) {
