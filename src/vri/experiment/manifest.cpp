@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vri/experiment/caption_numbers.h"
+#include "vri/experiment/step_costs.h"
 #include "vri/io/provenance.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/error.h"
@@ -197,7 +198,8 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
             md << "**Ours against the paper:** "
                << fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path()) << "\n\n";
         md << "Experiment file `" << e.at("source").get<std::string>() << "`, " << commitNote(m.at("source_tree"))
-           << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json).\n";
+           << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json); from nothing its "
+           << m.at("steps").size() << " steps take " << secondsText(manifestSeconds(m)) << ".\n";
     });
     return md.str();
 }
