@@ -199,7 +199,8 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
                << fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path()) << "\n\n";
         md << "Experiment file `" << e.at("source").get<std::string>() << "`, " << commitNote(m.at("source_tree"))
            << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json); from nothing its "
-           << m.at("steps").size() << " steps take " << secondsText(manifestSeconds(m)) << ".\n";
+           << m.at("steps").size() << (m.at("steps").size() == 1 ? " step takes " : " steps take ")
+           << secondsText(manifestSeconds(m)) << ".\n";
     });
     return md.str();
 }
