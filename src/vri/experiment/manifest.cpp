@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vri/experiment/caption_numbers.h"
+#include "vri/experiment/step_costs.h"
 #include "vri/io/provenance.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/error.h"
@@ -219,7 +220,9 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
             md << "**Ours against the paper:** "
                << fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path()) << "\n\n";
         md << "Experiment file `" << e.at("source").get<std::string>() << "`, " << commitNote(m.at("source_tree"))
-           << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json).\n";
+           << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json); from nothing its "
+           << m.at("steps").size() << (m.at("steps").size() == 1 ? " step takes " : " steps take ")
+           << secondsText(manifestSeconds(m)) << ".\n";
     });
     return md.str();
 }
