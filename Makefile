@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 VRI_DATA_DIR ?= $(if $(wildcard ../shared/data/volumes),$(abspath ../shared/data/volumes),$(abspath data))
 export VRI_DATA_DIR
 
-.PHONY: all deps deps-fuzz build test test-no-vulkan test-sanitize fuzz install experiments experiments-quick clean
+.PHONY: all deps deps-fuzz build test test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench estimate clean
 
 all: build
 
@@ -73,12 +73,20 @@ fuzz: deps-fuzz $(FUZZ_BUILD)/build.ninja
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
 	scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
-# Every experiment file (experiments/datasets.yaml is the dataset catalog, not an experiment).
-EXPERIMENTS ?= $(filter-out experiments/datasets.yaml,$(wildcard experiments/*.yaml))
+# Every experiment file (experiments/datasets.yaml is the dataset catalog, not an experiment) but the benchmark,
+# experiments/bench.yaml: ten minutes of timing on 2 cores, run by `make bench` (experiments/README.md, "What an
+# experiment costs"; `make estimate` prices each experiment from its last manifest).
+EXPERIMENTS ?= $(filter-out experiments/datasets.yaml experiments/bench.yaml,$(wildcard experiments/*.yaml))
 
 # Only steps whose inputs changed run again; results/README.md is the gallery of all of them.
 experiments: build
 	$(BUILD)/bin/vri-run --results results --gallery results $(EXPERIMENTS)
+
+bench: build
+	$(BUILD)/bin/vri-run --results results experiments/bench.yaml
+
+estimate: build
+	$(BUILD)/bin/vri-run --estimate --results results $(EXPERIMENTS)
 
 # The same at reduced sizes (each file's quick: block), into $(BUILD)/experiments-quick.
 experiments-quick: build

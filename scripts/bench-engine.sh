@@ -2,7 +2,8 @@
 # Interleaved timings of the CPU engines on paper B's Bonsai scene (experiments/paper-b-cpu.yaml: 800x600,
 # its camera and TF): each configuration renders --warm-up 1 --repeat 1 per round, ROUNDS rounds in turn,
 # so that a load on the machine falls on every configuration alike. Prints each configuration's median
-# seconds and its ratio to scalar double Riemann h = 0.5 of the same build in the same run.
+# seconds, its ratio to scalar double Riemann h = 0.5 of the same build in the same run, and its
+# evaluated samples per second (millions; frame time only, the empty-space grid's setup is not in it).
 #   scripts/bench-engine.sh [BUILD_DIRS] [ROUNDS] [THREADS]      (VRI_DATA_DIR: the volumes)
 # BUILD_DIRS: one build folder, or several separated by commas (before,after), timed in turn;
 # BENCH_CONFIGS: 'name|options;name|options...' instead of the default set (the first is the baseline).
@@ -47,14 +48,15 @@ def row(name, b):
     runs = [json.load(open(f)) for f in files]
     bound = runs[0]["stats"].get("error_bound", {}).get("max")
     left = runs[0]["stats"].get("termination_left_out_max")
-    return statistics.median(j["timing"]["median_wall_seconds"] for j in runs), max(bound) if bound else left
-print(f"{'configuration':28s}" + "".join(f" {b[-16:]:>16s} s  ratio  bound  " for b in builds))
+    seconds = statistics.median(j["timing"]["median_wall_seconds"] for j in runs)
+    return seconds, max(bound) if bound else left, runs[0]["stats"].get("samples_evaluated", 0) / seconds / 1e6
+print(f"{'configuration':28s}" + "".join(f" {b[-16:]:>16s} s  ratio  bound  M/s  " for b in builds))
 base = [row(configs[0], b) for b in range(nb)]
 for name in configs:
     line = f"{name:28s}"
     for b in range(nb):
         r = row(name, b)
-        line += f" {'':>18s}      {'':>6s}" if r is None or base[b] is None else \
-                f" {r[0]:18.3f} {r[0] / base[b][0]:6.3f}  {'' if r[1] is None else f'{r[1]:.2g}':6s}"
+        line += f" {'':>18s}      {'':>6s}     " if r is None or base[b] is None else \
+                f" {r[0]:18.3f} {r[0] / base[b][0]:6.3f}  {'' if r[1] is None else f'{r[1]:.2g}':6s} {r[2]:4.0f}"
     print(line)
 PY

@@ -4,14 +4,19 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <cstdint>
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "common/cli.h"
 #include "common/image_compare_json.h"
+#include "vri/core/heat_map.h"
 #include "vri/core/image_compare.h"
 #include "vri/io/image_io.h"
 #include "vri/io/provenance.h"
@@ -49,6 +54,12 @@ struct LimitCheck {
     double percent = 0;
     bool exceeded() const { return percent > allowedPercent; }
 };
+
+bool isPng(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext == ".png";
+}
 
 LimitCheck checkLimit(const vri::ImageDiff& diff, std::size_t thresholdIndex, double allowedPercent) {
     LimitCheck check{diff.thresholds.at(thresholdIndex), allowedPercent, 0, 0};
@@ -150,10 +161,14 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--json", options.json, "write all statistics as JSON to FILE; '-' prints them on stdout "
                                            "instead of the summary");
-    auto* diffImage =
-        app.add_option("--diff-image", options.diffImage, "write the per-channel |A - B| image (.exr keeps it exact)");
-    app.add_option("--diff-scale", options.diffScale, "multiply the difference image by this (a PNG then shows an "
-                                                      "error of 1/K as full white; PNG keeps R, G, B only)")
+    auto* diffImage = app.add_option(
+        "--diff-image", options.diffImage,
+        "write the difference image: .exr the per-channel |A - B| (exact); .png a heat map of the largest |A - B| over "
+        "the channels (viridis, dark blue 0 to yellow at the top of the scale) with a colour bar below it, ticks at "
+        "quarters of the scale; the JSON gives the scale (heat_map.top)");
+    auto* diffScale = app.add_option(
+        "--diff-scale", options.diffScale, "EXR: multiply the difference image by K; PNG: the heat map's scale "
+                                           "runs to 1/K (default: to the largest difference)")
         ->check(kPositive)
         ->needs(diffImage)
         ->capture_default_str();
@@ -225,7 +240,16 @@ int run(int argc, char** argv) {
         verdict = describe("WARN", warnCheck);
     }
 
-    if (!options.diffImage.empty()) vri::writeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale));
+    std::optional<double> heatTop;  // the top of a PNG heat map's scale
+    if (!options.diffImage.empty() && isPng(options.diffImage)) {
+        double largest = 0;
+        for (const vri::ChannelDiff& channel : diff.channels) largest = std::max(largest, channel.maxAbs);
+        heatTop = diffScale->count() > 0 ? 1.0 / options.diffScale : largest;
+        if (!(*heatTop > 0) || !std::isfinite(*heatTop)) heatTop = 1.0;  // equal images, or an infinite error
+        vri::writePng(options.diffImage, vri::heatMapImage(a, b, *heatTop));
+    } else if (!options.diffImage.empty()) {
+        vri::writeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale));
+    }
     if (!options.histogram.empty())
         vri::writeTextFile(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges)));
     if (!options.json.empty()) {
@@ -237,6 +261,11 @@ int run(int argc, char** argv) {
         json["fail"] = toJson(failCheck);
         json["warn"] = toJson(warnCheck);
         json["command"] = vri::commandLine(argc, argv);
+        if (heatTop)
+            json["heat_map"] = {{"file", options.diffImage},
+                                {"value", "largest |A - B| over the channels"},
+                                {"colormap", "viridis"},
+                                {"top", *heatTop}};
         vri::writeTextFile(options.json, json.dump(2) + "\n");
     }
     if (options.json != "-") printSummary(options, diff, verdict);

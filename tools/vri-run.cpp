@@ -1,5 +1,6 @@
 // vri-run: runs experiment files as graphs of small tool invocations, with caching and provenance.
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "vri/experiment/experiment_run.h"
 #include "vri/experiment/experiment_spec.h"
 #include "vri/experiment/manifest.h"
+#include "vri/experiment/step_costs.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/folder_lock.h"
 #include "vri/util/json_file.h"
@@ -28,7 +30,7 @@ constexpr const char* kTool = "vri-run";
 
 struct Options {
     std::vector<std::string> experiments;
-    bool quick = false, dryRun = false, force = false, record = false, check = false, allowDirty = false;
+    bool quick = false, dryRun = false, estimate = false, force = false, record = false, check = false, allowDirty = false;
     std::string results, committed = "results", gallery;
     int jobs = 1;
 };
@@ -67,6 +69,35 @@ void requireCleanTree(const Options& options, const vri::Experiment& experiment,
                      tree->commit.substr(0, 12) + "; commit them, or pass --allow-dirty");
 }
 
+// --estimate: what each experiment costs from nothing, priced from the last manifest in the results root,
+// as a Markdown table on stdout (experiments/README.md, "What an experiment costs").
+void printEstimate(const std::vector<std::pair<std::string, vri::CostEstimate>>& estimates) {
+    double total = 0;
+    std::size_t unpriced = 0;
+    for (const auto& [name, e] : estimates) {
+        total += e.seconds;
+        unpriced += e.unpriced;
+    }
+    const auto number = [](double value) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f", value);
+        return std::string(text);
+    };
+    std::cout << "| experiment | steps | unpriced | seconds | share | render | diff | other |\n"
+                 "|---|--:|--:|--:|--:|--:|--:|--:|\n";
+    for (const auto& [name, e] : estimates) {
+        const auto kind = [&](const std::string& k) { return e.byKind.contains(k) ? e.byKind.at(k) : 0.0; };
+        std::cout << "| " << name << (e.hasManifest ? "" : " (no manifest)") << " | " << e.priced + e.unpriced << " | "
+                  << e.unpriced << " | " << number(e.seconds) << " | " << number(total > 0 ? 100 * e.seconds / total : 0)
+                  << " % | " << number(kind("render")) << " | " << number(kind("diff")) << " | "
+                  << number(e.seconds - kind("render") - kind("diff")) << " |\n";
+    }
+    std::cout << "\nFrom nothing, one step at a time: " << (unpriced ? "at least " : "") << vri::secondsText(total)
+              << ".\n";
+    if (unpriced)
+        std::cout << unpriced << " steps are new or changed since their experiment's last manifest and have no price.\n";
+}
+
 int run(const Options& options) {
     if ((options.record || options.check) && !options.quick)
         throw vri::Error("--record and --check apply to quick runs (add --quick)");
@@ -75,9 +106,14 @@ int run(const Options& options) {
                                  : options.quick          ? fs::path("build/experiments-quick")
                                                           : fs::path("results");
     bool reproduced = true;
+    std::vector<std::pair<std::string, vri::CostEstimate>> estimates;
     for (const std::string& file : options.experiments) {
         const vri::Experiment experiment = vri::loadExperiment(file, options.quick);
         const vri::Plan plan = vri::planExperiment(experiment, resultsRoot / experiment.name, fs::current_path());
+        if (options.estimate) {
+            estimates.emplace_back(experiment.name, vri::estimateCost(plan, plan.resultsDir / "manifest.json"));
+            continue;
+        }
         if (options.dryRun) {
             for (const vri::Step& step : plan.steps)
                 std::cout << vri::shellCommand(vri::commandWords(plan, step, toolDir)) << '\n';
@@ -106,6 +142,7 @@ int run(const Options& options) {
                   << plan.commandPath(plan.resultsDir) << '\n';
         if (options.record || options.check) reproduced = reproduce(options, experiment, plan) && reproduced;
     }
+    if (options.estimate) printEstimate(estimates);
     if (!options.gallery.empty()) {
         const fs::path readme = fs::path(options.gallery) / "README.md";
         vri::writeTextFile(readme, vri::galleryMarkdown(options.gallery));
@@ -126,6 +163,10 @@ int main(int argc, char** argv) {
     app.add_option("EXPERIMENT", options.experiments, "experiment YAML files (schema: experiments/README.md)");
     app.add_flag("--quick", options.quick, "apply each file's quick: overrides (small sizes, fewer sweep values)");
     app.add_flag("--dry-run", options.dryRun, "print the commands, one per line, runnable from here; run nothing");
+    app.add_flag("--estimate", options.estimate,
+                 "print what each experiment costs from nothing, its steps priced by the wall times of the last "
+                 "manifest in the results root; run nothing")
+        ->excludes("--dry-run");
     app.add_flag("--force", options.force, "run every step even when its cache record vouches for it");
     app.add_option("--results", options.results, "results root (default: results, with --quick build/experiments-quick)");
     app.add_flag("--allow-dirty", options.allowDirty,
@@ -149,6 +190,7 @@ The sweeps of one file may expand to at most 10000 runs (counted before expandin
 Examples:
   vri-run experiments/paper-a-fig4.yaml
   vri-run --dry-run experiments/paper-a-fig4.yaml > fig4.sh     # the commands, to rerun by hand
+  vri-run --estimate experiments/*.yaml                         # what make experiments costs from nothing
   vri-run --quick --check experiments/paper-a-fig4.yaml         # the reproducibility check of make test
   vri-run --gallery results experiments/*.yaml                  # everything, then results/README.md)");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;

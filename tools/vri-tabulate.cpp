@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "common/cli.h"
+#include "vri/report/convergence_table.h"
 #include "vri/report/table.h"
 #include "vri/util/atomic_file.h"
+#include "vri/util/parse.h"
 
 namespace {
 
@@ -16,13 +18,13 @@ constexpr const char* kTool = "vri-tabulate";
 
 struct Options {
     std::string layout;
-    std::string markdown, csv, title;
+    std::string markdown, csv, pointsCsv, title;
     std::optional<std::string> rowHeader;
     std::optional<int> precision;
     std::vector<double> thresholds;
     std::vector<double> tradeoffThresholds;
     std::string baseline, channels;
-    std::vector<std::vector<std::string>> rows, cells, columnValues, columnPrecisions, runs;
+    std::vector<std::vector<std::string>> rows, cells, columnValues, columnPrecisions, runs, points;
     std::string value;
 };
 
@@ -54,14 +56,30 @@ void requireLayoutOptions(const Options& options) {
         {"--threshold", "tradeoff", !options.tradeoffThresholds.empty()},
         {"--baseline", "tradeoff", !options.baseline.empty()},
         {"--channels", "tradeoff", !options.channels.empty()},
+        {"--point", "convergence", !options.points.empty()},
+        {"--points", "convergence", !options.pointsCsv.empty()},
     };
     for (const auto& o : owned)
         if (o.given && options.layout != o.layout)
             throw vri::Error(std::string(o.option) + " belongs to --layout " + o.layout);
 }
 
+// --point SERIES H DIFF [STATS]; H is "-" for a run without a step.
+std::vector<vri::ConvergencePoint> convergencePoints(const Options& options) {
+    if (options.points.empty()) throw vri::Error("--layout convergence needs --point SERIES H DIFF [STATS]");
+    std::vector<vri::ConvergencePoint> points;
+    for (const auto& point : options.points) {
+        if (point.size() != 3 && point.size() != 4) throw vri::Error("--point needs SERIES H DIFF [STATS]");
+        std::optional<double> step;
+        if (point[1] != "-") step = vri::parsePositive(point[1], "--point " + point[0] + ": step");
+        points.push_back({point[0], step, point[2], point.size() == 4 ? point[3] : std::string()});
+    }
+    return points;
+}
+
 vri::Table buildTable(const Options& options) {
     requireLayoutOptions(options);
+    if (options.layout == "convergence") return vri::convergenceTable(convergencePoints(options));
     if (options.layout == "thresholds") {
         if (options.rows.empty()) throw vri::Error("--layout thresholds needs --row LABEL FILE...");
         std::vector<vri::ThresholdRow> rows;
@@ -110,9 +128,11 @@ int run(int argc, char** argv) {
     app.add_option("--layout", options.layout,
                    "thresholds: % of rays above each threshold per channel (paper B Tables I, II, VI); "
                    "matrix: one value per row and column (Tables III-V); "
-                   "tradeoff: per run its seconds per frame against its errors, with the Pareto front flagged")
+                   "tradeoff: per run its seconds per frame against its errors, with the Pareto front flagged; "
+                   "convergence: per series of a step sweep its observed order, the fitted slope of log error "
+                   "against log h")
         ->required()
-        ->check(CLI::IsMember({"thresholds", "matrix", "tradeoff"}));
+        ->check(CLI::IsMember({"thresholds", "matrix", "tradeoff", "convergence"}));
     app.add_option("-o,--output", options.markdown, "Markdown table ('-' for stdout)")->required();
     app.add_option("--csv", options.csv, "also write the table as CSV");
     app.add_option("--title", options.title, "caption printed above the Markdown table");
@@ -137,6 +157,13 @@ int run(int argc, char** argv) {
     app.add_option("--run", options.runs, "tradeoff: LABEL STATS DIFF, one row: the run's vri-render stats "
                                           "(timing.median_wall_seconds) and its vri-diff JSON against the reference")
         ->expected(3);
+    app.add_option("--point", options.points,
+                   "convergence: SERIES H DIFF [STATS], one run of a sweep: its step h in voxels ('-' for none), its "
+                   "vri-diff JSON against the accurate reference and, for an error bound, its stats")
+        ->expected(3, 4);
+    app.add_option("--points", options.pointsCsv,
+                   "convergence: also write the points as CSV (series,h,error,legend; legend holds the fitted "
+                   "slope) for a log-log plot");
     app.add_option("--threshold", options.tradeoffThresholds,
                    "tradeoff: the error thresholds of the % columns, comma separated (default 0.001), each one the "
                    "diffs counted; the first is the % front's")
@@ -165,7 +192,10 @@ int run(int argc, char** argv) {
         "      --run simpson-e0.001 simpson-e0.001.json vs-exact-simpson-e0.001.json -o tradeoff.md --csv tradeoff.csv\n"
         "  vri-tabulate --layout tradeoff --threshold 0.001,0.01 --channels worst --baseline riemann-h0.5 \\\n"
         "      --run riemann-h0.5 riemann-h0.5.json vs-exact-riemann-h0.5.json \\\n"
-        "      --run riemann-float-h0.5 riemann-float-h0.5.json vs-exact-riemann-float-h0.5.json -o bench.md");
+        "      --run riemann-float-h0.5 riemann-float-h0.5.json vs-exact-riemann-float-h0.5.json -o bench.md\n"
+        "  vri-tabulate --layout convergence --point riemann-eye 0.4 vs-exact-h0.4.json \\\n"
+        "      --point riemann-eye 0.2 vs-exact-h0.2.json --point riemann-eye 0.1 vs-exact-h0.1.json \\\n"
+        "      -o orders.md --points orders-points.csv");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     vri::Table table = buildTable(options);
@@ -173,7 +203,10 @@ int run(int argc, char** argv) {
     if (options.rowHeader) table.rowHeader = *options.rowHeader;
     const std::string markdown = vri::toMarkdown(table);
     const std::string csv = options.csv.empty() ? std::string() : vri::toCsv(table);
+    const std::string points =
+        options.pointsCsv.empty() ? std::string() : vri::convergencePointsCsv(convergencePoints(options));
     if (!options.csv.empty()) vri::writeTextFile(options.csv, csv);
+    if (!options.pointsCsv.empty()) vri::writeTextFile(options.pointsCsv, points);
     vri::writeTextFile(options.markdown, markdown);
     return vri::kExitOk;
 }

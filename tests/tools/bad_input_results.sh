@@ -29,6 +29,24 @@ git update-index -q --refresh || true  # so that the checks below find the index
 bad 1 '^vri-run: error: results: tracked files of .* differ from commit [0-9a-f]{12}; commit them, or pass --allow-dirty$' -- \
     "$bin/vri-run" experiments/tiny.yaml
 bad 1 '^vri-run: error: \./results/?: tracked files of ' -- "$bin/vri-run" --results ./results/ experiments/tiny.yaml
+
+# The convergence layout (vri-tabulate) and a key taken from the data (vri-plot).
+printf '{"channels": [{"name": "R", "max_abs": 0.5}]}\n' > diff.json
+printf 'series,h,error,legend\na,0.1,0.01,a: slope 1.00\n' > points.csv
+printf 'series:\n  - {file: points.csv, x: h, y: error, where: {series: b}, label_from: legend}\n' > nokept.yaml
+printf 'series:\n  - {file: points.csv, x: h, y: error, label: x, label_from: legend}\n' > both.yaml
+bad 1 "^vri-tabulate: error: --point a: step: expected a number > 0, got '0'\$" -- \
+    "$bin/vri-tabulate" --layout convergence --point a 0 diff.json -o t.md
+bad 1 "^vri-tabulate: error: diff.json: series 'a' takes either runs with a step or one run without\$" -- \
+    "$bin/vri-tabulate" --layout convergence --point a 0.1 diff.json --point a - diff.json -o t.md
+bad 1 '^vri-tabulate: error: --points belongs to --layout convergence$' -- \
+    "$bin/vri-tabulate" --layout matrix --value x --cell a b diff.json --points p.csv -o t.md
+bad 1 '^vri-tabulate: error: --layout convergence needs --point SERIES H DIFF \[STATS\]$' -- \
+    "$bin/vri-tabulate" --layout convergence -o t.md
+bad 1 '^vri-plot: error: nokept.yaml:2:[0-9]+: series\[0\].label_from: no row of .*points.csv is kept to take the label from$' -- \
+    "$bin/vri-plot" nokept.yaml -o ../f.png
+bad 1 '^vri-plot: error: both.yaml:2:[0-9]+: series\[0\] takes label or label_from, not both$' -- \
+    "$bin/vri-plot" both.yaml -o ../f.png
 bad_done
 
 # Elsewhere, with --allow-dirty, and from a clean tree it runs; the manifest and gallery say which commit.

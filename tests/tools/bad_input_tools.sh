@@ -222,7 +222,7 @@ bad 1 "${E}field image: the resolution must be at least 2, got 1" -- \
 
 E='^vri-tabulate: error: '
 bad 64 "${E}--layout is required" -- "$bin/vri-tabulate" -o table.md
-bad 64 "${E}--layout: pie not in \{thresholds,matrix,tradeoff\}" -- "$bin/vri-tabulate" --layout pie -o table.md
+bad 64 "${E}--layout: pie not in \{thresholds,matrix,tradeoff,convergence\}" -- "$bin/vri-tabulate" --layout pie -o table.md
 bad 1 "${E}--layout thresholds needs --row LABEL FILE" -- "$bin/vri-tabulate" --layout thresholds -o table.md
 bad 1 "${E}missing.json: no such file$" -- "$bin/vri-tabulate" --layout thresholds --row A missing.json -o table.md
 bad 1 "${E}broken.json: not valid JSON" -- "$bin/vri-tabulate" --layout thresholds --row A broken.json -o table.md

@@ -100,11 +100,13 @@ TEST_CASE("experiment tables: wrong keys and values of a tradeoff table are name
     CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], treshold: 0.01}\n")
               .starts_with("exp.yaml:15:53: unknown key 'treshold'"));
     CHECK(d.error("  speed: {layout: pie, comparisons: [vs-fine]}\n") ==
-          "exp.yaml:15:19: layout must be thresholds, matrix or tradeoff, got 'pie'");
+          "exp.yaml:15:19: layout must be thresholds, matrix, tradeoff or convergence, got 'pie'");
     CHECK(d.error("  speed: {layout: tradeoff, runs: [fine]}\n") ==
           "exp.yaml:15:19: layout tradeoff takes comparisons, not runs");
     CHECK(d.error("  speed: {layout: matrix, comparisons: [vs-fine]}\n") ==
           "exp.yaml:15:19: layout matrix takes runs, not comparisons");
+    CHECK(d.error("  orders: {layout: convergence, runs: [fine]}\n") ==
+          "exp.yaml:15:20: layout convergence takes comparisons, not runs");
     CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], threshold: [0.01, x]}\n") ==
           "exp.yaml:15:71: threshold must be a number");
     CHECK(d.error("  speed: {layout: tradeoff, comparisons: [vs-fine], threshold: []}\n") ==

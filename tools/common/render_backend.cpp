@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "common/cli.h"
+#include "vri/core/occupancy_cache.h"
 
 #if VRI_HAVE_VULKAN
 #include "vri/vulkan/vulkan_renderer.h"
@@ -15,14 +16,15 @@ struct RenderBackend::Vulkan {
     VulkanRenderer renderer;
 };
 
-RenderBackend::RenderBackend(const RenderRequest& request) {
+RenderBackend::RenderBackend(const RenderRequest& request) : occupancy_(std::make_unique<OccupancyCache>()) {
     if (request.backend != Backend::Vulkan) return;
     VulkanRenderer::validateOptions(request.options);
     vulkan_ = std::make_unique<Vulkan>(request.device, request.interpolation);
 }
 
 Image RenderBackend::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
-    return vulkan_ ? vulkan_->renderer.render(scene, camera, options, stats) : vri::render(scene, camera, options, stats);
+    return vulkan_ ? vulkan_->renderer.render(scene, camera, options, stats)
+                   : vri::render(scene, camera, options, stats, occupancy_.get());
 }
 
 int listVulkanDevices(std::string_view tool) {
@@ -44,13 +46,13 @@ namespace vri {
 
 struct RenderBackend::Vulkan {};
 
-RenderBackend::RenderBackend(const RenderRequest& request) {
+RenderBackend::RenderBackend(const RenderRequest& request) : occupancy_(std::make_unique<OccupancyCache>()) {
     if (request.backend == Backend::Vulkan)
         throw Error("--backend vulkan: this build has no Vulkan backend (configured with -DVRI_VULKAN=OFF)");
 }
 
 Image RenderBackend::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
-    return vri::render(scene, camera, options, stats);
+    return vri::render(scene, camera, options, stats, occupancy_.get());
 }
 
 int listVulkanDevices(std::string_view tool) {

@@ -22,6 +22,7 @@ public:
 private:
     struct Vulkan;
     std::unique_ptr<Vulkan> vulkan_;  // the device, opened once; the volume is uploaded by the first render
+    std::unique_ptr<OccupancyCache> occupancy_;  // the CPU's empty-space grid, built by the first render
 };
 
 // --list-devices: one line per Vulkan device on stdout, "INDEX<TAB>NAME<TAB>TYPE<TAB>API VERSION";

@@ -24,6 +24,7 @@ nlohmann::json toJson(const RenderStats& s) {
     const double samplesPerSecond = s.seconds > 0 ? s.samplesEvaluated / s.seconds : 0.0;
     nlohmann::json j = {{"wall_seconds", s.seconds},
                         {"setup_seconds", s.setupSeconds},
+                        {"setup_reused", s.setupReused},
                         {"threads", s.threads},
                         {"rays", s.rays},
                         {"rays_hit", s.raysHit},

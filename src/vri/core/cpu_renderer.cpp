@@ -17,6 +17,7 @@
 #include "vri/core/early_termination.h"
 #include "vri/core/fixed_step_ray.h"
 #include "vri/core/grid_sampler.h"
+#include "vri/core/occupancy_cache.h"
 #include "vri/core/occupancy_grid.h"
 #include "vri/core/simd_march.h"
 #include "vri/util/csv.h"
@@ -208,7 +209,7 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
 
 template <class Real>
 void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& opt, Image& image,
-                 Counters& counters, RenderStats& stats) {
+                 Counters& counters, RenderStats& stats, OccupancyCache& cache) {
     std::vector<AdaptiveTry>* log = opt.logPixel ? &stats.rayLog : nullptr;
     if (!scene.volume) {
         renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, GridIndexing{}, camera, opt, image, counters,
@@ -216,15 +217,16 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         return;
     }
     const Volume& volume = *scene.volume;
-    std::optional<OccupancyGrid> occupancy;
+    const OccupancyGrid* occupancy = nullptr;
     if (opt.skipEmptySpace) {
-        const auto start = std::chrono::steady_clock::now();
-        occupancy.emplace(volume, scene.convention, scene.transferFunction);
-        stats.setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const OccupancyCache::Entry grid = cache.get(scene.volume, scene.convention, scene.transferFunction);
+        occupancy = &grid.grid;
+        stats.setupSeconds = grid.buildSeconds;
+        stats.setupReused = grid.reused;
         stats.emptyBrickFraction = occupancy->emptyFraction();
     }
     if (opt.simd && PacketScene::supports(scene, opt)) {
-        const PacketScene packets(scene, camera, occupancy ? &*occupancy : nullptr, opt);
+        const PacketScene packets(scene, camera, occupancy, opt);
         stats.simdTarget = packetTargetName();
         forEachTile(opt, image, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&) {
             marchPackets(packets, x0, y0, x1, y1, image, counts);
@@ -234,8 +236,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     const GridIndexing indexMap(volume.dims, scene.convention);
     dispatchVoxelType(volume.type, [&](auto voxel) {
         const GridSampler<decltype(voxel), Real> sampler(volume, scene.convention);
-        renderWith<Real>(scene, sampler, occupancy ? &*occupancy : nullptr, indexMap, camera, opt, image, counters,
-                         log);
+        renderWith<Real>(scene, sampler, occupancy, indexMap, camera, opt, image, counters, log);
     });
 }
 
@@ -309,17 +310,22 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
         throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
 }
 
-Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
+Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats,
+             OccupancyCache* cache) {
     validateRender(scene, camera, options);
     Image image(camera.width(), camera.height());
     Counters counters;
     RenderStats local;
+    OccupancyCache once;  // without a cache, this frame builds its own grid
+    OccupancyCache& grids = cache ? *cache : once;
     const auto start = std::chrono::steady_clock::now();
     if (options.precision == Precision::Double)
-        renderScene<double>(scene, camera, options, image, counters, local);
+        renderScene<double>(scene, camera, options, image, counters, local, grids);
     else
-        renderScene<float>(scene, camera, options, image, counters, local);
-    local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        renderScene<float>(scene, camera, options, image, counters, local, grids);
+    // The frame's own work: what this call spent building the grid is setup, reported on its own.
+    const double setupSpent = local.setupReused ? 0.0 : local.setupSeconds;
+    local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - setupSpent;
     local.rays = static_cast<std::uint64_t>(image.width) * image.height;
     local.raysHit = counters.raysHit;
     local.samplesPlaced = counters.samplesPlaced;

@@ -21,6 +21,8 @@
 
 namespace vri {
 
+class OccupancyCache;  // occupancy_cache.h
+
 enum class Precision { Double, Float };
 std::string_view precisionName(Precision p);  // "double", "float"
 Precision parsePrecision(std::string_view name, const std::string& what);
@@ -71,8 +73,10 @@ struct RenderStats {
     std::uint64_t raysHit = 0;           // rays whose segment in the box has positive length
     std::uint64_t samplesPlaced = 0;     // samples the placement puts on the rays (up to early termination)
     std::uint64_t samplesEvaluated = 0;  // of those, the ones not skipped as empty space
-    double seconds = 0.0;                // wall time of the render loop (excludes loading and setupSeconds)
-    double setupSeconds = 0.0;           // CPU: building the empty-space grid; Vulkan: upload and pipelines
+    double seconds = 0.0;                // wall time of the frame's own work (excludes loading and setup)
+    // CPU: building the empty-space grid this frame used (occupancy_cache.h); Vulkan: upload and pipelines.
+    double setupSeconds = 0.0;
+    bool setupReused = false;  // CPU: the grid came from an earlier frame, so this frame spent no setupSeconds
     int threads = 0;
     double emptyBrickFraction = 0.0;
     // Early termination: the rays ended before their last sample, and the most the samples they left
@@ -96,6 +100,8 @@ AdaptiveParameters simpsonParameters(const RenderOptions& options);
 
 // Throws vri::Error on a non-positive or non-finite sampling rate, bad adaptive parameters, or a
 // log pixel outside the image.
-Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats = nullptr);
+// With a `cache`, the empty-space grid is kept for the next frame of the same volume and transfer function.
+Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats = nullptr,
+             OccupancyCache* cache = nullptr);
 
 }  // namespace vri

@@ -10,6 +10,7 @@
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "vri/core/simd_march.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 #include "vri/core/fixed_step_ray.h"
@@ -231,6 +232,38 @@ struct Lanes {
     int pixel[kMaxLanes];
 };
 
+// The gathers wait on memory more than on arithmetic: a packet entering the next z slice of the volume
+// reads cache lines that no hardware prefetcher foresees (slices lie dims.x * dims.y voxels apart). So
+// every `prefetchEvery` steps the packet asks for the stencil's lines `prefetchSamples` samples ahead,
+// for its first and last lane (the neighbouring pixels' stencils lie between them). A hint only: it
+// changes no value. Measured on Bonsai (AVX3, CPU time in marchTile): -20 % at h = 0.5, -5 to -15 % at
+// h = 0.25 and 0.1.
+template <class T>
+HWY_INLINE void prefetchAhead(const PacketScene& sc, VF t, const VF (&du)[3], const Lanes& lanes) {
+    const DF df;
+    const DI di;
+    const GridSamplerLayout<float>& g = sc.layout;
+    const VF ahead = hn::Add(t, hn::Mul(hn::Set(df, sc.prefetchSamples), hn::Load(df, lanes.tIncr)));
+    VI base = hn::Zero(di);
+    for (int a = 0; a < 3; ++a) {
+        const VF u = hn::Add(hn::Load(df, lanes.entry[a]), hn::Mul(ahead, du[a]));
+        const VF x = hn::Sub(hn::Mul(u, hn::Set(df, g.scale[a])), hn::Set(df, g.offset[a]));
+        const VF c = hn::Min(hn::Max(x, hn::Zero(df)), hn::Set(df, g.maxCoord[a]));
+        const VI i = hn::Max(hn::Min(hn::ConvertTo(di, c), hn::Set(di, g.maxBase[a])), hn::Zero(di));
+        base = hn::Add(base, hn::Mul(i, hn::Set(di, static_cast<std::int32_t>(g.stride[a]))));
+    }
+    HWY_ALIGN std::int32_t first[kMaxLanes];
+    hn::Store(base, di, first);
+    const T* voxels = reinterpret_cast<const T*>(sc.voxels);
+    for (const std::size_t lane : {std::size_t(0), hn::Lanes(df) - 1}) {
+        const T* p = voxels + first[lane];
+        hwy::Prefetch(p);
+        hwy::Prefetch(p + g.stride[1]);
+        hwy::Prefetch(p + g.stride[2]);
+        hwy::Prefetch(p + g.stride[1] + g.stride[2]);
+    }
+}
+
 template <class T, Integrator Method, EmissionModel Emission>
 void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
     const DF df;
@@ -293,6 +326,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     // as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays cross the same
     // bricks, so a packet's lanes jump over empty space and evaluate together.)
     VI lastBrick = hn::Set(di, -1), lastFlags = hn::Zero(di);  // the empty flags of the bricks last gathered
+    int sincePrefetch = sc.prefetchEvery;  // steps since prefetchAhead() last ran
     for (;;) {
         VI k = hn::Load(di, L.k), count = hn::Load(di, L.count);
         MF active = hn::RebindMask(df, hn::Lt(k, count));
@@ -312,6 +346,10 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             u[a] = hn::Add(hn::Load(df, L.entry[a]), hn::Mul(t, du[a]));
         }
         const Stencil stencil = locate(sc, u, active);
+        if (++sincePrefetch >= sc.prefetchEvery) {
+            prefetchAhead<T>(sc, t, du, L);
+            sincePrefetch = 0;
+        }
         // A sample whose stencil lies in an empty brick has a transfer-function value of exactly 0
         // (occupancy_grid.h) and would add nothing: it is not evaluated, and the lane jumps over the
         // samples that certainly follow it in that brick.
@@ -440,7 +478,9 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Occupan
       voxels(scene.volume->bytes.data()),
       type(scene.volume->type),
       voxelBytes(static_cast<std::int32_t>(scene.volume->byteCount())),
-      layout(*scene.volume, scene.convention) {
+      layout(*scene.volume, scene.convention),
+      prefetchSamples(static_cast<float>(std::ceil(kPrefetchVoxels * options.samplingRate))),
+      prefetchEvery(std::max(1, static_cast<int>(kPrefetchEveryVoxels * options.samplingRate))) {
     if (occupancy) {
         emptyBricks.assign(occupancy->emptyFlags().begin(), occupancy->emptyFlags().end());
         const glm::ivec3 b = occupancy->bricks();

@@ -60,6 +60,11 @@ struct PacketScene {
     VoxelType type;
     std::int32_t voxelBytes;
     GridSamplerLayout<float> layout;
+    // How far ahead of a packet's samples its voxels are prefetched, and how often (simd_march.cpp,
+    // prefetchAhead), in voxels along the ray and then in samples.
+    static constexpr double kPrefetchVoxels = 2.0, kPrefetchEveryVoxels = 0.5;
+    float prefetchSamples;
+    int prefetchEvery;
     // The empty-space bricks (OccupancyGrid::emptyFlags(), 1 when empty) as 32-bit words for gathers;
     // empty when skipping is off.
     std::vector<std::int32_t> emptyBricks;

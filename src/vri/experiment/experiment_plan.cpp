@@ -118,9 +118,31 @@ void Planner::addCommand(const CommandSpec& command) {
     plan_.steps.push_back(std::move(step));
 }
 
+// A convergence table's point: the run's series (its id without the swept step, "-h0.5") and its step,
+// "-" for a run without one (the exact method).
+std::pair<std::string, std::string> convergenceSeries(const RunSpec& run) {
+    const auto step = std::ranges::find(run.parameters, std::string("step"), &std::pair<std::string, std::string>::first);
+    if (step == run.parameters.end()) return {run.id, "-"};
+    std::string series = run.id;
+    if (const std::size_t at = series.find("-h" + step->second); at != std::string::npos)
+        series.erase(at, step->second.size() + 2);
+    return {series, step->second};
+}
+
 void Planner::addTable(const TableSpec& table) {
     Step step{"table-" + table.name, "table", "vri-tabulate", {}, {}, {}, {{"table", table.name}}};
-    if (table.layout != "matrix") {
+    if (table.layout == "convergence") {
+        step.arguments = {"--layout", table.layout, "--title", table.title};
+        for (const std::string& group : table.comparisons)
+            for (const ComparisonSpec& c : experiment_.comparisons)
+                if (c.group == group) {
+                    const auto [series, h] = convergenceSeries(experiment_.run(c.run));
+                    step.arguments.insert(step.arguments.end(), {"--point", series, h});
+                    input(step, "", result(c.id + ".json"));
+                    input(step, "", result(c.run + ".json"));  // an error bound, where the run has one
+                }
+        output(step, "--points", result(table.name + "-points.csv"));
+    } else if (table.layout != "matrix") {
         const bool tradeoff = table.layout == "tradeoff";
         step.arguments = {"--layout", table.layout, "--title", table.title};
         if (tradeoff) {

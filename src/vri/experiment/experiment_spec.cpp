@@ -551,8 +551,10 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
         }
         if (const YAML::Node l = entry["layout"]) {
             table.layout = text(l, "layout");
-            if (table.layout != "thresholds" && table.layout != "matrix" && table.layout != "tradeoff")
-                throw Error(at(l) + ": layout must be thresholds, matrix or tradeoff, got '" + table.layout + "'");
+            if (table.layout != "thresholds" && table.layout != "matrix" && table.layout != "tradeoff" &&
+                table.layout != "convergence")
+                throw Error(at(l) + ": layout must be thresholds, matrix, tradeoff or convergence, got '" +
+                            table.layout + "'");
             const bool matrix = table.layout == "matrix";
             if (table.comparisons.empty() != matrix || table.runs.empty() == matrix)
                 throw Error(at(l) + ": layout " + table.layout +

@@ -71,10 +71,11 @@ struct CommandSpec {
 // A table by vri-tabulate, in one of its layouts: "thresholds", the % of pixels above each threshold,
 // one row per run of some comparisons (paper B Tables I, II); "matrix", one value of each run's stats,
 // one row per run (Table III); "tradeoff", per run of some comparisons its seconds per frame against
-// its errors at one threshold, the Pareto front flagged (paper B's speed against accuracy).
+// its errors at one threshold, the Pareto front flagged (paper B's speed against accuracy);
+// "convergence", per series of compared runs that differ only in their step, the observed order.
 struct TableSpec {
     std::string name, title;
-    std::string layout;                    // "thresholds", "matrix" or "tradeoff"
+    std::string layout;                    // "thresholds", "matrix", "tradeoff" or "convergence"
     std::vector<std::string> comparisons;  // ComparisonSpec::group names (thresholds and tradeoff layouts)
     std::vector<std::string> runs;         // RunSpec ids (matrix layout)
     // Thresholds layout, `rows:`: label -> the compared runs of the row, one for all thresholds or one

@@ -2,6 +2,7 @@
 #include "vri/experiment/manifest.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vri/experiment/caption_numbers.h"
+#include "vri/experiment/step_costs.h"
 #include "vri/io/provenance.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/error.h"
@@ -76,6 +78,26 @@ std::string commitNote(const nlohmann::json& sourceTree) {
     std::string note = "commit `" + commit.substr(0, 12) + "`";
     if (sourceTree.value("modified_files", false)) note += " (tracked files modified)";
     return note;
+}
+
+// The caption of an experiment's heat maps: what they show and each one's scale, read from the
+// comparison's vri-diff JSON beside it (a diff image is named as its JSON: <comparison id>.png).
+void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs::path& dir) {
+    std::string scales;
+    for (const nlohmann::json& item : diffImages) {
+        const fs::path json = dir / (item.at("id").get<std::string>() + ".json");
+        if (!fs::is_regular_file(json)) continue;
+        const nlohmann::json diff = readJsonFile(json);
+        if (!diff.contains("heat_map")) continue;  // results of a vri-diff that drew RGB on black
+        char top[32];
+        std::snprintf(top, sizeof top, "%.3g", readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
+        scales += (scales.empty() ? "" : ", ") + item.at("id").get<std::string>() + " " + top;
+    }
+    if (scales.empty()) return;
+    md << "*Difference images: heat maps of the largest |run - reference| over the channels (alpha included), "
+          "viridis from 0 (dark blue, the colour bar's left end) to the top of the scale (yellow, its right end; "
+          "larger errors saturate), ticks at quarters of it. Top of the scale: "
+       << scales << ".*\n\n";
 }
 
 }  // namespace
@@ -188,6 +210,7 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
         const nlohmann::json& outputs = m.at("outputs");
         gallery(outputs.at("images"));
         gallery(outputs.at("diff_images"));
+        heatMapScales(md, outputs.at("diff_images"), path.parent_path());
         for (const nlohmann::json& table : outputs.at("tables"))
             // An empty file would leave `md` failed, and the rest of the gallery unwritten.
             if (std::ifstream in(path.parent_path() / table.at("file").get<std::string>()); in.peek() != EOF)
@@ -197,7 +220,9 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
             md << "**Ours against the paper:** "
                << fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path()) << "\n\n";
         md << "Experiment file `" << e.at("source").get<std::string>() << "`, " << commitNote(m.at("source_tree"))
-           << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json).\n";
+           << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json); from nothing its "
+           << m.at("steps").size() << (m.at("steps").size() == 1 ? " step takes " : " steps take ")
+           << secondsText(manifestSeconds(m)) << ".\n";
     });
     return md.str();
 }

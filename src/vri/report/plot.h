@@ -105,12 +105,14 @@ struct PlotSpec {
 //         - {file: f.csv, x: u, y: v, z: f, style: heatmap}
 //         - {file: steps.csv, x: t0, y: row, x2: t1, y2: row, style: segments, color: "#000000"}
 //         - {file: tradeoff.csv, x: seconds, y: max, style: points, labels: run, where: {"pareto max": 1}}
+//         - {file: orders.csv, x: h, y: error, style: linespoints, where: {series: a}, label_from: legend}
 //
 // A series' `width` (line width) is for line, dashed, dotted, linespoints and segments; `size` and
 // `point` (circle, square, cross, triangle) for points and linespoints; heatmaps take neither
 // `color` nor `label`. Without `label` a series is keyed by its y column; `label: ""` leaves it
 // out of the key. `where: {column: text, ...}` keeps only the rows whose columns hold those
-// texts (not for histograms and heatmaps), so one CSV can feed several series; gnuplot breaks a
+// texts (not for histograms and heatmaps), so one CSV can feed several series; `label_from: column`
+// keys the series with that column's text in the first row it keeps (a fitted slope, say); gnuplot breaks a
 // line at each row left out. `labels: column` writes each point's text from that column beside it
 // (line, dashed, dotted, points, linespoints), e.g. the run of each point of vri-tabulate's tradeoff
 // table. A panel's `pareto: true` draws the Pareto front of its points, joined in order of x.

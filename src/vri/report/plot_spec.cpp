@@ -36,6 +36,7 @@ constexpr std::pair<const char*, const char*> kStyleOnlyKeys[] = {
     {"point", "points, linespoints"},
     {"color", "line, dashed, dotted, points, linespoints, histogram, segments"},
     {"label", "line, dashed, dotted, points, linespoints, histogram, segments"},
+    {"label_from", "line, dashed, dotted, points, linespoints, segments"},
     {"where", "line, dashed, dotted, points, linespoints, segments"},
     {"labels", "line, dashed, dotted, points, linespoints"},
 };
@@ -155,6 +156,20 @@ void findColumns(PlotSeries& series, const YAML::Node& node, const SpecSource& s
                                       yaml::toString(entry.second, src.name, what + ".where." + name));
         }
     }
+    if (const YAML::Node from = node["label_from"]) {  // the key's text from the data: the first row kept
+        if (node["label"]) throw Error(src.at(from) + ": " + what + " takes label or label_from, not both");
+        const int index = column("label_from");
+        const CsvFile csv = readCsv(series.file);
+        const auto kept = std::ranges::find_if(csv.rows, [&](const std::vector<std::string>& row) {
+            return std::ranges::all_of(series.where, [&](const auto& w) {
+                return w.first <= int(row.size()) && row[w.first - 1] == w.second;
+            });
+        });
+        if (kept == csv.rows.end() || index > int(kept->size()))
+            throw Error(src.at(from) + ": " + what + ".label_from: no row of " + series.file.string() +
+                        " is kept to take the label from");
+        series.label = (*kept)[index - 1];
+    }
     if (series.style == "heatmap") {
         series.zColumn = column("z");
         try {
@@ -168,8 +183,8 @@ void findColumns(PlotSeries& series, const YAML::Node& node, const SpecSource& s
 PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std::string& what) {
     yaml::requireMap(node, src.name, what);
     yaml::requireKeys(node, src.name,
-                      {"file", "x", "y", "z", "x2", "y2", "style", "label", "color", "width", "size", "point", "where",
-                       "labels"});
+                      {"file", "x", "y", "z", "x2", "y2", "style", "label", "label_from", "color", "width", "size", "point",
+                       "where", "labels"});
     PlotSeries series;
     if (node["style"]) series.style = toChoice(node["style"], src, what + ".style", kPlotStyles);
     requireStyleKeys(node, src, what, series.style);
@@ -179,7 +194,8 @@ PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std:
     if (!fs::is_regular_file(series.file))
         throw Error(src.at(node["file"]) + ": data file " + series.file.string() + " does not exist");
     findColumns(series, node, src, what);
-    series.label = node["label"] ? yaml::toString(node["label"], src.name, what + ".label") : series.y;
+    if (node["label"]) series.label = yaml::toString(node["label"], src.name, what + ".label");
+    else if (!node["label_from"]) series.label = series.y;
     if (node["color"]) {
         series.color = yaml::toString(node["color"], src.name, what + ".color");
         if (!isHexColour(series.color)) throw Error(src.at(node["color"]) + ": color must be \"#rrggbb\"");
