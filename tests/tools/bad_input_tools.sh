@@ -113,6 +113,10 @@ bad 1 "${E}--step: expected a number > 0, got '0'$" -- "${render[@]}" --step 0
 bad 64 "${E}--step excludes --rate" -- "${render[@]}" --step 0.5 --rate 2
 bad 1 "${E}--early-termination: expected a transparency in \[0, 1\), .auto. or .auto:BOUND." -- "${render[@]}" --early-termination 2
 bad 1 "${E}zoom must be a finite factor >= 1" -- "${render[@]}" --zoom 0
+bad 1 "${E}zoom centre -1,0 is outside the frame \[0, 8\] x \[0, 8\] pixels" -- "${render[@]}" --zoom 2 --zoom-centre -1,0
+bad 1 "${E}zoom centre 8.5,4 is outside the frame" -- "${render[@]}" --zoom 2 --zoom-centre 8.5,4
+bad 64 "${E}--field-dims excludes --volume" -- "${render[@]}" --field-dims 5,5,5
+bad 64 "${E}--field-as-grid excludes --volume" -- "${render[@]}" --field-as-grid
 bad 1 "${E}--tolerance: expected a number >= 0, got 'nan'$" -- "${render[@]}" --method coupled --tolerance nan
 bad 1 "${E}--h-min: expected a number > 0, got '-1'$" -- "${render[@]}" --method coupled --h-min -1
 bad 1 "${E}--h0: expected a number > 0, got '0'$" -- "${render[@]}" --method coupled --h0 0
@@ -206,6 +210,8 @@ bad 1 "${E}--rates: expected positive numbers separated by commas, got '1,0'" --
 bad 1 "${E}--rates: expected positive numbers separated by commas, got '1,,2'" -- \
     "$bin/vri-rays2d" --rates 1,,2 -o rays.csv
 bad 1 "${E}--eye: expected two numbers x,y, got '1'" -- "$bin/vri-rays2d" --eye 1 -o rays.csv
+bad 1 "${E}2D study: the eye 0.5,0 is inside the square \(or on its border\); it must be outside it" -- \
+    "$bin/vri-rays2d" --eye 0.5,0 -o rays.csv
 bad 1 "${E}2D study: the field of view must be in \(0, 180\) degrees" -- "$bin/vri-rays2d" --fov 0 -o rays.csv
 bad 1 "${E}2D study: the square's side must be positive" -- "$bin/vri-rays2d" --side -3 -o rays.csv
 bad 1 "${E}2D study: the grid needs at least 2x2 voxels" -- "$bin/vri-rays2d" --grid 1 -o rays.csv

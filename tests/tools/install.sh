@@ -31,7 +31,7 @@ for tool in "$bin"/vri-*; do
   name=$(basename "$tool")
   "$tool" --version > version.txt 2> version.err || fail "$name --version: exit $?: $(cat version.err)"
   [ "$(head -1 version.txt)" = "$name (vri) $version" ] || fail "$name --version: first line $(head -1 version.txt)"
-  sed -n 2p version.txt | grep -Eq "^git commit ([0-9a-f]{12}|unknown) .*, $(cached CMAKE_BUILD_TYPE) build, " ||
+  sed -n 2p version.txt | grep -Eq "^git commit ([0-9a-f]{12}(\+modified)?|unknown), $(cached CMAKE_BUILD_TYPE) build, " ||
     fail "$name --version: second line $(sed -n 2p version.txt)"
   [ ! -s version.err ] && [ "$(wc -l < version.txt)" -eq 2 ] || fail "$name --version: $(cat version.txt version.err)"
   tools=$((tools + 1))

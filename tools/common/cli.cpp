@@ -43,7 +43,7 @@ std::string versionText(std::string_view tool) {
     constexpr const char* kVulkan = "without";
 #endif
     return std::string(tool) + " (vri) " + build["vri_version"].get<std::string>() + "\ngit commit " +
-           build["git_commit"].get<std::string>() + " (when configured), " + build["build_type"].get<std::string>() +
+           build["git_commit"].get<std::string>() + ", " + build["build_type"].get<std::string>() +
            " build, " + build["compiler"].get<std::string>() + ", " + kVulkan + " the Vulkan backend";
 }
 

@@ -12,14 +12,18 @@ namespace vri {
 
 void SceneOptions::addTo(CLI::App& app) {
     auto* input = app.add_option_group("input", "what to render (one of)");
-    input->add_option("--volume", volumePath_, "volume file: .raw, .nhdr, .dat, .vdb");
+    CLI::Option* volume = input->add_option("--volume", volumePath_, "volume file: .raw, .nhdr, .dat, .vdb");
     input->add_option("--field", field_, "analytic field: linear (paper A's f = (x + 1.5) / 3)");
     input->require_option(1);
     raw_.addTo(app);
     app.add_option("--range", range_, "raw value range lo,hi that maps to s = 0..1 (default: the type's range, "
                                       "or min..max for float)");
-    app.add_option("--field-dims", fieldDims_, "the grid an analytic field stands for, X,Y,Z")->capture_default_str();
-    app.add_flag("--field-as-grid", fieldAsGrid_, "sample the analytic field onto that grid and render the grid");
+    // A volume file brings its own grid: the field's options would be silently ignored with it.
+    app.add_option("--field-dims", fieldDims_, "the grid an analytic field stands for, X,Y,Z")
+        ->capture_default_str()
+        ->excludes(volume);
+    app.add_flag("--field-as-grid", fieldAsGrid_, "sample the analytic field onto that grid and render the grid")
+        ->excludes(volume);
     app.add_option("--convention", convention_, "grid convention: cell (texture style) or node (dim - 1)")
         ->capture_default_str();
     app.add_option("--tf", tfPath_, "transfer function YAML")->required();

@@ -59,6 +59,14 @@ Camera::Camera(const CameraSpec& spec) : spec_(spec) {
     imageBytes(spec.width, spec.height);  // before anything sizes a buffer per pixel (rays, bounds)
     if (!(spec.zoom >= 1.0) || !std::isfinite(spec.zoom))
         throw Error("zoom must be a finite factor >= 1, got " + std::to_string(spec.zoom));
+    // A close-up magnifies a part of the frame: a centre outside it (or not finite) would show what the frame
+    // does not, and a huge one would move the rays' directions beyond what a pixel resolves.
+    if (spec.zoomCentre) {
+        const glm::dvec2 c = *spec.zoomCentre;
+        if (!(c.x >= 0.0 && c.x <= spec.width && c.y >= 0.0 && c.y <= spec.height))
+            throw Error("zoom centre " + exactNumber(c.x) + "," + exactNumber(c.y) + " is outside the frame [0, " +
+                        std::to_string(spec.width) + "] x [0, " + std::to_string(spec.height) + "] pixels");
+    }
     if (!(spec.fovYDegrees > 0.0 && spec.fovYDegrees < 180.0))
         throw Error("field of view must be in (0, 180) degrees, got " + std::to_string(spec.fovYDegrees));
     requireCoordinates(spec.eye, "eye");

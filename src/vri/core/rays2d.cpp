@@ -9,6 +9,7 @@
 #include "vri/core/integrator.h"
 #include "vri/util/checked_size.h"
 #include "vri/util/error.h"
+#include "vri/util/format.h"
 
 namespace vri {
 
@@ -77,6 +78,14 @@ Study2D validated(const Study2D& s) {
     if (s.rays < 1) throw Error("2D study: at least one ray is needed");
     checkedCount("2D study: the fan", {std::uint64_t(s.rays)}, kMaxRays2D, "rays");
     if (!(s.fovDegrees > 0.0 && s.fovDegrees < 180.0)) throw Error("2D study: the field of view must be in (0, 180) degrees");
+    if (!std::isfinite(s.eye.x) || !std::isfinite(s.eye.y) || !std::isfinite(s.rotationRadians))
+        throw Error("2D study: the eye and the rotation must be finite");
+    // Every ray enters the square from outside: the placements measure from the entry point, and an eye inside
+    // (or on the border) has none.
+    const glm::dvec2 eye = s.toLocal(s.eye);
+    if (std::abs(eye.x) <= 0.5 * s.side && std::abs(eye.y) <= 0.5 * s.side)
+        throw Error("2D study: the eye " + exactNumber(s.eye.x) + "," + exactNumber(s.eye.y) +
+                    " is inside the square (or on its border); it must be outside it");
     return s;
 }
 

@@ -16,6 +16,8 @@
 #include <oneapi/tbb/version.h>
 #include <openvdb/version.h>  // macros only: cheap, unlike openvdb/openvdb.h
 
+#include "vri_git_commit.h"  // generated at every build: VRI_GIT_COMMIT
+
 namespace vri {
 
 namespace {

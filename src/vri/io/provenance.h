@@ -12,7 +12,8 @@ namespace vri {
 //  "os", "kernel", "hostname"}; a field that cannot be found reads "unknown" (or 0).
 nlohmann::json machineInfo();
 
-// {"vri_version", "git_commit" (at CMake configure time), "build_type" (CMAKE_BUILD_TYPE), "compiler",
+// {"vri_version", "git_commit" (the commit built from, read at build time, "+modified"
+//  when tracked files differed from it), "build_type" (CMAKE_BUILD_TYPE), "compiler",
 //  "openimageio", "openvdb", "tbb"}.
 nlohmann::json buildInfo();
 
