@@ -10,7 +10,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev doctest-dev libtbb-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-tools glslang-tools glslang-dev
   libglm-dev nlohmann-json3-dev gnuplot-nox libhwy-dev zlib1g-dev
-  python3-openvdb python3-numpy libopenvdb-tools teem-apps libtiff-tools
+  python3-openvdb python3-numpy pybind11-dev python3-dev libopenvdb-tools teem-apps libtiff-tools
   python3-vtk9 python3-openimageio python3-yaml xvfb xauth   # tools/peers: VTK as a peer
 )
 if [ "${1:-}" = fuzz ]; then

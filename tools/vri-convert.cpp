@@ -129,9 +129,9 @@ would unpack to more than 1024 times its file size (and over 256 MiB) is refused
         info = info || json;
         if (output.empty() && !info) throw vri::Error("give an output file, or --info to summarise the input");
 
-        const std::optional<vri::RawLayout> layout = raw.layout(input);
-        if (!grid.empty() && (layout || fs::path(input).extension() != ".vdb"))
-            throw vri::Error("--grid applies to .vdb input only");
+        vri::VolumeReadOptions readOptions = raw.options();
+        if (!grid.empty()) readOptions.grid = grid;
+        vri::requestedRawLayout(input, readOptions);  // its checks before anything is read or written
 
         std::error_code notTheSame;
         if (!output.empty())
@@ -140,7 +140,7 @@ would unpack to more than 1024 times its file size (and over 256 MiB) is refused
                     throw vri::Error(written.string() + ": writing " + output + " would overwrite the input");
 
         const auto start = std::chrono::steady_clock::now();
-        vri::Volume volume = grid.empty() ? raw.read(input) : vri::readVdb(input, grid);
+        vri::Volume volume = vri::readVolume(input, readOptions);
         const auto read = std::chrono::steady_clock::now();
 
         if (info) {

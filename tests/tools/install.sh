@@ -3,8 +3,8 @@
 # scratch prefix (no rebuild), then examples/render_linear_field configured with find_package(vri) against
 # that prefix alone, built, run, and its image checked bit for bit against the installed vri-render's of
 # the same scene; the same program built again through pkg-config's vri.pc; every installed header
-# compiled together from the prefix, none of them naming OpenVDB, OpenImageIO or Vulkan; and --version of
-# every installed tool. Skipped (77) in a sanitizer build, whose libraries need the sanitizers' runtime.
+# compiled together from the prefix, none of them naming OpenVDB, OpenImageIO or Vulkan; --version of
+# every installed tool; and the Python module, where the build has one, imported from the prefix. Skipped (77) in a sanitizer build, whose libraries need the sanitizers' runtime.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 cache="$VRI_BUILD/CMakeCache.txt"
@@ -72,4 +72,19 @@ foreign=$(grep -rlE '#include <(vulkan/|openvdb/|OpenImageIO/)' "$prefix/include
 # shellcheck disable=SC2046
 $launcher "$cxx" -std=c++20 -fsyntax-only $(pkg-config --cflags vri) all_headers.cpp 2> headers.log ||
   { cat headers.log >&2; fail "the installed headers do not compile from the prefix alone"; }
-echo "install: $tools tools, $(wc -l < all_headers.cpp) headers, the example bitwise equal to vri-render"
+
+# The Python module, when the build has one: in the prefix's site-packages, and it renders there the same
+# image as the installed vri-render.
+python_module=none
+if [ -n "$(find "$VRI_BUILD/python" -maxdepth 1 -name 'vri.*.so' 2> /dev/null)" ]; then
+  site=$(find "$prefix/lib" -path '*/site-packages/vri.*.so' -printf '%h\n')
+  [ -n "$site" ] || fail "the Python module is not installed in a site-packages under the prefix"
+  PYTHONPATH="$site" "$(cached VRI_PYTHON_INTERPRETER)" -c '
+import sys, vri
+image, _ = vri.render(vri.LinearField(), vri.load_transfer_function(sys.argv[1]), vri.Camera(size=(64, 48)))
+vri.write_exr("python.exr", image)' "$tf" || fail "the installed Python module failed"
+  "$bin/vri-diff" reference.exr python.exr --fail 0 > diff.txt || fail "the installed module's image differs: $(cat diff.txt)"
+  python_module=${site#"$prefix"/}
+fi
+echo "install: $tools tools, $(wc -l < all_headers.cpp) headers, the example bitwise equal to vri-render," \
+     "Python module: $python_module"

@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "vri/core/volume.h"
-#include "vri/io/volume_io.h"
+#include "vri/io/volume_read_options.h"
 
 namespace vri {
 
@@ -15,10 +15,9 @@ class RawInputOptions {
 public:
     // Adds --dims, --type, --byte-order, --header-bytes and --spacing to `app`.
     void addTo(CLI::App& app);
-    // The raw layout the options ask for (nullopt when none is given and the file's name or header
-    // must tell); throws vri::Error naming the option that is wrong.
-    std::optional<RawLayout> layout(const std::string& input) const;
-    // Reads `input` with that layout and applies --spacing.
+    // The options as given (volume_read_options.h checks and applies them).
+    VolumeReadOptions options() const;
+    // readVolume(input, options()): the raw layout and --spacing checked and applied.
     Volume read(const std::string& input) const;
 
 private:

@@ -11,6 +11,12 @@ std::string_view emissionModelName(EmissionModel m) {
     return m == EmissionModel::Colour ? "color" : "color-times-extinction";
 }
 
+EmissionModel parseEmissionModel(std::string_view name, const std::string& what) {
+    if (name == "color") return EmissionModel::Colour;
+    if (name == "color-times-extinction") return EmissionModel::ColourTimesExtinction;
+    throw Error(what + ": emission '" + std::string(name) + "' is unknown (expected color-times-extinction or color)");
+}
+
 void validateTransferFunctionPoint(const TransferFunctionPoint& p, const TransferFunctionPoint* previous,
                                    const std::string& where) {
     for (double v : {p.s, p.r, p.g, p.b, p.tau})

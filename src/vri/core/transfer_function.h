@@ -14,6 +14,8 @@ enum class EmissionModel {
     Colour,                 // g = C(s): paper A's analytic study, where g(s) = s and tau(s) = s / 2
 };
 std::string_view emissionModelName(EmissionModel m);  // "color-times-extinction", "color"
+// The model of a name emissionModelName() gives; throws vri::Error "<what>: emission '<name>' is unknown (...)".
+EmissionModel parseEmissionModel(std::string_view name, const std::string& what);
 
 struct TransferFunctionPoint {
     double s;        // normalised scalar

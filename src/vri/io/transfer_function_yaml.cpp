@@ -37,11 +37,8 @@ TransferFunction transferFunctionFromYaml(const YAML::Node& root, const std::str
     yaml::requireKeys(root, source, {"emission", "points", "description"});
     EmissionModel emission = EmissionModel::ColourTimesExtinction;
     if (root["emission"]) {
-        const std::string e = yaml::toString(root["emission"], source, "emission");
-        if (e == "color") emission = EmissionModel::Colour;
-        else if (e != "color-times-extinction")
-            throw Error(yaml::where(source, root["emission"]) + ": emission '" + e +
-                        "' is unknown (expected color-times-extinction or color)");
+        emission = parseEmissionModel(yaml::toString(root["emission"], source, "emission"),
+                                      yaml::where(source, root["emission"]));
     }
     const YAML::Node pts = root["points"];
     if (!pts || !pts.IsSequence() || pts.size() == 0)

@@ -1,0 +1,390 @@
+// The Python module `vri` (README, "From Python"): volumes, transfer functions, cameras, the CPU renderer
+// with every method, the exact reference with its per-pixel bound, and vri-diff's image comparison, on
+// NumPy arrays. The options are the tools': a keyword is a row of the render option table
+// (render_option_table.h) or a volume option of volume_read_options.h, its value read as the text a
+// command line would give (python_option_text.h), so it is checked by the same code with the same
+// message; every vri::Error becomes vri.Error (a ValueError) with that one-line message.
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <tbb/global_control.h>
+
+#include "common/exact_reference_json.h"
+#include "common/image_compare_json.h"
+#include "common/render_json.h"
+#include "numpy_image.h"
+#include "python_option_text.h"
+#include "vri/core/analytic_field.h"
+#include "vri/core/camera.h"
+#include "vri/core/cpu_renderer.h"
+#include "vri/core/exact_reference.h"
+#include "vri/core/image_compare.h"
+#include "vri/core/out_of_range_pixels.h"
+#include "vri/core/render_option_table.h"
+#include "vri/io/image_io.h"
+#include "vri/io/transfer_function_yaml.h"
+#include "vri/io/volume_read_options.h"
+#include "vri/util/error.h"
+#include "vri/util/parse.h"
+
+namespace py = pybind11;
+
+namespace vri {
+
+namespace {
+
+// What is rendered: a volume (from a file or an array) or paper A's analytic linear field.
+using Source = std::variant<std::shared_ptr<Volume>, LinearField>;
+
+// The keyword of a table row: its flag without the dashes, '-' read as '_' ("--h-min" -> "h_min").
+std::string keywordOf(const RenderOptionRow& row) {
+    std::string name(row.flag().substr(2));
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+}
+
+// The rows vri.render takes: vri-render's, less the Vulkan backend's (the module renders on the CPU), the
+// timing repeats (one call is one frame: time it from Python) and the ray log (a file of its own).
+bool takenByRender(const RenderOptionRow& row) {
+    static constexpr std::string_view kLeftOut[] = {"--backend", "--device",  "--interpolation",
+                                                    "--repeat",  "--warm-up", "--log-ray"};
+    return row.takenBy(RenderTool::Render) && std::ranges::find(kLeftOut, row.flag()) == std::end(kLeftOut);
+}
+
+bool takenByReference(const RenderOptionRow& row) { return row.flag() == "--tolerance"; }
+
+// A request from the keywords that are table rows, applied in table order as the tools apply theirs, and
+// checked against each other (finishRenderRequest). `others` are the caller's own keywords; any other
+// keyword is an error naming the ones there are.
+RenderRequest requestFrom(RenderTool tool, bool (*takes)(const RenderOptionRow&), const py::kwargs& kwargs,
+                          const std::vector<std::string>& others, const std::string& function) {
+    RenderRequest request(tool);
+    std::vector<std::string> known = others;
+    for (const RenderOptionRow& row : renderOptionTable()) {
+        if (!takes(row)) continue;
+        const std::string keyword = keywordOf(row);
+        known.push_back(keyword);
+        if (!kwargs.contains(keyword)) continue;
+        row.apply(optionText(kwargs[keyword.c_str()], keyword), keyword, request);
+        request.given.push_back(row.flag());
+    }
+    for (const auto& [key, value] : kwargs) {
+        const std::string name = py::str(key);
+        if (std::ranges::find(known, name) != known.end()) continue;
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        throw Error(function + ": unknown keyword '" + name + "' (expected " + list + ")");
+    }
+    finishRenderRequest(request);
+    return request;
+}
+
+// vri-render's --threads: worker threads for this call, all cores unless given.
+std::optional<int> threadCount(const py::kwargs& kwargs) {
+    if (!kwargs.contains("threads") || kwargs["threads"].is_none()) return std::nullopt;
+    return parseCount(optionText(kwargs["threads"], "threads"), "threads", 1);
+}
+
+bool flagKeyword(const py::kwargs& kwargs, const char* name) {
+    return kwargs.contains(name) && kwargs[name].cast<bool>();
+}
+
+py::object toPython(const nlohmann::json& record) {
+    return py::module_::import("json").attr("loads")(record.dump());
+}
+
+// A camera as the tools' --size, --eye, --target, --up, --fov, --zoom and --zoom-centre give it; the eye
+// and the target the tools' framing puts them at (framingCamera) unless given.
+struct CameraOptions {
+    glm::ivec2 size{800, 600};
+    std::optional<glm::dvec3> eye, target;
+    glm::dvec3 up{0.0, 1.0, 0.0};
+    double fov = 30.0, zoom = 1.0;
+    std::optional<glm::dvec2> zoomCentre;
+
+    CameraSpec spec(const Box& box) const {
+        CameraSpec spec = framingCamera(box, size.x, size.y, fov);
+        if (target) spec.target = *target;
+        if (eye) spec.eye = *eye;
+        spec.up = up;
+        spec.zoom = zoom;
+        spec.zoomCentre = zoomCentre;
+        return spec;
+    }
+};
+
+CameraOptions makeCamera(const py::object& size, const py::object& eye, const py::object& target,
+                         const py::object& up, const py::object& fov, const py::object& zoom,
+                         const py::object& zoomCentre) {
+    CameraOptions c;
+    if (!size.is_none()) {
+        std::string text = optionText(size, "size");  // (800, 600) reads as "800,600", the tools' 800x600
+        if (!py::isinstance<py::str>(size)) std::replace(text.begin(), text.end(), ',', 'x');
+        c.size = parseSize(text, "size");
+    }
+    if (!eye.is_none()) c.eye = parseVec3(optionText(eye, "eye"), "eye");
+    if (!target.is_none()) c.target = parseVec3(optionText(target, "target"), "target");
+    if (!up.is_none()) c.up = parseVec3(optionText(up, "up"), "up");
+    if (!fov.is_none()) c.fov = parsePositive(optionText(fov, "fov"), "fov");
+    if (!zoom.is_none()) c.zoom = parsePositive(optionText(zoom, "zoom"), "zoom");
+    if (!zoomCentre.is_none()) c.zoomCentre = parseVec2(optionText(zoomCentre, "zoom_centre"), "zoom_centre");
+    Camera(c.spec(Box{glm::dvec3(0.0), glm::dvec3(1.0)}));  // the camera's own checks, now rather than at render
+    return c;
+}
+
+Scene makeScene(const Source& source, const TransferFunction& tf, const std::string& convention) {
+    const GridConvention conv = parseGridConvention(convention, "convention");
+    if (const auto* volume = std::get_if<std::shared_ptr<Volume>>(&source)) return Scene{*volume, std::nullopt, conv, tf};
+    return Scene{nullptr, std::get<LinearField>(source), conv, tf};
+}
+
+py::tuple renderImage(const Source& source, const TransferFunction& tf, const CameraOptions& cameraOptions,
+                      const std::string& convention, const py::kwargs& kwargs) {
+    RenderRequest request =
+        requestFrom(RenderTool::Render, takenByRender, kwargs, {"threads", "allow_nonfinite"}, "render");
+    const std::optional<int> threads = threadCount(kwargs);
+    const bool allowNonFinite = flagKeyword(kwargs, "allow_nonfinite");
+    const Scene scene = makeScene(source, tf, convention);
+    const Camera camera(cameraOptions.spec(scene.box()));
+
+    Image image;
+    nlohmann::json stats;
+    {
+        py::gil_scoped_release release;  // other Python threads run while this one renders
+        std::optional<tbb::global_control> limit;
+        if (threads) limit.emplace(tbb::global_control::max_allowed_parallelism, *threads);
+        NonFinitePixels nonfinite;
+        if (request.exact) {
+            const ExactReference ref = renderExactReference(scene, camera, request.exactOptions());
+            image = ref.image();
+            nonfinite = findNonFinitePixels(image);
+            stats = toJson(ref.stats);
+            stats["nonfinite_pixels"] = nonfinite.count;
+        } else {
+            RenderStats renderStats;
+            image = render(scene, camera, request.options, &renderStats);
+            nonfinite = renderStats.nonfinite;
+            stats = toJson(renderStats);
+        }
+        if (nonfinite.count > 0 && !allowNonFinite)
+            throw Error("the image: " + nonfinite.describe() +
+                        ": the integration overflowed (a smaller extinction or step, or allow_nonfinite=True)");
+        stats["out_of_range_pixels"] = toJson(findOutOfRangePixels(image));  // what the method returned
+        if (request.clamp) clampToUnitRange(image);
+    }
+    stats["options"] = toJson(request);
+    return py::make_tuple(toNumpy(image), toPython(stats));
+}
+
+py::tuple exactReference(const Source& source, const TransferFunction& tf, const CameraOptions& cameraOptions,
+                         const std::string& convention, const py::kwargs& kwargs) {
+    const RenderRequest request = requestFrom(RenderTool::Reference, takenByReference, kwargs, {"threads"}, "reference");
+    const std::optional<int> threads = threadCount(kwargs);
+    const Scene scene = makeScene(source, tf, convention);
+    const Camera camera(cameraOptions.spec(scene.box()));
+    std::optional<ExactReference> ref;
+    {
+        py::gil_scoped_release release;
+        std::optional<tbb::global_control> limit;
+        if (threads) limit.emplace(tbb::global_control::max_allowed_parallelism, *threads);
+        ref = renderExactReference(scene, camera, request.exactOptions());
+    }
+    nlohmann::json stats = toJson(ref->stats);
+    stats["options"] = toJson(request);
+    return py::make_tuple(toNumpy(ref->values, ref->width, ref->height, 4),
+                          toNumpy(ref->bounds, ref->width, ref->height, 4), toPython(stats));
+}
+
+std::shared_ptr<Volume> loadVolume(const std::string& path, const py::object& dims, const py::object& type,
+                                   const py::object& byteOrder, const py::object& headerBytes,
+                                   const py::object& spacing, const py::object& grid, const py::object& range) {
+    VolumeReadOptions options;
+    if (!dims.is_none()) options.dims = optionText(dims, "dims");
+    if (!type.is_none()) options.type = optionText(type, "type");
+    if (!byteOrder.is_none()) options.byteOrder = optionText(byteOrder, "byte_order");
+    if (!headerBytes.is_none()) options.headerBytes = parseCount(optionText(headerBytes, "header_bytes"), "header_bytes", 0);
+    if (!spacing.is_none()) options.spacing = optionText(spacing, "spacing");
+    if (!grid.is_none()) options.grid = optionText(grid, "grid");
+    std::optional<ValueRange> valueRange;  // checked before the file is read
+    if (!range.is_none()) {
+        const glm::dvec2 r = parseRange(optionText(range, "range"), "range");
+        valueRange = ValueRange{r.x, r.y};
+    }
+    auto volume = std::make_shared<Volume>(readVolume(path, options));
+    if (valueRange) volume->range = valueRange;
+    return volume;
+}
+
+// A volume of an array indexed [z, y, x] (x fastest, as vri stores voxels), uint8, uint16 or float32.
+std::shared_ptr<Volume> volumeFromArray(const py::array& array, const py::object& spacing, const py::object& origin,
+                                        const py::object& range) {
+    const py::dtype dtype = array.dtype();
+    VoxelType type;
+    if (dtype.is(py::dtype::of<std::uint8_t>())) type = VoxelType::UInt8;
+    else if (dtype.is(py::dtype::of<std::uint16_t>())) type = VoxelType::UInt16;
+    else if (dtype.is(py::dtype::of<float>())) type = VoxelType::Float32;
+    else throw Error("array: expected uint8, uint16 or float32 voxels, got " + py::str(py::handle(dtype)).cast<std::string>());
+    if (array.ndim() != 3) throw Error("array: expected 3 dimensions [z, y, x], got " + std::to_string(array.ndim()));
+    glm::ivec3 dims;
+    for (int axis = 0; axis < 3; ++axis) {
+        const py::ssize_t n = array.shape(2 - axis);
+        if (n > std::numeric_limits<int>::max()) throw Error("array: " + std::to_string(n) + " voxels along an axis");
+        dims[axis] = int(n);
+    }
+    auto volume = std::make_shared<Volume>(dims, type);  // checks the size against the limit
+    const auto contiguous = py::array::ensure(array, py::array::c_style);
+    std::memcpy(volume->bytes.data(), contiguous.data(), volume->byteCount());
+    if (!spacing.is_none()) volume->spacing = parseVec3(optionText(spacing, "spacing"), "spacing");
+    if (!origin.is_none()) volume->origin = parseVec3(optionText(origin, "origin"), "origin");
+    if (!range.is_none()) {
+        const glm::dvec2 r = parseRange(optionText(range, "range"), "range");
+        volume->range = ValueRange{r.x, r.y};
+    }
+    if (!(volume->spacing.x > 0 && volume->spacing.y > 0 && volume->spacing.z > 0))
+        throw Error("spacing: expected positive numbers");
+    requireUsableValues(*volume, "array");
+    return volume;
+}
+
+py::array voxelArray(const Volume& volume) {
+    const std::vector<py::ssize_t> shape{volume.dims.z, volume.dims.y, volume.dims.x};
+    py::array array;
+    switch (volume.type) {
+    case VoxelType::UInt8: array = py::array_t<std::uint8_t>(shape); break;
+    case VoxelType::UInt16: array = py::array_t<std::uint16_t>(shape); break;
+    case VoxelType::Float32: array = py::array_t<float>(shape); break;
+    }
+    std::memcpy(array.mutable_data(), volume.bytes.data(), volume.byteCount());
+    return array;
+}
+
+TransferFunction transferFunctionFromArray(const py::object& points, const std::string& emission) {
+    const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
+    if (!array || array.ndim() != 2 || array.shape(1) != 5 || array.shape(0) < 1)
+        throw Error("points: expected an array of rows s, r, g, b, tau (shape (N, 5), N >= 1)");
+    std::vector<TransferFunctionPoint> list;
+    for (py::ssize_t i = 0; i < array.shape(0); ++i)
+        list.push_back({array.at(i, 0), array.at(i, 1), array.at(i, 2), array.at(i, 3), array.at(i, 4)});
+    return TransferFunction(std::move(list), parseEmissionModel(emission, "emission"), "points");
+}
+
+py::array_t<double> pointArray(const TransferFunction& tf) {
+    py::array_t<double> array({py::ssize_t(tf.points().size()), py::ssize_t(5)});
+    auto out = array.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < tf.points().size(); ++i) {
+        const TransferFunctionPoint& p = tf.points()[i];
+        const double row[5] = {p.s, p.r, p.g, p.b, p.tau};
+        for (int c = 0; c < 5; ++c) out(py::ssize_t(i), c) = row[c];
+    }
+    return array;
+}
+
+py::tuple vec3(const glm::dvec3& v) { return py::make_tuple(v.x, v.y, v.z); }
+
+}  // namespace
+
+}  // namespace vri
+
+PYBIND11_MODULE(vri, m) {
+    using namespace vri;
+    m.doc() = "vri: volume rendering integrals, rendered and measured (README.md, \"From Python\")";
+    m.attr("__version__") = VRI_VERSION;
+    py::register_exception<Error>(m, "Error", PyExc_ValueError);
+
+    py::class_<Volume, std::shared_ptr<Volume>>(m, "Volume", "A regular scalar volume in its native voxel type")
+        .def_static("from_array", &volumeFromArray, py::arg("array"), py::kw_only(), py::arg("spacing") = py::none(),
+                    py::arg("origin") = py::none(), py::arg("range") = py::none(),
+                    "A volume of a [z, y, x] array of uint8, uint16 or float32 (copied)")
+        .def_property_readonly("dims", [](const Volume& v) { return py::make_tuple(v.dims.x, v.dims.y, v.dims.z); })
+        .def_property_readonly("spacing", [](const Volume& v) { return vec3(v.spacing); })
+        .def_property_readonly("origin", [](const Volume& v) { return vec3(v.origin); },
+                               "the box's min corner (README, \"Formats\")")
+        .def_property_readonly("voxel_type", [](const Volume& v) { return std::string(voxelTypeName(v.type)); })
+        .def_property_readonly("range",
+                               [](const Volume& v) -> py::object {
+                                   if (!v.range) return py::none();
+                                   return py::make_tuple(v.range->lo, v.range->hi);
+                               })
+        .def("values", &voxelArray, "the voxels as a [z, y, x] array (a copy)")
+        .def("__repr__", [](const Volume& v) {
+            return "<vri.Volume " + std::to_string(v.dims.x) + "x" + std::to_string(v.dims.y) + "x" +
+                   std::to_string(v.dims.z) + " " + std::string(voxelTypeName(v.type)) + ">";
+        });
+
+    py::class_<LinearField>(m, "LinearField", "Paper A's analytic field f = (x + 1.5) / 3 on the box [-1.5, 1.5]^3")
+        .def(py::init([](const py::object& dims) {
+                 LinearField field;
+                 field.dims = parseDims(optionText(dims, "dims"), "dims");
+                 return field;
+             }),
+             py::arg("dims") = py::make_tuple(5, 5, 5), "the grid it stands for (vri-render's --field-dims)")
+        .def("sample_onto_grid",
+             [](const LinearField& f, const std::string& convention) {
+                 return std::make_shared<Volume>(sampleOntoGrid(f, parseGridConvention(convention, "convention")));
+             },
+             py::arg("convention") = "cell", "the field sampled onto its grid (vri-render's --field-as-grid)");
+
+    m.def("load_volume", &loadVolume, py::arg("path"), py::kw_only(), py::arg("dims") = py::none(),
+          py::arg("type") = py::none(), py::arg("byte_order") = py::none(), py::arg("header_bytes") = py::none(),
+          py::arg("spacing") = py::none(), py::arg("grid") = py::none(), py::arg("range") = py::none(),
+          "Reads any volume file vri reads (README, \"Formats\"), with the tools' --dims, --type, --byte-order, "
+          "--header-bytes, --spacing, --grid (vri-convert) and --range");
+
+    py::class_<TransferFunction>(m, "TransferFunction", "A piecewise-linear transfer function s -> r, g, b, tau")
+        .def(py::init(&transferFunctionFromArray), py::arg("points"), py::arg("emission") = "color-times-extinction",
+             "From rows s, r, g, b, tau (sorted by s) and the emission model (color-times-extinction or color)")
+        .def_property_readonly("points", &pointArray, "rows s, r, g, b, tau")
+        .def_property_readonly("emission", [](const TransferFunction& tf) { return std::string(emissionModelName(tf.emission())); });
+    m.def("load_transfer_function", [](const std::string& path) { return loadTransferFunction(path); },
+          py::arg("path"), "Reads a transfer-function YAML file (vri-render's --tf)");
+    m.def("parse_transfer_function", [](const std::string& text) { return parseTransferFunction(text, "yaml"); },
+          py::arg("text"), "Reads a transfer function from YAML text");
+
+    py::class_<CameraOptions>(m, "Camera", "A pinhole camera, as vri-render's camera options give it")
+        .def(py::init(&makeCamera), py::kw_only(), py::arg("size") = py::none(), py::arg("eye") = py::none(),
+             py::arg("target") = py::none(), py::arg("up") = py::none(), py::arg("fov") = py::none(),
+             py::arg("zoom") = py::none(), py::arg("zoom_centre") = py::none(),
+             "size (width, height) or 'WxH' (default 800x600); eye and target default to the tools' framing of "
+             "the box (in front of it, +z, looking at its centre); up (0, 1, 0); fov 30 degrees, vertical")
+        .def_property_readonly("size", [](const CameraOptions& c) { return py::make_tuple(c.size.x, c.size.y); })
+        .def_property_readonly("fov", [](const CameraOptions& c) { return c.fov; });
+
+    const char* renderHelp =
+        "render(source, tf, camera, convention='cell', **options) -> (image, stats)\n"
+        "source: a Volume or a LinearField; image: float32 array (height, width, 4), premultiplied RGBA, row 0 at "
+        "the top, vri-render's EXR bit for bit; stats: vri-render's stats record as a dict (with 'options').\n"
+        "options: vri-render's render options as keywords (method, step, rate, precision, simd, early_termination, "
+        "tolerance, h0, h_min, h_max, accepted_value, no_skip_empty, clamp), threads, allow_nonfinite. The GIL is "
+        "released while it renders.";
+    m.def("render", &renderImage, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraOptions{},
+          py::arg("convention") = "cell", renderHelp);
+    m.def("reference", &exactReference, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraOptions{},
+          py::arg("convention") = "cell",
+          "reference(source, tf, camera, convention='cell', tolerance=1e-13, threads=None) -> (values, bounds, "
+          "stats)\nvri-reference's exact method: the values and their per-pixel error bounds as float64 arrays "
+          "(height, width, 4), and its stats as a dict. The GIL is released while it renders.");
+
+    m.def("compare",
+          [](const py::object& a, const py::object& b, const std::vector<double>& thresholds) {
+              const Image reference = fromNumpy(a, "a");  // a's shape is checked first
+              return toPython(toJson(compareImages(reference, fromNumpy(b, "b"), thresholds)));
+          },
+          py::arg("a"), py::arg("b"), py::arg("thresholds") = std::vector<double>{0.01, 0.005, 0.001},
+          "vri-diff's metrics of |a - b| per channel (its --json record) as a dict; a is the reference");
+    m.def("read_image", [](const std::string& path) { return toNumpy(readImage(path)); }, py::arg("path"),
+          "An image file (EXR, PNG, ...) as a float32 array (height, width, channels)");
+    m.def("write_exr", [](const std::string& path, const py::object& image) { writeExr(path, fromNumpy(image, "image")); },
+          py::arg("path"), py::arg("image"), "Writes a float RGBA OpenEXR file (atomically)");
+    m.def("write_png", [](const std::string& path, const py::object& image) { writePng(path, fromNumpy(image, "image")); },
+          py::arg("path"), py::arg("image"), "Writes vri-render's 8-bit sRGB preview PNG (atomically)");
+}

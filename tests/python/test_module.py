@@ -1,0 +1,188 @@
+#!/usr/bin/python3
+"""The Python module against the tools (ctest python.module): vri.render's array is vri-render's EXR bit for bit
+for the same options (four methods), vri.reference's values and bounds are vri-reference's, bad input raises
+vri.Error with vri's one-line message (the tools' own line where both read the same thing), and the GIL is
+released while a render runs. Needs VRI_BIN (the tools), VRI_SOURCE and VRI_SCRATCH, and the module on
+PYTHONPATH (tests/CMakeLists.txt sets them)."""
+import json
+import os
+import shutil
+import subprocess
+import threading
+import time
+import unittest
+
+import numpy as np
+
+import vri
+
+BIN = os.environ["VRI_BIN"]
+TF = os.path.join(os.environ["VRI_SOURCE"], "experiments", "tf", "bonsai.yaml")
+SCRATCH = os.environ["VRI_SCRATCH"]
+SIZE = (40, 30)
+EYE = (30.0, 20.0, 60.0)
+
+
+def setUpModule():
+    shutil.rmtree(SCRATCH, ignore_errors=True)
+    os.makedirs(SCRATCH)
+
+
+def scratch(name):
+    return os.path.join(SCRATCH, name)
+
+
+def blob_volume():
+    """A uint8 24x20x16 blob written as a raw file named by the Open SciVis convention (dims and type in it)."""
+    path = scratch("blob_24x20x16_uint8.raw")
+    if not os.path.exists(path):
+        z, y, x = np.meshgrid(np.arange(16), np.arange(20), np.arange(24), indexing="ij")
+        r2 = ((x - 11.5) / 9) ** 2 + ((y - 9.5) / 8) ** 2 + ((z - 7.5) / 6) ** 2
+        (255 * np.clip(1.2 - r2, 0, 1)).astype(np.uint8).tofile(path)
+    return path
+
+
+def run_tool(tool, *args):
+    """The tool's exit code and its stderr."""
+    done = subprocess.run([os.path.join(BIN, tool), *args], capture_output=True, text=True)
+    return done.returncode, done.stderr
+
+
+def bits(a):
+    return np.ascontiguousarray(a, dtype=np.float32).view(np.uint32)
+
+
+class RenderEqualsTools(unittest.TestCase):
+    def setUp(self):
+        self.path = blob_volume()
+        self.volume = vri.load_volume(self.path)
+        self.tf = vri.load_transfer_function(TF)
+        self.camera = vri.Camera(size=SIZE, eye=EYE)
+        self.camera_args = ["--size", "%dx%d" % SIZE, "--eye", ",".join(map(str, EYE))]
+
+    def test_image_is_vri_render_exr_bit_for_bit(self):
+        cases = {
+            "riemann_float": dict(method="riemann", step=0.7, precision="float"),
+            "composite_scalar": dict(method="composite", step=0.5, simd="off", early_termination=0.01),
+            "coupled": dict(method="coupled", tolerance=1e-3, h_max="none"),
+            "exact": dict(method="exact", tolerance=1e-9, clamp=True),
+        }
+        for name, options in cases.items():
+            with self.subTest(name):
+                flags = []
+                for key, value in options.items():
+                    flag = "--" + key.replace("_", "-")
+                    flags += [flag] if value is True else [flag, str(value)]
+                exr = scratch(name + ".exr")
+                code, err = run_tool("vri-render", "--volume", self.path, "--tf", TF, *self.camera_args,
+                                     "-o", exr, "-q", "--threads", "2", *flags)
+                self.assertEqual(code, 0, err)
+                image, stats = vri.render(self.volume, self.tf, self.camera, threads=2, **options)
+                self.assertEqual(image.dtype, np.float32)
+                self.assertEqual(image.shape, (SIZE[1], SIZE[0], 4))
+                self.assertTrue(np.array_equal(bits(image), bits(vri.read_image(exr))), name)
+                self.assertGreater(image[..., 3].max(), 0.1, "the blob is in view")
+                self.assertEqual(stats["rays"], SIZE[0] * SIZE[1])
+                self.assertEqual(stats["options"]["method"], options["method"])
+
+    def test_reference_values_and_bounds_are_vri_reference(self):
+        code, err = run_tool("vri-reference", "--volume", self.path, "--tf", TF, *self.camera_args, "-q",
+                             "--tolerance", "1e-10", "-o", scratch("ref.exr"), "--error-image", scratch("bound.exr"))
+        self.assertEqual(code, 0, err)
+        values, bounds, stats = vri.reference(self.volume, self.tf, self.camera, tolerance=1e-10)
+        self.assertEqual(values.dtype, np.float64)
+        self.assertTrue(np.array_equal(bits(values.astype(np.float32)), bits(vri.read_image(scratch("ref.exr")))))
+        self.assertTrue(np.array_equal(bits(bounds.astype(np.float32)), bits(vri.read_image(scratch("bound.exr")))))
+        self.assertTrue((bounds >= 0).all() and bounds.max() < 1e-6)
+        self.assertEqual(stats["options"]["tolerance"], 1e-10)
+
+    def test_compare_is_vri_diff(self):
+        a, _ = vri.render(self.volume, self.tf, self.camera, method="riemann", step=1.0)
+        b, _ = vri.render(self.volume, self.tf, self.camera, method="coupled", tolerance=1e-4)
+        vri.write_exr(scratch("a.exr"), a)
+        vri.write_exr(scratch("b.exr"), b)
+        code, err = run_tool("vri-diff", scratch("a.exr"), scratch("b.exr"), "--json", scratch("diff.json"))
+        self.assertIn(code, (0, 2, 3), err)  # its verdict against its default --warn and --fail
+        with open(scratch("diff.json")) as f:
+            tool = json.load(f)
+        mine = vri.compare(a, b)
+        for key in ("width", "height", "pixels", "pixels_counted", "thresholds", "channels"):
+            self.assertEqual(mine[key], tool[key], key)
+        self.assertGreater(mine["channels"][0]["max_abs"], 0.0)
+
+
+class BadInput(unittest.TestCase):
+    def assertOneLine(self, expected, call, *args, **kwargs):
+        with self.assertRaises(vri.Error) as raised:
+            call(*args, **kwargs)
+        message = str(raised.exception)
+        self.assertNotIn("\n", message)
+        self.assertEqual(message, expected)
+        self.assertIsInstance(raised.exception, ValueError)
+
+    def setUp(self):
+        self.tf = vri.load_transfer_function(TF)
+        self.field = vri.LinearField()
+
+    def test_the_tools_line_for_the_same_file(self):
+        missing = scratch("missing_8x8x8_uint8.raw")
+        for path, extra in ((missing, []), (blob_volume(), ["--dims", "8,8,8", "--type", "uint8"])):
+            code, err = run_tool("vri-render", "--volume", path, "--tf", TF, "-o", scratch("x.exr"), *extra)
+            self.assertEqual(code, 1)
+            tool_line = err.strip().removeprefix("vri-render: error: ")
+            kwargs = dict(dims=(8, 8, 8), type="uint8") if extra else {}
+            self.assertOneLine(tool_line, vri.load_volume, path, **kwargs)
+        self.assertFalse(os.path.exists(scratch("x.exr")))
+
+    def test_option_values(self):
+        self.assertOneLine("step: expected a number > 0, got '-1'", vri.render, self.field, self.tf, step=-1)
+        self.assertOneLine("method: unknown method 'simpsons' (expected riemann, composite, simpson, coupled or "
+                           "decoupled)", vri.render, self.field, self.tf, method="simpsons")
+        self.assertOneLine("--step, --rate: --method exact has no step", vri.render, self.field, self.tf,
+                           method="exact", step=0.5)
+        self.assertOneLine("threads: expected a whole number >= 1, got '0'", vri.render, self.field, self.tf, threads=0)
+        self.assertOneLine("size: expected a positive image size WIDTHxHEIGHT, got '0x10'", vri.Camera, size=(0, 10))
+        self.assertOneLine("convention: unknown grid convention 'corner' (expected cell or node)", vri.render,
+                           self.field, self.tf, convention="corner")
+
+    def test_unknown_keyword_names_the_known_ones(self):
+        with self.assertRaises(vri.Error) as raised:
+            vri.render(self.field, self.tf, stepsize=0.5)
+        self.assertTrue(str(raised.exception).startswith("render: unknown keyword 'stepsize' (expected threads, "))
+        with self.assertRaises(vri.Error):
+            vri.reference(self.field, self.tf, step=0.5)  # the exact method has no step
+
+    def test_arrays(self):
+        self.assertOneLine("points: point 2 has s = 0.2 below the previous point's s = 0.5 (points must be sorted by s)",
+                           vri.TransferFunction, [[0, 0, 0, 0, 0], [0.5, 1, 1, 1, 1], [0.2, 1, 1, 1, 1]])
+        self.assertOneLine("array: expected uint8, uint16 or float32 voxels, got int64", vri.Volume.from_array,
+                           np.zeros((2, 2, 2), dtype=np.int64))
+        self.assertOneLine("a: expected an image array of shape (height, width, channels)", vri.compare,
+                           np.zeros((4, 4)), np.zeros((4, 4)))
+
+
+class Gil(unittest.TestCase):
+    def test_other_threads_run_while_it_renders(self):
+        volume = vri.load_volume(blob_volume())
+        tf = vri.load_transfer_function(TF)
+        camera = vri.Camera(size=(160, 120), eye=EYE)
+        done = {}
+
+        def work():
+            start = time.perf_counter()
+            done["image"], _ = vri.render(volume, tf, camera, method="riemann", step=0.02, threads=1)
+            done["seconds"] = time.perf_counter() - start
+
+        thread = threading.Thread(target=work)
+        thread.start()
+        counted = 0
+        while thread.is_alive():
+            counted += 1
+        thread.join()
+        # Holding the GIL, the render would leave this loop a few switch intervals at most (5 ms each).
+        self.assertGreater(done["seconds"], 0.1, "the render is long enough to tell")
+        self.assertGreater(counted, 10000, f"{counted} loop turns in {done['seconds']:.2f} s")
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
