@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The committed gallery is what `vri-run --gallery` makes of the committed manifests and tables, so
 # every number a caption takes from a table ({{table:NAME:ROW:COLUMN}}) is in that table; a caption
-# that cites a cell its table lacks stops the gallery with one line.
+# that cites a cell its table lacks stops the gallery with one line. The tables, CSVs and JSON files (which
+# {{json:NAME:PATH}} citations and the heat-map scales read) are copied beside the manifests.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 bin=$VRI_BIN
 mkdir results
@@ -9,7 +10,7 @@ for manifest in "$VRI_SOURCE"/results/*/manifest.json; do
   folder=$(dirname "$manifest") name=$(basename "$(dirname "$manifest")")
   mkdir "results/$name"
   cp "$manifest" "results/$name/"
-  find "$folder" -maxdepth 1 \( -name '*.csv' -o -name '*.md' \) -exec cp {} "results/$name/" \;
+  find "$folder" -maxdepth 1 \( -name '*.csv' -o -name '*.md' -o -name '*.json' \) -exec cp {} "results/$name/" \;
 done
 "$bin/vri-run" --gallery results 2> /dev/null
 cmp results/README.md "$VRI_SOURCE/results/README.md" ||
