@@ -379,7 +379,7 @@ PYBIND11_MODULE(vri, m) {
               const Image reference = fromNumpy(a, "a");  // a's shape is checked first
               return toPython(toJson(compareImages(reference, fromNumpy(b, "b"), thresholds)));
           },
-          py::arg("a"), py::arg("b"), py::arg("thresholds") = std::vector<double>{0.01, 0.005, 0.001},
+          py::arg("a"), py::arg("b"), py::arg("thresholds") = vri::kDefaultThresholds,
           "vri-diff's metrics of |a - b| per channel (its --json record) as a dict; a is the reference");
     m.def("read_image", [](const std::string& path) { return toNumpy(readImage(path)); }, py::arg("path"),
           "An image file (EXR, PNG, ...) as a float32 array (height, width, channels)");

@@ -36,7 +36,7 @@ constexpr int kExitDifferentShape = 4;
 
 struct Options {
     std::string a, b;
-    std::vector<double> thresholds{0.01, 0.005, 0.001};
+    std::vector<double> thresholds = vri::kDefaultThresholds;
     std::string json, diffImage, histogram;
     double diffScale = 1.0;
     std::vector<double> histogramRange{1e-6, 1.0};

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "experiment_file_test.h"
 #include "temp_dir.h"
 #include "vri/experiment/experiment_plan.h"
 #include "vri/experiment/experiment_spec.h"
@@ -27,20 +28,11 @@ struct AdaptiveDir {
         return vri::parseExperiment(kScene + rest, "exp.yaml", dir.path, false);
     }
     std::string error(const std::string& rest) const {
-        try {
-            parse(rest);
-        } catch (const vri::Error& e) {
-            return e.what();
-        }
-        return "no error";
+        return vri::test::errorOf([&] { parse(rest); });
     }
 };
 
-bool has(const std::vector<std::string>& words, const std::string& a, const std::string& b) {
-    for (std::size_t i = 0; i + 1 < words.size(); ++i)
-        if (words[i] == a && words[i + 1] == b) return true;
-    return false;
-}
+using vri::test::hasOption;
 
 const std::string kRuns = R"(references:
   exact: {method: exact}
@@ -59,14 +51,14 @@ TEST_CASE("experiment files: adaptive parameters reach vri-render and swept ones
     const vri::Plan plan = vri::planExperiment(e, d.dir / "results/b", d.dir.path);
     const vri::Step& coupled = plan.step("coupled-eps0.001");
     CHECK(coupled.tool == "vri-render");
-    CHECK(has(coupled.arguments, "--tolerance", "0.001"));
-    CHECK(has(coupled.arguments, "--h-min", "0.4"));
-    CHECK(has(coupled.arguments, "--h-max", "none"));
-    CHECK(has(coupled.arguments, "--log-ray", "3,4"));
+    CHECK(hasOption(coupled.arguments, "--tolerance", "0.001"));
+    CHECK(hasOption(coupled.arguments, "--h-min", "0.4"));
+    CHECK(hasOption(coupled.arguments, "--h-max", "none"));
+    CHECK(hasOption(coupled.arguments, "--log-ray", "3,4"));
     CHECK(std::ranges::any_of(coupled.outputs, [](auto& p) { return p.filename() == "coupled-eps0.001-ray.csv"; }));
     const vri::Step& exact = plan.step("exact");
     CHECK(exact.tool == "vri-reference");
-    CHECK(has(exact.arguments, "--method", "exact"));
+    CHECK(hasOption(exact.arguments, "--method", "exact"));
 
     // The exact method as a timed method run: vri-reference at a tolerance, after a warm-up frame.
     const vri::Experiment timed = d.parse("references:\n  exact: {method: exact}\nmethods:\n"
@@ -74,9 +66,9 @@ TEST_CASE("experiment files: adaptive parameters reach vri-render and swept ones
     const vri::Plan timedPlan = vri::planExperiment(timed, d.dir / "results/b", d.dir.path);
     const vri::Step& loose = timedPlan.step("timed-eps1e-6");
     CHECK(loose.tool == "vri-reference");
-    CHECK(has(loose.arguments, "--tolerance", "1e-6"));
-    CHECK(has(loose.arguments, "--warm-up", "1"));
-    CHECK(has(loose.arguments, "--repeat", "5"));
+    CHECK(hasOption(loose.arguments, "--tolerance", "1e-6"));
+    CHECK(hasOption(loose.arguments, "--warm-up", "1"));
+    CHECK(hasOption(loose.arguments, "--repeat", "5"));
 }
 
 TEST_CASE("experiment files: bad adaptive parameters and exact with method options are errors with a place") {

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "experiment_file_test.h"
 #include "temp_dir.h"
 #include "vri/experiment/experiment_plan.h"
 #include "vri/experiment/experiment_spec.h"
@@ -31,20 +32,11 @@ struct PeerDir {
         return vri::parseExperiment(kHead + scenes + rest, "exp.yaml", dir.path, false);
     }
     std::string error(const std::string& scenes, const std::string& rest) const {
-        try {
-            parse(scenes, rest);
-        } catch (const vri::Error& e) {
-            return e.what();
-        }
-        return "no error";
+        return vri::test::errorOf([&] { parse(scenes, rest); });
     }
 };
 
-bool has(const std::vector<std::string>& words, const std::string& a, const std::string& b) {
-    for (std::size_t i = 0; i + 1 < words.size(); ++i)
-        if (words[i] == a && words[i + 1] == b) return true;
-    return false;
-}
+using vri::test::hasOption;
 
 }  // namespace
 
@@ -61,15 +53,15 @@ comparisons:
     const vri::Plan plan = vri::planExperiment(e, d.dir / "results/p", d.dir.path);
     const vri::Step& cpu = plan.step("vtk-cpu-h0.5");
     CHECK(cpu.tool == "vri-peer-vtk");
-    CHECK(has(cpu.arguments, "--method", "vtk-fixed-point"));
-    CHECK(has(cpu.arguments, "--step", "0.5"));
-    CHECK(has(cpu.arguments, "--repeat", "3"));
-    CHECK(has(cpu.arguments, "--warm-up", "1"));
-    CHECK(has(cpu.arguments, "--eye", "1,1,-5"));
-    CHECK(has(cpu.arguments, "--size", "8x6"));
+    CHECK(hasOption(cpu.arguments, "--method", "vtk-fixed-point"));
+    CHECK(hasOption(cpu.arguments, "--step", "0.5"));
+    CHECK(hasOption(cpu.arguments, "--repeat", "3"));
+    CHECK(hasOption(cpu.arguments, "--warm-up", "1"));
+    CHECK(hasOption(cpu.arguments, "--eye", "1,1,-5"));
+    CHECK(hasOption(cpu.arguments, "--size", "8x6"));
     CHECK(std::ranges::any_of(cpu.outputs, [](auto& p) { return p.filename() == "vtk-cpu-h0.5.json"; }));
     CHECK(plan.step("vtk-gpu").tool == "vri-peer-vtk");
-    CHECK(has(plan.step("vtk-gpu").arguments, "--method", "vtk-gpu"));
+    CHECK(hasOption(plan.step("vtk-gpu").arguments, "--method", "vtk-gpu"));
     CHECK(plan.step("vs-vtk-cpu-h2").tool == "vri-diff");  // compared like any render
 }
 

@@ -37,6 +37,10 @@ struct ImageDiff {
 // Throws vri::Error naming both shapes when a and b differ in size or channel count.
 void requireSameShape(const Image& a, const Image& b);
 
+// The thresholds a comparison counts errors above when none are given (vri-diff, the Python module): the
+// papers' 0.01, 0.005 and 0.001.
+inline const std::vector<double> kDefaultThresholds{0.01, 0.005, 0.001};
+
 // Deterministic (a fixed summation order in double). Throws as requireSameShape.
 ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double>& thresholds);
 
