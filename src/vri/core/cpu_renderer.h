@@ -16,6 +16,7 @@
 #include "vri/core/integrator.h"
 #include "vri/core/nonfinite_pixels.h"
 #include "vri/core/placement.h"
+#include "vri/core/sparse_volume.h"
 #include "vri/core/transfer_function.h"
 #include "vri/core/volume.h"
 
@@ -40,6 +41,10 @@ struct Scene {
     std::optional<LinearField> field;      // set for analytic scenes
     GridConvention convention = GridConvention::CellCentred;
     TransferFunction transferFunction;
+    // Set instead of `volume` for a volume kept sparse (sparse_volume.h). The CPU renderer's scalar path
+    // renders it, bitwise as the dense volume (the packet engine, the exact method and Vulkan read dense
+    // volumes only: the SIMD option falls back to the scalar path, the others refuse it).
+    std::shared_ptr<const SparseVolume> sparse = nullptr;
 
     Box box() const;
     glm::dvec3 dims() const;  // the grid resolution paper A's placements use

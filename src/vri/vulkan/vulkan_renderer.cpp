@@ -202,6 +202,7 @@ void VulkanRenderer::validateOptions(const RenderOptions& options) {
 }
 
 Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
+    if (scene.sparse) throw Error("the Vulkan backend renders dense volumes only, not a sparse one");
     validateRender(scene, camera, options);
     validateOptions(options);
     Impl& m = *impl_;
