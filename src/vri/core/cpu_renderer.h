@@ -79,9 +79,10 @@ struct RenderStats {
     std::uint64_t samplesPlaced = 0;     // samples the placement puts on the rays (up to early termination)
     std::uint64_t samplesEvaluated = 0;  // of those, the ones not skipped as empty space
     double seconds = 0.0;                // wall time of the frame's own work (excludes loading and setup)
-    // CPU: building the empty-space grid this frame used (occupancy_cache.h); Vulkan: upload and pipelines.
+    // CPU: building the empty-space grid this frame used, in this call or the one that built it
+    // (occupancy_cache.h). Vulkan: what this call spent on setup (grid, upload, pipelines).
     double setupSeconds = 0.0;
-    bool setupReused = false;  // CPU: the grid came from an earlier frame, so this frame spent no setupSeconds
+    bool setupReused = false;  // the grid came from an earlier frame of the same scene
     int threads = 0;
     double emptyBrickFraction = 0.0;
     // Early termination: the rays ended before their last sample, and the most the samples they left
