@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <variant>
 
+#include "vri/core/sparse_volume.h"
+
 namespace vri {
 
 namespace {

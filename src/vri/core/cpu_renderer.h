@@ -16,13 +16,13 @@
 #include "vri/core/integrator.h"
 #include "vri/core/nonfinite_pixels.h"
 #include "vri/core/placement.h"
-#include "vri/core/sparse_volume.h"
 #include "vri/core/transfer_function.h"
 #include "vri/core/volume.h"
 
 namespace vri {
 
 class OccupancyCache;  // occupancy_cache.h
+class SparseVolume;    // sparse_volume.h
 
 enum class Precision { Double, Float };
 std::string_view precisionName(Precision p);  // "double", "float"
