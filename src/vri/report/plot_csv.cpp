@@ -3,10 +3,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vri/report/plot.h"
 #include "vri/util/csv.h"
 #include "vri/util/error.h"
 
 namespace vri::plot {
+
+std::vector<std::vector<std::string>> keptRows(const PlotSeries& series) {
+    std::vector<std::vector<std::string>> rows = readCsv(series.file).rows;
+    std::erase_if(rows, [&](const std::vector<std::string>& row) {
+        return !std::ranges::all_of(series.where, [&](const auto& condition) {
+            const std::size_t column = condition.first - 1;
+            return column < row.size() && row[column] == condition.second;
+        });
+    });
+    return rows;
+}
 
 namespace {
 
