@@ -121,7 +121,7 @@ struct PlotSpec {
 // (line, dashed, dotted, points, linespoints), e.g. the run of each point of vri-tabulate's tradeoff
 // table. A panel's `pareto: true` draws the Pareto front of its points, joined in order of x.
 // A log axis without a range is fitted to the points drawn (plot_axes.h): a margin beyond them, labels at
-// 1, 2 and 5 times the powers of ten when it spans under two decades (every digit under one), and a y axis
+// 1, 2 and 5 times the powers of ten when it spans under three decades (every digit under one), and a y axis
 // draws its values <= 0 on a dotted floor line below the rest, labelled 0.
 // Palettes: viridis (default), gray, diverging (blue, white, red).
 PlotSpec loadPlotSpec(const std::filesystem::path& spec, const std::filesystem::path& dataDir = {});

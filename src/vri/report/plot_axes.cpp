@@ -40,17 +40,17 @@ std::optional<LogAxisFit> fitLogAxis(const PlotAxis& axis, const std::vector<dou
         fit.floor = lo / (margin * margin * margin);
         fit.min = *fit.floor / margin;
     }
-    if (fit.max / fit.min < 100) {
+    if (fit.max / fit.min < 1000) {
         const std::vector<int> steps = fit.max / fit.min < 10 ? std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9}
                                                               : std::vector<int>{1, 2, 5};
         const int first = static_cast<int>(std::floor(std::log10(fit.min)));
-        for (int power = first; power <= first + 2; ++power)
+        for (int power = first; power <= first + 3; ++power)
             for (int step : steps) {
                 // Read from its decimal form, so that the tic is the double gnuplot would read for "2e-3".
                 char text[16];
                 std::snprintf(text, sizeof text, "%de%d", step, power);
                 const double tic = std::strtod(text, nullptr);
-                if (tic >= fit.min && tic <= fit.max && (!fit.floor || tic > *fit.floor * margin)) fit.tics.push_back(tic);
+                if (tic >= lo / margin && tic <= fit.max) fit.tics.push_back(tic);  // none between the floor and the data
             }
     }
     return fit;

@@ -16,7 +16,7 @@ std::vector<std::pair<double, double>> keptPoints(const PlotSeries& series);
 // A log axis the spec leaves open ends a margin beyond the largest and smallest positive value drawn
 // (gnuplot would extend it to whole decades, leaving most of a narrow chart empty). Values <= 0 are
 // drawn on a floor: a line below the smallest positive value, labelled 0, with the axis ending a margin
-// below it. An axis spanning less than two decades is labelled at 1, 2 and 5 times each power of ten,
+// below it. An axis spanning less than three decades is labelled at 1, 2 and 5 times each power of ten,
 // under one decade at every digit (gnuplot would label only the powers, often one or none).
 struct LogAxisFit {
     double min = 0, max = 0;
