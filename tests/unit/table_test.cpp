@@ -198,7 +198,7 @@ TEST_CASE("table: tradeoff layout, seconds against errors with the Pareto fronts
                                "max A | max | rmse | pareto % | pareto max |\n"
                                "|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n"));
     CHECK(markdown.find("| exact | exact | 0.3 | - | ") != std::string::npos);
-    CHECK(markdown.find("whose absolute error exceeds t (t = 0.001; to 2 decimals)") != std::string::npos);
+    CHECK(markdown.find("whose absolute error exceeds t (t = 0.001), to 2 decimals, per channel") != std::string::npos);
     CHECK(markdown.find("pareto % (pareto max): 1 on the Pareto front of seconds against worst > 0.001 (against max)") !=
           std::string::npos);
 

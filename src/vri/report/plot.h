@@ -113,7 +113,8 @@ struct PlotSpec {
 // `point` (circle, square, cross, triangle) for points and linespoints; heatmaps take neither
 // `color` nor `label`. Without `label` a series is keyed by its y column; `label: ""` leaves it
 // out of the key. `where: {column: text, ...}` keeps only the rows whose columns hold those
-// texts (not for histograms and heatmaps), so one CSV can feed several series; `label_from: column`
+// texts, or with a trailing '*' start with the rest (`{run: "leaves-coupled-eps0.01-*"}`; not for histograms
+// and heatmaps), so one CSV can feed several series; `label_from: column`
 // keys the series with that column's text in the first row it keeps (a fitted slope, say); a line joins the
 // rows kept, in file order, whatever rows lie between them. `label_ends: column` adds to the key the first
 // and last kept row's text in that column past the words they share ("riemann double, h0.5 to h0.1"): the

@@ -11,6 +11,10 @@ struct PlotSeries;
 
 namespace vri::plot {
 
+// Whether a cell's text is what a `where` asks for: that text, or with a trailing '*' any text that
+// starts with the rest ("leaves-coupled-eps0.01-*").
+bool whereMatches(const std::string& text, const std::string& wanted);
+
 // The rows of a series' file that its `where` keeps, in file order.
 std::vector<std::vector<std::string>> keptRows(const PlotSeries& series);
 

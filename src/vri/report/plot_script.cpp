@@ -148,8 +148,12 @@ std::string yExpression(const PlotSeries& series) {
     const std::string y = std::to_string(series.yColumn);
     if (series.where.empty()) return y;
     std::string condition;
-    for (const auto& [column, text] : series.where)
-        condition += (condition.empty() ? "" : " && ") + ("strcol(" + std::to_string(column) + ") eq " + quoted(text));
+    for (const auto& [column, text] : series.where) {
+        const std::string cell = "strcol(" + std::to_string(column) + ")";
+        condition += (condition.empty() ? "" : " && ") +
+                     (text.ends_with('*') ? "strstrt(" + cell + ", " + quoted(text.substr(0, text.size() - 1)) + ") == 1"
+                                          : cell + " eq " + quoted(text));
+    }
     return "(" + condition + " ? $" + y + " : NaN)";
 }
 

@@ -306,7 +306,7 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     std::string percents;
     for (double t : options.thresholds) percents += (percents.empty() ? "" : ", ") + formatThreshold(t);
     const std::string rays = "% of rays (all pixels, background included) whose absolute error exceeds t (t = " +
-                             percents + "; " + digitsNote(options.decimals).substr(2) + ")";
+                             percents + ")" + digitsNote(options.decimals);
     if (options.perChannel)
         table.notes.push_back(channels.front() + " > t ... worst > t: " + rays + ", per channel and in the worst "
                               "channel; max " + channels.front() + " ... max: the largest absolute error, per channel "
