@@ -68,4 +68,9 @@ namespace vri {
 
 RenderBackend::~RenderBackend() = default;
 
+ExactReference RenderBackend::renderExact(const Scene& scene, const Camera& camera,
+                                          const ExactReferenceOptions& options) {
+    return renderExactReference(scene, camera, options, occupancy_.get());
+}
+
 }  // namespace vri

@@ -219,8 +219,8 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     const Volume& volume = *scene.volume;
     const OccupancyGrid* occupancy = nullptr;
     if (opt.skipEmptySpace) {
-        const OccupancyCache::Entry grid = cache.get(scene.volume, scene.convention, scene.transferFunction);
-        occupancy = &grid.grid;
+        const auto grid = cache.grid(scene.volume, scene.convention, scene.transferFunction);
+        occupancy = &grid.structure;
         stats.setupSeconds = grid.buildSeconds;
         stats.setupReused = grid.reused;
         stats.emptyBrickFraction = occupancy->emptyFraction();
