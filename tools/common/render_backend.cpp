@@ -68,9 +68,10 @@ namespace vri {
 
 RenderBackend::~RenderBackend() = default;
 
-ExactReference RenderBackend::renderExact(const Scene& scene, const Camera& camera,
-                                          const ExactReferenceOptions& options) {
-    return renderExactReference(scene, camera, options, occupancy_.get());
+const ExactReference& RenderBackend::renderExact(const Scene& scene, const Camera& camera,
+                                                 const ExactReferenceOptions& options) {
+    renderExactReference(scene, camera, options, occupancy_.get(), exact_);
+    return exact_;
 }
 
 }  // namespace vri

@@ -320,6 +320,13 @@ Image ExactReference::boundImage() const { return toImage(bounds, width, height)
 
 ExactReference renderExactReference(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options,
                                     OccupancyCache* cache) {
+    ExactReference out;
+    renderExactReference(scene, camera, options, cache, out);
+    return out;
+}
+
+void renderExactReference(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options,
+                          OccupancyCache* cache, ExactReference& out) {
     if (!scene.volume && !scene.field) throw Error("scene has neither a volume nor an analytic field");
     if (!(options.tolerance > 0.0)) throw Error("reference tolerance must be positive, got " + std::to_string(options.tolerance));
     if (options.tileSize < 1) throw Error("tile size must be at least 1");
@@ -336,7 +343,7 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
         throw Error("transfer function: extinction " + exactNumber(largestTau) + " per unit length over a box " +
                     exactNumber(diagonal) + " long: the optical depth overflows double");
 
-    ExactReference out;
+    out.stats = {};
     out.width = camera.width();
     out.height = camera.height();
     // Values and bounds in double: twice the image's bytes each, checked before they are allocated.
@@ -403,7 +410,6 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
         }
         st.meanBound[c] = sum / static_cast<double>(st.rays);
     }
-    return out;
 }
 
 }  // namespace vri
