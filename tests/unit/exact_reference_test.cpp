@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
 
@@ -13,7 +14,9 @@
 
 #include "vri/core/cubic.h"
 #include "vri/core/exact_ray.h"
+#include "vri/core/exact_empty_space.h"
 #include "vri/core/exact_reference.h"
+#include "vri/core/occupancy_cache.h"
 #include "vri/util/error.h"
 
 using namespace vri;
@@ -266,6 +269,24 @@ TransferFunction scaledBlobTransferFunction(double k) {
     return TransferFunction(points, EmissionModel::ColourTimesExtinction);
 }
 
+struct PiecesWalked {
+    std::uint64_t skipping, all;
+};
+
+// Renders with and without skipping empty space: the same values, bounds and visible pieces (some).
+PiecesWalked checkSkippingChangesNoBit(const Scene& scene, const Camera& camera) {
+    ExactReferenceOptions walkAll;
+    walkAll.skipEmptySpace = false;
+    const ExactReference skipping = renderExactReference(scene, camera);
+    const ExactReference all = renderExactReference(scene, camera, walkAll);
+    CHECK(skipping.values == all.values);
+    CHECK(skipping.bounds == all.bounds);
+    CHECK(skipping.stats.piecesVisible == all.stats.piecesVisible);
+    CHECK(skipping.stats.subPieces == all.stats.subPieces);
+    CHECK(skipping.stats.piecesVisible > 0);
+    return {skipping.stats.pieces, all.stats.pieces};
+}
+
 }  // namespace
 
 TEST_CASE("exact reference: jumping over empty bricks changes no bit and walks fewer pieces") {
@@ -275,18 +296,101 @@ TEST_CASE("exact reference: jumping over empty bricks changes no bit and walks f
         CameraSpec spec = framingCamera(scene.box(), 48, 40, 35.0);
         for (const V& offset : {V(70.0, 45.0, 90.0), V(-3.0, 2.0, 95.0), V(0.5, -80.0, 0.25)}) {
             spec.eye = scene.box().centre() + offset;
-            const Camera camera(spec);
-            ExactReferenceOptions walkAll;
-            walkAll.skipEmptySpace = false;
-            const ExactReference skipping = renderExactReference(scene, camera);
-            const ExactReference all = renderExactReference(scene, camera, walkAll);
-            CHECK(skipping.values == all.values);
-            CHECK(skipping.bounds == all.bounds);
-            CHECK(skipping.stats.piecesVisible == all.stats.piecesVisible);
-            CHECK(skipping.stats.subPieces == all.stats.subPieces);
-            CHECK(skipping.stats.pieces < all.stats.pieces);
+            const PiecesWalked pieces = checkSkippingChangesNoBit(scene, Camera(spec));
+            CHECK(pieces.skipping < pieces.all);
         }
     }
+}
+
+namespace {
+
+// A 150x70x90 volume, empty but for two small noisy blobs far apart: most of its 32^3-cell regions
+// are empty, so the walk jumps whole regions, and some rays pass both blobs.
+Scene sparseScene(GridConvention convention) {
+    const glm::ivec3 dims(150, 70, 90);
+    auto v = std::make_shared<Volume>(dims, VoxelType::UInt8);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> noise(0.0, 0.3);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                double value = 0.0;
+                for (const V& centre : {V(30.0, 35.0, 40.0), V(118.0, 30.0, 55.0)}) {
+                    const double r = glm::length(V(x, y, z) - centre) / 12.0;
+                    if (r < 1.0) value = std::max(value, std::clamp(1.0 - r + noise(rng), 0.0, 1.0));
+                }
+                v->data<std::uint8_t>()[v->index(x, y, z)] = static_cast<std::uint8_t>(value * 255);
+            }
+    return Scene{v, std::nullopt, convention, blobTransferFunction()};
+}
+
+}  // namespace
+
+TEST_CASE("exact reference: the empty space's regions are empty exactly where all their blocks are") {
+    const Scene scene = sparseScene(GridConvention::CellCentred);
+    const ExactEmptySpace empty(*scene.volume, scene.transferFunction);
+    const glm::ivec3 blocks = empty.blocks();
+    CHECK(blocks == glm::ivec3(38, 18, 23));  // cells 0..148, 0..68, 0..88 in blocks of 4
+    int emptyRegions = 0, regions = 0;
+    for (int rz = 0; rz * 8 < blocks.z; ++rz)
+        for (int ry = 0; ry * 8 < blocks.y; ++ry)
+            for (int rx = 0; rx * 8 < blocks.x; ++rx) {
+                bool all = true;
+                for (int z = rz * 8; z < std::min(rz * 8 + 8, blocks.z); ++z)
+                    for (int y = ry * 8; y < std::min(ry * 8 + 8, blocks.y); ++y)
+                        for (int x = rx * 8; x < std::min(rx * 8 + 8, blocks.x); ++x) {
+                            const int m[3] = {x, y, z};
+                            all = all && empty.emptyBlock(m);
+                        }
+                const int m[3] = {rx * 8, ry * 8, rz * 8};
+                CHECK(empty.emptyRegionOf(m) == all);
+                emptyRegions += all;
+                ++regions;
+            }
+    CHECK(emptyRegions > regions / 2);
+    CHECK(emptyRegions < regions);
+}
+
+TEST_CASE("exact reference: jumping over empty regions changes no bit") {
+    for (GridConvention convention : {GridConvention::CellCentred, GridConvention::NodeCentred}) {
+        const Scene scene = sparseScene(convention);
+        CameraSpec spec = framingCamera(scene.box(), 40, 30, 40.0);
+        // Along the long axis through both blobs, across it, and from a corner.
+        for (const V& offset : {V(-190.0, 3.0, 8.0), V(4.0, -6.0, 160.0), V(150.0, 120.0, -130.0)}) {
+            spec.eye = scene.box().centre() + offset;
+            const PiecesWalked pieces = checkSkippingChangesNoBit(scene, Camera(spec));
+            CHECK(pieces.skipping * 4 < pieces.all);
+        }
+    }
+}
+
+TEST_CASE("exact reference: a cache hands the empty space to the next frame of the same volume and TF only") {
+    const Scene scene = sparseScene(GridConvention::CellCentred);
+    CameraSpec spec = framingCamera(scene.box(), 24, 18, 40.0);
+    spec.eye = scene.box().centre() + V(-190.0, 3.0, 8.0);
+    const Camera camera(spec);
+    ExactReferenceOptions options;
+    options.tolerance = 1e-7;
+    OccupancyCache cache;
+    const ExactReference alone = renderExactReference(scene, camera, options);
+    CHECK_FALSE(alone.stats.setupReused);
+    const ExactReference first = renderExactReference(scene, camera, options, &cache);
+    const ExactReference second = renderExactReference(scene, camera, options, &cache);
+    CHECK_FALSE(first.stats.setupReused);
+    CHECK(second.stats.setupReused);
+    CHECK(second.stats.setupSeconds == first.stats.setupSeconds);
+    CHECK(first.values == alone.values);
+    CHECK(second.values == alone.values);
+    CHECK(second.bounds == alone.bounds);
+    // Another transfer function (visible from lower values on) gets its own empty space.
+    std::vector<TransferFunctionPoint> points = scene.transferFunction.points();
+    points[1].s = 0.1;
+    const Scene wider{scene.volume, std::nullopt, scene.convention,
+                      TransferFunction(points, EmissionModel::ColourTimesExtinction)};
+    const ExactReference changed = renderExactReference(wider, camera, options, &cache);
+    CHECK_FALSE(changed.stats.setupReused);
+    CHECK(changed.values == renderExactReference(wider, camera, options).values);
+    CHECK(changed.values != alone.values);
 }
 
 TEST_CASE("exact reference: rays end early within the stated bound") {

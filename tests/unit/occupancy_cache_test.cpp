@@ -59,28 +59,28 @@ TEST_CASE("the occupancy cache hands back its grid only for the volume and trans
     const auto volume = rampVolume();
     const TransferFunction half = rampTransferFunction(0.5), third = rampTransferFunction(0.3);
     OccupancyCache cache;
-    const OccupancyCache::Entry first = cache.get(volume, GridConvention::CellCentred, half);
+    const auto first = cache.grid(volume, GridConvention::CellCentred, half);
     CHECK_FALSE(first.reused);
     const double built = first.buildSeconds;
-    const OccupancyCache::Entry again = cache.get(volume, GridConvention::CellCentred, rampTransferFunction(0.5));
+    const auto again = cache.grid(volume, GridConvention::CellCentred, rampTransferFunction(0.5));
     CHECK(again.reused);
     CHECK(again.buildSeconds == built);
-    CHECK(&again.grid == &first.grid);
+    CHECK(&again.structure == &first.structure);
 
     // A changed transfer function, emission model, convention or volume object gets a new grid, equal
     // to one built from scratch.
     const auto check = [&](const std::shared_ptr<const Volume>& v, GridConvention convention,
                            const TransferFunction& tf) {
-        const OccupancyCache::Entry e = cache.get(v, convention, tf);
+        const auto e = cache.grid(v, convention, tf);
         CHECK_FALSE(e.reused);
-        CHECK(e.grid.emptyFlags() == OccupancyGrid(*v, convention, tf).emptyFlags());
+        CHECK(e.structure.emptyFlags() == OccupancyGrid(*v, convention, tf).emptyFlags());
     };
     check(volume, GridConvention::CellCentred, third);
-    CHECK(cache.get(volume, GridConvention::CellCentred, third).grid.emptyFraction() <
+    CHECK(cache.grid(volume, GridConvention::CellCentred, third).structure.emptyFraction() <
           OccupancyGrid(*volume, GridConvention::CellCentred, half).emptyFraction());
     check(volume, GridConvention::CellCentred, rampTransferFunction(0.3, EmissionModel::Colour));
-    CHECK(cache.get(volume, GridConvention::CellCentred, rampTransferFunction(0.3, EmissionModel::Colour))
-              .grid.emptyFraction() == 0.0);
+    CHECK(cache.grid(volume, GridConvention::CellCentred, rampTransferFunction(0.3, EmissionModel::Colour))
+              .structure.emptyFraction() == 0.0);
     check(volume, GridConvention::NodeCentred, rampTransferFunction(0.3, EmissionModel::Colour));
     check(rampVolume(), GridConvention::NodeCentred, rampTransferFunction(0.3, EmissionModel::Colour));
 }

@@ -4,6 +4,8 @@ namespace vri {
 
 nlohmann::json toJson(const ExactReferenceStats& s) {
     return {{"wall_seconds", s.seconds},
+            {"setup_seconds", s.setupSeconds},
+            {"setup_reused", s.setupReused},
             {"threads", s.threads},
             {"rays", s.rays},
             {"rays_hit", s.raysHit},

@@ -68,4 +68,10 @@ namespace vri {
 
 RenderBackend::~RenderBackend() = default;
 
+const ExactReference& RenderBackend::renderExact(const Scene& scene, const Camera& camera,
+                                                 const ExactReferenceOptions& options) {
+    renderExactReference(scene, camera, options, occupancy_.get(), exact_);
+    return exact_;
+}
+
 }  // namespace vri

@@ -18,11 +18,15 @@ public:
     RenderBackend& operator=(const RenderBackend&) = delete;
 
     Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats);
+    // The exact method, on the CPU whatever the backend, with the empty space of the first frame; the
+    // result stays valid until the next call, which reuses its memory.
+    const ExactReference& renderExact(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options);
 
 private:
     struct Vulkan;
     std::unique_ptr<Vulkan> vulkan_;  // the device, opened once; the volume is uploaded by the first render
-    std::unique_ptr<OccupancyCache> occupancy_;  // the CPU's empty-space grid, built by the first render
+    std::unique_ptr<OccupancyCache> occupancy_;  // the CPU's empty space, built by the first render
+    ExactReference exact_;                       // the exact method's last frame
 };
 
 // --list-devices: one line per Vulkan device on stdout, "INDEX<TAB>NAME<TAB>TYPE<TAB>API VERSION";

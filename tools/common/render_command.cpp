@@ -146,7 +146,7 @@ int RenderCommand::run() {
         RenderBackend backend(request);
         auto [frame, wallSeconds] = timing_.run([&] {
             if (request.exact) {
-                const ExactReference ref = renderExactReference(scene, camera, request.exactOptions());
+                const ExactReference& ref = backend.renderExact(scene, camera, request.exactOptions());
                 Frame f{ref.image(), std::nullopt, {}, ref.stats, ref.stats.seconds};
                 if (!errorImagePath_.empty()) f.bounds = ref.boundImage();
                 f.stats.nonfinite = findNonFinitePixels(f.image);

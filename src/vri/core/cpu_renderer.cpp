@@ -222,9 +222,9 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     }
     const OccupancyGrid* occupancy = nullptr;
     if (opt.skipEmptySpace) {
-        const OccupancyCache::Entry grid = scene.sparse ? cache.get(scene.sparse, scene.convention, scene.transferFunction)
-                                                        : cache.get(scene.volume, scene.convention, scene.transferFunction);
-        occupancy = &grid.grid;
+        const auto grid = scene.sparse ? cache.grid(scene.sparse, scene.convention, scene.transferFunction)
+                                       : cache.grid(scene.volume, scene.convention, scene.transferFunction);
+        occupancy = &grid.structure;
         stats.setupSeconds = grid.buildSeconds;
         stats.setupReused = grid.reused;
         stats.emptyBrickFraction = occupancy->emptyFraction();

@@ -169,7 +169,11 @@ GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std:
 }  // namespace
 
 ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
-    : tf_(tf), emission_(tf.emission()), tolerance_(tolerance), lowOrder_(tolerance >= kLowOrderTolerance) {
+    : tf_(tf),
+      emission_(tf.emission()),
+      tolerance_(tolerance),
+      lowOrder_(tolerance >= kLowOrderTolerance),
+      fastSplits_(tolerance >= kGaussTolerance) {
     for (const auto& p : tf.points()) {
         pointS_.push_back(p.s);
         if (levels_.empty() || levels_.back() != p.s) levels_.push_back(p.s);
@@ -229,8 +233,12 @@ void ExactRay::begin() {
 void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     if (!(length > 0.0)) return;
     double ends[4] = {0.0}, values[4];
+    // Where s' = c1 + 2 c2 x + 3 c3 x^2 cannot vanish on [0, 1], |c1| > |2 c2| + |3 c3| (with room for
+    // the rounding of that test), s is monotone on the piece: no critical points to solve for, as on most
+    // pieces. Only on the Gauss path: below kGaussTolerance the references keep criticalPoints' bits.
     double critical[2];
-    const int nc = criticalPoints(s, 0.0, 1.0, critical);
+    const bool monotone = fastSplits_ && (1.0 - 0x1p-40) * std::abs(s.c[1]) > 2.0 * std::abs(s.c[2]) + 3.0 * std::abs(s.c[3]);
+    const int nc = monotone ? 0 : criticalPoints(s, 0.0, 1.0, critical);
     for (int i = 0; i < nc; ++i) ends[i + 1] = critical[i];
     ends[nc + 1] = 1.0;
     const int parts = nc + 1;

@@ -14,8 +14,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "vri/core/block_ranges.h"
+#include "vri/core/exact_empty_space.h"
 #include "vri/core/exact_ray.h"
+#include "vri/core/occupancy_cache.h"
 #include "vri/util/checked_size.h"
 #include "vri/util/error.h"
 #include "vri/util/format.h"
@@ -36,9 +37,10 @@ struct PieceCounts {
 template <class T>
 class GridWalker {
 public:
-    // `skipEmpty` lets the walk jump over blocks of cells on which the transfer function is zero.
-    GridWalker(const Volume& volume, GridConvention convention, const TransferFunction& tf, bool skipEmpty)
-        : data_(volume.data<T>()), tf_(tf) {
+    // `empty` tells which cells are invisible; with `skipEmpty` the walk jumps over its empty regions
+    // and blocks.
+    GridWalker(const Volume& volume, GridConvention convention, const ExactEmptySpace& empty, bool skipEmpty)
+        : data_(volume.data<T>()), empty_(empty), skipEmpty_(skipEmpty), blocks_(empty.blocks()) {
         const bool cell = convention == GridConvention::CellCentred;
         for (int a = 0; a < 3; ++a) {
             n_[a] = volume.dims[a];
@@ -55,20 +57,6 @@ public:
         const ValueRange r = volume.normalisationRange();
         lo_ = r.lo;
         invRange_ = r.hi > r.lo ? 1.0 / (r.hi - r.lo) : 0.0;
-        // For 8- and 16-bit voxels, the largest raw value up to which a cell whose smallest corner is v
-        // stays invisible: the TF is zero on [s0, s1] only if it is on every sub-interval, so the
-        // bound grows with v and a single pass finds it. The same answers as isInvisible, faster.
-        if constexpr (std::is_same_v<T, std::uint8_t> || std::is_same_v<T, std::uint16_t>) {
-            constexpr int count = 1 << (8 * sizeof(T));
-            invisibleUpTo_.resize(count);
-            int hi = -1;
-            for (int v = 0; v < count; ++v) {
-                hi = std::max(hi, v - 1);
-                while (hi + 1 < count && tf.isInvisible(normalised(v), normalised(hi + 1))) ++hi;
-                invisibleUpTo_[v] = hi;
-            }
-        }
-        if (skipEmpty) findEmptyBlocks(volume);
     }
 
     // Integrates the segment from texture coordinate uEntry to uExit, `length` world units long,
@@ -122,7 +110,7 @@ public:
         for (;;) {
             const double phiB = std::min({phi[0], phi[1], phi[2], 1.0});
             if (phiB > phiA) {
-                if (!emptyBlock_.empty() && emptyBlock_[blockOfCell(cell)]) {
+                if (skipEmpty_ && emptyBlockOfCell(cell)) {
                     // The piece's block is empty: every piece up to the end of the run of empty blocks
                     // lies in cells whose corners the blocks' emptiness covers, each invisible.
                     const double until = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
@@ -148,36 +136,28 @@ public:
     }
 
 private:
-    // Cells are grouped in blocks of kBlock^3 by their base (lowest) corner: block m of an axis holds the
-    // cells with base index [m B, (m + 1) B), whose corners are the voxels [m B, min((m + 1) B, n - 1)]; the
-    // first and last blocks also own the clamped region outside the index range. A block is empty when
-    // the corner range of all its cells is invisible (the same test addPiece makes per cell), so a piece
-    // in it would add nothing. 4^3 cells (5^3 voxels) follow the bonsai's leaves and twigs far closer
-    // than the fixed-step methods' 8^3 bricks with their margins, and a block costs one division to cross.
-    static constexpr int kBlockShift = 2;
+    static constexpr int kBlockShift = ExactEmptySpace::kBlockShift;
     static constexpr int kBlock = 1 << kBlockShift;
-
-    // Each block's emptiness from the raw range of its cells' corners.
-    void findEmptyBlocks(const Volume& volume) {
-        for (int a = 0; a < 3; ++a) blocks_[a] = maxBase_[a] / kBlock + 1;
-        const BlockRanges<T> ranges = blockRanges(data_, volume.dims, glm::ivec3(blocks_[0], blocks_[1], blocks_[2]),
-                                                  kBlock, 0, 0);
-        emptyBlock_.resize(ranges.lo.size());
-        for (std::size_t i = 0; i < ranges.lo.size(); ++i) emptyBlock_[i] = invisible(ranges.lo[i], ranges.hi[i]);
-    }
+    static constexpr int kRegion = 1 << ExactEmptySpace::kRegionShift;  // blocks per region edge
 
     // From the empty block that holds the ray's point at phi, the blocks the ray passes while they are
-    // empty (a block DDA, one division per block): where the first non-empty one begins (1 when none is
-    // left). Every face is a plane of integer index, crossed at the parameter the cell walk computes for
-    // it, so a jump lands exactly on a cell face.
+    // empty: where the first non-empty one begins (1 when none is left). A block DDA, one division per
+    // block, and where a whole region is empty one step to its far side. Every face is a plane of
+    // integer index, crossed at the parameter the cell walk computes for it, so a jump lands exactly on
+    // a cell face.
     double emptyFrom(const glm::dvec3& entry, const glm::dvec3& delta, double phi) const {
         constexpr double inf = std::numeric_limits<double>::infinity();
         int m[3];
         double exitAt[3];
+        auto planeAt = [&](int a, int plane) { return (plane - entry[a]) / delta[a]; };
+        // Where the ray leaves the block m[a] of axis a (the first and last own the clamped outside).
         auto exitOf = [&](int a) {
-            if (delta[a] > 0 && m[a] + 1 < blocks_[a]) return ((m[a] + 1) * kBlock - entry[a]) / delta[a];
-            if (delta[a] < 0 && m[a] > 0) return (m[a] * kBlock - entry[a]) / delta[a];
+            if (delta[a] > 0 && m[a] + 1 < blocks_[a]) return planeAt(a, (m[a] + 1) * kBlock);
+            if (delta[a] < 0 && m[a] > 0) return planeAt(a, m[a] * kBlock);
             return inf;
+        };
+        auto firstOfAxis = [](const double at[3]) {
+            return at[0] <= at[1] ? (at[0] <= at[2] ? 0 : 2) : (at[1] <= at[2] ? 1 : 2);
         };
         for (int a = 0; a < 3; ++a) {
             const double x = std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a]);
@@ -185,22 +165,42 @@ private:
             exitAt[a] = exitOf(a);
         }
         for (;;) {
-            const int a = exitAt[0] <= exitAt[1] ? (exitAt[0] <= exitAt[2] ? 0 : 2) : (exitAt[1] <= exitAt[2] ? 1 : 2);
+            if (empty_.emptyRegionOf(m)) {
+                // To the region's far side: the axis that leaves it first steps into the next region,
+                // the others to the block whose faces the ray crosses after that point, searched by the
+                // same plane parameters as the block DDA.
+                double regionExit[3];
+                for (int a = 0; a < 3; ++a) {
+                    const int first = m[a] & ~(kRegion - 1);
+                    regionExit[a] = delta[a] > 0 && first + kRegion < blocks_[a] ? planeAt(a, (first + kRegion) * kBlock)
+                                    : delta[a] < 0 && first > 0                ? planeAt(a, first * kBlock)
+                                                                               : inf;
+                }
+                const int a = firstOfAxis(regionExit);
+                const double until = regionExit[a];
+                if (!(until < 1.0)) return 1.0;
+                m[a] = delta[a] > 0 ? (m[a] | (kRegion - 1)) + 1 : (m[a] & ~(kRegion - 1)) - 1;
+                for (int b = 0; b < 3; ++b) {
+                    if (b != a && delta[b] != 0) {
+                        while ((exitAt[b] = exitOf(b)) <= until) m[b] += delta[b] > 0 ? 1 : -1;
+                    }
+                    exitAt[b] = exitOf(b);
+                }
+                if (!empty_.emptyBlock(m)) return until;
+                continue;
+            }
+            const int a = firstOfAxis(exitAt);
             const double until = exitAt[a];
             if (!(until < 1.0)) return 1.0;
             m[a] += delta[a] > 0 ? 1 : -1;
-            if (!emptyBlock_[blockIndex(m)]) return until;
+            if (!empty_.emptyBlock(m)) return until;
             exitAt[a] = exitOf(a);
         }
     }
 
-    // The block of block coordinates m, or of the cell whose base corner is `cell`.
-    std::size_t blockIndex(const int m[3]) const {
-        return (static_cast<std::size_t>(m[2]) * blocks_[1] + m[1]) * blocks_[0] + m[0];
-    }
-    std::size_t blockOfCell(const int cell[3]) const {
+    bool emptyBlockOfCell(const int cell[3]) const {
         const int m[3] = {cell[0] >> kBlockShift, cell[1] >> kBlockShift, cell[2] >> kBlockShift};
-        return blockIndex(m);
+        return empty_.emptyBlock(m);
     }
 
     // The base corner of the cell that holds the ray's point at phi (clamped where the axis is).
@@ -226,7 +226,7 @@ private:
         const double vMax = static_cast<double>(
             std::max(std::max(std::max(corner[0], corner[1]), std::max(corner[2], corner[3])),
                      std::max(std::max(corner[4], corner[5]), std::max(corner[6], corner[7]))));
-        if (invisible(vMin, vMax)) return;
+        if (empty_.invisible(vMin, vMax)) return;
         std::array<double, 8> v;
         for (int k = 0; k < 8; ++k) v[k] = static_cast<double>(corner[k]);
         glm::dvec3 w0(0.0), w1(0.0);
@@ -248,14 +248,10 @@ private:
         ray.addPiece((phiB - phiA) * length, s, sScale);
     }
 
-    double normalised(double raw) const { return (raw - lo_) * invRange_; }
-    bool invisible(double rawLo, double rawHi) const {
-        if (!invisibleUpTo_.empty()) return rawHi <= invisibleUpTo_[static_cast<std::size_t>(rawLo)];
-        return tf_.isInvisible(normalised(rawLo), normalised(rawHi));
-    }
-
     const T* data_;
-    const TransferFunction& tf_;
+    const ExactEmptySpace& empty_;
+    bool skipEmpty_;
+    glm::ivec3 blocks_;
     int n_[3];
     std::int64_t stride_[3];
     std::int64_t corner_[8];  // offset of corner (dx, dy, dz) = k & 1, k >> 1 & 1, k >> 2 from a cell's base
@@ -263,9 +259,6 @@ private:
     double maxCoord_[3];
     int maxBase_[3];
     double lo_, invRange_;
-    std::vector<int> invisibleUpTo_;  // 8- and 16-bit voxels: see the constructor
-    int blocks_[3] = {};
-    std::vector<std::uint8_t> emptyBlock_;  // per block, x fastest; empty when not skipping
 };
 
 struct Counters {
@@ -325,7 +318,15 @@ Image ExactReference::image() const { return toImage(values, width, height); }
 
 Image ExactReference::boundImage() const { return toImage(bounds, width, height); }
 
-ExactReference renderExactReference(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options) {
+ExactReference renderExactReference(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options,
+                                    OccupancyCache* cache) {
+    ExactReference out;
+    renderExactReference(scene, camera, options, cache, out);
+    return out;
+}
+
+void renderExactReference(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options,
+                          OccupancyCache* cache, ExactReference& out) {
     if (!scene.volume && !scene.field) throw Error("scene has neither a volume nor an analytic field");
     if (!(options.tolerance > 0.0)) throw Error("reference tolerance must be positive, got " + std::to_string(options.tolerance));
     if (options.tileSize < 1) throw Error("tile size must be at least 1");
@@ -342,7 +343,7 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
         throw Error("transfer function: extinction " + exactNumber(largestTau) + " per unit length over a box " +
                     exactNumber(diagonal) + " long: the optical depth overflows double");
 
-    ExactReference out;
+    out.stats = {};
     out.width = camera.width();
     out.height = camera.height();
     // Values and bounds in double: twice the image's bytes each, checked before they are allocated.
@@ -356,9 +357,12 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
     const auto start = std::chrono::steady_clock::now();
     if (scene.volume) {
         const Volume& volume = *scene.volume;
+        OccupancyCache once;  // without a cache, this frame builds its own empty space
+        const auto empty = (cache ? *cache : once).exactEmptySpace(scene.volume, scene.convention, scene.transferFunction);
+        out.stats.setupSeconds = empty.buildSeconds;
+        out.stats.setupReused = empty.reused;
         dispatchVoxelType(volume.type, [&](auto voxel) {
-            const GridWalker<decltype(voxel)> walker(volume, scene.convention, scene.transferFunction,
-                                                     options.skipEmptySpace);
+            const GridWalker<decltype(voxel)> walker(volume, scene.convention, empty.structure, options.skipEmptySpace);
             traceRays(scene, camera, options, [&](const glm::dvec3& a, const glm::dvec3& b, double length, ExactRay& ray,
                                                   PieceCounts& counts) { return walker.walk(a, b, length, ray, counts); },
                       out, counters);
@@ -383,7 +387,9 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
                         " (an extinction or transfer-function slope too large for double)");
 
     ExactReferenceStats& st = out.stats;
-    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // The frame's own work: what this call spent building the empty space is setup, reported on its own.
+    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+                 (st.setupReused ? 0.0 : st.setupSeconds);
     st.rays = static_cast<std::uint64_t>(out.width) * out.height;
     st.raysHit = counters.raysHit;
     st.pieces = counters.pieces;
@@ -404,7 +410,6 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
         }
         st.meanBound[c] = sum / static_cast<double>(st.rays);
     }
-    return out;
 }
 
 }  // namespace vri

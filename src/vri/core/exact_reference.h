@@ -19,6 +19,8 @@
 
 namespace vri {
 
+class OccupancyCache;  // occupancy_cache.h
+
 struct ExactReferenceOptions {
     // Each transfer-function sub-piece's quadrature error for the pixel (weighted by the transparency
     // in front of it) is kept below this: the Gauss rule's derivative bound, or where no Gauss rule
@@ -27,8 +29,8 @@ struct ExactReferenceOptions {
     // few tens of times this. A ray also ends once the transparency times the largest colour (and the
     // transparency itself, for alpha) is below it; that tail is in the bound.
     double tolerance = 1e-13;
-    // Jump over blocks of 4^3 cells on which the transfer function is zero (the image and the bounds
-    // do not change by a bit; off only to test that).
+    // Jump over blocks of 4^3 cells and regions of 32^3 on which the transfer function is zero
+    // (exact_empty_space.h: the image and the bounds do not change by a bit; off only to test that).
     bool skipEmptySpace = true;
     int tileSize = 16;
     bool progress = false;  // report progress on stderr
@@ -43,7 +45,9 @@ struct ExactReferenceStats {
     std::uint64_t quadratureIntervals = 0;  // intervals integrated (sub-pieces plus subdivisions)
     std::uint64_t quadratureNodes = 0;    // integrand evaluations of the Gauss-Kronrod rules (7 or 15 each)
     std::uint64_t raysOpaque = 0;         // rays ended early: what was left could add at most the tolerance
-    double seconds = 0.0;
+    double seconds = 0.0;       // the frame's own work, without setupSeconds unless reused
+    double setupSeconds = 0.0;  // building the empty space (exact_empty_space.h), this frame or an earlier one
+    bool setupReused = false;   // the empty space came from an earlier frame (occupancy_cache.h)
     int threads = 0;
     // Per channel R, G, B, A over all pixels: the largest and the mean error bound.
     std::array<double, 4> maxBound{}, meanBound{};
@@ -61,10 +65,16 @@ struct ExactReference {
     Image boundImage() const;  // the bounds as float, channels R, G, B, A
 };
 
-// The same rays as render(scene, camera, ...). Throws vri::Error on a scene without volume or field,
+// The same rays as render(scene, camera, ...). With a cache, the empty space of an earlier frame of
+// the same volume and transfer function is reused. Throws vri::Error on a scene without volume or field,
 // a node-centred volume thinner than 2 voxels, a tolerance that is not positive, an extinction whose
 // optical depth across the box overflows double, or any pixel whose value or bound is not finite.
 ExactReference renderExactReference(const Scene& scene, const Camera& camera,
-                                    const ExactReferenceOptions& options = {});
+                                    const ExactReferenceOptions& options = {}, OccupancyCache* cache = nullptr);
+// The same into `out`, whose buffers keep their memory: a sequence of frames pays for touching a fresh
+// 31 MB (800x600: values and bounds in double) once, not every frame (on a virtual machine the page
+// faults took about 5 % of a Bonsai frame).
+void renderExactReference(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options,
+                          OccupancyCache* cache, ExactReference& out);
 
 }  // namespace vri

@@ -2,41 +2,57 @@
 
 #include <algorithm>
 #include <chrono>
+#include <type_traits>
 
 namespace vri {
 
-bool OccupancyCache::matches(const void* volume, GridConvention convention, const TransferFunction& tf) const {
+void OccupancyCache::key(const std::shared_ptr<const void>& volume, GridConvention convention,
+                         const TransferFunction& tf) {
     const auto same = [](const TransferFunctionPoint& a, const TransferFunctionPoint& b) {
         return a.s == b.s && a.r == b.r && a.g == b.g && a.b == b.b && a.tau == b.tau;
     };
     const auto& p = tf.points();
-    return grid_ && volume_.get() == volume && convention_ == convention && emission_ == tf.emission() &&
-           std::equal(points_.begin(), points_.end(), p.begin(), p.end(), same);
-}
-
-template <class V>
-OccupancyCache::Entry OccupancyCache::getFor(const std::shared_ptr<const V>& volume, GridConvention convention,
-                                             const TransferFunction& tf) {
-    if (matches(volume.get(), convention, tf)) return {*grid_, buildSeconds_, true};
-    grid_.reset();
-    const auto start = std::chrono::steady_clock::now();
-    grid_.emplace(*volume, convention, tf);
-    buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (volume_ == volume && convention_ == convention && emission_ == tf.emission() &&
+        std::equal(points_.begin(), points_.end(), p.begin(), p.end(), same))
+        return;
+    grid_.structure.reset();
+    exact_.structure.reset();
     volume_ = volume;
     convention_ = convention;
-    points_ = tf.points();
+    points_ = p;
     emission_ = tf.emission();
-    return {*grid_, buildSeconds_, false};
 }
 
-OccupancyCache::Entry OccupancyCache::get(const std::shared_ptr<const Volume>& volume, GridConvention convention,
-                                          const TransferFunction& tf) {
-    return getFor(volume, convention, tf);
+template <class Structure, class V>
+OccupancyCache::Entry<Structure> OccupancyCache::get(Slot<Structure>& slot, const V& volume,
+                                                     GridConvention convention, const TransferFunction& tf) {
+    if (slot.structure) return {*slot.structure, slot.buildSeconds, true};
+    const auto start = std::chrono::steady_clock::now();
+    if constexpr (std::is_same_v<Structure, OccupancyGrid>)
+        slot.structure.emplace(volume, convention, tf);
+    else
+        slot.structure.emplace(volume, tf);
+    slot.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return {*slot.structure, slot.buildSeconds, false};
 }
 
-OccupancyCache::Entry OccupancyCache::get(const std::shared_ptr<const SparseVolume>& volume,
-                                          GridConvention convention, const TransferFunction& tf) {
-    return getFor(volume, convention, tf);
+OccupancyCache::Entry<OccupancyGrid> OccupancyCache::grid(const std::shared_ptr<const Volume>& volume,
+                                                          GridConvention convention, const TransferFunction& tf) {
+    key(volume, convention, tf);
+    return get(grid_, *volume, convention, tf);
+}
+
+OccupancyCache::Entry<OccupancyGrid> OccupancyCache::grid(const std::shared_ptr<const SparseVolume>& volume,
+                                                          GridConvention convention, const TransferFunction& tf) {
+    key(volume, convention, tf);
+    return get(grid_, *volume, convention, tf);
+}
+
+OccupancyCache::Entry<ExactEmptySpace> OccupancyCache::exactEmptySpace(const std::shared_ptr<const Volume>& volume,
+                                                                       GridConvention convention,
+                                                                       const TransferFunction& tf) {
+    key(volume, convention, tf);
+    return get(exact_, *volume, convention, tf);
 }
 
 }  // namespace vri

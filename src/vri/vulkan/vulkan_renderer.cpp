@@ -245,8 +245,8 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     const OccupancyGrid* grid = nullptr;
     bool gridReused = false;
     if (scene.volume && options.skipEmptySpace) {
-        const OccupancyCache::Entry entry = m.grids.get(scene.volume, scene.convention, scene.transferFunction);
-        grid = &entry.grid;
+        const auto entry = m.grids.grid(scene.volume, scene.convention, scene.transferFunction);
+        grid = &entry.structure;
         gridReused = entry.reused;
         local.emptyBrickFraction = grid->emptyFraction();
     }
