@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -29,14 +30,22 @@ std::string text(double value, int digits = 6) {
 std::string text(glm::dvec3 v) { return text(v.x) + " " + text(v.y) + " " + text(v.z); }
 
 // Where the normalisation range comes from, in the order Volume::normalisationRange() tries them.
-std::string normalisationSource(const vri::Volume& volume) {
+template <class V>
+std::string normalisationSource(const V& volume) {
     if (volume.range) return "from the file";
     return volume.type == vri::VoxelType::Float32 ? "data min..max" : "the type's full range";
 }
 
-nlohmann::json infoJson(const fs::path& path, const vri::Volume& volume, const vri::VolumeStats& stats) {
+std::string storageText(const vri::Volume&) { return "dense"; }
+std::string storageText(const vri::SparseVolume& volume) {
+    return "sparse: " + std::to_string(volume.storedBricks()) + " stored bricks of " +
+           std::to_string(vri::SparseVolume::kBlock) + "^3 (with apron), background " + text(volume.background());
+}
+
+template <class V>
+nlohmann::json infoJson(const fs::path& path, const V& volume, const vri::VolumeStats& stats) {
     const auto array = [](glm::dvec3 v) { return nlohmann::json::array({v.x, v.y, v.z}); };
-    return {{"file", path.string()},
+    nlohmann::json j = {{"file", path.string()},
             {"file_bytes", fs::file_size(path)},
             {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
             {"voxel_type", vri::voxelTypeName(volume.type)},
@@ -57,9 +66,16 @@ nlohmann::json infoJson(const fs::path& path, const vri::Volume& volume, const v
               {"counts", stats.histogram},
               {"below", stats.below},
               {"above", stats.above}}}};
+    j["storage"] = std::is_same_v<V, vri::SparseVolume> ? "sparse" : "dense";
+    if constexpr (std::is_same_v<V, vri::SparseVolume>) {
+        j["stored_bricks"] = volume.storedBricks();
+        j["background"] = volume.background();
+    }
+    return j;
 }
 
-void printInfo(const fs::path& path, const vri::Volume& volume, const vri::VolumeStats& stats) {
+template <class V>
+void printInfo(const fs::path& path, const V& volume, const vri::VolumeStats& stats) {
     const double voxels = static_cast<double>(volume.voxelCount());
     const auto percent = [&](double count) { return text(100.0 * count / voxels, 3) + "%"; };
     const vri::ValueRange n = stats.normalisation;
@@ -69,7 +85,7 @@ void printInfo(const fs::path& path, const vri::Volume& volume, const vri::Volum
               << "voxel type   " << vri::voxelTypeName(volume.type) << "\n"
               << "spacing      " << text(volume.spacing) << "\n"
               << "origin       " << text(volume.origin) << "\n"
-              << "bytes        " << volume.byteCount() << " in memory\n"
+              << "bytes        " << volume.byteCount() << " in memory, " << storageText(volume) << "\n"
               << "data range   " << text(stats.data.lo) << " .. " << text(stats.data.hi) << "\n"
               << "normalise    " << text(n.lo) << " .. " << text(n.hi) << " (" << normalisationSource(volume) << ")\n"
               << "mean         " << text(stats.mean) << "\n"
@@ -111,7 +127,8 @@ Formats by extension: .nhdr/.nrrd (raw or gzip), .dat (Inviwo), .vdb, .mhd/.mha 
 only); anything else is raw. int8, int16, int32, uint32 and float64 voxels are read as float32 (README.md, "Formats").
 Writes are atomic: on failure no output file is left behind.
 A volume may take at most 16 GiB in memory (VRI_MAX_BYTES: a byte count to change it). A .vdb whose dims
-would unpack to more than 1024 times its file size (and over 256 MiB) is refused unless VRI_MAX_BYTES is set.)");
+would unpack to more than 1024 times its file size (and over 256 MiB) is refused unless VRI_MAX_BYTES is set,
+or summarised sparse (--storage auto, the default, or sparse: its stored 8^3 bricks only, never the dense box).)");
 
     std::string input, output, grid;
     vri::RawInputOptions raw;
@@ -139,16 +156,25 @@ would unpack to more than 1024 times its file size (and over 256 MiB) is refused
                 if (fs::equivalent(written, input, notTheSame))
                     throw vri::Error(written.string() + ": writing " + output + " would overwrite the input");
 
+        const vri::VolumeStorage storage = raw.storage();
         const auto start = std::chrono::steady_clock::now();
-        vri::Volume volume = vri::readVolume(input, readOptions);
+        const vri::LoadedVolume loaded = vri::readVolume(input, readOptions, storage);
         const auto read = std::chrono::steady_clock::now();
 
         if (info) {
-            const vri::VolumeStats stats = vri::computeVolumeStats(volume);
-            if (json) std::cout << infoJson(input, volume, stats).dump(2) << "\n";
-            else printInfo(input, volume, stats);
+            const auto summarise = [&](const auto& volume) {
+                const vri::VolumeStats stats = vri::computeVolumeStats(volume);
+                if (json) std::cout << infoJson(input, volume, stats).dump(2) << "\n";
+                else printInfo(input, volume, stats);
+            };
+            if (loaded.sparse) summarise(*loaded.sparse);
+            else summarise(*loaded.dense);
         }
         if (!output.empty()) {
+            if (loaded.sparse)
+                throw vri::Error(input + ": kept sparse (--storage " + std::string(vri::volumeStorageName(storage)) +
+                                 "), which only --info reads: convert with --storage dense");
+            const vri::Volume& volume = *loaded.dense;
             const auto write = std::chrono::steady_clock::now();
             vri::writeVolume(output, volume);
             const auto done = std::chrono::steady_clock::now();

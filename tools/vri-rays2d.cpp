@@ -81,8 +81,11 @@ int run(int argc, char** argv) {
         const vri::Fan fan = vri::castFan(rays2d, chosen, sampleRates);
         if (!output.empty()) vri::writeTextFile(output, vri::fanCsv(fan));
         vri::Table table = vri::fanErrorTable(fan);
-        // Two such tables often sit side by side (node and cell): the title says which grid it is.
-        table.title += ", " + std::string(vri::gridConventionName(study.convention)) + "-centred grid";
+        // Two such tables often sit one under the other (node and cell): the title starts with its grid.
+        table.title = (study.convention == vri::GridConvention::NodeCentred
+                           ? "Node-centred grid (voxel i at i / (n - 1), paper A's). "
+                           : "Cell-centred grid (voxel i at (i + 1/2) / n, clamped at the border). ") +
+                      table.title;
         if (!errors.empty()) vri::writeTextFile(errors, vri::toMarkdown(table));
         if (!errorsCsv.empty()) vri::writeTextFile(errorsCsv, vri::toCsv(table));
         if (!convergence.empty()) vri::writeTextFile(convergence, vri::convergenceCsv(fan));

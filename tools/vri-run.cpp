@@ -171,7 +171,7 @@ int main(int argc, char** argv) {
     app.add_option("--results", options.results, "results root (default: results, with --quick build/experiments-quick)");
     app.add_flag("--allow-dirty", options.allowDirty,
                  "write into the work tree's results/ even when its tracked files differ from the commit");
-    app.add_option("--jobs", options.jobs, "steps run at once")->capture_default_str();
+    app.add_option("--jobs", options.jobs, "steps run at once (1 to 64)")->check(CLI::Range(1, 64))->capture_default_str();
     app.add_flag("--record", options.record, "with --quick: write the reproduce: numbers to COMMITTED/<experiment>/reproduce.json");
     app.add_flag("--check", options.check, "with --quick: compare the reproduce: numbers with the committed ones; exit 1 on a mismatch")
         ->excludes("--record");

@@ -84,7 +84,7 @@ vri::Table buildTable(const Options& options) {
         if (options.rows.empty()) throw vri::Error("--layout thresholds needs --row LABEL FILE...");
         std::vector<vri::ThresholdRow> rows;
         for (const auto& row : options.rows) rows.push_back({row[0], paths(row.begin() + 1, row.end())});
-        return vri::thresholdTable(rows, options.thresholds, options.precision.value_or(4));
+        return vri::thresholdTable(rows, options.thresholds, options.precision);
     }
     if (options.layout == "tradeoff") {
         if (options.runs.empty()) throw vri::Error("--layout tradeoff needs --run LABEL STATS DIFF");
@@ -93,7 +93,7 @@ vri::Table buildTable(const Options& options) {
         for (const auto& run : options.runs) rows.push_back({run[0], run[1], run[2]});
         vri::TradeoffOptions tradeoff;
         if (!options.tradeoffThresholds.empty()) tradeoff.thresholds = options.tradeoffThresholds;
-        tradeoff.precision = options.precision.value_or(4);
+        tradeoff.decimals = options.precision;
         tradeoff.baseline = options.baseline;
         tradeoff.perChannel = options.channels != "worst";
         return vri::tradeoffTable(rows, tradeoff);
@@ -139,7 +139,7 @@ int run(int argc, char** argv) {
     app.add_option("--row-header", options.rowHeader,
                    "heading of the label column (default: Method; run for tradeoff)");
     app.add_option("--precision", options.precision,
-                   "decimals (default: 4 for thresholds and tradeoff's % columns, 2 for matrix)")
+                   "decimals (default: 2 for matrix; thresholds and tradeoff's % columns have 3 significant digits)")
         ->check(CLI::Range(0, 17));
     app.add_option("--row", options.rows, "thresholds: LABEL FILE [FILE...]; one vri-diff JSON for all thresholds, "
                                           "or one per threshold in threshold order")

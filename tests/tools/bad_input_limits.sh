@@ -53,11 +53,15 @@ bad 1 '^vri-render: error: a 2097152x2097152x4194304 float32 volume: needs about
 bad 1 'a 2000x2000x2000 float32 volume: needs 32000000000 bytes, limit 17179869184' -- render --field-as-grid --field-dims 2000,2000,2000
 bad 1 'a 100x100x100 float32 volume: needs 4000000 bytes, limit 1000000 \(VRI_MAX_BYTES\)$' -- env VRI_MAX_BYTES=1000000 "$bin/vri-render" --field linear --tf "$tf" -q -o out.exr --field-as-grid --field-dims 100,100,100
 bad 1 '^vri-render: error: VRI_MAX_BYTES: expected a positive byte count, got '"'"'16G'"'"'$' -- env VRI_MAX_BYTES=16G "$bin/vri-render" --field linear --tf "$tf" -q -o out.exr --size 8x8
-bad 1 '^vri-convert: error: wraps\.vdb: vri_dims 4194304x4194304x1048576 \(uint8\): needs about 1\.84e\+19 bytes, limit' -- "$bin/vri-convert" --info wraps.vdb
-bad 1 'wraps\.vdb: vri_dims .*needs about 1\.84e\+19 bytes' -- "$bin/vri-render" --volume wraps.vdb --tf "$tf" -q -o out.exr
-bad 1 'wraps\.vdb: vri_dims .*needs about 1\.84e\+19 bytes' -- "$bin/vri-convert" wraps.vdb out.raw
-bad 1 '^vri-convert: error: gib\.vdb: vri_dims 1024x1024x1024 \(uint8\): needs 1073741824 bytes, limit 268435456 for a file of [0-9]+ bytes' -- "$bin/vri-convert" --info gib.vdb
-bad 1 'gib\.vdb: .*for a file of' -- "$bin/vri-render" --volume gib.vdb --tf "$tf" -q -o out.exr
+# Read dense (--storage dense): the dense box's bytes, which wrap size_t, and the plausible size for the file.
+bad 1 '^vri-convert: error: wraps\.vdb: vri_dims 4194304x4194304x1048576 \(uint8\): needs about 1\.84e\+19 bytes, limit' -- "$bin/vri-convert" --info --storage dense wraps.vdb
+bad 1 'wraps\.vdb: vri_dims .*needs about 1\.84e\+19 bytes' -- "$bin/vri-render" --volume wraps.vdb --storage dense --tf "$tf" -q -o out.exr
+bad 1 'wraps\.vdb: vri_dims .*needs about 1\.84e\+19 bytes' -- "$bin/vri-convert" --storage dense wraps.vdb out.raw
+# Kept sparse (--storage auto, the default, for a box too large to unpack): its brick table is refused instead.
+bad 1 '^vri-convert: error: wraps\.vdb: vri_dims 4194304x4194304x1048576 \(uint8\) kept sparse, its brick table: needs 144115188075855872 bytes, limit' -- "$bin/vri-convert" --info wraps.vdb
+bad 1 'wraps\.vdb: vri_dims .* kept sparse, its brick table: needs 144115188075855872 bytes' -- "$bin/vri-render" --volume wraps.vdb --tf "$tf" -q -o out.exr
+bad 1 '^vri-convert: error: gib\.vdb: vri_dims 1024x1024x1024 \(uint8\): needs 1073741824 bytes, limit 268435456 for a file of [0-9]+ bytes' -- "$bin/vri-convert" --info --storage dense gib.vdb
+bad 1 'gib\.vdb: .*for a file of' -- "$bin/vri-render" --volume gib.vdb --storage dense --tf "$tf" -q -o out.exr
 bad 1 'cut\.vdb: vri_dims 1x2x2 does not contain the active voxels \(0,0,0\)\.\.\(1,1,1\)$' -- "$bin/vri-convert" --info cut.vdb
 bad 1 'huge\.dat:2: Resolution: expected three positive integers up to 2147483647' -- "$bin/vri-convert" --info huge.dat
 bad 1 'wide\.dat: Rawfile v_2x2x2_uint8\.raw: 2147483647x2147483647x2147483647 uint8 needs more than 2\^64 bytes$' -- "$bin/vri-convert" --info wide.dat

@@ -62,7 +62,7 @@ drawing=$(command -v gnuplot || true)
 [[ -z $drawing ]] || printf 'figures:\n  speed: {spec: plots/speed.yaml, data: [speed.csv]}\n' >> exp.yaml
 
 "$VRI_BIN/vri-run" --dry-run --results out exp.yaml > commands.sh
-grep -q -- "vri-tabulate --layout tradeoff --title 'Seconds per frame against error' --threshold 0.001 --run riemann-h1 out/small/riemann-h1.json out/small/vs-riemann-riemann-h1.json --run riemann-h0.5 " commands.sh ||
+grep -q -- "vri-tabulate --layout tradeoff --title 'Seconds per frame against error' --threshold 0.001 --run riemann-h1 out/small/riemann-h1.json out/small/vs-riemann-h1.json --run riemann-h0.5 " commands.sh ||
     fail "the table's command: $(grep vri-tabulate commands.sh)"
 "$VRI_BIN/vri-run" --results out exp.yaml 2> first.txt || fail "the run failed: $(cat first.txt)"
 table=out/small/speed.csv

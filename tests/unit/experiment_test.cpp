@@ -10,6 +10,7 @@
 #include "vri/experiment/experiment_plan.h"
 #include "vri/experiment/experiment_run.h"
 #include "vri/experiment/experiment_spec.h"
+#include "vri/experiment/gallery_grid.h"
 #include "vri/experiment/manifest.h"
 #include "vri/experiment/step_cache.h"
 #include "vri/util/error.h"
@@ -386,4 +387,41 @@ methods:
           vri::ToolOptions{{"--method", "riemann"}, {"--precision", "float"}, {"--simd", "off"}});
     CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods: {riemann: {simd: yes}}\n")
               .find("simd: unknown value 'yes' (expected on or off)") != std::string::npos);
+}
+
+TEST_CASE("experiment: a comparison's id writes once the words its name and the run's id share") {
+    CHECK(vri::comparisonId("vs-exact-bonsai", "bonsai-riemann-h0.5") == "vs-exact-bonsai-riemann-h0.5");
+    CHECK(vri::comparisonId("vs-corner", "riemann-eye") == "vs-corner-riemann-eye");
+    CHECK(vri::comparisonId("vs-shader-bonsai-riemann", "bonsai-riemann-sampler") == "vs-shader-bonsai-riemann-sampler");
+    // The name keeps a word of its own: never the run's id.
+    CHECK(vri::comparisonId("bonsai-riemann", "bonsai-riemann-sampler") == "bonsai-riemann-bonsai-riemann-sampler");
+    CHECK(vri::comparisonId("vs-fine", "fine") == "vs-fine");
+    // Two comparisons that would write one file are refused, naming the comparison to rename.
+    ExperimentDir d;
+    CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\n"
+                          "methods: {a: {method: riemann}, b-a: {method: riemann}, c: {method: riemann}}\n"
+                          "comparisons:\n  vs-b: {reference: c, runs: [b-a]}\n  vs: {reference: c, runs: [b-a]}\n") ==
+          "exp.yaml:8:7: comparison 'vs' of run 'b-a' has the id 'vs-b-a', which another run or comparison has "
+          "(rename the comparison)");
+}
+
+TEST_CASE("experiment: the gallery's images are a scene-by-run matrix, a few columns a table") {
+    std::vector<vri::GridImage> images;
+    for (const char* scene : {"bonsai", "engine"})
+        for (int h = 1; h <= 7; ++h) {
+            const std::string run = "riemann-h" + std::to_string(h);
+            images.push_back({std::string(scene) + "-" + run, "x/" + std::string(scene) + "-" + run + ".png", scene, run});
+        }
+    images.push_back({"bonsai-paper-ref", "x/bonsai-paper-ref.png", "bonsai", "paper-ref"});
+    const std::string md = vri::imageGrid(images, "scene");
+    CHECK(md.starts_with("| scene | riemann-h1 | riemann-h2 | riemann-h3 | riemann-h4 | riemann-h5 | riemann-h6 |\n"
+                         "|:--|:-:|:-:|:-:|:-:|:-:|:-:|\n"
+                         "| **bonsai** | ![bonsai-riemann-h1](x/bonsai-riemann-h1.png) |"));
+    // The seventh run and the paper's reference start a second table; Engine has no reference: an empty cell.
+    CHECK(md.find("\n\n| scene | riemann-h7 | paper-ref |\n|:--|:-:|:-:|\n"
+                  "| **bonsai** | ![bonsai-riemann-h7](x/bonsai-riemann-h7.png) | "
+                  "![bonsai-paper-ref](x/bonsai-paper-ref.png) |\n"
+                  "| **engine** | ![engine-riemann-h7](x/engine-riemann-h7.png) | |\n\n") != std::string::npos);
+    CHECK(std::ranges::count(md, '\n') == 2 + 2 + 2 + 2 + 2);  // two tables: heading, rule, two rows, a blank line
+    CHECK(vri::imageGrid({}, "scene").empty());
 }

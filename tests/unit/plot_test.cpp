@@ -1,12 +1,14 @@
 // Figure specs and the gnuplot scripts made from them; a real PNG and SVG when gnuplot is installed.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "temp_dir.h"
 #include "vri/report/plot.h"
 #include "vri/util/error.h"
+#include "vri/util/format.h"
 #include "vri/util/process.h"
 
 using namespace vri;
@@ -79,8 +81,10 @@ TEST_CASE("plot: the gnuplot script") {
     has("$pareto1 << EOD\n1,0.2\n2,0.1\nEOD\n");
     has("set terminal pngcairo size 640,480 noenhanced");
     has("set multiplot layout 1,2 title 'It''s a test'\n");
-    has("    set xlabel 'seconds'\n    set logscale x\n    set format x '%g'\n    set xrange [0.5:4] extend\n");
-    has("    unset logscale y\n    set format y '% h'\n    set yrange [*:*] extend\n    unset key\n    set size noratio\n    unset label\n");
+    has("    set xlabel 'seconds'\n    set logscale x\n    set format x '%g'\n    set xtics autofreq\n"
+        "    set xrange [0.5:4] extend\n");
+    has("    unset logscale y\n    set format y '% h'\n    set ytics autofreq\n    set yrange [*:*] extend\n    unset key\n"
+        "    set size noratio\n    unset label\n");
     has("plot '../data/speed.csv' skip 1 using 2:3 with points pt 7 ps 0.8 title 'all', \\\n"
         "         $pareto1 using 1:2 with linespoints");
     has("plot '../data/hist.csv' skip 1 using (($1 > 0 && $2 < 1e300) ? ($1 + $2) / 2 : NaN):($4 / 2):1:2:(0):($4) "
@@ -334,4 +338,72 @@ TEST_CASE("plot: no character of a title, label, series or file name is read as 
         CHECK(!std::filesystem::exists(dir / "data" / marker));
         CHECK(!std::filesystem::exists(std::filesystem::current_path() / marker));
     }
+}
+
+TEST_CASE("plot: a family's line joins its runs in file order, keyed by its ends; log axes fit the data, 0 on a floor") {
+    test::TempDir dir("plot");
+    // The exact rows lie between Riemann's: its line must still join h0.5 to h0.1.
+    writeFile(dir / "speed.csv", "run,method,seconds,worst,max\n"
+                                 "a-riemann-h0.5,riemann,0.2,20,0.1\n"
+                                 "a-exact-eps1e-6,exact,0.7,0,1e-5\n"
+                                 "a-riemann-h0.1,riemann,0.5,10,0.02\n"
+                                 "a-exact-eps1e-7,exact,0.8,0,1e-6\n");
+    const PlotSpec spec = parsePlotSpec(
+        "x: {label: seconds, log: true}\n"
+        "y: {label: worst, log: true}\n"
+        "pareto: true\n"
+        "series:\n"
+        "  - {file: speed.csv, x: seconds, y: worst, style: linespoints, where: {method: riemann}, label: riemann, "
+        "label_ends: run}\n"
+        "  - {file: speed.csv, x: seconds, y: worst, style: points, where: {method: exact}, label: exact, label_ends: run}\n",
+        "fig.yaml", dir.path);
+    // Past the words both ends share; a '-' before a digit is a number's sign, not a word's end.
+    CHECK(spec.panels[0].series[0].label == "riemann, h0.5 to h0.1");
+    CHECK(spec.panels[0].series[1].label == "exact, eps1e-6 to eps1e-7");
+    const std::string script = gnuplotScript(spec, dir / "fig.gp", "fig.png", "fig.svg");
+    auto has = [&](const std::string& text) {
+        INFO(text);
+        CHECK(script.find(text) != std::string::npos);
+    };
+    // x: 0.2 to 0.8 with a margin of 1.15 each side, under one decade: a tic at every digit.
+    has("    set xtics (0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9)\n    set xrange [" + exactNumber(0.2 / 1.15) + ":" +
+        exactNumber(0.8 * 1.15) + "] noextend\n");
+    // y: 10 to 20, and the exact runs' 0 on a floor three margins below 10, the axis one margin below that.
+    const double floor = 10 / (1.15 * 1.15 * 1.15);
+    has("    set ytics (9, 10, 20)\n    set ytics add ('0' " + exactNumber(floor) + ")\n");
+    has("    set arrow from graph 0, first " + exactNumber(floor) + " to graph 1, first " + exactNumber(floor));
+    has("    set yrange [" + exactNumber(floor / 1.15) + ":" + exactNumber(20 * 1.15) + "] noextend\n");
+    has("$series1_1 << EOD\n0.2,20\n0.5,10\nEOD\n");
+    has("$series1_2 << EOD\n0.7," + exactNumber(floor) + "\n0.8," + exactNumber(floor) + "\nEOD\n");
+    has("plot $series1_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 title 'riemann, h0.5 to h0.1', \\\n"
+        "         $series1_2 using 1:2 with points pt 7 ps 0.8 title 'exact, eps1e-6 to eps1e-7'");
+    // The front runs from the fastest run down to the floor, where the exact run is as good as it gets.
+    has("$pareto1 << EOD\n0.2,20\n0.5,10\n0.7," + exactNumber(floor) + "\nEOD\n");
+    // Every panel resets what the last one set.
+    has("    unset arrow\n");
+    if (vri::commandAvailable("gnuplot")) drawPlot(spec, dir / "fig.png");
+
+    CHECK(errorOf("series:\n  - {file: speed.csv, x: seconds, y: max, label_ends: name}\n", dir.path) ==
+          "fig.yaml:2:55: column 'name' is not in " + (dir / "speed.csv").string() +
+              " (it has: run, method, seconds, worst, max)");
+    CHECK(errorOf("series:\n  - {file: speed.csv, x: seconds, y: max, x2: seconds, y2: max, style: segments, "
+                  "label_ends: run}\n",
+                  dir.path) ==
+          "fig.yaml:2:94: series[0].label_ends is not for style segments (only for line, dashed, dotted, points, "
+          "linespoints)");
+}
+
+TEST_CASE("plot: a log axis given a range, or spanning decades, keeps gnuplot's tics") {
+    test::TempDir dir("plot");
+    writeFile(dir / "e.csv", "h,error\n0.5,1e-2\n0.1,1e-6\n");
+    const std::string script = gnuplotScript(parsePlotSpec("x: {label: h, log: true, range: [0.01, 1]}\n"
+                                                           "y: {label: error, log: true}\n"
+                                                           "series:\n  - {file: e.csv, x: h, y: error}\n",
+                                                           "fig.yaml", dir.path),
+                                             dir / "fig.gp", "fig.png", "fig.svg");
+    CHECK(script.find("    set xtics autofreq\n    set xrange [0.01:1] extend\n") != std::string::npos);
+    const double margin = std::pow(1e4, 0.06);  // four decades: 6 % of the span at each end
+    CHECK(script.find("    set ytics autofreq\n    set yrange [" + exactNumber(1e-6 / margin) + ":" +
+                      exactNumber(1e-2 * margin) + "] noextend\n") != std::string::npos);
+    CHECK(script.find("    set arrow from") == std::string::npos);
 }

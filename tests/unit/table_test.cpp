@@ -39,26 +39,27 @@ TEST_CASE("table: thresholds layout, one file per row or one per threshold") {
     writeFile(dir / "coupled-0.001.json", diffJson(2));
     Table table = thresholdTable({{"Riemann (h = 0.5)", {dir / "riemann.json"}},
                                   {"Coupled", {dir / "coupled-0.01.json", dir / "coupled-0.001.json"}}},
-                                 {}, 4);
+                                 {});
     table.title = "Table I";
     CHECK(toMarkdown(table) ==
           "**Table I**\n\n"
           "| Method | R > 0.01 | A > 0.01 | R > 0.001 | A > 0.001 |\n"
           "|:--|--:|--:|--:|--:|\n"
-          "| Riemann (h = 0.5) | 10.0000 | 11.0000 | 10.1000 | 11.1000 |\n"
-          "| Coupled | 1.0000 | 2.0000 | 2.1000 | 3.1000 |\n"
+          "| Riemann (h = 0.5) | 10 | 11 | 10.1 | 11.1 |\n"
+          "| Coupled | 1 | 2 | 2.1 | 3.1 |\n"
           "\n"
           "Percentage of rays (all pixels, background included) whose absolute error exceeds the threshold, "
-          "per channel.\n");
+          "per channel, to 3 significant digits (0: no ray).\n");
     CHECK(toCsv(table) ==
           "Method,R > 0.01,A > 0.01,R > 0.001,A > 0.001\n"
-          "Riemann (h = 0.5),10.0000,11.0000,10.1000,11.1000\n"
-          "Coupled,1.0000,2.0000,2.1000,3.1000\n");
+          "Riemann (h = 0.5),10,11,10.1,11.1\n"
+          "Coupled,1,2,2.1,3.1\n");
 
     SUBCASE("a chosen subset of thresholds") {
         const Table only = thresholdTable({{"Riemann", {dir / "riemann.json"}}}, {0.001}, 2);
         CHECK(only.columns == std::vector<std::string>{"R > 0.001", "A > 0.001"});
         CHECK(toCsv(only) == "Method,R > 0.001,A > 0.001\nRiemann,10.10,11.10\n");
+        CHECK(toMarkdown(only).ends_with("per channel, to 2 decimals.\n"));
     }
     SUBCASE("errors name the file") {
         CHECK_THROWS_WITH_AS(thresholdTable({{"x", {dir / "riemann.json"}}}, {0.5}, 4),
@@ -69,6 +70,17 @@ TEST_CASE("table: thresholds layout, one file per row or one per threshold") {
             thresholdTable({{"x", {dir / "riemann.json", dir / "riemann.json", dir / "riemann.json"}}}, {}, 4),
             doctest::Contains("expected 1 or one per threshold (2)"), Error);
     }
+}
+
+TEST_CASE("table: significant digits fit numbers of any size, a percentage of 34.4375 reads 34.4") {
+    Table table;
+    table.rowHeader = "run";
+    table.columns = {"worst > 0.001", "max"};
+    table.precision = {kPercentDigits, 4};
+    table.significant = {true, true};
+    table.rows = {"a", "b", "c"};
+    table.cells = {{34.4375, 0.107421875}, {0.000208333, 2.7e-7}, {0.0, 100.0}};
+    CHECK(toCsv(table) == "run,worst > 0.001,max\na,34.4,0.1074\nb,0.000208,2.7e-07\nc,0,100\n");
 }
 
 TEST_CASE("table: matrix layout takes the median of several runs") {
@@ -172,7 +184,7 @@ TEST_CASE("table: tradeoff layout, seconds against errors with the Pareto fronts
     // an infinite error: never on the max front; vri-reference's stats count no samples
     add("exact", 0.3, 0, 0, "0.0001", "null", R"({"method": "exact", "precision": "double"})", "{}");
     TradeoffOptions twoDecimals;
-    twoDecimals.precision = 2;
+    twoDecimals.decimals = 2;
     const Table table = tradeoffTable(rows, twoDecimals);
     CHECK(toCsv(table) ==
           "run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,pareto max\n"
@@ -186,21 +198,21 @@ TEST_CASE("table: tradeoff layout, seconds against errors with the Pareto fronts
                                "max A | max | rmse | pareto % | pareto max |\n"
                                "|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n"));
     CHECK(markdown.find("| exact | exact | 0.3 | - | ") != std::string::npos);
-    CHECK(markdown.find("whose absolute error exceeds t (t = 0.001)") != std::string::npos);
+    CHECK(markdown.find("whose absolute error exceeds t (t = 0.001), to 2 decimals, per channel") != std::string::npos);
     CHECK(markdown.find("pareto % (pareto max): 1 on the Pareto front of seconds against worst > 0.001 (against max)") !=
           std::string::npos);
 
-    SUBCASE("a single run is on both fronts; times and errors keep 4 significant digits") {
+    SUBCASE("a single run is on both fronts; times and errors keep 4 significant digits, percentages 3") {
         add("alone", 1.23456, 0.5, 0.25, "1.234567e-07", "0", riemann, cpu);
         CHECK(toCsv(tradeoffTable({rows.back()})) ==
               "run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,"
               "pareto max\n"
-              "alone,riemann double,1.235,3.24,0.5000,0.2500,0.5000,1.235e-07,0,1.235e-07,1.235e-07,1,1\n");
+              "alone,riemann double,1.235,3.24,0.5,0.25,0.5,1.235e-07,0,1.235e-07,1.235e-07,1,1\n");
     }
     SUBCASE("a benchmark's table: each time over the baseline's, two thresholds, the worst channel only") {
         TradeoffOptions options;
         options.thresholds = {0.001, 0.01};
-        options.precision = 1;
+        options.decimals = 1;
         options.baseline = "riemann-h0.5";
         options.perChannel = false;
         const Table bench = tradeoffTable(rows, options);

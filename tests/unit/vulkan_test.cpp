@@ -197,6 +197,43 @@ TEST_CASE("Vulkan coupled and decoupled stay within a bound of the CPU in float"
             }
 }
 
+TEST_CASE("Vulkan keeps the empty-space bricks across frames and replaces them when the scene changes") {
+    if (!haveVulkan()) return;
+    VulkanRenderer gpu;
+    const Scene scene = blobScene();
+    const Camera camera = obliqueCamera(scene);
+    const RenderOptions opt = floatOptions(Integrator::Riemann);
+    RenderStats first, second;
+    const Image a = gpu.render(scene, camera, opt, &first);
+    const Image b = gpu.render(scene, camera, opt, &second);
+    CHECK_FALSE(first.setupReused);
+    CHECK(second.setupReused);
+    CHECK(a.pixels == b.pixels);
+    CHECK(second.samplesEvaluated == first.samplesEvaluated);
+    // A transfer function that is zero on more of the range empties more bricks: the device must get
+    // the new grid (a stale one would skip too little and count more samples), the image a fresh
+    // renderer's.
+    Scene narrower = scene;
+    narrower.transferFunction = TransferFunction({{0, 0, 0, 0, 0}, {0.7, 0, 0, 0, 0}, {1, 1, 1, 1, 1.2}},
+                                                 EmissionModel::ColourTimesExtinction);
+    RenderStats changed, fresh;
+    const Image c = gpu.render(narrower, camera, opt, &changed);
+    VulkanRenderer other;
+    const Image d = other.render(narrower, camera, opt, &fresh);
+    CHECK_FALSE(changed.setupReused);
+    CHECK(c.pixels == d.pixels);
+    CHECK(changed.samplesEvaluated == fresh.samplesEvaluated);
+    CHECK(changed.samplesEvaluated < first.samplesEvaluated);
+    // Skipping off, then on again: the placeholder replaced the bricks on the device, so they go up again.
+    RenderOptions full = opt;
+    full.skipEmptySpace = false;
+    RenderStats off, again;
+    gpu.render(narrower, camera, full, &off);
+    const Image e = gpu.render(narrower, camera, opt, &again);
+    CHECK(e.pixels == d.pixels);
+    CHECK(again.samplesEvaluated == fresh.samplesEvaluated);
+}
+
 TEST_CASE("Vulkan keeps the uploaded volume and renders repeatably") {
     if (!haveVulkan()) return;
     VulkanRenderer gpu;

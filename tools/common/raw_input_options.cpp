@@ -8,6 +8,10 @@ void RawInputOptions::addTo(CLI::App& app) {
     byteOrderOption_ = app.add_option("--byte-order", byteOrder_, "raw input: little (default) or big");
     headerBytesOption_ = app.add_option("--header-bytes", headerBytes_, "raw input: bytes to skip at the start");
     app.add_option("--spacing", spacing_, "voxel spacing X,Y,Z, overriding what the input says");
+    app.add_option("--storage", storage_,
+                   "dense, sparse (the 8^3 bricks that are not all background; a .vdb read straight into them) or "
+                   "auto (sparse for a .vdb too large to unpack densely)")
+        ->capture_default_str();
 }
 
 VolumeReadOptions RawInputOptions::options() const {
@@ -21,5 +25,7 @@ VolumeReadOptions RawInputOptions::options() const {
 }
 
 Volume RawInputOptions::read(const std::string& input) const { return readVolume(input, options()); }
+
+LoadedVolume RawInputOptions::load(const std::string& input) const { return readVolume(input, options(), storage()); }
 
 }  // namespace vri

@@ -138,6 +138,10 @@ int RenderCommand::run() {
 
         const SceneSetup setup = scene_.load();
         const Scene& scene = setup.scene;
+        if (scene.sparse && (request.exact || request.backend == Backend::Vulkan))
+            throw Error(std::string(request.exact ? "--method exact" : "--backend vulkan") +
+                        " renders dense volumes only, and the volume is kept sparse (--storage sparse, or auto for a "
+                        ".vdb too large to unpack): use --storage dense");
         const Camera camera(setup.camera);
         RenderBackend backend(request);
         auto [frame, wallSeconds] = timing_.run([&] {

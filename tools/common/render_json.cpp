@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <variant>
 
+#include "vri/core/sparse_volume.h"
+
 namespace vri {
 
 namespace {
@@ -85,6 +87,20 @@ nlohmann::json describeScene(const Scene& scene) {
         j["voxel_type"] = voxelTypeName(scene.volume->type);
         j["spacing"] = vec(scene.volume->spacing);
         j["normalisation_range"] = {r.lo, r.hi};
+        j["storage"] = "dense";
+        j["volume_bytes"] = scene.volume->byteCount();
+    } else if (scene.sparse) {
+        const SparseVolume& v = *scene.sparse;
+        const ValueRange r = v.normalisationRange();
+        j["kind"] = "volume";
+        j["voxel_type"] = voxelTypeName(v.type);
+        j["spacing"] = vec(v.spacing);
+        j["normalisation_range"] = {r.lo, r.hi};
+        j["storage"] = "sparse";
+        j["volume_bytes"] = v.byteCount();  // the stored bricks and the brick table
+        j["background"] = v.background();
+        j["bricks"] = v.brickCount();
+        j["stored_bricks"] = v.storedBricks();
     } else {
         j["kind"] = "analytic";
         j["field"] = "linear: f = (x - box_lo.x) / (box_hi.x - box_lo.x)";

@@ -44,9 +44,13 @@ SceneSetup SceneOptions::load() const {
 
     nlohmann::json inputs = nlohmann::json::array();
     std::shared_ptr<Volume> volume;
+    std::shared_ptr<SparseVolume> sparse;
     std::optional<LinearField> linear;
     if (!volumePath_.empty()) {
-        volume = std::make_shared<Volume>(raw_.read(volumePath_));
+        raw_.storage();  // checked before the volume is read
+        LoadedVolume loaded = raw_.load(volumePath_);
+        volume = std::move(loaded.dense);
+        sparse = std::move(loaded.sparse);
         inputs.push_back({{"path", volumePath_}, {"sha512", sha512File(volumePath_)}});
     } else {
         if (field_ != "linear") throw Error("--field: unknown analytic field '" + field_ + "' (expected linear)");
@@ -58,11 +62,11 @@ SceneSetup SceneOptions::load() const {
         }
     }
     if (!range_.empty()) {
-        if (!volume) throw Error("--range applies to volumes only");
+        if (!volume && !sparse) throw Error("--range applies to volumes only");
         const glm::dvec2 r = parseRange(range_, "--range");
-        volume->range = ValueRange{r.x, r.y};
+        (sparse ? sparse->range : volume->range) = ValueRange{r.x, r.y};
     }
-    Scene scene{volume, linear, conv, loadTransferFunction(tfPath_)};
+    Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse};
     inputs.push_back({{"path", tfPath_}, {"sha512", sha512File(tfPath_)}});
 
     CameraSpec cam = framingCamera(scene.box(), imageSize.x, imageSize.y, fov_);

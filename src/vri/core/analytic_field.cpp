@@ -5,9 +5,13 @@
 namespace vri {
 
 Box volumeBox(const Volume& volume, GridConvention convention) {
-    const glm::dvec3 n(volume.dims);
+    return gridBox(volume.dims, volume.spacing, volume.origin, convention);
+}
+
+Box gridBox(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origin, GridConvention convention) {
+    const glm::dvec3 n(dims);
     const glm::dvec3 cells = convention == GridConvention::CellCentred ? n : n - glm::dvec3(1.0);
-    return {volume.origin, volume.origin + cells * volume.spacing};
+    return {origin, origin + cells * spacing};
 }
 
 Volume sampleOntoGrid(const LinearField& field, GridConvention convention) {

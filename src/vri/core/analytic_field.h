@@ -34,5 +34,6 @@ Volume sampleOntoGrid(const LinearField& field, GridConvention convention);
 // Box of a volume's samples under a convention: cell-centred volumes span dims * spacing,
 // node-centred ones (dims - 1) * spacing, both starting at volume.origin.
 Box volumeBox(const Volume& volume, GridConvention convention);
+Box gridBox(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origin, GridConvention convention);
 
 }  // namespace vri

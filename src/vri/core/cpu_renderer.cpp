@@ -20,6 +20,7 @@
 #include "vri/core/occupancy_cache.h"
 #include "vri/core/occupancy_grid.h"
 #include "vri/core/simd_march.h"
+#include "vri/core/sparse_sampler.h"
 #include "vri/util/csv.h"
 #include "vri/util/error.h"
 #include "vri/util/format.h"
@@ -56,9 +57,12 @@ void parseEarlyTermination(const std::string& text, const std::string& what, Ren
     (bound ? options.terminationBound : options.earlyTermination) = *v;
 }
 
-Box Scene::box() const { return volume ? volumeBox(*volume, convention) : field->box; }
+Box Scene::box() const {
+    if (sparse) return gridBox(sparse->dims, sparse->spacing, sparse->origin, convention);
+    return volume ? volumeBox(*volume, convention) : field->box;
+}
 
-glm::dvec3 Scene::dims() const { return glm::dvec3(volume ? volume->dims : field->dims); }
+glm::dvec3 Scene::dims() const { return glm::dvec3(sparse ? sparse->dims : volume ? volume->dims : field->dims); }
 
 namespace {
 
@@ -211,19 +215,27 @@ template <class Real>
 void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& opt, Image& image,
                  Counters& counters, RenderStats& stats, OccupancyCache& cache) {
     std::vector<AdaptiveTry>* log = opt.logPixel ? &stats.rayLog : nullptr;
-    if (!scene.volume) {
+    if (!scene.volume && !scene.sparse) {
         renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, GridIndexing{}, camera, opt, image, counters,
                          log);
         return;
     }
-    const Volume& volume = *scene.volume;
     const OccupancyGrid* occupancy = nullptr;
     if (opt.skipEmptySpace) {
-        const OccupancyCache::Entry grid = cache.get(scene.volume, scene.convention, scene.transferFunction);
+        const OccupancyCache::Entry grid = scene.sparse ? cache.get(scene.sparse, scene.convention, scene.transferFunction)
+                                                        : cache.get(scene.volume, scene.convention, scene.transferFunction);
         occupancy = &grid.grid;
         stats.setupSeconds = grid.buildSeconds;
         stats.setupReused = grid.reused;
         stats.emptyBrickFraction = occupancy->emptyFraction();
+    }
+    const GridIndexing indexMap(glm::ivec3(scene.dims()), scene.convention);
+    if (scene.sparse) {  // the scalar path whatever opt.simd says: the packet engine reads dense volumes only
+        dispatchVoxelType(scene.sparse->type, [&](auto voxel) {
+            const SparseGridSampler<decltype(voxel), Real> sampler(*scene.sparse, scene.convention);
+            renderWith<Real>(scene, sampler, occupancy, indexMap, camera, opt, image, counters, log);
+        });
+        return;
     }
     if (opt.simd && PacketScene::supports(scene, opt)) {
         const PacketScene packets(scene, camera, occupancy, opt);
@@ -233,7 +245,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         });
         return;
     }
-    const GridIndexing indexMap(volume.dims, scene.convention);
+    const Volume& volume = *scene.volume;
     dispatchVoxelType(volume.type, [&](auto voxel) {
         const GridSampler<decltype(voxel), Real> sampler(volume, scene.convention);
         renderWith<Real>(scene, sampler, occupancy, indexMap, camera, opt, image, counters, log);
@@ -258,7 +270,7 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
         throw Error("sampling rate must be positive and finite (step h = 1 / rate > 0), got " +
                     std::to_string(options.samplingRate));
     if (options.tileSize < 1) throw Error("tile size must be at least 1");
-    if (!scene.volume && !scene.field) throw Error("scene has neither a volume nor an analytic field");
+    if (!scene.volume && !scene.sparse && !scene.field) throw Error("scene has neither a volume nor an analytic field");
     if (!(options.earlyTermination >= 0.0 && options.earlyTermination < 1.0))
         throw Error("early termination threshold must be in [0, 1), got " + std::to_string(options.earlyTermination));
     if (!(options.terminationBound >= 0.0 && options.terminationBound < 1.0))

@@ -22,6 +22,7 @@
 namespace vri {
 
 class OccupancyCache;  // occupancy_cache.h
+class SparseVolume;    // sparse_volume.h
 
 enum class Precision { Double, Float };
 std::string_view precisionName(Precision p);  // "double", "float"
@@ -40,6 +41,10 @@ struct Scene {
     std::optional<LinearField> field;      // set for analytic scenes
     GridConvention convention = GridConvention::CellCentred;
     TransferFunction transferFunction;
+    // Set instead of `volume` for a volume kept sparse (sparse_volume.h). The CPU renderer's scalar path
+    // renders it, bitwise as the dense volume (the packet engine, the exact method and Vulkan read dense
+    // volumes only: the SIMD option falls back to the scalar path, the others refuse it).
+    std::shared_ptr<const SparseVolume> sparse = nullptr;
 
     Box box() const;
     glm::dvec3 dims() const;  // the grid resolution paper A's placements use
@@ -74,9 +79,10 @@ struct RenderStats {
     std::uint64_t samplesPlaced = 0;     // samples the placement puts on the rays (up to early termination)
     std::uint64_t samplesEvaluated = 0;  // of those, the ones not skipped as empty space
     double seconds = 0.0;                // wall time of the frame's own work (excludes loading and setup)
-    // CPU: building the empty-space grid this frame used (occupancy_cache.h); Vulkan: upload and pipelines.
+    // CPU: building the empty-space grid this frame used, in this call or the one that built it
+    // (occupancy_cache.h). Vulkan: what this call spent on setup (grid, upload, pipelines).
     double setupSeconds = 0.0;
-    bool setupReused = false;  // CPU: the grid came from an earlier frame, so this frame spent no setupSeconds
+    bool setupReused = false;  // the grid came from an earlier frame of the same scene
     int threads = 0;
     double emptyBrickFraction = 0.0;
     // Early termination: the rays ended before their last sample, and the most the samples they left

@@ -40,8 +40,10 @@ template <class Real>
 struct GridSamplerLayout {
     using Vec = glm::vec<3, Real>;
 
-    GridSamplerLayout(const Volume& volume, GridConvention convention) {
-        const GridIndexing g(volume.dims, convention);
+    GridSamplerLayout(const Volume& volume, GridConvention convention)
+        : GridSamplerLayout(volume.dims, volume.normalisationRange(), convention) {}
+    GridSamplerLayout(const glm::ivec3& dims, const ValueRange& r, GridConvention convention) {
+        const GridIndexing g(dims, convention);
         scale = Vec(g.scale);
         offset = Vec(g.offset);
         for (int a = 0; a < 3; ++a) {
@@ -49,9 +51,43 @@ struct GridSamplerLayout {
             maxBase[a] = g.maxBase[a];
             stride[a] = g.stride[a];
         }
-        const ValueRange r = volume.normalisationRange();
         lo = static_cast<Real>(r.lo);
         invRange = r.hi > r.lo ? static_cast<Real>(1.0 / (r.hi - r.lo)) : Real(0);
+    }
+
+    // The cell of the trilinear stencil at texture coordinate u: its lower corner voxel i and the
+    // weights w of the upper corner along each axis.
+    struct Cell {
+        int i[3];
+        Real w[3];
+    };
+    Cell cell(const Vec& u) const {
+        const Vec x = u * scale - offset;  // continuous voxel index: voxel i sits at index i
+        Cell c;
+        for (int a = 0; a < 3; ++a) {
+            // Clamp to the outermost voxels (texture "clamp to edge"); exact for node-centred data,
+            // whose box ends on the outermost voxels anyway.
+            const Real x0 = std::clamp(x[a], Real(0), maxCoord[a]);
+            c.i[a] = std::min(static_cast<int>(x0), maxBase[a]);
+            c.w[a] = x0 - static_cast<Real>(c.i[a]);
+        }
+        return c;
+    }
+
+    // The normalised scalar s interpolated from the cell's lower corner voxel p and its neighbours at
+    // strides s (in voxels of T): the arithmetic every CPU sampler shares, so that they agree bit for bit.
+    template <class T>
+    Real interpolate(const T* p, const std::int64_t s[3], const Real w[3]) const {
+        const std::int64_t sx = s[0], sy = s[1], sz = s[2];
+        auto v = [p](std::int64_t o) { return static_cast<Real>(p[o]); };
+        auto lerp = [](Real a, Real b, Real t) { return a + t * (b - a); };
+        const Real c00 = lerp(v(0), v(sx), w[0]);
+        const Real c10 = lerp(v(sy), v(sy + sx), w[0]);
+        const Real c01 = lerp(v(sz), v(sz + sx), w[0]);
+        const Real c11 = lerp(v(sz + sy), v(sz + sy + sx), w[0]);
+        const Real c0 = lerp(c00, c10, w[1]);
+        const Real c1 = lerp(c01, c11, w[1]);
+        return (lerp(c0, c1, w[2]) - lo) * invRange;
     }
 
     Vec scale, offset;
@@ -72,28 +108,9 @@ public:
     Vec index(const Vec& u) const { return u * g_.scale - g_.offset; }
 
     Real operator()(const Vec& u) const {
-        const Vec x = index(u);
-        std::int64_t base = 0;
-        Real w[3];
-        for (int a = 0; a < 3; ++a) {
-            // Clamp to the outermost voxels (texture "clamp to edge"); exact for node-centred data,
-            // whose box ends on the outermost voxels anyway.
-            const Real c = std::clamp(x[a], Real(0), g_.maxCoord[a]);
-            const int i = std::min(static_cast<int>(c), g_.maxBase[a]);
-            w[a] = c - static_cast<Real>(i);
-            base += i * g_.stride[a];
-        }
-        const T* p = data_ + base;
-        const std::int64_t sx = g_.stride[0], sy = g_.stride[1], sz = g_.stride[2];
-        auto v = [p](std::int64_t o) { return static_cast<Real>(p[o]); };
-        auto lerp = [](Real a, Real b, Real t) { return a + t * (b - a); };
-        const Real c00 = lerp(v(0), v(sx), w[0]);
-        const Real c10 = lerp(v(sy), v(sy + sx), w[0]);
-        const Real c01 = lerp(v(sz), v(sz + sx), w[0]);
-        const Real c11 = lerp(v(sz + sy), v(sz + sy + sx), w[0]);
-        const Real c0 = lerp(c00, c10, w[1]);
-        const Real c1 = lerp(c01, c11, w[1]);
-        return (lerp(c0, c1, w[2]) - g_.lo) * g_.invRange;
+        const auto c = g_.cell(u);
+        const std::int64_t base = c.i[0] * g_.stride[0] + c.i[1] * g_.stride[1] + c.i[2] * g_.stride[2];
+        return g_.interpolate(data_ + base, g_.stride, c.w);
     }
 
 private:

@@ -5,7 +5,7 @@
 
 namespace vri {
 
-bool OccupancyCache::matches(const Volume* volume, GridConvention convention, const TransferFunction& tf) const {
+bool OccupancyCache::matches(const void* volume, GridConvention convention, const TransferFunction& tf) const {
     const auto same = [](const TransferFunctionPoint& a, const TransferFunctionPoint& b) {
         return a.s == b.s && a.r == b.r && a.g == b.g && a.b == b.b && a.tau == b.tau;
     };
@@ -14,8 +14,9 @@ bool OccupancyCache::matches(const Volume* volume, GridConvention convention, co
            std::equal(points_.begin(), points_.end(), p.begin(), p.end(), same);
 }
 
-OccupancyCache::Entry OccupancyCache::get(const std::shared_ptr<const Volume>& volume, GridConvention convention,
-                                          const TransferFunction& tf) {
+template <class V>
+OccupancyCache::Entry OccupancyCache::getFor(const std::shared_ptr<const V>& volume, GridConvention convention,
+                                             const TransferFunction& tf) {
     if (matches(volume.get(), convention, tf)) return {*grid_, buildSeconds_, true};
     grid_.reset();
     const auto start = std::chrono::steady_clock::now();
@@ -26,6 +27,16 @@ OccupancyCache::Entry OccupancyCache::get(const std::shared_ptr<const Volume>& v
     points_ = tf.points();
     emission_ = tf.emission();
     return {*grid_, buildSeconds_, false};
+}
+
+OccupancyCache::Entry OccupancyCache::get(const std::shared_ptr<const Volume>& volume, GridConvention convention,
+                                          const TransferFunction& tf) {
+    return getFor(volume, convention, tf);
+}
+
+OccupancyCache::Entry OccupancyCache::get(const std::shared_ptr<const SparseVolume>& volume,
+                                          GridConvention convention, const TransferFunction& tf) {
+    return getFor(volume, convention, tf);
 }
 
 }  // namespace vri

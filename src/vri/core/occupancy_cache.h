@@ -9,6 +9,7 @@
 
 #include "vri/core/grid_convention.h"
 #include "vri/core/occupancy_grid.h"
+#include "vri/core/sparse_volume.h"
 #include "vri/core/transfer_function.h"
 #include "vri/core/volume.h"
 
@@ -28,11 +29,14 @@ public:
     // immutable once shared; one changed in place through another pointer is not noticed. Not
     // thread-safe: one cache serves one sequence of renders.
     Entry get(const std::shared_ptr<const Volume>& volume, GridConvention convention, const TransferFunction& tf);
+    Entry get(const std::shared_ptr<const SparseVolume>& volume, GridConvention convention, const TransferFunction& tf);
 
 private:
-    bool matches(const Volume* volume, GridConvention convention, const TransferFunction& tf) const;
+    template <class V>
+    Entry getFor(const std::shared_ptr<const V>& volume, GridConvention convention, const TransferFunction& tf);
+    bool matches(const void* volume, GridConvention convention, const TransferFunction& tf) const;
 
-    std::shared_ptr<const Volume> volume_;
+    std::shared_ptr<const void> volume_;  // a Volume or a SparseVolume
     GridConvention convention_ = GridConvention::CellCentred;
     std::vector<TransferFunctionPoint> points_;
     EmissionModel emission_ = EmissionModel::ColourTimesExtinction;

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
+#include <glm/vector_relational.hpp>
 #include <tbb/parallel_for.h>
 
 #include "vri/core/block_ranges.h"
@@ -11,6 +13,27 @@
 namespace vri {
 
 namespace {
+
+// Whether a brick whose voxels (and margin) span the raw values mn..mx is invisible under tf.
+class EmptinessTest {
+public:
+    EmptinessTest(const ValueRange& range, const TransferFunction& tf)
+        : range_(range), invRange_(range.hi > range.lo ? 1.0 / (range.hi - range.lo) : 0.0), tf_(tf) {}
+
+    bool operator()(double mn, double mx) const {
+        const double s0 = (mn - range_.lo) * invRange_, s1 = (mx - range_.lo) * invRange_;
+        // A float sampler rounds lo, 1 / (hi - lo) and the interpolated value to float:
+        // errors of a few float ulps of |lo|, |mn|, |mx|, scaled by 1 / (hi - lo). Pad by far more.
+        const double magnitude = 1.0 + (std::abs(range_.lo) + std::abs(mn) + std::abs(mx)) * invRange_;
+        const double pad = 1e-5 * magnitude;
+        return tf_.isInvisible(s0 - pad, s1 + pad);
+    }
+
+private:
+    ValueRange range_;
+    double invRange_;
+    const TransferFunction& tf_;
+};
 
 // OccupancyGrid::emptyDistances() of the flags `empty` of a grid of `bricks`. The distance
 // max(|dx|, |dy|, |dz|) to the nearest non-empty brick is separable: the distance along x within
@@ -43,13 +66,15 @@ std::vector<std::int32_t> chebyshevDistances(const std::vector<std::uint8_t>& em
 
 }  // namespace
 
-OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const TransferFunction& tf)
-    : dims_(volume.dims), maxIndex_(glm::dvec3(volume.dims) - glm::dvec3(1.0)) {
+OccupancyGrid::OccupancyGrid(glm::ivec3 dims) : dims_(dims), maxIndex_(glm::dvec3(dims) - glm::dvec3(1.0)) {
     // Bricks tile the index range [0, n - 1] of each axis: brick m holds indices [m B, (m + 1) B).
     for (int a = 0; a < 3; ++a) bricks_[a] = (dims_[a] - 1) / kBrick + 1;
     empty_.assign(static_cast<std::size_t>(bricks_.x) * bricks_.y * bricks_.z, 0);
-    const ValueRange range = volume.normalisationRange();
-    const double invRange = range.hi > range.lo ? 1.0 / (range.hi - range.lo) : 0.0;
+}
+
+OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const TransferFunction& tf)
+    : OccupancyGrid(volume.dims) {
+    const EmptinessTest isEmpty(volume.normalisationRange(), tf);
     // Each brick's voxels plus a one-voxel margin on every side.
     const auto [lo, hi] = dispatchVoxelType(volume.type, [&](auto t) {
         using T = decltype(t);
@@ -57,14 +82,62 @@ OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const Transfe
         return std::pair<std::vector<double>, std::vector<double>>{std::vector<double>(r.lo.begin(), r.lo.end()),
                                                                    std::vector<double>(r.hi.begin(), r.hi.end())};
     });
-    tbb::parallel_for(std::size_t(0), empty_.size(), [&](std::size_t i) {
-        const double mn = lo[i], mx = hi[i];
-        const double s0 = (mn - range.lo) * invRange, s1 = (mx - range.lo) * invRange;
-        // A float sampler rounds lo, 1 / (hi - lo) and the interpolated value to float:
-        // errors of a few float ulps of |lo|, |mn|, |mx|, scaled by 1 / (hi - lo). Pad by far more.
-        const double magnitude = 1.0 + (std::abs(range.lo) + std::abs(mn) + std::abs(mx)) * invRange;
-        const double pad = 1e-5 * magnitude;
-        empty_[i] = tf.isInvisible(s0 - pad, s1 + pad);
+    tbb::parallel_for(std::size_t(0), empty_.size(), [&](std::size_t i) { empty_[i] = isEmpty(lo[i], hi[i]); });
+    distance_ = chebyshevDistances(empty_, bricks_, kMaxDistance);
+}
+
+OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const TransferFunction& tf)
+    : OccupancyGrid(volume.dims) {
+    static_assert(kBrick == SparseVolume::kBrick, "the occupancy grid's bricks are the sparse volume's");
+    const EmptinessTest isEmpty(volume.normalisationRange(), tf);
+    const double background = volume.background();
+    std::fill(empty_.begin(), empty_.end(), isEmpty(background, background));
+    // Brick m's voxels and margin, [8m - 1, 8m + 9] along each axis as blockRanges takes them above, are
+    // the last voxel of brick m - 1, the voxels of brick m and the first two of brick m + 1: only bricks
+    // next to a stored one can see anything but the background.
+    std::vector<std::uint8_t> near(empty_.size(), 0);
+    for (int z = 0; z < bricks_.z; ++z)
+        for (int y = 0; y < bricks_.y; ++y)
+            for (int x = 0; x < bricks_.x; ++x) {
+                if (volume.table()[volume.brickIndex(x, y, z)] == 0) continue;
+                for (int nz = std::max(z - 1, 0); nz <= std::min(z + 1, bricks_.z - 1); ++nz)
+                    for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, bricks_.y - 1); ++ny)
+                        for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, bricks_.x - 1); ++nx)
+                            near[volume.brickIndex(nx, ny, nz)] = 1;
+            }
+    dispatchVoxelType(volume.type, [&](auto t) {
+        using T = decltype(t);
+        constexpr int B = SparseVolume::kBlock;
+        tbb::parallel_for(std::size_t(0), empty_.size(), [&](std::size_t i) {
+            if (!near[i]) return;
+            const glm::ivec3 m(static_cast<int>(i % bricks_.x), static_cast<int>(i / bricks_.x % bricks_.y),
+                               static_cast<int>(i / bricks_.x / bricks_.y));
+            T mn = std::numeric_limits<T>::max(), mx = std::numeric_limits<T>::lowest();
+            for (int dz = -1; dz <= 1; ++dz)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const glm::ivec3 d(dx, dy, dz), n = m + d;
+                        if (glm::any(glm::lessThan(n, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(n, bricks_)))
+                            continue;
+                        // Brick n's own voxels in the margin (its last one, or its first two) or all of
+                        // them, clipped to the volume.
+                        glm::ivec3 first, last;
+                        for (int a = 0; a < 3; ++a) {
+                            first[a] = d[a] < 0 ? kBrick - 1 : 0;
+                            last[a] = std::min(d[a] < 0 ? kBrick - 1 : d[a] > 0 ? 1 : kBrick - 1,
+                                               dims_[a] - 1 - n[a] * kBrick);
+                        }
+                        const T* p = volume.block<T>(volume.brickIndex(n.x, n.y, n.z));
+                        for (int z = first.z; z <= last.z; ++z)
+                            for (int y = first.y; y <= last.y; ++y)
+                                for (int x = first.x; x <= last.x; ++x) {
+                                    const T v = p[(z * B + y) * B + x];
+                                    mn = std::min(mn, v);
+                                    mx = std::max(mx, v);
+                                }
+                    }
+            empty_[i] = isEmpty(static_cast<double>(mn), static_cast<double>(mx));
+        });
     });
     distance_ = chebyshevDistances(empty_, bricks_, kMaxDistance);
 }

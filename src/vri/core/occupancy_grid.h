@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "vri/core/grid_convention.h"
+#include "vri/core/sparse_volume.h"
 #include "vri/core/transfer_function.h"
 #include "vri/core/volume.h"
 
@@ -24,6 +25,9 @@ public:
     static constexpr int kBrick = 1 << kBrickShift;  // voxels per brick edge
 
     OccupancyGrid(const Volume& volume, GridConvention convention, const TransferFunction& tf);
+    // The same grid, bit for bit, from the stored bricks alone: a brick and its margin in no stored
+    // brick's block hold the background only.
+    OccupancyGrid(const SparseVolume& volume, GridConvention convention, const TransferFunction& tf);
 
     // An index-space ray x0 + t * dxdt, with what visit() needs precomputed once per ray.
     struct Ray {
@@ -70,6 +74,8 @@ public:
     const std::vector<std::int32_t>& emptyDistances() const { return distance_; }
 
 private:
+    explicit OccupancyGrid(glm::ivec3 dims);  // the bricks of dims, none marked empty
+
     glm::ivec3 dims_;
     glm::dvec3 maxIndex_;  // dims - 1
     glm::ivec3 bricks_;

@@ -41,14 +41,19 @@ ValueRange Volume::dataRange() const {
     });
 }
 
-ValueRange Volume::normalisationRange() const {
-    if (range) return *range;
+std::optional<ValueRange> fixedNormalisationRange(VoxelType type, const std::optional<ValueRange>& range) {
+    if (range) return range;
     switch (type) {
-    case VoxelType::UInt8: return {0.0, 255.0};
-    case VoxelType::UInt16: return {0.0, 65535.0};
+    case VoxelType::UInt8: return ValueRange{0.0, 255.0};
+    case VoxelType::UInt16: return ValueRange{0.0, 65535.0};
     case VoxelType::Float32: break;
     }
-    return dataRange();
+    return std::nullopt;
+}
+
+ValueRange Volume::normalisationRange() const {
+    const std::optional<ValueRange> fixed = fixedNormalisationRange(type, range);
+    return fixed ? *fixed : dataRange();
 }
 
 }  // namespace vri

@@ -18,6 +18,10 @@ struct ValueRange {
     bool operator==(const ValueRange&) const = default;
 };
 
+// The range to normalise values with when the volume states none (`range`): the type's full range for
+// integers; nullopt for float, whose data min..max is used (Volume and SparseVolume compute it).
+std::optional<ValueRange> fixedNormalisationRange(VoxelType type, const std::optional<ValueRange>& range);
+
 class Volume {
 public:
     Volume() = default;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "vri/core/sparse_volume.h"
 #include "vri/core/volume.h"
 
 namespace vri {
@@ -29,5 +30,8 @@ inline constexpr int kStatsBrickSize = 8;
 
 // Throws vri::Error when bins < 1.
 VolumeStats computeVolumeStats(const Volume& volume, int bins = 16);
+// The same from the stored bricks alone (the background counted once for all other voxels); equal to the
+// dense volume's stats but for the mean's rounding (the sum runs brick by brick).
+VolumeStats computeVolumeStats(const SparseVolume& volume, int bins = 16);
 
 }  // namespace vri

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace vri {
 
@@ -28,6 +29,14 @@ decltype(auto) dispatchVoxelType(VoxelType type, F&& f) {
     case VoxelType::Float32: break;
     }
     return f(float{});
+}
+
+// The VoxelType of the C++ type T: dispatchVoxelType's inverse.
+template <class T>
+constexpr VoxelType voxelTypeOf() {
+    static_assert(std::is_same_v<T, std::uint8_t> || std::is_same_v<T, std::uint16_t> || std::is_same_v<T, float>);
+    return std::is_same_v<T, std::uint8_t> ? VoxelType::UInt8 : std::is_same_v<T, std::uint16_t> ? VoxelType::UInt16
+                                                                                                 : VoxelType::Float32;
 }
 
 }  // namespace vri

@@ -473,7 +473,11 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
         for (const std::string& run : runs) {
             ComparisonSpec c = base;
-            c.id = group + "-" + run;
+            c.id = comparisonId(group, run);
+            const auto sameId = [&](const auto& other) { return other.id == c.id; };
+            if (std::ranges::any_of(experiment.runs, sameId) || std::ranges::any_of(experiment.comparisons, sameId))
+                throw Error(at(entry) + ": comparison '" + group + "' of run '" + run + "' has the id '" + c.id +
+                            "', which another run or comparison has (rename the comparison)");
             c.run = run;
             experiment.comparisons.push_back(std::move(c));
         }
@@ -734,6 +738,23 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
 }
 
 }  // namespace
+
+std::string comparisonId(const std::string& name, const std::string& run) {
+    const auto words = [](const std::string& text) {
+        std::vector<std::string> list;
+        for (std::size_t start = 0, end;; start = end + 1) {
+            end = text.find('-', start);
+            list.push_back(text.substr(start, end - start));
+            if (end == std::string::npos) return list;
+        }
+    };
+    const std::vector<std::string> a = words(name), b = words(run);
+    std::size_t shared = std::min(a.size() - 1, b.size());
+    while (shared > 0 && !std::equal(a.end() - static_cast<std::ptrdiff_t>(shared), a.end(), b.begin())) --shared;
+    std::string id = name;
+    for (std::size_t i = shared; i < b.size(); ++i) id += "-" + b[i];
+    return id;
+}
 
 bool isSafeName(std::string_view name) {
     const auto alnum = [](char c) {

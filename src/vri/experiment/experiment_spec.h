@@ -49,7 +49,7 @@ struct RunSpec {
 
 // One vri-diff of a run against a reference run.
 struct ComparisonSpec {
-    std::string id;  // "<comparison>-<run id>"
+    std::string id;  // comparisonId(group, run)
     std::string group;  // the comparison's name in the file
     std::string reference, run;  // RunSpec ids
     std::vector<std::string> thresholds;
@@ -57,6 +57,11 @@ struct ComparisonSpec {
     std::string diffScale;  // vri-diff --diff-scale, as written; "" for none
     bool histogram = false;
 };
+
+// A comparison's id, the name of its files: its name and the run's id, with the words (between '-') that
+// the name ends with and the run's id starts with written once: vs-exact-bonsai and bonsai-riemann-h0.5
+// make vs-exact-bonsai-riemann-h0.5. The name keeps a word of its own, so the id is never the run's.
+std::string comparisonId(const std::string& name, const std::string& run);
 
 // One invocation of any vri tool that writes data files (vri-rays2d, ...), from `commands:`: the step
 // that stands for it is called `name`. Its inputs are source files, its outputs land in the results folder.

@@ -6,15 +6,18 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "vri/experiment/caption_numbers.h"
+#include "vri/experiment/gallery_grid.h"
 #include "vri/experiment/step_costs.h"
 #include "vri/io/provenance.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/error.h"
+#include "vri/util/file_text.h"
 #include "vri/util/json_file.h"
 #include "vri/util/process.h"
 
@@ -98,6 +101,50 @@ void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs:
           "viridis from 0 (dark blue, the colour bar's left end) to the top of the scale (yellow, its right end; "
           "larger errors saturate), ticks at quarters of it. Top of the scale: "
        << scales << ".*\n\n";
+}
+
+// A table's Markdown without the notes under its last row when an earlier table of the experiment had
+// the same: a kind of table is explained once, not under each of its tables.
+std::string withNewNotes(const std::string& table, std::set<std::string>& notesSeen) {
+    const std::size_t lastRow = table.rfind("\n|");
+    const std::size_t rowEnd = lastRow == std::string::npos ? std::string::npos : table.find('\n', lastRow + 1);
+    if (rowEnd == std::string::npos) return table;
+    const std::string notes = table.substr(rowEnd + 1);
+    if (notes.find_first_not_of(" \n") == std::string::npos || notesSeen.insert(notes).second) return table;
+    return table.substr(0, rowEnd + 1);
+}
+
+// An id without the scene's name in front (bonsai-riemann-h0.5 -> riemann-h0.5): the same run's
+// column in every scene's row.
+std::string withoutScene(const std::string& id, const std::string& scene) {
+    return !scene.empty() && id.starts_with(scene + "-") ? id.substr(scene.size() + 1) : id;
+}
+
+// Where each gallery image goes in its experiment's scene-by-run matrix: a render's row is its scene
+// and its column its run; a difference image's row is its run's scene and its column "RUN vs REFERENCE".
+// A command's image has no scene.
+std::vector<GridImage> gridImages(const nlohmann::json& list, const nlohmann::json& steps, const std::string& dir) {
+    std::map<std::string, const nlohmann::json*> parameters;
+    for (const nlohmann::json& step : steps) parameters.emplace(step.at("id").get<std::string>(), &step.at("parameters"));
+    const auto scene = [&](const std::string& id) {
+        const auto found = parameters.find(id);
+        return found == parameters.end() ? std::string() : found->second->value("scene", std::string());
+    };
+    std::vector<GridImage> images;
+    for (const nlohmann::json& item : list) {
+        const std::string id = item.at("id").get<std::string>();
+        GridImage image{id, dir + "/" + item.at("file").get<std::string>(), scene(id), id};
+        if (const auto found = parameters.find(id); found != parameters.end() && found->second->contains("run")) {
+            const std::string run = found->second->at("run").get<std::string>();
+            const std::string reference = found->second->value("reference", std::string());
+            image.row = scene(run);
+            image.column = withoutScene(run, image.row) + " vs " + withoutScene(reference, scene(reference));
+        } else {
+            image.column = withoutScene(id, image.row);
+        }
+        images.push_back(std::move(image));
+    }
+    return images;
 }
 
 }  // namespace
@@ -195,27 +242,18 @@ std::string galleryMarkdown(const fs::path& resultsRoot) {
             else
                 md << "* (see " << first.first->second << ").\n\n";
         }
-        const auto gallery = [&](const nlohmann::json& list) {
-            if (list.empty()) return;
-            md << "|";
-            for (const nlohmann::json& item : list) md << " " << item.at("id").get<std::string>() << " |";
-            md << "\n|";
-            for (std::size_t i = 0; i < list.size(); ++i) md << "---|";
-            md << "\n|";
-            for (const nlohmann::json& item : list)
-                md << " ![" << item.at("id").get<std::string>() << "](" << dir << "/" << item.at("file").get<std::string>()
-                   << ") |";
-            md << "\n\n";
-        };
         const nlohmann::json& outputs = m.at("outputs");
-        gallery(outputs.at("images"));
-        gallery(outputs.at("diff_images"));
+        md << imageGrid(gridImages(outputs.at("images"), m.at("steps"), dir), "scene");
+        md << imageGrid(gridImages(outputs.at("diff_images"), m.at("steps"), dir), "scene");
         heatMapScales(md, outputs.at("diff_images"), path.parent_path());
+        std::set<std::string> notesSeen;
         for (const nlohmann::json& table : outputs.at("tables"))
-            // An empty file would leave `md` failed, and the rest of the gallery unwritten.
-            if (std::ifstream in(path.parent_path() / table.at("file").get<std::string>()); in.peek() != EOF)
-                md << in.rdbuf() << "\n";
-        gallery(outputs.at("figures"));
+            if (const auto text = tryReadFileText(path.parent_path() / table.at("file").get<std::string>()); text && !text->empty())
+                md << withNewNotes(*text, notesSeen) << "\n";
+        // A figure is as wide as the page: one a line.
+        for (const nlohmann::json& figure : outputs.at("figures"))
+            md << "![" << figure.at("id").get<std::string>() << "](" << dir << "/" << figure.at("file").get<std::string>()
+               << ")\n\n";
         if (!e.at("agreement").get<std::string>().empty())
             md << "**Ours against the paper:** "
                << fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path()) << "\n\n";

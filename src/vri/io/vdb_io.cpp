@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <mutex>
 #include <sstream>
@@ -142,20 +144,36 @@ void copyToVolume(const fs::path& path, const openvdb::GridBase& grid, const ope
 constexpr std::uint64_t kPlausibleExpansion = 1024;
 constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
 
-// The dense volume's bytes, checked against the byte limit and the file's size before anything is allocated.
-void requirePlausibleSize(const fs::path& path, const std::string& source, glm::ivec3 dims, VoxelType type) {
-    const std::string what = path.string() + ": " + source + " " + std::to_string(dims.x) + "x" +
-                             std::to_string(dims.y) + "x" + std::to_string(dims.z) + " (" +
-                             std::string(voxelTypeName(type)) + ")";
-    const std::uint64_t bytes = checkedBytes(
-        what, {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), voxelSize(type)});
-    const std::uint64_t fileBytes = fs::file_size(path);
-    const std::uint64_t plausible =
-        std::max(kAlwaysPlausibleBytes, checkedProduct({fileBytes, kPlausibleExpansion}).value_or(UINT64_MAX));
-    if (bytes > plausible && !byteLimitIsExplicit())
-        throw Error(what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
-                    " for a file of " + std::to_string(fileBytes) + " bytes (" + std::to_string(kPlausibleExpansion) +
-                    " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)");
+// Why `bytes` sized from the file's metadata are too many: over the byte limit (checked_size.h), or over
+// the plausible expansion of the file's size; nullopt when they are not.
+std::optional<std::string> sizeRefusal(const fs::path& path, const std::string& what,
+                                       std::initializer_list<std::uint64_t> factors) {
+    try {
+        const std::uint64_t bytes = checkedBytes(what, factors);
+        const std::uint64_t fileBytes = fs::file_size(path);
+        const std::uint64_t plausible =
+            std::max(kAlwaysPlausibleBytes, checkedProduct({fileBytes, kPlausibleExpansion}).value_or(UINT64_MAX));
+        if (bytes > plausible && !byteLimitIsExplicit())
+            return what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
+                   " for a file of " + std::to_string(fileBytes) + " bytes (" + std::to_string(kPlausibleExpansion) +
+                   " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)";
+        return std::nullopt;
+    } catch (const Error& e) {
+        return e.what();
+    }
+}
+
+std::string boxDescription(const fs::path& path, const std::string& source, glm::ivec3 dims, VoxelType type) {
+    return path.string() + ": " + source + " " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+           std::to_string(dims.z) + " (" + std::string(voxelTypeName(type)) + ")";
+}
+
+// The dense volume's bytes, checked against the byte limit and the file's size before anything is
+// allocated; nullopt when they pass.
+std::optional<std::string> denseSizeRefusal(const fs::path& path, const std::string& source, glm::ivec3 dims,
+                                            VoxelType type) {
+    return sizeRefusal(path, boxDescription(path, source, dims, type),
+                       {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), voxelSize(type)});
 }
 
 detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
@@ -185,34 +203,105 @@ detail::VdbGridFacts gridFacts(const openvdb::GridBase& grid) {
     return facts;
 }
 
-Volume toVolume(const fs::path& path, const openvdb::GridBase& grid) {
-    const detail::VdbGridFacts facts = gridFacts(grid);
-    const detail::VdbVolumeLayout layout = detail::vdbVolumeLayout(path.string(), facts);
-    const bool writtenByVri = facts.voxelTypeMeta && facts.dimsMeta;
-    requirePlausibleSize(path, writtenByVri ? kDimsKey : "active voxels", layout.dims, layout.type);
-    const openvdb::Coord boxMin(layout.boxMin.x, layout.boxMin.y, layout.boxMin.z);
-    const openvdb::CoordBBox box(boxMin, boxMin.offsetBy(layout.dims.x - 1, layout.dims.y - 1, layout.dims.z - 1));
+// What a grid becomes: its layout, the index box that is read, and where the box sits in the world.
+struct GridPlacement {
+    detail::VdbVolumeLayout layout;
+    openvdb::CoordBBox box;
+    std::string source;  // where the dims come from, for messages
+    glm::dvec3 spacing, origin;
+};
 
-    Volume volume(layout.dims, layout.type);
+GridPlacement placement(const fs::path& path, const openvdb::GridBase& grid) {
+    const detail::VdbGridFacts facts = gridFacts(grid);
+    GridPlacement p{detail::vdbVolumeLayout(path.string(), facts), {}, {}, {}, {}};
+    const detail::VdbVolumeLayout& layout = p.layout;
+    p.source = facts.voxelTypeMeta && facts.dimsMeta ? kDimsKey : "active voxels";
+    const openvdb::Coord boxMin(layout.boxMin.x, layout.boxMin.y, layout.boxMin.z);
+    p.box = openvdb::CoordBBox(boxMin, boxMin.offsetBy(layout.dims.x - 1, layout.dims.y - 1, layout.dims.z - 1));
     const openvdb::math::Transform& transform = grid.transform();
     const openvdb::Vec3d spacing = transform.voxelSize();
-    const openvdb::Vec3d first = transform.indexToWorld(box.min());
-    volume.spacing = {spacing.x(), spacing.y(), spacing.z()};
+    const openvdb::Vec3d first = transform.indexToWorld(p.box.min());
+    p.spacing = {spacing.x(), spacing.y(), spacing.z()};
     // The box's corner is half a voxel below the first voxel's centre (cell-centred, vri's default).
-    volume.origin = glm::dvec3(first.x(), first.y(), first.z()) - (layout.indexAtVoxelCentres ? 0.5 : 0.0) * volume.spacing;
-    volume.range = layout.range;
+    p.origin = glm::dvec3(first.x(), first.y(), first.z()) - (layout.indexAtVoxelCentres ? 0.5 : 0.0) * p.spacing;
+    return p;
+}
 
+// Calls f(GridT*) with the grid's scalar type (isScalarGrid).
+template <class F>
+decltype(auto) dispatchGridType(const openvdb::GridBase& grid, const F& f) {
+    if (grid.isType<openvdb::Int32Grid>()) return f(static_cast<openvdb::Int32Grid*>(nullptr));
+    if (grid.isType<openvdb::Int64Grid>()) return f(static_cast<openvdb::Int64Grid*>(nullptr));
+    if (grid.isType<openvdb::DoubleGrid>()) return f(static_cast<openvdb::DoubleGrid*>(nullptr));
+    return f(static_cast<openvdb::FloatGrid*>(nullptr));
+}
+
+Volume toVolume(const fs::path& path, const openvdb::GridBase& grid, const GridPlacement& p) {
+    const detail::VdbVolumeLayout& layout = p.layout;
+    if (const auto refusal = denseSizeRefusal(path, p.source, layout.dims, layout.type)) throw Error(*refusal);
+    Volume volume(layout.dims, layout.type);
+    volume.spacing = p.spacing;
+    volume.origin = p.origin;
+    volume.range = layout.range;
     // vdbVolumeLayout has checked that the grid's value type can hold the layout's voxel type; the
     // values themselves are checked on the way (requireRepresentable).
-    const auto copy = [&]<class GridT>(GridT*) {
-        dispatchVoxelType(layout.type, [&](auto t) { copyToVolume<decltype(t), GridT>(path, grid, box, volume); });
-    };
-    if (grid.isType<openvdb::Int32Grid>()) copy(static_cast<openvdb::Int32Grid*>(nullptr));
-    else if (grid.isType<openvdb::Int64Grid>()) copy(static_cast<openvdb::Int64Grid*>(nullptr));
-    else if (grid.isType<openvdb::DoubleGrid>()) copy(static_cast<openvdb::DoubleGrid*>(nullptr));
-    else copy(static_cast<openvdb::FloatGrid*>(nullptr));
+    dispatchGridType(grid, [&]<class GridT>(GridT*) {
+        dispatchVoxelType(layout.type, [&](auto t) { copyToVolume<decltype(t), GridT>(path, grid, p.box, volume); });
+    });
     return volume;
 }
+
+// The sparse volume of the grid's leaves, straight from the tree: a brick may differ from the background
+// only where a leaf node or a tile of another value overlaps its block (the brick and its apron), and only
+// those bricks are read, voxel by voxel as copyToDense reads them (the tree's value, active or not, cast to T).
+template <class T, class GridT>
+SparseVolume toSparse(const fs::path& path, const GridT& grid, const GridPlacement& p) {
+    if constexpr (!std::is_same_v<T, typename GridT::ValueType>) requireRepresentable<T>(path, grid);
+    const glm::ivec3 dims = p.layout.dims;
+    const glm::ivec3 bricks = SparseVolume::bricksOf(dims);
+    const std::string what = boxDescription(path, p.source, dims, p.layout.type) + " kept sparse, its brick table";
+    if (const auto refusal = sizeRefusal(path, what, {std::uint64_t(bricks.x), std::uint64_t(bricks.y),
+                                                      std::uint64_t(bricks.z), sizeof(std::uint32_t)}))
+        throw Error(*refusal);
+    const T background = static_cast<T>(grid.background());
+    std::vector<std::uint8_t> candidates(static_cast<std::size_t>(bricks.x) * bricks.y * bricks.z, 0);
+    const openvdb::Coord boxMin = p.box.min();
+    // The bricks whose blocks [8b, 8b + 8] meet the index box [lo, hi] (inside the volume's box).
+    const auto mark = [&](openvdb::CoordBBox region) {
+        region.intersect(p.box);
+        if (region.empty()) return;
+        glm::ivec3 first, last;
+        for (int a = 0; a < 3; ++a) {
+            const int lo = region.min()[a] - boxMin[a], hi = region.max()[a] - boxMin[a];
+            first[a] = lo > 0 ? (lo - 1) >> SparseVolume::kBrickShift : 0;
+            last[a] = hi >> SparseVolume::kBrickShift;
+        }
+        for (int z = first.z; z <= last.z; ++z)
+            for (int y = first.y; y <= last.y; ++y)
+                for (int x = first.x; x <= last.x; ++x)
+                    candidates[(static_cast<std::size_t>(z) * bricks.y + y) * bricks.x + x] = 1;
+    };
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) mark(leaf->getNodeBoundingBox());
+    typename GridT::TreeType::ValueAllCIter tile = grid.tree().cbeginValueAll();
+    tile.setMaxDepth(GridT::TreeType::ValueAllCIter::LEAF_DEPTH - 1);  // tiles of the internal nodes and root
+    for (; tile; ++tile) {
+        const T value = static_cast<T>(*tile);
+        if (std::memcmp(&value, &background, sizeof(T)) == 0) continue;
+        openvdb::CoordBBox region;
+        tile.getBoundingBox(region);
+        mark(region);
+    }
+    SparseVolume volume = SparseVolume::fromVoxels<T>(dims, background, candidates, [&] {
+        return [accessor = grid.getConstAccessor(), boxMin](int x, int y, int z) mutable {
+            return static_cast<T>(accessor.getValue(boxMin.offsetBy(x, y, z)));
+        };
+    });
+    volume.spacing = p.spacing;
+    volume.origin = p.origin;
+    volume.range = p.layout.range;
+    return volume;
+}
+
 
 bool isScalarGrid(const openvdb::GridBase& grid) {
     return grid.isType<openvdb::FloatGrid>() || grid.isType<openvdb::DoubleGrid>() ||
@@ -225,6 +314,30 @@ std::string gridList(openvdb::io::File& file) {
     for (const openvdb::GridBase::Ptr& grid : *grids)
         names += (names.empty() ? "" : ", ") + gridDescription(*grid);
     return names.empty() ? "none" : names;
+}
+
+openvdb::GridBase::Ptr readScalarGrid(const fs::path& path, const std::optional<std::string>& gridName) {
+    openvdb::io::File file(path.string());
+    file.open(/*delayLoad=*/false);
+    openvdb::GridBase::Ptr grid;
+    if (gridName) {
+        if (!file.hasGrid(*gridName))
+            throw Error(path.string() + ": no grid named '" + *gridName + "' (grids: " + gridList(file) + ")");
+        grid = file.readGrid(*gridName);
+        if (!isScalarGrid(*grid))
+            throw Error(path.string() + ": " + gridDescription(*grid) + " is not a float, double, int32 or int64 grid");
+    } else {
+        const openvdb::GridPtrVecPtr candidates = file.readAllGridMetadata();
+        for (const openvdb::GridBase::Ptr& candidate : *candidates)
+            if (isScalarGrid(*candidate)) {
+                grid = file.readGrid(candidate->getName());
+                break;
+            }
+        if (!grid)
+            throw Error(path.string() + ": no float, double, int32 or int64 grid (grids: " + gridList(file) + ")");
+    }
+    file.close();
+    return grid;
 }
 
 // io::File::write streams into an std::ofstream it never checks, so a full disk went unnoticed. The
@@ -240,30 +353,26 @@ public:
 }  // namespace
 
 Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName) {
+    LoadedVolume loaded = readVdb(path, gridName, VolumeStorage::Dense);
+    return std::move(*loaded.dense);
+}
+
+LoadedVolume readVdb(const fs::path& path, const std::optional<std::string>& gridName, VolumeStorage storage) {
     detail::requireRegularFile(path);
     initializeOpenVdb();
     try {
-        openvdb::io::File file(path.string());
-        file.open(/*delayLoad=*/false);
-        openvdb::GridBase::Ptr grid;
-        if (gridName) {
-            if (!file.hasGrid(*gridName))
-                throw Error(path.string() + ": no grid named '" + *gridName + "' (grids: " + gridList(file) + ")");
-            grid = file.readGrid(*gridName);
-            if (!isScalarGrid(*grid))
-                throw Error(path.string() + ": " + gridDescription(*grid) + " is not a float, double, int32 or int64 grid");
-        } else {
-            const openvdb::GridPtrVecPtr candidates = file.readAllGridMetadata();
-            for (const openvdb::GridBase::Ptr& candidate : *candidates)
-                if (isScalarGrid(*candidate)) {
-                    grid = file.readGrid(candidate->getName());
-                    break;
-                }
-            if (!grid)
-                throw Error(path.string() + ": no float, double, int32 or int64 grid (grids: " + gridList(file) + ")");
-        }
-        file.close();
-        return toVolume(path, *grid);
+        const openvdb::GridBase::Ptr grid = readScalarGrid(path, gridName);
+        const GridPlacement p = placement(path, *grid);
+        const bool sparse = storage == VolumeStorage::Sparse ||
+                            (storage == VolumeStorage::Auto &&
+                             denseSizeRefusal(path, p.source, p.layout.dims, p.layout.type).has_value());
+        if (!sparse) return {std::make_shared<Volume>(toVolume(path, *grid, p)), nullptr};
+        return {nullptr, dispatchGridType(*grid, [&]<class GridT>(GridT*) {
+                    return dispatchVoxelType(p.layout.type, [&](auto t) {
+                        return std::make_shared<SparseVolume>(
+                            toSparse<decltype(t)>(path, static_cast<const GridT&>(*grid), p));
+                    });
+                })};
     } catch (const openvdb::Exception& e) {
         throw Error(path.string() + ": " + e.what());
     }

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <mutex>
+#include <optional>
+#include <utility>
 
 #include "vri/io/gzip_inflate.h"
 #include "vri/io/volume_formats.h"
@@ -14,6 +17,7 @@
 #include "vri/util/checked_size.h"
 #include "vri/util/error.h"
 #include "vri/util/format.h"
+#include "vri/util/printable.h"
 
 namespace vri {
 
@@ -183,6 +187,29 @@ ValueRange parseValueRange(std::string_view text, const std::string& where) {
 // What every reader's volume must hold, whatever its format says: finite float voxels (a NaN compares
 // false with everything and would reach the image through the transfer function), a normalisation
 // range with lo < hi (metadata of a .vdb included), and a box that a double can span.
+namespace {
+
+void requireUsableGeometry(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origin,
+                           const std::optional<ValueRange>& range, const std::string& source) {
+    if (range && !(range->lo < range->hi && std::isfinite(range->lo) && std::isfinite(range->hi)))
+        throw Error(source + ": value range " + exactNumber(range->lo) + " " + exactNumber(range->hi) +
+                    ": expected finite lo < hi");
+    for (int axis = 0; axis < 3; ++axis) {
+        const double end = origin[axis] + spacing[axis] * dims[axis];
+        if (!std::isfinite(end))
+            throw Error(source + ": the box (origin " + exactNumber(origin[axis]) + " + " + std::to_string(dims[axis]) +
+                        " voxels x spacing " + exactNumber(spacing[axis]) + " along " + "xyz"[axis] +
+                        ") is beyond the range of a double");
+    }
+}
+
+std::string nonFiniteVoxel(glm::ivec3 at, double value, const std::string& source) {
+    return source + ": voxel (x " + std::to_string(at.x) + ", y " + std::to_string(at.y) + ", z " +
+           std::to_string(at.z) + ") is " + exactNumber(value) + ": float volumes must hold finite values";
+}
+
+}  // namespace
+
 void requireUsableValues(const Volume& volume, const std::string& source) {
     if (volume.type == VoxelType::Float32) {
         const float* v = volume.data<float>();
@@ -196,17 +223,45 @@ void requireUsableValues(const Volume& volume, const std::string& source) {
                         exactNumber(v[bad]) + ": float volumes must hold finite values");
         }
     }
-    if (volume.range && !(volume.range->lo < volume.range->hi && std::isfinite(volume.range->lo) &&
-                          std::isfinite(volume.range->hi)))
-        throw Error(source + ": value range " + exactNumber(volume.range->lo) + " " +
-                    exactNumber(volume.range->hi) + ": expected finite lo < hi");
-    for (int axis = 0; axis < 3; ++axis) {
-        const double end = volume.origin[axis] + volume.spacing[axis] * volume.dims[axis];
-        if (!std::isfinite(end))
-            throw Error(source + ": the box (origin " + exactNumber(volume.origin[axis]) + " + " +
-                        std::to_string(volume.dims[axis]) + " voxels x spacing " + exactNumber(volume.spacing[axis]) +
-                        " along " + "xyz"[axis] + ") is beyond the range of a double");
+    requireUsableGeometry(volume.dims, volume.spacing, volume.origin, volume.range, source);
+}
+
+void requireUsableValues(const SparseVolume& volume, const std::string& source) {
+    if (volume.type == VoxelType::Float32) {
+        if (volume.storedBricks() < volume.brickCount() && !std::isfinite(volume.background()))
+            throw Error(source + ": the background is " + exactNumber(volume.background()) +
+                        ": float volumes must hold finite values");
+        // The first bad voxel in brick order, whatever the threads do.
+        std::mutex mutex;
+        std::optional<std::pair<std::size_t, glm::ivec3>> bad;
+        volume.forEachStoredBrick([&](std::size_t b, int x0, int y0, int z0, int nx, int ny, int nz) {
+            const float* p = volume.block<float>(b);
+            for (int k = 0; k < nz; ++k)
+                for (int j = 0; j < ny; ++j)
+                    for (int i = 0; i < nx; ++i)
+                        if (!std::isfinite(p[(k * SparseVolume::kBlock + j) * SparseVolume::kBlock + i])) {
+                            const std::lock_guard lock(mutex);
+                            if (!bad || b < bad->first) bad.emplace(b, glm::ivec3(x0 + i, y0 + j, z0 + k));
+                            return;
+                        }
+        });
+        if (bad) {
+            const glm::ivec3 at = bad->second;
+            throw Error(nonFiniteVoxel(at, volume.value(at.x, at.y, at.z), source));
+        }
     }
+    requireUsableGeometry(volume.dims, volume.spacing, volume.origin, volume.range, source);
+}
+
+VolumeStorage parseVolumeStorage(std::string_view name, const std::string& what) {
+    if (name == "dense") return VolumeStorage::Dense;
+    if (name == "sparse") return VolumeStorage::Sparse;
+    if (name == "auto") return VolumeStorage::Auto;
+    throw Error(what + ": unknown storage '" + printable(name) + "' (expected dense, sparse or auto)");
+}
+
+std::string_view volumeStorageName(VolumeStorage storage) {
+    return storage == VolumeStorage::Dense ? "dense" : storage == VolumeStorage::Sparse ? "sparse" : "auto";
 }
 
 Volume readRaw(const fs::path& path, const RawLayout& layout) {

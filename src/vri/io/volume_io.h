@@ -4,12 +4,15 @@
 // Every failure is a vri::Error whose one-line message starts with the offending file's path.
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <string_view>
 #include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "vri/core/sparse_volume.h"
 #include "vri/core/volume.h"
 #include "vri/core/voxel_type.h"
 
@@ -37,6 +40,19 @@ std::optional<RawLayout> layoutFromFileName(const std::filesystem::path& path);
 // Throws vri::Error "<source>: ..." unless every float voxel is finite, the range (when set) is a finite
 // lo < hi and the box, origin + dims x spacing, stays within double's range along every axis.
 void requireUsableValues(const Volume& volume, const std::string& source);
+void requireUsableValues(const SparseVolume& volume, const std::string& source);
+
+// How a volume is kept in memory: dense (Volume), sparse (SparseVolume: the 8^3 bricks that are not all
+// background), or auto: sparse for a .vdb whose dense box would be refused (over the byte limit, or over
+// the plausible size for its file, see readVdb), dense otherwise.
+enum class VolumeStorage { Dense, Sparse, Auto };
+VolumeStorage parseVolumeStorage(std::string_view name, const std::string& what);  // "dense", "sparse", "auto"
+std::string_view volumeStorageName(VolumeStorage storage);
+// A volume as read: exactly one of the two is set.
+struct LoadedVolume {
+    std::shared_ptr<Volume> dense;
+    std::shared_ptr<SparseVolume> sparse;
+};
 
 // Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb, .mhd/.mha, .tif/.tiff;
 // anything
@@ -56,6 +72,12 @@ std::vector<std::filesystem::path> filesWrittenBy(const std::filesystem::path& p
 // is. For other .vdb files the first float, double, int32 or int64 grid (or the one named `gridName`) is
 // read as float32 over its active voxels' bounding box, index (i,j,k) the centre of a cell-centred voxel.
 Volume readVdb(const std::filesystem::path& path, const std::optional<std::string>& gridName = {});
+// The same grid kept as `storage` says. Sparse: only the bricks that a leaf node or a tile of another value
+// than the background overlaps are read (never the dense box), the background is the grid's; the brick
+// table (4 bytes per 8^3 voxels of the box) is checked as a dense volume is (the byte limit and, unless
+// VRI_MAX_BYTES is set, the file's size), and so are the bricks kept (the byte limit).
+LoadedVolume readVdb(const std::filesystem::path& path, const std::optional<std::string>& gridName,
+                     VolumeStorage storage);
 void writeVdb(const std::filesystem::path& path, const Volume& volume);
 
 }  // namespace vri

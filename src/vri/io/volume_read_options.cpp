@@ -1,5 +1,6 @@
 #include "vri/io/volume_read_options.h"
 
+#include "vri/io/volume_formats.h"
 #include "vri/util/error.h"
 #include "vri/util/parse.h"
 
@@ -31,16 +32,44 @@ std::optional<RawLayout> requestedRawLayout(const std::filesystem::path& input, 
     return layout;
 }
 
+namespace {
+
+// --spacing, when given, over what the file says.
+template <class V>
+void overrideSpacing(V& volume, const VolumeReadOptions& options) {
+    if (options.spacing.empty()) return;
+    volume.spacing = parseVec3(options.spacing, "--spacing");
+    if (!(volume.spacing.x > 0 && volume.spacing.y > 0 && volume.spacing.z > 0))
+        throw Error("--spacing: expected positive numbers, got '" + options.spacing + "'");
+    requireUsableValues(volume, "--spacing " + options.spacing);
+}
+
+}  // namespace
+
 Volume readVolume(const std::filesystem::path& input, const VolumeReadOptions& options) {
     const std::optional<RawLayout> layout = requestedRawLayout(input, options);
     Volume volume = options.grid ? readVdb(input, *options.grid) : readVolume(input, layout);
-    if (!options.spacing.empty()) {
-        volume.spacing = parseVec3(options.spacing, "--spacing");
-        if (!(volume.spacing.x > 0 && volume.spacing.y > 0 && volume.spacing.z > 0))
-            throw Error("--spacing: expected positive numbers, got '" + options.spacing + "'");
-        requireUsableValues(volume, "--spacing " + options.spacing);
-    }
+    overrideSpacing(volume, options);
     return volume;
+}
+
+LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOptions& options, VolumeStorage storage) {
+    const std::optional<RawLayout> layout = requestedRawLayout(input, options);
+    if (!layout && detail::toLower(input.extension().string()) == ".vdb") {
+        LoadedVolume loaded = readVdb(input, options.grid, storage);
+        if (loaded.sparse) {
+            requireUsableValues(*loaded.sparse, input.string());
+            overrideSpacing(*loaded.sparse, options);
+        } else {
+            requireUsableValues(*loaded.dense, input.string());
+            overrideSpacing(*loaded.dense, options);
+        }
+        return loaded;
+    }
+    auto dense = std::make_shared<Volume>(readVolume(input, options));
+    if (storage != VolumeStorage::Sparse) return {std::move(dense), nullptr};
+    auto sparse = std::make_shared<SparseVolume>(SparseVolume::fromDense(*dense));
+    return {nullptr, std::move(sparse)};
 }
 
 }  // namespace vri

@@ -26,5 +26,9 @@ std::optional<RawLayout> requestedRawLayout(const std::filesystem::path& input, 
 
 // readVolume(input, requestedRawLayout(...)), or readVdb(input, grid), with the spacing override applied.
 Volume readVolume(const std::filesystem::path& input, const VolumeReadOptions& options);
+// The same volume kept as `storage` says: a .vdb through readVdb(input, grid, storage), straight into
+// bricks when sparse; any other format is read dense and, for Sparse, converted (SparseVolume::fromDense,
+// the dense copy freed once converted), for Auto kept dense.
+LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOptions& options, VolumeStorage storage);
 
 }  // namespace vri

@@ -106,16 +106,24 @@ struct PlotSpec {
 //         - {file: steps.csv, x: t0, y: row, x2: t1, y2: row, style: segments, color: "#000000"}
 //         - {file: tradeoff.csv, x: seconds, y: max, style: points, labels: run, where: {"pareto max": 1}}
 //         - {file: orders.csv, x: h, y: error, style: linespoints, where: {series: a}, label_from: legend}
+//         - {file: speed.csv, x: seconds, y: max, style: linespoints, where: {method: exact}, label: exact,
+//            label_ends: run}                                   # keyed "exact, eps1e-6 to eps1e-7"
 //
 // A series' `width` (line width) is for line, dashed, dotted, linespoints and segments; `size` and
 // `point` (circle, square, cross, triangle) for points and linespoints; heatmaps take neither
 // `color` nor `label`. Without `label` a series is keyed by its y column; `label: ""` leaves it
 // out of the key. `where: {column: text, ...}` keeps only the rows whose columns hold those
-// texts (not for histograms and heatmaps), so one CSV can feed several series; `label_from: column`
-// keys the series with that column's text in the first row it keeps (a fitted slope, say); gnuplot breaks a
-// line at each row left out. `labels: column` writes each point's text from that column beside it
+// texts, or with a trailing '*' start with the rest (`{run: "leaves-coupled-eps0.01-*"}`; not for histograms
+// and heatmaps), so one CSV can feed several series; `label_from: column`
+// keys the series with that column's text in the first row it keeps (a fitted slope, say); a line joins the
+// rows kept, in file order, whatever rows lie between them. `label_ends: column` adds to the key the first
+// and last kept row's text in that column past the words they share ("riemann double, h0.5 to h0.1"): the
+// order in which its line runs, without a label at each point. `labels: column` writes each point's text from that column beside it
 // (line, dashed, dotted, points, linespoints), e.g. the run of each point of vri-tabulate's tradeoff
 // table. A panel's `pareto: true` draws the Pareto front of its points, joined in order of x.
+// A log axis without a range is fitted to the points drawn (plot_axes.h): a margin beyond them, labels at
+// 1, 2 and 5 times the powers of ten when it spans under three decades (every digit under one), and a y axis
+// draws its values <= 0 on a dotted floor line below the rest, labelled 0.
 // Palettes: viridis (default), gray, diverging (blue, white, red).
 PlotSpec loadPlotSpec(const std::filesystem::path& spec, const std::filesystem::path& dataDir = {});
 PlotSpec parsePlotSpec(const std::string& yamlText, const std::string& source, const std::filesystem::path& specDir,

@@ -3,10 +3,27 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vri/report/plot.h"
 #include "vri/util/csv.h"
 #include "vri/util/error.h"
 
 namespace vri::plot {
+
+bool whereMatches(const std::string& text, const std::string& wanted) {
+    if (wanted.ends_with('*')) return text.starts_with(std::string_view(wanted).substr(0, wanted.size() - 1));
+    return text == wanted;
+}
+
+std::vector<std::vector<std::string>> keptRows(const PlotSeries& series) {
+    std::vector<std::vector<std::string>> rows = readCsv(series.file).rows;
+    std::erase_if(rows, [&](const std::vector<std::string>& row) {
+        return !std::ranges::all_of(series.where, [&](const auto& condition) {
+            const std::size_t column = condition.first - 1;
+            return column < row.size() && whereMatches(row[column], condition.second);
+        });
+    });
+    return rows;
+}
 
 namespace {
 

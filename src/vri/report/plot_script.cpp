@@ -1,8 +1,11 @@
 // Writing the gnuplot script of a figure, with the Pareto front it may mark and its heatmaps' grids.
 #include <algorithm>
 #include <cstdio>
+#include <iterator>
+#include <optional>
 
 #include "vri/report/pareto.h"
+#include "vri/report/plot_axes.h"
 #include "vri/report/plot.h"
 #include "vri/report/plot_csv.h"
 #include "vri/util/csv.h"
@@ -47,16 +50,39 @@ std::string quoted(const std::string& text) {
     return joined + ")";
 }
 
-// A heatmap's axes end where its image does (fit), other axes at a tic mark beyond the data.
-std::string axisCommands(const char* name, const PlotAxis& axis, bool fit) {
+// What fitLogAxis made of a panel's log axes (nullopt: the spec's range, or gnuplot's).
+struct PanelFit {
+    std::optional<plot::LogAxisFit> x, y;
+};
+
+// A heatmap's axes end where its image does (fit), other axes at a tic mark beyond the data, and a log
+// axis the spec leaves open where plot::fitLogAxis says, with its floor (values <= 0) drawn as a dotted
+// line labelled 0.
+std::string axisCommands(const char* name, const PlotAxis& axis, bool fit, const std::optional<plot::LogAxisFit>& log) {
     const std::string n = name;
     std::string out = "    set " + n + "label " + quoted(axis.label) + "\n";
     // A log axis labels its decades 1e-06 ... 0.01 ... 1, not 0.0000010 with gnuplot's fixed decimals.
     out += axis.log ? "    set logscale " + n + "\n    set format " + n + " '%g'\n"
                     : "    unset logscale " + n + "\n    set format " + n + " '% h'\n";
-    out += "    set " + n + "range [" + (axis.min ? exactNumber(*axis.min) : "*") + ":" +
-           (axis.max ? exactNumber(*axis.max) : "*") + "]" + (fit ? " noextend" : " extend") + "\n";
-    return out;
+    if (!log) {
+        out += "    set " + n + "tics autofreq\n";
+        return out + "    set " + n + "range [" + (axis.min ? exactNumber(*axis.min) : "*") + ":" +
+               (axis.max ? exactNumber(*axis.max) : "*") + "]" + (fit ? " noextend" : " extend") + "\n";
+    }
+    if (log->tics.empty()) {
+        out += "    set " + n + "tics autofreq\n";
+    } else {
+        out += "    set " + n + "tics (";
+        for (std::size_t i = 0; i < log->tics.size(); ++i) out += (i == 0 ? "" : ", ") + exactNumber(log->tics[i]);
+        out += ")\n";
+    }
+    if (log->floor) {
+        const std::string at = exactNumber(*log->floor);
+        out += "    set " + n + "tics add ('0' " + at + ")\n";
+        // Only y has a floor (fitPanel gives x its positive values alone): a horizontal line.
+        out += "    set arrow from graph 0, first " + at + " to graph 1, first " + at + " nohead dt 3 lw 1 lc rgb 'gray50' back\n";
+    }
+    return out + "    set " + n + "range [" + exactNumber(log->min) + ":" + exactNumber(log->max) + "] noextend\n";
 }
 
 std::string keyCommand(const std::string& key) {
@@ -75,10 +101,11 @@ std::string paletteCommand(const std::string& palette) {
 
 // Everything a panel sets before it plots; what one panel sets, the next resets, so that no
 // setting leaks into a later panel (or from the PNG's last panel into the SVG's first).
-std::string panelCommands(const PlotPanel& panel) {
+std::string panelCommands(const PlotPanel& panel, const PanelFit& fit) {
     const bool heatmap = panel.hasStyle("heatmap");
-    std::string out = "    set title " + quoted(panel.title) + "\n";
-    out += axisCommands("x", panel.x, heatmap) + axisCommands("y", panel.y, heatmap) + keyCommand(panel.key);
+    std::string out = "    set title " + quoted(panel.title) + "\n    unset arrow\n";
+    out += axisCommands("x", panel.x, heatmap, fit.x) + axisCommands("y", panel.y, heatmap, fit.y) +
+           keyCommand(panel.key);
     out += panel.equalAspect ? "    set size ratio -1\n" : "    set size noratio\n";
     out += "    unset label\n";
     for (const PlotLabel& label : panel.labels)
@@ -121,8 +148,12 @@ std::string yExpression(const PlotSeries& series) {
     const std::string y = std::to_string(series.yColumn);
     if (series.where.empty()) return y;
     std::string condition;
-    for (const auto& [column, text] : series.where)
-        condition += (condition.empty() ? "" : " && ") + ("strcol(" + std::to_string(column) + ") eq " + quoted(text));
+    for (const auto& [column, text] : series.where) {
+        const std::string cell = "strcol(" + std::to_string(column) + ")";
+        condition += (condition.empty() ? "" : " && ") +
+                     (text.ends_with('*') ? "strstrt(" + cell + ", " + quoted(text.substr(0, text.size() - 1)) + ") == 1"
+                                          : cell + " eq " + quoted(text));
+    }
     return "(" + condition + " ? $" + y + " : NaN)";
 }
 
@@ -173,25 +204,54 @@ std::string labelsClause(const PlotSeries& series) {
            " notitle";
 }
 
+bool drawsPoints(const PlotSeries& series) {
+    return series.style != "histogram" && series.style != "heatmap" && series.style != "segments";
+}
+
 // The panel's points from every series of points or lines, for its Pareto front: the points drawn,
 // so not the rows that a series' `where` leaves out.
 std::vector<std::pair<double, double>> panelPoints(const PlotPanel& panel) {
     std::vector<std::pair<double, double>> points;
-    for (const PlotSeries& series : panel.series) {
-        if (series.style == "histogram" || series.style == "heatmap" || series.style == "segments") continue;
-        for (const auto& row : readCsv(series.file).rows) {
-            const std::size_t xi = series.xColumn - 1, yi = series.yColumn - 1;
-            if (xi >= row.size() || yi >= row.size()) continue;
-            const bool kept = std::all_of(series.where.begin(), series.where.end(), [&](const auto& condition) {
-                const std::size_t column = condition.first - 1;
-                return column < row.size() && row[column] == condition.second;
-            });
-            if (!kept) continue;
-            const auto x = parseNumber(row[xi]), y = parseNumber(row[yi]);
-            if (x && y) points.emplace_back(*x, *y);
-        }
-    }
+    for (const PlotSeries& series : panel.series)
+        if (drawsPoints(series)) std::ranges::copy(plot::keptPoints(series), std::back_inserter(points));
     return points;
+}
+
+// The panel's log axes fitted to its points; a panel with histograms, heatmaps or segments keeps gnuplot's.
+PanelFit fitPanel(const PlotPanel& panel) {
+    if (!std::ranges::all_of(panel.series, drawsPoints)) return {};
+    std::vector<double> xs, ys;
+    for (const auto& [x, y] : panelPoints(panel)) {
+        if (x > 0) xs.push_back(x);  // only y has a floor; a log x axis leaves out x <= 0 as gnuplot does
+        ys.push_back(y);
+    }
+    return {plot::fitLogAxis(panel.x, xs), plot::fitLogAxis(panel.y, ys)};
+}
+
+// A series is drawn from a datablock of the points it keeps when its line joins the rows that `where`
+// keeps (gnuplot would break the line at every row left out, and one family's runs need not follow each
+// other in a file), and on a panel whose y axis has a floor (its values <= 0 are drawn there).
+bool drawnFromBlock(const PlotSeries& series, const PanelFit& fit) {
+    if (!drawsPoints(series)) return false;
+    const bool joins = series.style == "line" || series.style == "dashed" || series.style == "dotted" ||
+                       series.style == "linespoints";
+    return (joins && !series.where.empty()) || (fit.y && fit.y->floor);
+}
+
+// A datablock of x,y rows.
+std::string pointsBlock(const std::string& name, const std::vector<std::pair<double, double>>& points) {
+    std::string out = name + " << EOD\n";
+    for (const auto& [x, y] : points) out += exactNumber(x) + "," + exactNumber(y) + "\n";
+    return out + "EOD\n";
+}
+
+std::string blockName(const char* kind, std::size_t panel, std::size_t series) {
+    return "$" + std::string(kind) + std::to_string(panel + 1) + "_" + std::to_string(series + 1);
+}
+
+// Whether a point has a place on the panel's log axes.
+bool onLogAxes(const PlotPanel& panel, const std::pair<double, double>& point) {
+    return !(panel.x.log && point.first <= 0) && !(panel.y.log && point.second <= 0);
 }
 
 }  // namespace
@@ -212,12 +272,25 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
            "while (i > 0 && script_dir[i:i] ne \"/\") { i = i - 1 }\n"
            "cd (i > 0 ? script_dir[1:i] : \".\")\n"
            "set datafile separator comma\n";
+    std::vector<PanelFit> fits;
     for (std::size_t p = 0; p < spec.panels.size(); ++p) {
         const PlotPanel& panel = spec.panels[p];
-        for (std::size_t s = 0; s < panel.series.size(); ++s)
-            if (panel.series[s].style == "heatmap") out += heatmapBlock(panel.series[s], p, s, scriptDir);
+        const PanelFit& fit = fits.emplace_back(fitPanel(panel));
+        for (std::size_t s = 0; s < panel.series.size(); ++s) {
+            const PlotSeries& series = panel.series[s];
+            if (series.style == "heatmap") out += heatmapBlock(series, p, s, scriptDir);
+            if (!drawnFromBlock(series, fit)) continue;
+            std::vector<std::pair<double, double>> drawn;
+            for (auto [x, y] : plot::keptPoints(series)) {
+                if (fit.y && fit.y->floor && y <= 0) y = *fit.y->floor;
+                if (onLogAxes(panel, {x, y})) drawn.emplace_back(x, y);
+            }
+            out += pointsBlock(blockName("series", p, s), drawn);
+        }
         if (!panel.pareto) continue;
-        const auto points = panelPoints(panel);
+        auto points = panelPoints(panel);
+        if (fit.y && fit.y->floor)  // a front through a value of 0 runs to the floor
+            for (auto& point : points) point.second = point.second <= 0 ? *fit.y->floor : point.second;
         const auto front = paretoFront(points);
         out += "$pareto" + std::to_string(p + 1) + " << EOD\n";
         for (std::size_t k = 0; k < front.size(); ++k) {
@@ -241,14 +314,15 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
     for (std::size_t p = 0; p < spec.panels.size(); ++p) {
         const PlotPanel& panel = spec.panels[p];
         out += "    # panel " + std::to_string(p + 1) + "\n";
-        out += panelCommands(panel) + "    plot ";
+        out += panelCommands(panel, fits[p]) + "    plot ";
         for (std::size_t s = 0; s < panel.series.size(); ++s) {
             const PlotSeries& series = panel.series[s];
             // A heatmap is keyed by its colour bar, not in the legend.
             const std::string title = series.style == "heatmap" || series.label.empty() ? "notitle" : "title " + quoted(series.label);
             const std::string source = dataSource(series, p, s, scriptDir);
-            out += (s == 0 ? "" : ", \\\n         ") + source + " " + usingClause(series) + " " + styleClause(series) +
-                   " " + title;
+            const std::string drawn = drawnFromBlock(series, fits[p]) ? blockName("series", p, s) + " using 1:2"
+                                                                      : source + " " + usingClause(series);
+            out += (s == 0 ? "" : ", \\\n         ") + drawn + " " + styleClause(series) + " " + title;
             if (series.labelColumn != 0) out += ", \\\n         " + source + " " + labelsClause(series);
         }
         if (panel.pareto)

@@ -37,6 +37,7 @@ constexpr std::pair<const char*, const char*> kStyleOnlyKeys[] = {
     {"color", "line, dashed, dotted, points, linespoints, histogram, segments"},
     {"label", "line, dashed, dotted, points, linespoints, histogram, segments"},
     {"label_from", "line, dashed, dotted, points, linespoints, segments"},
+    {"label_ends", "line, dashed, dotted, points, linespoints"},
     {"where", "line, dashed, dotted, points, linespoints, segments"},
     {"labels", "line, dashed, dotted, points, linespoints"},
 };
@@ -159,16 +160,11 @@ void findColumns(PlotSeries& series, const YAML::Node& node, const SpecSource& s
     if (const YAML::Node from = node["label_from"]) {  // the key's text from the data: the first row kept
         if (node["label"]) throw Error(src.at(from) + ": " + what + " takes label or label_from, not both");
         const int index = column("label_from");
-        const CsvFile csv = readCsv(series.file);
-        const auto kept = std::ranges::find_if(csv.rows, [&](const std::vector<std::string>& row) {
-            return std::ranges::all_of(series.where, [&](const auto& w) {
-                return w.first <= int(row.size()) && row[w.first - 1] == w.second;
-            });
-        });
-        if (kept == csv.rows.end() || index > int(kept->size()))
+        const auto kept = plot::keptRows(series);
+        if (kept.empty() || index > int(kept.front().size()))
             throw Error(src.at(from) + ": " + what + ".label_from: no row of " + series.file.string() +
                         " is kept to take the label from");
-        series.label = (*kept)[index - 1];
+        series.label = kept.front()[index - 1];
     }
     if (series.style == "heatmap") {
         series.zColumn = column("z");
@@ -180,11 +176,29 @@ void findColumns(PlotSeries& series, const YAML::Node& node, const SpecSource& s
     }
 }
 
+// ", h0.5 to h0.1": the first and last kept row's text in a column (1-based), past the words (each ended by
+// '-') that they share at the start; "" when they are the same. So a key can say in which order a line
+// joins a family's runs, where a label at each point would overprint its neighbours.
+std::string endsText(const std::vector<std::vector<std::string>>& rows, int column) {
+    const auto text = [&](const std::vector<std::string>& row) {
+        return column <= int(row.size()) ? row[column - 1] : std::string();
+    };
+    if (rows.empty()) return "";
+    const std::string first = text(rows.front()), last = text(rows.back());
+    if (first == last) return "";
+    std::size_t shared = 0;
+    // A '-' before a digit is a number's sign (eps1e-6), not the end of a word.
+    for (std::size_t i = 0; i < std::min(first.size(), last.size()) && first[i] == last[i]; ++i)
+        if (first[i] == '-' && !(i + 1 < first.size() && std::isdigit(static_cast<unsigned char>(first[i + 1]))))
+            shared = i + 1;
+    return ", " + first.substr(shared) + " to " + last.substr(shared);
+}
+
 PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std::string& what) {
     yaml::requireMap(node, src.name, what);
     yaml::requireKeys(node, src.name,
                       {"file", "x", "y", "z", "x2", "y2", "style", "label", "label_from", "color", "width", "size", "point",
-                       "where", "labels"});
+                       "where", "labels", "label_ends"});
     PlotSeries series;
     if (node["style"]) series.style = toChoice(node["style"], src, what + ".style", kPlotStyles);
     requireStyleKeys(node, src, what, series.style);
@@ -196,6 +210,11 @@ PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std:
     findColumns(series, node, src, what);
     if (node["label"]) series.label = yaml::toString(node["label"], src.name, what + ".label");
     else if (!node["label_from"]) series.label = series.y;
+    if (const YAML::Node ends = node["label_ends"]) {
+        const std::string name = yaml::toString(ends, src.name, what + ".label_ends");
+        const int column = columnIndex(readCsv(series.file).header, name, ends, src, series.file);
+        series.label += endsText(plot::keptRows(series), column);
+    }
     if (node["color"]) {
         series.color = yaml::toString(node["color"], src.name, what + ".color");
         if (!isHexColour(series.color)) throw Error(src.at(node["color"]) + ": color must be \"#rrggbb\"");

@@ -138,7 +138,7 @@ std::string fanCsv(const Fan& fan) {
 
 Table fanErrorTable(const Fan& fan) {
     Table t;
-    t.title = "Paper A's 2D study: error of eq. (6) against the closed form, per placement and sampling rate";
+    t.title = "Error of eq. (6) against the closed form, per placement and sampling rate";
     t.rowHeader = "Placement, rate";
     t.columns = {"max |error|", "mean |error|", "max over", "max under", "rays without samples"};
     t.precision = {6, 6, 6, 6, 0};

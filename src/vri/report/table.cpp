@@ -1,4 +1,4 @@
-// Printing tables as Markdown and CSV, with a fixed number of decimals per column as the papers do.
+// Printing tables as Markdown and CSV, with a fixed number of decimals or significant digits per column.
 #include "vri/report/table.h"
 
 #include <algorithm>

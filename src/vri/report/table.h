@@ -22,8 +22,9 @@ struct Table {
     std::vector<std::string> rows;
     std::vector<std::vector<std::optional<double>>> cells;  // [row][column]
     std::vector<int> precision;       // decimals, per column
-    // Per column, whether its precision counts significant digits instead ("1.23e-05"): for numbers
-    // that span orders of magnitude, such as maximum errors and times. Empty: decimals everywhere.
+    // Per column, whether its precision counts significant digits instead ("34.4", "0.000208", "1.23e-05",
+    // "0"): for numbers that span orders of magnitude, such as percentages of rays, maximum errors and
+    // times. Empty: decimals everywhere.
     std::vector<bool> significant;
     std::vector<std::string> notes;   // lines under the Markdown table: what the numbers are
 };
@@ -41,7 +42,10 @@ struct ThresholdRow {
 };
 // `thresholds` empty: those of the first file. Throws vri::Error naming the file and what is
 // missing when a file lacks a threshold or its channels differ from the first file's.
-Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> thresholds, int precision = 4);
+// The percentages have kPercentDigits significant digits, or `decimals` decimals when given.
+inline constexpr int kPercentDigits = 3;
+Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> thresholds,
+                     std::optional<int> decimals = std::nullopt);
 
 // Paper B Tables III-V: rows and columns labelled freely (methods by datasets, or by backend),
 // each cell one number read from JSON files; the median when a cell has several (runs repeated
@@ -73,7 +77,7 @@ struct TradeoffRow {
 };
 struct TradeoffOptions {
     std::vector<double> thresholds{0.001};  // the % columns, in this order; the first is the % front's
-    int precision = 4;                      // decimals of the % columns
+    std::optional<int> decimals;            // of the % columns; unset: kPercentDigits significant digits
     // A row's label, or empty: then a "time ratio" column gives each row's seconds over that row's,
     // a gain that reads the same on any machine when all rows were timed in one run.
     std::string baseline;
@@ -83,7 +87,7 @@ struct TradeoffOptions {
 // double", "riemann float vulkan", "exact"), which a chart draws as one series; "seconds"; "time
 // ratio" with a baseline; "Msamples/s", the samples evaluated per second in millions (empty where the
 // stats count none, as vri-reference's); per threshold t "R > t", ... per channel and "worst > t", the
-// largest of them: the % of rays whose error exceeds t (`precision` decimals); "max R", ... and "max":
+// largest of them: the % of rays whose error exceeds t (as `decimals` says); "max R", ... and "max":
 // the largest absolute error per channel and of all; "rmse", the largest channel's root mean square
 // error; "pareto %" and "pareto max": 1 for the rows on the Pareto front of seconds against "worst > t"
 // (the first threshold) or against "max" (see paretoFront), else 0. Throws vri::Error naming the file

@@ -106,7 +106,17 @@ double readJsonValue(const fs::path& file, const std::string& expression) {
     return parsed.reciprocal ? 1.0 / value : value;
 }
 
-Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> thresholds, int precision) {
+namespace {
+
+// How a table's percentages are printed, for its note: ", to 3 significant digits (0: no ray)".
+std::string digitsNote(const std::optional<int>& decimals) {
+    if (decimals) return ", to " + std::to_string(*decimals) + " decimals";
+    return ", to " + std::to_string(kPercentDigits) + " significant digits (0: no ray)";
+}
+
+}  // namespace
+
+Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> thresholds, std::optional<int> decimals) {
     if (rows.empty()) throw Error("a threshold table needs at least one row");
     const fs::path& first = rows.front().files.at(0);
     const json firstDiff = readJsonFile(first);
@@ -121,7 +131,8 @@ Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> 
     for (double threshold : thresholds)
         for (const std::string& channel : channels) {
             table.columns.push_back(channel + " > " + formatThreshold(threshold));
-            table.precision.push_back(precision);
+            table.precision.push_back(decimals.value_or(kPercentDigits));
+            table.significant.push_back(!decimals);
         }
     for (const ThresholdRow& row : rows) {
         if (row.files.size() != 1 && row.files.size() != thresholds.size())
@@ -142,7 +153,7 @@ Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> 
         }
     }
     table.notes.push_back("Percentage of rays (all pixels, background included) whose absolute error exceeds the "
-                          "threshold, per channel.");
+                          "threshold, per channel" + digitsNote(decimals) + ".");
     return table;
 }
 
@@ -221,8 +232,9 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     addColumn("Msamples/s", kDigits, true);
     for (double t : options.thresholds) {
         if (options.perChannel)
-            for (const std::string& channel : channels) addColumn(channel + above(t), options.precision, false);
-        addColumn("worst" + above(t), options.precision, false);
+            for (const std::string& channel : channels)
+                addColumn(channel + above(t), options.decimals.value_or(kPercentDigits), !options.decimals);
+        addColumn("worst" + above(t), options.decimals.value_or(kPercentDigits), !options.decimals);
     }
     if (options.perChannel)
         for (const std::string& channel : channels) addColumn("max " + channel, kDigits, true);
@@ -294,7 +306,7 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     std::string percents;
     for (double t : options.thresholds) percents += (percents.empty() ? "" : ", ") + formatThreshold(t);
     const std::string rays = "% of rays (all pixels, background included) whose absolute error exceeds t (t = " +
-                             percents + ")";
+                             percents + ")" + digitsNote(options.decimals);
     if (options.perChannel)
         table.notes.push_back(channels.front() + " > t ... worst > t: " + rays + ", per channel and in the worst "
                               "channel; max " + channels.front() + " ... max: the largest absolute error, per channel "

@@ -1,15 +1,15 @@
 #include "vri/util/json_file.h"
 
 #include <algorithm>
-#include <fstream>
+
+#include "vri/util/file_text.h"
 
 namespace vri {
 
 nlohmann::json readJsonFile(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path.string() + ": no such file");
+    const std::string text = readFileText(path, "a JSON file");
     try {
-        return nlohmann::json::parse(in);
+        return nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw Error(path.string() + ": not valid JSON: " + jsonExceptionText(e));
     }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "vri/core/grid_sampler.h"
+#include "vri/core/occupancy_cache.h"
 #include "vri/core/occupancy_grid.h"
 #include "vri/util/checked_size.h"
 #include "vri/util/error.h"
@@ -98,6 +99,10 @@ struct VulkanRenderer::Impl {
     VulkanBuffer volumeBuffer;
     VulkanTexture3D volumeTexture;
     VulkanBuffer params, transferFunction, totals, output, occupancy;
+    // The empty-space bricks, built as the CPU builds them and kept while volume, convention and transfer
+    // function stay (occupancy_cache.h); `occupancy` holds the uploaded copy of `uploadedGrid`.
+    OccupancyCache grids;
+    const OccupancyGrid* uploadedGrid = nullptr;
 
     Impl(const std::string& selector, VulkanInterpolation interpolation)
         : context(selector), interpolation(interpolation), kernels(context, bindingTypes()),
@@ -202,6 +207,7 @@ void VulkanRenderer::validateOptions(const RenderOptions& options) {
 }
 
 Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
+    if (scene.sparse) throw Error("the Vulkan backend renders dense volumes only, not a sparse one");
     validateRender(scene, camera, options);
     validateOptions(options);
     Impl& m = *impl_;
@@ -213,7 +219,8 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     if (groupsX > limits.maxComputeWorkGroupCount[0] || groupsY > limits.maxComputeWorkGroupCount[1])
         throw Error("the image is too large for one dispatch on Vulkan device '" + m.context.info().name + "'");
 
-    // Setup, not timed: the volume (once per volume) and the pipeline (once per combination).
+    // Setup, not timed: the volume (once per volume), the pipeline (once per combination) and the
+    // empty-space bricks (once per volume, convention and transfer function).
     RenderStats local;
     const auto setupStart = std::chrono::steady_clock::now();
     m.upload(scene.volume);
@@ -233,7 +240,26 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     m.ensure(m.output, checkedBytes("Vulkan: a " + size + " image", {pixels, 16}), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
              "the image");
     m.ensure(m.totals, 2 * kTotalCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the counters");
+    // Empty-space skipping: the CPU's bricks, from the cache, uploaded when they are not the ones the
+    // device already holds. Without skipping the binding still needs a buffer: a zero placeholder.
+    const OccupancyGrid* grid = nullptr;
+    bool gridReused = false;
+    if (scene.volume && options.skipEmptySpace) {
+        const OccupancyCache::Entry entry = m.grids.get(scene.volume, scene.convention, scene.transferFunction);
+        grid = &entry.grid;
+        gridReused = entry.reused;
+        local.emptyBrickFraction = grid->emptyFraction();
+    }
+    if (!m.occupancy.handle() || grid != m.uploadedGrid || !gridReused) {
+        std::vector<std::uint8_t> empty = grid ? grid->emptyFlags() : std::vector<std::uint8_t>(4, 0);
+        empty.resize((empty.size() + 3) / 4 * 4, 0);
+        m.ensure(m.occupancy, empty.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the empty-space bricks");
+        std::memcpy(m.occupancy.mapped(), empty.data(), empty.size());
+        m.occupancy.flush();
+        m.uploadedGrid = grid;
+    }
     local.setupSeconds = secondsSince(setupStart);
+    local.setupReused = gridReused;
 
     const auto start = std::chrono::steady_clock::now();
     // The uniforms, with the values GridSampler<T, float>, placeSamples<float> and AdaptiveSimpsonRay<float> use.
@@ -286,25 +312,17 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     p.right[3] = basis.tanHalfY;
     p.up[3] = basis.centre.x;
     p.boxLo[3] = basis.centre.y;
-    // Empty-space skipping: the CPU's bricks, built here as render() builds them, inside the timed part.
-    std::vector<std::uint8_t> empty(4, 0);  // a placeholder when not skipping: the binding needs a buffer
-    if (scene.volume && options.skipEmptySpace) {
-        const OccupancyGrid grid(*scene.volume, scene.convention, scene.transferFunction);
-        empty = grid.emptyFlags();
-        local.emptyBrickFraction = grid.emptyFraction();
+    if (grid) {
         for (int a = 0; a < 3; ++a) {
-            p.bricks[a] = grid.bricks()[a];
-            p.maxIndex[a] = static_cast<float>(grid.maxIndex()[a]);
+            p.bricks[a] = grid->bricks()[a];
+            p.maxIndex[a] = static_cast<float>(grid->maxIndex()[a]);
         }
         p.bricks[3] = 1;
     }
-    empty.resize((empty.size() + 3) / 4 * 4, 0);
-    m.ensure(m.occupancy, empty.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the empty-space bricks");
-    std::memcpy(m.occupancy.mapped(), empty.data(), empty.size());
     std::memcpy(m.params.mapped(), &p, sizeof p);
     std::memcpy(m.transferFunction.mapped(), tf.data(), tf.size() * sizeof(float));
     std::memset(m.totals.mapped(), 0, m.totals.size());
-    for (const VulkanBuffer* b : {&m.occupancy, &m.params, &m.transferFunction, &m.totals}) b->flush();
+    for (const VulkanBuffer* b : {&m.params, &m.transferFunction, &m.totals}) b->flush();
 
     // The shaders make and clip each pixel's ray (in double, as render() does) and sum the counters.
     m.bind();

@@ -9,7 +9,8 @@
 // ray themselves in double precision with render()'s operations in its order (entry and exit points,
 // world length per unit of ray), so both backends integrate along the same segments; this needs a
 // device with 64-bit floats (shaderFloat64). The frame's counters are summed on the device too, so
-// stats->seconds is the device's work, the empty-space bricks and the image's copy back.
+// stats->seconds is the device's work and the image's copy back; the empty-space bricks are setup,
+// built and uploaded once while the volume, convention and transfer function stay (as on the CPU).
 #include <cstdint>
 #include <memory>
 #include <string>
