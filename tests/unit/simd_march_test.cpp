@@ -146,6 +146,59 @@ TEST_CASE("the packet engine's image does not depend on the thread count, with e
     CHECK(scalarStats.samplesPlaced == one.samplesPlaced);  // early termination stops both at the same sample
 }
 
+TEST_CASE("the packet engine's jumps across empty space skip no visible sample") {
+    // 150x110x90 voxels of invisible noise holding a few visible specks of 1 to 2 voxels, far apart: a
+    // lane jumps over many empty bricks at once to reach them, and a jump that went one sample too
+    // far would skip a visible sample, changing the image or the count of samples evaluated.
+    auto v = std::make_shared<Volume>(glm::ivec3(150, 110, 90), VoxelType::UInt8);
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> noise(0, 40);
+    for (auto& voxel : v->bytes)
+        voxel = static_cast<std::byte>(noise(rng));
+    for (const glm::ivec3 p : {glm::ivec3(20, 30, 40), glm::ivec3(75, 55, 45), glm::ivec3(130, 90, 10),
+                               glm::ivec3(100, 20, 80), glm::ivec3(60, 100, 70)})
+        for (int dz = 0; dz < 2; ++dz)
+            v->data<std::uint8_t>()[v->index(p.x, p.y, p.z + dz)] = static_cast<std::uint8_t>(120 + 60 * dz);
+    const Scene scene{v, std::nullopt, GridConvention::CellCentred,
+                      testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
+    CameraSpec spec;
+    spec.eye = glm::dvec3(-60.0, 140.0, -120.0);
+    spec.target = glm::dvec3(75.0, 55.0, 45.0);
+    spec.fovYDegrees = 45.0;
+    spec.width = 61;
+    spec.height = 47;
+    const Camera camera(spec);
+    for (Integrator integrator : {Integrator::Riemann, Integrator::Composite})
+        for (Placement placement : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,
+                                    Placement::EntryExitAlignCorner})
+            for (double rate : {1.3, 10.0}) {
+                RenderOptions opt;
+                opt.precision = Precision::Float;
+                opt.integrator = integrator;
+                opt.placement = placement;
+                opt.samplingRate = rate;
+                opt.simd = false;
+                opt.skipEmptySpace = false;
+                RenderStats marched;
+                const Image all = render(scene, camera, opt, &marched);
+                CHECK(*std::max_element(all.pixels.begin(), all.pixels.end()) > 0.01f);  // the specks show
+                opt.simd = true;
+                opt.skipEmptySpace = true;
+                RenderStats skipped;
+                const Image packets = render(scene, camera, opt, &skipped);
+                INFO(integratorName(integrator), " ", placementName(placement), " rate ", rate);
+                CHECK(sameBits(packets, all));
+                CHECK(skipped.samplesEvaluated * 50 < marched.samplesEvaluated);  // it did skip
+                // The scalar path skips by the brick of a sample's position, the packets by that of its
+                // stencil: near a brick's face they may disagree on an invisible sample, never on more.
+                opt.simd = false;
+                RenderStats scalar;
+                render(scene, camera, opt, &scalar);
+                CHECK(skipped.samplesEvaluated <= scalar.samplesEvaluated + 2);
+                CHECK(scalar.samplesEvaluated <= skipped.samplesEvaluated + 2);
+            }
+}
+
 TEST_CASE("--simd leaves double precision, the Simpson methods and analytic fields on the scalar path") {
     const Scene scene{testVolume(VoxelType::UInt8), std::nullopt, GridConvention::CellCentred,
                       testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};

@@ -35,6 +35,35 @@ private:
     const TransferFunction& tf_;
 };
 
+// OccupancyGrid::emptyDistances() of the flags `empty` of a grid of `bricks`. The distance
+// max(|dx|, |dy|, |dz|) to the nearest non-empty brick is separable: the distance along x within
+// each row, then the nearest of those along y measured as max(|dy|, that), then the same along z.
+std::vector<std::int32_t> chebyshevDistances(const std::vector<std::uint8_t>& empty, glm::ivec3 bricks,
+                                             std::int32_t cap) {
+    std::vector<std::int32_t> d(empty.size());
+    for (std::size_t i = 0; i < d.size(); ++i)
+        d[i] = empty[i] ? cap : 0;
+    const std::size_t stride[3] = {1, static_cast<std::size_t>(bricks.x),
+                                   static_cast<std::size_t>(bricks.x) * static_cast<std::size_t>(bricks.y)};
+    std::vector<std::int32_t> line;
+    for (int a = 0; a < 3; ++a) {
+        const int n = bricks[a];
+        line.resize(static_cast<std::size_t>(n));
+        for (std::size_t start = 0; start < d.size(); ++start) {
+            if ((start / stride[a]) % static_cast<std::size_t>(n) != 0) continue;  // not the first of a line
+            for (int i = 0; i < n; ++i)
+                line[static_cast<std::size_t>(i)] = d[start + static_cast<std::size_t>(i) * stride[a]];
+            for (int i = 0; i < n; ++i) {
+                std::int32_t best = line[static_cast<std::size_t>(i)];
+                for (int j = std::max(0, i - best + 1); j < std::min(n, i + best); ++j)
+                    best = std::min(best, std::max(std::abs(i - j), line[static_cast<std::size_t>(j)]));
+                d[start + static_cast<std::size_t>(i) * stride[a]] = best;
+            }
+        }
+    }
+    return d;
+}
+
 }  // namespace
 
 OccupancyGrid::OccupancyGrid(glm::ivec3 dims) : dims_(dims), maxIndex_(glm::dvec3(dims) - glm::dvec3(1.0)) {
@@ -54,6 +83,7 @@ OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const Transfe
                                                                    std::vector<double>(r.hi.begin(), r.hi.end())};
     });
     tbb::parallel_for(std::size_t(0), empty_.size(), [&](std::size_t i) { empty_[i] = isEmpty(lo[i], hi[i]); });
+    distance_ = chebyshevDistances(empty_, bricks_, kMaxDistance);
 }
 
 OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const TransferFunction& tf)
@@ -109,6 +139,7 @@ OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const T
             empty_[i] = isEmpty(static_cast<double>(mn), static_cast<double>(mx));
         });
     });
+    distance_ = chebyshevDistances(empty_, bricks_, kMaxDistance);
 }
 
 double OccupancyGrid::emptyFraction() const {

@@ -65,6 +65,14 @@ public:
     const std::vector<std::uint8_t>& emptyFlags() const { return empty_; }
     double emptyFraction() const;
 
+    // Per brick, x fastest: its Chebyshev distance in bricks to the nearest brick that is not empty,
+    // at most kMaxDistance (0 for a brick that is not empty; kMaxDistance when no such brick is
+    // nearer). Every brick of the grid less than d bricks away along each axis from a brick at
+    // distance d is empty, so a ray in that brick can jump to the faces of that cube of bricks at
+    // once (simd_march.cpp). Built with the grid, so a frame reads it without building it.
+    static constexpr std::int32_t kMaxDistance = 16;
+    const std::vector<std::int32_t>& emptyDistances() const { return distance_; }
+
 private:
     explicit OccupancyGrid(glm::ivec3 dims);  // the bricks of dims, none marked empty
 
@@ -72,6 +80,7 @@ private:
     glm::dvec3 maxIndex_;  // dims - 1
     glm::ivec3 bricks_;
     std::vector<std::uint8_t> empty_;
+    std::vector<std::int32_t> distance_;
 };
 
 }  // namespace vri

@@ -140,20 +140,24 @@ HWY_INLINE VF interpolate(const PacketScene& sc, const Stencil& st) {
     return hn::Mul(hn::Sub(lerp(c0, c1, st.w[2]), hn::Set(df, g.lo)), hn::Set(df, g.invRange));
 }
 
-// How many samples after the current one certainly keep their stencil in the current brick: along
-// each axis the distance to the brick's face the ray heads for, less `margin` voxels (far more than
-// the rounding of sample positions), in samples (`samplesPerVoxel`, +inf along an axis the ray does
-// not move on), minus one for the rounding of this estimate. Skipping them changes nothing when the
-// brick is empty.
-HWY_INLINE VI samplesInBrick(const Stencil& st, const VF (&du)[3], const VF (&samplesPerVoxel)[3], float margin) {
+// How many samples after the current one certainly keep their stencil in bricks known to be empty:
+// the lanes' bricks lie `distance` bricks from the nearest brick that is not empty, so every brick
+// of the cube of bricks less than that far along each axis is empty (bricks outside the grid do not
+// count: a stencil there is clamped into the grid, onto a brick of the cube). Along each axis, the
+// distance to the cube's face the ray heads for, less `margin` voxels (far more than the rounding of
+// sample positions and of this estimate, even across the whole volume), in samples
+// (`samplesPerVoxel`, +inf along an axis the ray does not move on), minus one for the rounding of
+// this estimate. Skipping them changes nothing.
+HWY_INLINE VI samplesInEmptyCube(const Stencil& st, VI distance, const VF (&du)[3], const VF (&samplesPerVoxel)[3],
+                                 float margin) {
     const DF df;
     const DI di;
-    const VF brick = hn::Set(df, static_cast<float>(OccupancyGrid::kBrick));
     VF samples = hn::Set(df, 1e9f);
     for (int a = 0; a < 3; ++a) {
-        const VF lo = hn::ConvertTo(df, hn::ShiftLeft<OccupancyGrid::kBrickShift>(st.cell[a]));
-        const VF room =
-            hn::IfThenElse(hn::Gt(du[a], hn::Zero(df)), hn::Sub(hn::Add(lo, brick), st.x[a]), hn::Sub(st.x[a], lo));
+        const VF lo = hn::ConvertTo(
+            df, hn::ShiftLeft<OccupancyGrid::kBrickShift>(hn::Add(hn::Sub(st.cell[a], distance), hn::Set(di, 1))));
+        const VF hi = hn::ConvertTo(df, hn::ShiftLeft<OccupancyGrid::kBrickShift>(hn::Add(st.cell[a], distance)));
+        const VF room = hn::IfThenElse(hn::Gt(du[a], hn::Zero(df)), hn::Sub(hi, st.x[a]), hn::Sub(st.x[a], lo));
         const VF along = hn::Mul(hn::Sub(room, hn::Set(df, margin)), samplesPerVoxel[a]);
         samples = hn::IfThenElse(hn::Eq(du[a], hn::Zero(df)), samples, hn::Min(samples, along));
     }
@@ -325,7 +329,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     // A packet is the next n pixels with samples; it ends when its last ray does. (Refilling a lane
     // as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays cross the same
     // bricks, so a packet's lanes jump over empty space and evaluate together.)
-    VI lastBrick = hn::Set(di, -1), lastFlags = hn::Zero(di);  // the empty flags of the bricks last gathered
+    VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);  // the distances of the bricks last gathered
     int sincePrefetch = sc.prefetchEvery;  // steps since prefetchAhead() last ran
     for (;;) {
         VI k = hn::Load(di, L.k), count = hn::Load(di, L.count);
@@ -339,49 +343,58 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             active = hn::RebindMask(df, hn::Lt(k, count));
             if (hn::AllFalse(df, active)) break;
         }
-        const VF t = hn::Add(hn::Load(df, L.tStart), hn::Mul(hn::ConvertTo(df, k), hn::Load(df, L.tIncr)));
-        VF u[3], du[3];
-        for (int a = 0; a < 3; ++a) {
+        const MF started = active;  // the lanes with a ray at this step
+        VF du[3];
+        for (int a = 0; a < 3; ++a)
             du[a] = hn::Load(df, L.du[a]);
-            u[a] = hn::Add(hn::Load(df, L.entry[a]), hn::Mul(t, du[a]));
-        }
-        const Stencil stencil = locate(sc, u, active);
-        if (++sincePrefetch >= sc.prefetchEvery) {
-            prefetchAhead<T>(sc, t, du, L);
-            sincePrefetch = 0;
-        }
+        VF t;
+        Stencil stencil;
+        const auto place = [&] {
+            t = hn::Add(hn::Load(df, L.tStart), hn::Mul(hn::ConvertTo(df, k), hn::Load(df, L.tIncr)));
+            VF u[3];
+            for (int a = 0; a < 3; ++a)
+                u[a] = hn::Add(hn::Load(df, L.entry[a]), hn::Mul(t, du[a]));
+            stencil = locate(sc, u, active);
+        };
+        place();
         // A sample whose stencil lies in an empty brick has a transfer-function value of exactly 0
-        // (occupancy_grid.h) and would add nothing: it is not evaluated, and the lane jumps over the
-        // samples that certainly follow it in that brick.
-        MF evaluated = active;
-        VI step = hn::IfThenElseZero(hn::RebindMask(di, active), hn::Set(di, 1));
-        if (!sc.emptyBricks.empty()) {
-            // The lanes often stay in their bricks from one sample to the next (at h = 0.1, about
-            // two times in three for all 16 lanes): then the flags need no new gather.
-            if (!hn::AllTrue(di, hn::Eq(stencil.brick, lastBrick))) {
-                lastBrick = stencil.brick;
-                lastFlags = hn::GatherIndex(di, sc.emptyBricks.data(), stencil.brick);
-            }
-            const MF empty = hn::And(active, hn::RebindMask(df, hn::Ne(lastFlags, hn::Zero(di))));
-            evaluated = hn::AndNot(empty, active);
-            if (!hn::AllFalse(df, empty)) {
+        // (occupancy_grid.h) and would add nothing: it is not evaluated. Each lane on such a sample
+        // jumps over the samples that certainly follow it in empty bricks, and again, until every
+        // lane sits on a sample to evaluate or has passed its last: the evaluation below, the costly
+        // part of a step, then runs on all lanes with a ray instead of on those not jumping.
+        if (sc.emptyDistance) {
+            for (;;) {
+                // The lanes often stay in their bricks from one sample to the next (at h = 0.1, about
+                // two times in three for all 16 lanes): then the distances need no new gather.
+                if (!hn::AllTrue(di, hn::Eq(stencil.brick, lastBrick))) {
+                    lastBrick = stencil.brick;
+                    lastDistance = hn::GatherIndex(di, sc.emptyDistance, stencil.brick);
+                }
+                const MF empty = hn::And(active, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
+                if (hn::AllFalse(df, empty)) break;
                 const VF samplesPerVoxel[3] = {hn::Load(df, L.samplesPerVoxel[0]), hn::Load(df, L.samplesPerVoxel[1]),
                                                hn::Load(df, L.samplesPerVoxel[2])};
-                step = hn::Add(step, hn::IfThenElseZero(hn::RebindMask(di, empty),
-                                                        samplesInBrick(stencil, du, samplesPerVoxel, sc.jumpMargin)));
+                const VI jump = hn::Add(samplesInEmptyCube(stencil, lastDistance, du, samplesPerVoxel, sc.jumpMargin),
+                                        hn::Set(di, 1));
+                k = hn::Min(hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, empty), jump)), count);
+                active = hn::RebindMask(df, hn::Lt(k, count));
+                if (hn::AllFalse(df, active)) break;
+                place();
             }
         }
-        const VI next = hn::Min(hn::Add(k, step), count);
-        hn::Store(next, di, L.k);
-        MF done = hn::RebindMask(df, hn::Not(hn::Lt(next, count)));
-        if (!hn::AllFalse(df, evaluated)) {
+        MF done = hn::AndNot(active, started);  // lanes whose rays ended in empty space
+        if (!hn::AllFalse(df, active)) {
+            if (++sincePrefetch >= sc.prefetchEvery) {
+                prefetchAhead<T>(sc, t, du, L);
+                sincePrefetch = 0;
+            }
             VF v[4];  // r, g, b, tau
             tf(interpolate<T>(sc, stencil), v);
             const VF tau = v[3], dx = hn::Load(df, L.dx);
             // RayAccumulator::add: a sample without extinction adds nothing under colour x extinction.
             const MF contributes = Emission == EmissionModel::ColourTimesExtinction
-                                       ? hn::And(evaluated, hn::Ne(tau, hn::Zero(df)))
-                                       : evaluated;
+                                       ? hn::And(active, hn::Ne(tau, hn::Zero(df)))
+                                       : active;
             const VF exponent = hn::Mul(hn::Neg(tau), dx);
             const VF attenuation = exp_kernel::exp(ops, exponent);
             VF weight;
@@ -401,10 +414,12 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             hn::Store(hn::IfThenElse(contributes, hn::Add(b, hn::Mul(w, v[2])), b), df, L.b);
             const VF after = hn::IfThenElse(contributes, hn::Mul(transparency, attenuation), transparency);
             hn::Store(after, df, L.transparency);
-            counts.samplesEvaluated += hn::CountTrue(df, evaluated);
-            done = hn::Or(done, hn::Lt(after, hn::Load(df, L.terminateBelow)));
+            counts.samplesEvaluated += hn::CountTrue(df, active);
+            k = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, active), hn::Set(di, 1)));
+            done = hn::Or(done, hn::And(active, hn::Or(hn::RebindMask(df, hn::Not(hn::Lt(k, count))),
+                                                       hn::Lt(after, hn::Load(df, L.terminateBelow)))));
         }
-        done = hn::And(active, done);
+        hn::Store(k, di, L.k);
         if (!hn::AllFalse(df, done)) finishLanes(done);
     }
 }
@@ -482,7 +497,7 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Occupan
       prefetchSamples(static_cast<float>(std::ceil(kPrefetchVoxels * options.samplingRate))),
       prefetchEvery(std::max(1, static_cast<int>(kPrefetchEveryVoxels * options.samplingRate))) {
     if (occupancy) {
-        emptyBricks.assign(occupancy->emptyFlags().begin(), occupancy->emptyFlags().end());
+        emptyDistance = occupancy->emptyDistances().data();
         const glm::ivec3 b = occupancy->bricks();
         brickStride[0] = 1;
         brickStride[1] = b.x;

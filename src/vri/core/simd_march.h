@@ -6,7 +6,8 @@
 // RayAccumulator's sums with the shared exponential of float_exp.h), so the image is bitwise equal to
 // `--simd off` on every target. A packet holds neighbouring pixels of a tile; a lane whose ray has
 // ended is masked until the packet's last ray ends. Empty space is skipped per sample, by the brick
-// of its trilinear stencil, and a lane in an empty brick jumps to the samples leaving it.
+// of its trilinear stencil: a lane in an empty brick jumps to the samples leaving the cube of empty
+// bricks around it, until every lane sits on a sample to evaluate, and then all evaluate together.
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -65,11 +66,11 @@ struct PacketScene {
     static constexpr double kPrefetchVoxels = 2.0, kPrefetchEveryVoxels = 0.5;
     float prefetchSamples;
     int prefetchEvery;
-    // The empty-space bricks (OccupancyGrid::emptyFlags(), 1 when empty) as 32-bit words for gathers;
-    // empty when skipping is off.
-    std::vector<std::int32_t> emptyBricks;
+    // Per brick, its distance to the nearest brick that is not empty (OccupancyGrid::emptyDistances(),
+    // 0 when not empty), 32-bit words for gathers; null when skipping is off.
+    const std::int32_t* emptyDistance = nullptr;
     std::int32_t brickStride[3] = {0, 0, 0};
-    float jumpMargin = 0;  // voxels: far more than the rounding of a sample's position (see samplesInBrick)
+    float jumpMargin = 0;  // voxels: far more than the rounding of a sample's position (see samplesInEmptyCube)
     // The transfer function as TransferFunction::operator()<float> reads it: the points' s, and per
     // segment [s_i, s_i+1) its start, width and each channel's value at the start and slope (r, g, b,
     // tau), padded with copies of the last segment to a whole number of the widest vectors.

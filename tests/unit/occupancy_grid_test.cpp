@@ -1,0 +1,48 @@
+// OccupancyGrid::emptyDistances(): each brick's Chebyshev distance in bricks to the nearest brick that
+// is not empty, against a search over all bricks.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "vri/core/occupancy_grid.h"
+
+using namespace vri;
+
+TEST_CASE("the empty-space distances are the Chebyshev distances to the nearest visible brick, capped") {
+    // 150x90x70 voxels (19x12x9 bricks, none a multiple of 8), invisible but for three single voxels,
+    // so that distances range from 0 to past the cap along x.
+    Volume v(glm::ivec3(150, 90, 70), VoxelType::UInt8);
+    for (const glm::ivec3 p : {glm::ivec3(3, 4, 5), glm::ivec3(60, 85, 30), glm::ivec3(66, 40, 69)})
+        v.data<std::uint8_t>()[v.index(p.x, p.y, p.z)] = 200;
+    const TransferFunction tf({{0.0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}, {1.0, 1, 1, 1, 1}},
+                              EmissionModel::ColourTimesExtinction);
+    const OccupancyGrid grid(v, GridConvention::CellCentred, tf);
+    const glm::ivec3 b = grid.bricks();
+    const auto& empty = grid.emptyFlags();
+    const auto& distance = grid.emptyDistances();
+    REQUIRE(distance.size() == empty.size());
+    const auto at = [&](int x, int y, int z) { return (static_cast<std::size_t>(z) * b.y + y) * b.x + x; };
+    int largest = 0;
+    for (int z = 0; z < b.z; ++z)
+        for (int y = 0; y < b.y; ++y)
+            for (int x = 0; x < b.x; ++x) {
+                int nearest = OccupancyGrid::kMaxDistance;
+                for (int zz = 0; zz < b.z; ++zz)
+                    for (int yy = 0; yy < b.y; ++yy)
+                        for (int xx = 0; xx < b.x; ++xx)
+                            if (!empty[at(xx, yy, zz)])
+                                nearest = std::min(nearest, std::max({std::abs(x - xx), std::abs(y - yy),
+                                                                      std::abs(z - zz)}));
+                INFO(x, " ", y, " ", z);
+                CHECK(distance[at(x, y, z)] == nearest);
+                largest = std::max(largest, nearest);
+            }
+    CHECK(largest >= 8);  // not a small test
+    CHECK(std::count(empty.begin(), empty.end(), 0) >= 3);
+    // Without a visible brick, every brick is at the cap.
+    const OccupancyGrid none(v, GridConvention::CellCentred,
+                             TransferFunction({{0.0, 0, 0, 0, 0}, {1.0, 0, 0, 0, 0}}, EmissionModel::Colour));
+    CHECK(std::all_of(none.emptyDistances().begin(), none.emptyDistances().end(),
+                      [](std::int32_t d) { return d == OccupancyGrid::kMaxDistance; }));
+}
