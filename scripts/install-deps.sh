@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   cmake ninja-build g++ make pkg-config
-  libopenvdb-dev libboost-iostreams-dev libopenimageio-dev openimageio-tools
+  libopenvdb-dev libboost-iostreams-dev libopenimageio-dev openimageio-tools libopenexr-dev libpng-dev
   libyaml-cpp-dev libcli11-dev doctest-dev libtbb-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-tools glslang-tools glslang-dev
   libglm-dev nlohmann-json3-dev gnuplot-nox libhwy-dev zlib1g-dev

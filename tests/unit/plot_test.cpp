@@ -212,7 +212,8 @@ TEST_CASE("plot: segments, point shapes, line widths and labels") {
         "  - {file: s.csv, x: t0, y: row, x2: t1, y2: row, style: segments, width: 3, color: \"#000000\", label: spans}\n"
         "  - {file: s.csv, x: t, y: row, style: points, size: 1.5, point: square, label: samples}\n"
         "  - {file: s.csv, x: t, y: row, style: linespoints, point: triangle, width: 0.5}\n"
-        "  - {file: s.csv, x: t, y: row, style: dashed, width: 1}\n",
+        "  - {file: s.csv, x: t, y: row, style: dashed, width: 1}\n"
+        "  - {file: s.csv, x: t, y: row, style: points, point: diamond, label: d}\n",
         "fig.yaml", dir.path);
     const PlotSeries& segments = spec.panels[0].series[0];
     CHECK(segments.x2Column == 2);
@@ -226,7 +227,8 @@ TEST_CASE("plot: segments, point shapes, line widths and labels") {
     has("plot 's.csv' skip 1 using 1:3:($2 - $1):($3 - $3) with vectors nohead lw 3 lc rgb '#000000' title 'spans'");
     has("'s.csv' skip 1 using 4:3 with points pt 5 ps 1.5 title 'samples'");
     has("'s.csv' skip 1 using 4:3 with linespoints lw 0.5 pt 9 ps 0.8 title 'row'");
-    has("'s.csv' skip 1 using 4:3 with lines lw 1 dt 2 title 'row'\n");
+    has("'s.csv' skip 1 using 4:3 with lines lw 1 dt 2 title 'row'");
+    has("'s.csv' skip 1 using 4:3 with points pt 13 ps 0.8 title 'd'\n");
     CHECK(script.find("set colorbox") == std::string::npos);
 }
 
@@ -268,7 +270,7 @@ TEST_CASE("plot: segments and point spec errors") {
     CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, width: -1}\n", dir.path) ==
           "fig.yaml:2:41: series[0].width must be a positive number");
     CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, style: points, point: star}\n", dir.path) ==
-          "fig.yaml:2:56: series[0].point 'star' is unknown (expected circle, square, cross or triangle)");
+          "fig.yaml:2:56: series[0].point 'star' is unknown (expected circle, square, cross, triangle or diamond)");
     const std::string series = "series:\n  - {file: s.csv, x: t0, y: row}\n";
     CHECK(errorOf("labels:\n  - {x: 0, y: 1}\n" + series, dir.path) == "fig.yaml:2:5: labels[0] is missing 'text'");
     CHECK(errorOf("labels:\n  - {x: left, y: 1, text: a}\n" + series, dir.path) ==

@@ -46,7 +46,8 @@ TEST_CASE("provenance: timestamp, machine and build") {
     CHECK(machine["memory_bytes"].get<std::uint64_t>() > 0);
 
     const nlohmann::json build = vri::buildInfo();
-    for (const char* key : {"vri_version", "git_commit", "build_type", "compiler", "openimageio", "openvdb", "tbb"}) {
+    for (const char* key : {"vri_version", "git_commit", "build_type", "compiler", "openexr", "libpng", "openimageio",
+                            "openvdb", "tbb"}) {
         CAPTURE(key);
         REQUIRE(build.contains(key));
         CHECK(!build[key].get<std::string>().empty());

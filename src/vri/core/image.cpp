@@ -1,5 +1,7 @@
 #include "vri/core/image.h"
 
+#include <algorithm>
+
 #include "vri/util/checked_size.h"
 #include "vri/util/error.h"
 
@@ -20,6 +22,11 @@ Image::Image(int w, int h, int n) : width(w), height(h), channels(n) {
     channelNames.clear();
     for (int c = 0; c < n; ++c) channelNames.push_back(c < 4 ? names[c] : "C" + std::to_string(c));
     pixels.assign(bytes / sizeof(float), 0.0f);
+}
+
+int channelIndex(const Image& image, std::string_view name) {
+    const auto it = std::find(image.channelNames.begin(), image.channelNames.end(), name);
+    return it == image.channelNames.end() ? -1 : static_cast<int>(it - image.channelNames.begin());
 }
 
 }  // namespace vri

@@ -2,6 +2,7 @@
 // A float image with interleaved channels (RGBA for renders), row 0 at the top.
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vri {
@@ -26,5 +27,8 @@ struct Image {
     float& at(int x, int y, int c) { return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c]; }
     float at(int x, int y, int c) const { return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c]; }
 };
+
+// The index of the channel called `name`, or -1 when the image has none.
+int channelIndex(const Image& image, std::string_view name);
 
 }  // namespace vri

@@ -1,8 +1,5 @@
 #include "vri/io/image_io.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -10,9 +7,12 @@
 #include <memory>
 #include <string_view>
 
-#include "vri/io/oiio_input.h"
+#include "vri/io/exr_file.h"
+#include "vri/io/oiio_module.h"
+#include "vri/io/png_file.h"
 #include "vri/util/atomic_file.h"
 #include "vri/util/error.h"
+#include "vri/util/printable.h"
 
 namespace vri {
 
@@ -30,42 +30,6 @@ void requireConsistent(const Image& image, const fs::path& path) {
                     std::to_string(image.height) + ", " + std::to_string(image.channels) + " channels, " +
                     std::to_string(image.channelNames.size()) + " names, " + std::to_string(image.pixels.size()) +
                     " values)");
-}
-
-int channelIndex(const Image& image, std::string_view name) {
-    auto it = std::find(image.channelNames.begin(), image.channelNames.end(), name);
-    return it == image.channelNames.end() ? -1 : static_cast<int>(it - image.channelNames.begin());
-}
-
-OIIO::ImageSpec floatSpec(const Image& image) {
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
-    spec.channelnames = image.channelNames;
-    spec.alpha_channel = channelIndex(image, "A");
-    spec.z_channel = -1;
-    return spec;
-}
-
-// `format` is an OpenImageIO format name ("openexr") or a file name whose extension names it. The
-// image is encoded into memory, so that every byte then reaches the file through writeTextFile's
-// checked writes: a file writer of OpenImageIO's can lose a failed write (a full disk gave a truncated
-// EXR and success). Formats that cannot encode into memory (SGI, FITS, ...) are refused for that
-// reason. has_error() is not consulted: TIFF leaves an error about its Exif directory behind even
-// when the file it writes is right; the calls' results are what says whether they failed.
-void writeWithOiio(const fs::path& path, const std::string& format, const OIIO::ImageSpec& spec,
-                   OIIO::TypeDesc dataType, const void* data) {
-    auto out = OIIO::ImageOutput::create(format);
-    if (!out) throw Error(path.string() + ": cannot write image: " + detail::oneLine(OIIO::geterror()));
-    if (!out->supports("ioproxy"))
-        throw Error(path.string() + ": cannot write " + out->format_name() +
-                    " images: OpenImageIO cannot encode them into memory to check every write (use .exr, .tif or "
-                    ".png)");
-    std::vector<unsigned char> encoded;
-    OIIO::Filesystem::IOVecOutput memory(encoded);
-    const bool encodedAll = out->set_ioproxy(&memory) && out->open(path.string(), spec) &&
-                            out->write_image(dataType, data);
-    if (!out->close() || !encodedAll)
-        throw Error(path.string() + ": cannot write image: " + detail::oneLine(out->geterror()));
-    writeTextFile(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 // The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1]: every viewer reads an
@@ -108,49 +72,43 @@ std::string lowercaseExtension(const fs::path& path) {
 
 }  // namespace
 
+// An OpenEXR file goes to OpenEXR whatever its extension; everything else to OpenImageIO's module.
 Image readImage(const fs::path& path) {
-    auto in = detail::openImageInput(path);
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.depth > 1)
-        throw Error(path.string() + ": cannot read image: it is a volume image (depth " + std::to_string(spec.depth) +
-                    "), not a 2D image");
-    try {
-        imageBytes(spec.width, spec.height, spec.nchannels);  // the header's size, checked before allocating
-    } catch (const Error& e) {
-        throw Error(path.string() + ": " + e.what());
-    }
-    Image image(spec.width, spec.height, spec.nchannels);
-    for (int c = 0; c < spec.nchannels; ++c)
-        if (c < static_cast<int>(spec.channelnames.size()) && !spec.channelnames[c].empty())
-            image.channelNames[c] = spec.channelnames[c];
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-        throw Error(path.string() + ": cannot read image: " + detail::oneLine(in->geterror()));
-    in->close();
+    if (!fs::exists(path)) throw Error(path.string() + ": no such file");
+    if (detail::isExrFile(path)) return detail::readExrFile(path);
+    Image image;
+    detail::requireModuleSuccess(detail::oiioModule(path, "read image").readImage(path, image));
     return image;
 }
 
 ImageMetadata readImageMetadata(const fs::path& path) {
-    auto in = detail::openImageInput(path);
+    if (!fs::exists(path)) throw Error(path.string() + ": no such file");
+    if (detail::isExrFile(path)) return detail::readExrMetadata(path);
     ImageMetadata metadata;
-    for (const OIIO::ParamValue& attribute : in->spec().extra_attribs)
-        if (attribute.type() == OIIO::TypeDesc::STRING)
-            metadata.emplace_back(attribute.name().string(), attribute.get_string());
+    detail::requireModuleSuccess(detail::oiioModule(path, "read image").readImageMetadata(path, metadata));
     return metadata;
 }
 
 void writeExr(const fs::path& path, const Image& image, const ImageMetadata& metadata) {
     requireConsistent(image, path);
-    OIIO::ImageSpec spec = floatSpec(image);
-    for (const auto& [name, value] : metadata) spec.attribute(name, value);
-    writeWithOiio(path, "openexr", spec, OIIO::TypeDesc::FLOAT, image.pixels.data());
+    std::string bytes;
+    try {
+        bytes = detail::encodeExr(image, metadata);
+    } catch (const std::exception& e) {
+        throw Error(path.string() + ": cannot write image: " + oneLine(e.what()));
+    }
+    writeTextFile(path, bytes);
 }
 
 void writePng(const fs::path& path, const Image& image, const PngOptions& options) {
     requireConsistent(image, path);
-    const std::vector<std::uint8_t> rgb = previewRgb8(image, options);
-    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");  // the PNG says so (its sRGB chunk)
-    writeWithOiio(path, "png", spec, OIIO::TypeDesc::UINT8, rgb.data());
+    std::string bytes;
+    try {
+        bytes = detail::encodePngRgb8(image.width, image.height, previewRgb8(image, options));
+    } catch (const std::exception& e) {
+        throw Error(path.string() + ": cannot write image: " + oneLine(e.what()));
+    }
+    writeTextFile(path, bytes);
 }
 
 void writeImage(const fs::path& path, const Image& image) {
@@ -158,7 +116,9 @@ void writeImage(const fs::path& path, const Image& image) {
     if (ext == ".exr") return writeExr(path, image);
     if (ext == ".png") return writePng(path, image);
     requireConsistent(image, path);
-    writeWithOiio(path, path.string(), floatSpec(image), OIIO::TypeDesc::FLOAT, image.pixels.data());
+    std::string bytes;
+    detail::requireModuleSuccess(detail::oiioModule(path, "write image").encodeImage(path, image, bytes));
+    writeTextFile(path, bytes);
 }
 
 }  // namespace vri

@@ -11,10 +11,12 @@
 #include <fstream>
 #include <thread>
 
+#include <OpenEXR/OpenEXRConfig.h>
 #include <OpenImageIO/oiioversion.h>
 #include <nlohmann/json.hpp>
 #include <oneapi/tbb/version.h>
 #include <openvdb/version.h>  // macros only: cheap, unlike openvdb/openvdb.h
+#include <png.h>
 
 #include "vri_git_commit.h"  // generated at every build: VRI_GIT_COMMIT
 
@@ -87,7 +89,9 @@ nlohmann::json buildInfo() {
             {"git_commit", VRI_GIT_COMMIT},
             {"build_type", VRI_BUILD_TYPE},
             {"compiler", VRI_COMPILER},
-            {"openimageio", OIIO_VERSION_STRING},
+            {"openexr", OPENEXR_VERSION_STRING},
+            {"libpng", PNG_LIBPNG_VER_STRING},
+            {"openimageio", OIIO_VERSION_STRING},  // the module for formats other than EXR and PNG
             {"openvdb", OPENVDB_LIBRARY_VERSION_STRING},
             {"tbb", TBB_VERSION_STRING}};
 }

@@ -14,7 +14,7 @@ nlohmann::json machineInfo();
 
 // {"vri_version", "git_commit" (the commit built from, read at build time, "+modified"
 //  when tracked files differed from it), "build_type" (CMAKE_BUILD_TYPE), "compiler",
-//  "openimageio", "openvdb", "tbb"}.
+//  "openexr", "libpng", "openimageio", "openvdb", "tbb"}.
 nlohmann::json buildInfo();
 
 // {"argv": [...], "shell": a command line that a POSIX shell reads back into the same argv}.

@@ -121,9 +121,10 @@ std::string panelCommands(const PlotPanel& panel, const PanelFit& fit) {
     return out;
 }
 
-// gnuplot's filled circle, filled square, cross and filled triangle.
+// gnuplot's filled circle, filled square, cross, filled triangle and filled diamond.
 int pointType(const std::string& point) {
     if (point == "square") return 5;
+    if (point == "diamond") return 13;
     if (point == "cross") return 2;
     if (point == "triangle") return 9;
     return 7;

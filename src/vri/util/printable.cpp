@@ -1,5 +1,7 @@
 #include "vri/util/printable.h"
 
+#include <cctype>
+
 namespace vri {
 
 std::string printable(std::string_view text) {
@@ -20,6 +22,16 @@ std::string printable(std::string_view text) {
         }
     }
     return out;
+}
+
+std::string oneLine(std::string message) {
+    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+    std::string line;
+    for (char ch : message) {
+        if (ch == '\n') line += "; ";
+        else line += ch;
+    }
+    return line.empty() ? "unknown error" : line;
 }
 
 }  // namespace vri

@@ -10,4 +10,8 @@ namespace vri {
 // controls as their code point, \x80..\x9f); everything else, other UTF-8 included, unchanged.
 std::string printable(std::string_view text);
 
+// A library's message (OpenImageIO's, OpenEXR's) as one line: trailing white space dropped, each newline
+// written as "; ", "unknown error" for an empty one.
+std::string oneLine(std::string message);
+
 }  // namespace vri
