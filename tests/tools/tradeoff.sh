@@ -89,8 +89,10 @@ awk -F, 'NR > 1 { n++; t[n] = $3; p[n] = $9; m[n] = $14; fp[n] = $16; fm[n] = $1
 bench=out/small/bench.csv
 [[ $(head -1 $bench) == "run,method,seconds,time ratio,Msamples/s,worst > 0.001,worst > 0.01,max,rmse,pareto %,pareto max" ]] ||
     fail "bench header: $(head -1 $bench)"
+# Seconds and ratios are printed to 4 significant digits, each off by at most 5e-4 of itself, so a ratio
+# recomputed from two printed times may differ from the printed one by up to about 1.5e-3 of it.
 base=$(awk -F, '$1 == "riemann-h1" { print $3 }' $bench)
-awk -F, -v base="$base" 'NR > 1 { r = $3 / base; if ((r - $4) / r > 5e-4 || ($4 - r) / r > 5e-4) { print $1; bad = 1 } }
+awk -F, -v base="$base" 'NR > 1 { r = $3 / base; if ((r - $4) / r > 1.6e-3 || ($4 - r) / r > 1.6e-3) { print $1; bad = 1 } }
                           END { exit bad }' $bench || fail "time ratios disagree with the seconds: $(cat $bench)"
 grep -q "^riemann-h1,riemann double,[0-9.e-]*,1," $bench || fail "the baseline's ratio is not 1: $(cat $bench)"
 number() { grep -o "\"$1\": [0-9.e+-]*" out/small/riemann-h0.5.json | head -1 | cut -d' ' -f2; }
