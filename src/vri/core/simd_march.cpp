@@ -264,6 +264,105 @@ private:
     int x_ = 0, y_ = 0, i_ = 0;  // the block's corner, and the next pixel's place in it
 };
 
+// The rays of the next pixels in PacketOrder, clipped to the box as pixelRay() clips them, a vector
+// of pixels at a time: Camera::direction(), clipRay() and Box::toTexture() in double, operation for
+// operation (no fused multiply-add: the build turns contraction off), so every ray has the bits of
+// pixelRay<float>(). A pixel whose direction has a zero or non-finite component takes pixelRay()
+// itself (clipRay()'s cases for those).
+class RayBatch {
+public:
+    explicit RayBatch(const PacketScene& sc) : sc_(sc), basis_(sc.camera.basis()) {}
+
+    // The next pixel's ray (nullopt when it misses the box) into `ray`, its pixel into `pixel`;
+    // false when the tile has no pixel left.
+    bool next(PacketOrder& order, int x0, int y0, int width, int& pixel, std::optional<TextureRay<float>>& ray) {
+        if (next_ == size_) fill(order, x0, y0, width);
+        if (next_ == size_) return false;
+        const std::size_t i = next_++;
+        pixel = pixel_[i];
+        if (scalar_[i] != 0.0)
+            ray = pixelRay<float>(sc_.camera, sc_.box, x0 + pixel % width, y0 + pixel / width);
+        else if (hit_[i] == 0.0)
+            ray.reset();
+        else
+            ray = TextureRay<float>{glm::vec3(static_cast<float>(entry_[0][i]), static_cast<float>(entry_[1][i]),
+                                              static_cast<float>(entry_[2][i])),
+                                    glm::vec3(static_cast<float>(exit_[0][i]), static_cast<float>(exit_[1][i]),
+                                              static_cast<float>(exit_[2][i])),
+                                    length_[i]};
+        return true;
+    }
+
+private:
+    using DD = hn::ScalableTag<double>;
+    using VD = hn::Vec<DD>;
+
+    void fill(PacketOrder& order, int x0, int y0, int width) {
+        size_ = next_ = 0;
+        HWY_ALIGN double px[kBatch] = {}, py[kBatch] = {};  // a partial last vector reads zeros
+        while (size_ < kBatch && order.next(pixel_[size_])) {
+            px[size_] = x0 + pixel_[size_] % width;
+            py[size_] = y0 + pixel_[size_] / width;
+            ++size_;
+        }
+        const DD dd;
+        const std::size_t n = hn::Lanes(dd);
+        const CameraSpec& spec = sc_.camera.spec();
+        const VD zero = hn::Zero(dd), one = hn::Set(dd, 1.0), two = hn::Set(dd, 2.0), half = hn::Set(dd, 0.5);
+        for (std::size_t j = 0; j < size_; j += n) {
+            // Camera::direction().
+            const VD fx = hn::Add(hn::Set(dd, basis_.centre.x),
+                                  hn::Div(hn::Sub(hn::Add(hn::Load(dd, px + j), half), hn::Set(dd, 0.5 * spec.width)),
+                                          hn::Set(dd, spec.zoom)));
+            const VD fy = hn::Add(hn::Set(dd, basis_.centre.y),
+                                  hn::Div(hn::Sub(hn::Add(hn::Load(dd, py + j), half), hn::Set(dd, 0.5 * spec.height)),
+                                          hn::Set(dd, spec.zoom)));
+            const VD x = hn::Mul(hn::Sub(hn::Div(hn::Mul(two, fx), hn::Set(dd, spec.width)), one), hn::Set(dd, basis_.tanHalfX));
+            const VD y =
+                hn::Mul(hn::Sub(one, hn::Div(hn::Mul(two, fy), hn::Set(dd, spec.height))), hn::Set(dd, basis_.tanHalfY));
+            VD v[3];
+            for (int a = 0; a < 3; ++a)
+                v[a] = hn::Add(hn::Add(hn::Set(dd, basis_.forward[a]), hn::Mul(x, hn::Set(dd, basis_.right[a]))),
+                               hn::Mul(y, hn::Set(dd, basis_.up[a])));
+            // glm::normalize: v * (1 / sqrt(dot(v, v))), the dot as (x x + y y) + z z.
+            const VD dot = hn::Add(hn::Add(hn::Mul(v[0], v[0]), hn::Mul(v[1], v[1])), hn::Mul(v[2], v[2]));
+            const VD inverse = hn::Div(one, hn::Sqrt(dot));
+            // clipRay().
+            const glm::dvec3& eye = sc_.camera.eye();
+            VD tNear = zero, tFar = hn::Set(dd, std::numeric_limits<double>::infinity()), dir[3];
+            auto odd = hn::Ne(zero, zero);  // a direction clipRay() treats case by case
+            for (int a = 0; a < 3; ++a) {
+                dir[a] = hn::Mul(v[a], inverse);
+                odd = hn::Or(odd, hn::Or(hn::Eq(dir[a], zero), hn::Not(hn::IsFinite(dir[a]))));
+                const VD t0 = hn::Div(hn::Set(dd, sc_.box.lo[a] - eye[a]), dir[a]);
+                const VD t1 = hn::Div(hn::Set(dd, sc_.box.hi[a] - eye[a]), dir[a]);
+                const auto swap = hn::Gt(t0, t1);
+                tNear = hn::Max(tNear, hn::IfThenElse(swap, t1, t0));
+                tFar = hn::Min(tFar, hn::IfThenElse(swap, t0, t1));
+            }
+            hn::Store(hn::IfThenElseZero(hn::Not(hn::Gt(tNear, tFar)), one), dd, hit_ + j);
+            hn::Store(hn::IfThenElseZero(odd, one), dd, scalar_ + j);
+            hn::Store(hn::Sub(tFar, tNear), dd, length_ + j);
+            // Box::toTexture() of the entry and exit points.
+            for (int a = 0; a < 3; ++a) {
+                const VD lo = hn::Set(dd, sc_.box.lo[a]), size = hn::Set(dd, sc_.box.hi[a] - sc_.box.lo[a]);
+                const VD e = hn::Set(dd, eye[a]);
+                hn::Store(hn::Div(hn::Sub(hn::Add(e, hn::Mul(tNear, dir[a])), lo), size), dd, entry_[a] + j);
+                hn::Store(hn::Div(hn::Sub(hn::Add(e, hn::Mul(tFar, dir[a])), lo), size), dd, exit_[a] + j);
+            }
+        }
+    }
+
+    static constexpr std::size_t kBatch = PacketScene::kMaxLanes;
+    const PacketScene& sc_;
+    CameraBasis basis_;
+    std::size_t size_ = 0, next_ = 0;
+    int pixel_[kBatch];
+    // Per pixel: the texture coordinates where the ray enters and leaves the box, the world length
+    // between them, and 1 where it hits the box, or takes pixelRay().
+    HWY_ALIGN double entry_[3][kBatch], exit_[3][kBatch], length_[kBatch], hit_[kBatch], scalar_[kBatch];
+};
+
 // The lanes' rays, structure of arrays; a lane without a ray has count 0.
 struct Lanes {
     HWY_ALIGN float tStart[kMaxLanes], tIncr[kMaxLanes];
@@ -315,6 +414,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     const VectorTransferFunction tf(sc);
     const int width = x1 - x0;
     PacketOrder order(width, y1 - y0, n);
+    RayBatch rays(sc);
     Lanes L{};
 
     // Loads the next pixel whose ray has samples into `lane`; leaves it without a ray (count 0) when
@@ -322,8 +422,8 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     const auto start = [&](std::size_t lane) {
         L.k[lane] = L.count[lane] = 0;
         int pixel;
-        while (order.next(pixel)) {
-            const auto clipped = pixelRay<float>(sc.camera, sc.box, x0 + pixel % width, y0 + pixel / width);
+        std::optional<TextureRay<float>> clipped;
+        while (rays.next(order, x0, y0, width, pixel, clipped)) {
             if (!clipped) continue;
             if (clipped->worldLength > 0) ++counts.raysHit;
             const FixedStepSamples<float> ray(*clipped, sc.options, sc.eyeU, sc.dims);
@@ -371,7 +471,6 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         VI k = hn::Load(di, L.k), count = hn::Load(di, L.count);
         MF active = hn::RebindMask(df, hn::Lt(k, count));
         if (hn::AllFalse(df, active)) {
-            if (order.done()) break;
             for (std::size_t lane = 0; lane < n; ++lane)
                 start(lane);
             k = hn::Load(di, L.k);
