@@ -264,32 +264,58 @@ private:
     int x_ = 0, y_ = 0, i_ = 0;  // the block's corner, and the next pixel's place in it
 };
 
-// The rays of the next pixels in PacketOrder, clipped to the box as pixelRay() clips them, a vector
-// of pixels at a time: Camera::direction(), clipRay() and Box::toTexture() in double, operation for
-// operation (no fused multiply-add: the build turns contraction off), so every ray has the bits of
-// pixelRay<float>(). A pixel whose direction has a zero or non-finite component takes pixelRay()
-// itself (clipRay()'s cases for those).
+// A pixel's ray as the packets march it: pixelRay<float>() and FixedStepSamples<float> of it.
+struct PixelSamples {
+    int pixel;
+    bool hit;  // the ray meets the box
+    double worldLength;
+    SampleSchedule<float> schedule;
+    glm::vec3 entry, du;
+    float dx;
+};
+
+// The rays of the next pixels in PacketOrder, a vector of pixels at a time: pixelRay() (Camera::
+// direction(), clipRay(), Box::toTexture()) in double, then placeSamples() and FixedStepSamples in
+// float, operation for operation (no fused multiply-add: the build turns contraction off), so every
+// ray has the bits of the scalar path's; the count of a fixed step is countBelowEnd()'s. A pixel whose
+// direction has a zero or non-finite component takes pixelRay() itself (clipRay()'s cases for those).
 class RayBatch {
 public:
     explicit RayBatch(const PacketScene& sc) : sc_(sc), basis_(sc.camera.basis()) {}
 
-    // The next pixel's ray (nullopt when it misses the box) into `ray`, its pixel into `pixel`;
-    // false when the tile has no pixel left.
-    bool next(PacketOrder& order, int x0, int y0, int width, int& pixel, std::optional<TextureRay<float>>& ray) {
+    // The next pixel's ray; false when the tile has no pixel left.
+    bool next(PacketOrder& order, int x0, int y0, int width, PixelSamples& ray) {
         if (next_ == size_) fill(order, x0, y0, width);
         if (next_ == size_) return false;
         const std::size_t i = next_++;
-        pixel = pixel_[i];
-        if (scalar_[i] != 0.0)
-            ray = pixelRay<float>(sc_.camera, sc_.box, x0 + pixel % width, y0 + pixel / width);
-        else if (hit_[i] == 0.0)
-            ray.reset();
-        else
-            ray = TextureRay<float>{glm::vec3(static_cast<float>(entry_[0][i]), static_cast<float>(entry_[1][i]),
-                                              static_cast<float>(entry_[2][i])),
-                                    glm::vec3(static_cast<float>(exit_[0][i]), static_cast<float>(exit_[1][i]),
-                                              static_cast<float>(exit_[2][i])),
-                                    length_[i]};
+        ray.pixel = pixel_[i];
+        if (scalar_[i] != 0.0) {
+            const auto clipped = pixelRay<float>(sc_.camera, sc_.box, x0 + ray.pixel % width, y0 + ray.pixel / width);
+            ray.hit = clipped.has_value();
+            if (!clipped) return true;
+            const FixedStepSamples<float> samples(*clipped, sc_.options, sc_.eyeU, sc_.dims);
+            ray.worldLength = clipped->worldLength;
+            ray.schedule = samples.schedule;
+            ray.entry = samples.entry;
+            ray.du = samples.du;
+            ray.dx = samples.dx;
+            return true;
+        }
+        ray.hit = hit_[i] != 0.0;
+        ray.worldLength = length_[i];
+        SampleSchedule<float>& s = ray.schedule;
+        s = {tStart_[i], tIncr_[i], tEnd_[i], 0};
+        if (!ray.hit || !(s.tEnd > 0.f) || !(samples_[i] > 0.f) || !std::isfinite(samples_[i])) {
+            s = {0.f, 0.f, s.tEnd, 0};
+            return true;
+        }
+        const Placement placement = sc_.options.placement;
+        s.count = placement == Placement::EntryExitAlign || placement == Placement::EntryExitAlignCorner
+                      ? static_cast<std::int64_t>(samples_[i])
+                      : countBelowEnd(s);
+        ray.entry = glm::vec3(entryF_[0][i], entryF_[1][i], entryF_[2][i]);
+        ray.du = glm::vec3(du_[0][i], du_[1][i], du_[2][i]);
+        ray.dx = s.count > 0 ? s.tIncr * static_cast<float>(ray.worldLength / static_cast<double>(s.tEnd)) : 0.f;
         return true;
     }
 
@@ -351,6 +377,47 @@ private:
                 hn::Store(hn::Div(hn::Sub(hn::Add(e, hn::Mul(tFar, dir[a])), lo), size), dd, exit_[a] + j);
             }
         }
+        // placeSamples<float>() and FixedStepSamples' du; glm::length as sqrt((x x + y y) + z z).
+        HWY_ALIGN float exitF[3][kBatch];
+        for (int a = 0; a < 3; ++a)
+            for (std::size_t i = 0; i < kBatch; ++i) {
+                entryF_[a][i] = static_cast<float>(entry_[a][i]);
+                exitF[a][i] = static_cast<float>(exit_[a][i]);
+            }
+        const DF df;
+        const auto length = [](const VF (&v)[3]) {
+            return hn::Sqrt(hn::Add(hn::Add(hn::Mul(v[0], v[0]), hn::Mul(v[1], v[1])), hn::Mul(v[2], v[2])));
+        };
+        const Placement placement = sc_.options.placement;
+        const VF rate = hn::Set(df, static_cast<float>(sc_.options.samplingRate));
+        for (std::size_t j = 0; j < size_; j += hn::Lanes(df)) {
+            VF entry[3], ray[3], scaled[3];
+            for (int a = 0; a < 3; ++a) {
+                entry[a] = hn::Load(df, entryF_[a] + j);
+                ray[a] = hn::Sub(hn::Load(df, exitF[a] + j), entry[a]);
+                const float dim = sc_.dims[a];
+                scaled[a] = hn::Mul(ray[a], hn::Set(df, placement == Placement::EntryExitAlignCorner ? dim - 1.f : dim));
+            }
+            const VF tEnd = length(ray), along = length(scaled);
+            const VF samples = placement == Placement::EntryExitAlignCorner ? hn::Ceil(hn::Mul(rate, along))
+                               : placement == Placement::EntryExitAlign     ? hn::Floor(hn::Mul(along, rate))
+                                                                            : hn::Mul(along, rate);
+            const VF tIncr = hn::Div(tEnd, samples);
+            VF tStart = hn::Mul(hn::Set(df, 0.5f), tIncr);
+            if (placement == Placement::EyeAlign) {
+                VF fromEye[3];
+                for (int a = 0; a < 3; ++a)
+                    fromEye[a] = hn::Sub(entry[a], hn::Set(df, sc_.eyeU[a]));
+                const VF steps = hn::Div(length(fromEye), tIncr);
+                tStart = hn::Mul(hn::Sub(hn::Set(df, 1.f), hn::Sub(steps, hn::Floor(steps))), tIncr);
+            }
+            hn::Store(tEnd, df, tEnd_ + j);
+            hn::Store(samples, df, samples_ + j);
+            hn::Store(tIncr, df, tIncr_ + j);
+            hn::Store(tStart, df, tStart_ + j);
+            for (int a = 0; a < 3; ++a)
+                hn::Store(hn::Div(ray[a], tEnd), df, du_[a] + j);
+        }
     }
 
     static constexpr std::size_t kBatch = PacketScene::kMaxLanes;
@@ -360,7 +427,9 @@ private:
     int pixel_[kBatch];
     // Per pixel: the texture coordinates where the ray enters and leaves the box, the world length
     // between them, and 1 where it hits the box, or takes pixelRay().
-    HWY_ALIGN double entry_[3][kBatch], exit_[3][kBatch], length_[kBatch], hit_[kBatch], scalar_[kBatch];
+    HWY_ALIGN double entry_[3][kBatch] = {}, exit_[3][kBatch] = {}, length_[kBatch], hit_[kBatch], scalar_[kBatch];
+    // And in float: the entry point, tEnd, placeSamples()' `samples`, tIncr, tStart and du.
+    HWY_ALIGN float entryF_[3][kBatch], tEnd_[kBatch], samples_[kBatch], tIncr_[kBatch], tStart_[kBatch], du_[3][kBatch];
 };
 
 // The lanes' rays, structure of arrays; a lane without a ray has count 0.
@@ -421,15 +490,13 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     // the tile has none left.
     const auto start = [&](std::size_t lane) {
         L.k[lane] = L.count[lane] = 0;
-        int pixel;
-        std::optional<TextureRay<float>> clipped;
-        while (rays.next(order, x0, y0, width, pixel, clipped)) {
-            if (!clipped) continue;
-            if (clipped->worldLength > 0) ++counts.raysHit;
-            const FixedStepSamples<float> ray(*clipped, sc.options, sc.eyeU, sc.dims);
+        PixelSamples ray;
+        while (rays.next(order, x0, y0, width, ray)) {
+            if (!ray.hit) continue;
+            if (ray.worldLength > 0) ++counts.raysHit;
             // No sample: the pixel keeps the image's zeros, which is what the scalar path writes.
             if (ray.schedule.count == 0) continue;
-            L.pixel[lane] = pixel;
+            L.pixel[lane] = ray.pixel;
             L.tStart[lane] = ray.schedule.tStart;
             L.tIncr[lane] = ray.schedule.tIncr;
             L.count[lane] = static_cast<std::int32_t>(ray.schedule.count);
