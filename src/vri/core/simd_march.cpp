@@ -186,12 +186,22 @@ public:
     HWY_INLINE void operator()(VF s, VF (&out)[4]) const {
         const DF df;
         const DI di;
-        const std::vector<float>& p = sc_.pointS;
+        // Four inner points a turn (NaN pads the last four: s >= NaN is false), each a compare and a
+        // masked add: a loop over single points spent more on the loop than on the compares.
+        const std::vector<float>& inner = sc_.innerS;
+        const VI one = hn::Set(di, 1);
         VI segment = hn::Zero(di);
-        for (std::size_t j = 1; j + 1 < p.size(); ++j)
-            segment = hn::Sub(segment, hn::BitCast(di, hn::VecFromMask(df, hn::Ge(s, hn::Set(df, p[j])))));
-        const MF above = hn::Ge(s, hn::Set(df, p.front()));
-        const MF below = hn::Lt(s, hn::Set(df, p.back()));
+        const auto count = [&](float p) {
+            segment = hn::IfThenElse(hn::RebindMask(di, hn::Ge(s, hn::Set(df, p))), hn::Add(segment, one), segment);
+        };
+        for (std::size_t j = 0; j < inner.size(); j += 4) {
+            count(inner[j]);
+            count(inner[j + 1]);
+            count(inner[j + 2]);
+            count(inner[j + 3]);
+        }
+        const MF above = hn::Ge(s, hn::Set(df, sc_.pointS.front()));
+        const MF below = hn::Lt(s, hn::Set(df, sc_.pointS.back()));
         if (inRegisters_) {
             const auto idx = hn::IndicesFromVec(df, segment);
             const VF w = hn::Div(hn::Sub(s, hn::TableLookupLanes(start_, idx)), hn::TableLookupLanes(width_, idx));
@@ -717,6 +727,9 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Occupan
     const auto& p = scene.transferFunction.points();
     for (const auto& q : p)
         pointS.push_back(static_cast<float>(q.s));
+    for (std::size_t i = 1; i + 1 < p.size(); ++i)
+        innerS.push_back(pointS[i]);
+    innerS.resize((innerS.size() + 3) / 4 * 4, std::numeric_limits<float>::quiet_NaN());
     const auto channels = [](const TransferFunctionPoint& q) { return std::array<double, 4>{q.r, q.g, q.b, q.tau}; };
     for (int c = 0; c < 4; ++c) {
         first[c] = static_cast<float>(channels(p.front())[c]);

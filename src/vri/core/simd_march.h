@@ -75,6 +75,7 @@ struct PacketScene {
     // segment [s_i, s_i+1) its start, width and each channel's value at the start and slope (r, g, b,
     // tau), padded with copies of the last segment to a whole number of the widest vectors.
     std::vector<float> pointS;
+    std::vector<float> innerS;  // pointS[1 .. n-2], padded with NaN to a multiple of 4
     std::vector<float> segmentStart, segmentWidth, value[4], slope[4];
     float first[4], last[4];  // the channels at the first and the last point
 };
