@@ -353,9 +353,10 @@ private:
             const VD fy = hn::Add(hn::Set(dd, basis_.centre.y),
                                   hn::Div(hn::Sub(hn::Add(hn::Load(dd, py + j), half), hn::Set(dd, 0.5 * spec.height)),
                                           hn::Set(dd, spec.zoom)));
-            const VD x = hn::Mul(hn::Sub(hn::Div(hn::Mul(two, fx), hn::Set(dd, spec.width)), one), hn::Set(dd, basis_.tanHalfX));
-            const VD y =
-                hn::Mul(hn::Sub(one, hn::Div(hn::Mul(two, fy), hn::Set(dd, spec.height))), hn::Set(dd, basis_.tanHalfY));
+            const VD x =
+                hn::Mul(hn::Sub(hn::Div(hn::Mul(two, fx), hn::Set(dd, spec.width)), one), hn::Set(dd, basis_.tanHalfX));
+            const VD y = hn::Mul(hn::Sub(one, hn::Div(hn::Mul(two, fy), hn::Set(dd, spec.height))),
+                                 hn::Set(dd, basis_.tanHalfY));
             VD v[3];
             for (int a = 0; a < 3; ++a)
                 v[a] = hn::Add(hn::Add(hn::Set(dd, basis_.forward[a]), hn::Mul(x, hn::Set(dd, basis_.right[a]))),
@@ -399,6 +400,7 @@ private:
             return hn::Sqrt(hn::Add(hn::Add(hn::Mul(v[0], v[0]), hn::Mul(v[1], v[1])), hn::Mul(v[2], v[2])));
         };
         const Placement placement = sc_.options.placement;
+        const bool corner = placement == Placement::EntryExitAlignCorner;
         const VF rate = hn::Set(df, static_cast<float>(sc_.options.samplingRate));
         for (std::size_t j = 0; j < size_; j += hn::Lanes(df)) {
             VF entry[3], ray[3], scaled[3];
@@ -406,12 +408,12 @@ private:
                 entry[a] = hn::Load(df, entryF_[a] + j);
                 ray[a] = hn::Sub(hn::Load(df, exitF[a] + j), entry[a]);
                 const float dim = sc_.dims[a];
-                scaled[a] = hn::Mul(ray[a], hn::Set(df, placement == Placement::EntryExitAlignCorner ? dim - 1.f : dim));
+                scaled[a] = hn::Mul(ray[a], hn::Set(df, corner ? dim - 1.f : dim));
             }
             const VF tEnd = length(ray), along = length(scaled);
-            const VF samples = placement == Placement::EntryExitAlignCorner ? hn::Ceil(hn::Mul(rate, along))
-                               : placement == Placement::EntryExitAlign     ? hn::Floor(hn::Mul(along, rate))
-                                                                            : hn::Mul(along, rate);
+            VF samples = hn::Mul(along, rate);
+            if (placement == Placement::EntryExitAlign) samples = hn::Floor(samples);
+            if (corner) samples = hn::Ceil(hn::Mul(rate, along));
             const VF tIncr = hn::Div(tEnd, samples);
             VF tStart = hn::Mul(hn::Set(df, 0.5f), tIncr);
             if (placement == Placement::EyeAlign) {
@@ -439,7 +441,8 @@ private:
     // between them, and 1 where it hits the box, or takes pixelRay().
     HWY_ALIGN double entry_[3][kBatch] = {}, exit_[3][kBatch] = {}, length_[kBatch], hit_[kBatch], scalar_[kBatch];
     // And in float: the entry point, tEnd, placeSamples()' `samples`, tIncr, tStart and du.
-    HWY_ALIGN float entryF_[3][kBatch], tEnd_[kBatch], samples_[kBatch], tIncr_[kBatch], tStart_[kBatch], du_[3][kBatch];
+    HWY_ALIGN float entryF_[3][kBatch], tEnd_[kBatch], samples_[kBatch], tIncr_[kBatch], tStart_[kBatch];
+    HWY_ALIGN float du_[3][kBatch];
 };
 
 // The lanes' rays, structure of arrays; a lane without a ray has count 0.
@@ -539,9 +542,9 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             if (L.finished[lane]) finish(lane);
     };
 
-    // A packet is the next n pixels with samples; it ends when its last ray does. (Refilling a lane
-    // as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays cross the same
-    // bricks, so a packet's lanes jump over empty space and evaluate together.)
+    // A packet is the next n pixels with samples in PacketOrder; it ends when its last ray does.
+    // (Refilling a lane as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays
+    // cross the same bricks, so a packet's lanes jump over empty space and evaluate together.)
     VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);  // the distances of the bricks last gathered
     int sincePrefetch = sc.prefetchEvery;  // steps since prefetchAhead() last ran
     for (;;) {
@@ -558,7 +561,8 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             // an estimate, so float suffices); +inf along an axis a ray does not move on.
             const VF tIncr = hn::Load(df, L.tIncr);
             for (int a = 0; a < 3; ++a) {
-                const VF step = hn::Abs(hn::Mul(hn::Mul(hn::Load(df, L.du[a]), hn::Set(df, sc.layout.scale[a])), tIncr));
+                const VF perVoxel = hn::Mul(hn::Load(df, L.du[a]), hn::Set(df, sc.layout.scale[a]));
+                const VF step = hn::Abs(hn::Mul(perVoxel, tIncr));
                 hn::Store(hn::Div(hn::Set(df, 1.f), step), df, L.samplesPerVoxel[a]);
             }
         }
