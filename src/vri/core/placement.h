@@ -36,6 +36,16 @@ struct SampleSchedule {
     Real t(std::int64_t k) const { return tStart + static_cast<Real>(k) * tIncr; }
 };
 
+// A fixed step's count: as many samples as have t < tEnd, counted on the positions we actually evaluate.
+template <class Real>
+std::int64_t countBelowEnd(const SampleSchedule<Real>& s) {
+    using std::ceil;
+    std::int64_t n = s.tStart < s.tEnd ? static_cast<std::int64_t>(ceil((s.tEnd - s.tStart) / s.tIncr)) : 0;
+    while (n > 0 && !(s.t(n - 1) < s.tEnd)) --n;
+    while (s.t(n) < s.tEnd) ++n;
+    return n;
+}
+
 template <class Real>
 SampleSchedule<Real> placeSamples(Placement placement, const glm::vec<3, Real>& entry,
                                   const glm::vec<3, Real>& exit, const glm::vec<3, Real>& eye,
@@ -74,11 +84,7 @@ SampleSchedule<Real> placeSamples(Placement placement, const glm::vec<3, Real>& 
     if (placement == Placement::EntryExitAlign || placement == Placement::EntryExitAlignCorner) {
         s.count = static_cast<std::int64_t>(samples);  // the last sample sits half a step before the exit
     } else {
-        // Fixed step: as many samples as have t < tEnd, counted on the positions we actually evaluate.
-        std::int64_t n = s.tStart < s.tEnd ? static_cast<std::int64_t>(ceil((s.tEnd - s.tStart) / s.tIncr)) : 0;
-        while (n > 0 && !(s.t(n - 1) < s.tEnd)) --n;
-        while (s.t(n) < s.tEnd) ++n;
-        s.count = n;
+        s.count = countBelowEnd(s);
     }
     return s;
 }

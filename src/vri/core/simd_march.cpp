@@ -186,12 +186,22 @@ public:
     HWY_INLINE void operator()(VF s, VF (&out)[4]) const {
         const DF df;
         const DI di;
-        const std::vector<float>& p = sc_.pointS;
+        // Four inner points a turn (NaN pads the last four: s >= NaN is false), each a compare and a
+        // masked add: a loop over single points spent more on the loop than on the compares.
+        const std::vector<float>& inner = sc_.innerS;
+        const VI one = hn::Set(di, 1);
         VI segment = hn::Zero(di);
-        for (std::size_t j = 1; j + 1 < p.size(); ++j)
-            segment = hn::Sub(segment, hn::BitCast(di, hn::VecFromMask(df, hn::Ge(s, hn::Set(df, p[j])))));
-        const MF above = hn::Ge(s, hn::Set(df, p.front()));
-        const MF below = hn::Lt(s, hn::Set(df, p.back()));
+        const auto count = [&](float p) {
+            segment = hn::IfThenElse(hn::RebindMask(di, hn::Ge(s, hn::Set(df, p))), hn::Add(segment, one), segment);
+        };
+        for (std::size_t j = 0; j < inner.size(); j += 4) {
+            count(inner[j]);
+            count(inner[j + 1]);
+            count(inner[j + 2]);
+            count(inner[j + 3]);
+        }
+        const MF above = hn::Ge(s, hn::Set(df, sc_.pointS.front()));
+        const MF below = hn::Lt(s, hn::Set(df, sc_.pointS.back()));
         if (inRegisters_) {
             const auto idx = hn::IndicesFromVec(df, segment);
             const VF w = hn::Div(hn::Sub(s, hn::TableLookupLanes(start_, idx)), hn::TableLookupLanes(width_, idx));
@@ -225,6 +235,215 @@ private:
 
 constexpr std::size_t kMaxLanes = PacketScene::kMaxLanes;
 static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxLanes);
+
+// The order in which a tile's pixels enter packets: blocks of neighbouring pixels as near square as
+// the lane count allows (4x4 for 16 lanes, 4x2 for 8, 2x2 for 4), block after block along the tile's
+// rows. A block's rays start close together and stay close, so its lanes cross the same bricks (their
+// jumps and their ends come together) and its gathers share cache lines, more than a row of pixels'
+// would. The order changes no pixel's value: each lane marches its own ray.
+class PacketOrder {
+public:
+    PacketOrder(int width, int height, std::size_t lanes)
+        : width_(width), height_(height), blockW_(lanes >= 8 ? 4 : lanes >= 4 ? 2 : static_cast<int>(lanes)),
+          blockH_(static_cast<int>(lanes) / blockW_) {}
+
+    bool done() const { return y_ >= height_; }
+
+    // The next pixel, as x + width * y within the tile; false when none is left.
+    bool next(int& pixel) {
+        while (!done()) {
+            const int x = x_ + i_ % blockW_, y = y_ + i_ / blockW_;
+            if (++i_ == blockW_ * blockH_) {
+                i_ = 0;
+                x_ += blockW_;
+                if (x_ >= width_) {
+                    x_ = 0;
+                    y_ += blockH_;
+                }
+            }
+            if (x < width_ && y < height_) {
+                pixel = x + width_ * y;
+                return true;
+            }
+        }
+        return false;
+    }
+
+private:
+    int width_, height_, blockW_, blockH_;
+    int x_ = 0, y_ = 0, i_ = 0;  // the block's corner, and the next pixel's place in it
+};
+
+// A pixel's ray as the packets march it: pixelRay<float>() and FixedStepSamples<float> of it.
+struct PixelSamples {
+    int pixel;
+    bool hit;  // the ray meets the box
+    double worldLength;
+    SampleSchedule<float> schedule;
+    glm::vec3 entry, du;
+    float dx;
+};
+
+// The rays of the next pixels in PacketOrder, a vector of pixels at a time: pixelRay() (Camera::
+// direction(), clipRay(), Box::toTexture()) in double, then placeSamples() and FixedStepSamples in
+// float, operation for operation (no fused multiply-add: the build turns contraction off), so every
+// ray has the bits of the scalar path's; the count of a fixed step is countBelowEnd()'s. A pixel whose
+// direction has a zero or non-finite component takes pixelRay() itself (clipRay()'s cases for those).
+class RayBatch {
+public:
+    explicit RayBatch(const PacketScene& sc) : sc_(sc), basis_(sc.camera.basis()) {}
+
+    // The next pixel's ray; false when the tile has no pixel left.
+    bool next(PacketOrder& order, int x0, int y0, int width, PixelSamples& ray) {
+        if (next_ == size_) fill(order, x0, y0, width);
+        if (next_ == size_) return false;
+        const std::size_t i = next_++;
+        ray.pixel = pixel_[i];
+        if (scalar_[i] != 0.0) {
+            const auto clipped = pixelRay<float>(sc_.camera, sc_.box, x0 + ray.pixel % width, y0 + ray.pixel / width);
+            ray.hit = clipped.has_value();
+            if (!clipped) return true;
+            const FixedStepSamples<float> samples(*clipped, sc_.options, sc_.eyeU, sc_.dims);
+            ray.worldLength = clipped->worldLength;
+            ray.schedule = samples.schedule;
+            ray.entry = samples.entry;
+            ray.du = samples.du;
+            ray.dx = samples.dx;
+            return true;
+        }
+        ray.hit = hit_[i] != 0.0;
+        ray.worldLength = length_[i];
+        SampleSchedule<float>& s = ray.schedule;
+        s = {tStart_[i], tIncr_[i], tEnd_[i], 0};
+        if (!ray.hit || !(s.tEnd > 0.f) || !(samples_[i] > 0.f) || !std::isfinite(samples_[i])) {
+            s = {0.f, 0.f, s.tEnd, 0};
+            return true;
+        }
+        const Placement placement = sc_.options.placement;
+        s.count = placement == Placement::EntryExitAlign || placement == Placement::EntryExitAlignCorner
+                      ? static_cast<std::int64_t>(samples_[i])
+                      : countBelowEnd(s);
+        ray.entry = glm::vec3(entryF_[0][i], entryF_[1][i], entryF_[2][i]);
+        ray.du = glm::vec3(du_[0][i], du_[1][i], du_[2][i]);
+        ray.dx = s.count > 0 ? s.tIncr * static_cast<float>(ray.worldLength / static_cast<double>(s.tEnd)) : 0.f;
+        return true;
+    }
+
+private:
+    using DD = hn::ScalableTag<double>;
+    using VD = hn::Vec<DD>;
+
+    void fill(PacketOrder& order, int x0, int y0, int width) {
+        size_ = next_ = 0;
+        HWY_ALIGN double px[kBatch] = {}, py[kBatch] = {};  // a partial last vector reads zeros
+        while (size_ < kBatch && order.next(pixel_[size_])) {
+            px[size_] = x0 + pixel_[size_] % width;
+            py[size_] = y0 + pixel_[size_] / width;
+            ++size_;
+        }
+        const DD dd;
+        const std::size_t n = hn::Lanes(dd);
+        const CameraSpec& spec = sc_.camera.spec();
+        const VD zero = hn::Zero(dd), one = hn::Set(dd, 1.0), two = hn::Set(dd, 2.0), half = hn::Set(dd, 0.5);
+        for (std::size_t j = 0; j < size_; j += n) {
+            // Camera::direction().
+            const VD fx = hn::Add(hn::Set(dd, basis_.centre.x),
+                                  hn::Div(hn::Sub(hn::Add(hn::Load(dd, px + j), half), hn::Set(dd, 0.5 * spec.width)),
+                                          hn::Set(dd, spec.zoom)));
+            const VD fy = hn::Add(hn::Set(dd, basis_.centre.y),
+                                  hn::Div(hn::Sub(hn::Add(hn::Load(dd, py + j), half), hn::Set(dd, 0.5 * spec.height)),
+                                          hn::Set(dd, spec.zoom)));
+            const VD x =
+                hn::Mul(hn::Sub(hn::Div(hn::Mul(two, fx), hn::Set(dd, spec.width)), one), hn::Set(dd, basis_.tanHalfX));
+            const VD y = hn::Mul(hn::Sub(one, hn::Div(hn::Mul(two, fy), hn::Set(dd, spec.height))),
+                                 hn::Set(dd, basis_.tanHalfY));
+            VD v[3];
+            for (int a = 0; a < 3; ++a)
+                v[a] = hn::Add(hn::Add(hn::Set(dd, basis_.forward[a]), hn::Mul(x, hn::Set(dd, basis_.right[a]))),
+                               hn::Mul(y, hn::Set(dd, basis_.up[a])));
+            // glm::normalize: v * (1 / sqrt(dot(v, v))), the dot as (x x + y y) + z z.
+            const VD dot = hn::Add(hn::Add(hn::Mul(v[0], v[0]), hn::Mul(v[1], v[1])), hn::Mul(v[2], v[2]));
+            const VD inverse = hn::Div(one, hn::Sqrt(dot));
+            // clipRay().
+            const glm::dvec3& eye = sc_.camera.eye();
+            VD tNear = zero, tFar = hn::Set(dd, std::numeric_limits<double>::infinity()), dir[3];
+            auto odd = hn::Ne(zero, zero);  // a direction clipRay() treats case by case
+            for (int a = 0; a < 3; ++a) {
+                dir[a] = hn::Mul(v[a], inverse);
+                odd = hn::Or(odd, hn::Or(hn::Eq(dir[a], zero), hn::Not(hn::IsFinite(dir[a]))));
+                const VD t0 = hn::Div(hn::Set(dd, sc_.box.lo[a] - eye[a]), dir[a]);
+                const VD t1 = hn::Div(hn::Set(dd, sc_.box.hi[a] - eye[a]), dir[a]);
+                const auto swap = hn::Gt(t0, t1);
+                tNear = hn::Max(tNear, hn::IfThenElse(swap, t1, t0));
+                tFar = hn::Min(tFar, hn::IfThenElse(swap, t0, t1));
+            }
+            hn::Store(hn::IfThenElseZero(hn::Not(hn::Gt(tNear, tFar)), one), dd, hit_ + j);
+            hn::Store(hn::IfThenElseZero(odd, one), dd, scalar_ + j);
+            hn::Store(hn::Sub(tFar, tNear), dd, length_ + j);
+            // Box::toTexture() of the entry and exit points.
+            for (int a = 0; a < 3; ++a) {
+                const VD lo = hn::Set(dd, sc_.box.lo[a]), size = hn::Set(dd, sc_.box.hi[a] - sc_.box.lo[a]);
+                const VD e = hn::Set(dd, eye[a]);
+                hn::Store(hn::Div(hn::Sub(hn::Add(e, hn::Mul(tNear, dir[a])), lo), size), dd, entry_[a] + j);
+                hn::Store(hn::Div(hn::Sub(hn::Add(e, hn::Mul(tFar, dir[a])), lo), size), dd, exit_[a] + j);
+            }
+        }
+        // placeSamples<float>() and FixedStepSamples' du; glm::length as sqrt((x x + y y) + z z).
+        HWY_ALIGN float exitF[3][kBatch];
+        for (int a = 0; a < 3; ++a)
+            for (std::size_t i = 0; i < kBatch; ++i) {
+                entryF_[a][i] = static_cast<float>(entry_[a][i]);
+                exitF[a][i] = static_cast<float>(exit_[a][i]);
+            }
+        const DF df;
+        const auto length = [](const VF (&v)[3]) {
+            return hn::Sqrt(hn::Add(hn::Add(hn::Mul(v[0], v[0]), hn::Mul(v[1], v[1])), hn::Mul(v[2], v[2])));
+        };
+        const Placement placement = sc_.options.placement;
+        const bool corner = placement == Placement::EntryExitAlignCorner;
+        const VF rate = hn::Set(df, static_cast<float>(sc_.options.samplingRate));
+        for (std::size_t j = 0; j < size_; j += hn::Lanes(df)) {
+            VF entry[3], ray[3], scaled[3];
+            for (int a = 0; a < 3; ++a) {
+                entry[a] = hn::Load(df, entryF_[a] + j);
+                ray[a] = hn::Sub(hn::Load(df, exitF[a] + j), entry[a]);
+                const float dim = sc_.dims[a];
+                scaled[a] = hn::Mul(ray[a], hn::Set(df, corner ? dim - 1.f : dim));
+            }
+            const VF tEnd = length(ray), along = length(scaled);
+            VF samples = hn::Mul(along, rate);
+            if (placement == Placement::EntryExitAlign) samples = hn::Floor(samples);
+            if (corner) samples = hn::Ceil(hn::Mul(rate, along));
+            const VF tIncr = hn::Div(tEnd, samples);
+            VF tStart = hn::Mul(hn::Set(df, 0.5f), tIncr);
+            if (placement == Placement::EyeAlign) {
+                VF fromEye[3];
+                for (int a = 0; a < 3; ++a)
+                    fromEye[a] = hn::Sub(entry[a], hn::Set(df, sc_.eyeU[a]));
+                const VF steps = hn::Div(length(fromEye), tIncr);
+                tStart = hn::Mul(hn::Sub(hn::Set(df, 1.f), hn::Sub(steps, hn::Floor(steps))), tIncr);
+            }
+            hn::Store(tEnd, df, tEnd_ + j);
+            hn::Store(samples, df, samples_ + j);
+            hn::Store(tIncr, df, tIncr_ + j);
+            hn::Store(tStart, df, tStart_ + j);
+            for (int a = 0; a < 3; ++a)
+                hn::Store(hn::Div(ray[a], tEnd), df, du_[a] + j);
+        }
+    }
+
+    static constexpr std::size_t kBatch = PacketScene::kMaxLanes;
+    const PacketScene& sc_;
+    CameraBasis basis_;
+    std::size_t size_ = 0, next_ = 0;
+    int pixel_[kBatch];
+    // Per pixel: the texture coordinates where the ray enters and leaves the box, the world length
+    // between them, and 1 where it hits the box, or takes pixelRay().
+    HWY_ALIGN double entry_[3][kBatch] = {}, exit_[3][kBatch] = {}, length_[kBatch], hit_[kBatch], scalar_[kBatch];
+    // And in float: the entry point, tEnd, placeSamples()' `samples`, tIncr, tStart and du.
+    HWY_ALIGN float entryF_[3][kBatch], tEnd_[kBatch], samples_[kBatch], tIncr_[kBatch], tStart_[kBatch];
+    HWY_ALIGN float du_[3][kBatch];
+};
 
 // The lanes' rays, structure of arrays; a lane without a ray has count 0.
 struct Lanes {
@@ -275,31 +494,28 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     const VectorOps ops{df, di};
     const std::size_t n = hn::Lanes(df);
     const VectorTransferFunction tf(sc);
-    const int width = x1 - x0, pixels = width * (y1 - y0);
+    const int width = x1 - x0;
+    PacketOrder order(width, y1 - y0, n);
+    RayBatch rays(sc);
     Lanes L{};
-    int nextPixel = 0;
 
     // Loads the next pixel whose ray has samples into `lane`; leaves it without a ray (count 0) when
     // the tile has none left.
     const auto start = [&](std::size_t lane) {
         L.k[lane] = L.count[lane] = 0;
-        while (nextPixel < pixels) {
-            const int pixel = nextPixel++;
-            const auto clipped = pixelRay<float>(sc.camera, sc.box, x0 + pixel % width, y0 + pixel / width);
-            if (!clipped) continue;
-            if (clipped->worldLength > 0) ++counts.raysHit;
-            const FixedStepRay<float> ray(*clipped, sc.options, sc.eyeU, sc.dims, sc.indexMap);
+        PixelSamples ray;
+        while (rays.next(order, x0, y0, width, ray)) {
+            if (!ray.hit) continue;
+            if (ray.worldLength > 0) ++counts.raysHit;
             // No sample: the pixel keeps the image's zeros, which is what the scalar path writes.
             if (ray.schedule.count == 0) continue;
-            L.pixel[lane] = pixel;
+            L.pixel[lane] = ray.pixel;
             L.tStart[lane] = ray.schedule.tStart;
             L.tIncr[lane] = ray.schedule.tIncr;
             L.count[lane] = static_cast<std::int32_t>(ray.schedule.count);
             for (int a = 0; a < 3; ++a) {
                 L.entry[a][lane] = ray.entry[a];
                 L.du[a][lane] = ray.du[a];
-                L.samplesPerVoxel[a][lane] = static_cast<float>(
-                    1.0 / std::abs(static_cast<double>(ray.du[a]) * sc.layout.scale[a] * ray.schedule.tIncr));
             }
             L.dx[lane] = ray.dx;
             L.terminateBelow[lane] = sc.termination.threshold<float>(ray.dx, ray.schedule.count);
@@ -326,22 +542,29 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             if (L.finished[lane]) finish(lane);
     };
 
-    // A packet is the next n pixels with samples; it ends when its last ray does. (Refilling a lane
-    // as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays cross the same
-    // bricks, so a packet's lanes jump over empty space and evaluate together.)
+    // A packet is the next n pixels with samples in PacketOrder; it ends when its last ray does.
+    // (Refilling a lane as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays
+    // cross the same bricks, so a packet's lanes jump over empty space and evaluate together.)
     VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);  // the distances of the bricks last gathered
     int sincePrefetch = sc.prefetchEvery;  // steps since prefetchAhead() last ran
     for (;;) {
         VI k = hn::Load(di, L.k), count = hn::Load(di, L.count);
         MF active = hn::RebindMask(df, hn::Lt(k, count));
         if (hn::AllFalse(df, active)) {
-            if (nextPixel >= pixels) break;
             for (std::size_t lane = 0; lane < n; ++lane)
                 start(lane);
             k = hn::Load(di, L.k);
             count = hn::Load(di, L.count);
             active = hn::RebindMask(df, hn::Lt(k, count));
             if (hn::AllFalse(df, active)) break;
+            // Samples per voxel along each axis, for the jumps over empty space (samplesInEmptyCube:
+            // an estimate, so float suffices); +inf along an axis a ray does not move on.
+            const VF tIncr = hn::Load(df, L.tIncr);
+            for (int a = 0; a < 3; ++a) {
+                const VF perVoxel = hn::Mul(hn::Load(df, L.du[a]), hn::Set(df, sc.layout.scale[a]));
+                const VF step = hn::Abs(hn::Mul(perVoxel, tIncr));
+                hn::Store(hn::Div(hn::Set(df, 1.f), step), df, L.samplesPerVoxel[a]);
+            }
         }
         const MF started = active;  // the lanes with a ray at this step
         VF du[3];
@@ -508,6 +731,9 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Occupan
     const auto& p = scene.transferFunction.points();
     for (const auto& q : p)
         pointS.push_back(static_cast<float>(q.s));
+    for (std::size_t i = 1; i + 1 < p.size(); ++i)
+        innerS.push_back(pointS[i]);
+    innerS.resize((innerS.size() + 3) / 4 * 4, std::numeric_limits<float>::quiet_NaN());
     const auto channels = [](const TransferFunctionPoint& q) { return std::array<double, 4>{q.r, q.g, q.b, q.tau}; };
     for (int c = 0; c < 4; ++c) {
         first[c] = static_cast<float>(channels(p.front())[c]);

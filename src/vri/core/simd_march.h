@@ -4,10 +4,11 @@
 // Each lane performs the scalar float path's operations in its order (the placement and empty-space
 // jumps of fixed_step_ray.h, GridSampler's trilinear formula, TransferFunction's bracket and lerp,
 // RayAccumulator's sums with the shared exponential of float_exp.h), so the image is bitwise equal to
-// `--simd off` on every target. A packet holds neighbouring pixels of a tile; a lane whose ray has
-// ended is masked until the packet's last ray ends. Empty space is skipped per sample, by the brick
-// of its trilinear stencil: a lane in an empty brick jumps to the samples leaving the cube of empty
-// bricks around it, until every lane sits on a sample to evaluate, and then all evaluate together.
+// `--simd off` on every target. A packet holds a block of neighbouring pixels of a tile (their rays
+// clipped and placed in vectors too); a lane whose ray has ended is masked until the packet's last ray
+// ends. Empty space is skipped per sample, by the brick of its trilinear stencil: a lane in an empty
+// brick jumps to the samples leaving the cube of empty bricks around it, until every lane sits on a
+// sample to evaluate, and then all evaluate together.
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -75,6 +76,7 @@ struct PacketScene {
     // segment [s_i, s_i+1) its start, width and each channel's value at the start and slope (r, g, b,
     // tau), padded with copies of the last segment to a whole number of the widest vectors.
     std::vector<float> pointS;
+    std::vector<float> innerS;  // pointS[1 .. n-2], padded with NaN to a multiple of 4
     std::vector<float> segmentStart, segmentWidth, value[4], slope[4];
     float first[4], last[4];  // the channels at the first and the last point
 };
