@@ -48,6 +48,7 @@ private:
     double tolerance_;
     bool lowOrder_;                // Gauss-Kronrod 3-7 instead of 7-15 (see integrateSubPiece)
     bool fastSplits_;              // a piece's monotonicity from its coefficients where they show it (addPiece)
+    RootStart rootStart_;          // Chord with fastSplits_: the same roots to an ulp, fewer Newton steps
     double terminationDepth_;      // g = C tau: done() once the optical depth reaches this
     double largestColour_;         // max(1, C_max over channels): what bounds a tail per unit T
     std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
