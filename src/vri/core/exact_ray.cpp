@@ -51,6 +51,19 @@ constexpr int kMaxGaussPanels = 64;
 // references, and every result compared against them, keep their bits.
 constexpr double kGaussTolerance = 1e-10;
 
+// How many of the sorted values are <= x (upper_bound's index) or < x (lower_bound's): a count without
+// branches, over the few points of a transfer function, where a binary search mispredicts at every step.
+std::size_t countAtMost(const std::vector<double>& sorted, double x) {
+    std::size_t n = 0;
+    for (double v : sorted) n += v <= x;
+    return n;
+}
+std::size_t countBelow(const std::vector<double>& sorted, double x) {
+    std::size_t n = 0;
+    for (double v : sorted) n += v < x;
+    return n;
+}
+
 template <std::size_t N>
 double horner(const std::array<double, N>& p, double x) {
     double r = p[N - 1];
@@ -130,10 +143,16 @@ GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std:
         }
     if (bestN == 0) {
         for (int n = 3; n >= 2; --n) {
-            const double ratio = ell * bound[n - 1] / allowed;  // k^2n must reach it
-            if (!(ratio < std::pow(double(kMaxGaussPanels), 2 * n))) continue;
-            int k = std::max(1, static_cast<int>(std::pow(ratio, 1.0 / (2 * n))));
-            auto shrinkOf = [n](int panels) { return std::pow(static_cast<double>(panels), -2 * n); };
+            // k^2n must reach the ratio: k from its 2n-th root by square and cube roots, k^-2n from products
+            // (k^2n is exact for k <= 64), without pow, which took more time than the rest of the choice.
+            const double ratio = ell * bound[n - 1] / allowed;
+            static_assert(kMaxGaussPanels == 64, "2^36 and 2^24 are 64^6 and 64^4");
+            if (!(ratio < (n == 3 ? 0x1p36 : 0x1p24))) continue;
+            int k = std::max(1, static_cast<int>(n == 3 ? std::sqrt(std::cbrt(ratio)) : std::sqrt(std::sqrt(ratio))));
+            auto shrinkOf = [n](int panels) {
+                const double square = static_cast<double>(panels) * panels;
+                return 1.0 / (n == 3 ? square * square * square : square * square);
+            };
             while (k < kMaxGaussPanels && !(ell * bound[n - 1] * shrinkOf(k) <= allowed)) ++k;
             if (!(ell * bound[n - 1] * shrinkOf(k) <= allowed)) continue;
             if (bestN == 0 || n * k < bestN * bestK) {
@@ -210,11 +229,7 @@ ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
     splits_.reserve(3 * levels_.size() + 2);
 }
 
-bool ExactRay::done(double remainingLength) const {
-    if (opticalDepth_ >= kOpaqueDepth) return true;
-    // The tests use the largest transparency the rounding of the depth allows, as finish() does.
-    const double depth = opticalDepth_ - depthError_;
-    if (depth < terminationDepth_) return false;
+bool ExactRay::doneAtDepth(double depth, double remainingLength) const {
     return emission_ == EmissionModel::ColourTimesExtinction ||
            std::exp(-depth) * std::max(1.0, largestColour_ * remainingLength) <= tolerance_;
 }
@@ -256,8 +271,9 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     splits_.push_back(0.0);
     for (int i = 0; i < parts; ++i) {
         const double a = ends[i], b = ends[i + 1], sa = values[i], sb = values[i + 1];
-        const auto first = std::upper_bound(levels_.begin(), levels_.end(), std::min(sa, sb));
-        const auto last = std::lower_bound(first, levels_.end(), std::max(sa, sb));
+        const std::size_t countLo = countAtMost(levels_, std::min(sa, sb));
+        const auto first = levels_.begin() + countLo;  // upper_bound
+        const auto last = levels_.begin() + std::max(countLo, countBelow(levels_, std::max(sa, sb)));  // lower_bound from first
         auto split = [&](double level) {
             splits_.push_back(std::max(solveMonotone(s, level, a, b, rootStart_), splits_.back()));
         };
@@ -306,7 +322,7 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         if (!(sMid < pointS_.back())) {
             iA = iB = points.size() - 1;
         } else {
-            iA = static_cast<std::size_t>(std::upper_bound(pointS_.begin(), pointS_.end(), sMid) - pointS_.begin()) - 1;
+            iA = countAtMost(pointS_, sMid) - 1;  // upper_bound - 1
             iB = iA + 1;
         }
     }
