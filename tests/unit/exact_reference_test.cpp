@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -156,6 +157,19 @@ TEST_CASE("cubic: critical points, monotone roots to full precision and reparame
     CHECK(std::abs(root - std::cbrt(0.5)) <= 2e-16);
     const Cubic falling{{1.0, -1.0, 0.0, 0.0}};
     CHECK(solveMonotone(falling, 0.25, 0.0, 1.0) == 0.75);
+    // Started on the chord, roots as good: a residual within rounding of the midpoint start's (near a
+    // flat end x is only known to rounding / slope), rising and falling, steep and flat.
+    for (const Cubic& q : {cube, falling, Cubic{{0.1, 0.9, -0.2, 0.15}}, Cubic{{0.9, -0.05, -1.5, 0.7}}}) {
+        const double q0 = q(0.0), q1 = q(1.0);
+        for (double f : {1e-9, 0.01, 0.3, 0.5, 0.77, 0.999999}) {
+            const double level = q0 + f * (q1 - q0);
+            const double mid = solveMonotone(q, level, 0.0, 1.0, RootStart::Midpoint);
+            const double chord = solveMonotone(q, level, 0.0, 1.0, RootStart::Chord);
+            CAPTURE(level);
+            CHECK(std::abs(chord - mid) <= 1e-14);
+            CHECK(std::abs(q(chord) - level) <= std::abs(q(mid) - level) + 4.0 * std::numeric_limits<double>::epsilon());
+        }
+    }
 
     const Cubic shifted = p.reparameterised(0.2, 0.5);
     for (double y : {0.0, 0.4, 1.0}) CHECK(shifted(y) == doctest::Approx(p(0.2 + 0.5 * y)).epsilon(1e-14));

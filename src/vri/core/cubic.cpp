@@ -38,12 +38,16 @@ int criticalPoints(const Cubic& p, double lo, double hi, double out[2]) {
     return kept;
 }
 
-double solveMonotone(const Cubic& p, double level, double lo, double hi) {
+double solveMonotone(const Cubic& p, double level, double lo, double hi, RootStart start) {
     const double fLo = p(lo) - level, fHi = p(hi) - level;
     if (fLo == 0.0) return lo;
     if (fHi == 0.0) return hi;
     const bool rising = fLo < 0.0;  // the sign of f = p - level below the root
     double x = 0.5 * (lo + hi), best = std::abs(fLo) <= std::abs(fHi) ? lo : hi;
+    if (start == RootStart::Chord) {
+        const double chord = lo + (hi - lo) * (fLo / (fLo - fHi));  // fLo and fHi differ in sign
+        if (chord > lo && chord < hi) x = chord;
+    }
     double bestF = std::min(std::abs(fLo), std::abs(fHi));
     double lastStep = hi - lo;
     for (int iteration = 0; iteration < 200; ++iteration) {
@@ -64,25 +68,6 @@ double solveMonotone(const Cubic& p, double level, double lo, double hi) {
         x = next;
     }
     return best;
-}
-
-Cubic trilinearAlongSegment(const std::array<double, 8>& v, const glm::dvec3& w0, const glm::dvec3& w1) {
-    // Each weight is linear, w(sigma) = w0 + (w1 - w0) sigma; one lerp per axis raises the degree by one.
-    using Poly = std::array<double, 4>;
-    auto lerp = [](const Poly& a, const Poly& b, double w, double dw) {
-        Poly r{};
-        for (int k = 0; k < 4; ++k) {
-            const double d = b[k] - a[k];
-            r[k] += a[k] + w * d;
-            if (k + 1 < 4) r[k + 1] += dw * d;
-        }
-        return r;
-    };
-    const glm::dvec3 dw = w1 - w0;
-    Poly x[4], y[2];
-    for (int i = 0; i < 4; ++i) x[i] = lerp({v[2 * i]}, {v[2 * i + 1]}, w0.x, dw.x);  // (dy, dz) = (i & 1, i >> 1)
-    for (int i = 0; i < 2; ++i) y[i] = lerp(x[2 * i], x[2 * i + 1], w0.y, dw.y);
-    return {lerp(y[0], y[1], w0.z, dw.z)};
 }
 
 }  // namespace vri

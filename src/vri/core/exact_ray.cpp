@@ -51,17 +51,23 @@ constexpr int kMaxGaussPanels = 64;
 // references, and every result compared against them, keep their bits.
 constexpr double kGaussTolerance = 1e-10;
 
+// How many of the sorted values are <= x (upper_bound's index) or < x (lower_bound's): a count without
+// branches, over the few points of a transfer function, where a binary search mispredicts at every step.
+std::size_t countAtMost(const std::vector<double>& sorted, double x) {
+    std::size_t n = 0;
+    for (double v : sorted) n += v <= x;
+    return n;
+}
+std::size_t countBelow(const std::vector<double>& sorted, double x) {
+    std::size_t n = 0;
+    for (double v : sorted) n += v < x;
+    return n;
+}
+
 template <std::size_t N>
 double horner(const std::array<double, N>& p, double x) {
     double r = p[N - 1];
     for (std::size_t k = N - 1; k-- > 0;) r = r * x + p[k];
-    return r;
-}
-
-template <std::size_t N>
-double absSum(const std::array<double, N>& p) {
-    double r = 0.0;
-    for (double v : p) r += std::abs(v);
     return r;
 }
 
@@ -109,9 +115,14 @@ struct GaussPanels {
 // to sum, error and rounding (in units of the transparency in front, like the adaptive quadrature's).
 // The rounding terms are the adaptive path's for an interval, with the transparency on it at most
 // transparencyMax = 1 + 2 depthError (>= exp(depthError), the most the rounding of D can lift it).
+// The integrand is evaluated through s: tau and C are linear in it on the sub-piece, v + m (s - sA) with
+// `linear` = {v, m} for tau, R, G, B, so a node costs one cubic and four products instead of four cubics.
+// Its rounding is within the coefficient form's bound (alongSegment in integrateSubPiece): Horner on s errs
+// by <= 6 u sum|s_k|, and |m| sum|s_k| <= sum|coefficients| + |v| + |m sA|, the terms that bound covers 16 times.
 GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std::array<double, 4> (&colour)[3],
-                        bool colourTimesExtinction, const double gError[3], const std::array<double, 5>& depth,
-                        double depthError, double allowed, double sum[3], double error[3], double rounding[3]) {
+                        const Cubic& local, double sA, const double (&linear)[4][2], bool colourTimesExtinction,
+                        const double gError[3], const std::array<double, 5>& depth, double depthError,
+                        double allowed, double sum[3], double error[3], double rounding[3]) {
     if (!(depthError <= 0.5)) return {};
     const double transparencyMax = 1.0 + 2.0 * depthError;
     const std::array<double, 3> bound = gaussErrorBounds(colour, tau, colourTimesExtinction, ell, transparencyMax);
@@ -132,10 +143,16 @@ GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std:
         }
     if (bestN == 0) {
         for (int n = 3; n >= 2; --n) {
-            const double ratio = ell * bound[n - 1] / allowed;  // k^2n must reach it
-            if (!(ratio < std::pow(double(kMaxGaussPanels), 2 * n))) continue;
-            int k = std::max(1, static_cast<int>(std::pow(ratio, 1.0 / (2 * n))));
-            auto shrinkOf = [n](int panels) { return std::pow(static_cast<double>(panels), -2 * n); };
+            // k^2n must reach the ratio: k from its 2n-th root by square and cube roots, k^-2n from products
+            // (k^2n is exact for k <= 64), without pow, which took more time than the rest of the choice.
+            const double ratio = ell * bound[n - 1] / allowed;
+            static_assert(kMaxGaussPanels == 64, "2^36 and 2^24 are 64^6 and 64^4");
+            if (!(ratio < (n == 3 ? 0x1p36 : 0x1p24))) continue;
+            int k = std::max(1, static_cast<int>(n == 3 ? std::sqrt(std::cbrt(ratio)) : std::sqrt(std::sqrt(ratio))));
+            auto shrinkOf = [n](int panels) {
+                const double square = static_cast<double>(panels) * panels;
+                return 1.0 / (n == 3 ? square * square * square : square * square);
+            };
             while (k < kMaxGaussPanels && !(ell * bound[n - 1] * shrinkOf(k) <= allowed)) ++k;
             if (!(ell * bound[n - 1] * shrinkOf(k) <= allowed)) continue;
             if (bestN == 0 || n * k < bestN * bestK) {
@@ -151,9 +168,10 @@ GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std:
         double f[3] = {};
         for (int i = 0; i < bestN; ++i) {
             const double x = (p + rule.node[i]) * width;
+            const double sigma = local(x) - sA;
             double t = rule.weight[i] * std::exp(-horner(depth, x));
-            if (colourTimesExtinction) t *= horner(tau, x);
-            for (int c = 0; c < 3; ++c) f[c] += horner(colour[c], x) * t;
+            if (colourTimesExtinction) t *= linear[0][0] + linear[0][1] * sigma;
+            for (int c = 0; c < 3; ++c) f[c] += (linear[c + 1][0] + linear[c + 1][1] * sigma) * t;
         }
         for (int c = 0; c < 3; ++c) {
             const double value = ell * width * f[c], e = ell * bound[bestN - 1] * shrink / bestK;
@@ -173,7 +191,8 @@ ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
       emission_(tf.emission()),
       tolerance_(tolerance),
       lowOrder_(tolerance >= kLowOrderTolerance),
-      fastSplits_(tolerance >= kGaussTolerance) {
+      fastSplits_(tolerance >= kGaussTolerance),
+      rootStart_(fastSplits_ ? RootStart::Chord : RootStart::Midpoint) {
     for (const auto& p : tf.points()) {
         pointS_.push_back(p.s);
         if (levels_.empty() || levels_.back() != p.s) levels_.push_back(p.s);
@@ -210,11 +229,7 @@ ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
     splits_.reserve(3 * levels_.size() + 2);
 }
 
-bool ExactRay::done(double remainingLength) const {
-    if (opticalDepth_ >= kOpaqueDepth) return true;
-    // The tests use the largest transparency the rounding of the depth allows, as finish() does.
-    const double depth = opticalDepth_ - depthError_;
-    if (depth < terminationDepth_) return false;
+bool ExactRay::doneAtDepth(double depth, double remainingLength) const {
     return emission_ == EmissionModel::ColourTimesExtinction ||
            std::exp(-depth) * std::max(1.0, largestColour_ * remainingLength) <= tolerance_;
 }
@@ -256,9 +271,12 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     splits_.push_back(0.0);
     for (int i = 0; i < parts; ++i) {
         const double a = ends[i], b = ends[i + 1], sa = values[i], sb = values[i + 1];
-        const auto first = std::upper_bound(levels_.begin(), levels_.end(), std::min(sa, sb));
-        const auto last = std::lower_bound(first, levels_.end(), std::max(sa, sb));
-        auto split = [&](double level) { splits_.push_back(std::max(solveMonotone(s, level, a, b), splits_.back())); };
+        const std::size_t countLo = countAtMost(levels_, std::min(sa, sb));
+        const auto first = levels_.begin() + countLo;  // upper_bound
+        const auto last = levels_.begin() + std::max(countLo, countBelow(levels_, std::max(sa, sb)));  // lower_bound from first
+        auto split = [&](double level) {
+            splits_.push_back(std::max(solveMonotone(s, level, a, b, rootStart_), splits_.back()));
+        };
         if (sa < sb)
             for (auto it = first; it != last; ++it) split(*it);
         else
@@ -304,7 +322,7 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         if (!(sMid < pointS_.back())) {
             iA = iB = points.size() - 1;
         } else {
-            iA = static_cast<std::size_t>(std::upper_bound(pointS_.begin(), pointS_.end(), sMid) - pointS_.begin()) - 1;
+            iA = countAtMost(pointS_, sMid) - 1;  // upper_bound - 1
             iB = iA + 1;
         }
     }
@@ -317,28 +335,33 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     ++subPieces;
 
     // Everything as polynomials in lambda in [0, 1] over the sub-piece.
-    const Cubic local = s.reparameterised(a, b - a);
+    const Cubic local = a == 0.0 && b == 1.0 ? s : s.reparameterised(a, b - a);  // the same bits for a whole piece
     const double ell = length * (b - a);
     const double inverseWidth = iA == iB ? 0.0 : 1.0 / (B.s - A.s);
     const double ds = 32.0 * kUnit * sScale;
     struct Linear {
         std::array<double, 4> p;
+        double sum;    // sum |p[k]|: bounds |p| on [0, 1]
         double error;  // bound on |computed - exact| anywhere on [0, 1]
+        double v, m;   // vA + m (s - A.s)
     };
+    // The coefficients and their sum from registers: written to memory and read back as pairs (as a
+    // loop over r.p compiles), each read waited for the stores it spans (a failed store forwarding).
     auto alongSegment = [&](double vA, double vB) {
         const double m = (vB - vA) * inverseWidth;
-        Linear r{{vA + m * (local.c[0] - A.s), m * local.c[1], m * local.c[2], m * local.c[3]}, 0.0};
-        r.error = 16.0 * kUnit * (absSum(r.p) + std::abs(vA) + std::abs(m * A.s)) + std::abs(m) * ds;
-        return r;
+        const double p0 = vA + m * (local.c[0] - A.s), p1 = m * local.c[1], p2 = m * local.c[2], p3 = m * local.c[3];
+        const double sum = std::abs(p0) + std::abs(p1) + std::abs(p2) + std::abs(p3);
+        return Linear{{p0, p1, p2, p3}, sum, 16.0 * kUnit * (sum + std::abs(vA) + std::abs(m * A.s)) + std::abs(m) * ds,
+                      vA, m};
     };
     const Linear tau = alongSegment(A.tau, B.tau);
     const Linear colour[3] = {alongSegment(A.r, B.r), alongSegment(A.g, B.g), alongSegment(A.b, B.b)};
-    const double tauSum = absSum(tau.p);
+    const double tauSum = tau.sum;
 
     // Bounds on the emission g of each channel and on its error where the rule evaluates it.
     double gMax[3], gError[3];
     for (int c = 0; c < 3; ++c) {
-        const double colourSum = absSum(colour[c].p);
+        const double colourSum = colour[c].sum;
         if (colourTimesExtinction) {
             gMax[c] = colourSum * tauSum;
             gError[c] = colour[c].error * tauSum + colourSum * tau.error + 16.0 * kUnit * gMax[c];
@@ -357,10 +380,12 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     const double front = std::exp(-opticalDepth_);
     double sum[3] = {}, error[3] = {}, rounding[3] = {};
     const std::array<double, 4> colours[3] = {colour[0].p, colour[1].p, colour[2].p};
+    const double linear[4][2] = {{tau.v, tau.m}, {colour[0].v, colour[0].m}, {colour[1].v, colour[1].m},
+                                 {colour[2].v, colour[2].m}};
     const GaussPanels panels =
         tolerance_ < kGaussTolerance ? GaussPanels{}
-                                     : gaussPanels(ell, tau.p, colours, colourTimesExtinction, gError, depth,
-                                                   depthError, tolerance_ / front, sum, error, rounding);
+                                     : gaussPanels(ell, tau.p, colours, local, A.s, linear, colourTimesExtinction,
+                                                   gError, depth, depthError, tolerance_ / front, sum, error, rounding);
     quadratureIntervals += panels.panels;
     quadratureNodes += panels.nodes;
     struct Interval {

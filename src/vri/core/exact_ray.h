@@ -27,7 +27,13 @@ public:
     // the tolerance in every channel: the transparency T times the largest colour (g = C tau adds at
     // most C_max T; g = C at most C_max T times the length), and T to alpha. finish() adds that to the
     // bound. Also true once T < 2^-60, where a cut changes alpha by nothing in double.
-    bool done(double remainingLength) const;
+    // Inline: the walk asks after every piece, and most of the time the first two tests answer.
+    bool done(double remainingLength) const {
+        if (opticalDepth_ >= kOpaqueDepth) return true;
+        // The tests use the largest transparency the rounding of the depth allows, as finish() does.
+        const double depth = opticalDepth_ - depthError_;
+        return depth >= terminationDepth_ && doneAtDepth(depth, remainingLength);
+    }
     // Ends the ray, `remainingLength` world units of which were left out after done(): RGBA and
     // a bound on each channel's error.
     void finish(double remainingLength, double value[4], double bound[4]) const;
@@ -41,6 +47,7 @@ public:
 private:
     static constexpr double kOpaqueDepth = 41.588830833596716;  // 60 ln 2
 
+    bool doneAtDepth(double depth, double remainingLength) const;  // done() past terminationDepth_
     void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale);
 
     const TransferFunction& tf_;
@@ -48,6 +55,7 @@ private:
     double tolerance_;
     bool lowOrder_;                // Gauss-Kronrod 3-7 instead of 7-15 (see integrateSubPiece)
     bool fastSplits_;              // a piece's monotonicity from its coefficients where they show it (addPiece)
+    RootStart rootStart_;          // Chord with fastSplits_: the same roots to an ulp, fewer Newton steps
     double terminationDepth_;      // g = C tau: done() once the optical depth reaches this
     double largestColour_;         // max(1, C_max over channels): what bounds a tail per unit T
     std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
