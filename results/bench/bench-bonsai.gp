@@ -10,78 +10,168 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+1,27
+4.018,16.4
+EOD
+$series1_2 << EOD
+0.9808,27
+3.719,16.4
+EOD
+$series1_3 << EOD
+0.2065,27
+0.7742,16.4
+EOD
+$series1_4 << EOD
+1.083,11.3
+4.001,1.36
+EOD
+$series1_5 << EOD
+1.198,11.3
+4.263,1.36
+EOD
+$series1_6 << EOD
+0.2195,11.3
+0.8516,1.36
+EOD
+$series1_7 << EOD
+2.189,14.2
+EOD
+$series1_8 << EOD
+2.068,14.2
+EOD
+$series1_9 << EOD
+2.216,12.3
+EOD
+$series1_10 << EOD
+1.735,12.3
+EOD
+$series1_11 << EOD
+0.9505,0.7942010087194614
+0.935,0.7942010087194614
+1.002,0.7942010087194614
+EOD
 $pareto1 << EOD
-0.265,26.97
-0.2984,11.34
-1.002,1.36
-1.36,0
+0.2065,27
+0.2195,11.3
+0.8516,1.36
+0.935,0.7942010087194614
+EOD
+$series2_1 << EOD
+1,0.1074
+4.018,0.01856
+EOD
+$series2_2 << EOD
+0.9808,0.1074
+3.719,0.01856
+EOD
+$series2_3 << EOD
+0.2065,0.1074
+0.7742,0.01856
+EOD
+$series2_4 << EOD
+1.083,0.05138
+4.001,0.009661
+EOD
+$series2_5 << EOD
+1.198,0.05138
+4.263,0.009658
+EOD
+$series2_6 << EOD
+0.2195,0.05138
+0.8516,0.009658
+EOD
+$series2_7 << EOD
+2.189,0.04005
+EOD
+$series2_8 << EOD
+2.068,0.04005
+EOD
+$series2_9 << EOD
+2.216,0.03609
+EOD
+$series2_10 << EOD
+1.735,0.03609
+EOD
+$series2_11 << EOD
+0.9505,7.898e-07
+0.935,3.278e-07
+1.002,1.639e-07
 EOD
 $pareto2 << EOD
-0.265,0.1074
-0.2984,0.05138
-0.9007,0.01856
-1.002,0.009658
-1.36,7.898e-07
-1.424,2.682e-07
+0.2065,0.1074
+0.2195,0.05138
+0.7742,0.01856
+0.8516,0.009658
+0.935,3.278e-07
+1.002,1.639e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Bonsai: time (ratio to scalar double Riemann h = 0.5) against error'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.2, 0.5, 1, 2, 5)
+    set xrange [0.1721996797333718:5.112143654175441] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (2, 5, 10, 20)
+    set ytics add ('0' 0.7942010087194614)
+    set arrow from graph 0, first 0.7942010087194614 to graph 1, first 0.7942010087194614 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [0.6638362176124402:32.30228581463828] noextend
     unset key
     set size noratio
     unset label
-    plot 'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'riemann double' ? $6 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'riemann float' ? $6 : NaN) with points pt 9 ps 1.2 lc rgb '#1f4e9c' title 'riemann float', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'riemann float SIMD' ? $6 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'composite double' ? $6 : NaN) with points pt 7 ps 1.2 lc rgb '#2a9d3a' title 'composite double', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'composite float' ? $6 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'composite float', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'composite float SIMD' ? $6 : NaN) with points pt 5 ps 1.2 lc rgb '#2a9d3a' title 'composite float SIMD', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'coupled double' ? $6 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'coupled float' ? $6 : NaN) with points pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'decoupled double' ? $6 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'decoupled float' ? $6 : NaN) with points pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'exact' ? $6 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#1f4e9c' title 'riemann float, h0.5 to h0.1', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#2a9d3a' title 'composite double, h0.5 to h0.1', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'composite float, h0.5 to h0.1', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#2a9d3a' title 'composite float SIMD, h0.5 to h0.1', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
+         $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-7 to eps2e-8', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.2, 0.5, 1, 2, 5)
+    set xrange [0.1721996797333718:5.112143654175441] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [7.338265725277253e-08:0.23987765855037815] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'riemann double' ? $8 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'riemann float' ? $8 : NaN) with points pt 9 ps 1.2 lc rgb '#1f4e9c' title 'riemann float', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'riemann float SIMD' ? $8 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'composite double' ? $8 : NaN) with points pt 7 ps 1.2 lc rgb '#2a9d3a' title 'composite double', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'composite float' ? $8 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'composite float', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'composite float SIMD' ? $8 : NaN) with points pt 5 ps 1.2 lc rgb '#2a9d3a' title 'composite float SIMD', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'coupled double' ? $8 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'coupled float' ? $8 : NaN) with points pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'decoupled double' ? $8 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'decoupled float' ? $8 : NaN) with points pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         'bench-bonsai.csv' skip 1 using 4:(strcol(2) eq 'exact' ? $8 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#1f4e9c' title 'riemann float, h0.5 to h0.1', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#2a9d3a' title 'composite double, h0.5 to h0.1', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'composite float, h0.5 to h0.1', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#2a9d3a' title 'composite float SIMD, h0.5 to h0.1', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
+         $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-7 to eps2e-8', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

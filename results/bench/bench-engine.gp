@@ -10,78 +10,166 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+1,23.1
+3.776,9.26
+EOD
+$series1_2 << EOD
+0.9724,23.1
+3.77,9.26
+EOD
+$series1_3 << EOD
+0.2121,23.1
+0.848,9.26
+EOD
+$series1_4 << EOD
+1.003,7.55
+4.003,0.00708
+EOD
+$series1_5 << EOD
+1.197,7.55
+5.111,0.00708
+EOD
+$series1_6 << EOD
+0.1964,7.55
+0.7212,0.00708
+EOD
+$series1_7 << EOD
+1.888,7.08
+EOD
+$series1_8 << EOD
+1.622,7.08
+EOD
+$series1_9 << EOD
+1.954,6.69
+EOD
+$series1_10 << EOD
+1.651,6.69
+EOD
+$series1_11 << EOD
+2.171,0.0016503995163436786
+2.174,0.0016503995163436786
+2.207,0.0016503995163436786
+EOD
 $pareto1 << EOD
-0.2726,23.13
-0.3516,7.55
-1.013,0.01
-3.277,0
+0.1964,7.55
+0.7212,0.00708
+2.171,0.0016503995163436786
+EOD
+$series2_1 << EOD
+1,0.06248
+3.776,0.01212
+EOD
+$series2_2 << EOD
+0.9724,0.06248
+3.77,0.01212
+EOD
+$series2_3 << EOD
+0.2121,0.06248
+0.848,0.01212
+EOD
+$series2_4 << EOD
+1.003,0.0149
+4.003,0.003355
+EOD
+$series2_5 << EOD
+1.197,0.0149
+5.111,0.003356
+EOD
+$series2_6 << EOD
+0.1964,0.0149
+0.7212,0.003356
+EOD
+$series2_7 << EOD
+1.888,0.02124
+EOD
+$series2_8 << EOD
+1.622,0.02124
+EOD
+$series2_9 << EOD
+1.954,0.02103
+EOD
+$series2_10 << EOD
+1.651,0.02103
+EOD
+$series2_11 << EOD
+2.171,1.431e-06
+2.174,5.96e-07
+2.207,2.98e-07
 EOD
 $pareto2 << EOD
-0.2726,0.06248
-0.3516,0.0149
-0.9077,0.01212
-1.013,0.003356
-3.277,1.431e-06
-3.515,4.172e-07
+0.1964,0.0149
+0.7212,0.003356
+2.171,1.431e-06
+2.174,5.96e-07
+2.207,2.98e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Engine: time (ratio to scalar double Riemann h = 0.5) against error'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.2, 0.5, 1, 2, 5)
+    set xrange [0.16151751328062827:6.214808410626958] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set ytics add ('0' 0.0016503995163436786)
+    set arrow from graph 0, first 0.0016503995163436786 to graph 1, first 0.0016503995163436786 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [0.0010157208428138794:37.534160194963] noextend
     unset key
     set size noratio
     unset label
-    plot 'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'riemann double' ? $6 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'riemann float' ? $6 : NaN) with points pt 9 ps 1.2 lc rgb '#1f4e9c' title 'riemann float', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'riemann float SIMD' ? $6 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'composite double' ? $6 : NaN) with points pt 7 ps 1.2 lc rgb '#2a9d3a' title 'composite double', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'composite float' ? $6 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'composite float', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'composite float SIMD' ? $6 : NaN) with points pt 5 ps 1.2 lc rgb '#2a9d3a' title 'composite float SIMD', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'coupled double' ? $6 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'coupled float' ? $6 : NaN) with points pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'decoupled double' ? $6 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'decoupled float' ? $6 : NaN) with points pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'exact' ? $6 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#1f4e9c' title 'riemann float, h0.5 to h0.1', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#2a9d3a' title 'composite double, h0.5 to h0.1', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'composite float, h0.5 to h0.1', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#2a9d3a' title 'composite float SIMD, h0.5 to h0.1', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
+         $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-7 to eps2e-8', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.2, 0.5, 1, 2, 5)
+    set xrange [0.16151751328062827:6.214808410626958] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [1.4286464904850224e-07:0.13032643221402432] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'riemann double' ? $8 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'riemann float' ? $8 : NaN) with points pt 9 ps 1.2 lc rgb '#1f4e9c' title 'riemann float', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'riemann float SIMD' ? $8 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'composite double' ? $8 : NaN) with points pt 7 ps 1.2 lc rgb '#2a9d3a' title 'composite double', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'composite float' ? $8 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'composite float', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'composite float SIMD' ? $8 : NaN) with points pt 5 ps 1.2 lc rgb '#2a9d3a' title 'composite float SIMD', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'coupled double' ? $8 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'coupled float' ? $8 : NaN) with points pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'decoupled double' ? $8 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'decoupled float' ? $8 : NaN) with points pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         'bench-engine.csv' skip 1 using 4:(strcol(2) eq 'exact' ? $8 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#1f4e9c' title 'riemann float, h0.5 to h0.1', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#2a9d3a' title 'composite double, h0.5 to h0.1', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'composite float, h0.5 to h0.1', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#2a9d3a' title 'composite float SIMD, h0.5 to h0.1', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
+         $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-7 to eps2e-8', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -10,6 +10,161 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.2,0.08748488128185272
+0.1,0.031018897891044617
+0.05,0.0165865421295166
+0.025,0.010469615459442139
+EOD
+$series1_2 << EOD
+0.2,0.05851826071739197
+0.1,0.029889225959777832
+0.05,0.017001062631607056
+0.025,0.008510172367095947
+EOD
+$series1_3 << EOD
+0.2,0.08748488128185272
+0.1,0.019038259983062744
+0.05,0.00932401418685913
+0.025,0.00464475154876709
+EOD
+$series1_4 << EOD
+0.2,0.04542261362075806
+0.1,0.022578716278076172
+0.05,0.011309981346130371
+0.025,0.005720674991607666
+EOD
+$series1_5 << EOD
+0.2,0.08748488128185272
+0.1,0.031018897891044617
+0.05,0.014074921607971191
+0.025,0.009374216198921204
+EOD
+$series1_6 << EOD
+0.2,0.05618986487388611
+0.1,0.02305479347705841
+0.05,0.014210104942321777
+0.025,0.006122589111328125
+EOD
+$series1_7 << EOD
+0.2,0.08748488128185272
+0.1,4.245340824127197e-05
+0.05,1.0073184967041016e-05
+0.025,2.4586915969848633e-06
+EOD
+$series1_8 << EOD
+0.2,0.00023251771926879883
+0.1,5.811452865600586e-05
+0.05,1.4871358871459961e-05
+0.025,3.7550926208496094e-06
+EOD
+$series2_1 << EOD
+0.2,0.1424579620361328
+0.1,0.06880420446395874
+0.05,0.03298145532608032
+0.025,0.01535254716873169
+EOD
+$series2_2 << EOD
+0.2,0.1423923373222351
+0.1,0.06103503704071045
+0.05,0.03137493133544922
+0.025,0.014329016208648682
+EOD
+$series2_3 << EOD
+0.2,0.11937636137008667
+0.1,0.06006985902786255
+0.05,0.029391944408416748
+0.025,0.01415717601776123
+EOD
+$series2_4 << EOD
+0.2,0.1291273832321167
+0.1,0.07265245914459229
+0.05,0.03466755151748657
+0.025,0.01712656021118164
+EOD
+$series2_5 << EOD
+0.2,0.10280495882034302
+0.1,0.05379953980445862
+0.05,0.025192558765411377
+0.025,0.010701537132263184
+EOD
+$series2_6 << EOD
+0.2,0.1026928722858429
+0.1,0.03925606608390808
+0.05,0.014096938073635101
+0.025,0.005932360887527466
+EOD
+$series2_7 << EOD
+0.2,0.08952116221189499
+0.1,0.011822730302810669
+0.05,0.006204277276992798
+0.025,0.004104048013687134
+EOD
+$series2_8 << EOD
+0.2,0.044153690338134766
+0.1,0.019533991813659668
+0.05,0.013013690710067749
+0.025,0.006125897169113159
+EOD
+$series2_9 << EOD
+0.2,0.008442223072052002
+0.1,0.00447535514831543
+0.05,0.0021689534187316895
+0.025,0.0013959109783172607
+EOD
+$series3_1 << EOD
+0.2,0.005331873893737793
+0.1,0.002682507038116455
+0.05,0.0013436675071716309
+0.025,0.0006711483001708984
+EOD
+$series3_2 << EOD
+0.2,0.005470871925354004
+0.1,0.0026907920837402344
+0.05,0.0013402104377746582
+0.025,0.0006721019744873047
+EOD
+$series3_3 << EOD
+0.2,0.0055130720138549805
+0.1,0.002667844295501709
+0.05,0.0013418197631835938
+0.025,0.0006707310676574707
+EOD
+$series3_4 << EOD
+0.2,0.005519568920135498
+0.1,0.002702951431274414
+0.05,0.0013691186904907227
+0.025,0.0006815195083618164
+EOD
+$series3_5 << EOD
+0.2,0.0015666782855987549
+0.1,0.0005437973886728287
+0.05,0.0004979521036148071
+0.025,0.0001828521490097046
+EOD
+$series3_6 << EOD
+0.2,0.0009717941284179688
+0.1,0.0008814632892608643
+0.05,0.0002511739730834961
+0.025,0.0002504587173461914
+EOD
+$series3_7 << EOD
+0.2,0.00014847517013549805
+0.1,4.488229751586914e-05
+0.05,1.913309097290039e-05
+0.025,4.51505184173584e-06
+EOD
+$series3_8 << EOD
+0.2,0.00019559264183044434
+0.1,2.6613473892211914e-05
+0.05,1.1339783668518066e-05
+0.025,4.544854164123535e-06
+EOD
+$series3_9 << EOD
+0.2,6.498396396636963e-05
+0.1,9.864568710327148e-06
+0.05,1.5497207641601562e-06
+EOD
 do for [format in "png svg"] {
     if (format eq "png") {
         set terminal pngcairo size 1800,800 noenhanced font "sans,10"
@@ -21,69 +176,78 @@ do for [format in "png svg"] {
     set multiplot layout 1,3 title 'Observed orders: max |error| against the step h'
     # panel 1
     set title 'analytic ramp, smooth TF'
+    unset arrow
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2)
+    set xrange [0.02173913043478261:0.22999999999999998] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [1.3110834038045715e-06:0.16406152487837602] noextend
     set key top left
     set size noratio
     unset label
-    plot 'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-riemann-eye' ? $3 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-eye: slope 1.01', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-riemann-entry' ? $3 : NaN) with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry: slope 0.92', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-riemann-entry-exit' ? $3 : NaN) with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit: slope 1.37', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-riemann-entry-exit-corner' ? $3 : NaN) with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit-corner: slope 1.00', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-composite-eye' ? $3 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-eye: slope 1.08', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-composite-entry' ? $3 : NaN) with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry: slope 1.03', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-composite-entry-exit' ? $3 : NaN) with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry-exit: slope 4.74', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-composite-entry-exit-corner' ? $3 : NaN) with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry-exit-corner: slope 1.98'
+    plot $series1_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-eye: slope 1.01', \
+         $series1_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry: slope 0.92', \
+         $series1_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit: slope 1.37', \
+         $series1_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit-corner: slope 1.00', \
+         $series1_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-eye: slope 1.08', \
+         $series1_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry: slope 1.03', \
+         $series1_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry-exit: slope 4.74', \
+         $series1_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry-exit-corner: slope 1.98'
     # panel 2
     set title 'analytic ramp, TF with a jump'
+    unset arrow
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2)
+    set xrange [0.02173913043478261:0.22999999999999998] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (0.002, 0.005, 0.01, 0.02, 0.05, 0.1)
+    set yrange [0.00105761592746335:0.18802537669028482] noextend
     set key top left
     set size noratio
     unset label
-    plot 'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-riemann-eye' ? $3 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-eye: slope 1.07', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-riemann-entry' ? $3 : NaN) with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry: slope 1.09', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-riemann-entry-exit' ? $3 : NaN) with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit: slope 1.03', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-riemann-entry-exit-corner' ? $3 : NaN) with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit-corner: slope 0.98', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-composite-eye' ? $3 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-eye: slope 1.09', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-composite-entry' ? $3 : NaN) with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry: slope 1.38', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-composite-entry-exit' ? $3 : NaN) with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit: slope 1.43', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-composite-entry-exit-corner' ? $3 : NaN) with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit-corner: slope 0.91', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'ramp-jump-simpson' ? $3 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'ramp-jump-simpson: slope 0.88'
+    plot $series2_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-eye: slope 1.07', \
+         $series2_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry: slope 1.09', \
+         $series2_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit: slope 1.03', \
+         $series2_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit-corner: slope 0.98', \
+         $series2_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-eye: slope 1.09', \
+         $series2_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry: slope 1.38', \
+         $series2_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit: slope 1.43', \
+         $series2_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit-corner: slope 0.91', \
+         $series2_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'ramp-jump-simpson: slope 0.88'
     # panel 3
     set title 'Neghip 64^3 (trilinear)'
+    unset arrow
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2)
+    set xrange [0.02173913043478261:0.22999999999999998] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [9.487555938935428e-07:0.009015799874911546] noextend
     set key top left
     set size noratio
     unset label
-    plot 'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-riemann-eye' ? $3 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-eye: slope 1.00', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-riemann-entry' ? $3 : NaN) with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry: slope 1.01', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-riemann-entry-exit' ? $3 : NaN) with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit: slope 1.01', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-riemann-entry-exit-corner' ? $3 : NaN) with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit-corner: slope 1.00', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-composite-eye' ? $3 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-eye: slope 0.94', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-composite-entry' ? $3 : NaN) with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry: slope 0.77', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-composite-entry-exit' ? $3 : NaN) with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit: slope 1.63', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-composite-entry-exit-corner' ? $3 : NaN) with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit-corner: slope 1.75', \
-         'orders-points.csv' skip 1 using 2:(strcol(1) eq 'neghip-simpson' ? $3 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'neghip-simpson: slope 2.70'
+    plot $series3_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-eye: slope 1.00', \
+         $series3_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry: slope 1.01', \
+         $series3_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit: slope 1.01', \
+         $series3_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit-corner: slope 1.00', \
+         $series3_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-eye: slope 0.94', \
+         $series3_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry: slope 0.77', \
+         $series3_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit: slope 1.63', \
+         $series3_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit-corner: slope 1.75', \
+         $series3_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'neghip-simpson: slope 2.70'
     unset multiplot
     unset output
 }

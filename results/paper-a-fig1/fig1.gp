@@ -21,13 +21,16 @@ do for [format in "png svg"] {
     set multiplot layout 2,3 title 'Paper A Fig. 1: sample placements at sampling rate 1'
     # panel 1
     set title '(a) setup: eye at (-9, 0), 120 rays, square rotated by pi/7'
+    unset arrow
     set xlabel 'x'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [-9.5:2.5] extend
     set ylabel 'y'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [-4:4] extend
     unset key
     set size ratio -1
@@ -36,13 +39,16 @@ do for [format in "png svg"] {
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'setup' && strcol(2) eq 'fan' ? $4 : NaN):($5 - $3):($6 - $4) with vectors nohead lw 1 lc rgb '#888888' notitle
     # panel 2
     set title '(b) Eye Align'
+    unset arrow
     set xlabel 'x'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [-2.3:2.3] extend
     set ylabel 'y'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [-2.3:2.3] extend
     set key bottom right
     set size ratio -1
@@ -56,13 +62,16 @@ do for [format in "png svg"] {
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'eye' && strcol(2) eq 'sample' ? $4 : NaN) with points pt 7 ps 0.6 lc rgb '#000000' title 'samples'
     # panel 3
     set title '(c) Entry Align'
+    unset arrow
     set xlabel 'x'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [-2.3:2.3] extend
     set ylabel 'y'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [-2.3:2.3] extend
     set key bottom right
     set size ratio -1
@@ -76,13 +85,16 @@ do for [format in "png svg"] {
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'entry' && strcol(2) eq 'sample' ? $4 : NaN) with points pt 7 ps 0.6 lc rgb '#000000' title 'samples'
     # panel 4
     set title '(d) Entry Exit Align'
+    unset arrow
     set xlabel 'x'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [-2.3:2.3] extend
     set ylabel 'y'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [-2.3:2.3] extend
     set key bottom right
     set size ratio -1
@@ -96,13 +108,16 @@ do for [format in "png svg"] {
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'entry-exit' && strcol(2) eq 'sample' ? $4 : NaN) with points pt 7 ps 0.6 lc rgb '#000000' title 'samples'
     # panel 5
     set title '(e) Entry Exit Align Corner'
+    unset arrow
     set xlabel 'x'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [-2.3:2.3] extend
     set ylabel 'y'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [-2.3:2.3] extend
     set key bottom right
     set size ratio -1

@@ -21,14 +21,17 @@ do for [format in "png svg"] {
     set multiplot layout 1,2 title 'Convergence with the sampling rate, paper A 2D study (node-centred)'
     # panel 1
     set title 'max |error|'
+    unset arrow
     set xlabel 'sampling rate (samples per voxel)'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (1, 2, 5, 10, 20, 50, 100, 200)
+    set xrange [0.7169776240079138:357.0543785857038] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [0.00027087803627211997:0.6739458129394931] noextend
     set key bottom left
     set size noratio
     unset label
@@ -38,14 +41,17 @@ do for [format in "png svg"] {
          'convergence.csv' skip 1 using 1:8 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2ca02c' title 'entry-exit-corner'
     # panel 2
     set title 'mean |error|'
+    unset arrow
     set xlabel 'sampling rate (samples per voxel)'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (1, 2, 5, 10, 20, 50, 100, 200)
+    set xrange [0.7169776240079138:357.0543785857038] noextend
     set ylabel 'mean |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (2e-04, 5e-04, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1)
+    set yrange [0.00019179993292088853:0.13821460249205844] noextend
     set key bottom left
     set size noratio
     unset label

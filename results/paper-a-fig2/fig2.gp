@@ -21,13 +21,16 @@ do for [format in "png svg"] {
     set multiplot layout 2,2 title 'Paper A Fig. 2: intensity per ray, node-centred 5x5 grid'
     # panel 1
     set title '(a) Eye Align'
+    unset arrow
     set xlabel 'ray'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [0:120] extend
     set ylabel 'intensity I'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [0:1.45] extend
     set key top left
     set size noratio
@@ -38,13 +41,16 @@ do for [format in "png svg"] {
          'rays-node.csv' skip 1 using 1:7 with points pt 7 ps 0.8 lc rgb '#2ca02c' title 'S.R. 16'
     # panel 2
     set title '(b) Entry Align'
+    unset arrow
     set xlabel 'ray'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [0:120] extend
     set ylabel 'intensity I'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [0:1.45] extend
     set key top left
     set size noratio
@@ -55,13 +61,16 @@ do for [format in "png svg"] {
          'rays-node.csv' skip 1 using 1:10 with points pt 7 ps 0.8 lc rgb '#2ca02c' title 'S.R. 16'
     # panel 3
     set title '(c) Entry Exit Align'
+    unset arrow
     set xlabel 'ray'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [0:120] extend
     set ylabel 'intensity I'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [0:1.45] extend
     set key top left
     set size noratio
@@ -72,13 +81,16 @@ do for [format in "png svg"] {
          'rays-node.csv' skip 1 using 1:13 with points pt 7 ps 0.8 lc rgb '#2ca02c' title 'S.R. 16'
     # panel 4
     set title '(d) Entry Exit Align Corner'
+    unset arrow
     set xlabel 'ray'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [0:120] extend
     set ylabel 'intensity I'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [0:1.45] extend
     set key top left
     set size noratio

@@ -29309,13 +29309,16 @@ do for [format in "png svg"] {
     set multiplot layout 1,2 title 'Paper A Fig. 3: f(x, y) = (x + 1.5) / 3 on the square'
     # panel 1
     set title 'f, analytic (= node-centred reconstruction)'
+    unset arrow
     set xlabel 'x'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [-1.5:1.5] noextend
     set ylabel 'y'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [-1.5:1.5] noextend
     unset key
     set size ratio -1
@@ -29327,13 +29330,16 @@ do for [format in "png svg"] {
     plot $heatmap1_1 using 1:2:3 with image notitle
     # panel 2
     set title 'cell-centred reconstruction from 5x5 voxels'
+    unset arrow
     set xlabel 'x'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [-1.5:1.5] noextend
     set ylabel 'y'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [-1.5:1.5] noextend
     unset key
     set size ratio -1

@@ -10,67 +10,110 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.338,14.2
+1.362,2.9
+EOD
+$series1_2 << EOD
+1.021,0.518
+0.5525,1.61
+0.3205,6.19
+0.2179,18.1
+0.1394,25.9
+EOD
+$series1_3 << EOD
+1.141,0.518
+0.6676,1.58
+0.3941,5.19
+0.287,14.4
+0.2042,25.6
+EOD
 $pareto1 << EOD
-0.1402,25.8715
-0.2061,25.5875
-0.2596,18.1394
-0.3414,14.3519
-0.3487,14.1615
-0.3709,6.1915
-0.4212,5.1944
-0.6307,1.6125
-0.6943,1.5777
-1.133,0.5181
-1.152,0.5179
+0.1394,25.9
+0.2042,25.6
+0.2179,18.1
+0.287,14.4
+0.3205,6.19
+0.3941,5.19
+0.5525,1.61
+0.6676,1.58
+1.021,0.518
+EOD
+$series2_1 << EOD
+0.338,0.04754
+1.362,0.008352
+EOD
+$series2_2 << EOD
+1.021,0.01018
+0.5525,0.03639
+0.3205,0.1157
+0.2179,0.2807
+0.1394,0.6652
+EOD
+$series2_3 << EOD
+1.141,0.0102
+0.6676,0.0364
+0.3941,0.1157
+0.287,0.2807
+0.2042,0.6652
 EOD
 $pareto2 << EOD
-0.1402,0.6652
-0.2596,0.2807
-0.3487,0.04754
-0.6307,0.03639
-1.133,0.01018
-1.575,0.008352
+0.1394,0.6652
+0.2179,0.2807
+0.3205,0.1157
+0.338,0.04754
+0.5525,0.03639
+1.021,0.01018
+1.362,0.008352
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1400,560 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1400,560 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'BluntFin, eps = 0.01, h_max swept: seconds per frame against error (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.2, 0.5, 1)
+    set xrange [0.12121739130434783:1.5663] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
-    set key top right
+    set ytics (0.5, 1, 2, 5, 10, 20)
+    set yrange [0.40962981513528207:32.75201048431799] noextend
+    unset key
     set size noratio
     unset label
-    plot 'speed.csv' skip 1 using 3:9 with points pt 7 ps 0.8 title 'runs', \
-         'speed.csv' skip 1 using 3:9:(strcol(1)) with labels left offset char 0.5,0.5 font ',8' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, hmax1 to hmaxnone', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, hmax1 to hmaxnone', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.2, 0.5, 1)
+    set xrange [0.12121739130434783:1.5663] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
-    set key top right
+    set ytics (0.01, 0.02, 0.05, 0.1, 0.2, 0.5)
+    set yrange [0.006422746488511732:0.8650116285824897] noextend
+    set key outside right top
     set size noratio
     unset label
-    plot 'speed.csv' skip 1 using 3:14 with points pt 7 ps 0.8 title 'runs', \
-         'speed.csv' skip 1 using 3:14:(strcol(1)) with labels left offset char 0.5,0.5 font ',8' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, hmax1 to hmaxnone', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, hmax1 to hmaxnone', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -10,87 +10,173 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.3543,14.2
+0.4434,10
+0.5547,6.21
+0.8104,5.14
+1.534,2.9
+EOD
+$series1_2 << EOD
+0.09271,14.2
+0.1118,10
+0.1448,6.21
+0.1834,5.14
+0.3374,2.9
+EOD
+$series1_3 << EOD
+0.02722,15
+0.04708,2.85
+0.08536,1.26
+EOD
+$series1_4 << EOD
+0.6265,1.61
+0.6323,1.61
+0.6453,1.61
+EOD
+$series1_5 << EOD
+0.6449,1.58
+0.6569,1.58
+0.6455,1.58
+EOD
+$series1_6 << EOD
+1.337,0.7233647780484344
+1.349,0.7233647780484344
+EOD
+$series1_7 << EOD
+0.07212,25.2
+0.1201,26
+0.2581,26.8
+0.4729,26.9
+1.005,27.4
+1.748,27.5
+EOD
+$series1_8 << EOD
+0.1057,17.8
+0.198,16.9
+0.3791,17
+EOD
 $pareto1 << EOD
-0.0834,14.1619
-0.1001,10.0452
-0.1232,6.2125
-0.1805,5.1404
-0.3351,2.899
-0.6131,1.5771
-1.511,0
+0.02722,15
+0.04708,2.85
+0.08536,1.26
+1.337,0.7233647780484344
+EOD
+$series2_1 << EOD
+0.3543,0.04754
+0.4434,0.03703
+0.5547,0.02677
+0.8104,0.01692
+1.534,0.008352
+EOD
+$series2_2 << EOD
+0.09271,0.04754
+0.1118,0.03703
+0.1448,0.02677
+0.1834,0.01692
+0.3374,0.008352
+EOD
+$series2_3 << EOD
+0.02722,0.223
+0.04708,0.05481
+0.08536,0.02029
+EOD
+$series2_4 << EOD
+0.6265,0.03639
+0.6323,0.03639
+0.6453,0.03639
+EOD
+$series2_5 << EOD
+0.6449,0.0364
+0.6569,0.0364
+0.6455,0.0364
+EOD
+$series2_6 << EOD
+1.337,1.076e-05
+1.349,2.325e-06
+EOD
+$series2_7 << EOD
+0.07212,0.1418
+0.1201,0.04936
+0.2581,0.05017
+0.4729,0.05409
+1.005,0.05721
+1.748,0.08155
+EOD
+$series2_8 << EOD
+0.1057,0.1497
+0.198,0.0476
+0.3791,0.01615
 EOD
 $pareto2 << EOD
-0.0834,0.04754
-0.1001,0.03703
-0.1232,0.02677
-0.1805,0.01692
-0.3351,0.008352
-1.511,2.325e-06
+0.02722,0.223
+0.04708,0.05481
+0.08536,0.02029
+0.1834,0.01692
+0.3374,0.008352
+1.337,1.076e-05
+1.349,2.325e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'BluntFin: seconds per frame against error (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.021204543265276078:2.2438851620028286] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (2, 5, 10, 20)
+    set ytics add ('0' 0.7233647780484344)
+    set arrow from graph 0, first 0.7233647780484344 to graph 1, first 0.7233647780484344 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [0.6012009102033671:33.08799281358861] noextend
     unset key
     set size noratio
     unset label
-    plot 'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $9 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#000000' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $9 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU)', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#2a9d3a' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $9 : NaN) with points pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe)', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#c0392b' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.021204543265276078:2.2438851620028286] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [1.1681807432357551e-06:0.44383114770739257] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $14 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#000000' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $14 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU)', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#2a9d3a' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $14 : NaN) with points pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe)', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#c0392b' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

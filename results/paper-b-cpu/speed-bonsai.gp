@@ -10,89 +10,174 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.5539,27
+0.6479,26.5
+0.7842,25.7
+1.101,23.4
+1.948,16.4
+EOD
+$series1_2 << EOD
+0.1294,27
+0.154,26.5
+0.1936,25.7
+0.2658,23.4
+0.4857,16.4
+EOD
+$series1_3 << EOD
+0.05311,27.4
+0.08013,21.8
+0.1353,11.3
+EOD
+$series1_4 << EOD
+1.538,14.7
+1.558,14.7
+1.567,14.2
+EOD
+$series1_5 << EOD
+1.617,12.5
+1.574,12.5
+1.59,12.3
+EOD
+$series1_6 << EOD
+0.6382,7.429933426481469
+0.6649,7.429933426481469
+EOD
+$series1_7 << EOD
+0.1113,29.9
+0.1454,29.9
+0.2415,29.9
+0.3869,29.9
+1.196,29.8
+2.274,29.9
+EOD
+$series1_8 << EOD
+0.2868,28.3
+0.5689,27.4
+1.111,27.1
+EOD
 $pareto1 << EOD
-0.1538,29.8842
-0.1608,26.9669
-0.1794,26.4696
-0.2289,25.67
-0.2934,23.3558
-0.5072,16.3629
-0.7251,0
+0.05311,27.4
+0.08013,21.8
+0.1353,11.3
+0.6382,7.429933426481469
+EOD
+$series2_1 << EOD
+0.5539,0.1074
+0.6479,0.09284
+0.7842,0.05965
+1.101,0.03929
+1.948,0.01856
+EOD
+$series2_2 << EOD
+0.1294,0.1074
+0.154,0.09284
+0.1936,0.05965
+0.2658,0.03929
+0.4857,0.01856
+EOD
+$series2_3 << EOD
+0.05311,0.2766
+0.08013,0.1414
+0.1353,0.05138
+EOD
+$series2_4 << EOD
+1.538,0.04547
+1.558,0.04547
+1.567,0.04005
+EOD
+$series2_5 << EOD
+1.617,0.03886
+1.574,0.03886
+1.59,0.03609
+EOD
+$series2_6 << EOD
+0.6382,7.778e-06
+0.6649,7.898e-07
+EOD
+$series2_7 << EOD
+0.1113,0.4228
+0.1454,0.402
+0.2415,0.3922
+0.3869,0.9932
+1.196,0.9938
+2.274,0.9938
+EOD
+$series2_8 << EOD
+0.2868,0.4893
+0.5689,0.3752
+1.111,0.3207
 EOD
 $pareto2 << EOD
-0.1538,0.4228
-0.1608,0.1074
-0.1794,0.09284
-0.2289,0.05965
-0.2934,0.03929
-0.5072,0.01856
-0.7251,7.778e-06
-0.7945,7.898e-07
+0.05311,0.2766
+0.08013,0.1414
+0.1294,0.1074
+0.1353,0.05138
+0.2658,0.03929
+0.4857,0.01856
+0.6382,7.778e-06
+0.6649,7.898e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Bonsai: seconds per frame against error (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.04239156518118131:2.848966285717938] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (10, 20, 30)
+    set ytics add ('0' 7.429933426481469)
+    set arrow from graph 0, first 7.429933426481469 to graph 1, first 7.429933426481469 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [6.460811675201278:34.385] noextend
     unset key
     set size noratio
     unset label
-    plot 'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $9 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#000000' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $9 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU)', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#2a9d3a' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $9 : NaN) with points pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe)', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#c0392b' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.04239156518118131:2.848966285717938] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [3.4004016451363414e-07:2.3082662635534894] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $14 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#000000' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $14 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU)', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#2a9d3a' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $14 : NaN) with points pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe)', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#c0392b' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -10,89 +10,173 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.4617,23.1
+0.5445,20.9
+0.6843,17.1
+0.9531,10.7
+1.772,9.26
+EOD
+$series1_2 << EOD
+0.1146,23.1
+0.137,20.9
+0.1711,17.1
+0.2326,10.7
+0.4131,9.26
+EOD
+$series1_3 << EOD
+0.04228,22.8
+0.07506,13.3
+0.1187,7.55
+EOD
+$series1_4 << EOD
+1.239,7.09
+1.521,7.09
+1.276,7.08
+EOD
+$series1_5 << EOD
+1.282,6.69
+1.269,6.69
+1.266,6.69
+EOD
+$series1_6 << EOD
+1.379,4.398783594970002
+1.345,4.398783594970002
+EOD
+$series1_7 << EOD
+0.1273,25.2
+0.1679,25.4
+0.3347,26.7
+0.5988,27.8
+0.8413,28.4
+1.488,28.6
+EOD
+$series1_8 << EOD
+0.2325,24.5
+0.4409,23.6
+0.7405,24.1
+EOD
 $pareto1 << EOD
-0.1119,23.1252
-0.1407,20.876
-0.1709,17.0929
-0.2314,10.6669
-0.4534,9.2577
-1.181,6.6927
-1.381,6.689
-1.585,0
+0.04228,22.8
+0.07506,13.3
+0.1187,7.55
+1.239,7.09
+1.266,6.69
+1.345,4.398783594970002
+EOD
+$series2_1 << EOD
+0.4617,0.06248
+0.5445,0.04992
+0.6843,0.03695
+0.9531,0.02473
+1.772,0.01212
+EOD
+$series2_2 << EOD
+0.1146,0.06248
+0.137,0.04992
+0.1711,0.03695
+0.2326,0.02473
+0.4131,0.01212
+EOD
+$series2_3 << EOD
+0.04228,0.1125
+0.07506,0.04035
+0.1187,0.0149
+EOD
+$series2_4 << EOD
+1.239,0.02604
+1.521,0.02604
+1.276,0.02124
+EOD
+$series2_5 << EOD
+1.282,0.02591
+1.269,0.02591
+1.266,0.02103
+EOD
+$series2_6 << EOD
+1.379,1.296e-05
+1.345,1.431e-06
+EOD
+$series2_7 << EOD
+0.1273,0.1676
+0.1679,0.1323
+0.3347,0.131
+0.5988,0.1349
+0.8413,0.131
+1.488,0.1252
+EOD
+$series2_8 << EOD
+0.2325,0.1495
+0.4409,0.1113
+0.7405,0.09071
 EOD
 $pareto2 << EOD
-0.1119,0.06248
-0.1407,0.04992
-0.1709,0.03695
-0.2314,0.02473
-0.4534,0.01212
-1.585,1.296e-05
-1.644,1.431e-06
+0.04228,0.1125
+0.07506,0.04035
+0.1187,0.0149
+0.4131,0.01212
+1.345,1.431e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Engine: seconds per frame against error (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.03379054949968012:2.217192709479591] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (6, 7, 8, 9, 10, 20, 30)
+    set ytics add ('0' 4.398783594970002)
+    set arrow from graph 0, first 4.398783594970002 to graph 1, first 4.398783594970002 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [3.8250292130173933:32.89] noextend
     unset key
     set size noratio
     unset label
-    plot 'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $9 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#000000' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $9 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU)', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#2a9d3a' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $9 : NaN) with points pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe)', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#c0392b' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.03379054949968012:2.217192709479591] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [7.10430455423473e-07:0.33759194607871773] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $14 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#000000' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $14 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU)', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#2a9d3a' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $14 : NaN) with points pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe)', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#c0392b' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -10,88 +10,174 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.4188,25.1
+0.4906,25
+0.5912,24.8
+0.7931,23.2
+1.391,6.98
+EOD
+$series1_2 << EOD
+0.1051,25.1
+0.1238,25
+0.1549,24.8
+0.2081,23.2
+0.369,6.98
+EOD
+$series1_3 << EOD
+0.04725,21.7
+0.06945,14.8
+0.108,3.01
+EOD
+$series1_4 << EOD
+1.469,7.88
+1.541,7.88
+1.6,7.82
+EOD
+$series1_5 << EOD
+1.457,6.08
+1.436,6.08
+1.473,6.02
+EOD
+$series1_6 << EOD
+0.573,1.979123859620285
+0.6096,1.979123859620285
+EOD
+$series1_7 << EOD
+0.1552,23.7
+0.2413,23.2
+0.3037,24.8
+0.4279,25.7
+1.309,26.3
+2.483,26.4
+EOD
+$series1_8 << EOD
+0.3101,22.9
+0.6834,21
+1.271,21.1
+EOD
 $pareto1 << EOD
-0.1336,23.7481
-0.2071,23.2413
-0.2101,23.229
-0.3602,22.8888
-0.5041,6.9819
-0.6929,0
+0.04725,21.7
+0.06945,14.8
+0.108,3.01
+0.573,1.979123859620285
+EOD
+$series2_1 << EOD
+0.4188,0.157
+0.4906,0.12
+0.5912,0.09271
+0.7931,0.05941
+1.391,0.02978
+EOD
+$series2_2 << EOD
+0.1051,0.157
+0.1238,0.12
+0.1549,0.09271
+0.2081,0.05941
+0.369,0.02978
+EOD
+$series2_3 << EOD
+0.04725,0.368
+0.06945,0.2132
+0.108,0.08404
+EOD
+$series2_4 << EOD
+1.469,0.1037
+1.541,0.09117
+1.6,0.1109
+EOD
+$series2_5 << EOD
+1.457,0.1033
+1.436,0.09043
+1.473,0.1111
+EOD
+$series2_6 << EOD
+0.573,1.377e-05
+0.6096,8.941e-07
+EOD
+$series2_7 << EOD
+0.1552,0.3875
+0.2413,0.1806
+0.3037,0.1303
+0.4279,0.1326
+1.309,0.1342
+2.483,0.2229
+EOD
+$series2_8 << EOD
+0.3101,0.354
+0.6834,0.2112
+1.271,0.08796
 EOD
 $pareto2 << EOD
-0.1336,0.3875
-0.1341,0.157
-0.1824,0.12
-0.2062,0.09271
-0.2101,0.05941
-0.5041,0.02978
-0.6929,1.377e-05
-0.6992,8.941e-07
+0.04725,0.368
+0.06945,0.2132
+0.1051,0.157
+0.108,0.08404
+0.2081,0.05941
+0.369,0.02978
+0.573,1.377e-05
+0.6096,8.941e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Teapot: seconds per frame against error (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.03725352033678336:3.1492795563848746] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (5, 10, 20)
+    set ytics add ('0' 1.979123859620285)
+    set arrow from graph 0, first 1.979123859620285 to graph 1, first 1.979123859620285 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [1.7209772692350305:30.359999999999996] noextend
     unset key
     set size noratio
     unset label
-    plot 'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $9 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#000000' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $9 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU)', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#2a9d3a' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $9 : NaN) with points pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe)', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#c0392b' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.03725352033678336:3.1492795563848746] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [4.1036749966868663e-07:0.8442767769857998] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $14 : NaN) with points pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann float SIMD' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#000000' title 'exact', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'exact' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#000000' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $14 : NaN) with points pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU)', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'vtk-fixed-point' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#2a9d3a' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $14 : NaN) with points pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe)', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'vtk-gpu' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#c0392b' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -10,65 +10,124 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.06926,9.65
+0.2129,6.43
+EOD
+$series1_2 << EOD
+0.5292,1.12
+0.3013,6.56
+0.1869,11.6
+0.1119,13.2
+0.04698,13.7
+EOD
+$series1_3 << EOD
+0.5353,1.12
+0.2947,6.53
+0.1761,11.3
+0.1181,12.9
+0.05453,13.5
+EOD
+$series1_4 << EOD
+0.5361,0.637
+0.2766,3.81
+0.1786,6.25
+0.1203,7.42
+0.07136,10.4
+EOD
 $pareto1 << EOD
-0.05199,13.6525
-0.0595,13.5317
-0.07595,10.4142
-0.08705,9.65
-0.1653,7.4175
-0.2228,6.2483
-0.3816,3.81
-0.6416,1.12
-0.6476,0.6375
+0.04698,13.7
+0.05453,13.5
+0.06926,9.65
+0.1203,7.42
+0.1786,6.25
+0.2766,3.81
+0.5292,1.12
+0.5361,0.637
+EOD
+$series2_1 << EOD
+0.06926,0.04954
+0.2129,0.008941
+EOD
+$series2_2 << EOD
+0.5292,0.004999
+0.3013,0.02185
+0.1869,0.07809
+0.1119,0.1966
+0.04698,0.9872
+EOD
+$series2_3 << EOD
+0.5353,0.004999
+0.2947,0.0217
+0.1761,0.06545
+0.1181,0.1591
+0.05453,0.9872
+EOD
+$series2_4 << EOD
+0.5361,0.002845
+0.2766,0.009144
+0.1786,0.03796
+0.1203,0.08491
+0.07136,0.9872
 EOD
 $pareto2 << EOD
-0.05199,0.9872
-0.08705,0.04954
-0.2228,0.03796
-0.3483,0.008941
-0.6416,0.004999
-0.6476,0.002845
+0.04698,0.9872
+0.06926,0.04954
+0.1786,0.03796
+0.2129,0.008941
+0.5292,0.004999
+0.5361,0.002845
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1400,560 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1400,560 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Thin features (Bonsai leaves): seconds per frame against error (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5)
+    set xrange [0.040595046644501545:0.6204199793279792] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
-    set key top right
+    set ytics (1, 2, 5, 10)
+    set yrange [0.5298885853874393:16.469311173440623] noextend
+    unset key
     set size noratio
     unset label
-    plot 'leaves.csv' skip 1 using 3:9 with points pt 7 ps 0.8 title 'runs', \
-         'leaves.csv' skip 1 using 3:9:(strcol(1)) with labels left offset char 0.5,0.5 font ',8' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled eps = 0.01, hmax1 to hmaxnone', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#c0392b' title 'coupled eps = 0.001, hmax1 to hmaxnone', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'coupled eps = 0.0001, hmax1 to hmaxnone', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5)
+    set xrange [0.040595046644501545:0.6204199793279792] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
-    set key top right
+    set ytics (0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1)
+    set yrange [0.0020029167485579205:1.402246999043845] noextend
+    set key outside right top
     set size noratio
     unset label
-    plot 'leaves.csv' skip 1 using 3:14 with points pt 7 ps 0.8 title 'runs', \
-         'leaves.csv' skip 1 using 3:14:(strcol(1)) with labels left offset char 0.5,0.5 font ',8' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled eps = 0.01, hmax1 to hmaxnone', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#c0392b' title 'coupled eps = 0.001, hmax1 to hmaxnone', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'coupled eps = 0.0001, hmax1 to hmaxnone', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

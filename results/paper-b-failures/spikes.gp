@@ -10,62 +10,132 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.08031,13.6
+0.2503,13.4
+EOD
+$series1_2 << EOD
+0.5206,13.6
+0.3016,13.6
+0.1716,13.7
+0.1156,13.7
+0.04796,13.7
+EOD
+$series1_3 << EOD
+0.5555,12.8
+0.3325,13.3
+0.1994,13.4
+0.1296,13.5
+0.05232,13.7
+EOD
+$series1_4 << EOD
+0.5937,11.8
+0.3965,12.5
+0.2466,12.9
+0.1701,13.1
+0.06801,13.6
+EOD
+$series1_5 << EOD
+0.05233,13.7
+0.04648,13.7
+EOD
 $pareto1 << EOD
-0.0608,13.7092
-0.06451,13.705
-0.06828,13.5725
-0.1815,13.5308
-0.2022,13.0983
-0.3019,12.8742
-0.4796,12.5258
-0.8017,11.8142
+0.04648,13.7
+0.06801,13.6
+0.1296,13.5
+0.1701,13.1
+0.2466,12.9
+0.3965,12.5
+0.5937,11.8
+EOD
+$series2_1 << EOD
+0.08031,0.857
+0.2503,0.1806
+EOD
+$series2_2 << EOD
+0.5206,0.5765
+0.3016,0.7753
+0.1716,0.9509
+0.1156,0.9954
+0.04796,2.031
+EOD
+$series2_3 << EOD
+0.5555,0.5169
+0.3325,0.7695
+0.1994,0.9509
+0.1296,0.9954
+0.05232,1
+EOD
+$series2_4 << EOD
+0.5937,0.5073
+0.3965,0.7359
+0.2466,0.9529
+0.1701,0.9954
+0.06801,1
+EOD
+$series2_5 << EOD
+0.05233,13.74
+0.04648,13.75
 EOD
 $pareto2 << EOD
-0.0608,2.031
-0.06828,1
-0.099,0.857
-0.3083,0.1806
+0.04648,13.75
+0.04796,2.031
+0.05232,1
+0.08031,0.857
+0.2503,0.1806
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1400,560 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1400,560 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Spiky transfer function: seconds per frame against error (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5)
+    set xrange [0.0398922069714049:0.6917435282480229] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
-    set key top right
+    set ytics autofreq
+    set yrange [10.260869565217392:15.754999999999997] noextend
+    unset key
     set size noratio
     unset label
-    plot 'spikes.csv' skip 1 using 3:9 with points pt 7 ps 0.8 title 'runs', \
-         'spikes.csv' skip 1 using 3:9:(strcol(1)) with labels left offset char 0.5,0.5 font ',8' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled eps = 0.01, hmax1 to hmaxnone', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#c0392b' title 'coupled eps = 0.001, hmax1 to hmaxnone', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'coupled eps = 0.0001, hmax1 to hmaxnone', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.5 lc rgb '#000000' title 'decoupled eps = 0.01, no h_max, double to float', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5)
+    set xrange [0.0398922069714049:0.6917435282480229] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
-    set key top right
+    set ytics (0.2, 0.5, 1, 2, 5, 10)
+    set yrange [0.13925880010504882:17.831907198157523] noextend
+    set key outside right top
     set size noratio
     unset label
-    plot 'spikes.csv' skip 1 using 3:14 with points pt 7 ps 0.8 title 'runs', \
-         'spikes.csv' skip 1 using 3:14:(strcol(1)) with labels left offset char 0.5,0.5 font ',8' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled eps = 0.01, hmax1 to hmaxnone', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#c0392b' title 'coupled eps = 0.001, hmax1 to hmaxnone', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'coupled eps = 0.0001, hmax1 to hmaxnone', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.5 lc rgb '#000000' title 'decoupled eps = 0.01, no h_max, double to float', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

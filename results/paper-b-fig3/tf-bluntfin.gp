@@ -21,13 +21,16 @@ do for [format in "png svg"] {
     set multiplot layout 2,1 title 'BluntFin transfer function (paper B, Fig. 3)'
     # panel 1
     set title 'colour'
+    unset arrow
     set xlabel 's'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [0:1] extend
     set ylabel 'r, g, b'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [0:1.05] extend
     set key outside right top
     set size noratio
@@ -37,13 +40,16 @@ do for [format in "png svg"] {
          'tf-bluntfin.csv' skip 1 using 1:4 with lines lw 2 lc rgb '#1f77b4' title 'blue'
     # panel 2
     set title 'extinction'
+    unset arrow
     set xlabel 's'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [0:1] extend
     set ylabel 'per voxel'
     set logscale y
     set format y '%g'
+    set ytics autofreq
     set yrange [0.001:2] extend
     set key outside right top
     set size noratio

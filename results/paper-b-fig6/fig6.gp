@@ -10,6 +10,17 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+47.5,0.06446988580578902
+51.5,0.17090033368836927
+59.5,0.17354850627603943
+63.5,0.643545167614487
+67.5,0.8751571795695013
+71.5,0.8900221041633232
+75.5,0.8941681318855803
+103.5,0.9053190535674481
+107.5,0.9225666405770897
+EOD
 do for [format in "png svg"] {
     if (format eq "png") {
         set terminal pngcairo size 1200,800 noenhanced font "sans,10"
@@ -21,29 +32,35 @@ do for [format in "png svg"] {
     set multiplot layout 2,1 title 'Adaptive steps along one Bonsai ray (pixel 420,170), eps = 0.01, h_min = 0.4, h_max = 4'
     # panel 1
     set title 'alpha accumulated along the ray (each point: the end of an accepted outer step)'
+    unset arrow
     set xlabel 't (voxels from the ray''s entry)'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [*:*] extend
     set ylabel 'alpha'
     unset logscale y
     set format y '% h'
+    set ytics autofreq
     set yrange [*:*] extend
     set key bottom right
     set size noratio
     unset label
-    plot 'coupled-ray.csv' skip 1 using 6:(strcol(1) eq 'outer' && strcol(2) eq '1' ? $12 : NaN) with linespoints lw 2 pt 7 ps 0.8 lc rgb '#d62728' title 'coupled', \
+    plot $series1_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#d62728' title 'coupled', \
          'decoupled-ray.csv' skip 1 using 6:(strcol(1) eq 'outer' && strcol(2) eq '1' ? $12 : NaN) with points pt 7 ps 0.8 lc rgb '#1f77b4' title 'decoupled'
     # panel 2
     set title 'step size of every try (failed tries are halved)'
+    unset arrow
     set xlabel 't (voxels from the ray''s entry)'
     unset logscale x
     set format x '% h'
+    set xtics autofreq
     set xrange [*:*] extend
     set ylabel 'h (voxels)'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (0.5, 1, 2)
+    set yrange [0.4347826086956522:4.6] noextend
     set key bottom right
     set size noratio
     unset label

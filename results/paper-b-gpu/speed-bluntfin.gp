@@ -10,80 +10,175 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.07987,14.2
+0.09306,10
+0.1251,6.22
+0.1743,5.14
+0.3221,2.89
+EOD
+$series1_2 << EOD
+0.1318,1.61
+0.1341,1.61
+0.1347,1.61
+EOD
+$series1_3 << EOD
+0.1395,1.58
+0.1399,1.58
+0.1397,1.58
+EOD
+$series1_4 << EOD
+0.0196,14.2
+0.02361,10
+0.03032,6.22
+0.04209,5.14
+0.07817,2.89
+EOD
+$series1_5 << EOD
+0.2797,1.0388756472425416
+0.3018,1.0388756472425416
+EOD
+$series1_6 << EOD
+0.1553,14.2
+0.2121,10
+0.2482,6.22
+0.352,5.14
+0.6821,2.88
+EOD
+$series1_7 << EOD
+0.5888,1.61
+0.5689,1.61
+0.5703,1.61
+EOD
+$series1_8 << EOD
+0.61,1.58
+0.6304,1.58
+0.6016,1.58
+EOD
 $pareto1 << EOD
-0.102,14.1658
-0.1225,10.04
-0.1417,6.2217
-0.1568,1.5842
+0.0196,14.2
+0.02361,10
+0.03032,6.22
+0.04209,5.14
+0.07817,2.89
+0.1318,1.61
+0.1395,1.58
+0.2797,1.0388756472425416
+EOD
+$series2_1 << EOD
+0.07987,0.0472
+0.09306,0.03378
+0.1251,0.02585
+0.1743,0.01698
+0.3221,0.008248
+EOD
+$series2_2 << EOD
+0.1318,0.02667
+0.1341,0.02667
+0.1347,0.02667
+EOD
+$series2_3 << EOD
+0.1395,0.02667
+0.1399,0.02667
+0.1397,0.02667
+EOD
+$series2_4 << EOD
+0.0196,0.0472
+0.02361,0.03378
+0.03032,0.02585
+0.04209,0.01698
+0.07817,0.008248
+EOD
+$series2_5 << EOD
+0.2797,9.626e-06
+0.3018,2.265e-06
+EOD
+$series2_6 << EOD
+0.1553,0.0472
+0.2121,0.03378
+0.2482,0.02585
+0.352,0.01698
+0.6821,0.008244
+EOD
+$series2_7 << EOD
+0.5888,0.02667
+0.5689,0.02667
+0.5703,0.02667
+EOD
+$series2_8 << EOD
+0.61,0.02667
+0.6304,0.02667
+0.6016,0.02667
 EOD
 $pareto2 << EOD
-0.102,0.0472
-0.1225,0.03378
-0.1417,0.02585
-0.1992,0.01698
-0.3831,0.008248
-0.7891,0.008244
+0.0196,0.0472
+0.02361,0.03378
+0.03032,0.02585
+0.04209,0.01698
+0.07817,0.008248
+0.2797,9.626e-06
+0.3018,2.265e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'BluntFin: seconds per frame against error, CPU and Vulkan (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5)
+    set xrange [0.015840196058354013:0.8440021796920371] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (2, 5, 10)
+    set ytics add ('0' 1.0388756472425416)
+    set arrow from graph 0, first 1.0388756472425416 to graph 1, first 1.0388756472425416 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [0.9033701280369927:16.33] noextend
     unset key
     set size noratio
     unset label
-    plot 'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5)
+    set xrange [0.015840196058354013:0.8440021796920371] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [1.2471990713542438e-06:0.08571847306133437] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan', \
-         'speed-bluntfin.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

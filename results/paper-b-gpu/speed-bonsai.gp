@@ -10,83 +10,173 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.119,27
+0.1389,26.6
+0.1751,25.6
+0.2343,23.3
+0.4093,16.4
+EOD
+$series1_2 << EOD
+0.3306,14.6
+0.3215,14.6
+0.3317,14.2
+EOD
+$series1_3 << EOD
+0.331,12.4
+0.3513,12.4
+0.3466,12.2
+EOD
+$series1_4 << EOD
+0.03281,27
+0.03846,26.6
+0.04723,25.6
+0.06524,23.4
+0.1127,16.4
+EOD
+$series1_5 << EOD
+0.1354,8.021698035670257
+0.1448,8.021698035670257
+EOD
+$series1_6 << EOD
+0.2201,27
+0.256,26.6
+0.3331,25.6
+0.4665,23.4
+0.9049,16.4
+EOD
+$series1_7 << EOD
+1.695,14.6
+1.721,14.6
+1.973,14.2
+EOD
+$series1_8 << EOD
+1.79,12.4
+1.911,12.4
+1.744,12.2
+EOD
 $pareto1 << EOD
-0.1539,26.9833
-0.1738,26.5542
-0.2224,25.605
-0.2853,23.3475
-0.3815,14.5817
-0.3969,12.2308
-2.517,12.2292
+0.03281,27
+0.03846,26.6
+0.04723,25.6
+0.06524,23.4
+0.1127,16.4
+0.1354,8.021698035670257
+EOD
+$series2_1 << EOD
+0.119,0.1012
+0.1389,0.08359
+0.1751,0.05733
+0.2343,0.03853
+0.4093,0.01794
+EOD
+$series2_2 << EOD
+0.3306,0.04251
+0.3215,0.04251
+0.3317,0.03548
+EOD
+$series2_3 << EOD
+0.331,0.03577
+0.3513,0.03577
+0.3466,0.03289
+EOD
+$series2_4 << EOD
+0.03281,0.1012
+0.03846,0.08359
+0.04723,0.05733
+0.06524,0.03853
+0.1127,0.01794
+EOD
+$series2_5 << EOD
+0.1354,7.182e-06
+0.1448,7.451e-07
+EOD
+$series2_6 << EOD
+0.2201,0.1012
+0.256,0.08359
+0.3331,0.05733
+0.4665,0.03853
+0.9049,0.01794
+EOD
+$series2_7 << EOD
+1.695,0.04251
+1.721,0.04251
+1.973,0.03548
+EOD
+$series2_8 << EOD
+1.79,0.03578
+1.911,0.03578
+1.744,0.03289
 EOD
 $pareto2 << EOD
-0.1539,0.1012
-0.1738,0.08359
-0.2224,0.05733
-0.2853,0.03853
-0.3969,0.03289
-0.553,0.01794
+0.03281,0.1012
+0.03846,0.08359
+0.04723,0.05733
+0.06524,0.03853
+0.1127,0.01794
+0.1354,7.182e-06
+0.1448,7.451e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Bonsai: seconds per frame against error, CPU and Vulkan (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.025660137492872027:2.5227507069275097] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (20, 30)
+    set ytics add ('0' 8.021698035670257)
+    set arrow from graph 0, first 8.021698035670257 to graph 1, first 8.021698035670257 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [6.975389596235006:31.049999999999997] noextend
     unset key
     set size noratio
     unset label
-    plot 'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.025660137492872027:2.5227507069275097] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [3.6663726660755295e-07:0.2056640905538723] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan', \
-         'speed-bonsai.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -10,83 +10,175 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.1016,23.1
+0.1169,20.8
+0.1453,17.1
+0.1983,10.7
+0.3579,9.26
+EOD
+$series1_2 << EOD
+0.2575,7.06
+0.2584,7.06
+0.2543,7.05
+EOD
+$series1_3 << EOD
+0.2628,6.73
+0.2574,6.73
+0.2622,6.73
+EOD
+$series1_4 << EOD
+0.02863,23.1
+0.03354,20.8
+0.04131,17.1
+0.0551,10.7
+0.0957,9.26
+EOD
+$series1_5 << EOD
+0.2911,4.425084244267282
+0.2937,4.425084244267282
+EOD
+$series1_6 << EOD
+0.1965,23.1
+0.2228,20.8
+0.2856,17.1
+0.368,10.7
+0.6545,9.26
+EOD
+$series1_7 << EOD
+1.296,7.06
+1.307,7.06
+1.214,7.05
+EOD
+$series1_8 << EOD
+1.961,6.73
+1.952,6.73
+1.385,6.73
+EOD
 $pareto1 << EOD
-0.1181,23.0792
-0.1309,20.7875
-0.1796,17.1133
-0.2299,10.6783
-0.2727,6.7342
-0.3402,6.7258
+0.02863,23.1
+0.03354,20.8
+0.04131,17.1
+0.0551,10.7
+0.0957,9.26
+0.2543,7.05
+0.2574,6.73
+0.2911,4.425084244267282
+EOD
+$series2_1 << EOD
+0.1016,0.06241
+0.1169,0.04954
+0.1453,0.03648
+0.1983,0.02426
+0.3579,0.01205
+EOD
+$series2_2 << EOD
+0.2575,0.02233
+0.2584,0.02233
+0.2543,0.01744
+EOD
+$series2_3 << EOD
+0.2628,0.02262
+0.2574,0.02262
+0.2622,0.0175
+EOD
+$series2_4 << EOD
+0.02863,0.06241
+0.03354,0.04954
+0.04131,0.03648
+0.0551,0.02426
+0.0957,0.01205
+EOD
+$series2_5 << EOD
+0.2911,1.246e-05
+0.2937,1.311e-06
+EOD
+$series2_6 << EOD
+0.1965,0.06241
+0.2228,0.04954
+0.2856,0.03648
+0.368,0.02426
+0.6545,0.01205
+EOD
+$series2_7 << EOD
+1.296,0.02233
+1.307,0.02233
+1.214,0.01744
+EOD
+$series2_8 << EOD
+1.961,0.02262
+1.952,0.02262
+1.385,0.0175
 EOD
 $pareto2 << EOD
-0.1181,0.06241
-0.1309,0.04954
-0.1796,0.03648
-0.2299,0.02426
-0.2727,0.02262
-0.3246,0.01744
-0.4594,0.01205
+0.02863,0.06241
+0.03354,0.04954
+0.04131,0.03648
+0.0551,0.02426
+0.0957,0.01205
+0.2911,1.246e-05
+0.2937,1.311e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Engine: seconds per frame against error, CPU and Vulkan (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.02221682393296894:2.527068233037813] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (6, 7, 8, 9, 10, 20)
+    set ytics add ('0' 4.425084244267282)
+    set arrow from graph 0, first 4.425084244267282 to graph 1, first 4.425084244267282 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [3.847899342841115:26.565] noextend
     unset key
     set size noratio
     unset label
-    plot 'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.02221682393296894:2.527068233037813] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [6.869792226536051e-07:0.11910041425118292] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan', \
-         'speed-engine.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -10,83 +10,173 @@ i = strlen(script_dir)
 while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
+$series1_1 << EOD
+0.09456,25.1
+0.1081,25
+0.1277,24.8
+0.1697,23.2
+0.2993,6.97
+EOD
+$series1_2 << EOD
+0.3174,7.87
+0.3093,7.87
+0.2994,7.83
+EOD
+$series1_3 << EOD
+0.3038,6.1
+0.3015,6.1
+0.3147,6.05
+EOD
+$series1_4 << EOD
+0.02615,25.1
+0.03055,25
+0.03733,24.8
+0.05029,23.2
+0.08455,6.97
+EOD
+$series1_5 << EOD
+0.1219,3.97139804388921
+0.1243,3.97139804388921
+EOD
+$series1_6 << EOD
+0.1801,25.1
+0.2141,25
+0.271,24.8
+0.3543,23.2
+0.6828,6.96
+EOD
+$series1_7 << EOD
+1.546,7.88
+1.566,7.87
+1.584,7.83
+EOD
+$series1_8 << EOD
+1.59,6.1
+2.038,6.1
+2.436,6.04
+EOD
 $pareto1 << EOD
-0.1171,25.0517
-0.14,24.9583
-0.1628,24.78
-0.2042,23.2092
-0.3441,6.9717
-0.3939,6.0983
-0.3941,6.0458
-1.991,6.045
+0.02615,25.1
+0.03055,25
+0.03733,24.8
+0.05029,23.2
+0.08455,6.97
+0.1219,3.97139804388921
+EOD
+$series2_1 << EOD
+0.09456,0.1381
+0.1081,0.1142
+0.1277,0.08014
+0.1697,0.05249
+0.2993,0.02629
+EOD
+$series2_2 << EOD
+0.3174,0.0768
+0.3093,0.0768
+0.2994,0.08906
+EOD
+$series2_3 << EOD
+0.3038,0.07733
+0.3015,0.07733
+0.3147,0.08931
+EOD
+$series2_4 << EOD
+0.02615,0.1381
+0.03055,0.1142
+0.03733,0.08014
+0.05029,0.05249
+0.08455,0.02629
+EOD
+$series2_5 << EOD
+0.1219,1.204e-05
+0.1243,8.345e-07
+EOD
+$series2_6 << EOD
+0.1801,0.1381
+0.2141,0.1142
+0.271,0.08014
+0.3543,0.05249
+0.6828,0.02629
+EOD
+$series2_7 << EOD
+1.546,0.0768
+1.566,0.0768
+1.584,0.08906
+EOD
+$series2_8 << EOD
+1.59,0.07733
+2.038,0.07733
+2.436,0.08931
 EOD
 $pareto2 << EOD
-0.1171,0.1381
-0.14,0.1142
-0.1628,0.08014
-0.2042,0.05249
-0.3441,0.02629
+0.02615,0.1381
+0.03055,0.1142
+0.03733,0.08014
+0.05029,0.05249
+0.08455,0.02629
+0.1219,1.204e-05
+0.1243,8.345e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1500,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1500,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Teapot: seconds per frame against error, CPU and Vulkan (accurate reference)'
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.019921377158144876:3.1976403786901653] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics (6, 7, 8, 9, 10, 20)
+    set ytics add ('0' 3.97139804388921)
+    set arrow from graph 0, first 3.97139804388921 to graph 1, first 3.97139804388921 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [3.453389603381922:28.865] noextend
     unset key
     set size noratio
     unset label
-    plot 'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $9 : NaN) with points pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $9 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
+    plot $series1_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series1_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
+    unset arrow
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xrange [*:*] extend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
+    set xrange [0.019921377158144876:3.1976403786901653] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set yrange [*:*] extend
+    set ytics autofreq
+    set yrange [4.0578902861224574e-07:0.28400090163630953] noextend
     set key outside right top
     set size noratio
     unset label
-    plot 'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN) with points pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled double' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'riemann float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#1f4e9c' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'coupled float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#e07b00' notitle, \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $14 : NaN) with points pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan', \
-         'speed-teapot.csv' skip 1 using 3:(strcol(2) eq 'decoupled float vulkan' ? $14 : NaN):(strcol(1)) with labels left offset char 0.5,0.5 font ',8' tc rgb '#8e3fb0' notitle, \
+    plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
+         $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
+         $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
+         $series2_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output
