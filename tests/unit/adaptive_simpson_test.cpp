@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "test_camera.h"
 #include "vri/core/adaptive_simpson.h"
 #include "vri/core/cpu_renderer.h"
 #include "vri/core/exact_reference.h"
@@ -265,11 +266,7 @@ TEST_CASE("coupled and decoupled renders converge to the accurate reference as e
     const TransferFunction tf({{0.0, 0.0, 0.0, 0.0, 0.0}, {0.3, 0.2, 0.8, 0.1, 0.2}, {1.0, 1.0, 0.5, 0.2, 0.9}},
                               EmissionModel::ColourTimesExtinction);
     const Scene scene{volume, std::nullopt, GridConvention::CellCentred, tf};
-    CameraSpec spec;
-    spec.eye = glm::dvec3(30.0, 22.0, 26.0);
-    spec.target = glm::dvec3(6.0);
-    spec.fovYDegrees = 30.0;
-    spec.width = spec.height = 24;
+    const CameraSpec spec = test::cameraSpec(glm::dvec3(30.0, 22.0, 26.0), glm::dvec3(6.0), 30.0, 24, 24);
     const Camera camera(spec);
     const Image exact = renderExactReference(scene, camera).image();
 

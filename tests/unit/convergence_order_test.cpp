@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "test_camera.h"
 #include "vri/core/cpu_renderer.h"
 #include "vri/core/exact_reference.h"
 #include "vri/util/error.h"
@@ -44,11 +45,7 @@ Scene trilinearScene() {
 Camera cornerCamera(const Scene& scene) {
     const Box box = scene.box();
     const glm::dvec3 centre = 0.5 * (box.lo + box.hi), size = box.hi - box.lo;
-    CameraSpec spec;
-    spec.eye = centre + glm::dvec3(-2.1, 1.3, 0.7) * size;
-    spec.target = centre;
-    spec.fovYDegrees = 12.0;
-    spec.width = spec.height = 4;
+    const CameraSpec spec = test::cameraSpec(centre + glm::dvec3(-2.1, 1.3, 0.7) * size, centre, 12.0, 4, 4);
     return Camera(spec);
 }
 

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <memory>
 
+#include "test_camera.h"
 #include "vri/core/cpu_renderer.h"
 #include "vri/util/error.h"
 
@@ -38,12 +39,7 @@ Scene ballScene(VoxelType type, EmissionModel emission) {
 }
 
 Camera ballCamera() {
-    CameraSpec spec;
-    spec.eye = glm::dvec3(40.0, 30.0, -45.0);
-    spec.target = glm::dvec3(13.0, 11.0, 10.0);
-    spec.fovYDegrees = 35.0;
-    spec.width = 41;
-    spec.height = 33;
+    const CameraSpec spec = test::cameraSpec(glm::dvec3(40.0, 30.0, -45.0), glm::dvec3(13.0, 11.0, 10.0), 35.0, 41, 33);
     return Camera(spec);
 }
 

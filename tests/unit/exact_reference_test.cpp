@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/global_control.h>
 
+#include "test_camera.h"
 #include "vri/core/cubic.h"
 #include "vri/core/exact_ray.h"
 #include "vri/core/exact_empty_space.h"
@@ -37,12 +38,7 @@ double maxBound(const ExactReference& ref) {
 
 // Paper A's closed form for every pixel: F = length (f(entry) + f(exit)) / 2, I = 2 (1 - exp(-F / 2)).
 void checkLinearFieldClosedForm(const Scene& scene) {
-    CameraSpec spec;
-    spec.eye = V(-4.0, 1.5, 2.5);
-    spec.target = V(0.1, -0.2, 0.0);
-    spec.fovYDegrees = 40.0;
-    spec.width = 24;
-    spec.height = 18;
+    const CameraSpec spec = test::cameraSpec(V(-4.0, 1.5, 2.5), V(0.1, -0.2, 0.0), 40.0, 24, 18);
     const Camera camera(spec);
     const ExactReference ref = renderExactReference(scene, camera);
     const LinearField field;
@@ -446,12 +442,7 @@ TEST_CASE("exact reference: a looser tolerance costs less and stays within its b
 }
 
 TEST_CASE("exact reference: the bound holds for every extinction from 1e-6 to 1e300") {
-    CameraSpec spec;
-    spec.eye = V(-4.0, 1.5, 2.5);
-    spec.target = V(0.1, -0.2, 0.0);
-    spec.fovYDegrees = 40.0;
-    spec.width = 12;
-    spec.height = 9;
+    const CameraSpec spec = test::cameraSpec(V(-4.0, 1.5, 2.5), V(0.1, -0.2, 0.0), 40.0, 12, 9);
     const Camera camera(spec);
     // A constant field of s = 1 (a cell-centred 2^3 volume filling the linear field's box) under a
     // constant TF, g = C tau: colour C (1 - exp(-tau L)). The linear field s = u.x under C = s,

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "test_camera.h"
 #include "vri/core/exact_reference.h"
 #include "vri/io/transfer_function_yaml.h"
 #include "vri/io/volume_io.h"
@@ -56,12 +57,8 @@ TEST_CASE("exact method: every tolerance within its bound of 1e-12 on Bonsai, wh
     const Scene scene{std::make_shared<Volume>(readVolume(path)), std::nullopt, GridConvention::CellCentred,
                       loadTransferFunction(fs::path(VRI_TEST_DATA_DIR).parent_path().parent_path() /
                                            "experiments/tf/paper-b-bonsai.yaml")};
-    CameraSpec spec;  // paper-b-cpu's camera, at 40x30
-    spec.eye = glm::dvec3(128, 190, -340);
-    spec.target = glm::dvec3(128, 115, 128);
-    spec.fovYDegrees = 38.0;
-    spec.width = 40;
-    spec.height = 30;
+    // paper-b-cpu's camera, at 40x30
+    const CameraSpec spec = test::cameraSpec(glm::dvec3(128, 190, -340), glm::dvec3(128, 115, 128), 38.0, 40, 30);
     checkTolerances(scene, Camera(spec));
 }
 
@@ -73,12 +70,7 @@ TEST_CASE("exact method: every tolerance within its bound of 1e-12 on the linear
                                             {0.4, 0.9, 0.3, 0.1, 2.5},
                                             {1.0, 1, 1, 1, 0.3}},
                                            emission)};
-        CameraSpec spec;
-        spec.eye = glm::dvec3(-4.0, 1.5, 2.5);
-        spec.target = glm::dvec3(0.1, -0.2, 0.0);
-        spec.fovYDegrees = 40.0;
-        spec.width = 24;
-        spec.height = 18;
+        const CameraSpec spec = test::cameraSpec(glm::dvec3(-4.0, 1.5, 2.5), glm::dvec3(0.1, -0.2, 0.0), 40.0, 24, 18);
         checkTolerances(scene, Camera(spec));
     }
 }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 
+#include "test_camera.h"
 #include "vri/core/cpu_renderer.h"
 #include "vri/core/occupancy_cache.h"
 
@@ -39,12 +40,7 @@ Scene rampScene(std::shared_ptr<const Volume> volume, TransferFunction tf) {
 }
 
 Camera rampCamera() {
-    CameraSpec spec;
-    spec.eye = glm::dvec3(-20.0, 35.0, -40.0);
-    spec.target = glm::dvec3(14.5, 11.5, 8.5);
-    spec.fovYDegrees = 40.0;
-    spec.width = 37;
-    spec.height = 23;
+    const CameraSpec spec = test::cameraSpec(glm::dvec3(-20.0, 35.0, -40.0), glm::dvec3(14.5, 11.5, 8.5), 40.0, 37, 23);
     return Camera(spec);
 }
 

@@ -13,6 +13,7 @@
 #include <hwy/targets.h>
 #include <tbb/global_control.h>
 
+#include "test_camera.h"
 #include "vri/core/cpu_renderer.h"
 #include "vri/util/error.h"
 
@@ -53,12 +54,8 @@ TransferFunction testTransferFunction(EmissionModel emission, int points) {
 }
 
 Camera testCamera(int width, int height) {
-    CameraSpec spec;
-    spec.eye = glm::dvec3(-30.0, 45.0, -50.0);
-    spec.target = glm::dvec3(18.5, 10.5, 9.5);
-    spec.fovYDegrees = 40.0;
-    spec.width = width;
-    spec.height = height;
+    const CameraSpec spec =
+        test::cameraSpec(glm::dvec3(-30.0, 45.0, -50.0), glm::dvec3(18.5, 10.5, 9.5), 40.0, width, height);
     return Camera(spec);
 }
 
@@ -128,12 +125,7 @@ TEST_CASE("the packet engine's rays equal pixelRay()'s: axis-aligned views, zoom
     const Scene scene{testVolume(VoxelType::UInt8), std::nullopt, GridConvention::CellCentred,
                       testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
     std::vector<CameraSpec> views;
-    CameraSpec axis;
-    axis.eye = glm::dvec3(28.0, 10.5, -40.0);
-    axis.target = glm::dvec3(28.0, 10.5, 9.5);
-    axis.fovYDegrees = 50.0;
-    axis.width = 33;
-    axis.height = 25;
+    const CameraSpec axis = test::cameraSpec(glm::dvec3(28.0, 10.5, -40.0), glm::dvec3(28.0, 10.5, 9.5), 50.0, 33, 25);
     views.push_back(axis);
     CameraSpec zoomed = axis;
     zoomed.eye = glm::dvec3(60.0, -20.0, 30.0);
@@ -210,12 +202,7 @@ TEST_CASE("the packet engine's jumps across empty space skip no visible sample")
             v->data<std::uint8_t>()[v->index(p.x, p.y, p.z + dz)] = static_cast<std::uint8_t>(120 + 60 * dz);
     const Scene scene{v, std::nullopt, GridConvention::CellCentred,
                       testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
-    CameraSpec spec;
-    spec.eye = glm::dvec3(-60.0, 140.0, -120.0);
-    spec.target = glm::dvec3(75.0, 55.0, 45.0);
-    spec.fovYDegrees = 45.0;
-    spec.width = 61;
-    spec.height = 47;
+    const CameraSpec spec = test::cameraSpec(glm::dvec3(-60.0, 140.0, -120.0), glm::dvec3(75.0, 55.0, 45.0), 45.0, 61, 47);
     const Camera camera(spec);
     for (Integrator integrator : {Integrator::Riemann, Integrator::Composite})
         for (Placement placement : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,

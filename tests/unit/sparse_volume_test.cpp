@@ -8,6 +8,7 @@
 #include <memory>
 #include <random>
 
+#include "test_camera.h"
 #include "vri/core/cpu_renderer.h"
 #include "vri/core/grid_sampler.h"
 #include "vri/core/occupancy_grid.h"
@@ -140,12 +141,7 @@ TEST_CASE("a sparse volume stores only the bricks whose block (the brick and its
 TEST_CASE("a sparse scene renders the dense scene's image bit for bit with every method") {
     const auto dense = blobs(glm::ivec3(29, 23, 17), VoxelType::UInt8);
     const auto sparse = std::make_shared<SparseVolume>(SparseVolume::fromDense(*dense));
-    CameraSpec spec;
-    spec.eye = glm::dvec3(-20.0, 35.0, -40.0);
-    spec.target = glm::dvec3(14.5, 11.5, 8.5);
-    spec.fovYDegrees = 40.0;
-    spec.width = 31;
-    spec.height = 19;
+    const CameraSpec spec = test::cameraSpec(glm::dvec3(-20.0, 35.0, -40.0), glm::dvec3(14.5, 11.5, 8.5), 40.0, 31, 19);
     const Camera camera(spec);
     for (const Integrator integrator :
          {Integrator::Riemann, Integrator::Composite, Integrator::Simpson, Integrator::Coupled, Integrator::Decoupled})
