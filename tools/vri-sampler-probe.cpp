@@ -83,7 +83,8 @@ int run(int argc, char** argv) {
     if (measured == 0) throw vri::Error("no voxel type could be probed: " + table.notes.front());
     table.notes.push_back("Readings at 4097 points between two texels holding 0 and full scale; error = read - "
                           "exact weight, in units of the difference between the texels. Effective bits = "
-                          "-log2(max error). 257 distinct readings: weights on a grid of 1/256.");
+                          "-log2(max error). Distinct readings: 2^k + 1 when the filter's weights lie on a grid of 1/2^k (257 for "
+                          "8 sub-texel bits), more when they are exact.");
     if (!output.empty()) vri::writeTextFile(output, csv);
     if (!summary.empty()) vri::writeTextFile(summary, vri::toMarkdown(table));
     return vri::kExitOk;
