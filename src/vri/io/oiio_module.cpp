@@ -55,9 +55,10 @@ Loaded load() {
         const char* why = handle ? nullptr : dlerror();
         auto* entry = handle ? reinterpret_cast<const OiioModule* (*)()>(dlsym(handle, kOiioModuleEntry)) : nullptr;
         if (entry) {
-            loaded.module = entry();
+            loaded.module = entry();  // the handle stays open for the process's life
             return loaded;
         }
+        if (handle) dlclose(handle);
         loaded.failure = file.string() + (why ? ": " + std::string(why) : ": no " + std::string(kOiioModuleEntry) +
                                                                               " (a module of another vri build)");
         return loaded;
