@@ -114,7 +114,8 @@ Image readExrFile(const fs::path& path) {
         const std::size_t yStride = xStride * std::size_t(width);
         Imf::FrameBuffer frame;
         for (std::size_t c = 0; c < names.size(); ++c) {
-            char* base = reinterpret_cast<char*>(image.pixels.data() + c) - std::ptrdiff_t(window.min.x) * std::ptrdiff_t(xStride) -
+            char* base = reinterpret_cast<char*>(image.pixels.data() + c) -
+                         std::ptrdiff_t(window.min.x) * std::ptrdiff_t(xStride) -
                          std::ptrdiff_t(window.min.y) * std::ptrdiff_t(yStride);
             frame.insert(names[c], Imf::Slice(Imf::FLOAT, base, xStride, yStride));
         }

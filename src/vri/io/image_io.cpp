@@ -70,6 +70,20 @@ std::string lowercaseExtension(const fs::path& path) {
     return ext;
 }
 
+// Encodes the image in memory (a library's failure becomes "PATH: cannot write image: <why>"), then writes
+// every byte through writeTextFile's checked, atomic write.
+template <typename Encode>
+void writeEncoded(const fs::path& path, const Image& image, Encode&& encode) {
+    requireConsistent(image, path);
+    std::string bytes;
+    try {
+        bytes = encode();
+    } catch (const std::exception& e) {
+        throw Error(path.string() + ": cannot write image: " + oneLine(e.what()));
+    }
+    writeTextFile(path, bytes);
+}
+
 }  // namespace
 
 // An OpenEXR file goes to OpenEXR whatever its extension; everything else to OpenImageIO's module.
@@ -90,25 +104,12 @@ ImageMetadata readImageMetadata(const fs::path& path) {
 }
 
 void writeExr(const fs::path& path, const Image& image, const ImageMetadata& metadata) {
-    requireConsistent(image, path);
-    std::string bytes;
-    try {
-        bytes = detail::encodeExr(image, metadata);
-    } catch (const std::exception& e) {
-        throw Error(path.string() + ": cannot write image: " + oneLine(e.what()));
-    }
-    writeTextFile(path, bytes);
+    writeEncoded(path, image, [&] { return detail::encodeExr(image, metadata); });
 }
 
 void writePng(const fs::path& path, const Image& image, const PngOptions& options) {
-    requireConsistent(image, path);
-    std::string bytes;
-    try {
-        bytes = detail::encodePngRgb8(image.width, image.height, previewRgb8(image, options));
-    } catch (const std::exception& e) {
-        throw Error(path.string() + ": cannot write image: " + oneLine(e.what()));
-    }
-    writeTextFile(path, bytes);
+    writeEncoded(path, image,
+                 [&] { return detail::encodePngRgb8(image.width, image.height, previewRgb8(image, options)); });
 }
 
 void writeImage(const fs::path& path, const Image& image) {
