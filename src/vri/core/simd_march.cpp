@@ -445,14 +445,21 @@ private:
     HWY_ALIGN float du_[3][kBatch];
 };
 
-// The lanes' rays, structure of arrays; a lane without a ray has count 0.
+// The lanes' rays as start() loads them, structure of arrays; a lane without a ray has count 0. The
+// march keeps a packet's rays and sums in registers and stores the sums here only for finish().
 struct Lanes {
     HWY_ALIGN float tStart[kMaxLanes], tIncr[kMaxLanes];
-    HWY_ALIGN float entry[3][kMaxLanes], du[3][kMaxLanes], dx[kMaxLanes], samplesPerVoxel[3][kMaxLanes];
+    HWY_ALIGN float entry[3][kMaxLanes], du[3][kMaxLanes], dx[kMaxLanes];
     HWY_ALIGN float r[kMaxLanes], g[kMaxLanes], b[kMaxLanes], transparency[kMaxLanes];
     HWY_ALIGN float terminateBelow[kMaxLanes];  // the transparency that ends the ray (early_termination.h)
     HWY_ALIGN std::int32_t k[kMaxLanes], count[kMaxLanes], finished[kMaxLanes];
     int pixel[kMaxLanes];
+};
+
+// A packet's rays in registers: constant while the packet marches.
+struct PacketRays {
+    VF tStart, tIncr, entry[3], du[3], dx, terminateBelow;
+    VF samplesPerVoxel[3];  // along each axis, for the jumps over empty space; +inf where a ray does not move
 };
 
 // The gathers wait on memory more than on arithmetic: a packet entering the next z slice of the volume
@@ -462,14 +469,14 @@ struct Lanes {
 // changes no value. Measured on Bonsai (AVX3, CPU time in marchTile): -20 % at h = 0.5, -5 to -15 % at
 // h = 0.25 and 0.1.
 template <class T>
-HWY_INLINE void prefetchAhead(const PacketScene& sc, VF t, const VF (&du)[3], const Lanes& lanes) {
+HWY_INLINE void prefetchAhead(const PacketScene& sc, VF t, const PacketRays& rays) {
     const DF df;
     const DI di;
     const GridSamplerLayout<float>& g = sc.layout;
-    const VF ahead = hn::Add(t, hn::Mul(hn::Set(df, sc.prefetchSamples), hn::Load(df, lanes.tIncr)));
+    const VF ahead = hn::Add(t, hn::Mul(hn::Set(df, sc.prefetchSamples), rays.tIncr));
     VI base = hn::Zero(di);
     for (int a = 0; a < 3; ++a) {
-        const VF u = hn::Add(hn::Load(df, lanes.entry[a]), hn::Mul(ahead, du[a]));
+        const VF u = hn::Add(rays.entry[a], hn::Mul(ahead, rays.du[a]));
         const VF x = hn::Sub(hn::Mul(u, hn::Set(df, g.scale[a])), hn::Set(df, g.offset[a]));
         const VF c = hn::Min(hn::Max(x, hn::Zero(df)), hn::Set(df, g.maxCoord[a]));
         const VI i = hn::Max(hn::Min(hn::ConvertTo(di, c), hn::Set(di, g.maxBase[a])), hn::Zero(di));
@@ -496,15 +503,15 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     const VectorTransferFunction tf(sc);
     const int width = x1 - x0;
     PacketOrder order(width, y1 - y0, n);
-    RayBatch rays(sc);
+    RayBatch batch(sc);
     Lanes L{};
 
     // Loads the next pixel whose ray has samples into `lane`; leaves it without a ray (count 0) when
     // the tile has none left.
     const auto start = [&](std::size_t lane) {
         L.k[lane] = L.count[lane] = 0;
-        PixelSamples ray;
-        while (rays.next(order, x0, y0, width, ray)) {
+        PixelSamples ray{};
+        while (batch.next(order, x0, y0, width, ray)) {
             if (!ray.hit) continue;
             if (ray.worldLength > 0) ++counts.raysHit;
             // No sample: the pixel keeps the image's zeros, which is what the scalar path writes.
@@ -519,11 +526,10 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             }
             L.dx[lane] = ray.dx;
             L.terminateBelow[lane] = sc.termination.threshold<float>(ray.dx, ray.schedule.count);
-            L.r[lane] = L.g[lane] = L.b[lane] = 0;
-            L.transparency[lane] = 1;
             return;
         }
     };
+    // Writes the pixel of `lane` from L's sums and k.
     const auto finish = [&](std::size_t lane) {
         float* out = &image.at(x0 + L.pixel[lane] % width, y0 + L.pixel[lane] / width, 0);
         out[0] = L.r[lane];
@@ -533,13 +539,6 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         counts.samplesPlaced += static_cast<std::uint64_t>(L.k[lane]);
         if (L.k[lane] < L.count[lane])
             counts.terminated(sc.termination.leftOut(L.transparency[lane], L.dx[lane], L.count[lane]));
-        L.k[lane] = L.count[lane] = 0;
-    };
-
-    const auto finishLanes = [&](MF done) {
-        hn::Store(hn::VecFromMask(di, hn::RebindMask(di, done)), di, L.finished);
-        for (std::size_t lane = 0; lane < n; ++lane)
-            if (L.finished[lane]) finish(lane);
     };
 
     // A packet is the next n pixels with samples in PacketOrder; it ends when its last ray does.
@@ -547,104 +546,111 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     // cross the same bricks, so a packet's lanes jump over empty space and evaluate together.)
     VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);  // the distances of the bricks last gathered
     int sincePrefetch = sc.prefetchEvery;  // steps since prefetchAhead() last ran
+    std::uint64_t evaluated = 0;
     for (;;) {
-        VI k = hn::Load(di, L.k), count = hn::Load(di, L.count);
+        for (std::size_t lane = 0; lane < n; ++lane)
+            start(lane);
+        VI count = hn::Load(di, L.count), k = hn::Zero(di);
         MF active = hn::RebindMask(df, hn::Lt(k, count));
-        if (hn::AllFalse(df, active)) {
-            for (std::size_t lane = 0; lane < n; ++lane)
-                start(lane);
-            k = hn::Load(di, L.k);
-            count = hn::Load(di, L.count);
-            active = hn::RebindMask(df, hn::Lt(k, count));
-            if (hn::AllFalse(df, active)) break;
-            // Samples per voxel along each axis, for the jumps over empty space (samplesInEmptyCube:
-            // an estimate, so float suffices); +inf along an axis a ray does not move on.
-            const VF tIncr = hn::Load(df, L.tIncr);
-            for (int a = 0; a < 3; ++a) {
-                const VF perVoxel = hn::Mul(hn::Load(df, L.du[a]), hn::Set(df, sc.layout.scale[a]));
-                const VF step = hn::Abs(hn::Mul(perVoxel, tIncr));
-                hn::Store(hn::Div(hn::Set(df, 1.f), step), df, L.samplesPerVoxel[a]);
-            }
+        if (hn::AllFalse(df, active)) break;
+        PacketRays rays;
+        rays.tStart = hn::Load(df, L.tStart);
+        rays.tIncr = hn::Load(df, L.tIncr);
+        rays.dx = hn::Load(df, L.dx);
+        rays.terminateBelow = hn::Load(df, L.terminateBelow);
+        for (int a = 0; a < 3; ++a) {
+            rays.entry[a] = hn::Load(df, L.entry[a]);
+            rays.du[a] = hn::Load(df, L.du[a]);
+            // Samples per voxel (samplesInEmptyCube: an estimate, so float suffices).
+            const VF perVoxel = hn::Mul(rays.du[a], hn::Set(df, sc.layout.scale[a]));
+            rays.samplesPerVoxel[a] = hn::Div(hn::Set(df, 1.f), hn::Abs(hn::Mul(perVoxel, rays.tIncr)));
         }
-        const MF started = active;  // the lanes with a ray at this step
-        VF du[3];
-        for (int a = 0; a < 3; ++a)
-            du[a] = hn::Load(df, L.du[a]);
-        VF t;
-        Stencil stencil;
-        const auto place = [&] {
-            t = hn::Add(hn::Load(df, L.tStart), hn::Mul(hn::ConvertTo(df, k), hn::Load(df, L.tIncr)));
-            VF u[3];
-            for (int a = 0; a < 3; ++a)
-                u[a] = hn::Add(hn::Load(df, L.entry[a]), hn::Mul(t, du[a]));
-            stencil = locate(sc, u, active);
-        };
-        place();
-        // A sample whose stencil lies in an empty brick has a transfer-function value of exactly 0
-        // (occupancy_grid.h) and would add nothing: it is not evaluated. Each lane on such a sample
-        // jumps over the samples that certainly follow it in empty bricks, and again, until every
-        // lane sits on a sample to evaluate or has passed its last: the evaluation below, the costly
-        // part of a step, then runs on all lanes with a ray instead of on those not jumping.
-        if (sc.emptyDistance) {
-            for (;;) {
-                // The lanes often stay in their bricks from one sample to the next (at h = 0.1, about
-                // two times in three for all 16 lanes): then the distances need no new gather.
-                if (!hn::AllTrue(di, hn::Eq(stencil.brick, lastBrick))) {
-                    lastBrick = stencil.brick;
-                    lastDistance = hn::GatherIndex(di, sc.emptyDistance, stencil.brick);
+        VF r = hn::Zero(df), g = hn::Zero(df), b = hn::Zero(df), transparency = hn::Set(df, 1.f);
+        while (!hn::AllFalse(df, active)) {
+            const MF started = active;  // the lanes with a ray at this step
+            VF t;
+            Stencil stencil;
+            const auto place = [&] {
+                t = hn::Add(rays.tStart, hn::Mul(hn::ConvertTo(df, k), rays.tIncr));
+                VF u[3];
+                for (int a = 0; a < 3; ++a)
+                    u[a] = hn::Add(rays.entry[a], hn::Mul(t, rays.du[a]));
+                stencil = locate(sc, u, active);
+            };
+            place();
+            // A sample whose stencil lies in an empty brick has a transfer-function value of exactly 0
+            // (occupancy_grid.h) and would add nothing: it is not evaluated. Each lane on such a sample
+            // jumps over the samples that certainly follow it in empty bricks, and again, until every
+            // lane sits on a sample to evaluate or has passed its last: the evaluation below, the costly
+            // part of a step, then runs on all lanes with a ray instead of on those not jumping.
+            if (sc.emptyDistance) {
+                for (;;) {
+                    // The lanes often stay in their bricks from one sample to the next (at h = 0.1, about
+                    // two times in three for all 16 lanes): then the distances need no new gather.
+                    if (!hn::AllTrue(di, hn::Eq(stencil.brick, lastBrick))) {
+                        lastBrick = stencil.brick;
+                        lastDistance = hn::GatherIndex(di, sc.emptyDistance, stencil.brick);
+                    }
+                    const MF empty = hn::And(active, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
+                    if (hn::AllFalse(df, empty)) break;
+                    const VI jump = hn::Add(
+                        samplesInEmptyCube(stencil, lastDistance, rays.du, rays.samplesPerVoxel, sc.jumpMargin),
+                        hn::Set(di, 1));
+                    k = hn::Min(hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, empty), jump)), count);
+                    active = hn::RebindMask(df, hn::Lt(k, count));
+                    if (hn::AllFalse(df, active)) break;
+                    place();
                 }
-                const MF empty = hn::And(active, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
-                if (hn::AllFalse(df, empty)) break;
-                const VF samplesPerVoxel[3] = {hn::Load(df, L.samplesPerVoxel[0]), hn::Load(df, L.samplesPerVoxel[1]),
-                                               hn::Load(df, L.samplesPerVoxel[2])};
-                const VI jump = hn::Add(samplesInEmptyCube(stencil, lastDistance, du, samplesPerVoxel, sc.jumpMargin),
-                                        hn::Set(di, 1));
-                k = hn::Min(hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, empty), jump)), count);
+            }
+            MF done = hn::AndNot(active, started);  // lanes whose rays ended in empty space
+            if (!hn::AllFalse(df, active)) {
+                if (++sincePrefetch >= sc.prefetchEvery) {
+                    prefetchAhead<T>(sc, t, rays);
+                    sincePrefetch = 0;
+                }
+                VF v[4];  // r, g, b, tau
+                tf(interpolate<T>(sc, stencil), v);
+                const VF tau = v[3];
+                // RayAccumulator::add: a sample without extinction adds nothing under colour x extinction.
+                const MF contributes = Emission == EmissionModel::ColourTimesExtinction
+                                           ? hn::And(active, hn::Ne(tau, hn::Zero(df)))
+                                           : active;
+                const VF exponent = hn::Mul(hn::Neg(tau), rays.dx);
+                const VF attenuation = exp_kernel::exp(ops, exponent);
+                VF weight;
+                if constexpr (Method == Integrator::Riemann) {
+                    weight = Emission == EmissionModel::ColourTimesExtinction ? hn::Mul(tau, rays.dx) : rays.dx;
+                } else {
+                    const VF alpha = hn::Neg(exp_kernel::expm1(ops, exponent));
+                    weight = Emission == EmissionModel::ColourTimesExtinction
+                                 ? alpha
+                                 : hn::IfThenElse(hn::Gt(tau, hn::Zero(df)), hn::Div(alpha, tau), rays.dx);
+                }
+                const VF w = hn::Mul(transparency, weight);
+                r = hn::IfThenElse(contributes, hn::Add(r, hn::Mul(w, v[0])), r);
+                g = hn::IfThenElse(contributes, hn::Add(g, hn::Mul(w, v[1])), g);
+                b = hn::IfThenElse(contributes, hn::Add(b, hn::Mul(w, v[2])), b);
+                transparency = hn::IfThenElse(contributes, hn::Mul(transparency, attenuation), transparency);
+                evaluated += hn::CountTrue(df, active);
+                k = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, active), hn::Set(di, 1)));
+                done = hn::Or(done, hn::And(active, hn::Or(hn::RebindMask(df, hn::Not(hn::Lt(k, count))),
+                                                           hn::Lt(transparency, rays.terminateBelow))));
+            }
+            if (!hn::AllFalse(df, done)) {
+                hn::Store(r, df, L.r);
+                hn::Store(g, df, L.g);
+                hn::Store(b, df, L.b);
+                hn::Store(transparency, df, L.transparency);
+                hn::Store(k, di, L.k);
+                hn::Store(hn::VecFromMask(di, hn::RebindMask(di, done)), di, L.finished);
+                for (std::size_t lane = 0; lane < n; ++lane)
+                    if (L.finished[lane]) finish(lane);
+                count = hn::IfThenZeroElse(hn::RebindMask(di, done), count);  // a finished lane has no ray
                 active = hn::RebindMask(df, hn::Lt(k, count));
-                if (hn::AllFalse(df, active)) break;
-                place();
             }
         }
-        MF done = hn::AndNot(active, started);  // lanes whose rays ended in empty space
-        if (!hn::AllFalse(df, active)) {
-            if (++sincePrefetch >= sc.prefetchEvery) {
-                prefetchAhead<T>(sc, t, du, L);
-                sincePrefetch = 0;
-            }
-            VF v[4];  // r, g, b, tau
-            tf(interpolate<T>(sc, stencil), v);
-            const VF tau = v[3], dx = hn::Load(df, L.dx);
-            // RayAccumulator::add: a sample without extinction adds nothing under colour x extinction.
-            const MF contributes = Emission == EmissionModel::ColourTimesExtinction
-                                       ? hn::And(active, hn::Ne(tau, hn::Zero(df)))
-                                       : active;
-            const VF exponent = hn::Mul(hn::Neg(tau), dx);
-            const VF attenuation = exp_kernel::exp(ops, exponent);
-            VF weight;
-            if constexpr (Method == Integrator::Riemann) {
-                weight = Emission == EmissionModel::ColourTimesExtinction ? hn::Mul(tau, dx) : dx;
-            } else {
-                const VF alpha = hn::Neg(exp_kernel::expm1(ops, exponent));
-                weight = Emission == EmissionModel::ColourTimesExtinction
-                             ? alpha
-                             : hn::IfThenElse(hn::Gt(tau, hn::Zero(df)), hn::Div(alpha, tau), dx);
-            }
-            const VF transparency = hn::Load(df, L.transparency);
-            const VF w = hn::Mul(transparency, weight);
-            const VF r = hn::Load(df, L.r), g = hn::Load(df, L.g), b = hn::Load(df, L.b);
-            hn::Store(hn::IfThenElse(contributes, hn::Add(r, hn::Mul(w, v[0])), r), df, L.r);
-            hn::Store(hn::IfThenElse(contributes, hn::Add(g, hn::Mul(w, v[1])), g), df, L.g);
-            hn::Store(hn::IfThenElse(contributes, hn::Add(b, hn::Mul(w, v[2])), b), df, L.b);
-            const VF after = hn::IfThenElse(contributes, hn::Mul(transparency, attenuation), transparency);
-            hn::Store(after, df, L.transparency);
-            counts.samplesEvaluated += hn::CountTrue(df, active);
-            k = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, active), hn::Set(di, 1)));
-            done = hn::Or(done, hn::And(active, hn::Or(hn::RebindMask(df, hn::Not(hn::Lt(k, count))),
-                                                       hn::Lt(after, hn::Load(df, L.terminateBelow)))));
-        }
-        hn::Store(k, di, L.k);
-        if (!hn::AllFalse(df, done)) finishLanes(done);
     }
+    counts.samplesEvaluated += evaluated;
 }
 
 template <class T>
