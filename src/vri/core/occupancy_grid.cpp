@@ -35,6 +35,21 @@ private:
     const TransferFunction& tf_;
 };
 
+// Per block of `size` voxels (x fastest), 1 when isEmpty holds for the range of its voxels, the first of
+// the next block and `margin` more on each side: blockRanges()' blocks [b B - margin, (b + 1) B + margin].
+std::vector<std::uint8_t> emptyBlocks(const Volume& volume, glm::ivec3 blocks, int size, int margin,
+                                      const EmptinessTest& isEmpty) {
+    std::vector<std::uint8_t> empty(static_cast<std::size_t>(blocks.x) * blocks.y * blocks.z);
+    dispatchVoxelType(volume.type, [&](auto t) {
+        using T = decltype(t);
+        const BlockRanges<T> r = blockRanges(volume.data<T>(), volume.dims, blocks, size, margin, margin);
+        tbb::parallel_for(std::size_t(0), empty.size(), [&](std::size_t i) {
+            empty[i] = isEmpty(static_cast<double>(r.lo[i]), static_cast<double>(r.hi[i]));
+        });
+    });
+    return empty;
+}
+
 // OccupancyGrid::emptyDistances() of the flags `empty` of a grid of `bricks`. The distance
 // max(|dx|, |dy|, |dz|) to the nearest non-empty brick is separable: the distance along x within
 // each row, then the nearest of those along y measured as max(|dy|, that), then the same along z.
@@ -45,21 +60,23 @@ std::vector<std::int32_t> chebyshevDistances(const std::vector<std::uint8_t>& em
         d[i] = empty[i] ? cap : 0;
     const std::size_t stride[3] = {1, static_cast<std::size_t>(bricks.x),
                                    static_cast<std::size_t>(bricks.x) * static_cast<std::size_t>(bricks.y)};
-    std::vector<std::int32_t> line;
     for (int a = 0; a < 3; ++a) {
         const int n = bricks[a];
-        line.resize(static_cast<std::size_t>(n));
-        for (std::size_t start = 0; start < d.size(); ++start) {
-            if ((start / stride[a]) % static_cast<std::size_t>(n) != 0) continue;  // not the first of a line
+        // The lines along axis a start at the bricks whose index along a is 0: `lines` of them, line l
+        // at (l % stride) + (l / stride) * stride * n.
+        const std::size_t lines = d.size() / static_cast<std::size_t>(n);
+        tbb::parallel_for(std::size_t(0), lines, [&, n, s = stride[a]](std::size_t l) {
+            const std::size_t start = l % s + l / s * s * static_cast<std::size_t>(n);
+            std::vector<std::int32_t> line(static_cast<std::size_t>(n));
             for (int i = 0; i < n; ++i)
-                line[static_cast<std::size_t>(i)] = d[start + static_cast<std::size_t>(i) * stride[a]];
+                line[static_cast<std::size_t>(i)] = d[start + static_cast<std::size_t>(i) * s];
             for (int i = 0; i < n; ++i) {
                 std::int32_t best = line[static_cast<std::size_t>(i)];
                 for (int j = std::max(0, i - best + 1); j < std::min(n, i + best); ++j)
                     best = std::min(best, std::max(std::abs(i - j), line[static_cast<std::size_t>(j)]));
-                d[start + static_cast<std::size_t>(i) * stride[a]] = best;
+                d[start + static_cast<std::size_t>(i) * s] = best;
             }
-        }
+        });
     }
     return d;
 }
@@ -76,14 +93,13 @@ OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const Transfe
     : OccupancyGrid(volume.dims) {
     const EmptinessTest isEmpty(volume.normalisationRange(), tf);
     // Each brick's voxels plus a one-voxel margin on every side.
-    const auto [lo, hi] = dispatchVoxelType(volume.type, [&](auto t) {
-        using T = decltype(t);
-        const BlockRanges<T> r = blockRanges(volume.data<T>(), dims_, bricks_, kBrick, 1, 1);
-        return std::pair<std::vector<double>, std::vector<double>>{std::vector<double>(r.lo.begin(), r.lo.end()),
-                                                                   std::vector<double>(r.hi.begin(), r.hi.end())};
-    });
-    tbb::parallel_for(std::size_t(0), empty_.size(), [&](std::size_t i) { empty_[i] = isEmpty(lo[i], hi[i]); });
+    empty_ = emptyBlocks(volume, bricks_, kBrick, 1, isEmpty);
     distance_ = chebyshevDistances(empty_, bricks_, kMaxDistance);
+    // Each stencil brick's voxels and the next one's first (the stencils' far corners).
+    const int size = 1 << kStencilBrickShift;
+    for (int a = 0; a < 3; ++a) stencilBricks_[a] = (dims_[a] - 1) / size + 1;
+    stencilDistance_ =
+        chebyshevDistances(emptyBlocks(volume, stencilBricks_, size, 0, isEmpty), stencilBricks_, kMaxStencilDistance);
 }
 
 OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const TransferFunction& tf)

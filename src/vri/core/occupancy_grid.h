@@ -73,6 +73,19 @@ public:
     static constexpr std::int32_t kMaxDistance = 16;
     const std::vector<std::int32_t>& emptyDistances() const { return distance_; }
 
+    // A finer grid for the packet engine (simd_march.cpp), which knows the trilinear stencil of every
+    // sample it evaluates: stencil brick m of an axis holds the stencils whose lowest voxel lies in
+    // [4 m, 4 m + 4); it is empty when the TF gives nothing to the voxels [4 m, 4 m + 4], without the
+    // margin above, which covers the scalar walk's positions (a stencil is tested as it is evaluated;
+    // the value's rounding is padded as above). On Bonsai 64 % of the samples that the 8^3 bricks let
+    // through have no extinction; these bricks let a third fewer through. Distances as emptyDistances(),
+    // up to kMaxStencilDistance bricks (128 voxels, as far as the coarse bricks reach). Empty for a
+    // sparse volume, which the packet engine does not read.
+    static constexpr int kStencilBrickShift = 2;
+    static constexpr std::int32_t kMaxStencilDistance = 32;
+    glm::ivec3 stencilBricks() const { return stencilBricks_; }
+    const std::vector<std::int32_t>& stencilDistances() const { return stencilDistance_; }
+
 private:
     explicit OccupancyGrid(glm::ivec3 dims);  // the bricks of dims, none marked empty
 
@@ -81,6 +94,8 @@ private:
     glm::ivec3 bricks_;
     std::vector<std::uint8_t> empty_;
     std::vector<std::int32_t> distance_;
+    glm::ivec3 stencilBricks_{0};
+    std::vector<std::int32_t> stencilDistance_;
 };
 
 }  // namespace vri

@@ -67,8 +67,9 @@ struct PacketScene {
     static constexpr double kPrefetchVoxels = 2.0, kPrefetchEveryVoxels = 0.5;
     float prefetchSamples;
     int prefetchEvery;
-    // Per brick, its distance to the nearest brick that is not empty (OccupancyGrid::emptyDistances(),
-    // 0 when not empty), 32-bit words for gathers; null when skipping is off.
+    // Per stencil brick, its distance to the nearest stencil brick that is not empty
+    // (OccupancyGrid::stencilDistances(), 0 when not empty), 32-bit words for gathers; null when
+    // skipping is off.
     const std::int32_t* emptyDistance = nullptr;
     std::int32_t brickStride[3] = {0, 0, 0};
     float jumpMargin = 0;  // voxels: far more than the rounding of a sample's position (see samplesInEmptyCube)
