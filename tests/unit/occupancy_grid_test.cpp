@@ -1,9 +1,12 @@
-// OccupancyGrid::emptyDistances(): each brick's Chebyshev distance in bricks to the nearest brick that
+// OccupancyGrid::emptyDistances() and stencilDistances(): each brick's Chebyshev distance in bricks to the
 // is not empty, against a search over all bricks.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <vector>
+
+#include <glm/vector_relational.hpp>
 
 #include "vri/core/occupancy_grid.h"
 
@@ -45,4 +48,43 @@ TEST_CASE("the empty-space distances are the Chebyshev distances to the nearest 
                              TransferFunction({{0.0, 0, 0, 0, 0}, {1.0, 0, 0, 0, 0}}, EmissionModel::Colour));
     CHECK(std::all_of(none.emptyDistances().begin(), none.emptyDistances().end(),
                       [](std::int32_t d) { return d == OccupancyGrid::kMaxDistance; }));
+}
+
+TEST_CASE("the stencil bricks hold the stencils by their lowest voxel, without a margin, and their distances") {
+    // Three visible voxels in invisible ones: stencil brick m of an axis is visible exactly when one of
+    // them lies in [4 m, 4 m + 4] along every axis (a voxel on a face shows in two bricks' stencils),
+    // and each brick's distance is the Chebyshev distance to the nearest visible one (the cap, 32, is
+    // not reached here: emptyDistances()' test covers capping).
+    Volume v(glm::ivec3(150, 90, 70), VoxelType::UInt8);
+    const std::vector<glm::ivec3> visible = {glm::ivec3(3, 4, 5), glm::ivec3(60, 84, 30), glm::ivec3(66, 40, 69)};
+    for (const glm::ivec3 p : visible)
+        v.data<std::uint8_t>()[v.index(p.x, p.y, p.z)] = 200;
+    const TransferFunction tf({{0.0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}, {1.0, 1, 1, 1, 1}},
+                              EmissionModel::ColourTimesExtinction);
+    const OccupancyGrid grid(v, GridConvention::CellCentred, tf);
+    const glm::ivec3 b = grid.stencilBricks();
+    REQUIRE(b == glm::ivec3(38, 23, 18));
+    const auto& distance = grid.stencilDistances();
+    REQUIRE(distance.size() == static_cast<std::size_t>(b.x) * b.y * b.z);
+    std::vector<glm::ivec3> shown;  // the visible bricks, by brute force
+    for (int z = 0; z < b.z; ++z)
+        for (int y = 0; y < b.y; ++y)
+            for (int x = 0; x < b.x; ++x)
+                for (const glm::ivec3 p : visible)
+                    if (glm::all(glm::lessThanEqual(4 * glm::ivec3(x, y, z), p)) &&
+                        glm::all(glm::lessThanEqual(p, 4 * glm::ivec3(x, y, z) + 4)))
+                        shown.push_back(glm::ivec3(x, y, z));
+    CHECK(shown.size() == 2 + 4 + 2);  // y = 4, 40, 84 and x = 60 lie on faces between two bricks
+    int largest = 0;
+    for (int z = 0; z < b.z; ++z)
+        for (int y = 0; y < b.y; ++y)
+            for (int x = 0; x < b.x; ++x) {
+                int nearest = OccupancyGrid::kMaxStencilDistance;
+                for (const glm::ivec3 s : shown)
+                    nearest = std::min(nearest, std::max({std::abs(x - s.x), std::abs(y - s.y), std::abs(z - s.z)}));
+                INFO(x, " ", y, " ", z);
+                CHECK(distance[(static_cast<std::size_t>(z) * b.y + y) * b.x + x] == nearest);
+                largest = std::max(largest, nearest);
+            }
+    CHECK(largest >= 16);  // not a small test
 }

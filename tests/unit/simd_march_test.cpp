@@ -225,13 +225,15 @@ TEST_CASE("the packet engine's jumps across empty space skip no visible sample")
                 INFO(integratorName(integrator), " ", placementName(placement), " rate ", rate);
                 CHECK(sameBits(packets, all));
                 CHECK(skipped.samplesEvaluated * 50 < marched.samplesEvaluated);  // it did skip
-                // The scalar path skips by the brick of a sample's position, the packets by that of its
-                // stencil: near a brick's face they may disagree on an invisible sample, never on more.
+                // The scalar path skips by the 8^3 brick of a sample's position (with a margin), the
+                // packets by the 4^3 stencil brick of its stencil: they evaluate fewer, here far fewer
+                // (the specks fill a few of each). Near a brick's face the two may disagree on an
+                // invisible sample the other skips, never on more.
                 opt.simd = false;
                 RenderStats scalar;
                 render(scene, camera, opt, &scalar);
                 CHECK(skipped.samplesEvaluated <= scalar.samplesEvaluated + 2);
-                CHECK(scalar.samplesEvaluated <= skipped.samplesEvaluated + 2);
+                CHECK(skipped.samplesEvaluated * 2 < scalar.samplesEvaluated);
             }
 }
 
