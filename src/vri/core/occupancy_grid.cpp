@@ -98,8 +98,11 @@ OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const Transfe
     // Each stencil brick's voxels and the next one's first (the stencils' far corners).
     const int size = 1 << kStencilBrickShift;
     for (int a = 0; a < 3; ++a) stencilBricks_[a] = (dims_[a] - 1) / size + 1;
-    stencilDistance_ =
+    const std::vector<std::int32_t> d =
         chebyshevDistances(emptyBlocks(volume, stencilBricks_, size, 0, isEmpty), stencilBricks_, kMaxStencilDistance);
+    static_assert(kMaxStencilDistance <= 255);
+    stencilDistance_.assign(d.begin(), d.end());
+    stencilDistance_.resize(d.size() + 3, 0);
 }
 
 OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const TransferFunction& tf)

@@ -79,12 +79,13 @@ public:
     // margin above, which covers the scalar walk's positions (a stencil is tested as it is evaluated;
     // the value's rounding is padded as above). On Bonsai 64 % of the samples that the 8^3 bricks let
     // through have no extinction; these bricks let a third fewer through. Distances as emptyDistances(),
-    // up to kMaxStencilDistance bricks (128 voxels, as far as the coarse bricks reach). Empty for a
-    // sparse volume, which the packet engine does not read.
+    // up to kMaxStencilDistance bricks (128 voxels, as far as the coarse bricks reach), a byte each (a
+    // quarter of the cache that words would take), then 3 bytes of padding so that a 32-bit load at
+    // any brick stays inside. Empty for a sparse volume, which the packet engine does not read.
     static constexpr int kStencilBrickShift = 2;
     static constexpr std::int32_t kMaxStencilDistance = 32;
     glm::ivec3 stencilBricks() const { return stencilBricks_; }
-    const std::vector<std::int32_t>& stencilDistances() const { return stencilDistance_; }
+    const std::vector<std::uint8_t>& stencilDistances() const { return stencilDistance_; }
 
 private:
     explicit OccupancyGrid(glm::ivec3 dims);  // the bricks of dims, none marked empty
@@ -95,7 +96,7 @@ private:
     std::vector<std::uint8_t> empty_;
     std::vector<std::int32_t> distance_;
     glm::ivec3 stencilBricks_{0};
-    std::vector<std::int32_t> stencilDistance_;
+    std::vector<std::uint8_t> stencilDistance_;
 };
 
 }  // namespace vri

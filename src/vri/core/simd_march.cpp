@@ -589,7 +589,10 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                     // seven times in ten for all 16 lanes): then the distances need no new gather.
                     if (!hn::AllTrue(di, hn::Eq(stencil.brick, lastBrick))) {
                         lastBrick = stencil.brick;
-                        lastDistance = hn::GatherIndex(di, sc.emptyDistance, stencil.brick);
+                        // The word at each brick's byte; its low byte is the distance.
+                        const VI word = hn::GatherOffset(
+                            di, reinterpret_cast<const std::int32_t*>(sc.emptyDistance), stencil.brick);
+                        lastDistance = hn::And(word, hn::Set(di, 0xFF));
                     }
                     const MF empty = hn::And(active, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
                     if (hn::AllFalse(df, empty)) break;

@@ -68,9 +68,9 @@ struct PacketScene {
     float prefetchSamples;
     int prefetchEvery;
     // Per stencil brick, its distance to the nearest stencil brick that is not empty
-    // (OccupancyGrid::stencilDistances(), 0 when not empty), 32-bit words for gathers; null when
-    // skipping is off.
-    const std::int32_t* emptyDistance = nullptr;
+    // (OccupancyGrid::stencilDistances(), 0 when not empty), a byte each, padded for 32-bit loads; null
+    // when skipping is off.
+    const std::uint8_t* emptyDistance = nullptr;
     std::int32_t brickStride[3] = {0, 0, 0};
     float jumpMargin = 0;  // voxels: far more than the rounding of a sample's position (see samplesInEmptyCube)
     // The transfer function as TransferFunction::operator()<float> reads it: the points' s, and per
