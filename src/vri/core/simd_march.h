@@ -6,9 +6,9 @@
 // RayAccumulator's sums with the shared exponential of float_exp.h), so the image is bitwise equal to
 // `--simd off` on every target. A packet holds a block of neighbouring pixels of a tile (their rays
 // clipped and placed in vectors too); a lane whose ray has ended is masked until the packet's last ray
-// ends. Empty space is skipped per sample, by the brick of its trilinear stencil: a lane in an empty
-// brick jumps to the samples leaving the cube of empty bricks around it, until every lane sits on a
-// sample to evaluate, and then all evaluate together.
+// ends. Empty space is skipped per sample, by the 4^3 brick of its trilinear stencil
+// (OccupancyGrid::stencilDistances()): in each step a lane in an empty brick jumps to the samples
+// leaving the cube of empty bricks around it, while the others evaluate their samples.
 #include <algorithm>
 #include <cstdint>
 #include <string>
