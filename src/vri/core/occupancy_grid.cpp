@@ -50,11 +50,13 @@ std::vector<std::uint8_t> emptyBlocks(const Volume& volume, glm::ivec3 blocks, i
     return empty;
 }
 
-// OccupancyGrid::emptyDistances() of the flags `empty` of a grid of `bricks`. The distance
-// max(|dx|, |dy|, |dz|) to the nearest non-empty brick is separable: the distance along x within
-// each row, then the nearest of those along y measured as max(|dy|, that), then the same along z.
+// OccupancyGrid::emptyDistances() of the flags `empty` of a grid of `bricks` (ahead = 0 along every
+// axis), or stencilDistances() of one octant: along an axis with ahead = +1 (-1) only the bricks of
+// higher (lower) index count. The distance max(|dx|, |dy|, |dz|) to the nearest non-empty brick is
+// separable: the distance along x within each row, then the nearest of those along y measured as
+// max(|dy|, that), then the same along z.
 std::vector<std::int32_t> chebyshevDistances(const std::vector<std::uint8_t>& empty, glm::ivec3 bricks,
-                                             std::int32_t cap) {
+                                             std::int32_t cap, glm::ivec3 ahead = glm::ivec3(0)) {
     std::vector<std::int32_t> d(empty.size());
     for (std::size_t i = 0; i < d.size(); ++i)
         d[i] = empty[i] ? cap : 0;
@@ -65,14 +67,15 @@ std::vector<std::int32_t> chebyshevDistances(const std::vector<std::uint8_t>& em
         // The lines along axis a start at the bricks whose index along a is 0: `lines` of them, line l
         // at (l % stride) + (l / stride) * stride * n.
         const std::size_t lines = d.size() / static_cast<std::size_t>(n);
-        tbb::parallel_for(std::size_t(0), lines, [&, n, s = stride[a]](std::size_t l) {
+        tbb::parallel_for(std::size_t(0), lines, [&, n, s = stride[a], look = ahead[a]](std::size_t l) {
             const std::size_t start = l % s + l / s * s * static_cast<std::size_t>(n);
             std::vector<std::int32_t> line(static_cast<std::size_t>(n));
             for (int i = 0; i < n; ++i)
                 line[static_cast<std::size_t>(i)] = d[start + static_cast<std::size_t>(i) * s];
             for (int i = 0; i < n; ++i) {
                 std::int32_t best = line[static_cast<std::size_t>(i)];
-                for (int j = std::max(0, i - best + 1); j < std::min(n, i + best); ++j)
+                for (int j = look > 0 ? i : std::max(0, i - best + 1); j < (look < 0 ? i + 1 : std::min(n, i + best));
+                     ++j)
                     best = std::min(best, std::max(std::abs(i - j), line[static_cast<std::size_t>(j)]));
                 d[start + static_cast<std::size_t>(i) * s] = best;
             }
@@ -98,11 +101,15 @@ OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const Transfe
     // Each stencil brick's voxels and the next one's first (the stencils' far corners).
     const int size = 1 << kStencilBrickShift;
     for (int a = 0; a < 3; ++a) stencilBricks_[a] = (dims_[a] - 1) / size + 1;
-    const std::vector<std::int32_t> d =
-        chebyshevDistances(emptyBlocks(volume, stencilBricks_, size, 0, isEmpty), stencilBricks_, kMaxStencilDistance);
+    const std::vector<std::uint8_t> stencilEmpty = emptyBlocks(volume, stencilBricks_, size, 0, isEmpty);
     static_assert(kMaxStencilDistance <= 255);
-    stencilDistance_.assign(d.begin(), d.end());
-    stencilDistance_.resize(d.size() + 3, 0);
+    const std::size_t count = stencilEmpty.size();
+    stencilDistance_.assign(8 * count + 3, 0);
+    tbb::parallel_for(0, 8, [&](int octant) {
+        const glm::ivec3 ahead(octant & 1 ? -1 : 1, octant & 2 ? -1 : 1, octant & 4 ? -1 : 1);
+        const std::vector<std::int32_t> d = chebyshevDistances(stencilEmpty, stencilBricks_, kMaxStencilDistance, ahead);
+        std::copy(d.begin(), d.end(), stencilDistance_.begin() + static_cast<std::ptrdiff_t>(octant * count));
+    });
 }
 
 OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const TransferFunction& tf)

@@ -78,10 +78,16 @@ public:
     // [4 m, 4 m + 4); it is empty when the TF gives nothing to the voxels [4 m, 4 m + 4], without the
     // margin above, which covers the scalar walk's positions (a stencil is tested as it is evaluated;
     // the value's rounding is padded as above). On Bonsai 64 % of the samples that the 8^3 bricks let
-    // through have no extinction; these bricks let a third fewer through. Distances as emptyDistances(),
-    // up to kMaxStencilDistance bricks (128 voxels, as far as the coarse bricks reach), a byte each (a
-    // quarter of the cache that words would take), then 3 bytes of padding so that a 32-bit load at
-    // any brick stays inside. Empty for a sparse volume, which the packet engine does not read.
+    // through have no extinction; these bricks let a third fewer through.
+    // A ray only goes forward, so what lies behind it does not limit its jumps: the distances are kept
+    // per octant of directions, octant o = [x < 0] + 2 [y < 0] + 4 [z < 0] of the ray's direction, as
+    // the Chebyshev distance to the nearest non-empty brick among those at or ahead of it along every
+    // axis (index >= along an axis the octant goes up, <=, down), up to kMaxStencilDistance bricks
+    // (128 voxels, as far as the coarse bricks reach): every brick from this one up to d - 1 bricks
+    // ahead along each axis is empty. A byte each (a quarter of the cache that words would take):
+    // octant o's bricks at [o N, (o + 1) N), N = the brick count, x fastest, then 3 bytes of padding so
+    // that a 32-bit load at any brick stays inside. Empty for a sparse volume, which the packet engine
+    // does not read.
     static constexpr int kStencilBrickShift = 2;
     static constexpr std::int32_t kMaxStencilDistance = 32;
     glm::ivec3 stencilBricks() const { return stencilBricks_; }

@@ -141,9 +141,12 @@ HWY_INLINE VF interpolate(const PacketScene& sc, const Stencil& st) {
 }
 
 // How many samples after the current one certainly keep their stencil in bricks known to be empty:
-// the lanes' bricks lie `distance` bricks from the nearest brick that is not empty, so every brick
-// of the cube of bricks less than that far along each axis is empty (bricks outside the grid do not
-// count: a stencil there is clamped into the grid, onto a brick of the cube). Along each axis, the
+// the lanes' bricks lie `distance` bricks from the nearest brick ahead of them that is not empty (in
+// their ray's octant), so every brick from theirs to less than that far ahead along each axis is
+// empty (bricks outside the grid do not count: a stencil there is clamped into the grid, onto a brick
+// of the cube). The stencils only move ahead: a sample's position along an axis is entry + (tStart +
+// k tIncr) du, each operation rounding monotonically, so it never decreases with k where du > 0 and
+// never increases where du < 0, and so neither do the clamp and floor of locate(). Along each axis, the
 // distance to the cube's face the ray heads for, less `margin` voxels (far more than the rounding of
 // sample positions and of this estimate, even across the whole volume), in samples
 // (`samplesPerVoxel`, +inf along an axis the ray does not move on), minus one for the rounding of
@@ -460,6 +463,7 @@ struct Lanes {
 struct PacketRays {
     VF tStart, tIncr, entry[3], du[3], dx, terminateBelow;
     VF samplesPerVoxel[3];  // along each axis, for the jumps over empty space; +inf where a ray does not move
+    VI octant;              // where the distances of the ray's octant start (OccupancyGrid::stencilDistances())
 };
 
 // The gathers wait on memory more than on arithmetic: a packet entering the next z slice of the volume
@@ -544,7 +548,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     // A packet is the next n pixels with samples in PacketOrder; it ends when its last ray does.
     // (Refilling a lane as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays
     // cross the same bricks, so a packet's lanes jump over empty space and evaluate together.)
-    VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);  // the distances of the bricks last gathered
+    VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);  // the distances last gathered, and where
     int sincePrefetch = sc.prefetchEvery;  // steps since prefetchAhead() last ran
     std::uint64_t evaluated = 0;
     for (;;) {
@@ -565,6 +569,10 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             const VF perVoxel = hn::Mul(rays.du[a], hn::Set(df, sc.layout.scale[a]));
             rays.samplesPerVoxel[a] = hn::Div(hn::Set(df, 1.f), hn::Abs(hn::Mul(perVoxel, rays.tIncr)));
         }
+        rays.octant = hn::Zero(di);
+        for (int a = 0; a < 3; ++a)
+            rays.octant = hn::IfThenElse(hn::RebindMask(di, hn::Lt(rays.du[a], hn::Zero(df))),
+                                         hn::Add(rays.octant, hn::Set(di, (1 << a) * sc.octantStride)), rays.octant);
         VF r = hn::Zero(df), g = hn::Zero(df), b = hn::Zero(df), transparency = hn::Set(df, 1.f);
         while (!hn::AllFalse(df, active)) {
             const VF t = hn::Add(rays.tStart, hn::Mul(hn::ConvertTo(df, k), rays.tIncr));
@@ -586,11 +594,12 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             if (sc.emptyDistance) {
                 // The lanes often stay in their bricks from one sample to the next (at h = 0.1 on Bonsai,
                 // seven times in ten for all 16 lanes): then the distances need no new gather.
-                if (!hn::AllTrue(di, hn::Eq(stencil.brick, lastBrick))) {
-                    lastBrick = stencil.brick;
+                const VI brick = hn::Add(stencil.brick, rays.octant);
+                if (!hn::AllTrue(di, hn::Eq(brick, lastBrick))) {
+                    lastBrick = brick;
                     // The word at each brick's byte; its low byte is the distance.
-                    const VI word = hn::GatherOffset(
-                        di, reinterpret_cast<const std::int32_t*>(sc.emptyDistance), stencil.brick);
+                    const VI word =
+                        hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(sc.emptyDistance), brick);
                     lastDistance = hn::And(word, hn::Set(di, 0xFF));
                 }
                 empty = hn::And(active, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
@@ -732,6 +741,7 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Occupan
         brickStride[0] = 1;
         brickStride[1] = b.x;
         brickStride[2] = b.x * b.y;
+        octantStride = b.x * b.y * b.z;
         const glm::ivec3 d = scene.volume->dims;
         jumpMargin = 0.01f + 1e-5f * static_cast<float>(std::max({d.x, d.y, d.z}));
     }

@@ -67,11 +67,11 @@ struct PacketScene {
     static constexpr double kPrefetchVoxels = 2.0, kPrefetchEveryVoxels = 0.5;
     float prefetchSamples;
     int prefetchEvery;
-    // Per stencil brick, its distance to the nearest stencil brick that is not empty
-    // (OccupancyGrid::stencilDistances(), 0 when not empty), a byte each, padded for 32-bit loads; null
-    // when skipping is off.
+    // Per octant of ray directions and stencil brick, its distance to the nearest stencil brick ahead
+    // that is not empty (OccupancyGrid::stencilDistances(), 0 when not empty), a byte each, padded for
+    // 32-bit loads; null when skipping is off.
     const std::uint8_t* emptyDistance = nullptr;
-    std::int32_t brickStride[3] = {0, 0, 0};
+    std::int32_t brickStride[3] = {0, 0, 0}, octantStride = 0;
     float jumpMargin = 0;  // voxels: far more than the rounding of a sample's position (see samplesInEmptyCube)
     // The transfer function as TransferFunction::operator()<float> reads it: the points' s, and per
     // segment [s_i, s_i+1) its start, width and each channel's value at the start and slope (r, g, b,
