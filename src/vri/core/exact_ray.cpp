@@ -167,6 +167,7 @@ GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std:
             }
         }
     }
+    if (bestN == 0) return {};  // no rule in reach: the adaptive quadrature
     const GaussRule& rule = gaussRule(bestN);
     const double width = 1.0 / bestK;
     for (int p = 0; p < bestK; ++p) {
