@@ -278,7 +278,7 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     for (int i = 0; i < parts; ++i) {
         const double a = ends[i], b = ends[i + 1], sa = values[i], sb = values[i + 1];
         const auto [countLo, countHi] = countAtMostAndBelow(levels_, std::min(sa, sb), std::max(sa, sb));
-        const auto first = levels_.begin() + countLo;                      // upper_bound
+        const auto first = levels_.begin() + countLo;                    // upper_bound
         const auto last = levels_.begin() + std::max(countLo, countHi);  // lower_bound from first
         auto split = [&](double level) {
             splits_.push_back(std::max(solveMonotone(s, level, a, b, rootStart_), splits_.back()));

@@ -121,7 +121,6 @@ public:
                         continue;
                     }
                 }
-                prefetchNextCell(cell, phi, phiB, step);
                 addPiece(entry, delta, cell, phiA, phiB, length, ray, counts);
                 if (ray.done((1.0 - phiB) * length)) return (1.0 - phiB) * length;
             }
@@ -197,16 +196,6 @@ private:
             if (!empty_.emptyBlock(m)) return until;
             exitAt[a] = exitOf(a);
         }
-    }
-
-    // Asks the memory for the corners of the cell the walk enters next (the axis that crosses first
-    // steps) while this piece is integrated: most of a cell's corners lie in rows not yet read.
-    void prefetchNextCell(const int cell[3], const double phi[3], double phiB, const int step[3]) const {
-        const int a = phi[0] == phiB ? 0 : phi[1] == phiB ? 1 : 2;
-        int next[3] = {cell[0], cell[1], cell[2]};
-        next[a] = std::clamp(next[a] + step[a], 0, maxBase_[a]);
-        const T* p = data_ + next[0] * stride_[0] + next[1] * stride_[1] + next[2] * stride_[2];
-        for (int k = 0; k < 8; k += 2) __builtin_prefetch(p + corner_[k]);
     }
 
     bool emptyBlockOfCell(const int cell[3]) const {
