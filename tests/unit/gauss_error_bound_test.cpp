@@ -90,3 +90,64 @@ TEST_CASE("gauss error bound: every rule's error on random sub-pieces is below i
     // The bounds are not vacuous: a good share of the errors come within a factor 100 of them.
     CHECK(tight > cases / 20);
 }
+
+TEST_CASE("gauss error bound: the written-out sums are the loops over Pascal's triangle, bit for bit") {
+    // The bound as the general formulas read, summed in the same order: Leibniz's rule for g = C tau,
+    // the Bell recurrence for exp(-D), the sum for |f^(2n)|. A term left out or mistyped in
+    // gaussErrorBounds' written-out sums changes its bits on some of these inputs.
+    auto loops = [](const Cubic4 (&colour)[3], const Cubic4& tau, bool timesTau, double ell, double tMax) {
+        auto derivatives = [](const Cubic4& p) {
+            const double a1 = std::abs(p[1]), a2 = std::abs(p[2]), a3 = std::abs(p[3]);
+            return std::array<double, 7>{std::abs(p[0]) + a1 + a2 + a3, a1 + 2.0 * a2 + 3.0 * a3, 2.0 * a2 + 6.0 * a3,
+                                         6.0 * a3, 0.0, 0.0, 0.0};
+        };
+        double binomial[7][7] = {};
+        for (int m = 0; m < 7; ++m) {
+            binomial[m][0] = 1.0;
+            for (int i = 1; i <= m; ++i) binomial[m][i] = binomial[m - 1][i - 1] + (i < m ? binomial[m - 1][i] : 0.0);
+        }
+        std::array<double, 7> c = derivatives(colour[0]);
+        for (int k = 1; k < 3; ++k) {
+            const std::array<double, 7> other = derivatives(colour[k]);
+            for (int j = 0; j < 4; ++j) c[j] = std::max(c[j], other[j]);
+        }
+        const std::array<double, 7> t = derivatives(tau);
+        std::array<double, 7> g = c, y{};
+        if (timesTau)
+            for (int m = 0; m < 7; ++m) {
+                double r = 0.0;
+                for (int i = std::max(0, m - 3); i <= std::min(m, 3); ++i) r += binomial[m][i] * c[i] * t[m - i];
+                g[m] = r;
+            }
+        y[0] = 1.0;
+        for (int m = 0; m < 6; ++m) {
+            double r = 0.0;
+            for (int i = 0; i <= std::min(m, 3); ++i) r += binomial[m][i] * (ell * t[i]) * y[m - i];
+            y[m + 1] = r;
+        }
+        const double remainder[3] = {1.0 / 24.0, 1.0 / 4320.0, 1.0 / 2016000.0};
+        std::array<double, 3> bound{};
+        for (int n = 1; n <= 3; ++n) {
+            double r = 0.0;
+            for (int k = 0; k <= 2 * n; ++k) r += binomial[2 * n][k] * g[k] * y[2 * n - k];
+            bound[n - 1] = tMax * r * remainder[n - 1];
+        }
+        return bound;
+    };
+    std::mt19937 rng(16);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), exponent(-8.0, 8.0);
+    for (int trial = 0; trial < 2000; ++trial) {
+        CAPTURE(trial);
+        auto cubic = [&] {
+            const double scale = std::pow(10.0, exponent(rng));
+            return Cubic4{scale * unit(rng), scale * unit(rng), scale * unit(rng), scale * unit(rng)};
+        };
+        const Cubic4 colour[3] = {cubic(), cubic(), cubic()}, tau = cubic();
+        const double ell = std::pow(10.0, exponent(rng)), tMax = 1.0 + std::abs(unit(rng));
+        for (bool timesTau : {true, false}) {
+            const std::array<double, 3> expected = loops(colour, tau, timesTau, ell, tMax);
+            const std::array<double, 3> bound = gaussErrorBounds(colour, tau, timesTau, ell, tMax);
+            for (int n = 0; n < 3; ++n) CHECK(bound[n] == expected[n]);
+        }
+    }
+}

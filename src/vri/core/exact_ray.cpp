@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "vri/core/gauss_error_bound.h"
 
@@ -51,17 +52,21 @@ constexpr int kMaxGaussPanels = 64;
 // references, and every result compared against them, keep their bits.
 constexpr double kGaussTolerance = 1e-10;
 
-// How many of the sorted values are <= x (upper_bound's index) or < x (lower_bound's): a count without
-// branches, over the few points of a transfer function, where a binary search mispredicts at every step.
+// How many of the sorted values are <= x (upper_bound's index), and with it how many are < y
+// (lower_bound's): counts without branches, over the few points of a transfer function, where a binary
+// search mispredicts at every step; one pass for both ends of a piece's range.
 std::size_t countAtMost(const std::vector<double>& sorted, double x) {
     std::size_t n = 0;
     for (double v : sorted) n += v <= x;
     return n;
 }
-std::size_t countBelow(const std::vector<double>& sorted, double x) {
-    std::size_t n = 0;
-    for (double v : sorted) n += v < x;
-    return n;
+std::pair<std::size_t, std::size_t> countAtMostAndBelow(const std::vector<double>& sorted, double x, double y) {
+    std::size_t atMost = 0, below = 0;
+    for (double v : sorted) {
+        atMost += v <= x;
+        below += v < y;
+    }
+    return {atMost, below};
 }
 
 template <std::size_t N>
@@ -162,6 +167,7 @@ GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std:
             }
         }
     }
+    if (bestN == 0) return {};  // no rule in reach: the adaptive quadrature
     const GaussRule& rule = gaussRule(bestN);
     const double width = 1.0 / bestK;
     for (int p = 0; p < bestK; ++p) {
@@ -271,9 +277,9 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     splits_.push_back(0.0);
     for (int i = 0; i < parts; ++i) {
         const double a = ends[i], b = ends[i + 1], sa = values[i], sb = values[i + 1];
-        const std::size_t countLo = countAtMost(levels_, std::min(sa, sb));
-        const auto first = levels_.begin() + countLo;  // upper_bound
-        const auto last = levels_.begin() + std::max(countLo, countBelow(levels_, std::max(sa, sb)));  // lower_bound from first
+        const auto [countLo, countHi] = countAtMostAndBelow(levels_, std::min(sa, sb), std::max(sa, sb));
+        const auto first = levels_.begin() + countLo;                    // upper_bound
+        const auto last = levels_.begin() + std::max(countLo, countHi);  // lower_bound from first
         auto split = [&](double level) {
             splits_.push_back(std::max(solveMonotone(s, level, a, b, rootStart_), splits_.back()));
         };
