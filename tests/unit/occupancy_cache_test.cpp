@@ -81,6 +81,25 @@ TEST_CASE("the occupancy cache hands back its grid only for the volume and trans
     check(rampVolume(), GridConvention::NodeCentred, rampTransferFunction(0.3, EmissionModel::Colour));
 }
 
+TEST_CASE("the occupancy cache keeps the packet engine's stencil bricks beside the grid, under the same key") {
+    const auto volume = rampVolume();
+    const TransferFunction half = rampTransferFunction(0.5);
+    OccupancyCache cache;
+    CHECK_FALSE(cache.grid(volume, GridConvention::CellCentred, half).reused);
+    const auto first = cache.stencilBricks(volume, GridConvention::CellCentred, half);
+    CHECK_FALSE(first.reused);  // a grid of the same key does not make the stencil bricks
+    const auto again = cache.stencilBricks(volume, GridConvention::CellCentred, half);
+    CHECK(again.reused);
+    CHECK(&again.structure == &first.structure);
+    CHECK(cache.grid(volume, GridConvention::CellCentred, half).reused);  // neither drops the other
+    const TransferFunction third = rampTransferFunction(0.3);
+    const auto changed = cache.stencilBricks(volume, GridConvention::CellCentred, third);
+    CHECK_FALSE(changed.reused);
+    CHECK(changed.structure.distances() == StencilBricks(*volume, GridConvention::CellCentred, third).distances());
+    CHECK(changed.structure.distances() != StencilBricks(*volume, GridConvention::CellCentred, half).distances());
+    CHECK_FALSE(cache.grid(volume, GridConvention::CellCentred, third).reused);  // the new key dropped the grid
+}
+
 TEST_CASE("a render with the occupancy cache equals one without, and a changed transfer function gets a new grid") {
     const auto volume = rampVolume();
     const Camera camera = rampCamera();

@@ -105,7 +105,7 @@ TEST_CASE("the packet engine's image equals the scalar float path's bit for bit 
                                     CHECK(stats.simdTarget == hwy::TargetName(target));
                                     CHECK(sameBits(packets, scalar));
                                     CHECK(stats.samplesPlaced == scalarStats.samplesPlaced);
-                                    // Skipping by finer bricks (OccupancyGrid::stencilDistances()), the
+                                    // Skipping by finer bricks (StencilBricks, occupancy_grid.h), the
                                     // packets evaluate fewer samples (see the jumps' test below).
                                     if (skip)
                                         CHECK(stats.samplesEvaluated <= scalarStats.samplesEvaluated + 2);

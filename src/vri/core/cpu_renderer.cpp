@@ -211,9 +211,10 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
     });
 }
 
+// setupSpent: what building empty-space structures took in this call (the rest was reused).
 template <class Real>
 void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& opt, Image& image,
-                 Counters& counters, RenderStats& stats, OccupancyCache& cache) {
+                 Counters& counters, RenderStats& stats, OccupancyCache& cache, double& setupSpent) {
     std::vector<AdaptiveTry>* log = opt.logPixel ? &stats.rayLog : nullptr;
     if (!scene.volume && !scene.sparse) {
         renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, GridIndexing{}, camera, opt, image, counters,
@@ -227,6 +228,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         occupancy = &grid.structure;
         stats.setupSeconds = grid.buildSeconds;
         stats.setupReused = grid.reused;
+        if (!grid.reused) setupSpent += grid.buildSeconds;
         stats.emptyBrickFraction = occupancy->emptyFraction();
     }
     const GridIndexing indexMap(glm::ivec3(scene.dims()), scene.convention);
@@ -238,7 +240,15 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         return;
     }
     if (opt.simd && PacketScene::supports(scene, opt)) {
-        const PacketScene packets(scene, camera, occupancy, opt);
+        const StencilBricks* stencils = nullptr;
+        if (opt.skipEmptySpace) {
+            const auto entry = cache.stencilBricks(scene.volume, scene.convention, scene.transferFunction);
+            stencils = &entry.structure;
+            stats.setupSeconds += entry.buildSeconds;
+            if (!entry.reused) setupSpent += entry.buildSeconds;
+            stats.setupReused = stats.setupReused && entry.reused;
+        }
+        const PacketScene packets(scene, camera, stencils, opt);
         stats.simdTarget = packetTargetName();
         forEachTile(opt, image, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&) {
             marchPackets(packets, x0, y0, x1, y1, image, counts);
@@ -331,12 +341,12 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     OccupancyCache once;  // without a cache, this frame builds its own grid
     OccupancyCache& grids = cache ? *cache : once;
     const auto start = std::chrono::steady_clock::now();
+    double setupSpent = 0.0;
     if (options.precision == Precision::Double)
-        renderScene<double>(scene, camera, options, image, counters, local, grids);
+        renderScene<double>(scene, camera, options, image, counters, local, grids, setupSpent);
     else
-        renderScene<float>(scene, camera, options, image, counters, local, grids);
-    // The frame's own work: what this call spent building the grid is setup, reported on its own.
-    const double setupSpent = local.setupReused ? 0.0 : local.setupSeconds;
+        renderScene<float>(scene, camera, options, image, counters, local, grids, setupSpent);
+    // The frame's own work: what this call spent building empty-space structures is setup, reported on its own.
     local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - setupSpent;
     local.rays = static_cast<std::uint64_t>(image.width) * image.height;
     local.raysHit = counters.raysHit;

@@ -17,6 +17,7 @@ void OccupancyCache::key(const std::shared_ptr<const void>& volume, GridConventi
         return;
     grid_.structure.reset();
     exact_.structure.reset();
+    stencils_.structure.reset();
     volume_ = volume;
     convention_ = convention;
     points_ = p;
@@ -28,7 +29,7 @@ OccupancyCache::Entry<Structure> OccupancyCache::get(Slot<Structure>& slot, cons
                                                      GridConvention convention, const TransferFunction& tf) {
     if (slot.structure) return {*slot.structure, slot.buildSeconds, true};
     const auto start = std::chrono::steady_clock::now();
-    if constexpr (std::is_same_v<Structure, OccupancyGrid>)
+    if constexpr (std::is_same_v<Structure, OccupancyGrid> || std::is_same_v<Structure, StencilBricks>)
         slot.structure.emplace(volume, convention, tf);
     else
         slot.structure.emplace(volume, tf);
@@ -53,6 +54,13 @@ OccupancyCache::Entry<ExactEmptySpace> OccupancyCache::exactEmptySpace(const std
                                                                        const TransferFunction& tf) {
     key(volume, convention, tf);
     return get(exact_, *volume, convention, tf);
+}
+
+OccupancyCache::Entry<StencilBricks> OccupancyCache::stencilBricks(const std::shared_ptr<const Volume>& volume,
+                                                                   GridConvention convention,
+                                                                   const TransferFunction& tf) {
+    key(volume, convention, tf);
+    return get(stencils_, *volume, convention, tf);
 }
 
 }  // namespace vri

@@ -1,8 +1,9 @@
 #pragma once
 // The empty-space structures kept from one frame to the next: the fixed-step methods' grid of bricks
-// (occupancy_grid.h) and the exact method's empty cells (exact_empty_space.h). Building one reads every
-// voxel (about 4 % of a float Bonsai frame at h = 0.1, of an exact frame at tolerance 3e-8), and a
-// sequence of frames of one scene (vri-render --repeat, a camera path) needs it once: like VTK's
+// and the packet engine's stencil bricks (occupancy_grid.h), and the exact method's empty cells
+// (exact_empty_space.h). Building one reads every voxel (the grid: about 4 % of a float Bonsai frame
+// at h = 0.1, of an exact frame at tolerance 3e-8; the stencil bricks, with their eight octants of
+// distances, about twice a packet frame at h = 0.5), and a sequence of frames of one scene (vri-render --repeat, a camera path) needs it once: like VTK's
 // space-leaping structures it is setup, reused while the volume and the transfer function stay, and
 // reported on its own (RenderStats and ExactReferenceStats: setupSeconds, setupReused).
 #include <memory>
@@ -29,7 +30,7 @@ public:
 
     // The structure of this volume, convention and transfer function: the one an earlier call built
     // when all three match (the same Volume object, which the cache holds on to, so its address is
-    // never reused for another; equal points and emission), else a new one; a new key drops both. A
+    // never reused for another; equal points and emission), else a new one; a new key drops them all. A
     // Volume is immutable once shared; one changed in place through another pointer is not noticed.
     // Not thread-safe: one cache serves one sequence of renders.
     Entry<OccupancyGrid> grid(const std::shared_ptr<const Volume>& volume, GridConvention convention,
@@ -38,6 +39,8 @@ public:
                               const TransferFunction& tf);
     Entry<ExactEmptySpace> exactEmptySpace(const std::shared_ptr<const Volume>& volume, GridConvention convention,
                                            const TransferFunction& tf);
+    Entry<StencilBricks> stencilBricks(const std::shared_ptr<const Volume>& volume, GridConvention convention,
+                                       const TransferFunction& tf);
 
 private:
     template <class Structure>
@@ -46,7 +49,7 @@ private:
         double buildSeconds = 0.0;
     };
 
-    // Keeps the slots when the key is this one, else empties both and takes it.
+    // Keeps the slots when the key is this one, else empties them all and takes it.
     void key(const std::shared_ptr<const void>& volume, GridConvention convention, const TransferFunction& tf);
     template <class Structure, class V>
     Entry<Structure> get(Slot<Structure>& slot, const V& volume, GridConvention convention,
@@ -58,6 +61,7 @@ private:
     EmissionModel emission_ = EmissionModel::ColourTimesExtinction;
     Slot<OccupancyGrid> grid_;
     Slot<ExactEmptySpace> exact_;
+    Slot<StencilBricks> stencils_;
 };
 
 }  // namespace vri

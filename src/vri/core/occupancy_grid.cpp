@@ -50,13 +50,12 @@ std::vector<std::uint8_t> emptyBlocks(const Volume& volume, glm::ivec3 blocks, i
     return empty;
 }
 
-// OccupancyGrid::emptyDistances() of the flags `empty` of a grid of `bricks` (ahead = 0 along every
-// axis), or stencilDistances() of one octant: along an axis with ahead = +1 (-1) only the bricks of
-// higher (lower) index count. The distance max(|dx|, |dy|, |dz|) to the nearest non-empty brick is
-// separable: the distance along x within each row, then the nearest of those along y measured as
-// max(|dy|, that), then the same along z.
+// StencilBricks::distances() of one octant, from the flags `empty` of a grid of `bricks`: along an
+// axis with ahead = +1 (-1) only the bricks of equal or higher (lower) index count. The distance
+// max(|dx|, |dy|, |dz|) to the nearest non-empty brick is separable: the distance along x within each
+// row, then the nearest of those along y measured as max(|dy|, that), then the same along z.
 std::vector<std::int32_t> chebyshevDistances(const std::vector<std::uint8_t>& empty, glm::ivec3 bricks,
-                                             std::int32_t cap, glm::ivec3 ahead = glm::ivec3(0)) {
+                                             std::int32_t cap, glm::ivec3 ahead) {
     std::vector<std::int32_t> d(empty.size());
     for (std::size_t i = 0; i < d.size(); ++i)
         d[i] = empty[i] ? cap : 0;
@@ -73,10 +72,10 @@ std::vector<std::int32_t> chebyshevDistances(const std::vector<std::uint8_t>& em
             for (int i = 0; i < n; ++i)
                 line[static_cast<std::size_t>(i)] = d[start + static_cast<std::size_t>(i) * s];
             for (int i = 0; i < n; ++i) {
+                // Bricks j ahead of i, `steps` away, until none nearer than `best` can be left.
                 std::int32_t best = line[static_cast<std::size_t>(i)];
-                for (int j = look > 0 ? i : std::max(0, i - best + 1); j < (look < 0 ? i + 1 : std::min(n, i + best));
-                     ++j)
-                    best = std::min(best, std::max(std::abs(i - j), line[static_cast<std::size_t>(j)]));
+                for (int j = i + look, steps = 1; steps < best && j >= 0 && j < n; j += look, ++steps)
+                    best = std::min(best, std::max(steps, line[static_cast<std::size_t>(j)]));
                 d[start + static_cast<std::size_t>(i) * s] = best;
             }
         });
@@ -97,19 +96,6 @@ OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const Transfe
     const EmptinessTest isEmpty(volume.normalisationRange(), tf);
     // Each brick's voxels plus a one-voxel margin on every side.
     empty_ = emptyBlocks(volume, bricks_, kBrick, 1, isEmpty);
-    distance_ = chebyshevDistances(empty_, bricks_, kMaxDistance);
-    // Each stencil brick's voxels and the next one's first (the stencils' far corners).
-    const int size = 1 << kStencilBrickShift;
-    for (int a = 0; a < 3; ++a) stencilBricks_[a] = (dims_[a] - 1) / size + 1;
-    const std::vector<std::uint8_t> stencilEmpty = emptyBlocks(volume, stencilBricks_, size, 0, isEmpty);
-    static_assert(kMaxStencilDistance <= 255);
-    const std::size_t count = stencilEmpty.size();
-    stencilDistance_.assign(8 * count + 3, 0);
-    tbb::parallel_for(0, 8, [&](int octant) {
-        const glm::ivec3 ahead(octant & 1 ? -1 : 1, octant & 2 ? -1 : 1, octant & 4 ? -1 : 1);
-        const std::vector<std::int32_t> d = chebyshevDistances(stencilEmpty, stencilBricks_, kMaxStencilDistance, ahead);
-        std::copy(d.begin(), d.end(), stencilDistance_.begin() + static_cast<std::ptrdiff_t>(octant * count));
-    });
 }
 
 OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const TransferFunction& tf)
@@ -165,12 +151,27 @@ OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const T
             empty_[i] = isEmpty(static_cast<double>(mn), static_cast<double>(mx));
         });
     });
-    distance_ = chebyshevDistances(empty_, bricks_, kMaxDistance);
 }
 
 double OccupancyGrid::emptyFraction() const {
     return empty_.empty() ? 0.0
                           : static_cast<double>(std::count(empty_.begin(), empty_.end(), 1)) / empty_.size();
+}
+
+StencilBricks::StencilBricks(const Volume& volume, GridConvention, const TransferFunction& tf) {
+    const int size = 1 << kShift;
+    for (int a = 0; a < 3; ++a) bricks_[a] = (volume.dims[a] - 1) / size + 1;
+    // Each brick's voxels and the next one's first (the stencils' far corners).
+    const std::vector<std::uint8_t> empty =
+        emptyBlocks(volume, bricks_, size, 0, EmptinessTest(volume.normalisationRange(), tf));
+    static_assert(kMaxDistance <= 255);
+    const std::size_t count = empty.size();
+    distance_.assign(8 * count + 3, 0);
+    tbb::parallel_for(0, 8, [&](int octant) {
+        const glm::ivec3 ahead(octant & 1 ? -1 : 1, octant & 2 ? -1 : 1, octant & 4 ? -1 : 1);
+        const std::vector<std::int32_t> d = chebyshevDistances(empty, bricks_, kMaxDistance, ahead);
+        std::copy(d.begin(), d.end(), distance_.begin() + static_cast<std::ptrdiff_t>(octant * count));
+    });
 }
 
 }  // namespace vri

@@ -65,34 +65,6 @@ public:
     const std::vector<std::uint8_t>& emptyFlags() const { return empty_; }
     double emptyFraction() const;
 
-    // Per brick, x fastest: its Chebyshev distance in bricks to the nearest brick that is not empty,
-    // at most kMaxDistance (0 for a brick that is not empty; kMaxDistance when no such brick is
-    // nearer). Every brick of the grid less than d bricks away along each axis from a brick at
-    // distance d is empty, so a ray in that brick can jump to the faces of that cube of bricks at
-    // once (simd_march.cpp). Built with the grid, so a frame reads it without building it.
-    static constexpr std::int32_t kMaxDistance = 16;
-    const std::vector<std::int32_t>& emptyDistances() const { return distance_; }
-
-    // A finer grid for the packet engine (simd_march.cpp), which knows the trilinear stencil of every
-    // sample it evaluates: stencil brick m of an axis holds the stencils whose lowest voxel lies in
-    // [4 m, 4 m + 4); it is empty when the TF gives nothing to the voxels [4 m, 4 m + 4], without the
-    // margin above, which covers the scalar walk's positions (a stencil is tested as it is evaluated;
-    // the value's rounding is padded as above). On Bonsai 64 % of the samples that the 8^3 bricks let
-    // through have no extinction; these bricks let a third fewer through.
-    // A ray only goes forward, so what lies behind it does not limit its jumps: the distances are kept
-    // per octant of directions, octant o = [x < 0] + 2 [y < 0] + 4 [z < 0] of the ray's direction, as
-    // the Chebyshev distance to the nearest non-empty brick among those at or ahead of it along every
-    // axis (index >= along an axis the octant goes up, <=, down), up to kMaxStencilDistance bricks
-    // (128 voxels, as far as the coarse bricks reach): every brick from this one up to d - 1 bricks
-    // ahead along each axis is empty. A byte each (a quarter of the cache that words would take):
-    // octant o's bricks at [o N, (o + 1) N), N = the brick count, x fastest, then 3 bytes of padding so
-    // that a 32-bit load at any brick stays inside. Empty for a sparse volume, which the packet engine
-    // does not read.
-    static constexpr int kStencilBrickShift = 2;
-    static constexpr std::int32_t kMaxStencilDistance = 32;
-    glm::ivec3 stencilBricks() const { return stencilBricks_; }
-    const std::vector<std::uint8_t>& stencilDistances() const { return stencilDistance_; }
-
 private:
     explicit OccupancyGrid(glm::ivec3 dims);  // the bricks of dims, none marked empty
 
@@ -100,9 +72,37 @@ private:
     glm::dvec3 maxIndex_;  // dims - 1
     glm::ivec3 bricks_;
     std::vector<std::uint8_t> empty_;
-    std::vector<std::int32_t> distance_;
-    glm::ivec3 stencilBricks_{0};
-    std::vector<std::uint8_t> stencilDistance_;
+};
+
+// The packet engine's empty space (simd_march.cpp), finer than OccupancyGrid's bricks: the engine
+// knows the trilinear stencil of every sample it evaluates, so brick m of an axis holds the stencils
+// whose lowest voxel lies in [4 m, 4 m + 4), and is empty when the TF gives nothing to the voxels
+// [4 m, 4 m + 4], without OccupancyGrid's margin, which covers the scalar walk's positions (a stencil
+// is tested as it is evaluated; the value's rounding is padded as there). On Bonsai 64 % of the
+// samples that the 8^3 bricks let through have no extinction; these bricks let a third fewer through.
+// A ray only goes forward, so what lies behind it does not limit its jumps: the distances are kept
+// per octant of directions, octant o = [x < 0] + 2 [y < 0] + 4 [z < 0] of the ray's direction, as the
+// Chebyshev distance to the nearest non-empty brick among those at or ahead of it along every axis
+// (index >= along an axis the octant goes up, <= down), up to kMaxDistance bricks (0 for a brick that
+// is not empty): every brick from this one to d - 1 bricks ahead along each axis is empty, so a ray
+// there can jump to the faces of that box at once. Built only for the packet engine, kept across
+// frames like the grid (occupancy_cache.h); dense volumes only, as the engine.
+class StencilBricks {
+public:
+    static constexpr int kShift = 2;                 // voxels per brick edge: 4
+    static constexpr std::int32_t kMaxDistance = 32;  // 128 voxels
+
+    StencilBricks(const Volume& volume, GridConvention convention, const TransferFunction& tf);
+
+    glm::ivec3 bricks() const { return bricks_; }
+    // A byte per brick (a quarter of the cache that words would take): octant o's bricks at
+    // [o N, (o + 1) N), N = the brick count, x fastest, then 3 bytes of padding so that a 32-bit load
+    // at any brick stays inside.
+    const std::vector<std::uint8_t>& distances() const { return distance_; }
+
+private:
+    glm::ivec3 bricks_;
+    std::vector<std::uint8_t> distance_;
 };
 
 }  // namespace vri

@@ -114,7 +114,7 @@ HWY_INLINE Stencil locate(const PacketScene& sc, const VF (&u)[3], MF valid) {
             hn::IfThenElseZero(hn::RebindMask(di, valid), hn::Min(hn::ConvertTo(di, c), hn::Set(di, g.maxBase[a])));
         st.w[a] = hn::Sub(c, hn::ConvertTo(df, i));
         st.base = hn::Add(st.base, hn::Mul(i, hn::Set(di, static_cast<std::int32_t>(g.stride[a]))));
-        st.cell[a] = hn::ShiftRight<OccupancyGrid::kStencilBrickShift>(i);
+        st.cell[a] = hn::ShiftRight<StencilBricks::kShift>(i);
         st.brick = hn::Add(st.brick, hn::Mul(st.cell[a], hn::Set(di, sc.brickStride[a])));
     }
     return st;
@@ -158,8 +158,8 @@ HWY_INLINE VI samplesInEmptyCube(const Stencil& st, VI distance, const VF (&du)[
     VF samples = hn::Set(df, 1e9f);
     for (int a = 0; a < 3; ++a) {
         const VF lo = hn::ConvertTo(
-            df, hn::ShiftLeft<OccupancyGrid::kStencilBrickShift>(hn::Add(hn::Sub(st.cell[a], distance), hn::Set(di, 1))));
-        const VF hi = hn::ConvertTo(df, hn::ShiftLeft<OccupancyGrid::kStencilBrickShift>(hn::Add(st.cell[a], distance)));
+            df, hn::ShiftLeft<StencilBricks::kShift>(hn::Add(hn::Sub(st.cell[a], distance), hn::Set(di, 1))));
+        const VF hi = hn::ConvertTo(df, hn::ShiftLeft<StencilBricks::kShift>(hn::Add(st.cell[a], distance)));
         const VF room = hn::IfThenElse(hn::Gt(du[a], hn::Zero(df)), hn::Sub(hi, st.x[a]), hn::Sub(st.x[a], lo));
         const VF along = hn::Mul(hn::Sub(room, hn::Set(df, margin)), samplesPerVoxel[a]);
         samples = hn::IfThenElse(hn::Eq(du[a], hn::Zero(df)), samples, hn::Min(samples, along));
@@ -463,7 +463,7 @@ struct Lanes {
 struct PacketRays {
     VF tStart, tIncr, entry[3], du[3], dx, terminateBelow;
     VF samplesPerVoxel[3];  // along each axis, for the jumps over empty space; +inf where a ray does not move
-    VI octant;              // where the distances of the ray's octant start (OccupancyGrid::stencilDistances())
+    VI octant;              // where the distances of the ray's octant start (StencilBricks::distances())
 };
 
 // The gathers wait on memory more than on arithmetic: a packet entering the next z slice of the volume
@@ -718,14 +718,13 @@ bool PacketScene::supports(const Scene& scene, const RenderOptions& options) {
            scene.transferFunction.points().size() <= kMaxPoints;
 }
 
-PacketScene::PacketScene(const Scene& scene, const Camera& camera, const OccupancyGrid* occupancy,
+PacketScene::PacketScene(const Scene& scene, const Camera& camera, const StencilBricks* stencils,
                          const RenderOptions& options)
     : camera(camera),
       box(scene.box()),
       eyeU(box.toTexture(camera.eye())),
       dims(scene.dims()),
       indexMap(scene.volume->dims, scene.convention),
-      occupancy(occupancy),
       options(options),
       termination(scene.transferFunction, options, glm::length(box.size())),
       emission(scene.transferFunction.emission()),
@@ -735,9 +734,9 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Occupan
       layout(*scene.volume, scene.convention),
       prefetchSamples(static_cast<float>(std::ceil(kPrefetchVoxels * options.samplingRate))),
       prefetchEvery(std::max(1, static_cast<int>(kPrefetchEveryVoxels * options.samplingRate))) {
-    if (occupancy && !occupancy->stencilDistances().empty()) {
-        emptyDistance = occupancy->stencilDistances().data();
-        const glm::ivec3 b = occupancy->stencilBricks();
+    if (stencils) {
+        emptyDistance = stencils->distances().data();
+        const glm::ivec3 b = stencils->bricks();
         brickStride[0] = 1;
         brickStride[1] = b.x;
         brickStride[2] = b.x * b.y;

@@ -7,7 +7,7 @@
 // `--simd off` on every target. A packet holds a block of neighbouring pixels of a tile (their rays
 // clipped and placed in vectors too); a lane whose ray has ended is masked until the packet's last ray
 // ends. Empty space is skipped per sample, by the 4^3 brick of its trilinear stencil
-// (OccupancyGrid::stencilDistances()): in each step a lane in an empty brick jumps to the samples
+// (StencilBricks, occupancy_grid.h): in each step a lane in an empty brick jumps to the samples
 // leaving the cube of empty bricks around it, while the others evaluate their samples.
 #include <algorithm>
 #include <cstdint>
@@ -47,13 +47,13 @@ struct PacketScene {
     static constexpr std::size_t kMaxPoints = 64;
     static constexpr std::size_t kMaxLanes = 16;  // floats in the widest vector (AVX-512)
 
-    PacketScene(const Scene& scene, const Camera& camera, const OccupancyGrid* occupancy, const RenderOptions& options);
+    // stencils: null when empty space is not skipped.
+    PacketScene(const Scene& scene, const Camera& camera, const StencilBricks* stencils, const RenderOptions& options);
 
     const Camera& camera;
     Box box;
     glm::vec3 eyeU, dims;
     GridIndexing indexMap;
-    const OccupancyGrid* occupancy;
     RenderOptions options;
     TerminationRule termination;
     EmissionModel emission;
@@ -68,7 +68,7 @@ struct PacketScene {
     float prefetchSamples;
     int prefetchEvery;
     // Per octant of ray directions and stencil brick, its distance to the nearest stencil brick ahead
-    // that is not empty (OccupancyGrid::stencilDistances(), 0 when not empty), a byte each, padded for
+    // that is not empty (StencilBricks::distances(), 0 when not empty), a byte each, padded for
     // 32-bit loads; null when skipping is off.
     const std::uint8_t* emptyDistance = nullptr;
     std::int32_t brickStride[3] = {0, 0, 0}, octantStride = 0;
