@@ -713,8 +713,13 @@ bool PacketScene::supports(const Scene& scene, const RenderOptions& options) {
     if (!scene.volume || options.precision != Precision::Float) return false;
     if (options.integrator != Integrator::Riemann && options.integrator != Integrator::Composite) return false;
     const Volume& v = *scene.volume;
-    return v.dims.x >= 2 && v.byteCount() >= 4 &&
-           v.byteCount() <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()) &&
+    // The offsets gathered: voxels, and the eight octants of stencil-brick distances (StencilBricks),
+    // which a thin volume (a few voxels across two axes) makes almost an eighth as many as its voxels.
+    std::size_t stencilBricks = 8;
+    for (int a = 0; a < 3; ++a)
+        stencilBricks *= static_cast<std::size_t>((v.dims[a] - 1) / (1 << StencilBricks::kShift) + 1);
+    constexpr auto most = static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
+    return v.dims.x >= 2 && v.byteCount() >= 4 && v.byteCount() <= most && stencilBricks + 3 <= most &&
            scene.transferFunction.points().size() <= kMaxPoints;
 }
 

@@ -41,8 +41,8 @@ struct MarchCounts {
 // A scene as the packet engine reads it, built once per render.
 struct PacketScene {
     // True when the packet engine can render this: float Riemann or composite of a volume whose voxel
-    // offsets fit 32-bit gathers, at least 2 voxels along x (the x neighbours are gathered as a pair)
-    // and 4 bytes, and a transfer function of at most kMaxPoints points.
+    // and stencil-brick offsets fit 32-bit gathers, at least 2 voxels along x (the x neighbours are
+    // gathered as a pair) and 4 bytes, and a transfer function of at most kMaxPoints points.
     static bool supports(const Scene& scene, const RenderOptions& options);
     static constexpr std::size_t kMaxPoints = 64;
     static constexpr std::size_t kMaxLanes = 16;  // floats in the widest vector (AVX-512)
