@@ -86,17 +86,27 @@ TEST_CASE("the occupancy cache keeps the packet engine's stencil bricks beside t
     const TransferFunction half = rampTransferFunction(0.5);
     OccupancyCache cache;
     CHECK_FALSE(cache.grid(volume, GridConvention::CellCentred, half).reused);
-    const auto first = cache.stencilBricks(volume, GridConvention::CellCentred, half);
+    const auto first = cache.stencilBricks(volume, GridConvention::CellCentred, half, 0b0001);
     CHECK_FALSE(first.reused);  // a grid of the same key does not make the stencil bricks
-    const auto again = cache.stencilBricks(volume, GridConvention::CellCentred, half);
+    CHECK(first.structure.octants() == 0b0001);
+    const auto again = cache.stencilBricks(volume, GridConvention::CellCentred, half, 0b0001);
     CHECK(again.reused);
     CHECK(&again.structure == &first.structure);
+    // Another octant is built on the same bricks, and only it: this call's time is the octant's.
+    const auto more = cache.stencilBricks(volume, GridConvention::CellCentred, half, 0b1000'0001);
+    CHECK_FALSE(more.reused);
+    CHECK(&more.structure == &first.structure);
+    CHECK(more.structure.octants() == 0b1000'0001);
+    CHECK(cache.stencilBricks(volume, GridConvention::CellCentred, half, 0b1000'0000).reused);
     CHECK(cache.grid(volume, GridConvention::CellCentred, half).reused);  // neither drops the other
     const TransferFunction third = rampTransferFunction(0.3);
-    const auto changed = cache.stencilBricks(volume, GridConvention::CellCentred, third);
+    const auto changed = cache.stencilBricks(volume, GridConvention::CellCentred, third, 0xFF);
     CHECK_FALSE(changed.reused);
-    CHECK(changed.structure.distances() == StencilBricks(*volume, GridConvention::CellCentred, third).distances());
-    CHECK(changed.structure.distances() != StencilBricks(*volume, GridConvention::CellCentred, half).distances());
+    StencilBricks fresh(*volume, GridConvention::CellCentred, third), old(*volume, GridConvention::CellCentred, half);
+    fresh.addOctants(0xFF);
+    old.addOctants(0xFF);
+    CHECK(changed.structure.distances() == fresh.distances());
+    CHECK(changed.structure.distances() != old.distances());
     CHECK_FALSE(cache.grid(volume, GridConvention::CellCentred, third).reused);  // the new key dropped the grid
 }
 

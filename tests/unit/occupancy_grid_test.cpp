@@ -9,6 +9,7 @@
 #include <glm/vector_relational.hpp>
 
 #include "vri/core/occupancy_grid.h"
+#include "test_camera.h"
 
 using namespace vri;
 
@@ -23,7 +24,10 @@ TEST_CASE("the stencil bricks hold the stencils by their lowest voxel, without a
         v.data<std::uint8_t>()[v.index(p.x, p.y, p.z)] = 200;
     const TransferFunction tf({{0.0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0}, {1.0, 1, 1, 1, 1}},
                               EmissionModel::ColourTimesExtinction);
-    const StencilBricks grid(v, GridConvention::CellCentred, tf);
+    StencilBricks grid(v, GridConvention::CellCentred, tf);
+    CHECK(std::all_of(grid.distances().begin(), grid.distances().end(), [](std::uint8_t d) { return d == 0; }));
+    grid.addOctants(0xFF);  // before: every octant "not empty", which skips nothing
+    CHECK(grid.octants() == 0xFF);
     const glm::ivec3 b = grid.bricks();
     REQUIRE(b == glm::ivec3(38, 23, 18));
     const std::size_t count = static_cast<std::size_t>(b.x) * b.y * b.z;
@@ -59,8 +63,35 @@ TEST_CASE("the stencil bricks hold the stencils by their lowest voxel, without a
     CHECK(largest >= 16);  // not a small test: long distances below the cap, and bricks at the cap
     CHECK(capped > 0);
     // Without a visible brick, every brick is at the cap in every octant.
-    const StencilBricks none(v, GridConvention::CellCentred,
-                             TransferFunction({{0.0, 0, 0, 0, 0}, {1.0, 0, 0, 0, 0}}, EmissionModel::Colour));
+    StencilBricks none(v, GridConvention::CellCentred,
+                       TransferFunction({{0.0, 0, 0, 0, 0}, {1.0, 0, 0, 0, 0}}, EmissionModel::Colour));
+    none.addOctants(0xFF);
     CHECK(std::all_of(none.distances().begin(), none.distances().end() - 3,
                       [](std::uint8_t d) { return d == StencilBricks::kMaxDistance; }));
+}
+
+TEST_CASE("rayOctants: the octants of every pixel's direction, from the corners") {
+    // Against every pixel's direction, for views along an axis (both signs across the image on two axes),
+    // along a diagonal with a narrow field (one octant), and zoomed off-centre.
+    std::vector<CameraSpec> views = {test::cameraSpec(glm::dvec3(0.0, 0.0, -50.0), glm::dvec3(0.0), 40.0, 31, 23),
+                                     test::cameraSpec(glm::dvec3(40.0, 30.0, 20.0), glm::dvec3(0.0), 10.0, 31, 23),
+                                     test::cameraSpec(glm::dvec3(-5.0, 60.0, 7.0), glm::dvec3(1.0, 2.0, 3.0), 70.0, 40, 9)};
+    CameraSpec zoomed = views[0];
+    zoomed.zoom = 4.0;
+    zoomed.zoomCentre = glm::dvec2(3.0, 20.0);
+    views.push_back(zoomed);
+    std::vector<unsigned> found;
+    for (const CameraSpec& spec : views) {
+        const Camera camera(spec);
+        unsigned all = 0;
+        for (int py = 0; py < camera.height(); ++py)
+            for (int px = 0; px < camera.width(); ++px) {
+                const glm::dvec3 d = camera.direction(px, py);
+                all |= 1u << ((d.x < 0.0) + 2 * (d.y < 0.0) + 4 * (d.z < 0.0));
+            }
+        CHECK(rayOctants(camera) == all);
+        found.push_back(all);
+    }
+    CHECK(found[0] == 0b1111);  // looking down +z from the axis: x and y take both signs
+    CHECK(found[1] == 0b1000'0000);  // looking at the origin from (40, 30, 20): every component < 0
 }

@@ -242,7 +242,8 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     if (opt.simd && PacketScene::supports(scene, opt)) {
         const StencilBricks* stencils = nullptr;
         if (opt.skipEmptySpace) {
-            const auto entry = cache.stencilBricks(scene.volume, scene.convention, scene.transferFunction);
+            const auto entry =
+                cache.stencilBricks(scene.volume, scene.convention, scene.transferFunction, rayOctants(camera));
             stencils = &entry.structure;
             stats.setupSeconds += entry.buildSeconds;
             if (!entry.reused) setupSpent += entry.buildSeconds;

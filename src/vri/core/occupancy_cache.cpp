@@ -58,9 +58,16 @@ OccupancyCache::Entry<ExactEmptySpace> OccupancyCache::exactEmptySpace(const std
 
 OccupancyCache::Entry<StencilBricks> OccupancyCache::stencilBricks(const std::shared_ptr<const Volume>& volume,
                                                                    GridConvention convention,
-                                                                   const TransferFunction& tf) {
+                                                                   const TransferFunction& tf, unsigned octants) {
     key(volume, convention, tf);
-    return get(stencils_, *volume, convention, tf);
+    const Entry<StencilBricks> entry = get(stencils_, *volume, convention, tf);
+    if ((octants & ~entry.structure.octants() & 0xFFu) == 0) return entry;
+    const auto start = std::chrono::steady_clock::now();
+    stencils_.structure->addOctants(octants);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // The bricks themselves were built by an earlier call if `entry` was reused: this call spent only the octants.
+    stencils_.buildSeconds += seconds;
+    return {*stencils_.structure, entry.reused ? seconds : stencils_.buildSeconds, false};
 }
 
 }  // namespace vri

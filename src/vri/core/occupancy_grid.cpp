@@ -162,16 +162,34 @@ StencilBricks::StencilBricks(const Volume& volume, GridConvention, const Transfe
     const int size = 1 << kShift;
     for (int a = 0; a < 3; ++a) bricks_[a] = (volume.dims[a] - 1) / size + 1;
     // Each brick's voxels and the next one's first (the stencils' far corners).
-    const std::vector<std::uint8_t> empty =
-        emptyBlocks(volume, bricks_, size, 0, EmptinessTest(volume.normalisationRange(), tf));
+    empty_ = emptyBlocks(volume, bricks_, size, 0, EmptinessTest(volume.normalisationRange(), tf));
+    distance_.assign(8 * empty_.size() + 3, 0);
+}
+
+void StencilBricks::addOctants(unsigned octants) {
     static_assert(kMaxDistance <= 255);
-    const std::size_t count = empty.size();
-    distance_.assign(8 * count + 3, 0);
+    const unsigned missing = octants & 0xFFu & ~octants_;
     tbb::parallel_for(0, 8, [&](int octant) {
+        if (!(missing >> octant & 1u)) return;
         const glm::ivec3 ahead(octant & 1 ? -1 : 1, octant & 2 ? -1 : 1, octant & 4 ? -1 : 1);
-        const std::vector<std::int32_t> d = chebyshevDistances(empty, bricks_, kMaxDistance, ahead);
-        std::copy(d.begin(), d.end(), distance_.begin() + static_cast<std::ptrdiff_t>(octant * count));
+        const std::vector<std::int32_t> d = chebyshevDistances(empty_, bricks_, kMaxDistance, ahead);
+        std::copy(d.begin(), d.end(), distance_.begin() + static_cast<std::ptrdiff_t>(octant * empty_.size()));
     });
+    octants_ |= missing;
+}
+
+unsigned rayOctants(const Camera& camera) {
+    unsigned below[3] = {0, 0, 0};  // per axis: bit 0 for a component >= 0, bit 1 for one < 0
+    for (const int px : {0, camera.width() - 1})
+        for (const int py : {0, camera.height() - 1}) {
+            const glm::dvec3 d = camera.direction(px, py);
+            for (int a = 0; a < 3; ++a) below[a] |= d[a] < 0.0 ? 2u : 1u;
+        }
+    unsigned octants = 0;
+    for (unsigned o = 0; o < 8; ++o)
+        if ((below[0] >> (o & 1) & 1) && (below[1] >> (o >> 1 & 1) & 1) && (below[2] >> (o >> 2 & 1) & 1))
+            octants |= 1u << o;
+    return octants;
 }
 
 }  // namespace vri

@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "vri/core/camera.h"
 #include "vri/core/grid_convention.h"
 #include "vri/core/sparse_volume.h"
 #include "vri/core/transfer_function.h"
@@ -85,24 +86,39 @@ private:
 // Chebyshev distance to the nearest non-empty brick among those at or ahead of it along every axis
 // (index >= along an axis the octant goes up, <= down), up to kMaxDistance bricks (0 for a brick that
 // is not empty): every brick from this one to d - 1 bricks ahead along each axis is empty, so a ray
-// there can jump to the faces of that box at once. Built only for the packet engine, kept across
-// frames like the grid (occupancy_cache.h); dense volumes only, as the engine.
+// there can jump to the faces of that box at once. Built only for the packet engine, and only in the
+// octants a camera's rays take (a view holds one to four of the eight), kept across frames like the
+// grid (occupancy_cache.h); dense volumes only, as the engine.
 class StencilBricks {
 public:
     static constexpr int kShift = 2;                 // voxels per brick edge: 4
     static constexpr std::int32_t kMaxDistance = 32;  // 128 voxels
 
+    // The empty bricks; no octant's distances yet.
     StencilBricks(const Volume& volume, GridConvention convention, const TransferFunction& tf);
+
+    // Builds the distances of the octants in `octants` (bit o for octant o) not built yet.
+    void addOctants(unsigned octants);
+    unsigned octants() const { return octants_; }
 
     glm::ivec3 bricks() const { return bricks_; }
     // A byte per brick (a quarter of the cache that words would take): octant o's bricks at
     // [o N, (o + 1) N), N = the brick count, x fastest, then 3 bytes of padding so that a 32-bit load
-    // at any brick stays inside.
+    // at any brick stays inside. An octant not built holds 0s, "not empty": it skips nothing.
     const std::vector<std::uint8_t>& distances() const { return distance_; }
 
 private:
     glm::ivec3 bricks_;
+    std::vector<std::uint8_t> empty_;
+    unsigned octants_ = 0;
     std::vector<std::uint8_t> distance_;
 };
+
+// The octants (StencilBricks) of the directions of a camera's rays: bit o for octant o = [x < 0] +
+// 2 [y < 0] + 4 [z < 0]. A component of the direction through a pixel is an affine function of the
+// pixel's position before normalisation, so its signs over the image are those at the corner pixels.
+// (A ray whose direction rounds to another octant, next to a sign change, reads an octant not built:
+// it skips nothing there, and its image is the same.)
+unsigned rayOctants(const Camera& camera);
 
 }  // namespace vri
