@@ -9,12 +9,16 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
+#include <hwy/targets.h>
 #include <tbb/global_control.h>
 
 #include "test_camera.h"
 #include "vri/core/cubic.h"
+#include "vri/core/exact_gauss_batch.h"
 #include "vri/core/exact_ray.h"
 #include "vri/core/exact_empty_space.h"
 #include "vri/core/exact_reference.h"
@@ -439,6 +443,45 @@ TEST_CASE("exact reference: a looser tolerance costs less and stays within its b
     const ExactReference tiny = renderExactReference(scene, camera, opt);
     checkWithinBounds(reference, tiny);
     CHECK(tiny.stats.quadratureIntervals <= 4096 * tiny.stats.subPieces);
+}
+
+TEST_CASE("exact reference: the batched Gauss rules give the same bits on every Highway target and thread count") {
+    // From 1e-10 up the Gauss rules run in batches of sub-pieces, one per vector lane
+    // (exact_gauss_batch.h). A thin medium sends rays through more sub-pieces than a batch holds; a thick
+    // one needs many panels or the adaptive quadrature; both emission models.
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    REQUIRE(!targets.empty());
+    for (double scale : {0.05, 4.0, 300.0})
+        for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour}) {
+            std::vector<TransferFunctionPoint> points = scaledBlobTransferFunction(scale).points();
+            const Scene scene = largeBlob(TransferFunction(points, emission));
+            const Camera camera = blobCamera(scene);
+            ExactReferenceOptions opt;
+            opt.tolerance = 1e-13;
+            const ExactReference reference = renderExactReference(scene, camera, opt);
+            opt.tolerance = 1e-7;
+            ExactReference first;
+            {
+                tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+                first = renderExactReference(scene, camera, opt);
+            }
+            CAPTURE(scale);
+            CAPTURE(static_cast<int>(emission));
+            checkWithinBounds(reference, first);
+            // Thin: 48 sub-pieces per ray on average, the rays through the middle well over a batch.
+            if (scale == 0.05) CHECK(2 * first.stats.subPieces > GaussBatch::kCapacity * first.stats.raysHit);
+            if (scale == 300.0) CHECK(first.stats.quadratureIntervals > first.stats.subPieces);
+            for (std::int64_t target : targets) {
+                hwy::SetSupportedTargetsForTest(target);
+                INFO(hwy::TargetName(target));
+                const ExactReference r = renderExactReference(scene, camera, opt);
+                CHECK(std::string(gaussBatchTarget()) == hwy::TargetName(target));
+                CHECK(r.values == first.values);
+                CHECK(r.bounds == first.bounds);
+                CHECK(r.stats.quadratureNodes == first.stats.quadratureNodes);
+            }
+            hwy::SetSupportedTargetsForTest(0);
+        }
 }
 
 TEST_CASE("exact reference: the bound holds for every extinction from 1e-6 to 1e300") {

@@ -45,10 +45,9 @@ constexpr int kMaxDepth = 40;  // bisections of one sub-piece; reached only by p
 // interval to kMaxDepth (2^40 of them). Past it every interval is accepted with its own error.
 constexpr int kMaxIntervals = 4096;
 constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
-// The most equal panels of the Gauss rule with a derivative bound (integrateSubPiece's first try);
-// a sub-piece that would need more goes to the adaptive Gauss-Kronrod quadrature.
-constexpr int kMaxGaussPanels = 64;
-// Below this tolerance (vri-reference's 1e-13) only the adaptive Gauss-Kronrod quadrature runs: the
+// From this tolerance up a sub-piece first tries the cheapest Gauss rule with a derivative bound
+// (exact_gauss_batch.h; up to 64 panels), and only where none reaches the tolerance the adaptive
+// Gauss-Kronrod quadrature. Below it (vri-reference's 1e-13) only the adaptive quadrature runs: the
 // references, and every result compared against them, keep their bits.
 constexpr double kGaussTolerance = 1e-10;
 
@@ -111,86 +110,16 @@ void applyRule(const KronrodRule<N>& rule, double x0, double x1, const std::arra
     }
 }
 
-struct GaussPanels {
-    int panels = 0, nodes = 0;  // none: no rule within reach
-};
-
-// The cheapest n-point Gauss rule on k equal panels of [0, 1] (n <= 3, k <= kMaxGaussPanels) whose
-// rigorous error bound (gauss_error_bound.h) is at most `allowed` in every channel, its results added
-// to sum, error and rounding (in units of the transparency in front, like the adaptive quadrature's).
-// The rounding terms are the adaptive path's for an interval, with the transparency on it at most
-// transparencyMax = 1 + 2 depthError (>= exp(depthError), the most the rounding of D can lift it).
-// The integrand is evaluated through s: tau and C are linear in it on the sub-piece, v + m (s - sA) with
-// `linear` = {v, m} for tau, R, G, B, so a node costs one cubic and four products instead of four cubics.
-// Its rounding is within the coefficient form's bound (alongSegment in integrateSubPiece): Horner on s errs
-// by <= 6 u sum|s_k|, and |m| sum|s_k| <= sum|coefficients| + |v| + |m sA|, the terms that bound covers 16 times.
-GaussPanels gaussPanels(double ell, const std::array<double, 4>& tau, const std::array<double, 4> (&colour)[3],
-                        const Cubic& local, double sA, const double (&linear)[4][2], bool colourTimesExtinction,
-                        const double gError[3], const std::array<double, 5>& depth, double depthError,
-                        double allowed, double sum[3], double error[3], double rounding[3]) {
-    if (!(depthError <= 0.5)) return {};
-    const double transparencyMax = 1.0 + 2.0 * depthError;
-    const std::array<double, 3> bound = gaussErrorBounds(colour, tau, colourTimesExtinction, ell, transparencyMax);
-    // k^-2n for k = 1..4 (rows) and n = 1..3; the few panels of a short sub-piece are tried in the order
-    // of their cost n k; a long one (the analytic field's, a thick medium's) gets the fewest panels of
-    // the 2- and 3-point rules that reach the tolerance, up to kMaxGaussPanels.
-    static constexpr double kShrink[4][3] = {
-        {1.0, 1.0, 1.0}, {0x1p-2, 0x1p-4, 0x1p-6}, {1.0 / 9, 1.0 / 81, 1.0 / 729}, {0x1p-4, 0x1p-8, 0x1p-12}};
-    static constexpr int kTries[][2] = {{1, 1}, {2, 1}, {1, 2}, {3, 1}, {1, 3}, {2, 2}, {1, 4}};  // {n, k}
-    int bestN = 0, bestK = 0;
-    double shrink = 1.0;
-    for (const auto& [n, k] : kTries)
-        if (ell * bound[n - 1] * kShrink[k - 1][n - 1] <= allowed) {
-            bestN = n;
-            bestK = k;
-            shrink = kShrink[k - 1][n - 1];
-            break;
-        }
-    if (bestN == 0) {
-        for (int n = 3; n >= 2; --n) {
-            // k^2n must reach the ratio: k from its 2n-th root by square and cube roots, k^-2n from products
-            // (k^2n is exact for k <= 64), without pow, which took more time than the rest of the choice.
-            const double ratio = ell * bound[n - 1] / allowed;
-            static_assert(kMaxGaussPanels == 64, "2^36 and 2^24 are 64^6 and 64^4");
-            if (!(ratio < (n == 3 ? 0x1p36 : 0x1p24))) continue;
-            int k = std::max(1, static_cast<int>(n == 3 ? std::sqrt(std::cbrt(ratio)) : std::sqrt(std::sqrt(ratio))));
-            auto shrinkOf = [n](int panels) {
-                const double square = static_cast<double>(panels) * panels;
-                return 1.0 / (n == 3 ? square * square * square : square * square);
-            };
-            while (k < kMaxGaussPanels && !(ell * bound[n - 1] * shrinkOf(k) <= allowed)) ++k;
-            if (!(ell * bound[n - 1] * shrinkOf(k) <= allowed)) continue;
-            if (bestN == 0 || n * k < bestN * bestK) {
-                bestN = n;
-                bestK = k;
-                shrink = shrinkOf(k);
-            }
-        }
-    }
-    if (bestN == 0) return {};  // no rule in reach: the adaptive quadrature
-    const GaussRule& rule = gaussRule(bestN);
-    const double width = 1.0 / bestK;
-    for (int p = 0; p < bestK; ++p) {
-        double f[3] = {};
-        for (int i = 0; i < bestN; ++i) {
-            const double x = (p + rule.node[i]) * width;
-            const double sigma = local(x) - sA;
-            double t = rule.weight[i] * std::exp(-horner(depth, x));
-            if (colourTimesExtinction) t *= linear[0][0] + linear[0][1] * sigma;
-            for (int c = 0; c < 3; ++c) f[c] += (linear[c + 1][0] + linear[c + 1][1] * sigma) * t;
-        }
-        for (int c = 0; c < 3; ++c) {
-            const double value = ell * width * f[c], e = ell * bound[bestN - 1] * shrink / bestK;
-            sum[c] += value;
-            error[c] += e;
-            rounding[c] +=
-                ell * width * transparencyMax * gError[c] + (std::abs(value) + e) * (depthError + 32.0 * kUnit);
-        }
-    }
-    return {bestK, bestN * bestK};
-}
-
+// ds bounds the error of s's coefficients. The coefficients and their sum from registers: written to
+// memory and read back as pairs (as a loop over r.p compiles), each read waited for the stores it spans
+// (a failed store forwarding). exact_gauss_batch.cpp's alongSegment is this, lane by lane.
 }  // namespace
+
+ExactRay::Linear ExactRay::alongSegment(const Cubic& local, double sA, double v, double m, double ds) {
+    const double p0 = v + m * (local.c[0] - sA), p1 = m * local.c[1], p2 = m * local.c[2], p3 = m * local.c[3];
+    const double sum = std::abs(p0) + std::abs(p1) + std::abs(p2) + std::abs(p3);
+    return {{p0, p1, p2, p3}, sum, 16.0 * kUnit * (sum + std::abs(v) + std::abs(m * sA)) + std::abs(m) * ds};
+}
 
 ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
     : tf_(tf),
@@ -233,6 +162,17 @@ ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
     terminationDepth_ = std::min(kOpaqueDepth, std::log(largestColour_ / tolerance));
     // Each of a piece's at most three monotone parts crosses each level at most once.
     splits_.reserve(3 * levels_.size() + 2);
+    auto channels = [](const TransferFunctionPoint& p) { return std::array<double, 4>{p.tau, p.r, p.g, p.b}; };
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+        const auto a = channels(points[i]), b = channels(points[i + 1]);
+        const double inverseWidth = 1.0 / (points[i + 1].s - points[i].s);  // inf between a jump's two points
+        Segment segment{points[i].s, a, {}};
+        for (int k = 0; k < 4; ++k) segment.slope[k] = (b[k] - a[k]) * inverseWidth;
+        segments_.push_back(segment);
+    }
+    segments_.push_back({points.front().s, channels(points.front()), {}});
+    segments_.push_back({points.back().s, channels(points.back()), {}});
+    if (tolerance >= kGaussTolerance) batch_ = std::make_unique<GaussBatch>();
 }
 
 bool ExactRay::doneAtDepth(double depth, double remainingLength) const {
@@ -247,6 +187,7 @@ bool ExactRay::invisible(double s0, double s1) const {
 }
 
 void ExactRay::begin() {
+    queued_ = 0;
     opticalDepth_ = depthError_ = 0.0;
     colour_ = quadratureError_ = roundingError_ = {};
 }
@@ -343,70 +284,114 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     // Everything as polynomials in lambda in [0, 1] over the sub-piece.
     const Cubic local = a == 0.0 && b == 1.0 ? s : s.reparameterised(a, b - a);  // the same bits for a whole piece
     const double ell = length * (b - a);
-    const double inverseWidth = iA == iB ? 0.0 : 1.0 / (B.s - A.s);
-    const double ds = 32.0 * kUnit * sScale;
-    struct Linear {
-        std::array<double, 4> p;
-        double sum;    // sum |p[k]|: bounds |p| on [0, 1]
-        double error;  // bound on |computed - exact| anywhere on [0, 1]
-        double v, m;   // vA + m (s - A.s)
-    };
-    // The coefficients and their sum from registers: written to memory and read back as pairs (as a
-    // loop over r.p compiles), each read waited for the stores it spans (a failed store forwarding).
-    auto alongSegment = [&](double vA, double vB) {
-        const double m = (vB - vA) * inverseWidth;
-        const double p0 = vA + m * (local.c[0] - A.s), p1 = m * local.c[1], p2 = m * local.c[2], p3 = m * local.c[3];
-        const double sum = std::abs(p0) + std::abs(p1) + std::abs(p2) + std::abs(p3);
-        return Linear{{p0, p1, p2, p3}, sum, 16.0 * kUnit * (sum + std::abs(vA) + std::abs(m * A.s)) + std::abs(m) * ds,
-                      vA, m};
-    };
-    const Linear tau = alongSegment(A.tau, B.tau);
-    const Linear colour[3] = {alongSegment(A.r, B.r), alongSegment(A.g, B.g), alongSegment(A.b, B.b)};
-    const double tauSum = tau.sum;
+    const std::size_t segment = iA != iB ? iA : iA == 0 ? points.size() - 1 : points.size();
+    const SubPiece piece = setUp(local, ell, sScale, segments_[segment], !batch_);
+    const double depthErrorInFront = depthError_;
+    if (batch_) {
+        // The Gauss rules wait for the batch (exact_gauss_batch.h); the depth goes on now, for done().
+        GaussBatch& q = *batch_;
+        const int j = queued_++;
+        for (int k = 0; k < 4; ++k) q.c[k][j] = local.c[k];
+        q.ell[j] = ell;
+        q.sScale[j] = sScale;
+        const Segment& seg = segments_[segment];
+        q.segmentS[j] = seg.s;
+        for (int k = 0; k < 4; ++k) {
+            q.value[k][j] = seg.value[k];
+            q.slope[k][j] = seg.slope[k];
+        }
+        q.depthInFront[j] = opticalDepth_;
+        queuedSegment_[j] = segment;
+        queuedLength_[j] = length;
+        queuedDepthError_[j] = depthErrorInFront;
+    } else {
+        double sum[3] = {}, error[3] = {}, rounding[3] = {};
+        const double front = std::exp(-opticalDepth_);
+        adaptiveQuadrature(piece, front, sum, error, rounding);
+        accumulate(front, depthErrorInFront, sum, error, rounding, piece.gMax, length);
+    }
+    opticalDepth_ += horner(piece.depth, 1.0);
+    depthError_ += piece.depthError + length * 4.0 * kUnit * piece.tau.sum + kUnit * opticalDepth_;
+    if (queued_ == GaussBatch::kCapacity) flush();
+}
 
-    // Bounds on the emission g of each channel and on its error where the rule evaluates it.
-    double gMax[3], gError[3];
+ExactRay::SubPiece ExactRay::setUp(const Cubic& local, double ell, double sScale, const Segment& segment,
+                                   bool withColour) const {
+    SubPiece r;
+    r.local = local;
+    r.ell = ell;
+    const double ds = 32.0 * kUnit * sScale;
+    r.tau = alongSegment(local, segment.s, segment.value[0], segment.slope[0], ds);
+    // The optical depth from the sub-piece's start, ell * integral of tau; its error at lambda = 1 (lambda
+    // times it at lambda).
+    r.depth[0] = 0.0;
+    for (int k = 0; k < 4; ++k) r.depth[k + 1] = ell * r.tau.p[k] / (k + 1);
+    r.depthError = ell * (r.tau.error + 8.0 * kUnit * r.tau.sum);
+    if (!withColour) return r;
+    // Bounds on the emission g of each channel and on its error where a rule evaluates it.
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
     for (int c = 0; c < 3; ++c) {
-        const double colourSum = colour[c].sum;
+        r.colour[c] = alongSegment(local, segment.s, segment.value[c + 1], segment.slope[c + 1], ds);
+        const double colourSum = r.colour[c].sum;
         if (colourTimesExtinction) {
-            gMax[c] = colourSum * tauSum;
-            gError[c] = colour[c].error * tauSum + colourSum * tau.error + 16.0 * kUnit * gMax[c];
+            r.gMax[c] = colourSum * r.tau.sum;
+            r.gError[c] = r.colour[c].error * r.tau.sum + colourSum * r.tau.error + 16.0 * kUnit * r.gMax[c];
         } else {
-            gMax[c] = colourSum;
-            gError[c] = colour[c].error;
+            r.gMax[c] = colourSum;
+            r.gError[c] = r.colour[c].error;
         }
     }
-    std::array<double, 5> depth{};  // optical depth from the sub-piece's start: ell * integral of tau
-    for (int k = 0; k < 4; ++k) depth[k + 1] = ell * tau.p[k] / (k + 1);
-    const double depthError = ell * (tau.error + 8.0 * kUnit * tauSum);  // at lambda = 1; lambda times it at lambda
+    return r;
+}
 
-    // The sums are in units of the transparency in front of the sub-piece, `front`. First the Gauss
-    // rule whose error bound is in reach; where none is, adaptive quadrature on [0, 1], all channels
-    // together (they share the transparency).
-    const double front = std::exp(-opticalDepth_);
-    double sum[3] = {}, error[3] = {}, rounding[3] = {};
+void ExactRay::flush() {
+    if (queued_ == 0) return;
+    const GaussBatch& q = *batch_;
+    integrateGaussBatch(*batch_, queued_, tolerance_, emission_ == EmissionModel::ColourTimesExtinction);
+    for (int j = 0; j < queued_; ++j) {
+        if (q.panels[j] > 0) {
+            quadratureIntervals += q.panels[j];
+            quadratureNodes += q.nodes[j];
+            const double sum[3] = {q.sum[0][j], q.sum[1][j], q.sum[2][j]};
+            const double error[3] = {q.error[0][j], q.error[1][j], q.error[2][j]};
+            const double rounding[3] = {q.rounding[0][j], q.rounding[1][j], q.rounding[2][j]};
+            const double gMax[3] = {q.gMax[0][j], q.gMax[1][j], q.gMax[2][j]};
+            accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, gMax, queuedLength_[j]);
+        } else {  // no Gauss rule within reach
+            const Cubic local{{q.c[0][j], q.c[1][j], q.c[2][j], q.c[3][j]}};
+            const SubPiece piece = setUp(local, q.ell[j], q.sScale[j], segments_[queuedSegment_[j]], true);
+            double sum[3] = {}, error[3] = {}, rounding[3] = {};
+            adaptiveQuadrature(piece, q.front[j], sum, error, rounding);
+            accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, piece.gMax, queuedLength_[j]);
+        }
+    }
+    queued_ = 0;
+}
+
+// The sums are in units of the transparency in front of the sub-piece, `front`: adaptive quadrature on
+// [0, 1], all channels together (they share the transparency).
+void ExactRay::adaptiveQuadrature(const SubPiece& piece, double front, double sum[3], double error[3],
+                                  double rounding[3]) {
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    const Linear& tau = piece.tau;
+    const Linear(&colour)[3] = piece.colour;
+    const std::array<double, 5>& depth = piece.depth;
+    const double ell = piece.ell, depthError = piece.depthError;
+    const double* gError = piece.gError;
     const std::array<double, 4> colours[3] = {colour[0].p, colour[1].p, colour[2].p};
-    const double linear[4][2] = {{tau.v, tau.m}, {colour[0].v, colour[0].m}, {colour[1].v, colour[1].m},
-                                 {colour[2].v, colour[2].m}};
-    const GaussPanels panels =
-        tolerance_ < kGaussTolerance ? GaussPanels{}
-                                     : gaussPanels(ell, tau.p, colours, local, A.s, linear, colourTimesExtinction,
-                                                   gError, depth, depthError, tolerance_ / front, sum, error, rounding);
-    quadratureIntervals += panels.panels;
-    quadratureNodes += panels.nodes;
     struct Interval {
         double x0, x1;
         int depth;
     };
     Interval stack[kMaxDepth + 2];
     int top = 0;
-    if (panels.panels == 0) stack[top++] = {0.0, 1.0, 0};
+    stack[top++] = {0.0, 1.0, 0};
     // C and tau are linear in s: on an interval their extremes lie where s's do, at its ends or where
     // s' = 0 (a sub-piece is split at TF points only, so s need not be monotone on it).
     double critical[2];
     int criticals = -1;  // found when an enclosure first needs them
     auto range = [&](const Linear& f, double x0, double x1, double& lo, double& hi) {
-        if (criticals < 0) criticals = criticalPoints(local, 0.0, 1.0, critical);
+        if (criticals < 0) criticals = criticalPoints(piece.local, 0.0, 1.0, critical);
         const double at0 = horner(f.p, x0), at1 = horner(f.p, x1);
         lo = std::min(at0, at1);
         hi = std::max(at0, at1);
@@ -474,8 +459,12 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         stack[top++] = {centre, iv.x1, iv.depth + 1};
         stack[top++] = {iv.x0, centre, iv.depth + 1};
     }
+}
 
-    const double frontError = depthError_ + 2.0 * kUnit;  // relative, of `front`
+void ExactRay::accumulate(double front, double depthErrorInFront, const double sum[3], const double error[3],
+                          const double rounding[3], const double gMax[3], double length) {
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    const double frontError = depthErrorInFront + 2.0 * kUnit;  // relative, of `front`
     for (int c = 0; c < 3; ++c) {
         colour_[c] += front * sum[c];
         quadratureError_[c] += front * error[c];
@@ -484,11 +473,10 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         roundingError_[c] += front * (rounding[c] + (std::abs(sum[c]) + error[c]) * frontError + sliver) +
                              kUnit * std::abs(colour_[c]);
     }
-    opticalDepth_ += horner(depth, 1.0);
-    depthError_ += depthError + length * 4.0 * kUnit * tauSum + kUnit * opticalDepth_;
 }
 
-void ExactRay::finish(double remainingLength, double value[4], double bound[4]) const {
+void ExactRay::finish(double remainingLength, double value[4], double bound[4]) {
+    flush();
     const double transparencyHigh = std::exp(-(opticalDepth_ - depthError_));  // at least the exact T
     const bool cut = remainingLength > 0.0;
     const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;

@@ -3,10 +3,12 @@
 // near double precision with a bound on its error (see exact_reference.h for the method).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
 #include "vri/core/cubic.h"
+#include "vri/core/exact_gauss_batch.h"
 #include "vri/core/transfer_function.h"
 
 namespace vri {
@@ -36,7 +38,7 @@ public:
     }
     // Ends the ray, `remainingLength` world units of which were left out after done(): RGBA and
     // a bound on each channel's error.
-    void finish(double remainingLength, double value[4], double bound[4]) const;
+    void finish(double remainingLength, double value[4], double bound[4]);
 
     // Whether the TF is zero on all of [s0, s1]: tf.isInvisible(s0, s1) from a table of the spans where
     // it is zero, not a search (true only where that is; an ulp short of a jump out of zero).
@@ -47,8 +49,35 @@ public:
 private:
     static constexpr double kOpaqueDepth = 41.588830833596716;  // 60 ln 2
 
+    // A transfer-function segment: from s on, channel k (tau, R, G, B) is value[k] + slope[k] (s' - s).
+    struct Segment {
+        double s;
+        std::array<double, 4> value, slope;
+    };
+    // A channel along a sub-piece: v + m (s - segment.s) as a cubic in lambda (exact_ray.cpp).
+    struct Linear {
+        std::array<double, 4> p;
+        double sum;    // sum |p[k]|: bounds |p| on [0, 1]
+        double error;  // bound on |computed - exact| anywhere on [0, 1]
+    };
+    // What the quadrature of one sub-piece needs, as polynomials in lambda in [0, 1].
+    struct SubPiece {
+        Cubic local;
+        double ell;
+        Linear tau, colour[3];
+        double gMax[3], gError[3];    // bounds on the emission g and on its error where a rule evaluates it
+        std::array<double, 5> depth;  // the optical depth from the sub-piece's start
+        double depthError;            // bound on the depth's error at lambda = 1 (lambda times it at lambda)
+    };
+
     bool doneAtDepth(double depth, double remainingLength) const;  // done() past terminationDepth_
+    static Linear alongSegment(const Cubic& local, double sA, double v, double m, double ds);
     void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale);
+    SubPiece setUp(const Cubic& local, double ell, double sScale, const Segment& segment, bool withColour) const;
+    void adaptiveQuadrature(const SubPiece& piece, double front, double sum[3], double error[3], double rounding[3]);
+    void accumulate(double front, double depthErrorInFront, const double sum[3], const double error[3],
+                    const double rounding[3], const double gMax[3], double length);
+    void flush();  // integrates the queued sub-pieces, in order
 
     const TransferFunction& tf_;
     EmissionModel emission_;
@@ -62,11 +91,21 @@ private:
     std::vector<double> levels_;   // the distinct s of the TF points: where a piece is split
     std::vector<double> splits_;   // scratch: a piece's split points in sigma
     std::vector<std::pair<double, double>> invisibleSpans_;  // closed spans of s where the TF is zero
+    // Segment i < n - 1 runs from point i to point i + 1; n - 1 and n are the constants below the first
+    // point and above the last (n points).
+    std::vector<Segment> segments_;
     std::array<double, 3> maxColour_{};
 
     // The ray so far.
     double opticalDepth_ = 0.0, depthError_ = 0.0;
     std::array<double, 3> colour_{}, quadratureError_{}, roundingError_{};
+
+    // From kGaussTolerance up: the sub-pieces waiting for their Gauss rules, with what the ray needs of
+    // each once they are done (the optical depth has already moved past them).
+    std::unique_ptr<GaussBatch> batch_;
+    int queued_ = 0;
+    std::array<std::size_t, GaussBatch::kCapacity> queuedSegment_;
+    std::array<double, GaussBatch::kCapacity> queuedLength_, queuedDepthError_;
 };
 
 }  // namespace vri
