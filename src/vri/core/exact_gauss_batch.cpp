@@ -62,7 +62,7 @@ HWY_INLINE Linear alongSegment(const VectorOps& o, const V (&c)[4], V sA, V v, V
 }
 
 // The fewest panels of the 2- or 3-point rule whose bound reaches `allowed`, for a sub-piece that none
-// of the few cheapest rules reached (exact_ray.cpp's order: the cheapest n k). Returns n = 0 for none.
+// of the few cheapest rules reached (the cheapest n k wins). Returns n = 0 for none.
 struct Choice {
     int n = 0, k = 0;
     double shrink = 1.0;
@@ -87,6 +87,14 @@ Choice manyPanels(double ell, const double bound[3], double allowed) {
     return best;
 }
 
+// The sums of each sub-piece are in units of the transparency in front of it, like the adaptive
+// quadrature's in exact_ray.cpp. The rounding terms are that quadrature's for an interval, with the
+// transparency on it at most transparencyMax = 1 + 2 depthError (>= exp(depthError), the most the rounding
+// of D can lift it). The integrand is evaluated through s: tau and C are linear in it on the sub-piece,
+// v + m (s - sA), so a node costs one cubic and four products instead of four cubics. Its rounding is within
+// the coefficient form's bound (alongSegment): Horner on s errs by <= 6 u sum|s_k|, and
+// |m| sum|s_k| <= sum|coefficients| + |v| + |m sA|, the terms that bound covers 16 times. The exp of the
+// transparencies errs by at most 1 ulp (double_exp_kernel.h), within the 2 u the analysis allows it.
 void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colourTimesExtinction) {
     const D d;
     const VectorOps o;
@@ -96,7 +104,9 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
         for (int k = 0; k < 4; ++k) b.c[k][j] = b.value[k][j] = b.slope[k][j] = 0.0;
         b.ell[j] = b.sScale[j] = b.segmentS[j] = b.depthInFront[j] = 0.0;
     }
-    // exact_ray.cpp's gaussPanels tries {n, k} in the order of their cost n k; kShrink holds k^-2n.
+    // k^-2n for k = 1..4 (rows) and n = 1..3; the few panels of a short sub-piece are tried in the order
+    // of their cost n k; a long one (the analytic field's, a thick medium's) gets the fewest panels of
+    // the 2- and 3-point rules that reach the tolerance (manyPanels), up to kMaxGaussPanels.
     static constexpr double kShrink[4][3] = {
         {1.0, 1.0, 1.0}, {0x1p-2, 0x1p-4, 0x1p-6}, {1.0 / 9, 1.0 / 81, 1.0 / 729}, {0x1p-4, 0x1p-8, 0x1p-12}};
     static constexpr int kTries[][2] = {{1, 1}, {2, 1}, {1, 2}, {3, 1}, {1, 3}, {2, 2}, {1, 4}};  // {n, k}

@@ -110,11 +110,11 @@ void applyRule(const KronrodRule<N>& rule, double x0, double x1, const std::arra
     }
 }
 
+}  // namespace
+
 // ds bounds the error of s's coefficients. The coefficients and their sum from registers: written to
 // memory and read back as pairs (as a loop over r.p compiles), each read waited for the stores it spans
 // (a failed store forwarding). exact_gauss_batch.cpp's alongSegment is this, lane by lane.
-}  // namespace
-
 ExactRay::Linear ExactRay::alongSegment(const Cubic& local, double sA, double v, double m, double ds) {
     const double p0 = v + m * (local.c[0] - sA), p1 = m * local.c[1], p2 = m * local.c[2], p3 = m * local.c[3];
     const double sum = std::abs(p0) + std::abs(p1) + std::abs(p2) + std::abs(p3);
@@ -237,7 +237,7 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
 // Error analysis. The result is exact for the model (trilinear field, piecewise-linear TF, along the
 // ray as computed) up to (1) the quadrature and (2) rounding, bounded with u = 2^-53 as follows, the
 // constants being generous counts of the operations involved:
-//  - quadrature, Gauss rule (gaussPanels): the remainder bound of gauss_error_bound.h holds for the
+//  - quadrature, Gauss rule (exact_gauss_batch.cpp): the remainder bound of gauss_error_bound.h holds for the
 //    computed polynomials whatever their size; exp(-D) <= 1 + 2 depthError on [0, 1] covers a D that
 //    the rounding of tau takes below 0.
 //  - quadrature, adaptive: on an interval across which the optical depth grows by at most kResolvedDepth, the
