@@ -1,4 +1,4 @@
-// The double exp of the exact method's batched Gauss rules (double_exp_kernel.h), run on doubles as the
+// The double exp of the exact method's batched Gauss rules (exp_kernel.h), run on doubles as the
 // vector code runs it on each lane, against long double's expl: the error in double ulps of the exact
 // value wherever the result is normal, the subnormal range, and the edges.
 #include <doctest/doctest.h>
@@ -9,14 +9,15 @@
 #include <limits>
 #include <random>
 
-#include "vri/core/double_exp_kernel.h"
+#include "vri/core/exp_kernel.h"
 
 using namespace vri;
 
 namespace {
 
-// double_exp_kernel.h's operations on one double.
+// exp_kernel.h's operations on one double.
 struct ScalarOps {
+    using Scalar = double;
     static double set(double c) { return c; }
     static double select(bool c, double a, double b) { return c ? a : b; }
     static bool less(double a, double b) { return a < b; }
@@ -27,7 +28,7 @@ struct ScalarOps {
     static double pow2(std::int64_t k) { return std::bit_cast<double>(static_cast<std::uint64_t>(k + 1023) << 52); }
 };
 
-double expDouble(double x) { return double_exp_kernel::exp(ScalarOps{}, x); }
+double expDouble(double x) { return exp_kernel::exp(ScalarOps{}, x); }
 
 // |got - exact| in units of the double spacing at `exact` (2^-1074 for subnormal values).
 double ulpError(double got, long double exact) {

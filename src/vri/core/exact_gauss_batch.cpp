@@ -15,7 +15,7 @@
 #include "vri/core/gauss_error_bound.h"
 
 HWY_BEFORE_NAMESPACE();
-#include "vri/core/double_exp_kernel.h"   // once per target, see there
+#include "vri/core/exp_kernel.h"          // once per target, see there
 #include "vri/core/gauss_bound_kernel.h"  // once per target, see there
 
 namespace vri {
@@ -31,8 +31,9 @@ using M = hn::Mask<D>;
 constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
 constexpr int kMaxGaussPanels = 64;
 
-// double_exp_kernel.h's and gauss_bound_kernel.h's operations, lane by lane.
+// exp_kernel.h's and gauss_bound_kernel.h's operations, lane by lane.
 struct VectorOps {
+    using Scalar = double;
     D d;
     DI di;
     V set(double c) const { return hn::Set(d, c); }
@@ -94,7 +95,7 @@ Choice manyPanels(double ell, const double bound[3], double allowed) {
 // v + m (s - sA), so a node costs one cubic and four products instead of four cubics. Its rounding is within
 // the coefficient form's bound (alongSegment): Horner on s errs by <= 6 u sum|s_k|, and
 // |m| sum|s_k| <= sum|coefficients| + |v| + |m sA|, the terms that bound covers 16 times. The exp of the
-// transparencies errs by at most 1 ulp (double_exp_kernel.h), within the 2 u the analysis allows it.
+// transparencies errs by at most 1 ulp (exp_kernel.h), within the 2 u the analysis allows it.
 void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colourTimesExtinction) {
     const D d;
     const VectorOps o;
@@ -144,7 +145,7 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
         const V transparencyMax = o.set(1.0) + o.set(2.0) * depthError;
         const std::array<V, 3> bounds =
             gauss_bound_kernel::bounds(o, colours, tau.p, colourTimesExtinction, ell, transparencyMax);
-        const V front = double_exp_kernel::exp(o, hn::Neg(hn::Load(d, b.depthInFront + j)));
+        const V front = exp_kernel::exp(o, hn::Neg(hn::Load(d, b.depthInFront + j)));
         const V allowed = o.set(tolerance) / front;
         hn::Store(front, d, b.front + j);
 
@@ -210,7 +211,7 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
                 const V sigma = (c[0] + x * (c[1] + x * (c[2] + x * c[3]))) - sA;
                 V r = depth[4];
                 for (int q = 3; q >= 0; --q) r = r * x + depth[q];
-                V t = weight[i] * double_exp_kernel::exp(o, hn::Neg(r));
+                V t = weight[i] * exp_kernel::exp(o, hn::Neg(r));
                 if (colourTimesExtinction) t = t * (tauV + tauM * sigma);
                 for (int ch = 0; ch < 3; ++ch)
                     f[ch] = hn::IfThenElse(active, f[ch] + (colourV[ch] + colourM[ch] * sigma) * t, f[ch]);

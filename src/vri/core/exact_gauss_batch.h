@@ -2,7 +2,7 @@
 // The exact method's Gauss rules (exact_ray.cpp) applied to many sub-pieces at once: one ray's
 // sub-pieces wait here, structure of arrays, until the batch is full or the ray ends, and are then
 // integrated by Highway vectors of doubles, one sub-piece per lane. Each lane performs exact_ray.cpp's
-// scalar formulas in the same order, unfused, with double_exp_kernel.h's exp, so the result is the same
+// scalar formulas in the same order, unfused, with exp_kernel.h's exp, so the result is the same
 // on every Highway target. Only the choice and application of the rule is batched: the walk, the splits
 // and the optical depth in front of each sub-piece stay with the ray, in order.
 #include <cstdint>

@@ -1,24 +1,28 @@
-// exp and expm1 in float from additions, subtractions and multiplications only, written once for any
-// arithmetic: float_exp.cpp runs it on floats (the scalar fixed-step path), simd_march.cpp on Highway
-// vectors (the packet engine). Every lane of a vector performs the scalar code's operations in the
-// same order, so the two paths round alike and their images agree bit for bit; std::exp could not
-// promise that, as its float result depends on the C library.
+// exp (and expm1 in float) from additions, subtractions and multiplications only, written once for any
+// arithmetic and for float and double: float_exp.cpp runs it on floats (the scalar fixed-step path),
+// simd_march.cpp on Highway vectors of floats (the packet engine), exact_gauss_batch.cpp on vectors of
+// doubles (the exact method's batched Gauss rules). Every lane of a vector performs the scalar code's
+// operations in the same order, unfused, so the two paths round alike and their images agree bit for bit
+// on every target; std::exp could not promise that, as its result depends on the C library.
 //
 // Cody and Waite's reduction: x = k ln 2 + r with k = round(x / ln 2) and |r| <= ln 2 / 2, ln 2 split
-// into a head with few bits (k * head is exact) and a tail. expm1(r) is its Taylor polynomial of
-// degree 7, whose truncation error on |r| <= 0.347 is below 1e-8 (a quarter of a float ulp); then
-// exp(x) = (1 + expm1(r)) 2^k and expm1(x) = 2^k expm1(r) + (2^k - 1), with no cancellation near 0.
+// into a head with few bits (k * head is exact) and a tail. expm1(r) is its Taylor polynomial, of degree
+// 7 in float (truncation error on |r| <= 0.347 below 1e-8, a quarter of a float ulp) and 13 in double
+// (below 5e-18 relative, 1/25 of a double ulp); then exp(x) = (1 + expm1(r)) 2^k, with 2^k in two
+// factors so that a subnormal result is rounded once, and expm1(x) = 2^k expm1(r) + (2^k - 1), with no
+// cancellation near 0.
 //
-// Ops supplies the few operations that differ between a float and a vector of floats:
-//   Float set(float), Int setInt(int), Float select(Cond, Float, Float), Int toInt(Float) (exact on
-//   integral values), Float pow2(Int k) (2^k for -126 <= k <= 127, from the exponent bits),
-//   Int halve(Int) (arithmetic shift right by 1), Int clampInt(Int, int lo, int hi), Cond less(Float,
-//   Float), Cond greater(Float, Float), Cond intGreater(Int, int), Cond isNaN(Float), and the Float
-//   and Int operators + - *.
+// Ops supplies the few operations that differ between a number and a vector: the type Scalar (float or
+// double, which picks the constants), Real set(Scalar), Int setInt(int), Real select(Cond, Real, Real),
+// Int toInt(Real) (exact on integral values), Real pow2(Int k) (2^k for a normal power of two, from the
+// exponent bits), Int halve(Int) (arithmetic shift right by 1), Int clampInt(Int, int lo, int hi),
+// Cond less(Real, Real), Cond greater(Real, Real), Cond intGreater(Int, int), Cond isNaN(Real), and the
+// Real and Int operators + - *. (expm1 is float only; exp needs neither setInt, clampInt nor intGreater.)
 //
 // Highway compiles a function for a target only where it is defined inside that target's region, so
-// simd_march.cpp includes this header there once per target (the guard toggles with Highway's, as
-// Highway's own -inl.h headers do), into that target's namespace; other files include it once.
+// simd_march.cpp and exact_gauss_batch.cpp include this header there once per target (the guard toggles
+// with Highway's, as Highway's own -inl.h headers do), into that target's namespace; other files include
+// it once.
 #if defined(VRI_EXP_KERNEL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef VRI_EXP_KERNEL_H_
 #undef VRI_EXP_KERNEL_H_
@@ -32,58 +36,87 @@ namespace HWY_NAMESPACE {
 #endif
 namespace exp_kernel {
 
-constexpr float kLog2E = 1.44269504088896341f;
-constexpr float kLn2Head = 0.693359375f;       // 0x3f318000: 9 significant bits
-constexpr float kLn2Tail = -2.12194440e-4f;    // ln 2 - kLn2Head
-constexpr float kRoundToInteger = 12582912.f;  // 1.5 * 2^23: (y + it) - it rounds |y| < 2^22 to an integer
-// exp underflows to 0 below -103.97 and overflows above 88.73: clamping there changes no result
-// and keeps k in [-150, 129].
-constexpr float kLowest = -104.f;
-constexpr float kHighest = 89.f;
-
-template <class Ops, class Float>
-struct Reduction {
-    Float k;  // an integer, as a float
-    Float r;  // x - k ln 2
+// Each precision's constants. exp underflows to 0 below `lowest` and overflows above `highest`: clamping
+// there changes no result and keeps k where its halves are normal powers of two.
+template <class Scalar>
+struct Constants;
+template <>
+struct Constants<float> {
+    static constexpr float log2E = 1.44269504088896341f;
+    static constexpr float ln2Head = 0.693359375f;       // 0x3f318000: 9 significant bits
+    static constexpr float ln2Tail = -2.12194440e-4f;    // ln 2 - ln2Head
+    static constexpr float roundToInteger = 12582912.f;  // 1.5 * 2^23: (y + it) - it rounds |y| < 2^22 to an integer
+    static constexpr float lowest = -104.f;              // exp(-103.97) underflows; k in [-150, 129]
+    static constexpr float highest = 89.f;               // exp(88.73) overflows
+};
+template <>
+struct Constants<double> {
+    static constexpr double log2E = 1.4426950408889634074;
+    static constexpr double ln2Head = 6.93147180369123816490e-01;  // 0x3fe62e42fee00000: low 21 bits zero
+    static constexpr double ln2Tail = 1.90821492927058770002e-10;  // ln 2 - ln2Head
+    static constexpr double roundToInteger = 6755399441055744.0;   // 1.5 * 2^52: rounds |y| < 2^51
+    static constexpr double lowest = -746.0;                       // exp(-745.14) underflows; k in [-1076, 1025]
+    static constexpr double highest = 710.0;                       // exp(709.79) overflows
 };
 
-template <class Ops, class Float>
-[[gnu::always_inline]] inline Reduction<Ops, Float> reduce(const Ops& o, Float x) {
-    // NaN compares false and becomes kLowest here; the callers put it back.
-    const Float lowest = o.set(kLowest), highest = o.set(kHighest);
-    Float xc = o.select(o.less(x, lowest), lowest, x);
+template <class Ops, class Real>
+struct Reduction {
+    Real k;  // an integer, as a Real
+    Real r;  // x - k ln 2
+};
+
+template <class Ops, class Real>
+[[gnu::always_inline]] inline Reduction<Ops, Real> reduce(const Ops& o, Real x) {
+    using C = Constants<typename Ops::Scalar>;
+    // NaN compares false and becomes C::lowest here; the callers put it back.
+    const Real lowest = o.set(C::lowest), highest = o.set(C::highest);
+    Real xc = o.select(o.less(x, lowest), lowest, x);
     xc = o.select(o.greater(xc, highest), highest, xc);
     xc = o.select(o.isNaN(x), lowest, xc);
-    const Float k = (xc * o.set(kLog2E) + o.set(kRoundToInteger)) - o.set(kRoundToInteger);
-    const Float r = (xc - k * o.set(kLn2Head)) - k * o.set(kLn2Tail);
+    const Real k = (xc * o.set(C::log2E) + o.set(C::roundToInteger)) - o.set(C::roundToInteger);
+    const Real r = (xc - k * o.set(C::ln2Head)) - k * o.set(C::ln2Tail);
     return {k, r};
 }
 
-// expm1(r) for |r| <= ln 2 / 2: r + r^2 (1/2! + r (1/3! + ... + r / 7!)), Horner.
-template <class Ops, class Float>
-[[gnu::always_inline]] inline Float expm1Reduced(const Ops& o, Float r) {
-    Float p = o.set(1.f / 5040.f);
-    p = p * r + o.set(1.f / 720.f);
-    p = p * r + o.set(1.f / 120.f);
-    p = p * r + o.set(1.f / 24.f);
-    p = p * r + o.set(1.f / 6.f);
-    p = p * r + o.set(0.5f);
+// expm1(r) for |r| <= ln 2 / 2: r + r^2 (1/2! + r (1/3! + ... + r / 7!)) in float, to r / 13! in
+// double, Horner.
+template <class Ops, class Real>
+[[gnu::always_inline]] inline Real expm1Reduced(const Ops& o, Real r) {
+    using Scalar = typename Ops::Scalar;
+    Real p;
+    if constexpr (sizeof(Scalar) == sizeof(double)) {
+        p = o.set(1.0 / 6227020800.0);
+        p = p * r + o.set(1.0 / 479001600.0);
+        p = p * r + o.set(1.0 / 39916800.0);
+        p = p * r + o.set(1.0 / 3628800.0);
+        p = p * r + o.set(1.0 / 362880.0);
+        p = p * r + o.set(1.0 / 40320.0);
+        p = p * r + o.set(1.0 / 5040.0);
+    } else {
+        p = o.set(Scalar(1) / Scalar(5040));
+    }
+    p = p * r + o.set(Scalar(1) / Scalar(720));
+    p = p * r + o.set(Scalar(1) / Scalar(120));
+    p = p * r + o.set(Scalar(1) / Scalar(24));
+    p = p * r + o.set(Scalar(1) / Scalar(6));
+    p = p * r + o.set(Scalar(0.5));
     return r + (r * r) * p;
 }
 
-template <class Ops, class Float>
-[[gnu::always_inline]] inline Float exp(const Ops& o, Float x) {
-    const Reduction<Ops, Float> red = reduce(o, x);
+template <class Ops, class Real>
+[[gnu::always_inline]] inline Real exp(const Ops& o, Real x) {
+    const Reduction<Ops, Real> red = reduce(o, x);
     const auto k = o.toInt(red.k);
-    // 2^k in two factors, each a normal float for k in [-150, 129]; the first product is exact, so
-    // a subnormal result is rounded once.
+    // 2^k in two factors, each a normal power of two for k between C::lowest and C::highest over ln 2;
+    // the first product is exact, so a subnormal result is rounded once.
     const auto k1 = o.halve(k);
-    const Float y = ((o.set(1.f) + expm1Reduced(o, red.r)) * o.pow2(k1)) * o.pow2(k - k1);
+    const Real y = ((o.set(1) + expm1Reduced(o, red.r)) * o.pow2(k1)) * o.pow2(k - k1);
     return o.select(o.isNaN(x), x, y);
 }
 
 template <class Ops, class Float>
 [[gnu::always_inline]] inline Float expm1(const Ops& o, Float x) {
+    static_assert(sizeof(typename Ops::Scalar) == sizeof(float), "the clamps below are float's");
     const Reduction<Ops, Float> red = reduce(o, x);
     const auto k = o.toInt(red.k);
     // Below k = -64, 2^k expm1(r) + (2^k - 1) rounds to -1 whatever r is, so k may be clamped there;

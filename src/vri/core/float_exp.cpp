@@ -13,6 +13,7 @@ namespace {
 
 // exp_kernel.h's operations on one float.
 struct ScalarOps {
+    using Scalar = float;
     static float set(float c) { return c; }
     static float select(bool c, float a, float b) { return c ? a : b; }
     static std::int32_t toInt(float k) { return static_cast<std::int32_t>(k); }

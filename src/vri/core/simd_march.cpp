@@ -31,6 +31,7 @@ using MF = hn::Mask<DF>;
 
 // exp_kernel.h's operations, lane by lane.
 struct VectorOps {
+    using Scalar = float;
     DF df;
     DI di;
     VF set(float c) const { return hn::Set(df, c); }
