@@ -120,6 +120,9 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
                         hn::Load(d, b.c[3] + j)};
         const V ell = hn::Load(d, b.ell + j), sA = hn::Load(d, b.segmentS + j);
         const V ds = o.set(32.0 * kUnit) * hn::Load(d, b.sScale + j);
+        // tau along the sub-piece and the depth quartic are the ray's own (ExactRay::setUp computed them
+        // when it queued the sub-piece, for done()): the lanes form them again, bit for bit, from the
+        // fields the colours need anyway, rather than the batch carrying eleven more doubles per sub-piece.
         const V tauV = hn::Load(d, b.value[0] + j), tauM = hn::Load(d, b.slope[0] + j);
         const Linear tau = alongSegment(o, c, sA, tauV, tauM, ds);
         V colourV[3], colourM[3], gMax[3], gError[3];
