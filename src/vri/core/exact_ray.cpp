@@ -301,7 +301,6 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
             q.slope[k][j] = seg.slope[k];
         }
         q.depthInFront[j] = opticalDepth_;
-        queuedSegment_[j] = segment;
         queuedLength_[j] = length;
         queuedDepthError_[j] = depthErrorInFront;
     } else {
@@ -359,7 +358,10 @@ void ExactRay::flush() {
             accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, gMax, queuedLength_[j]);
         } else {  // no Gauss rule within reach
             const Cubic local{{q.c[0][j], q.c[1][j], q.c[2][j], q.c[3][j]}};
-            const SubPiece piece = setUp(local, q.ell[j], q.sScale[j], segments_[queuedSegment_[j]], true);
+            const Segment segment{q.segmentS[j],
+                                  {q.value[0][j], q.value[1][j], q.value[2][j], q.value[3][j]},
+                                  {q.slope[0][j], q.slope[1][j], q.slope[2][j], q.slope[3][j]}};
+            const SubPiece piece = setUp(local, q.ell[j], q.sScale[j], segment, true);
             double sum[3] = {}, error[3] = {}, rounding[3] = {};
             adaptiveQuadrature(piece, q.front[j], sum, error, rounding);
             accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, piece.gMax, queuedLength_[j]);

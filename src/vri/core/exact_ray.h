@@ -104,7 +104,6 @@ private:
     // each once they are done (the optical depth has already moved past them).
     std::unique_ptr<GaussBatch> batch_;
     int queued_ = 0;
-    std::array<std::size_t, GaussBatch::kCapacity> queuedSegment_;
     std::array<double, GaussBatch::kCapacity> queuedLength_, queuedDepthError_;
 };
 
