@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "vri/util/error.h"
+#include "libvri/util/error.h"
 
 namespace py = pybind11;
 

@@ -6,7 +6,7 @@
 
 #include <pybind11/numpy.h>
 
-#include "vri/core/image.h"
+#include "libvri/core/image.h"
 
 namespace vri {
 

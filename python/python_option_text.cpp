@@ -1,7 +1,7 @@
 #include "python_option_text.h"
 
-#include "vri/util/error.h"
-#include "vri/util/format.h"
+#include "libvri/util/error.h"
+#include "libvri/util/format.h"
 
 namespace py = pybind11;
 

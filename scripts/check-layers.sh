@@ -20,13 +20,13 @@ allowed() {  # the layers a layer may include
 
 status=0
 while IFS= read -r -d '' file; do
-    layer=${file#src/vri/}
+    layer=${file#libvri/}
     layer=${layer%%/*}
-    ok=$(allowed "$layer") || { echo "$file: not in a known layer (src/vri/<layer>/)"; status=1; continue; }
+    ok=$(allowed "$layer") || { echo "$file: not in a known layer (libvri/<layer>/)"; status=1; continue; }
     while IFS=: read -r line target; do
         [[ -n $line ]] || continue
         case "$target" in
-            vri/*/*) to=${target#vri/}; to=${to%%/*} ;;
+            libvri/*/*) to=${target#libvri/}; to=${to%%/*} ;;
             common/*) to=common ;;
             *) continue ;;
         esac
@@ -35,11 +35,11 @@ while IFS= read -r -d '' file; do
             status=1
         fi
     done < <(grep -no '^#include "[^"]*"' "$file" | sed 's/#include "\(.*\)"/\1/')
-done < <(find src/vri -name '*.h' -print0 -o -name '*.cpp' -print0 | sort -z)
+done < <(find libvri -name '*.h' -print0 -o -name '*.cpp' -print0 | sort -z)
 # Third-party headers that belong to one layer only (README "Layout"): OpenVDB and OpenImageIO in io,
 # Vulkan in vulkan, CLI11 in tools.
 while IFS=: read -r file line header; do
-    layer=${file#src/vri/}; layer=${layer%%/*}
+    layer=${file#libvri/}; layer=${layer%%/*}
     case "$header" in
         openvdb/*|OpenImageIO/*) [[ $layer == io ]] && continue ;;
         vulkan/*) [[ $layer == vulkan ]] && continue ;;
@@ -47,5 +47,5 @@ while IFS=: read -r file line header; do
     esac
     echo "$file:$line: includes <$header>, which belongs to another layer"
     status=1
-done < <(grep -rno '^#include <\(openvdb\|OpenImageIO\|vulkan\|CLI\)/[^>]*>' src/vri | sed 's/#include <\(.*\)>/\1/')
+done < <(grep -rno '^#include <\(openvdb\|OpenImageIO\|vulkan\|CLI\)/[^>]*>' libvri | sed 's/#include <\(.*\)>/\1/')
 exit $status

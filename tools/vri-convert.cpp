@@ -14,8 +14,8 @@
 
 #include "common/cli.h"
 #include "common/raw_input_options.h"
-#include "vri/core/volume_stats.h"
-#include "vri/io/volume_io.h"
+#include "libvri/core/volume_stats.h"
+#include "libvri/io/volume_io.h"
 
 namespace fs = std::filesystem;
 

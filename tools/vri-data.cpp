@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/cli.h"
-#include "vri/experiment/datasets.h"
+#include "libvri/experiment/datasets.h"
 
 namespace {
 

@@ -16,11 +16,11 @@
 
 #include "common/cli.h"
 #include "common/image_compare_json.h"
-#include "vri/core/heat_map.h"
-#include "vri/core/image_compare.h"
-#include "vri/io/image_io.h"
-#include "vri/io/provenance.h"
-#include "vri/util/atomic_file.h"
+#include "libvri/core/heat_map.h"
+#include "libvri/core/image_compare.h"
+#include "libvri/io/image_io.h"
+#include "libvri/io/provenance.h"
+#include "libvri/util/atomic_file.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "common/cli.h"
-#include "vri/report/plot.h"
+#include "libvri/report/plot.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "common/cli.h"
-#include "vri/report/rays2d_report.h"
-#include "vri/util/atomic_file.h"
+#include "libvri/report/rays2d_report.h"
+#include "libvri/util/atomic_file.h"
 
 namespace {
 

@@ -11,16 +11,16 @@
 #include <nlohmann/json.hpp>
 
 #include "common/cli.h"
-#include "vri/experiment/experiment_plan.h"
-#include "vri/experiment/experiment_reproduce.h"
-#include "vri/experiment/experiment_run.h"
-#include "vri/experiment/experiment_spec.h"
-#include "vri/experiment/manifest.h"
-#include "vri/experiment/step_costs.h"
-#include "vri/util/atomic_file.h"
-#include "vri/util/folder_lock.h"
-#include "vri/util/json_file.h"
-#include "vri/util/stale_temp_files.h"
+#include "libvri/experiment/experiment_plan.h"
+#include "libvri/experiment/experiment_reproduce.h"
+#include "libvri/experiment/experiment_run.h"
+#include "libvri/experiment/experiment_spec.h"
+#include "libvri/experiment/manifest.h"
+#include "libvri/experiment/step_costs.h"
+#include "libvri/util/atomic_file.h"
+#include "libvri/util/folder_lock.h"
+#include "libvri/util/json_file.h"
+#include "libvri/util/stale_temp_files.h"
 
 namespace fs = std::filesystem;
 

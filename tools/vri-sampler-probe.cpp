@@ -8,13 +8,13 @@
 #include <vector>
 
 #include "common/cli.h"
-#include "vri/core/voxel_type.h"
-#include "vri/report/table.h"
-#include "vri/util/atomic_file.h"
-#include "vri/util/csv.h"
-#include "vri/util/error.h"
-#include "vri/util/format.h"
-#include "vri/vulkan/vulkan_renderer.h"
+#include "libvri/core/voxel_type.h"
+#include "libvri/report/table.h"
+#include "libvri/util/atomic_file.h"
+#include "libvri/util/csv.h"
+#include "libvri/util/error.h"
+#include "libvri/util/format.h"
+#include "libvri/vulkan/vulkan_renderer.h"
 
 namespace {
 

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "common/cli.h"
-#include "vri/report/convergence_table.h"
-#include "vri/report/table.h"
-#include "vri/util/atomic_file.h"
-#include "vri/util/parse.h"
+#include "libvri/report/convergence_table.h"
+#include "libvri/report/table.h"
+#include "libvri/util/atomic_file.h"
+#include "libvri/util/parse.h"
 
 namespace {
 

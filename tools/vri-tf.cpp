@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "common/cli.h"
-#include "vri/core/transfer_function.h"
-#include "vri/io/transfer_function_yaml.h"
-#include "vri/util/atomic_file.h"
-#include "vri/util/csv.h"
-#include "vri/util/format.h"
+#include "libvri/core/transfer_function.h"
+#include "libvri/io/transfer_function_yaml.h"
+#include "libvri/util/atomic_file.h"
+#include "libvri/util/csv.h"
+#include "libvri/util/format.h"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <exception>
 #include <iostream>
 
-#include "vri/core/cpu_renderer.h"
-#include "vri/io/image_io.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/io/image_io.h"
 
 int main(int argc, char** argv) {
     if (argc != 2) {

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "vri/experiment/experiment_spec.h"
-#include "vri/util/error.h"
+#include "libvri/experiment/experiment_spec.h"
+#include "libvri/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

@@ -6,8 +6,8 @@
 #include <string>
 #include <system_error>
 
-#include "vri/io/volume_io.h"
-#include "vri/util/error.h"
+#include "libvri/io/volume_io.h"
+#include "libvri/util/error.h"
 
 namespace vri::fuzz {
 

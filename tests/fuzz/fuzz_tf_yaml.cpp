@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "vri/core/transfer_function.h"
-#include "vri/io/transfer_function_yaml.h"
-#include "vri/util/error.h"
+#include "libvri/core/transfer_function.h"
+#include "libvri/io/transfer_function_yaml.h"
+#include "libvri/util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

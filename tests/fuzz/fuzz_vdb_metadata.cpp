@@ -17,8 +17,8 @@
 #include <string_view>
 #include <vector>
 
-#include "vri/io/vdb_grid_layout.h"
-#include "vri/util/error.h"
+#include "libvri/io/vdb_grid_layout.h"
+#include "libvri/util/error.h"
 
 namespace {
 

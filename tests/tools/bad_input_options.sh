@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bad render options, as the option table (src/vri/core/render_option_table.cpp) checks them: the same
+# Bad render options, as the option table (libvri/core/render_option_table.cpp) checks them: the same
 # row's check on vri-render's and vri-reference's command lines and in an experiment file's methods,
 # and the rules between options, also applied when an experiment file is read. One line, exit 1,
 # nothing written.

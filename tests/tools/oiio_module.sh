@@ -1,4 +1,4 @@
-# OpenImageIO is a module loaded when a file needs it (src/vri/io/oiio_module.h): no tool links it, since it
+# OpenImageIO is a module loaded when a file needs it (libvri/io/oiio_module.h): no tool links it, since it
 # cost every process 0.7-1 s of start-up. The module serves the formats other than EXR and PNG; a tool that
 # cannot find it says so in one line naming where it looked, and still reads and writes EXR.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "test_camera.h"
-#include "vri/core/adaptive_simpson.h"
-#include "vri/core/cpu_renderer.h"
-#include "vri/core/exact_reference.h"
-#include "vri/util/error.h"
-#include "vri/util/statistics.h"
+#include "libvri/core/adaptive_simpson.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/exact_reference.h"
+#include "libvri/util/error.h"
+#include "libvri/util/statistics.h"
 
 using namespace vri;
 

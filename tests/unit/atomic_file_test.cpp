@@ -19,8 +19,8 @@
 
 #include "file_bytes.h"
 #include "temp_dir.h"
-#include "vri/util/atomic_file.h"
-#include "vri/util/error.h"
+#include "libvri/util/atomic_file.h"
+#include "libvri/util/error.h"
 
 namespace {
 

@@ -9,7 +9,7 @@
 
 #include <glm/common.hpp>
 
-#include "vri/core/block_ranges.h"
+#include "libvri/core/block_ranges.h"
 
 using namespace vri;
 

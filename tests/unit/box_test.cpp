@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "vri/core/box.h"
+#include "libvri/core/box.h"
 
 using namespace vri;
 using V = glm::dvec3;

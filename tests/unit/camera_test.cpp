@@ -3,8 +3,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "vri/core/camera.h"
-#include "vri/util/error.h"
+#include "libvri/core/camera.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 

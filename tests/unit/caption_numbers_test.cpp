@@ -5,8 +5,8 @@
 #include <fstream>
 
 #include "temp_dir.h"
-#include "vri/experiment/caption_numbers.h"
-#include "vri/util/error.h"
+#include "libvri/experiment/caption_numbers.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 

@@ -7,11 +7,11 @@
 #include <optional>
 #include <string>
 
-#include "vri/core/camera.h"
-#include "vri/core/image.h"
-#include "vri/core/volume.h"
-#include "vri/util/checked_size.h"
-#include "vri/util/error.h"
+#include "libvri/core/camera.h"
+#include "libvri/core/image.h"
+#include "libvri/core/volume.h"
+#include "libvri/util/checked_size.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 

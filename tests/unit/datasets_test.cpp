@@ -4,9 +4,9 @@
 #include <fstream>
 
 #include "temp_dir.h"
-#include "vri/experiment/datasets.h"
-#include "vri/util/error.h"
-#include "vri/util/sha512.h"
+#include "libvri/experiment/datasets.h"
+#include "libvri/util/error.h"
+#include "libvri/util/sha512.h"
 
 using namespace vri;
 

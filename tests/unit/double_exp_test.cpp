@@ -9,7 +9,7 @@
 #include <limits>
 #include <random>
 
-#include "vri/core/exp_kernel.h"
+#include "libvri/core/exp_kernel.h"
 
 using namespace vri;
 

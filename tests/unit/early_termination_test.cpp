@@ -11,8 +11,8 @@
 #include <memory>
 
 #include "test_camera.h"
-#include "vri/core/cpu_renderer.h"
-#include "vri/util/error.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 

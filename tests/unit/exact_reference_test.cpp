@@ -17,13 +17,13 @@
 #include <tbb/global_control.h>
 
 #include "test_camera.h"
-#include "vri/core/cubic.h"
-#include "vri/core/exact_gauss_batch.h"
-#include "vri/core/exact_ray.h"
-#include "vri/core/exact_empty_space.h"
-#include "vri/core/exact_reference.h"
-#include "vri/core/occupancy_cache.h"
-#include "vri/util/error.h"
+#include "libvri/core/cubic.h"
+#include "libvri/core/exact_gauss_batch.h"
+#include "libvri/core/exact_ray.h"
+#include "libvri/core/exact_empty_space.h"
+#include "libvri/core/exact_reference.h"
+#include "libvri/core/occupancy_cache.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 using V = glm::dvec3;

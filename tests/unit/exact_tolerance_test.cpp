@@ -10,9 +10,9 @@
 #include <memory>
 
 #include "test_camera.h"
-#include "vri/core/exact_reference.h"
-#include "vri/io/transfer_function_yaml.h"
-#include "vri/io/volume_io.h"
+#include "libvri/core/exact_reference.h"
+#include "libvri/io/transfer_function_yaml.h"
+#include "libvri/io/volume_io.h"
 
 using namespace vri;
 namespace fs = std::filesystem;

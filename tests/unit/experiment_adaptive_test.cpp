@@ -8,9 +8,9 @@
 
 #include "experiment_file_test.h"
 #include "temp_dir.h"
-#include "vri/experiment/experiment_plan.h"
-#include "vri/experiment/experiment_spec.h"
-#include "vri/util/error.h"
+#include "libvri/experiment/experiment_plan.h"
+#include "libvri/experiment/experiment_spec.h"
+#include "libvri/util/error.h"
 
 namespace {
 

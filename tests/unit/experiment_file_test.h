@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "vri/util/error.h"
+#include "libvri/util/error.h"
 
 namespace vri::test {
 

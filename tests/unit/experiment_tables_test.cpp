@@ -7,9 +7,9 @@
 #include <string>
 
 #include "temp_dir.h"
-#include "vri/experiment/experiment_plan.h"
-#include "vri/experiment/experiment_spec.h"
-#include "vri/util/error.h"
+#include "libvri/experiment/experiment_plan.h"
+#include "libvri/experiment/experiment_spec.h"
+#include "libvri/util/error.h"
 
 namespace {
 

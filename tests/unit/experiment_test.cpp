@@ -7,13 +7,13 @@
 #include <fstream>
 #include <string>
 
-#include "vri/experiment/experiment_plan.h"
-#include "vri/experiment/experiment_run.h"
-#include "vri/experiment/experiment_spec.h"
-#include "vri/experiment/gallery_grid.h"
-#include "vri/experiment/manifest.h"
-#include "vri/experiment/step_cache.h"
-#include "vri/util/error.h"
+#include "libvri/experiment/experiment_plan.h"
+#include "libvri/experiment/experiment_run.h"
+#include "libvri/experiment/experiment_spec.h"
+#include "libvri/experiment/gallery_grid.h"
+#include "libvri/experiment/manifest.h"
+#include "libvri/experiment/step_cache.h"
+#include "libvri/util/error.h"
 
 namespace fs = std::filesystem;
 

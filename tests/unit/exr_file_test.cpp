@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "temp_dir.h"
-#include "vri/io/image_io.h"
-#include "vri/io/oiio_module.h"
-#include "vri/util/error.h"
+#include "libvri/io/image_io.h"
+#include "libvri/io/oiio_module.h"
+#include "libvri/util/error.h"
 
 namespace {
 

@@ -3,8 +3,8 @@
 #include <fstream>
 
 #include "temp_dir.h"
-#include "vri/util/error.h"
-#include "vri/util/file_text.h"
+#include "libvri/util/error.h"
+#include "libvri/util/file_text.h"
 
 TEST_CASE("file text: a file's bytes, or one error naming what is wrong with the path") {
     vri::test::TempDir dir("file-text");

@@ -9,7 +9,7 @@
 #include <initializer_list>
 #include <limits>
 
-#include "vri/core/float_exp.h"
+#include "libvri/core/float_exp.h"
 
 using namespace vri;
 

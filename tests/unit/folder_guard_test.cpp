@@ -9,10 +9,10 @@
 #include <string>
 
 #include "temp_dir.h"
-#include "vri/util/error.h"
-#include "vri/util/folder_lock.h"
-#include "vri/util/process.h"
-#include "vri/util/stale_temp_files.h"
+#include "libvri/util/error.h"
+#include "libvri/util/folder_lock.h"
+#include "libvri/util/process.h"
+#include "libvri/util/stale_temp_files.h"
 
 namespace fs = std::filesystem;
 

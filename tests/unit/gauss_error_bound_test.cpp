@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "vri/core/gauss_error_bound.h"
+#include "libvri/core/gauss_error_bound.h"
 
 using namespace vri;
 

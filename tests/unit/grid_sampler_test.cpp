@@ -3,8 +3,8 @@
 
 #include <random>
 
-#include "vri/core/analytic_field.h"
-#include "vri/core/grid_sampler.h"
+#include "libvri/core/analytic_field.h"
+#include "libvri/core/grid_sampler.h"
 
 using namespace vri;
 using V = glm::dvec3;

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "temp_dir.h"
-#include "vri/util/error.h"
-#include "vri/util/sha512.h"
+#include "libvri/util/error.h"
+#include "libvri/util/sha512.h"
 
 namespace {
 

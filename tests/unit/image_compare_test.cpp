@@ -6,8 +6,8 @@
 #include <numeric>
 
 #include "common/image_compare_json.h"
-#include "vri/core/image_compare.h"
-#include "vri/util/error.h"
+#include "libvri/core/image_compare.h"
+#include "libvri/util/error.h"
 
 namespace {
 

@@ -10,9 +10,9 @@
 
 #include "file_bytes.h"
 #include "temp_dir.h"
-#include "vri/io/image_io.h"
-#include "vri/util/atomic_file.h"
-#include "vri/util/error.h"
+#include "libvri/io/image_io.h"
+#include "libvri/util/atomic_file.h"
+#include "libvri/util/error.h"
 
 namespace {
 

@@ -2,9 +2,9 @@
 
 #include <limits>
 
-#include "vri/core/cpu_renderer.h"
-#include "vri/core/nonfinite_pixels.h"
-#include "vri/util/error.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/nonfinite_pixels.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 

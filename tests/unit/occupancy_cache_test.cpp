@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "test_camera.h"
-#include "vri/core/cpu_renderer.h"
-#include "vri/core/occupancy_cache.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/occupancy_cache.h"
 
 using namespace vri;
 

@@ -8,7 +8,7 @@
 
 #include <glm/vector_relational.hpp>
 
-#include "vri/core/occupancy_grid.h"
+#include "libvri/core/occupancy_grid.h"
 #include "test_camera.h"
 
 using namespace vri;

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "vri/core/out_of_range_pixels.h"
+#include "libvri/core/out_of_range_pixels.h"
 
 TEST_CASE("out-of-range pixels: counted per pixel and per channel, with the extremes") {
     vri::Image image(3, 1);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "vri/report/pareto.h"
+#include "libvri/report/pareto.h"
 
 using vri::paretoFront;
 using Points = std::vector<std::pair<double, double>>;

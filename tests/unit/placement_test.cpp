@@ -1,7 +1,7 @@
 // Paper A's four placements against hand-computed tStart, tIncr and sample counts.
 #include <doctest/doctest.h>
 
-#include "vri/core/placement.h"
+#include "libvri/core/placement.h"
 
 using namespace vri;
 using V = glm::dvec3;

@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include "temp_dir.h"
-#include "vri/report/plot.h"
-#include "vri/util/error.h"
-#include "vri/util/format.h"
-#include "vri/util/process.h"
+#include "libvri/report/plot.h"
+#include "libvri/util/error.h"
+#include "libvri/util/format.h"
+#include "libvri/util/process.h"
 
 using namespace vri;
 

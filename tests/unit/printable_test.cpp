@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "vri/util/printable.h"
+#include "libvri/util/printable.h"
 
 using vri::printable;
 

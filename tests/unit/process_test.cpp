@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "temp_dir.h"
-#include "vri/util/error.h"
-#include "vri/util/process.h"
+#include "libvri/util/error.h"
+#include "libvri/util/process.h"
 
 using namespace vri;
 

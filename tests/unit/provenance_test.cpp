@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "vri/io/provenance.h"
+#include "libvri/io/provenance.h"
 
 TEST_CASE("provenance: shell quoting leaves plain words alone and quotes the rest") {
     CHECK(vri::shellQuote("vri-render") == "vri-render");

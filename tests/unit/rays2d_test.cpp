@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "vri/core/rays2d.h"
-#include "vri/report/rays2d_report.h"
-#include "vri/util/error.h"
+#include "libvri/core/rays2d.h"
+#include "libvri/report/rays2d_report.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 

@@ -3,8 +3,8 @@
 #include <set>
 #include <string>
 
-#include "vri/core/render_option_table.h"
-#include "vri/util/error.h"
+#include "libvri/core/render_option_table.h"
+#include "libvri/util/error.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 
 #include <tbb/global_control.h>
 
-#include "vri/core/cpu_renderer.h"
+#include "libvri/core/cpu_renderer.h"
 
 using namespace vri;
 using V = glm::dvec3;

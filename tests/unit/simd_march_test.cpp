@@ -14,8 +14,8 @@
 #include <tbb/global_control.h>
 
 #include "test_camera.h"
-#include "vri/core/cpu_renderer.h"
-#include "vri/util/error.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 

@@ -9,12 +9,12 @@
 #include <random>
 
 #include "test_camera.h"
-#include "vri/core/cpu_renderer.h"
-#include "vri/core/grid_sampler.h"
-#include "vri/core/occupancy_grid.h"
-#include "vri/core/sparse_sampler.h"
-#include "vri/core/sparse_volume.h"
-#include "vri/core/volume_stats.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/grid_sampler.h"
+#include "libvri/core/occupancy_grid.h"
+#include "libvri/core/sparse_sampler.h"
+#include "libvri/core/sparse_volume.h"
+#include "libvri/core/volume_stats.h"
 
 using namespace vri;
 

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "temp_dir.h"
-#include "vri/experiment/step_costs.h"
-#include "vri/util/error.h"
+#include "libvri/experiment/step_costs.h"
+#include "libvri/util/error.h"
 
 namespace {
 

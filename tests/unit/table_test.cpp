@@ -5,9 +5,9 @@
 #include <limits>
 
 #include "temp_dir.h"
-#include "vri/report/table.h"
-#include "vri/util/error.h"
-#include "vri/util/statistics.h"
+#include "libvri/report/table.h"
+#include "libvri/util/error.h"
+#include "libvri/util/statistics.h"
 
 using namespace vri;
 

@@ -2,7 +2,7 @@
 // A unit test's camera in one call: eye, target, vertical field of view and image size (up +y, no zoom).
 #include <glm/vec3.hpp>
 
-#include "vri/core/camera.h"
+#include "libvri/core/camera.h"
 
 namespace vri::test {
 

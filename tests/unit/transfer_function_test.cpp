@@ -3,9 +3,9 @@
 
 #include <cstdint>
 
-#include "vri/core/transfer_function.h"
-#include "vri/io/transfer_function_yaml.h"
-#include "vri/util/error.h"
+#include "libvri/core/transfer_function.h"
+#include "libvri/io/transfer_function_yaml.h"
+#include "libvri/util/error.h"
 
 using namespace vri;
 

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/cli.h"
-#include "vri/util/json_file.h"
+#include "libvri/util/json_file.h"
 
 TEST_CASE("unexpected errors: bad_alloc, file-system and JSON failures in words") {
     CHECK(vri::describeUnexpected(std::bad_alloc()).starts_with("out of memory:"));

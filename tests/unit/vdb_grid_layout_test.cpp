@@ -3,8 +3,8 @@
 #include <limits>
 #include <string>
 
-#include "vri/io/vdb_grid_layout.h"
-#include "vri/util/error.h"
+#include "libvri/io/vdb_grid_layout.h"
+#include "libvri/util/error.h"
 
 using vri::detail::VdbGridFacts;
 using vri::detail::VdbValueType;

@@ -13,9 +13,9 @@
 #include <unistd.h>
 
 #include "file_bytes.h"
-#include "vri/io/volume_io.h"
-#include "vri/util/error.h"
-#include "vri/util/format.h"
+#include "libvri/io/volume_io.h"
+#include "libvri/util/error.h"
+#include "libvri/util/format.h"
 
 namespace fs = std::filesystem;
 using vri::test::readBytes;

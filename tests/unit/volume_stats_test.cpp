@@ -1,7 +1,7 @@
 #include <doctest/doctest.h>
 
-#include "vri/core/volume_stats.h"
-#include "vri/util/error.h"
+#include "libvri/core/volume_stats.h"
+#include "libvri/util/error.h"
 
 TEST_CASE("volume stats: mean, zeros and a histogram over the type's range") {
     vri::Volume volume({4, 1, 1}, vri::VoxelType::UInt8);

@@ -17,10 +17,10 @@
 #include <random>
 #include <utility>
 
-#include "vri/core/cpu_renderer.h"
-#include "vri/core/image_compare.h"
-#include "vri/util/error.h"
-#include "vri/vulkan/vulkan_renderer.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/image_compare.h"
+#include "libvri/util/error.h"
+#include "libvri/vulkan/vulkan_renderer.h"
 
 using namespace vri;
 

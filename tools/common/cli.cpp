@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "vri/io/provenance.h"
-#include "vri/util/json_file.h"
+#include "libvri/io/provenance.h"
+#include "libvri/util/json_file.h"
 
 namespace vri {
 

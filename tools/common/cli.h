@@ -9,9 +9,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vri/util/error.h"
-#include "vri/util/parse.h"
-#include "vri/util/printable.h"
+#include "libvri/util/error.h"
+#include "libvri/util/parse.h"
+#include "libvri/util/printable.h"
 
 namespace vri {
 

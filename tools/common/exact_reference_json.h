@@ -2,7 +2,7 @@
 // The JSON record of the exact reference's statistics, as written in stats files.
 #include <nlohmann/json.hpp>
 
-#include "vri/core/exact_reference.h"
+#include "libvri/core/exact_reference.h"
 
 namespace vri {
 

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "vri/util/statistics.h"
+#include "libvri/util/statistics.h"
 
 namespace vri {
 

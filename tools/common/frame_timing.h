@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
-#include "vri/util/error.h"
+#include "libvri/util/error.h"
 
 namespace vri {
 

@@ -3,7 +3,7 @@
 // nlohmann/json. Include <nlohmann/json.hpp> where the result is used.
 #include <nlohmann/json_fwd.hpp>
 
-#include "vri/core/image_compare.h"
+#include "libvri/core/image_compare.h"
 
 namespace vri {
 

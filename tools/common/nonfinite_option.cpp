@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "vri/util/error.h"
+#include "libvri/util/error.h"
 
 namespace vri {
 

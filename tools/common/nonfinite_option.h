@@ -5,7 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vri/core/nonfinite_pixels.h"
+#include "libvri/core/nonfinite_pixels.h"
 
 namespace vri {
 

@@ -1,7 +1,7 @@
 #include "common/preview_options.h"
 
 #include "common/cli.h"
-#include "vri/util/format.h"
+#include "libvri/util/format.h"
 
 namespace vri {
 

@@ -5,7 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vri/io/image_io.h"
+#include "libvri/io/image_io.h"
 
 namespace vri {
 

@@ -6,8 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vri/core/volume.h"
-#include "vri/io/volume_read_options.h"
+#include "libvri/core/volume.h"
+#include "libvri/io/volume_read_options.h"
 
 namespace vri {
 

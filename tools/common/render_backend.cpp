@@ -4,10 +4,10 @@
 #include <vector>
 
 #include "common/cli.h"
-#include "vri/core/occupancy_cache.h"
+#include "libvri/core/occupancy_cache.h"
 
 #if VRI_HAVE_VULKAN
-#include "vri/vulkan/vulkan_renderer.h"
+#include "libvri/vulkan/vulkan_renderer.h"
 
 namespace vri {
 

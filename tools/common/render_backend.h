@@ -4,7 +4,7 @@
 #include <memory>
 #include <string_view>
 
-#include "vri/core/render_option_table.h"
+#include "libvri/core/render_option_table.h"
 
 namespace vri {
 

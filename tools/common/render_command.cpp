@@ -10,11 +10,11 @@
 #include "common/exact_reference_json.h"
 #include "common/render_backend.h"
 #include "common/render_json.h"
-#include "vri/core/exact_reference.h"
-#include "vri/io/adaptive_log_csv.h"
-#include "vri/io/image_io.h"
-#include "vri/io/provenance.h"
-#include "vri/util/atomic_file.h"
+#include "libvri/core/exact_reference.h"
+#include "libvri/io/adaptive_log_csv.h"
+#include "libvri/io/image_io.h"
+#include "libvri/io/provenance.h"
+#include "libvri/util/atomic_file.h"
 
 namespace vri {
 

@@ -16,7 +16,7 @@
 #include "common/nonfinite_option.h"
 #include "common/preview_options.h"
 #include "common/scene_options.h"
-#include "vri/core/render_option_table.h"
+#include "libvri/core/render_option_table.h"
 
 namespace vri {
 

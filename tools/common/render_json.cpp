@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <variant>
 
-#include "vri/core/sparse_volume.h"
+#include "libvri/core/sparse_volume.h"
 
 namespace vri {
 

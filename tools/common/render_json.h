@@ -2,10 +2,10 @@
 // JSON records of a render's settings and statistics, as written in stats files and manifests.
 #include <nlohmann/json.hpp>
 
-#include "vri/core/camera.h"
-#include "vri/core/cpu_renderer.h"
-#include "vri/core/out_of_range_pixels.h"
-#include "vri/core/render_option_table.h"
+#include "libvri/core/camera.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/out_of_range_pixels.h"
+#include "libvri/core/render_option_table.h"
 
 namespace vri {
 

@@ -4,9 +4,9 @@
 #include <optional>
 
 #include "common/cli.h"
-#include "vri/core/analytic_field.h"
-#include "vri/io/transfer_function_yaml.h"
-#include "vri/util/sha512.h"
+#include "libvri/core/analytic_field.h"
+#include "libvri/io/transfer_function_yaml.h"
+#include "libvri/util/sha512.h"
 
 namespace vri {
 

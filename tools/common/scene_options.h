@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/raw_input_options.h"
-#include "vri/core/camera.h"
-#include "vri/core/cpu_renderer.h"
+#include "libvri/core/camera.h"
+#include "libvri/core/cpu_renderer.h"
 
 namespace vri {
 

@@ -1,0 +1,503 @@
+#include "libvri/core/exact_ray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "libvri/core/gauss_error_bound.h"
+
+namespace vri {
+
+namespace {
+
+// Gauss-Kronrod rules on [-1, 1]: node[i] stands for +-node[i] for i < N - 1 and node[N - 1] = 0; the
+// Gauss nodes are the odd i, with weight gauss[i / 2]. 7-15 is QUADPACK's qk15; 3-7 is the Kronrod
+// extension of 3-point Gauss (exact to degree 11), half the exponentials where the tolerance allows.
+template <int N>
+struct KronrodRule {
+    double node[N], kronrod[N], gauss[N / 2];
+};
+constexpr KronrodRule<8> kKronrod15 = {
+    {0.991455371120812639206854697526329, 0.949107912342758524526189684047851, 0.864864423359769072789712788640926,
+     0.741531185599394439863864773280788, 0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
+     0.207784955007898467600689403773245, 0.0},
+    {0.022935322010529224963732008058970, 0.063092092629978553290700663189204, 0.104790010322250183839876322541518,
+     0.140653259715525918745189590510238, 0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+     0.204432940075298892414161999234649, 0.209482141084727828012999174891714},
+    {0.129484966168869693270611432679082, 0.279705391489276667901467771423780, 0.381830050505118944950369775488975,
+     0.417959183673469387755102040816327}};
+constexpr KronrodRule<4> kKronrod7 = {
+    {0.960491268708020283423507092629080, 0.774596669241483377035853079956480, 0.434243749346802558002071502844628,
+     0.0},
+    {0.104656226026467265193823857192073, 0.268488089868333440728569280666710, 0.401397414775962222905051818618432,
+     0.450916538658474142345110087045571},
+    {0.555555555555555555555555555555556, 0.888888888888888888888888888888889}};
+// Below this the 3-7 rule bisects so often that the 7-15 rule costs fewer evaluations.
+constexpr double kLowOrderTolerance = 1e-8;
+// A Kronrod estimate is trusted only on intervals across which the optical depth grows by at most this:
+// there exp(-depth) varies by at most e^2 and every node sees it. Across a thicker interval the
+// nodes can all fall where the transparency has already underflowed (tau >= 1e5 per voxel), agreeing
+// on 0 while the integral is 1; such an interval is bisected or bounded by an enclosure instead.
+constexpr double kResolvedDepth = 2.0;
+constexpr int kMaxDepth = 40;  // bisections of one sub-piece; reached only by pathological input
+// Intervals of one sub-piece: a tolerance below what rounding allows would otherwise bisect every
+// interval to kMaxDepth (2^40 of them). Past it every interval is accepted with its own error.
+constexpr int kMaxIntervals = 4096;
+constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
+// From this tolerance up a sub-piece first tries the cheapest Gauss rule with a derivative bound
+// (exact_gauss_batch.h; up to 64 panels), and only where none reaches the tolerance the adaptive
+// Gauss-Kronrod quadrature. Below it (vri-reference's 1e-13) only the adaptive quadrature runs: the
+// references, and every result compared against them, keep their bits.
+constexpr double kGaussTolerance = 1e-10;
+
+// How many of the sorted values are <= x (upper_bound's index), and with it how many are < y
+// (lower_bound's): counts without branches, over the few points of a transfer function, where a binary
+// search mispredicts at every step; one pass for both ends of a piece's range.
+std::size_t countAtMost(const std::vector<double>& sorted, double x) {
+    std::size_t n = 0;
+    for (double v : sorted) n += v <= x;
+    return n;
+}
+std::pair<std::size_t, std::size_t> countAtMostAndBelow(const std::vector<double>& sorted, double x, double y) {
+    std::size_t atMost = 0, below = 0;
+    for (double v : sorted) {
+        atMost += v <= x;
+        below += v < y;
+    }
+    return {atMost, below};
+}
+
+template <std::size_t N>
+double horner(const std::array<double, N>& p, double x) {
+    double r = p[N - 1];
+    for (std::size_t k = N - 1; k-- > 0;) r = r * x + p[k];
+    return r;
+}
+
+// One Gauss-Kronrod rule on [x0, x1] for the three channels of g exp(-depth), g = C tau or C: the
+// Kronrod sums in K, the Gauss sums in G (both to be multiplied by the half-width). C and tau are
+// evaluated as the cubics they are and multiplied at each node, fewer operations (and roundings) than
+// the degree-6 product.
+template <int N>
+void applyRule(const KronrodRule<N>& rule, double x0, double x1, const std::array<double, 5>& depth,
+               const std::array<double, 4>& tau, const std::array<double, 4> (&colour)[3], bool colourTimesExtinction,
+               double K[3], double G[3]) {
+    constexpr int kNodes = 2 * N - 1;
+    const double half = 0.5 * (x1 - x0), centre = 0.5 * (x0 + x1);
+    // Node j < N - 1 is centre - half node[j], N - 1 + j is centre + half node[j], the last the centre.
+    double x[kNodes];
+    for (int i = 0; i < N - 1; ++i) {
+        x[i] = centre - half * rule.node[i];
+        x[N - 1 + i] = centre + half * rule.node[i];
+    }
+    x[kNodes - 1] = centre;
+    double t[kNodes];
+    for (int j = 0; j < kNodes; ++j) {
+        t[j] = std::exp(-horner(depth, x[j]));
+        if (colourTimesExtinction) t[j] *= horner(tau, x[j]);
+    }
+    for (int c = 0; c < 3; ++c) {
+        double k = 0.0, gauss = 0.0;
+        for (int i = 0; i < N; ++i) {
+            const double f = i < N - 1 ? horner(colour[c], x[i]) * t[i] + horner(colour[c], x[N - 1 + i]) * t[N - 1 + i]
+                                       : horner(colour[c], x[kNodes - 1]) * t[kNodes - 1];
+            k += rule.kronrod[i] * f;
+            if (i % 2 == 1) gauss += rule.gauss[i / 2] * f;
+        }
+        K[c] = k;
+        G[c] = gauss;
+    }
+}
+
+}  // namespace
+
+// ds bounds the error of s's coefficients. The coefficients and their sum from registers: written to
+// memory and read back as pairs (as a loop over r.p compiles), each read waited for the stores it spans
+// (a failed store forwarding). exact_gauss_batch.cpp's alongSegment is this, lane by lane.
+ExactRay::Linear ExactRay::alongSegment(const Cubic& local, double sA, double v, double m, double ds) {
+    const double p0 = v + m * (local.c[0] - sA), p1 = m * local.c[1], p2 = m * local.c[2], p3 = m * local.c[3];
+    const double sum = std::abs(p0) + std::abs(p1) + std::abs(p2) + std::abs(p3);
+    return {{p0, p1, p2, p3}, sum, 16.0 * kUnit * (sum + std::abs(v) + std::abs(m * sA)) + std::abs(m) * ds};
+}
+
+ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
+    : tf_(tf),
+      emission_(tf.emission()),
+      tolerance_(tolerance),
+      lowOrder_(tolerance >= kLowOrderTolerance),
+      fastSplits_(tolerance >= kGaussTolerance),
+      rootStart_(fastSplits_ ? RootStart::Chord : RootStart::Midpoint) {
+    for (const auto& p : tf.points()) {
+        pointS_.push_back(p.s);
+        if (levels_.empty() || levels_.back() != p.s) levels_.push_back(p.s);
+        maxColour_ = {std::max(maxColour_[0], p.r), std::max(maxColour_[1], p.g), std::max(maxColour_[2], p.b)};
+    }
+    largestColour_ = std::max({1.0, maxColour_[0], maxColour_[1], maxColour_[2]});
+    // The spans of s on which the TF is zero: each maximal run of zero points i..j (the TF is zero
+    // between them and, past the first or last point, beyond). At a jump out of the run at p[j].s the
+    // value there is the next point's, so the span stops an ulp short of it.
+    const auto& points = tf.points();
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    auto zero = [&](const TransferFunctionPoint& p) {
+        return p.tau == 0.0 && (colourTimesExtinction || (p.r == 0.0 && p.g == 0.0 && p.b == 0.0));
+    };
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < points.size();) {
+        if (!zero(points[i])) {
+            ++i;
+            continue;
+        }
+        std::size_t j = i;
+        while (j + 1 < points.size() && zero(points[j + 1])) ++j;
+        const double lo = i == 0 ? -inf : points[i].s;
+        const double hi = j + 1 == points.size() ? inf
+                          : points[j + 1].s == points[j].s ? std::nextafter(points[j].s, -inf)
+                                                            : points[j].s;
+        if (lo <= hi) invisibleSpans_.push_back({lo, hi});
+        i = j + 1;
+    }
+    // With g = C tau the rest of a ray adds at most C_max T to a colour and T to alpha, so a ray may end
+    // once T <= tolerance / max(1, C_max); with g = C that is necessary, not sufficient (see done()).
+    terminationDepth_ = std::min(kOpaqueDepth, std::log(largestColour_ / tolerance));
+    // Each of a piece's at most three monotone parts crosses each level at most once.
+    splits_.reserve(3 * levels_.size() + 2);
+    auto channels = [](const TransferFunctionPoint& p) { return std::array<double, 4>{p.tau, p.r, p.g, p.b}; };
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+        const auto a = channels(points[i]), b = channels(points[i + 1]);
+        const double inverseWidth = 1.0 / (points[i + 1].s - points[i].s);  // inf between a jump's two points
+        Segment segment{points[i].s, a, {}};
+        for (int k = 0; k < 4; ++k) segment.slope[k] = (b[k] - a[k]) * inverseWidth;
+        segments_.push_back(segment);
+    }
+    segments_.push_back({points.front().s, channels(points.front()), {}});
+    segments_.push_back({points.back().s, channels(points.back()), {}});
+    if (tolerance >= kGaussTolerance) batch_ = std::make_unique<GaussBatch>();
+}
+
+bool ExactRay::doneAtDepth(double depth, double remainingLength) const {
+    return emission_ == EmissionModel::ColourTimesExtinction ||
+           std::exp(-depth) * std::max(1.0, largestColour_ * remainingLength) <= tolerance_;
+}
+
+bool ExactRay::invisible(double s0, double s1) const {
+    for (const auto& [lo, hi] : invisibleSpans_)
+        if (s0 >= lo && s1 <= hi) return true;
+    return false;
+}
+
+void ExactRay::begin() {
+    queued_ = 0;
+    opticalDepth_ = depthError_ = 0.0;
+    colour_ = quadratureError_ = roundingError_ = {};
+}
+
+void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
+    if (!(length > 0.0)) return;
+    double ends[4] = {0.0}, values[4];
+    // Where s' = c1 + 2 c2 x + 3 c3 x^2 cannot vanish on [0, 1], |c1| > |2 c2| + |3 c3| (with room for
+    // the rounding of that test), s is monotone on the piece: no critical points to solve for, as on most
+    // pieces. Only on the Gauss path: below kGaussTolerance the references keep criticalPoints' bits.
+    double critical[2];
+    const bool monotone = fastSplits_ && (1.0 - 0x1p-40) * std::abs(s.c[1]) > 2.0 * std::abs(s.c[2]) + 3.0 * std::abs(s.c[3]);
+    const int nc = monotone ? 0 : criticalPoints(s, 0.0, 1.0, critical);
+    for (int i = 0; i < nc; ++i) ends[i + 1] = critical[i];
+    ends[nc + 1] = 1.0;
+    const int parts = nc + 1;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int i = 0; i <= parts; ++i) {
+        values[i] = s(ends[i]);
+        lo = std::min(lo, values[i]);
+        hi = std::max(hi, values[i]);
+    }
+    if (invisible(lo, hi)) return;  // neither extinction nor emission anywhere on the piece
+
+    // Split where s crosses a transfer-function point: within a monotone part at most once per level,
+    // in the order of the levels when s rises and in reverse when it falls.
+    splits_.clear();
+    splits_.push_back(0.0);
+    for (int i = 0; i < parts; ++i) {
+        const double a = ends[i], b = ends[i + 1], sa = values[i], sb = values[i + 1];
+        const auto [countLo, countHi] = countAtMostAndBelow(levels_, std::min(sa, sb), std::max(sa, sb));
+        const auto first = levels_.begin() + countLo;                    // upper_bound
+        const auto last = levels_.begin() + std::max(countLo, countHi);  // lower_bound from first
+        auto split = [&](double level) {
+            splits_.push_back(std::max(solveMonotone(s, level, a, b, rootStart_), splits_.back()));
+        };
+        if (sa < sb)
+            for (auto it = first; it != last; ++it) split(*it);
+        else
+            for (auto it = last; it != first;) split(*--it);
+    }
+    splits_.push_back(1.0);
+    for (std::size_t i = 0; i + 1 < splits_.size(); ++i)
+        if (splits_[i + 1] > splits_[i]) integrateSubPiece(length, s, splits_[i], splits_[i + 1], sScale);
+}
+
+// Error analysis. The result is exact for the model (trilinear field, piecewise-linear TF, along the
+// ray as computed) up to (1) the quadrature and (2) rounding, bounded with u = 2^-53 as follows, the
+// constants being generous counts of the operations involved:
+//  - quadrature, Gauss rule (exact_gauss_batch.cpp): the remainder bound of gauss_error_bound.h holds for the
+//    computed polynomials whatever their size; exp(-D) <= 1 + 2 depthError on [0, 1] covers a D that
+//    the rounding of tau takes below 0.
+//  - quadrature, adaptive: on an interval across which the optical depth grows by at most kResolvedDepth, the
+//    integrand is smooth at the interval's scale and |K - G| estimates the error (an overestimate: the
+//    Kronrod rule is far more accurate than its Gauss rule). Elsewhere, or where that estimate stays
+//    too large, an enclosure that holds for any extinction: with C_low..C_high the range of C on
+//    [x0, x1] (at its ends or where s' = 0, C being linear in s), g = C tau integrates to C_low..C_high times
+//    T(x0) - T(x1) (tau T ell dlambda = -dT), and g = C to C_low..C_high times ell (x1 - x0) T(x1)..T(x0).
+//  - s: its cubic comes from the corner values through three lerps, the normalisation and the Taylor
+//    shift; each coefficient carries at most ~20 roundings of terms below sScale: |ds| <= 32 u sScale.
+//  - tau, C (cubics in the sub-piece variable): forming v_A + m (s - s_A) and evaluating by Horner
+//    adds <= 16 u (sum|coefficients| + |v_A| + |m s_A|); the error of s enters times the TF slope |m|.
+//  - g = C tau (or C): <= dC |tau| + |C| dtau + 16 u |C| |tau|, with |C|, |tau| bounded by the sums of
+//    their coefficients, times an interval's length and largest transparency.
+//  - optical depth: the quartic integral of tau, error <= lambda ell (dtau + 8 u sum|tau|) at lambda,
+//    plus u times the running sum per addition; the transparency exp(-depth) in front of a sub-piece
+//    then has relative error <= depthError + 2 u, and so has every contribution behind it.
+//  - a split misplaced by rounding (a root to within an ulp, a cell face) moves the TF segment or the
+//    cell boundary by ~2 u of the piece: at most 4 u length max|g| per sub-piece (the field is
+//    continuous, the TF may jump), and with g = C tau never more than 2 C_max T (what any part can add).
+//  - the quadrature sums and the running colour sum: 32 u of each term, u of the sum per add.
+// Every bound is a sum of non-negative terms evaluated in double; its own rounding is irrelevant.
+void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale) {
+    // The TF segment [A, B] the sub-piece lies in (constant beyond the ends; right-continuous at jumps).
+    const auto& points = tf_.points();
+    const double sMid = s(0.5 * (a + b));
+    std::size_t iA = 0, iB = 0;
+    if (!(sMid < pointS_.front())) {
+        if (!(sMid < pointS_.back())) {
+            iA = iB = points.size() - 1;
+        } else {
+            iA = countAtMost(pointS_, sMid) - 1;  // upper_bound - 1
+            iB = iA + 1;
+        }
+    }
+    const TransferFunctionPoint& A = points[iA];
+    const TransferFunctionPoint& B = points[iB];
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    if (A.tau == 0.0 && B.tau == 0.0 &&
+        (colourTimesExtinction || (A.r == 0.0 && A.g == 0.0 && A.b == 0.0 && B.r == 0.0 && B.g == 0.0 && B.b == 0.0)))
+        return;  // adds exactly nothing and multiplies the transparency by exactly 1
+    ++subPieces;
+
+    // Everything as polynomials in lambda in [0, 1] over the sub-piece.
+    const Cubic local = a == 0.0 && b == 1.0 ? s : s.reparameterised(a, b - a);  // the same bits for a whole piece
+    const double ell = length * (b - a);
+    const std::size_t segment = iA != iB ? iA : iA == 0 ? points.size() - 1 : points.size();
+    const SubPiece piece = setUp(local, ell, sScale, segments_[segment], !batch_);
+    const double depthErrorInFront = depthError_;
+    if (batch_) {
+        // The Gauss rules wait for the batch (exact_gauss_batch.h); the depth goes on now, for done().
+        GaussBatch& q = *batch_;
+        const int j = queued_++;
+        for (int k = 0; k < 4; ++k) q.c[k][j] = local.c[k];
+        q.ell[j] = ell;
+        q.sScale[j] = sScale;
+        const Segment& seg = segments_[segment];
+        q.segmentS[j] = seg.s;
+        for (int k = 0; k < 4; ++k) {
+            q.value[k][j] = seg.value[k];
+            q.slope[k][j] = seg.slope[k];
+        }
+        q.depthInFront[j] = opticalDepth_;
+        queuedLength_[j] = length;
+        queuedDepthError_[j] = depthErrorInFront;
+    } else {
+        double sum[3] = {}, error[3] = {}, rounding[3] = {};
+        const double front = std::exp(-opticalDepth_);
+        adaptiveQuadrature(piece, front, sum, error, rounding);
+        accumulate(front, depthErrorInFront, sum, error, rounding, piece.gMax, length);
+    }
+    opticalDepth_ += horner(piece.depth, 1.0);
+    depthError_ += piece.depthError + length * 4.0 * kUnit * piece.tau.sum + kUnit * opticalDepth_;
+    if (queued_ == GaussBatch::kCapacity) flush();
+}
+
+ExactRay::SubPiece ExactRay::setUp(const Cubic& local, double ell, double sScale, const Segment& segment,
+                                   bool withColour) const {
+    SubPiece r;
+    r.local = local;
+    r.ell = ell;
+    const double ds = 32.0 * kUnit * sScale;
+    r.tau = alongSegment(local, segment.s, segment.value[0], segment.slope[0], ds);
+    // The optical depth from the sub-piece's start, ell * integral of tau; its error at lambda = 1 (lambda
+    // times it at lambda).
+    r.depth[0] = 0.0;
+    for (int k = 0; k < 4; ++k) r.depth[k + 1] = ell * r.tau.p[k] / (k + 1);
+    r.depthError = ell * (r.tau.error + 8.0 * kUnit * r.tau.sum);
+    if (!withColour) return r;
+    // Bounds on the emission g of each channel and on its error where a rule evaluates it.
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    for (int c = 0; c < 3; ++c) {
+        r.colour[c] = alongSegment(local, segment.s, segment.value[c + 1], segment.slope[c + 1], ds);
+        const double colourSum = r.colour[c].sum;
+        if (colourTimesExtinction) {
+            r.gMax[c] = colourSum * r.tau.sum;
+            r.gError[c] = r.colour[c].error * r.tau.sum + colourSum * r.tau.error + 16.0 * kUnit * r.gMax[c];
+        } else {
+            r.gMax[c] = colourSum;
+            r.gError[c] = r.colour[c].error;
+        }
+    }
+    return r;
+}
+
+void ExactRay::flush() {
+    if (queued_ == 0) return;
+    const GaussBatch& q = *batch_;
+    integrateGaussBatch(*batch_, queued_, tolerance_, emission_ == EmissionModel::ColourTimesExtinction);
+    for (int j = 0; j < queued_; ++j) {
+        if (q.panels[j] > 0) {
+            quadratureIntervals += q.panels[j];
+            quadratureNodes += q.nodes[j];
+            const double sum[3] = {q.sum[0][j], q.sum[1][j], q.sum[2][j]};
+            const double error[3] = {q.error[0][j], q.error[1][j], q.error[2][j]};
+            const double rounding[3] = {q.rounding[0][j], q.rounding[1][j], q.rounding[2][j]};
+            const double gMax[3] = {q.gMax[0][j], q.gMax[1][j], q.gMax[2][j]};
+            accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, gMax, queuedLength_[j]);
+        } else {  // no Gauss rule within reach
+            const Cubic local{{q.c[0][j], q.c[1][j], q.c[2][j], q.c[3][j]}};
+            const Segment segment{q.segmentS[j],
+                                  {q.value[0][j], q.value[1][j], q.value[2][j], q.value[3][j]},
+                                  {q.slope[0][j], q.slope[1][j], q.slope[2][j], q.slope[3][j]}};
+            const SubPiece piece = setUp(local, q.ell[j], q.sScale[j], segment, true);
+            double sum[3] = {}, error[3] = {}, rounding[3] = {};
+            adaptiveQuadrature(piece, q.front[j], sum, error, rounding);
+            accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, piece.gMax, queuedLength_[j]);
+        }
+    }
+    queued_ = 0;
+}
+
+// The sums are in units of the transparency in front of the sub-piece, `front`: adaptive quadrature on
+// [0, 1], all channels together (they share the transparency).
+void ExactRay::adaptiveQuadrature(const SubPiece& piece, double front, double sum[3], double error[3],
+                                  double rounding[3]) {
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    const Linear& tau = piece.tau;
+    const Linear(&colour)[3] = piece.colour;
+    const std::array<double, 5>& depth = piece.depth;
+    const double ell = piece.ell, depthError = piece.depthError;
+    const double* gError = piece.gError;
+    const std::array<double, 4> colours[3] = {colour[0].p, colour[1].p, colour[2].p};
+    struct Interval {
+        double x0, x1;
+        int depth;
+    };
+    Interval stack[kMaxDepth + 2];
+    int top = 0;
+    stack[top++] = {0.0, 1.0, 0};
+    // C and tau are linear in s: on an interval their extremes lie where s's do, at its ends or where
+    // s' = 0 (a sub-piece is split at TF points only, so s need not be monotone on it).
+    double critical[2];
+    int criticals = -1;  // found when an enclosure first needs them
+    auto range = [&](const Linear& f, double x0, double x1, double& lo, double& hi) {
+        if (criticals < 0) criticals = criticalPoints(piece.local, 0.0, 1.0, critical);
+        const double at0 = horner(f.p, x0), at1 = horner(f.p, x1);
+        lo = std::min(at0, at1);
+        hi = std::max(at0, at1);
+        for (int i = 0; i < criticals; ++i)
+            if (critical[i] > x0 && critical[i] < x1) {
+                const double v = horner(f.p, critical[i]);
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+        lo -= f.error;
+        hi += f.error;
+    };
+    for (int intervals = 1; top > 0; ++intervals) {
+        const Interval iv = stack[--top];
+        ++quadratureIntervals;
+        const double width = iv.x1 - iv.x0;
+        const bool last = iv.depth >= kMaxDepth || intervals >= kMaxIntervals;
+        const double d0 = horner(depth, iv.x0), d1 = horner(depth, iv.x1);
+        const double dd0 = iv.x0 * depthError, dd1 = iv.x1 * depthError;
+        // The depth grows along the interval: the transparency on it is at most tHigh.
+        const double tHigh = iv.x0 == 0.0 ? 1.0 : std::exp(-(d0 - dd0));
+        if (d1 - d0 <= kResolvedDepth) {
+            double K[3], G[3], e[3], worst = 0.0;
+            if (lowOrder_)
+                applyRule(kKronrod7, iv.x0, iv.x1, depth, tau.p, colours, colourTimesExtinction, K, G);
+            else
+                applyRule(kKronrod15, iv.x0, iv.x1, depth, tau.p, colours, colourTimesExtinction, K, G);
+            quadratureNodes += lowOrder_ ? 7 : 15;
+            for (int c = 0; c < 3; ++c) {
+                e[c] = ell * 0.5 * width * std::abs(K[c] - G[c]);
+                worst = std::max(worst, e[c]);
+            }
+            if (front * worst <= tolerance_ * width || last) {
+                for (int c = 0; c < 3; ++c) {
+                    const double value = ell * 0.5 * width * K[c];
+                    sum[c] += value;
+                    error[c] += e[c];
+                    rounding[c] += ell * width * tHigh * gError[c] + (std::abs(value) + e[c]) * (dd1 + 32.0 * kUnit);
+                }
+                continue;
+            }
+        } else {
+            double cLow[3], cHigh[3];
+            for (int c = 0; c < 3; ++c) range(colour[c], iv.x0, iv.x1, cLow[c], cHigh[c]);
+            const double tLow0 = std::exp(-(d0 + dd0)), tHigh1 = std::exp(-(d1 - dd1)), tLow1 = std::exp(-(d1 + dd1));
+            const double fLow = colourTimesExtinction ? std::max(0.0, tLow0 - tHigh1) : ell * width * tLow1;
+            const double fHigh = colourTimesExtinction ? tHigh - tLow1 : ell * width * tHigh;
+            double lo[3], hi[3], worst = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                lo[c] = std::min(cLow[c] * fLow, cLow[c] * fHigh);
+                hi[c] = std::max(cHigh[c] * fHigh, cHigh[c] * fLow);
+                worst = std::max(worst, 0.5 * (hi[c] - lo[c]));
+            }
+            if (front * worst <= tolerance_ * width || last) {
+                for (int c = 0; c < 3; ++c) {
+                    const double value = 0.5 * (lo[c] + hi[c]), e = 0.5 * (hi[c] - lo[c]);
+                    sum[c] += value;
+                    error[c] += e;
+                    rounding[c] += (std::abs(value) + e) * 8.0 * kUnit;
+                }
+                continue;
+            }
+        }
+        const double centre = 0.5 * (iv.x0 + iv.x1);
+        stack[top++] = {centre, iv.x1, iv.depth + 1};
+        stack[top++] = {iv.x0, centre, iv.depth + 1};
+    }
+}
+
+void ExactRay::accumulate(double front, double depthErrorInFront, const double sum[3], const double error[3],
+                          const double rounding[3], const double gMax[3], double length) {
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    const double frontError = depthErrorInFront + 2.0 * kUnit;  // relative, of `front`
+    for (int c = 0; c < 3; ++c) {
+        colour_[c] += front * sum[c];
+        quadratureError_[c] += front * error[c];
+        const double sliver = std::min(4.0 * kUnit * length * gMax[c],
+                                       colourTimesExtinction ? 2.0 * maxColour_[c] : gMax[c] * length);
+        roundingError_[c] += front * (rounding[c] + (std::abs(sum[c]) + error[c]) * frontError + sliver) +
+                             kUnit * std::abs(colour_[c]);
+    }
+}
+
+void ExactRay::finish(double remainingLength, double value[4], double bound[4]) {
+    flush();
+    const double transparencyHigh = std::exp(-(opticalDepth_ - depthError_));  // at least the exact T
+    const bool cut = remainingLength > 0.0;
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    for (int c = 0; c < 3; ++c) {
+        value[c] = colour_[c];
+        // What the part after the cut could have added: at most C_max (T_cut - T_end) for g = C tau,
+        // at most C_max T_cut times the length for g = C.
+        const double tail = cut ? transparencyHigh * maxColour_[c] * (colourTimesExtinction ? 1.0 : remainingLength)
+                                : 0.0;
+        bound[c] = quadratureError_[c] + roundingError_[c] + tail;
+        // With g = C tau the exact colour lies in [0, C_max] whatever the extinction: a bound never
+        // needs to exceed the distance to the farther end (this also replaces an overflowed one).
+        const double widest = std::max(std::abs(value[c]), std::abs(maxColour_[c] - value[c]));
+        if (colourTimesExtinction && !(bound[c] <= widest)) bound[c] = widest;
+    }
+    value[3] = -std::expm1(-opticalDepth_);  // 1 - T, accurate for thin media too
+    bound[3] = transparencyHigh * depthError_ + kUnit * value[3] + (cut ? transparencyHigh : 0.0);
+    const double widest = std::max(value[3], 1.0 - value[3]);  // alpha lies in [0, 1]
+    if (!(bound[3] <= widest)) bound[3] = widest;
+}
+
+}  // namespace vri

@@ -1,0 +1,110 @@
+#pragma once
+// The emission-absorption integral along one ray whose scalar is a cubic on each piece, solved to
+// near double precision with a bound on its error (see exact_reference.h for the method).
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "libvri/core/cubic.h"
+#include "libvri/core/exact_gauss_batch.h"
+#include "libvri/core/transfer_function.h"
+
+namespace vri {
+
+class ExactRay {
+public:
+    // Allocates all the scratch space a ray needs: the per-ray calls allocate nothing. `tolerance`
+    // is the error allowed per transfer-function sub-piece (in the pixel's units); it also chooses
+    // the quadrature rule and where a ray may end early (see done()).
+    ExactRay(const TransferFunction& tf, double tolerance);
+
+    void begin();  // starts a new ray
+    // The next piece, front to back: `length` world units over which s = cubic(sigma), sigma in
+    // [0, 1] from the piece's start to its end. `sScale` bounds the magnitudes whose rounding went
+    // into the cubic's coefficients (see the error analysis in exact_ray.cpp).
+    void addPiece(double length, const Cubic& s, double sScale);
+    // True once what the rest of the ray, `remainingLength` world units, could still add is at most
+    // the tolerance in every channel: the transparency T times the largest colour (g = C tau adds at
+    // most C_max T; g = C at most C_max T times the length), and T to alpha. finish() adds that to the
+    // bound. Also true once T < 2^-60, where a cut changes alpha by nothing in double.
+    // Inline: the walk asks after every piece, and most of the time the first two tests answer.
+    bool done(double remainingLength) const {
+        if (opticalDepth_ >= kOpaqueDepth) return true;
+        // The tests use the largest transparency the rounding of the depth allows, as finish() does.
+        const double depth = opticalDepth_ - depthError_;
+        return depth >= terminationDepth_ && doneAtDepth(depth, remainingLength);
+    }
+    // Ends the ray, `remainingLength` world units of which were left out after done(): RGBA and
+    // a bound on each channel's error.
+    void finish(double remainingLength, double value[4], double bound[4]);
+
+    // Whether the TF is zero on all of [s0, s1]: tf.isInvisible(s0, s1) from a table of the spans where
+    // it is zero, not a search (true only where that is; an ulp short of a jump out of zero).
+    bool invisible(double s0, double s1) const;
+
+    std::uint64_t subPieces = 0, quadratureIntervals = 0, quadratureNodes = 0;  // counted over all rays
+
+private:
+    static constexpr double kOpaqueDepth = 41.588830833596716;  // 60 ln 2
+
+    // A transfer-function segment: from s on, channel k (tau, R, G, B) is value[k] + slope[k] (s' - s).
+    struct Segment {
+        double s;
+        std::array<double, 4> value, slope;
+    };
+    // A channel along a sub-piece: v + m (s - segment.s) as a cubic in lambda (exact_ray.cpp).
+    struct Linear {
+        std::array<double, 4> p;
+        double sum;    // sum |p[k]|: bounds |p| on [0, 1]
+        double error;  // bound on |computed - exact| anywhere on [0, 1]
+    };
+    // What the quadrature of one sub-piece needs, as polynomials in lambda in [0, 1].
+    struct SubPiece {
+        Cubic local;
+        double ell;
+        Linear tau, colour[3];
+        double gMax[3], gError[3];    // bounds on the emission g and on its error where a rule evaluates it
+        std::array<double, 5> depth;  // the optical depth from the sub-piece's start
+        double depthError;            // bound on the depth's error at lambda = 1 (lambda times it at lambda)
+    };
+
+    bool doneAtDepth(double depth, double remainingLength) const;  // done() past terminationDepth_
+    static Linear alongSegment(const Cubic& local, double sA, double v, double m, double ds);
+    void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale);
+    SubPiece setUp(const Cubic& local, double ell, double sScale, const Segment& segment, bool withColour) const;
+    void adaptiveQuadrature(const SubPiece& piece, double front, double sum[3], double error[3], double rounding[3]);
+    void accumulate(double front, double depthErrorInFront, const double sum[3], const double error[3],
+                    const double rounding[3], const double gMax[3], double length);
+    void flush();  // integrates the queued sub-pieces, in order
+
+    const TransferFunction& tf_;
+    EmissionModel emission_;
+    double tolerance_;
+    bool lowOrder_;                // Gauss-Kronrod 3-7 instead of 7-15 (see integrateSubPiece)
+    bool fastSplits_;              // a piece's monotonicity from its coefficients where they show it (addPiece)
+    RootStart rootStart_;          // Chord with fastSplits_: the same roots to an ulp, fewer Newton steps
+    double terminationDepth_;      // g = C tau: done() once the optical depth reaches this
+    double largestColour_;         // max(1, C_max over channels): what bounds a tail per unit T
+    std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
+    std::vector<double> levels_;   // the distinct s of the TF points: where a piece is split
+    std::vector<double> splits_;   // scratch: a piece's split points in sigma
+    std::vector<std::pair<double, double>> invisibleSpans_;  // closed spans of s where the TF is zero
+    // Segment i < n - 1 runs from point i to point i + 1; n - 1 and n are the constants below the first
+    // point and above the last (n points).
+    std::vector<Segment> segments_;
+    std::array<double, 3> maxColour_{};
+
+    // The ray so far.
+    double opticalDepth_ = 0.0, depthError_ = 0.0;
+    std::array<double, 3> colour_{}, quadratureError_{}, roundingError_{};
+
+    // From kGaussTolerance up: the sub-pieces waiting for their Gauss rules, with what the ray needs of
+    // each once they are done (the optical depth has already moved past them).
+    std::unique_ptr<GaussBatch> batch_;
+    int queued_ = 0;
+    std::array<double, GaussBatch::kCapacity> queuedLength_, queuedDepthError_;
+};
+
+}  // namespace vri

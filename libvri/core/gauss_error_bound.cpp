@@ -1,0 +1,34 @@
+#include "libvri/core/gauss_error_bound.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "libvri/core/gauss_bound_kernel.h"
+
+namespace vri {
+
+namespace {
+
+// gauss_bound_kernel.h's operations on one double.
+struct ScalarOps {
+    static double set(double c) { return c; }
+    static double abs(double x) { return std::abs(x); }
+    static double max(double a, double b) { return std::max(a, b); }
+};
+
+}  // namespace
+
+std::array<double, 3> gaussErrorBounds(const std::array<double, 4> (&colour)[3], const std::array<double, 4>& tau,
+                                       bool colourTimesExtinction, double ell, double transparencyMax) {
+    return gauss_bound_kernel::bounds(ScalarOps{}, colour, tau, colourTimesExtinction, ell, transparencyMax);
+}
+
+const GaussRule& gaussRule(int n) {
+    static const GaussRule rules[3] = {
+        {1, {0.5}, {1.0}},
+        {2, {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)}, {0.5, 0.5}},
+        {3, {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)}, {5.0 / 18.0, 4.0 / 9.0, 5.0 / 18.0}}};
+    return rules[n - 1];
+}
+
+}  // namespace vri

@@ -1,0 +1,32 @@
+#include "libvri/core/image.h"
+
+#include <algorithm>
+
+#include "libvri/util/checked_size.h"
+#include "libvri/util/error.h"
+
+namespace vri {
+
+std::size_t imageBytes(int w, int h, int n) {
+    if (w <= 0 || h <= 0)
+        throw Error("image size must be positive, got " + std::to_string(w) + "x" + std::to_string(h));
+    if (n <= 0) throw Error("image must have at least one channel");
+    return checkedBytes("a " + std::to_string(w) + "x" + std::to_string(h) + " image of " + std::to_string(n) +
+                            " float channels",
+                        {std::uint64_t(w), std::uint64_t(h), std::uint64_t(n), sizeof(float)});
+}
+
+Image::Image(int w, int h, int n) : width(w), height(h), channels(n) {
+    const std::size_t bytes = imageBytes(w, h, n);
+    static const char* names[] = {"R", "G", "B", "A"};
+    channelNames.clear();
+    for (int c = 0; c < n; ++c) channelNames.push_back(c < 4 ? names[c] : "C" + std::to_string(c));
+    pixels.assign(bytes / sizeof(float), 0.0f);
+}
+
+int channelIndex(const Image& image, std::string_view name) {
+    const auto it = std::find(image.channelNames.begin(), image.channelNames.end(), name);
+    return it == image.channelNames.end() ? -1 : static_cast<int>(it - image.channelNames.begin());
+}
+
+}  // namespace vri

@@ -1,0 +1,282 @@
+#include "libvri/core/render_option_table.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "libvri/util/error.h"
+#include "libvri/util/format.h"
+#include "libvri/util/parse.h"
+
+namespace vri {
+
+namespace {
+
+constexpr unsigned kBothTools = unsigned(RenderTool::Render) | unsigned(RenderTool::Reference);
+constexpr unsigned kRenderOnly = unsigned(RenderTool::Render);
+constexpr unsigned kCpu = 1u << unsigned(Backend::Cpu), kVulkan = 1u << unsigned(Backend::Vulkan);
+constexpr unsigned kBothBackends = kCpu | kVulkan;
+
+bool adaptive(const RenderRequest& r) {
+    return !r.exact && (r.options.integrator == Integrator::Coupled || r.options.integrator == Integrator::Decoupled);
+}
+
+bool flagValue(const std::string& text, const std::string& where) {
+    if (text == "true" || text == "false") return text == "true";
+    throw Error(where + ": expected true or false, got '" + text + "'");
+}
+
+std::string noDefault(const RenderRequest&) { return {}; }
+void noSetting(const RenderRequest&, std::vector<Setting>&) {}
+
+// The rows, in the order of --help and of the experiment reader's list of keys.
+const RenderOptionRow kRows[] = {
+    {"--method", "method", "", OptionValueKind::Text,
+     "riemann (paper A eq. 5), composite (opacity-corrected), simpson (uniform steps of --step), coupled or decoupled "
+     "(paper B's adaptive Simpson), exact (vri-reference's method, with a per-pixel error bound); vri-reference: "
+     "exact or riemann (paper B's reference)",
+     "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.exact = text == "exact";
+         if (r.exact) return;
+         if (r.tool == RenderTool::Reference && text != "riemann")
+             throw Error(where + ": unknown method '" + text + "' (expected exact or riemann)");
+         r.options.integrator = parseIntegrator(text, where);
+     },
+     [](const RenderRequest& r) { return std::string(r.exact ? "exact" : integratorName(r.options.integrator)); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         s.push_back({"method", std::string(r.exact ? "exact" : integratorName(r.options.integrator))});
+     }},
+    {"--placement", "placement", "", OptionValueKind::Text, "eye, entry, entry-exit or entry-exit-corner (paper A)", "",
+     "", kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.placement = parsePlacement(text, where);
+     },
+     [](const RenderRequest& r) { return std::string(placementName(r.options.placement)); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (!r.exact && !isSimpson(r.options.integrator))
+             s.push_back({"placement", std::string(placementName(r.options.placement))});
+     }},
+    {"--step", "step", "h", OptionValueKind::Number,
+     "step h in voxels (riemann, composite, simpson; vri-reference: riemann)", "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.samplingRate = 1.0 / parsePositive(text, where);
+     },
+     [](const RenderRequest& r) { return exactNumber(1.0 / r.options.samplingRate); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (r.exact || adaptive(r)) return;
+         s.push_back({"sampling_rate", r.options.samplingRate});
+         s.push_back({"step_voxels", 1.0 / r.options.samplingRate});
+     }},
+    {"--rate", "rate", "r", OptionValueKind::Number, "sampling rate in samples per voxel (= 1 / step)", "", "--step",
+     kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.samplingRate = parsePositive(text, where);
+     },
+     noDefault, noSetting},  // recorded with --step
+    {"--precision", "precision", "", OptionValueKind::Text, "double or float (the Vulkan backend: float only, its default)",
+     "", "", kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.precision = parsePrecision(text, where);
+     },
+     [](const RenderRequest& r) { return std::string(precisionName(r.options.precision)); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         s.push_back({"precision", std::string(r.exact ? "double" : precisionName(r.options.precision))});
+     }},
+    {"--simd", "simd", "simd-", OptionValueKind::Text,
+     "on: float riemann and composite on packets of rays, one per SIMD lane (bitwise equal to off); off: the scalar path",
+     "", "", kRenderOnly, kCpu,
+     [](const std::string& text, const std::string& where, RenderRequest& r) { r.options.simd = parseSimd(text, where); },
+     [](const RenderRequest& r) { return std::string(r.options.simd ? "on" : "off"); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (!r.exact) s.push_back({"simd", r.options.simd});
+     }},
+    {"--early-termination", "early_termination", "ert", OptionValueKind::Text,
+     "stop rays whose transparency drops below this (0 = off), or 'auto' (once the rest can change no channel by more "
+     "than 1e-4; 'auto:BOUND' for another bound), the most left out in the stats",
+     "", "", kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         parseEarlyTermination(text, where, r.options);
+     },
+     [](const RenderRequest& r) { return exactNumber(r.options.earlyTermination); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (r.exact) return;
+         if (r.options.terminationBound > 0.0) s.push_back({"early_termination.bound", r.options.terminationBound});
+         else s.push_back({"early_termination", r.options.earlyTermination});
+     }},
+    {"--repeat", "repeat", "x", OptionValueKind::Count,
+     "render N times for timing: the stats give every wall time and their median, and any image that differs from "
+     "the first is an error",
+     "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) { r.repeat = parseCount(text, where, 1); },
+     [](const RenderRequest& r) { return std::to_string(r.repeat); }, noSetting},  // in the timing record
+    // Paper B's adaptive Simpson (coupled, decoupled); the exact method's tolerance per piece.
+    {"--tolerance,--eps", "eps", "eps", OptionValueKind::Number,
+     "error tolerance eps at the step h0 (exact: per transfer-function piece of a ray, default 1e-7; vri-reference: "
+     "default 1e-13)",
+     "adaptive", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.adaptive.tolerance = r.exactTolerance = parseNonNegative(text, where);
+     },
+     [](const RenderRequest& r) {
+         return exactNumber(r.tool == RenderTool::Reference ? r.exactTolerance : r.options.adaptive.tolerance);
+     },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (r.exact) s.push_back({"tolerance", r.exactTolerance});
+         else if (adaptive(r)) s.push_back({"tolerance", r.options.adaptive.tolerance});
+     }},
+    {"--h0", "h0", "h0-", OptionValueKind::Number, "initial step", "adaptive", "", kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.adaptive.h0 = parsePositive(text, where);
+     },
+     [](const RenderRequest& r) { return exactNumber(r.options.adaptive.h0); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (adaptive(r)) s.push_back({"h0_voxels", r.options.adaptive.h0});
+     }},
+    {"--h-min", "h_min", "hmin", OptionValueKind::Number, "smallest step (taken whatever the error)", "adaptive", "",
+     kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.adaptive.hMin = parsePositive(text, where);
+     },
+     [](const RenderRequest& r) { return exactNumber(r.options.adaptive.hMin); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (adaptive(r)) s.push_back({"h_min_voxels", r.options.adaptive.hMin});
+     }},
+    {"--h-max", "h_max", "hmax", OptionValueKind::Text, "largest step, or 'none'", "adaptive", "", kRenderOnly,
+     kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.adaptive.hMax = parseLimit(text, where);
+     },
+     [](const RenderRequest& r) {
+         return std::isfinite(r.options.adaptive.hMax) ? exactNumber(r.options.adaptive.hMax) : std::string("none");
+     },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (!adaptive(r)) return;
+         const double h = r.options.adaptive.hMax;
+         s.push_back({"h_max_voxels", std::isfinite(h) ? SettingValue(h) : SettingValue(std::string("none"))});
+     }},
+    {"--accepted-value", "accepted", "", OptionValueKind::Text, "richardson (D + (D - S)/15) or paper (D + |D - S|/15)",
+     "adaptive", "", kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.adaptive.accepted = parseAcceptedValue(text, where);
+     },
+     [](const RenderRequest& r) { return std::string(acceptedValueName(r.options.adaptive.accepted)); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (adaptive(r)) s.push_back({"accepted_value", std::string(acceptedValueName(r.options.adaptive.accepted))});
+     }},
+    // The experiment plan adds --log <run>-ray.csv.
+    {"--log-ray", "log_ray", "ray", OptionValueKind::Text, "record every step try along pixel X,Y's ray", "adaptive",
+     "", kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.logPixel = parsePixel(text, where);
+     },
+     noDefault, noSetting},
+    {"--backend", "backend", "", OptionValueKind::Text, "cpu (the raycaster of libvri) or vulkan (compute shaders, float)",
+     "", "", kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) { r.backend = parseBackend(text, where); },
+     [](const RenderRequest& r) { return std::string(r.backend == Backend::Vulkan ? "vulkan" : "cpu"); },
+     noSetting},  // the stats say which backend ran
+    {"--device", "device", "dev", OptionValueKind::Text,
+     "Vulkan device: an index of --list-devices or part of a name (default: the first)", "", "", kRenderOnly, kVulkan,
+     [](const std::string& text, const std::string&, RenderRequest& r) { r.device = text; }, noDefault, noSetting},
+    {"--interpolation", "interpolation", "", OptionValueKind::Text,
+     "Vulkan: shader (grid_sampler.h's trilinear formula in float) or sampler (the device's 3D texture filtering)", "",
+     "", kRenderOnly, kVulkan,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.interpolation = parseInterpolation(text, where);
+     },
+     [](const RenderRequest& r) { return std::string(interpolationName(r.interpolation)); }, noSetting},
+    {"--warm-up", "warm_up", "w", OptionValueKind::Count,
+     "render N untimed frames first (caches, clocks, a GPU's pipelines)", "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) { r.warmUp = parseCount(text, where, 0); },
+     [](const RenderRequest& r) { return std::to_string(r.warmUp); }, noSetting},  // in the timing record
+    {"--no-skip-empty", "", "", OptionValueKind::Flag, "march through empty space too (the image does not change)", "",
+     "", kRenderOnly, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.skipEmptySpace = !flagValue(text, where);
+     },
+     noDefault,
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (!r.exact) s.push_back({"skip_empty_space", r.options.skipEmptySpace});
+     }},
+    {"--clamp", "clamp", "clamp-", OptionValueKind::Flag,
+     "clamp each pixel's colour and alpha to [0, 1] after the render (the stats count what was outside first); off "
+     "for accuracy studies",
+     "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) { r.clamp = flagValue(text, where); },
+     noDefault, [](const RenderRequest& r, std::vector<Setting>& s) { s.push_back({"clamp", r.clamp}); }},
+};
+
+const RenderOptionRow& row(std::string_view flag) {
+    return *std::find_if(std::begin(kRows), std::end(kRows), [&](const RenderOptionRow& r) { return r.flag() == flag; });
+}
+
+}  // namespace
+
+RenderRequest::RenderRequest(RenderTool t) : tool(t) {
+    if (tool == RenderTool::Reference) {  // the exact method, or paper B's reference: Riemann h = 0.01, entry, double
+        exact = true;
+        exactTolerance = ExactReferenceOptions{}.tolerance;
+        options.samplingRate = 1.0 / 0.01;
+    } else {
+        exactTolerance = 1e-7;
+        options.samplingRate = 1.0 / 0.5;
+    }
+}
+
+bool RenderRequest::wasGiven(std::string_view flag) const { return std::ranges::find(given, flag) != given.end(); }
+
+ExactReferenceOptions RenderRequest::exactOptions() const {
+    ExactReferenceOptions o;
+    o.tolerance = exactTolerance;
+    o.skipEmptySpace = options.skipEmptySpace;
+    o.progress = options.progress;
+    return o;
+}
+
+std::span<const RenderOptionRow> renderOptionTable() { return kRows; }
+
+std::string_view renderOptionGroupHelp(std::string_view group) {
+    return group == "adaptive" ? "coupled and decoupled (paper B), steps in voxels" : "";
+}
+
+const RenderOptionRow* findRenderOption(std::string_view key) {
+    const auto found = std::find_if(std::begin(kRows), std::end(kRows), [&](auto& r) { return !r.key.empty() && r.key == key; });
+    return found == std::end(kRows) ? nullptr : found;
+}
+
+void finishRenderRequest(RenderRequest& r) {
+    for (const std::string_view flag : r.given) {
+        const RenderOptionRow& given = row(flag);
+        if (!given.takenBy(r.tool)) throw Error(std::string(flag) + ": not an option of this tool");
+        if (!given.excludes.empty() && r.wasGiven(given.excludes))
+            throw Error(std::string(flag) + ": cannot be given with " + std::string(given.excludes));
+    }
+    if (r.tool == RenderTool::Reference) {
+        if (r.exact && r.wasGiven("--step")) throw Error("--step applies to --method riemann only");
+        if (!r.exact && r.wasGiven("--tolerance")) throw Error("--tolerance applies to --method exact only");
+    } else if (r.exact) {
+        if (r.backend != Backend::Cpu) throw Error("--method exact: runs on --backend cpu only");
+        if (r.wasGiven("--precision") && r.options.precision != Precision::Double)
+            throw Error("--precision: --method exact is double only");
+        if (r.wasGiven("--step") || r.wasGiven("--rate")) throw Error("--step, --rate: --method exact has no step");
+        if (r.wasGiven("--early-termination"))
+            throw Error("--early-termination: --method exact ends rays by its --tolerance");
+        if (r.options.logPixel) throw Error("--log-ray: applies to coupled and decoupled only");
+    }
+    if (r.exact && !(r.exactTolerance > 0.0))
+        throw Error("--tolerance: must be > 0 for --method exact, got " + exactNumber(r.exactTolerance));
+    for (const std::string_view flag : r.given)
+        if ((row(flag).backends & (1u << unsigned(r.backend))) == 0)
+            throw Error(std::string(flag) + ": needs --backend " + (r.backend == Backend::Cpu ? "vulkan" : "cpu"));
+    if (r.backend == Backend::Vulkan && !r.wasGiven("--precision")) r.options.precision = Precision::Float;
+}
+
+std::vector<Setting> settingsRecord(const RenderRequest& request) {
+    std::vector<Setting> settings;
+    for (const RenderOptionRow& r : kRows) r.record(request, settings);
+    settings.push_back({"tile_size", static_cast<long long>(request.exact ? request.exactOptions().tileSize
+                                                                           : request.options.tileSize)});
+    return settings;
+}
+
+}  // namespace vri

@@ -1,0 +1,780 @@
+// The packet engine (simd_march.h). Highway compiles the part between HWY_BEFORE_NAMESPACE and
+// HWY_AFTER_NAMESPACE once per target (foreach_target.h re-includes this file); the rest, once.
+#include "libvri/core/simd_march.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "libvri/core/simd_march.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/cache_control.h>
+#include <hwy/highway.h>
+
+#include "libvri/core/fixed_step_ray.h"
+
+HWY_BEFORE_NAMESPACE();
+#include "libvri/core/exp_kernel.h"  // once per target, see there
+
+namespace vri {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+using DU = hn::RebindToUnsigned<DF>;
+using VF = hn::Vec<DF>;
+using VI = hn::Vec<DI>;
+using MF = hn::Mask<DF>;
+
+// exp_kernel.h's operations, lane by lane.
+struct VectorOps {
+    using Scalar = float;
+    DF df;
+    DI di;
+    VF set(float c) const { return hn::Set(df, c); }
+    VF select(MF m, VF a, VF b) const { return hn::IfThenElse(m, a, b); }
+    VI toInt(VF k) const { return hn::ConvertTo(di, k); }
+    VF pow2(VI k) const { return hn::BitCast(df, hn::ShiftLeft<23>(hn::Add(k, hn::Set(di, 127)))); }
+    VI halve(VI k) const { return hn::ShiftRight<1>(k); }
+    VI clampInt(VI k, int lo, int hi) const { return hn::Min(hn::Max(k, hn::Set(di, lo)), hn::Set(di, hi)); }
+    MF less(VF a, VF b) const { return hn::Lt(a, b); }
+    MF greater(VF a, VF b) const { return hn::Gt(a, b); }
+    MF intGreater(VI a, int b) const { return hn::RebindMask(df, hn::Gt(a, hn::Set(di, b))); }
+    MF isNaN(VF x) const { return hn::IsNaN(x); }
+};
+
+HWY_INLINE VF lerp(VF a, VF b, VF t) { return hn::Add(a, hn::Mul(t, hn::Sub(b, a))); }
+
+// Voxels o and o + 1 of each lane (the x neighbours: the x stride is 1).
+struct VoxelPair {
+    VF first, second;
+};
+
+template <class T>
+VoxelPair gatherPair(const PacketScene& sc, VI o);
+
+template <>
+HWY_INLINE VoxelPair gatherPair<std::uint8_t>(const PacketScene& sc, VI o) {
+    const DF df;
+    const DI di;
+    const DU du;
+    // One 32-bit word holds both bytes. The last word of the volume starts 4 bytes before its end:
+    // a lane past it reads that word and shifts its bytes down.
+    const VI start = hn::Min(o, hn::Set(di, sc.voxelBytes - 4));
+    const auto word = hn::BitCast(du, hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(sc.voxels), start));
+    const auto bytes = word >> hn::BitCast(du, hn::ShiftLeft<3>(hn::Sub(o, start)));
+    const auto mask = hn::Set(du, 0xFFu);
+    return {hn::ConvertTo(df, hn::BitCast(di, hn::And(bytes, mask))),
+            hn::ConvertTo(df, hn::BitCast(di, hn::And(hn::ShiftRight<8>(bytes), mask)))};
+}
+
+template <>
+HWY_INLINE VoxelPair gatherPair<std::uint16_t>(const PacketScene& sc, VI o) {
+    const DF df;
+    const DI di;
+    const DU du;
+    // Voxel o + 1 exists (o is never the last voxel of a row), so the word at 2 o lies inside the volume.
+    const auto word =
+        hn::BitCast(du, hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(sc.voxels), hn::ShiftLeft<1>(o)));
+    return {hn::ConvertTo(df, hn::BitCast(di, hn::And(word, hn::Set(du, 0xFFFFu)))),
+            hn::ConvertTo(df, hn::BitCast(di, hn::ShiftRight<16>(word)))};
+}
+
+template <>
+HWY_INLINE VoxelPair gatherPair<float>(const PacketScene& sc, VI o) {
+    const DF df;
+    const DI di;
+    const float* data = reinterpret_cast<const float*>(sc.voxels);
+    return {hn::GatherIndex(df, data, o), hn::GatherIndex(df, data, hn::Add(o, hn::Set(di, 1)))};
+}
+
+// GridSampler<T, float>::operator() in two halves: where each lane's trilinear stencil lies, then
+// its value. Lanes outside `valid` address voxel 0.
+struct Stencil {
+    VI base;     // the stencil's lowest voxel
+    VF w[3];     // the weights along x, y, z
+    VF x[3];     // the continuous voxel index, before clamping
+    VI cell[3];  // the stencil brick holding `base` along each axis, and its index in the grid (occupancy_grid.h)
+    VI brick;
+};
+
+HWY_INLINE Stencil locate(const PacketScene& sc, const VF (&u)[3], MF valid) {
+    const DF df;
+    const DI di;
+    const GridSamplerLayout<float>& g = sc.layout;
+    Stencil st{hn::Zero(di), {}, {}, {}, hn::Zero(di)};
+    for (int a = 0; a < 3; ++a) {
+        const VF x = st.x[a] = hn::Sub(hn::Mul(u[a], hn::Set(df, g.scale[a])), hn::Set(df, g.offset[a]));
+        const VF maxCoord = hn::Set(df, g.maxCoord[a]);
+        const VF c =
+            hn::IfThenElse(hn::Lt(x, hn::Zero(df)), hn::Zero(df), hn::IfThenElse(hn::Lt(maxCoord, x), maxCoord, x));
+        const VI i =
+            hn::IfThenElseZero(hn::RebindMask(di, valid), hn::Min(hn::ConvertTo(di, c), hn::Set(di, g.maxBase[a])));
+        st.w[a] = hn::Sub(c, hn::ConvertTo(df, i));
+        st.base = hn::Add(st.base, hn::Mul(i, hn::Set(di, static_cast<std::int32_t>(g.stride[a]))));
+        st.cell[a] = hn::ShiftRight<StencilBricks::kShift>(i);
+        st.brick = hn::Add(st.brick, hn::Mul(st.cell[a], hn::Set(di, sc.brickStride[a])));
+    }
+    return st;
+}
+
+template <class T>
+HWY_INLINE VF interpolate(const PacketScene& sc, const Stencil& st) {
+    const DF df;
+    const DI di;
+    const GridSamplerLayout<float>& g = sc.layout;
+    const VI sy = hn::Set(di, static_cast<std::int32_t>(g.stride[1]));
+    const VI sz = hn::Set(di, static_cast<std::int32_t>(g.stride[2]));
+    const VoxelPair p00 = gatherPair<T>(sc, st.base);
+    const VoxelPair p10 = gatherPair<T>(sc, hn::Add(st.base, sy));
+    const VoxelPair p01 = gatherPair<T>(sc, hn::Add(st.base, sz));
+    const VoxelPair p11 = gatherPair<T>(sc, hn::Add(hn::Add(st.base, sz), sy));
+    const VF c00 = lerp(p00.first, p00.second, st.w[0]);
+    const VF c10 = lerp(p10.first, p10.second, st.w[0]);
+    const VF c01 = lerp(p01.first, p01.second, st.w[0]);
+    const VF c11 = lerp(p11.first, p11.second, st.w[0]);
+    const VF c0 = lerp(c00, c10, st.w[1]);
+    const VF c1 = lerp(c01, c11, st.w[1]);
+    return hn::Mul(hn::Sub(lerp(c0, c1, st.w[2]), hn::Set(df, g.lo)), hn::Set(df, g.invRange));
+}
+
+// How many samples after the current one certainly keep their stencil in bricks known to be empty:
+// the lanes' bricks lie `distance` bricks from the nearest brick ahead of them that is not empty (in
+// their ray's octant), so every brick from theirs to less than that far ahead along each axis is
+// empty (bricks outside the grid do not count: a stencil there is clamped into the grid, onto a brick
+// of the cube). The stencils only move ahead: a sample's position along an axis is entry + (tStart +
+// k tIncr) du, each operation rounding monotonically, so it never decreases with k where du > 0 and
+// never increases where du < 0, and so neither do the clamp and floor of locate(). Along each axis, the
+// distance to the cube's face the ray heads for, less `margin` voxels (far more than the rounding of
+// sample positions and of this estimate, even across the whole volume), in samples
+// (`samplesPerVoxel`, +inf along an axis the ray does not move on), minus one for the rounding of
+// this estimate. Skipping them changes nothing.
+HWY_INLINE VI samplesInEmptyCube(const Stencil& st, VI distance, const VF (&du)[3], const VF (&samplesPerVoxel)[3],
+                                 float margin) {
+    const DF df;
+    const DI di;
+    VF samples = hn::Set(df, 1e9f);
+    for (int a = 0; a < 3; ++a) {
+        const VF lo = hn::ConvertTo(
+            df, hn::ShiftLeft<StencilBricks::kShift>(hn::Add(hn::Sub(st.cell[a], distance), hn::Set(di, 1))));
+        const VF hi = hn::ConvertTo(df, hn::ShiftLeft<StencilBricks::kShift>(hn::Add(st.cell[a], distance)));
+        const VF room = hn::IfThenElse(hn::Gt(du[a], hn::Zero(df)), hn::Sub(hi, st.x[a]), hn::Sub(st.x[a], lo));
+        const VF along = hn::Mul(hn::Sub(room, hn::Set(df, margin)), samplesPerVoxel[a]);
+        samples = hn::IfThenElse(hn::Eq(du[a], hn::Zero(df)), samples, hn::Min(samples, along));
+    }
+    return hn::ConvertTo(di, hn::Max(hn::Sub(samples, hn::Set(df, 1.f)), hn::Zero(df)));
+}
+
+// TransferFunction::operator()<float>: the bracket p_i <= s < p_i+1 is the number of inner points
+// p_1 .. p_n-2 at or below s, the same bracket the scalar search finds; its constants come from
+// registers when every segment fits one vector, else from memory.
+class VectorTransferFunction {
+public:
+    explicit VectorTransferFunction(const PacketScene& sc)
+        : sc_(sc), inRegisters_(sc.segmentStart.size() <= hn::Lanes(DF())) {
+        const DF df;
+        if (inRegisters_) {
+            start_ = hn::LoadU(df, sc.segmentStart.data());
+            width_ = hn::LoadU(df, sc.segmentWidth.data());
+            for (int c = 0; c < 4; ++c) {
+                value_[c] = hn::LoadU(df, sc.value[c].data());
+                slope_[c] = hn::LoadU(df, sc.slope[c].data());
+            }
+        }
+    }
+
+    // r, g, b, tau of the lanes' s.
+    HWY_INLINE void operator()(VF s, VF (&out)[4]) const {
+        const DF df;
+        const DI di;
+        // Four inner points a turn (NaN pads the last four: s >= NaN is false), each a compare and a
+        // masked add: a loop over single points spent more on the loop than on the compares.
+        const std::vector<float>& inner = sc_.innerS;
+        const VI one = hn::Set(di, 1);
+        VI segment = hn::Zero(di);
+        const auto count = [&](float p) {
+            segment = hn::IfThenElse(hn::RebindMask(di, hn::Ge(s, hn::Set(df, p))), hn::Add(segment, one), segment);
+        };
+        for (std::size_t j = 0; j < inner.size(); j += 4) {
+            count(inner[j]);
+            count(inner[j + 1]);
+            count(inner[j + 2]);
+            count(inner[j + 3]);
+        }
+        const MF above = hn::Ge(s, hn::Set(df, sc_.pointS.front()));
+        const MF below = hn::Lt(s, hn::Set(df, sc_.pointS.back()));
+        if (inRegisters_) {
+            const auto idx = hn::IndicesFromVec(df, segment);
+            const VF w = hn::Div(hn::Sub(s, hn::TableLookupLanes(start_, idx)), hn::TableLookupLanes(width_, idx));
+            for (int c = 0; c < 4; ++c)
+                out[c] = select(
+                    above, below,
+                    hn::Add(hn::TableLookupLanes(value_[c], idx), hn::Mul(w, hn::TableLookupLanes(slope_[c], idx))), c);
+        } else {
+            const VF w = hn::Div(hn::Sub(s, hn::GatherIndex(df, sc_.segmentStart.data(), segment)),
+                                 hn::GatherIndex(df, sc_.segmentWidth.data(), segment));
+            for (int c = 0; c < 4; ++c)
+                out[c] = select(above, below,
+                                hn::Add(hn::GatherIndex(df, sc_.value[c].data(), segment),
+                                        hn::Mul(w, hn::GatherIndex(df, sc_.slope[c].data(), segment))),
+                                c);
+        }
+    }
+
+private:
+    // Below the first point (or NaN): the first point's value; at or past the last: the last's.
+    HWY_INLINE VF select(MF above, MF below, VF inside, int c) const {
+        const DF df;
+        return hn::IfThenElse(above, hn::IfThenElse(below, inside, hn::Set(df, sc_.last[c])),
+                              hn::Set(df, sc_.first[c]));
+    }
+
+    const PacketScene& sc_;
+    bool inRegisters_;
+    VF start_, width_, value_[4], slope_[4];
+};
+
+constexpr std::size_t kMaxLanes = PacketScene::kMaxLanes;
+static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxLanes);
+
+// The order in which a tile's pixels enter packets: blocks of neighbouring pixels as near square as
+// the lane count allows (4x4 for 16 lanes, 4x2 for 8, 2x2 for 4), block after block along the tile's
+// rows. A block's rays start close together and stay close, so its lanes cross the same bricks (their
+// jumps and their ends come together) and its gathers share cache lines, more than a row of pixels'
+// would. The order changes no pixel's value: each lane marches its own ray.
+class PacketOrder {
+public:
+    PacketOrder(int width, int height, std::size_t lanes)
+        : width_(width), height_(height), blockW_(lanes >= 8 ? 4 : lanes >= 4 ? 2 : static_cast<int>(lanes)),
+          blockH_(static_cast<int>(lanes) / blockW_) {}
+
+    bool done() const { return y_ >= height_; }
+
+    // The next pixel, as x + width * y within the tile; false when none is left.
+    bool next(int& pixel) {
+        while (!done()) {
+            const int x = x_ + i_ % blockW_, y = y_ + i_ / blockW_;
+            if (++i_ == blockW_ * blockH_) {
+                i_ = 0;
+                x_ += blockW_;
+                if (x_ >= width_) {
+                    x_ = 0;
+                    y_ += blockH_;
+                }
+            }
+            if (x < width_ && y < height_) {
+                pixel = x + width_ * y;
+                return true;
+            }
+        }
+        return false;
+    }
+
+private:
+    int width_, height_, blockW_, blockH_;
+    int x_ = 0, y_ = 0, i_ = 0;  // the block's corner, and the next pixel's place in it
+};
+
+// A pixel's ray as the packets march it: pixelRay<float>() and FixedStepSamples<float> of it.
+struct PixelSamples {
+    int pixel;
+    bool hit;  // the ray meets the box
+    double worldLength;
+    SampleSchedule<float> schedule;
+    glm::vec3 entry, du;
+    float dx;
+};
+
+// The rays of the next pixels in PacketOrder, a vector of pixels at a time: pixelRay() (Camera::
+// direction(), clipRay(), Box::toTexture()) in double, then placeSamples() and FixedStepSamples in
+// float, operation for operation (no fused multiply-add: the build turns contraction off), so every
+// ray has the bits of the scalar path's; the count of a fixed step is countBelowEnd()'s. A pixel whose
+// direction has a zero or non-finite component takes pixelRay() itself (clipRay()'s cases for those).
+class RayBatch {
+public:
+    explicit RayBatch(const PacketScene& sc) : sc_(sc), basis_(sc.camera.basis()) {}
+
+    // The next pixel's ray; false when the tile has no pixel left.
+    bool next(PacketOrder& order, int x0, int y0, int width, PixelSamples& ray) {
+        if (next_ == size_) fill(order, x0, y0, width);
+        if (next_ == size_) return false;
+        const std::size_t i = next_++;
+        ray.pixel = pixel_[i];
+        if (scalar_[i] != 0.0) {
+            const auto clipped = pixelRay<float>(sc_.camera, sc_.box, x0 + ray.pixel % width, y0 + ray.pixel / width);
+            ray.hit = clipped.has_value();
+            if (!clipped) return true;
+            const FixedStepSamples<float> samples(*clipped, sc_.options, sc_.eyeU, sc_.dims);
+            ray.worldLength = clipped->worldLength;
+            ray.schedule = samples.schedule;
+            ray.entry = samples.entry;
+            ray.du = samples.du;
+            ray.dx = samples.dx;
+            return true;
+        }
+        ray.hit = hit_[i] != 0.0;
+        ray.worldLength = length_[i];
+        SampleSchedule<float>& s = ray.schedule;
+        s = {tStart_[i], tIncr_[i], tEnd_[i], 0};
+        if (!ray.hit || !(s.tEnd > 0.f) || !(samples_[i] > 0.f) || !std::isfinite(samples_[i])) {
+            s = {0.f, 0.f, s.tEnd, 0};
+            return true;
+        }
+        const Placement placement = sc_.options.placement;
+        s.count = placement == Placement::EntryExitAlign || placement == Placement::EntryExitAlignCorner
+                      ? static_cast<std::int64_t>(samples_[i])
+                      : countBelowEnd(s);
+        ray.entry = glm::vec3(entryF_[0][i], entryF_[1][i], entryF_[2][i]);
+        ray.du = glm::vec3(du_[0][i], du_[1][i], du_[2][i]);
+        ray.dx = s.count > 0 ? s.tIncr * static_cast<float>(ray.worldLength / static_cast<double>(s.tEnd)) : 0.f;
+        return true;
+    }
+
+private:
+    using DD = hn::ScalableTag<double>;
+    using VD = hn::Vec<DD>;
+
+    void fill(PacketOrder& order, int x0, int y0, int width) {
+        size_ = next_ = 0;
+        HWY_ALIGN double px[kBatch] = {}, py[kBatch] = {};  // a partial last vector reads zeros
+        while (size_ < kBatch && order.next(pixel_[size_])) {
+            px[size_] = x0 + pixel_[size_] % width;
+            py[size_] = y0 + pixel_[size_] / width;
+            ++size_;
+        }
+        const DD dd;
+        const std::size_t n = hn::Lanes(dd);
+        const CameraSpec& spec = sc_.camera.spec();
+        const VD zero = hn::Zero(dd), one = hn::Set(dd, 1.0), two = hn::Set(dd, 2.0), half = hn::Set(dd, 0.5);
+        for (std::size_t j = 0; j < size_; j += n) {
+            // Camera::direction().
+            const VD fx = hn::Add(hn::Set(dd, basis_.centre.x),
+                                  hn::Div(hn::Sub(hn::Add(hn::Load(dd, px + j), half), hn::Set(dd, 0.5 * spec.width)),
+                                          hn::Set(dd, spec.zoom)));
+            const VD fy = hn::Add(hn::Set(dd, basis_.centre.y),
+                                  hn::Div(hn::Sub(hn::Add(hn::Load(dd, py + j), half), hn::Set(dd, 0.5 * spec.height)),
+                                          hn::Set(dd, spec.zoom)));
+            const VD x =
+                hn::Mul(hn::Sub(hn::Div(hn::Mul(two, fx), hn::Set(dd, spec.width)), one), hn::Set(dd, basis_.tanHalfX));
+            const VD y = hn::Mul(hn::Sub(one, hn::Div(hn::Mul(two, fy), hn::Set(dd, spec.height))),
+                                 hn::Set(dd, basis_.tanHalfY));
+            VD v[3];
+            for (int a = 0; a < 3; ++a)
+                v[a] = hn::Add(hn::Add(hn::Set(dd, basis_.forward[a]), hn::Mul(x, hn::Set(dd, basis_.right[a]))),
+                               hn::Mul(y, hn::Set(dd, basis_.up[a])));
+            // glm::normalize: v * (1 / sqrt(dot(v, v))), the dot as (x x + y y) + z z.
+            const VD dot = hn::Add(hn::Add(hn::Mul(v[0], v[0]), hn::Mul(v[1], v[1])), hn::Mul(v[2], v[2]));
+            const VD inverse = hn::Div(one, hn::Sqrt(dot));
+            // clipRay().
+            const glm::dvec3& eye = sc_.camera.eye();
+            VD tNear = zero, tFar = hn::Set(dd, std::numeric_limits<double>::infinity()), dir[3];
+            auto odd = hn::Ne(zero, zero);  // a direction clipRay() treats case by case
+            for (int a = 0; a < 3; ++a) {
+                dir[a] = hn::Mul(v[a], inverse);
+                odd = hn::Or(odd, hn::Or(hn::Eq(dir[a], zero), hn::Not(hn::IsFinite(dir[a]))));
+                const VD t0 = hn::Div(hn::Set(dd, sc_.box.lo[a] - eye[a]), dir[a]);
+                const VD t1 = hn::Div(hn::Set(dd, sc_.box.hi[a] - eye[a]), dir[a]);
+                const auto swap = hn::Gt(t0, t1);
+                tNear = hn::Max(tNear, hn::IfThenElse(swap, t1, t0));
+                tFar = hn::Min(tFar, hn::IfThenElse(swap, t0, t1));
+            }
+            hn::Store(hn::IfThenElseZero(hn::Not(hn::Gt(tNear, tFar)), one), dd, hit_ + j);
+            hn::Store(hn::IfThenElseZero(odd, one), dd, scalar_ + j);
+            hn::Store(hn::Sub(tFar, tNear), dd, length_ + j);
+            // Box::toTexture() of the entry and exit points.
+            for (int a = 0; a < 3; ++a) {
+                const VD lo = hn::Set(dd, sc_.box.lo[a]), size = hn::Set(dd, sc_.box.hi[a] - sc_.box.lo[a]);
+                const VD e = hn::Set(dd, eye[a]);
+                hn::Store(hn::Div(hn::Sub(hn::Add(e, hn::Mul(tNear, dir[a])), lo), size), dd, entry_[a] + j);
+                hn::Store(hn::Div(hn::Sub(hn::Add(e, hn::Mul(tFar, dir[a])), lo), size), dd, exit_[a] + j);
+            }
+        }
+        // placeSamples<float>() and FixedStepSamples' du; glm::length as sqrt((x x + y y) + z z).
+        HWY_ALIGN float exitF[3][kBatch];
+        for (int a = 0; a < 3; ++a)
+            for (std::size_t i = 0; i < kBatch; ++i) {
+                entryF_[a][i] = static_cast<float>(entry_[a][i]);
+                exitF[a][i] = static_cast<float>(exit_[a][i]);
+            }
+        const DF df;
+        const auto length = [](const VF (&v)[3]) {
+            return hn::Sqrt(hn::Add(hn::Add(hn::Mul(v[0], v[0]), hn::Mul(v[1], v[1])), hn::Mul(v[2], v[2])));
+        };
+        const Placement placement = sc_.options.placement;
+        const bool corner = placement == Placement::EntryExitAlignCorner;
+        const VF rate = hn::Set(df, static_cast<float>(sc_.options.samplingRate));
+        for (std::size_t j = 0; j < size_; j += hn::Lanes(df)) {
+            VF entry[3], ray[3], scaled[3];
+            for (int a = 0; a < 3; ++a) {
+                entry[a] = hn::Load(df, entryF_[a] + j);
+                ray[a] = hn::Sub(hn::Load(df, exitF[a] + j), entry[a]);
+                const float dim = sc_.dims[a];
+                scaled[a] = hn::Mul(ray[a], hn::Set(df, corner ? dim - 1.f : dim));
+            }
+            const VF tEnd = length(ray), along = length(scaled);
+            VF samples = hn::Mul(along, rate);
+            if (placement == Placement::EntryExitAlign) samples = hn::Floor(samples);
+            if (corner) samples = hn::Ceil(hn::Mul(rate, along));
+            const VF tIncr = hn::Div(tEnd, samples);
+            VF tStart = hn::Mul(hn::Set(df, 0.5f), tIncr);
+            if (placement == Placement::EyeAlign) {
+                VF fromEye[3];
+                for (int a = 0; a < 3; ++a)
+                    fromEye[a] = hn::Sub(entry[a], hn::Set(df, sc_.eyeU[a]));
+                const VF steps = hn::Div(length(fromEye), tIncr);
+                tStart = hn::Mul(hn::Sub(hn::Set(df, 1.f), hn::Sub(steps, hn::Floor(steps))), tIncr);
+            }
+            hn::Store(tEnd, df, tEnd_ + j);
+            hn::Store(samples, df, samples_ + j);
+            hn::Store(tIncr, df, tIncr_ + j);
+            hn::Store(tStart, df, tStart_ + j);
+            for (int a = 0; a < 3; ++a)
+                hn::Store(hn::Div(ray[a], tEnd), df, du_[a] + j);
+        }
+    }
+
+    static constexpr std::size_t kBatch = PacketScene::kMaxLanes;
+    const PacketScene& sc_;
+    CameraBasis basis_;
+    std::size_t size_ = 0, next_ = 0;
+    int pixel_[kBatch];
+    // Per pixel: the texture coordinates where the ray enters and leaves the box, the world length
+    // between them, and 1 where it hits the box, or takes pixelRay().
+    HWY_ALIGN double entry_[3][kBatch] = {}, exit_[3][kBatch] = {}, length_[kBatch], hit_[kBatch], scalar_[kBatch];
+    // And in float: the entry point, tEnd, placeSamples()' `samples`, tIncr, tStart and du.
+    HWY_ALIGN float entryF_[3][kBatch], tEnd_[kBatch], samples_[kBatch], tIncr_[kBatch], tStart_[kBatch];
+    HWY_ALIGN float du_[3][kBatch];
+};
+
+// The lanes' rays as start() loads them, structure of arrays; a lane without a ray has count 0. The
+// march keeps a packet's rays and sums in registers and stores the sums here only for finish().
+struct Lanes {
+    HWY_ALIGN float tStart[kMaxLanes], tIncr[kMaxLanes];
+    HWY_ALIGN float entry[3][kMaxLanes], du[3][kMaxLanes], dx[kMaxLanes];
+    HWY_ALIGN float r[kMaxLanes], g[kMaxLanes], b[kMaxLanes], transparency[kMaxLanes];
+    HWY_ALIGN float terminateBelow[kMaxLanes];  // the transparency that ends the ray (early_termination.h)
+    HWY_ALIGN std::int32_t k[kMaxLanes], count[kMaxLanes], finished[kMaxLanes];
+    int pixel[kMaxLanes];
+};
+
+// A packet's rays in registers: constant while the packet marches.
+struct PacketRays {
+    VF tStart, tIncr, entry[3], du[3], dx, terminateBelow;
+    VF samplesPerVoxel[3];  // along each axis, for the jumps over empty space; +inf where a ray does not move
+    VI octant;              // where the distances of the ray's octant start (StencilBricks::distances())
+};
+
+// The gathers wait on memory more than on arithmetic: a packet entering the next z slice of the volume
+// reads cache lines that no hardware prefetcher foresees (slices lie dims.x * dims.y voxels apart). So
+// every `prefetchEvery` steps the packet asks for the stencil's lines `prefetchSamples` samples ahead,
+// for its first and last lane (the neighbouring pixels' stencils lie between them). A hint only: it
+// changes no value. Measured on Bonsai (AVX3, CPU time in marchTile): -20 % at h = 0.5, -5 to -15 % at
+// h = 0.25 and 0.1.
+template <class T>
+HWY_INLINE void prefetchAhead(const PacketScene& sc, VF t, const PacketRays& rays) {
+    const DF df;
+    const DI di;
+    const GridSamplerLayout<float>& g = sc.layout;
+    const VF ahead = hn::Add(t, hn::Mul(hn::Set(df, sc.prefetchSamples), rays.tIncr));
+    VI base = hn::Zero(di);
+    for (int a = 0; a < 3; ++a) {
+        const VF u = hn::Add(rays.entry[a], hn::Mul(ahead, rays.du[a]));
+        const VF x = hn::Sub(hn::Mul(u, hn::Set(df, g.scale[a])), hn::Set(df, g.offset[a]));
+        const VF c = hn::Min(hn::Max(x, hn::Zero(df)), hn::Set(df, g.maxCoord[a]));
+        const VI i = hn::Max(hn::Min(hn::ConvertTo(di, c), hn::Set(di, g.maxBase[a])), hn::Zero(di));
+        base = hn::Add(base, hn::Mul(i, hn::Set(di, static_cast<std::int32_t>(g.stride[a]))));
+    }
+    HWY_ALIGN std::int32_t first[kMaxLanes];
+    hn::Store(base, di, first);
+    const T* voxels = reinterpret_cast<const T*>(sc.voxels);
+    for (const std::size_t lane : {std::size_t(0), hn::Lanes(df) - 1}) {
+        const T* p = voxels + first[lane];
+        hwy::Prefetch(p);
+        hwy::Prefetch(p + g.stride[1]);
+        hwy::Prefetch(p + g.stride[2]);
+        hwy::Prefetch(p + g.stride[1] + g.stride[2]);
+    }
+}
+
+template <class T, Integrator Method, EmissionModel Emission>
+void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
+    const DF df;
+    const DI di;
+    const VectorOps ops{df, di};
+    const std::size_t n = hn::Lanes(df);
+    const VectorTransferFunction tf(sc);
+    const int width = x1 - x0;
+    PacketOrder order(width, y1 - y0, n);
+    RayBatch batch(sc);
+    Lanes L{};
+
+    // Loads the next pixel whose ray has samples into `lane`; leaves it without a ray (count 0) when
+    // the tile has none left.
+    const auto start = [&](std::size_t lane) {
+        L.k[lane] = L.count[lane] = 0;
+        PixelSamples ray{};
+        while (batch.next(order, x0, y0, width, ray)) {
+            if (!ray.hit) continue;
+            if (ray.worldLength > 0) ++counts.raysHit;
+            // No sample: the pixel keeps the image's zeros, which is what the scalar path writes.
+            if (ray.schedule.count == 0) continue;
+            L.pixel[lane] = ray.pixel;
+            L.tStart[lane] = ray.schedule.tStart;
+            L.tIncr[lane] = ray.schedule.tIncr;
+            L.count[lane] = static_cast<std::int32_t>(ray.schedule.count);
+            for (int a = 0; a < 3; ++a) {
+                L.entry[a][lane] = ray.entry[a];
+                L.du[a][lane] = ray.du[a];
+            }
+            L.dx[lane] = ray.dx;
+            L.terminateBelow[lane] = sc.termination.threshold<float>(ray.dx, ray.schedule.count);
+            return;
+        }
+    };
+    // Writes the pixel of `lane` from L's sums and k.
+    const auto finish = [&](std::size_t lane) {
+        float* out = &image.at(x0 + L.pixel[lane] % width, y0 + L.pixel[lane] / width, 0);
+        out[0] = L.r[lane];
+        out[1] = L.g[lane];
+        out[2] = L.b[lane];
+        out[3] = 1.f - L.transparency[lane];
+        counts.samplesPlaced += static_cast<std::uint64_t>(L.k[lane]);
+        if (L.k[lane] < L.count[lane])
+            counts.terminated(sc.termination.leftOut(L.transparency[lane], L.dx[lane], L.count[lane]));
+    };
+
+    // A packet is the next n pixels with samples in PacketOrder; it ends when its last ray does.
+    // (Refilling a lane as soon as its ray ends was measured 3-10 % slower on Bonsai: neighbouring rays
+    // cross the same bricks, so a packet's lanes jump over empty space and evaluate together.)
+    VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);  // the distances last gathered, and where
+    int sincePrefetch = sc.prefetchEvery;  // steps since prefetchAhead() last ran
+    std::uint64_t evaluated = 0;
+    for (;;) {
+        for (std::size_t lane = 0; lane < n; ++lane)
+            start(lane);
+        VI count = hn::Load(di, L.count), k = hn::Zero(di);
+        MF active = hn::RebindMask(df, hn::Lt(k, count));
+        if (hn::AllFalse(df, active)) break;
+        PacketRays rays;
+        rays.tStart = hn::Load(df, L.tStart);
+        rays.tIncr = hn::Load(df, L.tIncr);
+        rays.dx = hn::Load(df, L.dx);
+        rays.terminateBelow = hn::Load(df, L.terminateBelow);
+        for (int a = 0; a < 3; ++a) {
+            rays.entry[a] = hn::Load(df, L.entry[a]);
+            rays.du[a] = hn::Load(df, L.du[a]);
+            // Samples per voxel (samplesInEmptyCube: an estimate, so float suffices).
+            const VF perVoxel = hn::Mul(rays.du[a], hn::Set(df, sc.layout.scale[a]));
+            rays.samplesPerVoxel[a] = hn::Div(hn::Set(df, 1.f), hn::Abs(hn::Mul(perVoxel, rays.tIncr)));
+        }
+        rays.octant = hn::Zero(di);
+        for (int a = 0; a < 3; ++a)
+            rays.octant = hn::IfThenElse(hn::RebindMask(di, hn::Lt(rays.du[a], hn::Zero(df))),
+                                         hn::Add(rays.octant, hn::Set(di, (1 << a) * sc.octantStride)), rays.octant);
+        VF r = hn::Zero(df), g = hn::Zero(df), b = hn::Zero(df), transparency = hn::Set(df, 1.f);
+        while (!hn::AllFalse(df, active)) {
+            const VF t = hn::Add(rays.tStart, hn::Mul(hn::ConvertTo(df, k), rays.tIncr));
+            Stencil stencil;
+            {
+                VF u[3];
+                for (int a = 0; a < 3; ++a)
+                    u[a] = hn::Add(rays.entry[a], hn::Mul(t, rays.du[a]));
+                stencil = locate(sc, u, active);
+            }
+            // A sample whose stencil lies in an empty brick has a transfer-function value of exactly 0
+            // (occupancy_grid.h) and would add nothing: it is not evaluated. In one step, the lanes on
+            // such a sample jump over the samples that certainly follow it in empty bricks and the
+            // others evaluate theirs. (Evaluating only once no lane jumps, so that an evaluation runs on
+            // every lane, took 10 % more CPU time on Bonsai at h = 0.5 and 0.1; waiting for 4 or 8 lanes
+            // fell in between. A jump is a long chain of dependent operations, and an evaluation beside
+            // it adds little to its time.)
+            MF empty = hn::And(active, hn::Not(active));
+            if (sc.emptyDistance) {
+                // The lanes often stay in their bricks from one sample to the next (at h = 0.1 on Bonsai,
+                // seven times in ten for all 16 lanes): then the distances need no new gather.
+                const VI brick = hn::Add(stencil.brick, rays.octant);
+                if (!hn::AllTrue(di, hn::Eq(brick, lastBrick))) {
+                    lastBrick = brick;
+                    // The word at each brick's byte; its low byte is the distance.
+                    const VI word =
+                        hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(sc.emptyDistance), brick);
+                    lastDistance = hn::And(word, hn::Set(di, 0xFF));
+                }
+                empty = hn::And(active, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
+            }
+            const MF evaluating = hn::AndNot(empty, active);
+            MF done = hn::And(active, hn::Not(active));
+            if (!hn::AllFalse(df, evaluating)) {
+                if (++sincePrefetch >= sc.prefetchEvery) {
+                    prefetchAhead<T>(sc, t, rays);
+                    sincePrefetch = 0;
+                }
+                VF v[4];  // r, g, b, tau
+                tf(interpolate<T>(sc, stencil), v);
+                const VF tau = v[3];
+                // RayAccumulator::add: a sample without extinction adds nothing under colour x extinction.
+                const MF contributes = Emission == EmissionModel::ColourTimesExtinction
+                                           ? hn::And(evaluating, hn::Ne(tau, hn::Zero(df)))
+                                           : evaluating;
+                const VF exponent = hn::Mul(hn::Neg(tau), rays.dx);
+                const VF attenuation = exp_kernel::exp(ops, exponent);
+                VF weight;
+                if constexpr (Method == Integrator::Riemann) {
+                    weight = Emission == EmissionModel::ColourTimesExtinction ? hn::Mul(tau, rays.dx) : rays.dx;
+                } else {
+                    const VF alpha = hn::Neg(exp_kernel::expm1(ops, exponent));
+                    weight = Emission == EmissionModel::ColourTimesExtinction
+                                 ? alpha
+                                 : hn::IfThenElse(hn::Gt(tau, hn::Zero(df)), hn::Div(alpha, tau), rays.dx);
+                }
+                const VF w = hn::Mul(transparency, weight);
+                r = hn::IfThenElse(contributes, hn::Add(r, hn::Mul(w, v[0])), r);
+                g = hn::IfThenElse(contributes, hn::Add(g, hn::Mul(w, v[1])), g);
+                b = hn::IfThenElse(contributes, hn::Add(b, hn::Mul(w, v[2])), b);
+                transparency = hn::IfThenElse(contributes, hn::Mul(transparency, attenuation), transparency);
+                evaluated += hn::CountTrue(df, evaluating);
+                k = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, evaluating), hn::Set(di, 1)));
+                done = hn::And(evaluating, hn::Or(hn::RebindMask(df, hn::Not(hn::Lt(k, count))),
+                                               hn::Lt(transparency, rays.terminateBelow)));
+            }
+            if (!hn::AllFalse(df, empty)) {
+                const VI jump = hn::Add(
+                    samplesInEmptyCube(stencil, lastDistance, rays.du, rays.samplesPerVoxel, sc.jumpMargin),
+                    hn::Set(di, 1));
+                k = hn::Min(hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, empty), jump)), count);
+                done = hn::Or(done, hn::And(empty, hn::RebindMask(df, hn::Not(hn::Lt(k, count)))));
+            }
+            if (!hn::AllFalse(df, done)) {
+                hn::Store(r, df, L.r);
+                hn::Store(g, df, L.g);
+                hn::Store(b, df, L.b);
+                hn::Store(transparency, df, L.transparency);
+                hn::Store(k, di, L.k);
+                hn::Store(hn::VecFromMask(di, hn::RebindMask(di, done)), di, L.finished);
+                for (std::size_t lane = 0; lane < n; ++lane)
+                    if (L.finished[lane]) finish(lane);
+                count = hn::IfThenZeroElse(hn::RebindMask(di, done), count);  // a finished lane has no ray
+                active = hn::RebindMask(df, hn::Lt(k, count));
+            }
+        }
+    }
+    counts.samplesEvaluated += evaluated;
+}
+
+template <class T>
+void marchTileOfType(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
+    const bool composite = sc.options.integrator == Integrator::Composite;
+    if (sc.emission == EmissionModel::ColourTimesExtinction) {
+        if (composite)
+            marchTile<T, Integrator::Composite, EmissionModel::ColourTimesExtinction>(sc, x0, y0, x1, y1, image,
+                                                                                      counts);
+        else
+            marchTile<T, Integrator::Riemann, EmissionModel::ColourTimesExtinction>(sc, x0, y0, x1, y1, image, counts);
+    } else {
+        if (composite)
+            marchTile<T, Integrator::Composite, EmissionModel::Colour>(sc, x0, y0, x1, y1, image, counts);
+        else
+            marchTile<T, Integrator::Riemann, EmissionModel::Colour>(sc, x0, y0, x1, y1, image, counts);
+    }
+}
+
+void MarchPackets(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
+    switch (sc.type) {
+        case VoxelType::UInt8:
+            return marchTileOfType<std::uint8_t>(sc, x0, y0, x1, y1, image, counts);
+        case VoxelType::UInt16:
+            return marchTileOfType<std::uint16_t>(sc, x0, y0, x1, y1, image, counts);
+        case VoxelType::Float32:
+            return marchTileOfType<float>(sc, x0, y0, x1, y1, image, counts);
+    }
+}
+
+const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace vri
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace vri {
+
+HWY_EXPORT(MarchPackets);
+HWY_EXPORT(TargetName);
+
+void marchPackets(const PacketScene& scene, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
+    HWY_DYNAMIC_DISPATCH(MarchPackets)(scene, x0, y0, x1, y1, image, counts);
+}
+
+std::string packetTargetName() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
+
+bool PacketScene::supports(const Scene& scene, const RenderOptions& options) {
+    if (!scene.volume || options.precision != Precision::Float) return false;
+    if (options.integrator != Integrator::Riemann && options.integrator != Integrator::Composite) return false;
+    const Volume& v = *scene.volume;
+    // The offsets gathered: voxels, and the eight octants of stencil-brick distances (StencilBricks),
+    // which a thin volume (a few voxels across two axes) makes almost an eighth as many as its voxels.
+    std::size_t stencilBricks = 8;
+    for (int a = 0; a < 3; ++a)
+        stencilBricks *= static_cast<std::size_t>((v.dims[a] - 1) / (1 << StencilBricks::kShift) + 1);
+    constexpr auto most = static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
+    return v.dims.x >= 2 && v.byteCount() >= 4 && v.byteCount() <= most && stencilBricks + 3 <= most &&
+           scene.transferFunction.points().size() <= kMaxPoints;
+}
+
+PacketScene::PacketScene(const Scene& scene, const Camera& camera, const StencilBricks* stencils,
+                         const RenderOptions& options)
+    : camera(camera),
+      box(scene.box()),
+      eyeU(box.toTexture(camera.eye())),
+      dims(scene.dims()),
+      indexMap(scene.volume->dims, scene.convention),
+      options(options),
+      termination(scene.transferFunction, options, glm::length(box.size())),
+      emission(scene.transferFunction.emission()),
+      voxels(scene.volume->bytes.data()),
+      type(scene.volume->type),
+      voxelBytes(static_cast<std::int32_t>(scene.volume->byteCount())),
+      layout(*scene.volume, scene.convention),
+      prefetchSamples(static_cast<float>(std::ceil(kPrefetchVoxels * options.samplingRate))),
+      prefetchEvery(std::max(1, static_cast<int>(kPrefetchEveryVoxels * options.samplingRate))) {
+    if (stencils) {
+        emptyDistance = stencils->distances().data();
+        const glm::ivec3 b = stencils->bricks();
+        brickStride[0] = 1;
+        brickStride[1] = b.x;
+        brickStride[2] = b.x * b.y;
+        octantStride = b.x * b.y * b.z;
+        const glm::ivec3 d = scene.volume->dims;
+        jumpMargin = 0.01f + 1e-5f * static_cast<float>(std::max({d.x, d.y, d.z}));
+    }
+    const auto& p = scene.transferFunction.points();
+    for (const auto& q : p)
+        pointS.push_back(static_cast<float>(q.s));
+    for (std::size_t i = 1; i + 1 < p.size(); ++i)
+        innerS.push_back(pointS[i]);
+    innerS.resize((innerS.size() + 3) / 4 * 4, std::numeric_limits<float>::quiet_NaN());
+    const auto channels = [](const TransferFunctionPoint& q) { return std::array<double, 4>{q.r, q.g, q.b, q.tau}; };
+    for (int c = 0; c < 4; ++c) {
+        first[c] = static_cast<float>(channels(p.front())[c]);
+        last[c] = static_cast<float>(channels(p.back())[c]);
+    }
+    // A single point has no segment; the selects in VectorTransferFunction then always pick `first`.
+    const std::size_t segments = std::max<std::size_t>(p.size(), 2) - 1;
+    const std::size_t padded = (segments + kMaxLanes - 1) / kMaxLanes * kMaxLanes;  // whole vectors for LoadU
+    for (std::size_t i = 0; i < padded; ++i) {
+        const auto& a = p[std::min(i, segments - 1)];
+        const auto& b = p[std::min(i, segments - 1) + (p.size() > 1 ? 1 : 0)];
+        segmentStart.push_back(static_cast<float>(a.s));
+        segmentWidth.push_back(static_cast<float>(b.s - a.s));
+        for (int c = 0; c < 4; ++c) {
+            value[c].push_back(static_cast<float>(channels(a)[c]));
+            slope[c].push_back(static_cast<float>(channels(b)[c] - channels(a)[c]));
+        }
+    }
+}
+
+}  // namespace vri
+#endif  // HWY_ONCE

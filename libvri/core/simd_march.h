@@ -1,0 +1,91 @@
+#pragma once
+// The packet engine: Riemann and composite in float on packets of rays, one ray per SIMD lane, with
+// Google Highway dispatching at run time to the widest of SSE4, AVX2 and AVX-512 (AVX3) the CPU has.
+// Each lane performs the scalar float path's operations in its order (the placement and empty-space
+// jumps of fixed_step_ray.h, GridSampler's trilinear formula, TransferFunction's bracket and lerp,
+// RayAccumulator's sums with the shared exponential of float_exp.h), so the image is bitwise equal to
+// `--simd off` on every target. A packet holds a block of neighbouring pixels of a tile (their rays
+// clipped and placed in vectors too); a lane whose ray has ended is masked until the packet's last ray
+// ends. Empty space is skipped per sample, by the 4^3 brick of its trilinear stencil
+// (StencilBricks, occupancy_grid.h): in each step a lane in an empty brick jumps to the samples
+// leaving the cube of empty bricks around it, while the others evaluate their samples.
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "libvri/core/box.h"
+#include "libvri/core/camera.h"
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/early_termination.h"
+#include "libvri/core/grid_sampler.h"
+#include "libvri/core/image.h"
+#include "libvri/core/occupancy_grid.h"
+
+namespace vri {
+
+struct MarchCounts {
+    std::uint64_t raysHit = 0, samplesPlaced = 0, samplesEvaluated = 0;
+    std::uint64_t raysTerminated = 0;  // rays ended early with samples left (early_termination.h)
+    double terminationLeftOut = 0.0;   // the most those samples could have added to a channel
+
+    // A ray ended early, leaving out samples that could have added at most `leftOut` to a channel.
+    void terminated(double leftOut) {
+        ++raysTerminated;
+        terminationLeftOut = std::max(terminationLeftOut, leftOut);
+    }
+};
+
+// A scene as the packet engine reads it, built once per render.
+struct PacketScene {
+    // True when the packet engine can render this: float Riemann or composite of a volume whose voxel
+    // and stencil-brick offsets fit 32-bit gathers, at least 2 voxels along x (the x neighbours are
+    // gathered as a pair) and 4 bytes, and a transfer function of at most kMaxPoints points.
+    static bool supports(const Scene& scene, const RenderOptions& options);
+    static constexpr std::size_t kMaxPoints = 64;
+    static constexpr std::size_t kMaxLanes = 16;  // floats in the widest vector (AVX-512)
+
+    // stencils: null when empty space is not skipped.
+    PacketScene(const Scene& scene, const Camera& camera, const StencilBricks* stencils, const RenderOptions& options);
+
+    const Camera& camera;
+    Box box;
+    glm::vec3 eyeU, dims;
+    GridIndexing indexMap;
+    RenderOptions options;
+    TerminationRule termination;
+    EmissionModel emission;
+    // The volume.
+    const std::byte* voxels;
+    VoxelType type;
+    std::int32_t voxelBytes;
+    GridSamplerLayout<float> layout;
+    // How far ahead of a packet's samples its voxels are prefetched, and how often (simd_march.cpp,
+    // prefetchAhead), in voxels along the ray and then in samples.
+    static constexpr double kPrefetchVoxels = 2.0, kPrefetchEveryVoxels = 0.5;
+    float prefetchSamples;
+    int prefetchEvery;
+    // Per octant of ray directions and stencil brick, its distance to the nearest stencil brick ahead
+    // that is not empty (StencilBricks::distances(), 0 when not empty), a byte each, padded for
+    // 32-bit loads; null when skipping is off.
+    const std::uint8_t* emptyDistance = nullptr;
+    std::int32_t brickStride[3] = {0, 0, 0}, octantStride = 0;
+    float jumpMargin = 0;  // voxels: far more than the rounding of a sample's position (see samplesInEmptyCube)
+    // The transfer function as TransferFunction::operator()<float> reads it: the points' s, and per
+    // segment [s_i, s_i+1) its start, width and each channel's value at the start and slope (r, g, b,
+    // tau), padded with copies of the last segment to a whole number of the widest vectors.
+    std::vector<float> pointS;
+    std::vector<float> innerS;  // pointS[1 .. n-2], padded with NaN to a multiple of 4
+    std::vector<float> segmentStart, segmentWidth, value[4], slope[4];
+    float first[4], last[4];  // the channels at the first and the last point
+};
+
+// Renders the pixels x0 <= x < x1, y0 <= y < y1 into `image`, adding to `counts`.
+void marchPackets(const PacketScene& scene, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts);
+
+// The Highway target marchPackets() runs on ("AVX2", "AVX3", ...).
+std::string packetTargetName();
+
+}  // namespace vri

@@ -1,0 +1,65 @@
+#include "libvri/core/transfer_function.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "libvri/util/error.h"
+
+namespace vri {
+
+std::string_view emissionModelName(EmissionModel m) {
+    return m == EmissionModel::Colour ? "color" : "color-times-extinction";
+}
+
+EmissionModel parseEmissionModel(std::string_view name, const std::string& what) {
+    if (name == "color") return EmissionModel::Colour;
+    if (name == "color-times-extinction") return EmissionModel::ColourTimesExtinction;
+    throw Error(what + ": emission '" + std::string(name) + "' is unknown (expected color-times-extinction or color)");
+}
+
+void validateTransferFunctionPoint(const TransferFunctionPoint& p, const TransferFunctionPoint* previous,
+                                   const std::string& where) {
+    for (double v : {p.s, p.r, p.g, p.b, p.tau})
+        if (!std::isfinite(v)) throw Error(where + " has a value that is not finite");
+    if (p.r < 0 || p.g < 0 || p.b < 0) throw Error(where + " has a negative colour (expected >= 0)");
+    if (p.tau < 0) throw Error(where + " has a negative extinction tau (expected >= 0)");
+    if (previous && p.s < previous->s) {
+        std::ostringstream msg;
+        msg << where << " has s = " << p.s << " below the previous point's s = " << previous->s
+            << " (points must be sorted by s)";
+        throw Error(msg.str());
+    }
+}
+
+TransferFunction::TransferFunction(std::vector<TransferFunctionPoint> points, EmissionModel emission,
+                                   const std::string& source)
+    : points_(std::move(points)), emission_(emission) {
+    if (points_.empty()) throw Error(source + ": a transfer function needs at least one point");
+    for (std::size_t i = 0; i < points_.size(); ++i)
+        validateTransferFunctionPoint(points_[i], i > 0 ? &points_[i - 1] : nullptr,
+                                      source + ": point " + std::to_string(i));
+    const double span = points_.back().s - points_.front().s;
+    // A span below kBins times the smallest double (a subnormal span) makes the scale infinite, and the bin of
+    // an s inside it (s - s0) * inf, which no int holds: such a function is searched from its first point.
+    binScale_ = span > 0 && std::isfinite(kBins / span) ? kBins / span : 0.0;
+    binStart_.assign(kBins, 0);
+    std::size_t i = 0;
+    for (int bin = 0; bin < kBins; ++bin) {
+        const double s = points_.front().s + bin / (binScale_ > 0 ? binScale_ : 1.0);
+        while (i + 2 < points_.size() && s >= points_[i + 1].s) ++i;
+        binStart_[bin] = static_cast<std::uint32_t>(i);
+    }
+}
+
+bool TransferFunction::isInvisible(double s0, double s1) const {
+    auto invisible = [this](const TransferFunctionSample<double>& v) {
+        return v.tau == 0.0 && (emission_ == EmissionModel::ColourTimesExtinction || (v.r == 0 && v.g == 0 && v.b == 0));
+    };
+    // Piecewise linear and non-negative: zero on [s0, s1] iff zero at both ends and every point between.
+    if (!invisible((*this)(s0)) || !invisible((*this)(s1))) return false;
+    for (const auto& p : points_)
+        if (p.s > s0 && p.s < s1 && !invisible({p.r, p.g, p.b, p.tau})) return false;
+    return true;
+}
+
+}  // namespace vri

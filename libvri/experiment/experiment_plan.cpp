@@ -1,0 +1,267 @@
+// From an experiment to the command lines of its steps, and the order they can run in.
+#include "libvri/experiment/experiment_plan.h"
+
+#include <algorithm>
+#include <map>
+
+#include "libvri/io/provenance.h"
+#include "libvri/util/error.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// `path` as a command names it when run from `workDir`: relative when the two share more than the root.
+std::string displayPath(const fs::path& path, const fs::path& workDir) {
+    const fs::path relative = path.lexically_relative(workDir);
+    const auto workDepth = std::distance(workDir.begin(), workDir.end()) - 1;  // components below the root
+    const auto up = std::count(relative.begin(), relative.end(), fs::path(".."));
+    if (relative.empty() || up >= workDepth) return path.string();
+    return relative.string();
+}
+
+// Values as one option word: "0.01,0.005,0.001".
+std::string commaList(const std::vector<std::string>& values) {
+    std::string list;
+    for (const std::string& v : values) list += (list.empty() ? "" : ",") + v;
+    return list;
+}
+
+// Absolute, normal, without a trailing separator (which would count as one more component).
+fs::path normalDirectory(const fs::path& dir) {
+    fs::path normal = fs::absolute(dir).lexically_normal();
+    if (!normal.has_filename() && normal != normal.root_path()) normal = normal.parent_path();
+    return normal;
+}
+
+class Planner {
+public:
+    Planner(const Experiment& experiment, Plan& plan) : experiment_(experiment), plan_(plan) {}
+
+    void addRender(const RunSpec& run);
+    void addDiff(const ComparisonSpec& comparison);
+    void addCommand(const CommandSpec& command);
+    void addTable(const TableSpec& table);
+    void addFigure(const FigureSpec& figure);
+
+private:
+    fs::path result(const std::string& name) const { return plan_.resultsDir / name; }
+    std::string show(const fs::path& path) const { return displayPath(path, plan_.workDir); }
+    static void option(Step& step, const ToolOption& o) {
+        step.arguments.push_back(o.first);
+        if (!o.second.empty()) step.arguments.push_back(o.second);  // else a flag
+    }
+    // An output, named on the command line after `option` (none for a positional argument).
+    void output(Step& step, const std::string& option, const fs::path& path) const {
+        if (!option.empty()) step.arguments.push_back(option);
+        step.arguments.push_back(show(path));
+        step.outputs.push_back(path);
+    }
+    void input(Step& step, const std::string& option, const fs::path& path) const {
+        if (!option.empty()) step.arguments.push_back(option);
+        step.arguments.push_back(show(path));
+        step.inputs.push_back(path);
+    }
+    bool written(const fs::path& path) const {  // by a step planned so far
+        return std::any_of(plan_.steps.begin(), plan_.steps.end(), [&](const Step& s) {
+            return std::find(s.outputs.begin(), s.outputs.end(), path) != s.outputs.end();
+        });
+    }
+
+    const Experiment& experiment_;
+    Plan& plan_;
+};
+
+void Planner::addRender(const RunSpec& run) {
+    const SceneSpec& scene = experiment_.scene(run.scene);
+    Step step{run.id, "render", run.tool, {}, {}, {}, {{"scene", scene.name}}};
+    if (!scene.dataset.empty()) step.parameters.emplace_back("dataset", scene.dataset);
+    for (const ToolOption& o : scene.options) {
+        const bool isFile = o.first == "--volume" || o.first == "--tf";
+        if (isFile)
+            input(step, o.first, o.second);
+        else
+            option(step, o);
+    }
+    for (const ToolOption& o : run.options) option(step, o);
+    step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
+    step.arguments.push_back("-q");  // vri-run shows its own progress
+    output(step, "-o", renderImage(plan_, run.id));
+    output(step, "--png", result(run.id + ".png"));
+    output(step, "--stats", result(run.id + ".json"));
+    if (std::ranges::any_of(run.parameters, [](auto& kv) { return kv.first == "log_ray"; }))
+        output(step, "--log", result(run.id + "-ray.csv"));
+    plan_.steps.push_back(std::move(step));
+}
+
+void Planner::addDiff(const ComparisonSpec& c) {
+    Step step{c.id, "diff", "vri-diff", {}, {}, {}, {{"reference", c.reference}, {"run", c.run}}};
+    input(step, "", renderImage(plan_, c.reference));
+    input(step, "", renderImage(plan_, c.run));
+    step.arguments.insert(step.arguments.end(), {"--threshold", commaList(c.thresholds)});
+    // Measure only: a difference is the result here, not a failure of the step.
+    step.arguments.insert(step.arguments.end(), {"--failpercent", "100", "--warnpercent", "100"});
+    output(step, "--json", result(c.id + ".json"));
+    if (!c.diffImage.empty()) output(step, "--diff-image", result(c.id + "." + c.diffImage));
+    if (!c.diffScale.empty()) step.arguments.insert(step.arguments.end(), {"--diff-scale", c.diffScale});
+    if (c.histogram) output(step, "--histogram", result(c.id + "-histogram.csv"));
+    plan_.steps.push_back(std::move(step));
+}
+
+void Planner::addCommand(const CommandSpec& command) {
+    Step step{command.name, "command", command.tool, {}, {}, {}, {{"command", command.name}}};
+    for (const ToolOption& o : command.options) option(step, o);
+    for (const auto& [word, path] : command.inputs) input(step, word, path);
+    for (const auto& [word, file] : command.outputs) output(step, word, result(file));
+    plan_.steps.push_back(std::move(step));
+}
+
+// A convergence table's point: the run's series (its id without the swept step, "-h0.5") and its step,
+// "-" for a run without one (the exact method).
+std::pair<std::string, std::string> convergenceSeries(const RunSpec& run) {
+    const auto step = std::ranges::find(run.parameters, std::string("step"), &std::pair<std::string, std::string>::first);
+    if (step == run.parameters.end()) return {run.id, "-"};
+    std::string series = run.id;
+    if (const std::size_t at = series.find("-h" + step->second); at != std::string::npos)
+        series.erase(at, step->second.size() + 2);
+    return {series, step->second};
+}
+
+void Planner::addTable(const TableSpec& table) {
+    Step step{"table-" + table.name, "table", "vri-tabulate", {}, {}, {}, {{"table", table.name}}};
+    if (table.layout == "convergence") {
+        step.arguments = {"--layout", table.layout, "--title", table.title};
+        for (const std::string& group : table.comparisons)
+            for (const ComparisonSpec& c : experiment_.comparisons)
+                if (c.group == group) {
+                    const auto [series, h] = convergenceSeries(experiment_.run(c.run));
+                    step.arguments.insert(step.arguments.end(), {"--point", series, h});
+                    input(step, "", result(c.id + ".json"));
+                    input(step, "", result(c.run + ".json"));  // an error bound, where the run has one
+                }
+        output(step, "--points", result(table.name + "-points.csv"));
+    } else if (table.layout != "matrix") {
+        const bool tradeoff = table.layout == "tradeoff";
+        step.arguments = {"--layout", table.layout, "--title", table.title};
+        if (tradeoff) {
+            step.arguments.insert(step.arguments.end(), {"--threshold", commaList(table.thresholds)});
+            if (!table.baseline.empty()) step.arguments.insert(step.arguments.end(), {"--baseline", table.baseline});
+            if (table.channels != "all") step.arguments.insert(step.arguments.end(), {"--channels", table.channels});
+        }
+        if (table.rows.empty()) {  // one row per compared run
+            for (const std::string& group : table.comparisons)
+                for (const ComparisonSpec& c : experiment_.comparisons)
+                    if (c.group == group) {
+                        step.arguments.insert(step.arguments.end(), {tradeoff ? "--run" : "--row", c.run});
+                        if (tradeoff) input(step, "", result(c.run + ".json"));  // its time: the run's stats
+                        input(step, "", result(c.id + ".json"));
+                    }
+        }
+        for (const auto& [label, runs] : table.rows) {  // the reader checked that each run is compared once
+            step.arguments.insert(step.arguments.end(), {"--row", label});
+            for (const std::string& run : runs) {
+                const auto c = std::ranges::find_if(experiment_.comparisons, [&](const ComparisonSpec& x) {
+                    return x.run == run && std::ranges::count(table.comparisons, x.group) > 0;
+                });
+                input(step, "", result(c->id + ".json"));
+            }
+        }
+    } else {
+        step.arguments = {"--layout", "matrix", "--title", table.title, "--value", table.value};
+        for (const std::string& run : table.runs) {
+            const std::string& scene = experiment_.run(run).scene;
+            const bool prefixed = run.starts_with(scene + "-");
+            if (table.byScene)
+                step.arguments.insert(step.arguments.end(), {"--cell", prefixed ? run.substr(scene.size() + 1) : run, scene});
+            else
+                step.arguments.insert(step.arguments.end(), {"--cell", run, table.column});
+            input(step, "", result(run + ".json"));
+        }
+    }
+    if (!table.precision.empty()) step.arguments.insert(step.arguments.end(), {"--precision", table.precision});
+    output(step, "-o", result(table.name + ".md"));
+    output(step, "--csv", result(table.name + ".csv"));
+    plan_.steps.push_back(std::move(step));
+}
+
+void Planner::addFigure(const FigureSpec& figure) {
+    Step step{"figure-" + figure.name, "figure", "vri-plot", {}, {}, {}, {{"figure", figure.name}}};
+    input(step, "", figure.spec);
+    // The spec names its data relative to --data-dir, so one spec serves full and quick results alike.
+    step.arguments.insert(step.arguments.end(), {"--data-dir", show(plan_.resultsDir)});
+    for (const std::string& file : figure.data) {
+        const fs::path path = result(file);
+        if (!written(path))
+            throw Error(figure.dataAt + ": figure '" + figure.name + "' reads '" + file + "', which no step writes");
+        step.inputs.push_back(path);
+    }
+    output(step, "-o", result(figure.name + ".png"));
+    step.outputs.push_back(result(figure.name + ".svg"));  // vri-plot writes these beside the PNG
+    step.outputs.push_back(result(figure.name + ".gp"));
+    plan_.steps.push_back(std::move(step));
+}
+
+}  // namespace
+
+const Step& Plan::step(const std::string& id) const {
+    for (const Step& s : steps)
+        if (s.id == id) return s;
+    throw Error("no step '" + id + "' in the plan");
+}
+
+std::string Plan::commandPath(const fs::path& file) const { return displayPath(file, workDir); }
+
+fs::path renderImage(const Plan& plan, const std::string& runId) { return plan.resultsDir / (runId + ".exr"); }
+
+Plan planExperiment(const Experiment& experiment, const fs::path& resultsDir, const fs::path& workDir) {
+    Plan plan{normalDirectory(resultsDir), normalDirectory(workDir), {}, {}};
+    Planner planner(experiment, plan);
+    for (const RunSpec& run : experiment.runs) planner.addRender(run);
+    for (const ComparisonSpec& c : experiment.comparisons) planner.addDiff(c);
+    for (const CommandSpec& c : experiment.commands) planner.addCommand(c);
+    for (const TableSpec& t : experiment.tables) planner.addTable(t);
+    for (const FigureSpec& f : experiment.figures) planner.addFigure(f);
+
+    std::map<fs::path, std::size_t> writer;
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+        const Step& step = plan.steps[i];
+        if (std::count_if(plan.steps.begin(), plan.steps.end(), [&](const Step& s) { return s.id == step.id; }) > 1)
+            throw Error(experiment.source.string() + ": two steps are called '" + step.id + "'");
+        // The reader holds every name to isSafeName; this holds the plan to what that buys: each step's
+        // record and outputs in the experiment's folder, whatever made the Experiment.
+        if (!isSafeName(step.id))
+            throw Error(experiment.source.string() + ": step id '" + step.id + "' is not a safe name");
+        for (const fs::path& out : step.outputs)
+            if (out.parent_path() != plan.resultsDir)
+                throw Error(experiment.source.string() + ": step '" + step.id + "' would write " + out.string() +
+                            ", outside the experiment's folder " + plan.resultsDir.string());
+        std::vector<std::size_t> dependencies;
+        for (const fs::path& in : step.inputs)
+            if (auto w = writer.find(in); w != writer.end() && std::find(dependencies.begin(), dependencies.end(), w->second) == dependencies.end())
+                dependencies.push_back(w->second);
+        for (const fs::path& out : step.outputs)
+            if (!writer.emplace(out, i).second)
+                throw Error(experiment.source.string() + ": steps '" + plan.steps[writer[out]].id + "' and '" + step.id +
+                            "' both write " + out.string());
+        plan.dependencies.push_back(std::move(dependencies));
+    }
+    return plan;
+}
+
+std::vector<std::string> commandWords(const Plan& plan, const Step& step, const fs::path& toolDir) {
+    std::string tool = displayPath(fs::absolute(toolDir / step.tool).lexically_normal(), plan.workDir);
+    if (tool.find('/') == std::string::npos) tool = "./" + tool;  // a bare name would be looked up in PATH
+    std::vector<std::string> words{tool};
+    words.insert(words.end(), step.arguments.begin(), step.arguments.end());
+    return words;
+}
+
+std::string shellCommand(const std::vector<std::string>& words) {
+    std::string line;
+    for (const std::string& word : words) line.append(line.empty() ? "" : " ").append(shellQuote(word));
+    return line;
+}
+
+}  // namespace vri

@@ -1,0 +1,109 @@
+// Step keys and the records of successful runs that let a later run skip a step.
+#include "libvri/experiment/step_cache.h"
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "libvri/util/atomic_file.h"
+#include "libvri/util/sha512.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kMissing = "missing";
+
+void addField(Sha512& hash, const std::string& text) {
+    // Length-prefixed, so that no two different field lists hash the same bytes.
+    const std::string field = std::to_string(text.size()) + ":" + text;
+    hash.update(std::as_bytes(std::span(field.data(), field.size())));
+}
+
+std::vector<FileDigest> digestsFromJson(const nlohmann::json& list) {
+    std::vector<FileDigest> files;
+    for (const nlohmann::json& f : list) files.push_back({f.at("path").get<std::string>(), f.at("sha512").get<std::string>()});
+    return files;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const std::vector<FileDigest>& files) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const FileDigest& f : files) list.push_back({{"path", f.path}, {"sha512", f.sha512}});
+    return list;
+}
+
+const std::string& FileHasher::digest(const fs::path& path) {
+    if (auto found = digests_.find(path); found != digests_.end()) return found->second;
+    std::error_code ec;
+    return digests_[path] = fs::is_regular_file(path, ec) ? sha512File(path) : kMissing;
+}
+
+std::vector<std::string> stepKeys(const Plan& plan, const fs::path& toolDir, FileHasher& hasher) {
+    std::vector<std::string> keys;
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+        const Step& step = plan.steps[i];
+        Sha512 hash;
+        addField(hash, step.tool);
+        addField(hash, hasher.digest(toolDir / step.tool));
+        addField(hash, std::to_string(step.arguments.size()));
+        for (const std::string& argument : step.arguments) addField(hash, argument);
+        for (const fs::path& input : step.inputs) {
+            std::string producer;
+            for (std::size_t d : plan.dependencies[i])
+                for (const fs::path& out : plan.steps[d].outputs)
+                    if (out == input) producer = keys[d];
+            addField(hash, producer.empty() ? "file " + hasher.digest(input) : "step " + producer);
+        }
+        keys.push_back(hash.hexDigest());
+    }
+    return keys;
+}
+
+fs::path recordPath(const Plan& plan, const Step& step) { return plan.resultsDir / ".steps" / (step.id + ".json"); }
+
+std::optional<StepRecord> readRecord(const fs::path& path) {
+    std::ifstream in(path);
+    if (!in) return std::nullopt;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(in);
+        return StepRecord{j.at("key").get<std::string>(),         j.at("command").get<std::string>(),
+                          digestsFromJson(j.at("inputs")),        digestsFromJson(j.at("outputs")),
+                          j.at("wall_seconds").get<double>(),     j.at("ran_utc").get<std::string>()};
+    } catch (const nlohmann::json::exception&) {
+        return std::nullopt;  // a damaged record is no record: the step runs again
+    }
+}
+
+void writeRecord(const fs::path& path, const StepRecord& record) {
+    const nlohmann::json j = {{"key", record.key},
+                              {"command", record.command},
+                              {"inputs", toJson(record.inputs)},
+                              {"outputs", toJson(record.outputs)},
+                              {"wall_seconds", record.wallSeconds},
+                              {"ran_utc", record.ranUtc}};
+    writeTextFile(path, j.dump(2) + "\n");
+}
+
+std::vector<FileDigest> digestFiles(const Plan& plan, const std::vector<fs::path>& files, FileHasher& hasher) {
+    std::vector<FileDigest> digests;
+    for (const fs::path& file : files) digests.push_back({plan.commandPath(file), hasher.digest(file)});
+    return digests;
+}
+
+bool recordIsCurrent(const StepRecord& record, const std::string& key, const Plan& plan, const Step& step,
+                     FileHasher& hasher) {
+    const auto same = [](const std::vector<FileDigest>& a, const std::vector<FileDigest>& b) {
+        if (a.size() != b.size()) return false;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (a[i].path != b[i].path || a[i].sha512 != b[i].sha512 || a[i].sha512 == kMissing) return false;
+        return true;
+    };
+    return record.key == key && same(record.inputs, digestFiles(plan, step.inputs, hasher)) &&
+           same(record.outputs, digestFiles(plan, step.outputs, hasher));
+}
+
+}  // namespace vri

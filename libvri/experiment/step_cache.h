@@ -1,0 +1,63 @@
+#pragma once
+// When a step may be skipped. A step's key is the SHA-512 of its tool's name and binary, its
+// arguments, and for each input either the file's SHA-512 (a source: volume, transfer function,
+// plot spec) or the key of the step that writes it (so a change upstream changes every key below it
+// without running anything). A step is skipped when the record of its last successful run, kept
+// in <results>/.steps/<id>.json, has the same key, the same input digests as the files now, and
+// every output still present with the digest recorded. A record is written only after its step
+// succeeded and removed before it runs again, so an interrupted run leaves nothing to trust.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "libvri/experiment/experiment_plan.h"
+
+namespace vri {
+
+// SHA-512 of files, each read once per process unless forgotten (a step rewrote it).
+class FileHasher {
+public:
+    // The digest, or "missing" when there is no such file.
+    const std::string& digest(const std::filesystem::path& path);
+    void forget(const std::filesystem::path& path) { digests_.erase(path); }
+
+private:
+    std::map<std::filesystem::path, std::string> digests_;
+};
+
+// The keys of all steps of a plan, in plan order; tools are looked up in `toolDir`.
+std::vector<std::string> stepKeys(const Plan& plan, const std::filesystem::path& toolDir, FileHasher& hasher);
+
+struct FileDigest {
+    std::string path;  // as the command names it
+    std::string sha512;
+};
+
+// [{"path", "sha512"}, ...], as records and manifests list files.
+nlohmann::json toJson(const std::vector<FileDigest>& files);
+
+// What a successful run of a step left behind.
+struct StepRecord {
+    std::string key;
+    std::string command;  // the shell line
+    std::vector<FileDigest> inputs, outputs;
+    double wallSeconds = 0;
+    std::string ranUtc;
+};
+
+std::filesystem::path recordPath(const Plan& plan, const Step& step);  // <results>/.steps/<id>.json
+std::optional<StepRecord> readRecord(const std::filesystem::path& path);  // nullopt when absent or unreadable
+void writeRecord(const std::filesystem::path& path, const StepRecord& record);  // atomically
+
+// Digests of files in the order given, named as the step's command names them.
+std::vector<FileDigest> digestFiles(const Plan& plan, const std::vector<std::filesystem::path>& files, FileHasher& hasher);
+
+// True when `record` shows a run of the step with this key whose inputs and outputs are as now.
+bool recordIsCurrent(const StepRecord& record, const std::string& key, const Plan& plan, const Step& step,
+                     FileHasher& hasher);
+
+}  // namespace vri

@@ -1,0 +1,57 @@
+// Pricing an experiment's steps from the wall times its last manifest recorded.
+#include "libvri/experiment/step_costs.h"
+
+#include <cstdio>
+#include <map>
+
+#include "libvri/util/json_file.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+CostEstimate estimateCost(const Plan& plan, const fs::path& manifest) {
+    CostEstimate estimate;
+    // id -> {command, seconds} of the last run
+    std::map<std::string, std::pair<std::string, double>> last;
+    if (fs::is_regular_file(manifest)) {
+        estimate.hasManifest = true;
+        const nlohmann::json m = readJsonFile(manifest);
+        readingJsonOf(manifest, [&] {
+            for (const nlohmann::json& s : m.at("steps"))
+                last[s.at("id").get<std::string>()] = {s.at("command").get<std::string>(),
+                                                       s.at("wall_seconds").get<double>()};
+        });
+    }
+    for (const Step& step : plan.steps) {
+        // The manifest's command starts with the tool as the run that wrote it named it (its build
+        // folder); the arguments after it are what decide the work.
+        const std::string arguments = " " + shellCommand(step.arguments);
+        const auto found = last.find(step.id);
+        if (found == last.end() || !found->second.first.ends_with(arguments)) {
+            ++estimate.unpriced;
+            continue;
+        }
+        ++estimate.priced;
+        estimate.seconds += found->second.second;
+        estimate.byKind[step.kind] += found->second.second;
+    }
+    return estimate;
+}
+
+double manifestSeconds(const nlohmann::json& manifest) {
+    double seconds = 0;
+    for (const nlohmann::json& s : manifest.at("steps")) seconds += s.at("wall_seconds").get<double>();
+    return seconds;
+}
+
+std::string secondsText(double seconds) {
+    char text[32];
+    if (seconds < 120)
+        std::snprintf(text, sizeof text, "%.1f s", seconds);
+    else
+        std::snprintf(text, sizeof text, "%.1f min", seconds / 60);
+    return text;
+}
+
+}  // namespace vri

@@ -1,0 +1,29 @@
+#pragma once
+// The functions of the OpenImageIO module (oiio_module.h's OiioModule), one file each; only the module's
+// own sources include this.
+#include <exception>
+
+#include "libvri/io/oiio_module.h"
+
+namespace vri::detail::oiio {
+
+// Runs `body`; what it throws becomes the returned message (nothing crosses the module's boundary).
+template <typename Body>
+std::string caught(Body&& body) {
+    try {
+        body();
+        return {};
+    } catch (const std::exception& e) {
+        return e.what();
+    } catch (...) {
+        return "unknown error in vri's OpenImageIO module";
+    }
+}
+
+std::string readImage(const std::filesystem::path& path, Image& image);
+std::string readImageMetadata(const std::filesystem::path& path, ImageMetadata& metadata);
+std::string encodeImage(const std::filesystem::path& path, const Image& image, std::string& bytes);
+std::string readTiffStack(const std::filesystem::path& path,
+                          const std::function<char*(const TiffStackShape&)>& allocate);
+
+}  // namespace vri::detail::oiio

@@ -1,0 +1,55 @@
+#pragma once
+// OpenImageIO as a module vri loads when a file needs it (libvri-oiio.so, libvri/io/oiio/): the image
+// formats other than OpenEXR and PNG, and TIFF stacks. Linking OpenImageIO into every tool cost each process
+// 0.7-1 s before main() (Debian's build pulls in 260 shared libraries: video, GIS, DICOM, ...), which made
+// the start-up, not the rendering, most of a quick experiment's time; renders, their previews and the
+// comparisons of renders now read and write through OpenEXR and libpng alone (exr_file.h, png_file.h).
+// Private to io/; includes no OpenImageIO header.
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "libvri/core/image.h"
+#include "libvri/io/image_io.h"
+#include "libvri/io/stored_voxels.h"
+
+namespace vri::detail {
+
+// A TIFF stack's pages as the module finds them: one channel each, all of one size and stored type.
+struct TiffStackShape {
+    int width = 0;
+    int height = 0;
+    int pages = 0;
+    StoredType type = StoredType::UInt8;  // half floats are read as float32, which holds them exactly
+};
+
+// The module's functions. Each returns "" when it succeeded, else its one-line message, which names the
+// file: no exception crosses the module's boundary.
+struct OiioModule {
+    // Any 2D format OpenImageIO reads: first subimage, top mip level, its data window, as float.
+    std::string (*readImage)(const std::filesystem::path& path, Image& image);
+    // The header's string attributes.
+    std::string (*readImageMetadata)(const std::filesystem::path& path, ImageMetadata& metadata);
+    // `image` as float in the format the path's extension names, encoded into `bytes` (formats that cannot
+    // encode into memory are refused: their writes could not be checked).
+    std::string (*encodeImage)(const std::filesystem::path& path, const Image& image, std::string& bytes);
+    // Reads the pages into the buffer `allocate` returns for their shape (it checks the size; what it throws
+    // comes back as the message), page after page, rows top to bottom.
+    std::string (*readTiffStack)(const std::filesystem::path& path,
+                                 const std::function<char*(const TiffStackShape&)>& allocate);
+};
+
+// The entry point the module exports: a versioned name, so that a module of another build is not taken.
+inline constexpr const char* kOiioModuleEntry = "vri_oiio_module_1";
+inline constexpr const char* kOiioModuleFile = "libvri-oiio.so";
+
+// The module, loaded on first use (once per process). Throws vri::Error "PATH: cannot <doing>: ..." naming
+// where the module was looked for when it cannot be loaded.
+const OiioModule& oiioModule(const std::filesystem::path& path, std::string_view doing);
+
+// Throws vri::Error(message) unless the module's call succeeded (an empty message).
+void requireModuleSuccess(const std::string& message);
+
+}  // namespace vri::detail

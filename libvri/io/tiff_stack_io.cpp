@@ -1,0 +1,39 @@
+// TIFF stacks, read by vri's OpenImageIO module (oiio_module.h): a multi-page TIFF whose pages (subimages)
+// are the z slices, each one channel of the same width and height. Pixel (x, row) of page z is voxel
+// (x, y = row, z): the first row, which viewers show at the top, is y = 0. TIFF says nothing vri can use
+// about the spacing between pages, so the volume has unit spacing and its box corner at 0 (--spacing sets
+// the spacing).
+#include <string>
+
+#include "libvri/io/oiio_module.h"
+#include "libvri/io/volume_formats.h"
+#include "libvri/util/checked_size.h"
+#include "libvri/util/error.h"
+
+namespace vri::detail {
+
+namespace fs = std::filesystem;
+
+Volume readTiffStack(const fs::path& path) {
+    requireRegularFile(path);
+    glm::ivec3 dims(0);
+    StoredType type = StoredType::UInt8;
+    std::string voxels;
+    const auto allocate = [&](const TiffStackShape& shape) {
+        dims = glm::ivec3(shape.width, shape.height, shape.pages);
+        type = shape.type;
+        if (dims.x < 1 || dims.y < 1)
+            throw Error(path.string() + ": pages of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
+                        " pixels");
+        const std::size_t pageBytes = checkedBytes(path.string() + ": a page",
+                                                   {std::uint64_t(dims.x), std::uint64_t(dims.y), storedSize(type)});
+        voxels.resize(checkedBytes(path.string() + ": " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
+                                       "x" + std::to_string(dims.z) + " " + std::string(storedTypeName(type)),
+                                   {pageBytes, std::uint64_t(dims.z)}));
+        return voxels.data();
+    };
+    requireModuleSuccess(oiioModule(path, "read a TIFF stack").readTiffStack(path, allocate));
+    return decodeVoxels(path.string(), dims, type, nativeByteOrder(), voxels);
+}
+
+}  // namespace vri::detail

@@ -1,0 +1,65 @@
+#pragma once
+// Private to the volume readers/writers: the per-format entry points that readVolume and
+// writeVolume dispatch to, and the small text helpers the header formats share.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "libvri/core/volume.h"
+#include "libvri/io/stored_voxels.h"
+#include "libvri/io/volume_io.h"
+
+namespace vri::detail {
+
+Volume readNrrd(const std::filesystem::path& path);  // .nhdr (detached) or .nrrd (attached or detached)
+// .nhdr: a detached header and NAME.raw beside it; .nrrd: the header with the data attached.
+void writeNrrd(const std::filesystem::path& path, const Volume& volume);
+Volume readMetaImage(const std::filesystem::path& path);  // .mhd (detached) or .mha (LOCAL data)
+Volume readTiffStack(const std::filesystem::path& path);  // .tif/.tiff: one page per z slice
+Volume readInviwoDat(const std::filesystem::path& path);
+void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);
+
+// Where a header format's voxels are and how they are stored.
+struct VoxelData {
+    glm::ivec3 dims{0, 0, 0};
+    StoredType type = StoredType::UInt8;
+    ByteOrder order = ByteOrder::Little;
+    std::optional<std::uintmax_t> offset = 0;  // bytes before the first voxel; nullopt: the file's last bytes
+    bool gzip = false;                         // deflated (gzip or zlib stream) from `offset` on
+};
+// The volume (voxel types converted as stored_voxels.h says) whose voxels `data` describes in `path`.
+// Sizes are checked against the file and the byte limit before anything is allocated.
+Volume readVoxelData(const std::filesystem::path& path, const VoxelData& data);
+
+// Throws "PATH: no such file" (or "is not a regular file") before a reader opens it.
+void requireRegularFile(const std::filesystem::path& path);
+
+// The raw file written beside a header file: same directory and stem, extension .raw.
+std::filesystem::path rawFileBeside(const std::filesystem::path& headerPath);
+// The voxel bytes as a raw file in `order` holds them: a view of volume.bytes, or of `swapped` once
+// filled with each voxel's bytes reversed. Throws, naming `path`, if the volume disagrees with its dims.
+std::string_view rawBytes(const std::filesystem::path& path, const Volume& volume, ByteOrder order,
+                          std::vector<std::byte>& swapped);
+
+// One "Key: value" (.dat) or "Key = Value" (MetaImage) header line.
+struct HeaderEntry {
+    std::string key;  // as written, for messages
+    std::string value;
+    int line = 0;
+};
+
+std::string_view trim(std::string_view text);
+std::string toLower(std::string_view text);
+// Exactly `count` whitespace-separated numbers; throws Error("<where>: ...") otherwise.
+std::vector<double> parseNumbers(std::string_view text, std::size_t count, const std::string& where);
+// A whole number of bytes, read as an integer (never through a double: "1e30" is an error, not an
+// overflowing cast); throws Error("<where>: ...") otherwise.
+std::uintmax_t parseByteCount(std::string_view text, const std::string& where);
+// "lo hi" with lo < hi: an empty or inverted range would map every value to one end of the transfer
+// function (or divide by zero); throws Error("<where>: ...") otherwise.
+ValueRange parseValueRange(std::string_view text, const std::string& where);
+
+}  // namespace vri::detail

@@ -1,0 +1,130 @@
+#include "libvri/io/yaml_util.h"
+
+#include <map>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include <yaml-cpp/eventhandler.h>
+
+#include "libvri/util/file_text.h"
+
+namespace vri::yaml {
+
+namespace {
+
+// yaml-cpp 0.7 keeps both entries of a mapping that names a key twice, and a lookup silently takes
+// one of them. The parser's event stream shows every key once, in order, with its position: a
+// single pass over it finds the repeats. Aliases are events too, never expanded, so a document
+// whose anchors nest costs no more than its text.
+class DuplicateKeyFinder : public YAML::EventHandler {
+public:
+    explicit DuplicateKeyFinder(const std::string& source) : source_(source) {}
+
+    void OnDocumentStart(const YAML::Mark&) override {}
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, "~"); }
+    void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, std::nullopt); }
+    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string& value) override {
+        node(mark, value);
+    }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+        node(mark, std::nullopt);
+        open_.push_back({});
+    }
+    void OnSequenceEnd() override { open_.pop_back(); }
+    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+        node(mark, std::nullopt);
+        open_.push_back({true, true, {}});
+    }
+    void OnMapEnd() override { open_.pop_back(); }
+
+private:
+    struct Collection {
+        bool mapping = false;
+        bool nextIsKey = true;            // mappings alternate key, value
+        std::map<std::string, int> keys;  // scalar key -> its line (1-based)
+    };
+
+    // A node starts at `mark`; `scalar` is its text when it is a scalar (a key that can repeat).
+    void node(const YAML::Mark& mark, const std::optional<std::string>& scalar) {
+        if (open_.empty() || !open_.back().mapping) return;
+        Collection& map = open_.back();
+        const bool isKey = map.nextIsKey;
+        map.nextIsKey = !map.nextIsKey;
+        if (!isKey || !scalar) return;
+        const auto [it, inserted] = map.keys.emplace(*scalar, mark.line + 1);
+        if (!inserted)
+            throw Error(source_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1) +
+                        ": duplicate key '" + *scalar + "' (first at line " + std::to_string(it->second) + ")");
+    }
+
+    const std::string& source_;
+    std::vector<Collection> open_;
+};
+
+}  // namespace
+
+std::string where(const std::string& source, const YAML::Node& node) {
+    const YAML::Mark m = node.Mark();
+    if (m.is_null()) return source;
+    return source + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1);
+}
+
+YAML::Node parse(const std::string& text, const std::string& source) {
+    try {
+        std::istringstream events(text);
+        YAML::Parser parser(events);
+        DuplicateKeyFinder duplicates(source);
+        while (parser.HandleNextDocument(duplicates)) {
+        }
+        return YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+        throw Error(source + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
+                    ": malformed YAML: " + e.msg);
+    }
+}
+
+YAML::Node load(const std::filesystem::path& path) {
+    return parse(readFileText(path, "a YAML file"), path.string());
+}
+
+void requireMap(const YAML::Node& node, const std::string& source, std::string_view what) {
+    if (!node.IsMap()) throw Error(where(source, node) + ": " + std::string(what) + " must be a mapping");
+}
+
+void requireKeys(const YAML::Node& map, const std::string& source, std::initializer_list<std::string_view> allowed) {
+    for (const auto& kv : map) {
+        if (!kv.first.IsScalar()) throw Error(where(source, kv.first) + ": keys must be plain names");
+        const std::string key = kv.first.as<std::string>();
+        bool known = false;
+        for (auto a : allowed) known = known || key == a;
+        if (known) continue;
+        std::string list;
+        for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        throw Error(where(source, kv.first) + ": unknown key '" + key + "' (expected one of: " + list + ")");
+    }
+}
+
+double toDouble(const YAML::Node& node, const std::string& source, std::string_view what) {
+    try {
+        if (node.IsScalar()) return node.as<double>();
+    } catch (const YAML::Exception&) {
+    }
+    throw Error(where(source, node) + ": " + std::string(what) + " must be a number");
+}
+
+bool toBool(const YAML::Node& node, const std::string& source, std::string_view what) {
+    try {
+        if (node.IsScalar()) return node.as<bool>();
+    } catch (const YAML::Exception&) {
+    }
+    throw Error(where(source, node) + ": " + std::string(what) + " must be true or false");
+}
+
+std::string toString(const YAML::Node& node, const std::string& source, std::string_view what) {
+    if (!node.IsScalar()) throw Error(where(source, node) + ": " + std::string(what) + " must be a string");
+    return node.as<std::string>();
+}
+
+}  // namespace vri::yaml

@@ -1,0 +1,30 @@
+#pragma once
+// Private helpers for reading YAML with errors that point at file, line and column.
+#include <filesystem>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include <yaml-cpp/yaml.h>
+
+#include "libvri/util/error.h"
+
+namespace vri::yaml {
+
+// "source:line:column" of a node (1-based), or just "source" when the node has no position.
+std::string where(const std::string& source, const YAML::Node& node);
+
+// Parses text; a syntax error becomes vri::Error "source:line:column: malformed YAML: ...", a key
+// repeated in one mapping "source:line:column: duplicate key 'k' (first at line N)".
+YAML::Node parse(const std::string& text, const std::string& source);
+YAML::Node load(const std::filesystem::path& path);
+
+// Throws "source:line:column: unknown key 'k' (expected one of: ...)" for a key not in `allowed`.
+void requireKeys(const YAML::Node& map, const std::string& source, std::initializer_list<std::string_view> allowed);
+void requireMap(const YAML::Node& node, const std::string& source, std::string_view what);
+
+double toDouble(const YAML::Node& node, const std::string& source, std::string_view what);
+bool toBool(const YAML::Node& node, const std::string& source, std::string_view what);
+std::string toString(const YAML::Node& node, const std::string& source, std::string_view what);
+
+}  // namespace vri::yaml

@@ -1,0 +1,340 @@
+// Writing the gnuplot script of a figure, with the Pareto front it may mark and its heatmaps' grids.
+#include <algorithm>
+#include <cstdio>
+#include <iterator>
+#include <optional>
+
+#include "libvri/report/pareto.h"
+#include "libvri/report/plot_axes.h"
+#include "libvri/report/plot.h"
+#include "libvri/report/plot_csv.h"
+#include "libvri/util/csv.h"
+#include "libvri/util/format.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Any text as a gnuplot string expression that evaluates to exactly that text. Inside gnuplot's
+// single quotes nothing is special (no backquote command, no @macro, no backslash escape) except
+// the quote, written twice, and the end of the line, which ends the command. Two exceptions, found
+// by trying gnuplot 5.4: a string cannot start with a written-twice quote ('''' reads as the empty
+// string and a stray quote), and cannot hold a newline. So a leading quote goes as "'" and a control
+// character as an octal escape ("\012"), in double quotes that hold nothing else (gnuplot runs
+// backquotes inside double quotes), and the pieces are joined with gnuplot's `.`, in parentheses.
+// Plot titles, labels, file names and `eq` all take such an expression.
+std::string quoted(const std::string& text) {
+    std::vector<std::string> pieces;
+    bool inQuotes = false;
+    for (char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 || byte == 0x7f || (c == '\'' && !inQuotes)) {
+            if (inQuotes) pieces.back() += '\'';
+            inQuotes = false;
+            char escape[8] = "\"'\"";
+            if (c != '\'') std::snprintf(escape, sizeof escape, "\"\\%03o\"", byte);
+            pieces.emplace_back(escape);
+            continue;
+        }
+        if (!inQuotes) pieces.emplace_back("'");
+        inQuotes = true;
+        pieces.back() += c == '\'' ? std::string("''") : std::string(1, c);
+    }
+    if (inQuotes) pieces.back() += '\'';
+    if (pieces.empty()) return "''";
+    if (pieces.size() == 1) return pieces.front();
+    std::string joined = "(";
+    for (const std::string& piece : pieces) joined += (joined.size() == 1 ? "" : ".") + piece;
+    return joined + ")";
+}
+
+// What fitLogAxis made of a panel's log axes (nullopt: the spec's range, or gnuplot's).
+struct PanelFit {
+    std::optional<plot::LogAxisFit> x, y;
+};
+
+// A heatmap's axes end where its image does (fit), other axes at a tic mark beyond the data, and a log
+// axis the spec leaves open where plot::fitLogAxis says, with its floor (values <= 0) drawn as a dotted
+// line labelled 0.
+std::string axisCommands(const char* name, const PlotAxis& axis, bool fit, const std::optional<plot::LogAxisFit>& log) {
+    const std::string n = name;
+    std::string out = "    set " + n + "label " + quoted(axis.label) + "\n";
+    // A log axis labels its decades 1e-06 ... 0.01 ... 1, not 0.0000010 with gnuplot's fixed decimals.
+    out += axis.log ? "    set logscale " + n + "\n    set format " + n + " '%g'\n"
+                    : "    unset logscale " + n + "\n    set format " + n + " '% h'\n";
+    if (!log) {
+        out += "    set " + n + "tics autofreq\n";
+        return out + "    set " + n + "range [" + (axis.min ? exactNumber(*axis.min) : "*") + ":" +
+               (axis.max ? exactNumber(*axis.max) : "*") + "]" + (fit ? " noextend" : " extend") + "\n";
+    }
+    if (log->tics.empty()) {
+        out += "    set " + n + "tics autofreq\n";
+    } else {
+        out += "    set " + n + "tics (";
+        for (std::size_t i = 0; i < log->tics.size(); ++i) out += (i == 0 ? "" : ", ") + exactNumber(log->tics[i]);
+        out += ")\n";
+    }
+    if (log->floor) {
+        const std::string at = exactNumber(*log->floor);
+        out += "    set " + n + "tics add ('0' " + at + ")\n";
+        // Only y has a floor (fitPanel gives x its positive values alone): a horizontal line.
+        out += "    set arrow from graph 0, first " + at + " to graph 1, first " + at + " nohead dt 3 lw 1 lc rgb 'gray50' back\n";
+    }
+    return out + "    set " + n + "range [" + exactNumber(log->min) + ":" + exactNumber(log->max) + "] noextend\n";
+}
+
+std::string keyCommand(const std::string& key) {
+    if (key == "off") return "    unset key\n";
+    if (key == "outside") return "    set key outside right top\n";
+    return "    set key " + key + "\n";
+}
+
+// Colours from the lowest value to the highest, at evenly spaced stops.
+std::string paletteCommand(const std::string& palette) {
+    if (palette == "gray") return "    set palette defined (0 '#000000', 1 '#ffffff')\n";
+    if (palette == "diverging") return "    set palette defined (0 '#3b4cc0', 1 '#f2f2f2', 2 '#b40426')\n";
+    return "    set palette defined (0 '#440154', 1 '#482878', 2 '#3e4a89', 3 '#31688e', 4 '#26828e', 5 '#1f9e89', "
+           "6 '#35b779', 7 '#6dcd59', 8 '#b4de2c', 9 '#fde725')\n";  // viridis
+}
+
+// Everything a panel sets before it plots; what one panel sets, the next resets, so that no
+// setting leaks into a later panel (or from the PNG's last panel into the SVG's first).
+std::string panelCommands(const PlotPanel& panel, const PanelFit& fit) {
+    const bool heatmap = panel.hasStyle("heatmap");
+    std::string out = "    set title " + quoted(panel.title) + "\n    unset arrow\n";
+    out += axisCommands("x", panel.x, heatmap, fit.x) + axisCommands("y", panel.y, heatmap, fit.y) +
+           keyCommand(panel.key);
+    out += panel.equalAspect ? "    set size ratio -1\n" : "    set size noratio\n";
+    out += "    unset label\n";
+    for (const PlotLabel& label : panel.labels)
+        out += "    set label " + quoted(label.text) + " at " + exactNumber(label.x) + "," + exactNumber(label.y) +
+               " front\n";
+    if (heatmap) {
+        const PlotColorbar& bar = panel.colorbar;
+        out += paletteCommand(bar.palette);
+        out += "    set cbrange [" + (bar.min ? exactNumber(*bar.min) : "*") + ":" +
+               (bar.max ? exactNumber(*bar.max) : "*") + "]\n";
+        out += "    set cblabel " + quoted(bar.label) + "\n    set colorbox\n";
+    }
+    return out;
+}
+
+// gnuplot's filled circle, filled square, cross, filled triangle and filled diamond.
+int pointType(const std::string& point) {
+    if (point == "square") return 5;
+    if (point == "diamond") return 13;
+    if (point == "cross") return 2;
+    if (point == "triangle") return 9;
+    return 7;
+}
+
+std::string styleClause(const PlotSeries& series) {
+    const std::string colour = series.color.empty() ? "" : " lc rgb " + quoted(series.color);
+    const std::string width = " lw " + exactNumber(series.width);
+    const std::string point = " pt " + std::to_string(pointType(series.point)) + " ps " + exactNumber(series.pointSize);
+    if (series.style == "histogram") return "with boxxyerror fs transparent solid 0.35 border" + colour;
+    if (series.style == "heatmap") return "with image";
+    if (series.style == "segments") return "with vectors nohead" + width + colour;
+    if (series.style == "points") return "with points" + point + colour;
+    if (series.style == "linespoints") return "with linespoints" + width + point + colour;
+    if (series.style == "dashed") return "with lines" + width + " dt 2" + colour;
+    if (series.style == "dotted") return "with lines" + width + " dt 3" + colour;
+    return "with lines" + width + colour;
+}
+
+// The y column, or NaN (which gnuplot skips) on the rows that `where` leaves out.
+std::string yExpression(const PlotSeries& series) {
+    const std::string y = std::to_string(series.yColumn);
+    if (series.where.empty()) return y;
+    std::string condition;
+    for (const auto& [column, text] : series.where) {
+        const std::string cell = "strcol(" + std::to_string(column) + ")";
+        condition += (condition.empty() ? "" : " && ") +
+                     (text.ends_with('*') ? "strstrt(" + cell + ", " + quoted(text.substr(0, text.size() - 1)) + ") == 1"
+                                          : cell + " eq " + quoted(text));
+    }
+    return "(" + condition + " ? $" + y + " : NaN)";
+}
+
+std::string usingClause(const PlotSeries& series) {
+    const std::string x = std::to_string(series.xColumn), y = yExpression(series);
+    if (series.style == "heatmap") return "using 1:2:3";  // its datablock's columns
+    if (series.style == "segments") {
+        // From (x, y) by (x2 - x, y2 - y).
+        const std::string x2 = std::to_string(series.x2Column), y2 = std::to_string(series.y2Column);
+        const std::string y1 = std::to_string(series.yColumn);
+        return "using " + x + ":" + y + ":($" + x2 + " - $" + x + "):($" + y2 + " - $" + y1 + ")";
+    }
+    if (series.style != "histogram") return "using " + x + ":" + y;
+    // Boxes from bin_lo to bin_hi (the next column) and from 0 to the count. Only bins with finite,
+    // positive edges are drawn (a log axis has no room for the others): vri-diff's zero bin, its
+    // first bin (0, lo] and its overflow bin (hi, inf) are left out.
+    const std::string hi = std::to_string(series.xColumn + 1);
+    std::string clause = "using (($";
+    clause.append(x).append(" > 0 && $").append(hi).append(" < 1e300) ? ($").append(x).append(" + $").append(hi);
+    clause.append(") / 2 : NaN):($").append(y).append(" / 2):").append(x).append(":").append(hi);
+    return clause.append(":(0):($").append(y).append(")");
+}
+
+// Where gnuplot reads a series from: its CSV past the header, or for a heatmap the datablock that
+// holds the CSV's grid in scan order.
+std::string dataSource(const PlotSeries& series, std::size_t panel, std::size_t index, const fs::path& scriptDir) {
+    if (series.style == "heatmap") return "$heatmap" + std::to_string(panel + 1) + "_" + std::to_string(index + 1);
+    return quoted(fs::relative(fs::absolute(series.file), scriptDir).generic_string()) + " skip 1";
+}
+
+std::string heatmapBlock(const PlotSeries& series, std::size_t panel, std::size_t index, const fs::path& scriptDir) {
+    // Names in comments are quoted too: a newline in one would end the comment, a trailing backslash
+    // would continue it onto the next line.
+    std::string out = "# " + quoted(fs::relative(fs::absolute(series.file), scriptDir).generic_string()) +
+                      " as x,y,z in scan order, which gnuplot's image needs\n";
+    out += dataSource(series, panel, index, scriptDir) + " << EOD\n";
+    for (const auto& [x, y, z] : plot::gridRows(series.file, series.xColumn, series.yColumn, series.zColumn))
+        out.append(x).append(",").append(y).append(",").append(z).append("\n");
+    return out + "EOD\n";
+}
+
+// Each point's text from the series' labels column, right of and above the point, clear of its
+// marker; the rows that `where` leaves out get none.
+std::string labelsClause(const PlotSeries& series) {
+    const std::string colour = series.color.empty() ? "" : " tc rgb " + quoted(series.color);
+    return "using " + std::to_string(series.xColumn) + ":" + yExpression(series) + ":(strcol(" +
+           std::to_string(series.labelColumn) + ")) with labels left offset char 0.5,0.5 font ',8'" + colour +
+           " notitle";
+}
+
+bool drawsPoints(const PlotSeries& series) {
+    return series.style != "histogram" && series.style != "heatmap" && series.style != "segments";
+}
+
+// The panel's points from every series of points or lines, for its Pareto front: the points drawn,
+// so not the rows that a series' `where` leaves out.
+std::vector<std::pair<double, double>> panelPoints(const PlotPanel& panel) {
+    std::vector<std::pair<double, double>> points;
+    for (const PlotSeries& series : panel.series)
+        if (drawsPoints(series)) std::ranges::copy(plot::keptPoints(series), std::back_inserter(points));
+    return points;
+}
+
+// The panel's log axes fitted to its points; a panel with histograms, heatmaps or segments keeps gnuplot's.
+PanelFit fitPanel(const PlotPanel& panel) {
+    if (!std::ranges::all_of(panel.series, drawsPoints)) return {};
+    std::vector<double> xs, ys;
+    for (const auto& [x, y] : panelPoints(panel)) {
+        if (x > 0) xs.push_back(x);  // only y has a floor; a log x axis leaves out x <= 0 as gnuplot does
+        ys.push_back(y);
+    }
+    return {plot::fitLogAxis(panel.x, xs), plot::fitLogAxis(panel.y, ys)};
+}
+
+// A series is drawn from a datablock of the points it keeps when its line joins the rows that `where`
+// keeps (gnuplot would break the line at every row left out, and one family's runs need not follow each
+// other in a file), and on a panel whose y axis has a floor (its values <= 0 are drawn there).
+bool drawnFromBlock(const PlotSeries& series, const PanelFit& fit) {
+    if (!drawsPoints(series)) return false;
+    const bool joins = series.style == "line" || series.style == "dashed" || series.style == "dotted" ||
+                       series.style == "linespoints";
+    return (joins && !series.where.empty()) || (fit.y && fit.y->floor);
+}
+
+// A datablock of x,y rows.
+std::string pointsBlock(const std::string& name, const std::vector<std::pair<double, double>>& points) {
+    std::string out = name + " << EOD\n";
+    for (const auto& [x, y] : points) out += exactNumber(x) + "," + exactNumber(y) + "\n";
+    return out + "EOD\n";
+}
+
+std::string blockName(const char* kind, std::size_t panel, std::size_t series) {
+    return "$" + std::string(kind) + std::to_string(panel + 1) + "_" + std::to_string(series + 1);
+}
+
+// Whether a point has a place on the panel's log axes.
+bool onLogAxes(const PlotPanel& panel, const std::pair<double, double>& point) {
+    return !(panel.x.log && point.first <= 0) && !(panel.y.log && point.second <= 0);
+}
+
+}  // namespace
+
+std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, const std::string& pngName,
+                          const std::string& svgName) {
+    const fs::path scriptDir = fs::absolute(scriptPath).parent_path();
+    std::string out = "# Generated by vri-plot from " + quoted(spec.source) + ". Redraw by hand with: gnuplot " +
+                      quoted(scriptPath.filename().string()) +
+                      "\n# It writes the PNG and SVG beside itself, or where its two arguments say:\n"
+                      "#   gnuplot -c " + quoted(scriptPath.filename().string()) + " /tmp/a.png /tmp/a.svg\n"
+                      "# (arguments are never parsed as gnuplot code, whatever characters they hold).\n";
+    out += "png_out = ARGC >= 2 ? ARG1 : " + quoted(pngName) + "\n";
+    out += "svg_out = ARGC >= 2 ? ARG2 : " + quoted(svgName) + "\n";
+    out += "# Data paths are relative to this script's folder: go there.\n"
+           "script_dir = ARG0\n"
+           "i = strlen(script_dir)\n"
+           "while (i > 0 && script_dir[i:i] ne \"/\") { i = i - 1 }\n"
+           "cd (i > 0 ? script_dir[1:i] : \".\")\n"
+           "set datafile separator comma\n";
+    std::vector<PanelFit> fits;
+    for (std::size_t p = 0; p < spec.panels.size(); ++p) {
+        const PlotPanel& panel = spec.panels[p];
+        const PanelFit& fit = fits.emplace_back(fitPanel(panel));
+        for (std::size_t s = 0; s < panel.series.size(); ++s) {
+            const PlotSeries& series = panel.series[s];
+            if (series.style == "heatmap") out += heatmapBlock(series, p, s, scriptDir);
+            if (!drawnFromBlock(series, fit)) continue;
+            std::vector<std::pair<double, double>> drawn;
+            for (auto [x, y] : plot::keptPoints(series)) {
+                if (fit.y && fit.y->floor && y <= 0) y = *fit.y->floor;
+                if (onLogAxes(panel, {x, y})) drawn.emplace_back(x, y);
+            }
+            out += pointsBlock(blockName("series", p, s), drawn);
+        }
+        if (!panel.pareto) continue;
+        auto points = panelPoints(panel);
+        if (fit.y && fit.y->floor)  // a front through a value of 0 runs to the floor
+            for (auto& point : points) point.second = point.second <= 0 ? *fit.y->floor : point.second;
+        const auto front = paretoFront(points);
+        out += "$pareto" + std::to_string(p + 1) + " << EOD\n";
+        for (std::size_t k = 0; k < front.size(); ++k) {
+            const auto& [x, y] = points[front[k]];
+            if (k == 0 || points[front[k]] != points[front[k - 1]])  // equal points are one vertex of the line
+                out += exactNumber(x) + "," + exactNumber(y) + "\n";
+        }
+        out += "EOD\n";
+    }
+    const std::string size = std::to_string(spec.width) + "," + std::to_string(spec.height);
+    out += "do for [format in \"png svg\"] {\n"
+           "    if (format eq \"png\") {\n"
+           "        set terminal pngcairo size " + size + " noenhanced font \"sans,10\"\n"
+           "        set output png_out\n"
+           "    } else {\n"
+           "        set terminal svg size " + size + " noenhanced font \"sans,10\" background \"white\"\n"
+           "        set output svg_out\n"
+           "    }\n";
+    out += "    set multiplot layout " + std::to_string(spec.rows) + "," + std::to_string(spec.columns) +
+           (spec.title.empty() ? "" : " title " + quoted(spec.title)) + "\n";
+    for (std::size_t p = 0; p < spec.panels.size(); ++p) {
+        const PlotPanel& panel = spec.panels[p];
+        out += "    # panel " + std::to_string(p + 1) + "\n";
+        out += panelCommands(panel, fits[p]) + "    plot ";
+        for (std::size_t s = 0; s < panel.series.size(); ++s) {
+            const PlotSeries& series = panel.series[s];
+            // A heatmap is keyed by its colour bar, not in the legend.
+            const std::string title = series.style == "heatmap" || series.label.empty() ? "notitle" : "title " + quoted(series.label);
+            const std::string source = dataSource(series, p, s, scriptDir);
+            const std::string drawn = drawnFromBlock(series, fits[p]) ? blockName("series", p, s) + " using 1:2"
+                                                                      : source + " " + usingClause(series);
+            out += (s == 0 ? "" : ", \\\n         ") + drawn + " " + styleClause(series) + " " + title;
+            if (series.labelColumn != 0) out += ", \\\n         " + source + " " + labelsClause(series);
+        }
+        if (panel.pareto)
+            out += ", \\\n         $pareto" + std::to_string(p + 1) +
+                   " using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'";
+        out += "\n";
+    }
+    out += "    unset multiplot\n"
+           "    unset output\n"
+           "}\n";
+    return out;
+}
+
+}  // namespace vri

@@ -1,0 +1,148 @@
+#include "libvri/util/parse.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <string_view>
+
+#include "libvri/util/error.h"
+
+namespace vri {
+
+namespace {
+
+std::vector<std::string_view> split(std::string_view text, char sep) {
+    std::vector<std::string_view> parts;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= text.size(); ++i)
+        if (i == text.size() || text[i] == sep) {
+            parts.push_back(text.substr(start, i - start));
+            start = i + 1;
+        }
+    return parts;
+}
+
+template <class T>
+bool parseNumber(std::string_view s, T& value) {
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    return ec == std::errc() && end == s.data() + s.size();
+}
+
+// Exactly N finite numbers separated by commas; throws vri::Error(message) otherwise.
+template <int N>
+glm::vec<N, double> finiteVector(const std::string& text, const std::string& message) {
+    const auto parts = split(text, ',');
+    glm::vec<N, double> v;
+    bool ok = parts.size() == N;
+    for (int i = 0; ok && i < N; ++i) ok = parseNumber(parts[i], v[i]) && std::isfinite(v[i]);
+    if (!ok) throw Error(message);
+    return v;
+}
+
+}  // namespace
+
+glm::dvec2 parseVec2(const std::string& text, const std::string& what) {
+    return finiteVector<2>(text, what + ": expected two numbers x,y, got '" + text + "'");
+}
+
+glm::dvec3 parseVec3(const std::string& text, const std::string& what) {
+    return finiteVector<3>(text, what + ": expected three numbers x,y,z, got '" + text + "'");
+}
+
+glm::ivec3 parseDims(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::ivec3 v;
+    bool ok = parts.size() == 3;
+    for (int i = 0; ok && i < 3; ++i) ok = parseNumber(parts[i], v[i]) && v[i] >= 1 && v[i] <= 1000000000;
+    if (!ok) throw Error(what + ": expected three positive integers X,Y,Z, got '" + text + "'");
+    return v;
+}
+
+glm::dvec2 parseRange(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::dvec2 v;
+    bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y) &&
+              std::isfinite(v.x) && std::isfinite(v.y) && v.y > v.x;
+    if (!ok) throw Error(what + ": expected lo,hi with hi > lo, got '" + text + "'");
+    return v;
+}
+
+glm::ivec2 parseSize(const std::string& text, const std::string& what) {
+    const auto parts = split(text, 'x');
+    glm::ivec2 v;
+    bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
+    if (!ok || v.x <= 0 || v.y <= 0)
+        throw Error(what + ": expected a positive image size WIDTHxHEIGHT, got '" + text + "'");
+    return v;
+}
+
+glm::ivec2 parsePixel(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::ivec2 v;
+    bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
+    if (!ok || v.x < 0 || v.y < 0) throw Error(what + ": expected a pixel X,Y (integers >= 0), got '" + text + "'");
+    return v;
+}
+
+double parsePositive(const std::string& text, const std::string& what) {
+    double v;
+    if (!parseNumber(text, v) || !std::isfinite(v) || !(v > 0.0))
+        throw Error(what + ": expected a number > 0, got '" + text + "'");
+    return v;
+}
+
+double parseNonNegative(const std::string& text, const std::string& what) {
+    double v;
+    if (!parseNumber(text, v) || !std::isfinite(v) || !(v >= 0.0))
+        throw Error(what + ": expected a number >= 0, got '" + text + "'");
+    return v;
+}
+
+int parseCount(const std::string& text, const std::string& what, int least) {
+    int v;
+    if (!parseNumber(text, v) || v < least)
+        throw Error(what + ": expected a whole number >= " + std::to_string(least) + ", got '" + text + "'");
+    return v;
+}
+
+double parseLimit(const std::string& text, const std::string& what) {
+    if (text == "none") return std::numeric_limits<double>::infinity();
+    double v;
+    if (!parseNumber(text, v) || !std::isfinite(v) || !(v > 0.0))
+        throw Error(what + ": expected a positive number or 'none', got '" + text + "'");
+    return v;
+}
+
+std::vector<std::string> parseWordList(const std::string& text, const std::string& what) {
+    std::vector<std::string> words;
+    for (std::string_view part : split(text, ',')) {
+        if (part.empty()) throw Error(what + ": expected words separated by single commas, got '" + text + "'");
+        words.emplace_back(part);
+    }
+    return words;
+}
+
+std::vector<double> parsePositiveList(const std::string& text, const std::string& what) {
+    std::vector<double> values;
+    for (std::string_view part : split(text, ',')) {
+        double v = 0.0;
+        if (!parseNumber(part, v) || !std::isfinite(v) || !(v > 0.0))
+            throw Error(what + ": expected positive numbers separated by commas, got '" + text + "'");
+        values.push_back(v);
+    }
+    return values;
+}
+
+std::vector<int> parseIndexList(const std::string& text, const std::string& what, int count) {
+    std::vector<int> values;
+    for (std::string_view part : split(text, ',')) {
+        int v = -1;
+        if (!parseNumber(part, v) || v < 0 || v >= count)
+            throw Error(what + ": expected indices in 0.." + std::to_string(count - 1) + " separated by commas, got '" +
+                        text + "'");
+        values.push_back(v);
+    }
+    return values;
+}
+
+}  // namespace vri
