@@ -65,7 +65,7 @@ $launcher "$cxx" -std=c++20 -O2 -ffp-contract=off "$VRI_SOURCE/examples/render_l
 ./pc-example pc-field.exr || fail "the example built through vri.pc failed"
 "$bin/vri-diff" field.exr pc-field.exr --fail 0 > diff.txt || fail "the pkg-config build's image differs: $(cat diff.txt)"
 
-(cd "$prefix/include" && find vri -name '*.h' | LC_ALL=C sort) | sed 's/.*/#include "&"/' > all_headers.cpp
+(cd "$prefix/include" && find libvri -name '*.h' | LC_ALL=C sort) | sed 's/.*/#include "&"/' > all_headers.cpp
 [ "$(wc -l < all_headers.cpp)" -ge 40 ] || fail "only $(wc -l < all_headers.cpp) headers installed"
 foreign=$(grep -rlE '#include <(vulkan/|openvdb/|OpenImageIO/)' "$prefix/include" || true)
 [ -z "$foreign" ] || fail "installed headers include OpenVDB, OpenImageIO or Vulkan: $foreign"
