@@ -15,8 +15,16 @@ all: build
 deps:
 	@scripts/install-deps.sh
 
+# ccache, when installed (make deps installs it), keeps compiled objects across build folders and
+# clones: a second clone, or a build after a pull, recompiles only what changed. Looked up when the
+# build is configured, after deps; paths under this folder are hashed relative to it, so that two
+# clones share objects.
+CCACHE = $(shell command -v ccache 2>/dev/null)
+export CCACHE_BASEDIR ?= $(CURDIR)
+CMAKE_CONFIGURE = cmake -S . -G Ninja $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE))
+
 $(BUILD)/build.ninja: | deps
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+	$(CMAKE_CONFIGURE) -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
 
 build: deps $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
@@ -33,7 +41,7 @@ install: build
 # build and pass every test that does not need Vulkan (those skip).
 NOVULKAN_BUILD ?= build-novulkan
 $(NOVULKAN_BUILD)/build.ninja: | deps
-	cmake -S . -B $(NOVULKAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DVRI_VULKAN=OFF
+	$(CMAKE_CONFIGURE) -B $(NOVULKAN_BUILD) -DCMAKE_BUILD_TYPE=Release -DVRI_VULKAN=OFF
 
 test-no-vulkan: deps $(NOVULKAN_BUILD)/build.ninja
 	cmake --build $(NOVULKAN_BUILD) -j $(JOBS)
@@ -43,7 +51,7 @@ test-no-vulkan: deps $(NOVULKAN_BUILD)/build.ninja
 # its test. About 30 min on 2 cores, so not part of .ci/run (README, Testing).
 SANITIZE_BUILD ?= build-sanitize
 $(SANITIZE_BUILD)/build.ninja: | deps
-	cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DVRI_SANITIZE=ON
+	$(CMAKE_CONFIGURE) -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Release -DVRI_SANITIZE=ON
 
 # Two passes. Mesa's lavapipe leaks a few hundred bytes per Vulkan instance from a driver the loader has
 # unloaded by exit, so LeakSanitizer can neither name nor suppress them: every test runs first with no

@@ -12,6 +12,8 @@ packages=(
   libglm-dev nlohmann-json3-dev gnuplot-nox libhwy-dev zlib1g-dev
   python3-openvdb python3-numpy pybind11-dev python3-dev libopenvdb-tools teem-apps libtiff-tools
   python3-vtk9 python3-openimageio python3-yaml xvfb xauth   # tools/peers: VTK as a peer
+  slurm-wlm munge iproute2   # vri-run --executor slurm, and the test cluster of tests/tools/slurm.sh
+  ccache                     # the Makefile compiles through it when it is there: a rebuild reuses objects
 )
 if [ "${1:-}" = fuzz ]; then
   packages+=(clang-14 libclang-rt-14-dev)

@@ -1,9 +1,11 @@
 // vri-run: runs experiment files as graphs of small tool invocations, with caching and provenance.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,8 @@
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
 #include "libvri/experiment/manifest.h"
+#include "libvri/experiment/slurm_executor.h"
+#include "libvri/experiment/slurm_node.h"
 #include "libvri/experiment/step_costs.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/folder_lock.h"
@@ -33,7 +37,33 @@ struct Options {
     bool quick = false, dryRun = false, estimate = false, force = false, record = false, check = false, allowDirty = false;
     std::string results, committed = "results", gallery;
     int jobs = 1;
+    std::string executor = "local";
+    std::string slurmPartition, slurmAccount;
+    std::vector<std::string> slurmArguments;
+    double slurmBundle = 60, slurmPoll = 1;
+    int slurmCpus = 2;
+    std::string nodeSteps, nodeCheck;  // inside a Slurm job (hidden)
 };
+
+// The environment variable a site sets its sbatch options in (README "On a cluster").
+constexpr const char* kSiteSlurmArguments = "VRI_SLURM_ARGS";
+
+// sbatch's options for the steps' jobs: the site's (VRI_SLURM_ARGS, words separated by blanks), then
+// the command line's, so that the command line wins.
+vri::SlurmOptions slurmOptions(const Options& options) {
+    vri::SlurmOptions slurm;
+    if (const char* site = std::getenv(kSiteSlurmArguments)) {
+        std::istringstream words(site);
+        for (std::string word; words >> word;) slurm.sbatchArguments.push_back(word);
+    }
+    if (!options.slurmPartition.empty()) slurm.sbatchArguments.push_back("--partition=" + options.slurmPartition);
+    if (!options.slurmAccount.empty()) slurm.sbatchArguments.push_back("--account=" + options.slurmAccount);
+    slurm.sbatchArguments.insert(slurm.sbatchArguments.end(), options.slurmArguments.begin(), options.slurmArguments.end());
+    slurm.bundleSeconds = options.slurmBundle;
+    slurm.cpus = options.slurmCpus;
+    slurm.pollSeconds = options.slurmPoll;
+    return slurm;
+}
 
 // Compares (--check) or records (--record) the reproduce: numbers of a quick run; false on a mismatch.
 bool reproduce(const Options& options, const vri::Experiment& experiment, const vri::Plan& plan) {
@@ -107,9 +137,21 @@ int run(const Options& options) {
                                                           : fs::path("results");
     bool reproduced = true;
     std::vector<std::pair<std::string, vri::CostEstimate>> estimates;
+    std::vector<vri::Experiment> experiments;
+    std::vector<vri::Plan> plans;
     for (const std::string& file : options.experiments) {
-        const vri::Experiment experiment = vri::loadExperiment(file, options.quick);
-        const vri::Plan plan = vri::planExperiment(experiment, resultsRoot / experiment.name, fs::current_path());
+        experiments.push_back(vri::loadExperiment(file, options.quick));
+        plans.push_back(vri::planExperiment(experiments.back(), resultsRoot / experiments.back().name, fs::current_path()));
+    }
+    vri::RunOptions runOptions{toolDir, options.jobs, options.force,
+                               options.executor == "slurm" ? vri::Executor::Slurm : vri::Executor::Local,
+                               slurmOptions(options), {}};
+    vri::FileHasher hasher;
+    const bool runs = !options.estimate && !options.dryRun && !plans.empty();
+    if (runs && runOptions.executor == vri::Executor::Slurm) vri::checkSlurmNodes(plans, resultsRoot, runOptions, hasher);
+    for (std::size_t e = 0; e < plans.size(); ++e) {
+        const vri::Experiment& experiment = experiments[e];
+        const vri::Plan& plan = plans[e];
         if (options.estimate) {
             estimates.emplace_back(experiment.name, vri::estimateCost(plan, plan.resultsDir / "manifest.json"));
             continue;
@@ -127,9 +169,10 @@ int run(const Options& options) {
             for (const fs::path& stale : vri::removeStaleTempFiles(folder))
                 std::cerr << kTool << ": removed " << plan.commandPath(stale)
                           << ", a temporary file of a process that is gone\n";
-        vri::FileHasher hasher;
+        // The last run's wall times price the Slurm jobs; read before its manifest goes.
+        runOptions.prices = vri::stepPrices(plan, plan.resultsDir / "manifest.json");
         fs::remove(plan.resultsDir / "manifest.json");  // rewritten only once every step has succeeded
-        const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, {toolDir, options.jobs, options.force}, hasher);
+        const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, runOptions, hasher);
         vri::writeManifest(experiment, plan, outcomes, toolDir, hasher);
         std::size_t ran = 0, cached = 0;
         for (const vri::StepOutcome& o : outcomes) {
@@ -172,6 +215,29 @@ int main(int argc, char** argv) {
     app.add_flag("--allow-dirty", options.allowDirty,
                  "write into the work tree's results/ even when its tracked files differ from the commit");
     app.add_option("--jobs", options.jobs, "steps run at once (1 to 64)")->check(CLI::Range(1, 64))->capture_default_str();
+    app.add_option("--executor", options.executor,
+                   "where steps run: local (child processes, up to --jobs at once) or slurm (a batch job per step or "
+                   "bundle of small steps, ordered by the cluster; README \"On a cluster\")")
+        ->check(CLI::IsMember({"local", "slurm"}))
+        ->capture_default_str();
+    app.add_option("--slurm-partition", options.slurmPartition, "sbatch --partition for every job");
+    app.add_option("--slurm-account", options.slurmAccount, "sbatch --account for every job");
+    app.add_option("--slurm-arg", options.slurmArguments,
+                   "one more sbatch option for every job, as one word (repeatable): --slurm-arg=--qos=long; after "
+                   "vri-run's own and $VRI_SLURM_ARGS, so it wins")
+        ->allow_extra_args(false);
+    app.add_option("--slurm-bundle", options.slurmBundle,
+                   "steps whose last run took less than SECONDS share jobs of about SECONDS; 0: a job per step")
+        ->check(CLI::Range(0.0, 86400.0))
+        ->capture_default_str();
+    app.add_option("--slurm-cpus", options.slurmCpus, "CPUs a render or command asks for when it sets no --threads (1 to 1024)")
+        ->check(CLI::Range(1, 1024))
+        ->capture_default_str();
+    app.add_option("--slurm-poll", options.slurmPoll, "seconds between two looks at the jobs (squeue), 0.1 to 600")
+        ->check(CLI::Range(0.1, 600.0))
+        ->capture_default_str();
+    app.add_option("--slurm-node-steps", options.nodeSteps)->group("");  // what a Slurm job runs (slurm_node.h)
+    app.add_option("--slurm-node-check", options.nodeCheck)->group("");
     app.add_flag("--record", options.record, "with --quick: write the reproduce: numbers to COMMITTED/<experiment>/reproduce.json");
     app.add_flag("--check", options.check, "with --quick: compare the reproduce: numbers with the committed ones; exit 1 on a mismatch")
         ->excludes("--record");
@@ -192,9 +258,17 @@ Examples:
   vri-run --dry-run experiments/paper-a-fig4.yaml > fig4.sh     # the commands, to rerun by hand
   vri-run --estimate experiments/*.yaml                         # what make experiments costs from nothing
   vri-run --quick --check experiments/paper-a-fig4.yaml         # the reproducibility check of make test
-  vri-run --gallery results experiments/*.yaml                  # everything, then results/README.md)");
+  vri-run --gallery results experiments/*.yaml                  # everything, then results/README.md
+  vri-run --executor slurm --slurm-partition short experiments/convergence.yaml   # on a Slurm cluster
+
+On Slurm (--executor slurm), one small job first checks that the compute nodes see the tools, the inputs and
+the results folder at the same paths; then every step to run is submitted at once, ordered by the cluster
+(--dependency=afterok). $VRI_SLURM_ARGS holds a site's sbatch options (blank-separated words). Ctrl-C or
+SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
     return vri::guardedMain(kTool, [&] {
+        if (!options.nodeSteps.empty()) return vri::runNodeSteps(options.nodeSteps);
+        if (!options.nodeCheck.empty()) return vri::runNodeCheck(options.nodeCheck);
         if (options.experiments.empty() && options.gallery.empty())
             throw vri::Error("nothing to do: name experiment files or --gallery DIR (see --help)");
         return run(options);

@@ -1,151 +1,77 @@
-// The scheduler of vri-run: processes for steps, the step cache, progress and failures.
+// vri-run's local executor: steps as child processes, up to --jobs at once; and the choice of executor.
 #include "libvri/experiment/experiment_run.h"
 
-#include <unistd.h>
-
 #include <chrono>
-#include <cstdio>
-#include <iostream>
 #include <map>
-#include <set>
 
+#include "libvri/experiment/slurm_executor.h"
+#include "libvri/experiment/step_ledger.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/error.h"
-#include "libvri/util/file_text.h"
 #include "libvri/util/process.h"
 
 namespace vri {
-
-namespace fs = std::filesystem;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-class Scheduler {
+class LocalScheduler {
 public:
-    Scheduler(const Plan& plan, const RunOptions& options, FileHasher& hasher)
-        : plan_(plan), options_(options), hasher_(hasher), outcomes_(plan.steps.size()),
-          state_(plan.steps.size(), Waiting), keys_(stepKeys(plan, options.toolDir, hasher)),
-          showProgress_(::isatty(STDERR_FILENO)) {}
+    LocalScheduler(const Plan& plan, const RunOptions& options, FileHasher& hasher)
+        : options_(options), ledger_(plan, options, hasher), host_(hostName()) {}
 
     std::vector<StepOutcome> run();
 
 private:
-    enum State { Waiting, Running, Finished };
     struct Child {
         std::size_t step;
         Clock::time_point start;
-        fs::path log;
     };
 
-    bool startReady();  // starts or settles every step whose dependencies are finished; false when nothing changed
-    void settle(std::size_t i, StepOutcome::State how);
+    bool startReady();  // starts or settles every step whose dependencies are settled; false when nothing changed
     void finish(pid_t pid, const ExitStatus& status);
-    void report(std::size_t i, const std::string& how);
 
-    const Plan& plan_;
     const RunOptions& options_;
-    FileHasher& hasher_;
-    std::vector<StepOutcome> outcomes_;
-    std::vector<State> state_;
-    std::vector<std::string> keys_;
-    bool showProgress_;
+    StepLedger ledger_;
+    std::string host_;
+    std::vector<bool> started_;
     std::map<pid_t, Child> running_;
-    std::size_t finished_ = 0;
-    std::set<std::string> missingTools_;
-    std::string failure_;  // the first failed step's command and output
 };
 
-void Scheduler::report(std::size_t i, const std::string& how) {
-    ++finished_;
-    if (!showProgress_) return;
-    std::fprintf(stderr, "[%zu/%zu] %s %s (%s)\n", finished_, plan_.steps.size(), plan_.steps[i].tool.c_str(),
-                 plan_.steps[i].id.c_str(), how.c_str());
-}
-
-void Scheduler::settle(std::size_t i, StepOutcome::State how) {
-    state_[i] = Finished;
-    outcomes_[i].state = how;
-    report(i, how == StepOutcome::State::Cached ? "cached" : "not built, skipped");
-}
-
-bool Scheduler::startReady() {
+bool LocalScheduler::startReady() {
+    const Plan& plan = ledger_.plan();
     bool changed = false;
-    for (std::size_t i = 0; i < plan_.steps.size() && failure_.empty(); ++i) {
-        if (state_[i] != Waiting || static_cast<int>(running_.size()) >= options_.jobs) continue;
-        bool ready = true, upstreamUnavailable = false;
-        for (std::size_t d : plan_.dependencies[i]) {
-            ready = ready && state_[d] == Finished;
-            upstreamUnavailable = upstreamUnavailable || outcomes_[d].state == StepOutcome::State::Unavailable;
-        }
+    for (std::size_t i = 0; i < plan.steps.size() && !ledger_.hasFailure(); ++i) {
+        if (started_[i] || static_cast<int>(running_.size()) >= options_.jobs) continue;
+        bool ready = true;
+        for (std::size_t d : plan.dependencies[i]) ready = ready && ledger_.settled(d);
         if (!ready) continue;
         changed = true;
-        const Step& step = plan_.steps[i];
-        const fs::path tool = options_.toolDir / step.tool;
-        if (upstreamUnavailable || !fs::is_regular_file(tool)) {
-            if (!upstreamUnavailable && missingTools_.insert(step.tool).second)
-                std::cerr << "vri-run: warning: " << tool.string() << " is not built; its steps are skipped\n";
-            settle(i, StepOutcome::State::Unavailable);
-            continue;
-        }
-        const fs::path record = recordPath(plan_, step);
-        if (!options_.force) {
-            if (auto last = readRecord(record); last && recordIsCurrent(*last, keys_[i], plan_, step, hasher_)) {
-                outcomes_[i].record = *last;
-                settle(i, StepOutcome::State::Cached);
-                continue;
-            }
-        }
-        // The old record goes first: if this run is interrupted, nothing vouches for half-made outputs.
-        fs::remove(record);
-        fs::create_directories(record.parent_path());
-        const std::vector<std::string> words = commandWords(plan_, step, options_.toolDir);
-        outcomes_[i].record.command = shellCommand(words);
-        fs::path log = record;
-        log.replace_extension(".log");
-        running_[startProcess(tool, words, {.in = "/dev/null", .out = log, .err = {}, .errToOut = true})] =
-            Child{i, Clock::now(), log};
-        state_[i] = Running;
+        started_[i] = true;
+        if (!ledger_.needsRun(i)) continue;
+        const std::vector<std::string> words = ledger_.prepare(i);
+        running_[startProcess(ledger_.program(i), words,
+                              {.in = "/dev/null", .out = ledger_.logPath(i), .err = {}, .errToOut = true})] =
+            Child{i, Clock::now()};
     }
     return changed;
 }
 
-void Scheduler::finish(pid_t pid, const ExitStatus& status) {
+void LocalScheduler::finish(pid_t pid, const ExitStatus& status) {
     const auto found = running_.find(pid);
     if (found == running_.end()) return;
     const Child child = found->second;
     running_.erase(found);
-    const std::size_t i = child.step;
-    const Step& step = plan_.steps[i];
-    StepRecord& record = outcomes_[i].record;
-    record.wallSeconds = std::chrono::duration<double>(Clock::now() - child.start).count();
-    if (!status.ok()) {
-        if (failure_.empty())
-            failure_ = "step '" + step.id + "' failed (" + status.describe() + "):\n  " + record.command + "\n" +
-                       tryReadFileText(child.log).value_or("");
-        state_[i] = Finished;
-        return;
-    }
-    for (const fs::path& out : step.outputs) hasher_.forget(out);
-    record.key = keys_[i];
-    record.inputs = digestFiles(plan_, step.inputs, hasher_);
-    record.outputs = digestFiles(plan_, step.outputs, hasher_);
-    record.ranUtc = utcTimestamp();
-    for (const FileDigest& out : record.outputs)
-        if (out.sha512 == "missing" && failure_.empty())
-            failure_ = "step '" + step.id + "' succeeded but did not write " + out.path + ":\n  " + record.command + "\n" +
-                       tryReadFileText(child.log).value_or("");
-    if (failure_.empty()) writeRecord(recordPath(plan_, step), record);
-    fs::remove(child.log);
-    state_[i] = Finished;
-    outcomes_[i].state = StepOutcome::State::Ran;
-    char seconds[32];
-    std::snprintf(seconds, sizeof seconds, "%.2f s", record.wallSeconds);
-    report(i, seconds);
+    const double seconds = std::chrono::duration<double>(Clock::now() - child.start).count();
+    if (status.ok())
+        ledger_.succeeded(child.step, seconds, {.executor = "local", .node = host_, .jobId = {}, .jobState = {}});
+    else
+        ledger_.failed(child.step, "failed (" + status.describe() + ")", seconds);
 }
 
-std::vector<StepOutcome> Scheduler::run() {
+std::vector<StepOutcome> LocalScheduler::run() {
+    started_.assign(ledger_.size(), false);
     for (;;) {
         while (startReady()) {
         }
@@ -153,15 +79,15 @@ std::vector<StepOutcome> Scheduler::run() {
         const auto [pid, status] = waitAnyProcess();
         finish(pid, status);
     }
-    if (!failure_.empty()) throw Error(failure_);
-    return outcomes_;
+    return ledger_.result();
 }
 
 }  // namespace
 
 std::vector<StepOutcome> runPlan(const Plan& plan, const RunOptions& options, FileHasher& hasher) {
     if (options.jobs < 1) throw Error("--jobs: expected at least 1, got " + std::to_string(options.jobs));
-    return Scheduler(plan, options, hasher).run();
+    if (options.executor == Executor::Slurm) return runPlanOnSlurm(plan, options, hasher);
+    return LocalScheduler(plan, options, hasher).run();
 }
 
 }  // namespace vri

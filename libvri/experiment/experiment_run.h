@@ -1,7 +1,10 @@
 #pragma once
-// Running a plan: each step as its own process (the exact command a reader would type), up to
-// `jobs` at once, skipping those the step cache vouches for.
+// Running a plan: each step as its own process (the exact command a reader would type), skipping
+// those the step cache vouches for. Where the processes run is the executor's choice: vri-run's own
+// children, up to `jobs` at once (local), or jobs of a Slurm cluster (slurm_executor.h).
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "libvri/experiment/experiment_plan.h"
@@ -9,10 +12,25 @@
 
 namespace vri {
 
+enum class Executor { Local, Slurm };
+
+// How steps become Slurm jobs (README "On a cluster").
+struct SlurmOptions {
+    std::vector<std::string> sbatchArguments;  // the site's and the user's, after vri-run's own (so they win)
+    double bundleSeconds = 60;  // steps estimated below this share jobs of about this many seconds; 0: a job each
+    int cpus = 2;               // CPUs of a step that does not set its own --threads
+    double pollSeconds = 1;     // how often squeue is asked
+};
+
 struct RunOptions {
     std::filesystem::path toolDir;  // where vri-render, vri-diff, ... are
-    int jobs = 1;                   // steps run at once
+    int jobs = 1;                   // steps run at once (local)
     bool force = false;             // run every step, cached or not
+    Executor executor = Executor::Local;
+    SlurmOptions slurm;
+    // Per step of the plan, its wall time in the last manifest (step_costs.h), when known: what a
+    // Slurm job asks for as its time limit, and how steps are bundled.
+    std::vector<std::optional<double>> prices;
 };
 
 struct StepOutcome {
@@ -21,9 +39,9 @@ struct StepOutcome {
 };
 
 // Runs the steps in dependency order. A step whose tool is not built is reported on stderr and
-// skipped with everything that depends on it. When a step fails, the steps already running finish,
-// and a vri::Error carries the failed command and its output. Progress lines go to stderr when it
-// is a terminal.
+// skipped with everything that depends on it. When a step fails, the steps already running finish
+// (locally) and the steps that depend on it do not run; a vri::Error carries the failed command and
+// its output. Progress lines go to stderr when it is a terminal.
 std::vector<StepOutcome> runPlan(const Plan& plan, const RunOptions& options, FileHasher& hasher);
 
 }  // namespace vri

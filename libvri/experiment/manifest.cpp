@@ -181,7 +181,8 @@ void writeManifest(const Experiment& experiment, const Plan& plan, const std::ve
                          {"inputs", toJson(outcome.record.inputs)},
                          {"outputs", toJson(outcome.record.outputs)},
                          {"wall_seconds", outcome.record.wallSeconds},
-                         {"ran_utc", outcome.record.ranUtc}});
+                         {"ran_utc", outcome.record.ranUtc},
+                         {"execution", toJson(outcome.record.execution)}});
         if (outcome.state == StepOutcome::State::Unavailable) continue;
         tools[step.tool] = hasher.digest(toolDir / step.tool);
         for (const fs::path& out : step.outputs)

@@ -28,7 +28,23 @@ std::vector<FileDigest> digestsFromJson(const nlohmann::json& list) {
     return files;
 }
 
+StepExecution executionFromJson(const nlohmann::json& j) {
+    StepExecution e;
+    e.executor = j.at("executor").get<std::string>();
+    e.node = j.at("node").get<std::string>();
+    if (j.contains("job_id")) e.jobId = j.at("job_id").get<std::string>();
+    if (j.contains("job_state")) e.jobState = j.at("job_state").get<std::string>();
+    return e;
+}
+
 }  // namespace
+
+nlohmann::json toJson(const StepExecution& execution) {
+    nlohmann::json j = {{"executor", execution.executor}, {"node", execution.node}};
+    if (!execution.jobId.empty()) j["job_id"] = execution.jobId;
+    if (!execution.jobState.empty()) j["job_state"] = execution.jobState;
+    return j;
+}
 
 nlohmann::json toJson(const std::vector<FileDigest>& files) {
     nlohmann::json list = nlohmann::json::array();
@@ -72,7 +88,10 @@ std::optional<StepRecord> readRecord(const fs::path& path) {
         const nlohmann::json j = nlohmann::json::parse(in);
         return StepRecord{j.at("key").get<std::string>(),         j.at("command").get<std::string>(),
                           digestsFromJson(j.at("inputs")),        digestsFromJson(j.at("outputs")),
-                          j.at("wall_seconds").get<double>(),     j.at("ran_utc").get<std::string>()};
+                          j.at("wall_seconds").get<double>(),     j.at("ran_utc").get<std::string>(),
+                          // A record written before records said where steps ran: every step ran locally then.
+                          j.contains("execution") ? executionFromJson(j.at("execution"))
+                                                  : StepExecution{"local", "unknown", "", ""}};
     } catch (const nlohmann::json::exception&) {
         return std::nullopt;  // a damaged record is no record: the step runs again
     }
@@ -84,7 +103,8 @@ void writeRecord(const fs::path& path, const StepRecord& record) {
                               {"inputs", toJson(record.inputs)},
                               {"outputs", toJson(record.outputs)},
                               {"wall_seconds", record.wallSeconds},
-                              {"ran_utc", record.ranUtc}};
+                              {"ran_utc", record.ranUtc},
+                              {"execution", toJson(record.execution)}};
     writeTextFile(path, j.dump(2) + "\n");
 }
 

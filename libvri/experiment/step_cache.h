@@ -40,6 +40,16 @@ struct FileDigest {
 // [{"path", "sha512"}, ...], as records and manifests list files.
 nlohmann::json toJson(const std::vector<FileDigest>& files);
 
+// Where a step ran: vri-run's own child process ("local") or a Slurm job ("slurm", with the job's id
+// and the state Slurm ended it in), on which host.
+struct StepExecution {
+    std::string executor = "local";
+    std::string node;
+    std::string jobId;     // Slurm only
+    std::string jobState;  // Slurm only: COMPLETED, FAILED, TIMEOUT, CANCELLED, ...
+};
+nlohmann::json toJson(const StepExecution& execution);
+
 // What a successful run of a step left behind.
 struct StepRecord {
     std::string key;
@@ -47,6 +57,7 @@ struct StepRecord {
     std::vector<FileDigest> inputs, outputs;
     double wallSeconds = 0;
     std::string ranUtc;
+    StepExecution execution;
 };
 
 std::filesystem::path recordPath(const Plan& plan, const Step& step);  // <results>/.steps/<id>.json

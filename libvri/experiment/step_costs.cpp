@@ -10,12 +10,10 @@ namespace vri {
 
 namespace fs = std::filesystem;
 
-CostEstimate estimateCost(const Plan& plan, const fs::path& manifest) {
-    CostEstimate estimate;
+std::vector<std::optional<double>> stepPrices(const Plan& plan, const fs::path& manifest) {
     // id -> {command, seconds} of the last run
     std::map<std::string, std::pair<std::string, double>> last;
     if (fs::is_regular_file(manifest)) {
-        estimate.hasManifest = true;
         const nlohmann::json m = readJsonFile(manifest);
         readingJsonOf(manifest, [&] {
             for (const nlohmann::json& s : m.at("steps"))
@@ -23,18 +21,32 @@ CostEstimate estimateCost(const Plan& plan, const fs::path& manifest) {
                                                        s.at("wall_seconds").get<double>()};
         });
     }
+    std::vector<std::optional<double>> prices;
     for (const Step& step : plan.steps) {
         // The manifest's command starts with the tool as the run that wrote it named it (its build
         // folder); the arguments after it are what decide the work.
         const std::string arguments = " " + shellCommand(step.arguments);
         const auto found = last.find(step.id);
-        if (found == last.end() || !found->second.first.ends_with(arguments)) {
+        if (found == last.end() || !found->second.first.ends_with(arguments))
+            prices.emplace_back();
+        else
+            prices.emplace_back(found->second.second);
+    }
+    return prices;
+}
+
+CostEstimate estimateCost(const Plan& plan, const fs::path& manifest) {
+    CostEstimate estimate;
+    estimate.hasManifest = fs::is_regular_file(manifest);
+    const std::vector<std::optional<double>> prices = stepPrices(plan, manifest);
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+        if (!prices[i]) {
             ++estimate.unpriced;
             continue;
         }
         ++estimate.priced;
-        estimate.seconds += found->second.second;
-        estimate.byKind[step.kind] += found->second.second;
+        estimate.seconds += *prices[i];
+        estimate.byKind[plan.steps[i].kind] += *prices[i];
     }
     return estimate;
 }

@@ -7,7 +7,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -21,6 +23,10 @@ struct CostEstimate {
     std::size_t priced = 0, unpriced = 0;  // steps with and without a price
     bool hasManifest = false;
 };
+
+// Per step of the plan, its wall time in `manifest` when the manifest holds a step of the same id and
+// arguments; nullopt for the others, and for all when there is no such file.
+std::vector<std::optional<double>> stepPrices(const Plan& plan, const std::filesystem::path& manifest);
 
 // The plan's steps priced from `manifest` (an experiment's manifest.json). No such file: every step
 // unpriced. A manifest that is not one (bad JSON, a missing field) is a vri::Error naming it.

@@ -62,17 +62,17 @@ int usableCores() {
     return sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 0;
 }
 
-std::string hostname() {
-    char name[256] = {};
-    return gethostname(name, sizeof name - 1) == 0 ? orUnknown(name) : kUnknown;
-}
-
 std::string kernelRelease() {
     utsname info;
     return uname(&info) == 0 ? orUnknown(info.release) : kUnknown;
 }
 
 }  // namespace
+
+std::string hostName() {
+    char name[256] = {};
+    return gethostname(name, sizeof name - 1) == 0 ? orUnknown(name) : kUnknown;
+}
 
 nlohmann::json machineInfo() {
     return {{"cpu_model", orUnknown(findField("/proc/cpuinfo", "model name", ':'))},
@@ -81,7 +81,7 @@ nlohmann::json machineInfo() {
             {"memory_bytes", memoryBytes()},
             {"os", orUnknown(findField("/etc/os-release", "PRETTY_NAME", '='))},
             {"kernel", kernelRelease()},
-            {"hostname", hostname()}};
+            {"hostname", hostName()}};
 }
 
 nlohmann::json buildInfo() {

@@ -27,5 +27,7 @@ std::string shellQuote(std::string_view word);
 
 // Now, UTC, ISO 8601 to the second: "2025-01-31T23:59:59Z".
 std::string utcTimestamp();
+// This machine's host name (gethostname), "unknown" when it has none.
+std::string hostName();
 
 }  // namespace vri

@@ -1,0 +1,121 @@
+// sbatch, squeue and scancel as argument vectors, and what they print read back.
+#include "libvri/experiment/slurm_commands.h"
+
+#include <algorithm>
+#include <charconv>
+#include <set>
+#include <sstream>
+
+#include "libvri/util/error.h"
+#include "libvri/util/printable.h"
+#include "libvri/util/process.h"
+
+namespace vri {
+
+namespace {
+
+// squeue's fields, '|' after each (no field holds one): the format squeueArguments asks for.
+constexpr const char* kSqueueFormat = "JobID:|,State:|,exit_code:|,NodeList:|,Reason:|";
+constexpr std::size_t kSqueueFields = 5;
+
+std::filesystem::path slurmProgram(const std::string& name) {
+    const auto program = findProgram(name);
+    if (!program)
+        throw Error(name + ": not found in PATH (--executor slurm needs Slurm's client commands: sbatch, squeue, scancel)");
+    return *program;
+}
+
+// The line of `output` that says why a command failed: its first "error:" line, else its first line.
+std::string firstErrorLine(const std::string& output) {
+    std::istringstream lines(output);
+    std::string line, first;
+    while (std::getline(lines, line)) {
+        if (first.empty()) first = line;
+        if (line.find("error:") != std::string::npos) return line;
+    }
+    return first.empty() ? "no output" : first;
+}
+
+}  // namespace
+
+bool isFinalJobState(const std::string& state) {
+    static const std::set<std::string> final{"COMPLETED", "FAILED",        "TIMEOUT",   "CANCELLED", "PREEMPTED",
+                                             "NODE_FAIL", "OUT_OF_MEMORY", "BOOT_FAIL", "DEADLINE"};
+    return final.contains(state);
+}
+
+std::vector<std::string> squeueArguments(const std::vector<std::string>& jobIds) {
+    std::string list;
+    for (const std::string& id : jobIds) list += (list.empty() ? "" : ",") + id;
+    return {"squeue", "--noheader", "--states=all", "--jobs=" + list, "--Format=" + std::string(kSqueueFormat)};
+}
+
+std::map<std::string, SlurmJob> parseSqueue(const std::string& output) {
+    std::map<std::string, SlurmJob> jobs;
+    std::istringstream lines(output);
+    std::string line;
+    while (std::getline(lines, line)) {
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        std::vector<std::string> fields;
+        std::size_t start = 0;
+        for (std::size_t bar; (bar = line.find('|', start)) != std::string::npos; start = bar + 1)
+            fields.push_back(line.substr(start, bar - start));
+        const auto trim = [](std::string& s) {
+            s.erase(0, s.find_first_not_of(' '));
+            s.erase(s.find_last_not_of(' ') + 1);
+        };
+        for (std::string& f : fields) trim(f);
+        int status = 0;
+        if (fields.size() != kSqueueFields || fields[0].empty() ||
+            std::from_chars(fields[2].data(), fields[2].data() + fields[2].size(), status).ec != std::errc{})
+            throw Error("squeue printed a line vri-run cannot read: " + printable(line));
+        // A cancelled job may read "CANCELLED by 0"; the state is the first word.
+        const std::string state = fields[1].substr(0, fields[1].find(' '));
+        jobs[fields[0]] = {fields[0], state, status, fields[3], fields[4]};
+    }
+    return jobs;
+}
+
+std::string parseSbatchJobId(const std::string& output) {
+    std::istringstream lines(output);
+    std::string line;
+    while (std::getline(lines, line)) {
+        const std::string id = line.substr(0, line.find(';'));
+        if (!id.empty() && std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) return id;
+    }
+    throw Error("sbatch printed no job id: " + printable(firstErrorLine(output)));
+}
+
+std::string submitJob(const std::vector<std::string>& arguments) {
+    std::vector<std::string> words{"sbatch", "--parsable"};
+    words.insert(words.end(), arguments.begin(), arguments.end());
+    const auto [status, output] =
+        captureProcess(slurmProgram("sbatch"), words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true});
+    if (!status.ok()) throw Error("sbatch refused the job (" + status.describe() + "): " + printable(firstErrorLine(output)));
+    return parseSbatchJobId(output);
+}
+
+std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds) {
+    if (jobIds.empty()) return {};
+    const auto [status, output] = captureProcess(slurmProgram("squeue"), squeueArguments(jobIds),
+                                                 {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true});
+    if (!status.ok()) {
+        // squeue lists the ids it knows and skips the others, but fails when it knows none of them.
+        if (output.find("Invalid job id") != std::string::npos) return {};
+        throw Error("squeue failed (" + status.describe() + "): " + printable(firstErrorLine(output)));
+    }
+    return parseSqueue(output);
+}
+
+void cancelJobs(const std::vector<std::string>& jobIds) {
+    if (jobIds.empty()) return;
+    std::vector<std::string> words{"scancel"};
+    words.insert(words.end(), jobIds.begin(), jobIds.end());
+    try {
+        runProcess(slurmProgram("scancel"), words, {.in = "/dev/null", .out = "/dev/null", .err = "/dev/null", .errToOut = false});
+    } catch (const Error&) {
+        // scancel is missing or cannot start: nothing more can be done for these jobs from here.
+    }
+}
+
+}  // namespace vri

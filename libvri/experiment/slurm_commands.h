@@ -1,0 +1,41 @@
+#pragma once
+// Slurm's own commands, as vri-run uses them: sbatch to submit, squeue to watch, scancel to cancel.
+// Every word goes to them as an argument vector (util/process.h), never through a shell. Slurm's
+// commands find their cluster as usual (SLURM_CONF, /etc/slurm/slurm.conf).
+#include <map>
+#include <string>
+#include <vector>
+
+namespace vri {
+
+// A job as squeue shows it.
+struct SlurmJob {
+    std::string id;
+    std::string state;   // PENDING, RUNNING, COMPLETED, FAILED, TIMEOUT, CANCELLED, ...
+    int exitStatus = 0;  // squeue's exit_code: the batch script's wait status (code << 8 | signal)
+    std::string node;    // the node list, empty while pending
+    std::string reason;  // why it waits or ended: None, Dependency, DependencyNeverSatisfied, NonZeroExitCode, ...
+};
+
+// True for a state a job does not leave: COMPLETED, FAILED, TIMEOUT, CANCELLED, PREEMPTED (not
+// requeued), NODE_FAIL, OUT_OF_MEMORY, BOOT_FAIL, DEADLINE. COMPLETING is not: its epilog still runs.
+bool isFinalJobState(const std::string& state);
+
+// squeue's arguments for these jobs, in every state it still knows them (--states=all), one line each.
+std::vector<std::string> squeueArguments(const std::vector<std::string>& jobIds);
+// The jobs in squeue's output for squeueArguments(), by id. A line that is not one is a vri::Error.
+std::map<std::string, SlurmJob> parseSqueue(const std::string& output);
+
+// The job id sbatch --parsable printed ("12" or "12;cluster"). Anything else is a vri::Error.
+std::string parseSbatchJobId(const std::string& output);
+
+// Runs sbatch with `arguments` (options, then the script and its arguments) and returns the job id.
+// A refusal is a vri::Error with sbatch's own first line.
+std::string submitJob(const std::vector<std::string>& arguments);
+// The jobs' states; a job squeue no longer knows is absent from the map. squeue failing otherwise (the
+// controller not answering) is a vri::Error.
+std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds);
+// scancel for these jobs; errors are ignored (a job may have ended meanwhile).
+void cancelJobs(const std::vector<std::string>& jobIds);
+
+}  // namespace vri

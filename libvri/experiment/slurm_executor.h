@@ -1,0 +1,31 @@
+#pragma once
+// vri-run's Slurm executor (README "On a cluster"): the steps that must run are submitted at once
+// as batch jobs, bundled by their price (slurm_jobs.h), each job depending on the jobs that write its
+// inputs (--dependency=afterok), so that the cluster, not vri-run, orders the work. Each job runs
+// `vri-run --slurm-node-steps` (slurm_node.h), which runs the exact commands of the local executor
+// and leaves a status file per step; vri-run watches the jobs with squeue and, as each ends, records
+// its steps in the step cache and the manifest as the local executor does, with the job's id, node
+// and state. Caching, the manifest and the images are the local executor's: the same commands on
+// the same files.
+#include <filesystem>
+#include <vector>
+
+#include "libvri/experiment/experiment_run.h"
+
+namespace vri {
+
+// Runs the plan on Slurm. A step whose dependencies all come from the cache is looked up in the cache
+// as locally; one downstream of a step that runs is submitted too (its inputs do not exist yet to be
+// compared). A job that fails, times out, is preempted or cancelled fails its steps with one line
+// naming the job and Slurm's state; the jobs that depend on it are cancelled and their steps do not
+// run. SIGINT, SIGTERM or SIGHUP to vri-run cancels every job it submitted (scancel) and waits for
+// them to end before it returns with a vri::Error.
+std::vector<StepOutcome> runPlanOnSlurm(const Plan& plan, const RunOptions& options, FileHasher& hasher);
+
+// Once per run, before any plan is submitted: one small job checks that a compute node sees the
+// tools (SHA-512), the plans' existing inputs (sizes) and `resultsRoot` (it writes its report there)
+// as this host does. Anything else is a vri::Error with the first problem.
+void checkSlurmNodes(const std::vector<Plan>& plans, const std::filesystem::path& resultsRoot,
+                     const RunOptions& options, FileHasher& hasher);
+
+}  // namespace vri

@@ -1,0 +1,91 @@
+// Bundles of steps and what their Slurm jobs ask for.
+#include "libvri/experiment/slurm_jobs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <system_error>
+
+#include "libvri/util/parse.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A render or a command may run for hours: without a price it is never bundled.
+bool mayBeLong(const Step& step) { return step.kind == "render" || step.kind == "command"; }
+
+// The word after `option` in the step's arguments, or "".
+std::string argumentAfter(const Step& step, const std::string& option) {
+    const auto found = std::find(step.arguments.begin(), step.arguments.end(), option);
+    return found != step.arguments.end() && found + 1 != step.arguments.end() ? *(found + 1) : "";
+}
+
+int stepCpus(const Step& step, int defaultCpus) {
+    if (const std::string threads = argumentAfter(step, "--threads"); !threads.empty())
+        return parseCount(threads, "step '" + step.id + "' --threads", 1);
+    return mayBeLong(step) ? defaultCpus : 1;
+}
+
+// In double: an estimate for the scheduler, where a size beyond 2^53 bytes only needs to stay huge.
+long long stepMemoryMiB(const Step& step) {
+    constexpr double kMiB = 1 << 20;
+    double bytes = 256 * kMiB;
+    for (const fs::path& input : step.inputs) {
+        std::error_code ec;
+        const std::uintmax_t size = fs::file_size(input, ec);
+        if (!ec) bytes += 8.0 * static_cast<double>(size);
+    }
+    if (const std::string size = argumentAfter(step, "--size"); !size.empty()) {
+        const glm::ivec2 pixels = parseSize(size, "step '" + step.id + "' --size");
+        bytes += 64.0 * pixels.x * pixels.y;
+    }
+    return static_cast<long long>(std::ceil(std::min(bytes, 1e18) / kMiB));
+}
+
+}  // namespace
+
+std::vector<JobBundle> bundleSteps(const Plan& plan, const std::vector<std::size_t>& steps,
+                                   const std::vector<std::optional<double>>& prices, double bundleSeconds) {
+    std::vector<JobBundle> bundles;
+    JobBundle open;  // small steps gathering
+    const auto close = [&] {
+        if (!open.steps.empty()) bundles.push_back(std::move(open));
+        open = {};
+    };
+    for (std::size_t i : steps) {
+        const std::optional<double> price = i < prices.size() ? prices[i] : std::nullopt;
+        const bool alone = price ? *price >= bundleSeconds : mayBeLong(plan.steps[i]) || bundleSeconds <= 0;
+        if (alone) {
+            // Bundles stay contiguous in plan order, so that no job waits for one submitted after it.
+            close();
+            bundles.push_back({{i}, price.value_or(0), price.has_value()});
+            continue;
+        }
+        open.steps.push_back(i);
+        open.seconds += price.value_or(1);
+        open.priced = open.priced && price.has_value();
+        if (open.seconds >= bundleSeconds) close();
+    }
+    close();
+    return bundles;
+}
+
+JobResources jobResources(const Plan& plan, const JobBundle& bundle, int defaultCpus) {
+    JobResources resources;
+    for (std::size_t i : bundle.steps) {
+        resources.cpus = std::max(resources.cpus, stepCpus(plan.steps[i], defaultCpus));
+        resources.memoryMiB = std::max(resources.memoryMiB, stepMemoryMiB(plan.steps[i]));
+    }
+    if (bundle.priced) resources.minutes = static_cast<long long>(std::ceil((2 * bundle.seconds + 300) / 60));
+    return resources;
+}
+
+std::string jobName(const Plan& plan, const JobBundle& bundle) {
+    std::string name = "vri:" + plan.resultsDir.filename().string() + ":" + plan.steps.at(bundle.steps.front()).id;
+    if (bundle.steps.size() > 1) name.append(1, '+').append(std::to_string(bundle.steps.size() - 1));
+    return name;
+}
+
+}  // namespace vri

@@ -1,0 +1,117 @@
+// The steps of a run: cache decisions, records of steps that ran, progress and the first failure.
+#include "libvri/experiment/step_ledger.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "libvri/io/provenance.h"
+#include "libvri/util/error.h"
+#include "libvri/util/file_text.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+StepLedger::StepLedger(const Plan& plan, const RunOptions& options, FileHasher& hasher)
+    : plan_(plan), options_(options), hasher_(hasher), outcomes_(plan.steps.size()),
+      settled_(plan.steps.size(), false), keys_(stepKeys(plan, options.toolDir, hasher)),
+      showProgress_(::isatty(STDERR_FILENO)) {
+    for (const Step& step : plan.steps) programs_.push_back(options.toolDir / step.tool);
+}
+
+void StepLedger::settle(std::size_t i, StepOutcome::State state, const std::string& how) {
+    settled_[i] = true;
+    outcomes_[i].state = state;
+    ++settledCount_;
+    if (!showProgress_) return;
+    std::fprintf(stderr, "[%zu/%zu] %s %s (%s)\n", settledCount_, plan_.steps.size(), plan_.steps[i].tool.c_str(),
+                 plan_.steps[i].id.c_str(), how.c_str());
+}
+
+void StepLedger::settleUnavailable(std::size_t i) { settle(i, StepOutcome::State::Unavailable, "not built, skipped"); }
+
+bool StepLedger::needsRun(std::size_t i) {
+    for (std::size_t d : plan_.dependencies[i])
+        if (outcomes_[d].state == StepOutcome::State::Unavailable) {
+            settleUnavailable(i);
+            return false;
+        }
+    const Step& step = plan_.steps[i];
+    if (!fs::is_regular_file(programs_[i])) {
+        if (missingTools_.insert(step.tool).second)
+            std::cerr << "vri-run: warning: " << programs_[i].string() << " is not built; its steps are skipped\n";
+        settleUnavailable(i);
+        return false;
+    }
+    if (!options_.force) {
+        if (auto last = readRecord(recordPath(plan_, step)); last && recordIsCurrent(*last, keys_[i], plan_, step, hasher_)) {
+            outcomes_[i].record = *last;
+            settle(i, StepOutcome::State::Cached, "cached");
+            return false;
+        }
+    }
+    return true;
+}
+
+fs::path StepLedger::logPath(std::size_t i) const {
+    fs::path log = recordPath(plan_, plan_.steps[i]);
+    return log.replace_extension(".log");
+}
+
+std::vector<std::string> StepLedger::prepare(std::size_t i) {
+    const fs::path record = recordPath(plan_, plan_.steps[i]);
+    fs::remove(record);
+    fs::create_directories(record.parent_path());
+    std::vector<std::string> words = commandWords(plan_, plan_.steps[i], options_.toolDir);
+    outcomes_[i].record.command = shellCommand(words);
+    return words;
+}
+
+void StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecution& execution) {
+    const Step& step = plan_.steps[i];
+    StepRecord& record = outcomes_[i].record;
+    record.wallSeconds = wallSeconds;
+    record.execution = execution;
+    for (const fs::path& out : step.outputs) hasher_.forget(out);
+    record.key = keys_[i];
+    record.inputs = digestFiles(plan_, step.inputs, hasher_);
+    record.outputs = digestFiles(plan_, step.outputs, hasher_);
+    record.ranUtc = utcTimestamp();
+    for (const FileDigest& out : record.outputs)
+        if (out.sha512 == "missing") {
+            failed(i, "succeeded but did not write " + out.path, wallSeconds);
+            return;
+        }
+    // Its outputs are sound whatever else failed: a rerun need not make them again.
+    writeRecord(recordPath(plan_, step), record);
+    fs::remove(logPath(i));
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2f s", wallSeconds);
+    std::string how = seconds;
+    if (!execution.jobId.empty()) how += ", job " + execution.jobId + " on " + execution.node;
+    settle(i, StepOutcome::State::Ran, how);
+}
+
+void StepLedger::failed(std::size_t i, const std::string& why, double wallSeconds) {
+    outcomes_[i].record.wallSeconds = wallSeconds;
+    if (failure_.empty())
+        failure_ = "step '" + plan_.steps[i].id + "' " + why + ":\n  " + outcomes_[i].record.command + "\n" +
+                   tryReadFileText(logPath(i)).value_or("");
+    settled_[i] = true;
+    ++settledCount_;
+}
+
+void StepLedger::abandoned(std::size_t i, const std::string& why) {
+    if (failure_.empty()) failure_ = "step '" + plan_.steps[i].id + "' did not run: " + why;
+    settled_[i] = true;
+    ++settledCount_;
+}
+
+std::vector<StepOutcome> StepLedger::result() const {
+    if (!failure_.empty()) throw Error(failure_);
+    return outcomes_;
+}
+
+}  // namespace vri

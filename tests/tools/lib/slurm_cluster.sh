@@ -1,0 +1,90 @@
+# Sourced by the Slurm tests: a real single-node Slurm cluster from Debian's slurm-wlm and munge, all of
+# it in $1 (configuration, key, sockets, state, logs), on loopback ports of its own; SLURM_CONF points the
+# client commands at it. Nothing of the machine's own Slurm or munge is read or touched. The daemons are
+# stopped by the pids they wrote when the test exits.
+#   start_slurm_cluster DIR   exits 77 (skip) with one line when the daemons cannot start here
+
+slurm_daemon_pids=()
+
+stop_slurm_cluster() {
+    local pid
+    for pid in "${slurm_daemon_pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+    for pid in "${slurm_daemon_pids[@]}"; do
+        for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+        kill -9 "$pid" 2>/dev/null || true
+    done
+    slurm_daemon_pids=()
+}
+
+# The pid a daemon wrote to FILE, waited for up to 10 s, added to those stopped at exit.
+slurm_daemon_pid() {
+    local file=$1 what=$2
+    for _ in $(seq 100); do [ -s "$file" ] && break; sleep 0.1; done
+    [ -s "$file" ] || { echo "SKIP: $what did not start (see $(dirname "$file")/log)"; exit 77; }
+    slurm_daemon_pids+=("$(cat "$file")")
+}
+
+start_slurm_cluster() {
+    local dir=$1 program
+    for program in munged slurmctld slurmd sbatch squeue scancel; do
+        command -v "$program" > /dev/null || { echo "SKIP: $program is not installed (make deps installs slurm-wlm and munge)"; exit 77; }
+    done
+    [ "$(id -u)" -eq 0 ] || { echo "SKIP: slurmd runs jobs as their users and needs root to start"; exit 77; }
+    trap stop_slurm_cluster EXIT
+    mkdir -p "$dir/munge" "$dir/state" "$dir/spool" "$dir/log"
+    chmod 700 "$dir/munge"
+    head -c 1024 /dev/urandom > "$dir/munge/munge.key"
+    chmod 400 "$dir/munge/munge.key"
+    munged --force --key-file="$dir/munge/munge.key" --socket="$dir/munge/socket" --pid-file="$dir/munge/munged.pid" \
+        --log-file="$dir/log/munged.log" --seed-file="$dir/munge/seed" \
+        || { echo "SKIP: munged cannot start here (see $dir/log/munged.log)"; exit 77; }
+    slurm_daemon_pid "$dir/munge/munged.pid" munged
+
+    # Two ports no other service of this machine listens on, from a range above the usual ones.
+    local port node=vri-test-node
+    port=$(( 20000 + (RANDOM % 20000) * 2 ))
+    while ss -ltn 2>/dev/null | grep -qE ":($port|$((port + 1)))\b"; do port=$((port + 2)); done
+    local memory=$(( $(awk '/^MemTotal:/ {print $2}' /proc/meminfo) / 1024 - 512 ))
+    cat > "$dir/slurm.conf" <<EOF
+ClusterName=vritest
+SlurmctldHost=localhost(127.0.0.1)
+SlurmctldPort=$port
+SlurmdPort=$((port + 1))
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+AuthInfo=socket=$dir/munge/socket
+CredType=cred/munge
+StateSaveLocation=$dir/state
+SlurmdSpoolDir=$dir/spool
+SlurmctldPidFile=$dir/slurmctld.pid
+SlurmdPidFile=$dir/slurmd.pid
+SlurmctldLogFile=$dir/log/slurmctld.log
+SlurmdLogFile=$dir/log/slurmd.log
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+JobCompType=jobcomp/none
+SchedulerType=sched/backfill
+SelectType=select/cons_tres
+SelectTypeParameters=CR_Core_Memory
+MpiDefault=none
+ReturnToService=2
+MinJobAge=3600
+PropagateResourceLimits=NONE
+NodeName=$node NodeAddr=127.0.0.1 NodeHostname=$node CPUs=$(nproc) RealMemory=$memory State=UNKNOWN
+PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP
+EOF
+    export SLURM_CONF=$dir/slurm.conf
+    slurmctld -i > "$dir/log/slurmctld.out" 2>&1 || { echo "SKIP: slurmctld cannot start here (see $dir/log)"; exit 77; }
+    slurm_daemon_pid "$dir/slurmctld.pid" slurmctld
+    slurmd -N "$node" > "$dir/log/slurmd.out" 2>&1 || { echo "SKIP: slurmd cannot start here (see $dir/log)"; exit 77; }
+    slurm_daemon_pid "$dir/slurmd.pid" slurmd
+    for _ in $(seq 100); do
+        [ "$(sinfo --noheader --format=%T 2>/dev/null)" = idle ] && return 0
+        sleep 0.2
+    done
+    echo "SKIP: the test cluster's node did not come up (see $dir/log)"
+    exit 77
+}

@@ -1,0 +1,186 @@
+#!/usr/bin/env bash
+# vri-run --executor slurm against a real single-node Slurm cluster (tests/tools/lib/slurm_cluster.sh):
+# images and every other output bitwise those of --executor local and manifests equal but for where and
+# when steps ran; dependencies respected (no diff starts before its renders end); a job cancelled with
+# scancel fails its step and its dependents with the job's id and state, and a rerun completes; SIGTERM
+# to vri-run cancels its jobs and leaves no partial output; bundled steps share jobs; a results folder
+# the compute node does not see is refused before anything is submitted.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_cluster.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+bin=${VRI_BIN:?}
+python=/usr/bin/python3
+start_slurm_cluster "$PWD/cluster"
+
+cat > tf.yaml <<'YAML'
+points:
+  - [0.0, 0.0, 0.0, 0.0, 0.0]
+  - [0.5, 0.9, 0.3, 0.1, 2.0]
+  - [1.0, 0.2, 0.4, 1.0, 0.8]
+YAML
+# Two placements and the exact method on the linear field, a diff of each against the corner placement,
+# a table of the diffs: every kind of step and a dependency between them.
+cat > exp.yaml <<'YAML'
+name: small
+title: A small study on the test cluster
+paper: {paper: A, item: Fig. 4, says: a test}
+scenes:
+  cube: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [40, 30],
+         camera: {eye: [-8, 4, 1], target: [0, 0, 0], up: [0, 0, 1]}}
+methods:
+  riemann: {placement: [entry, entry-exit-corner], rate: 2}
+  exact: {eps: 1e-6}
+comparisons:
+  vs-corner: {reference: riemann-entry-exit-corner, diff_image: png}
+tables:
+  metrics: {title: "against the corner placement", comparisons: [vs-corner]}
+YAML
+summary() { grep "vri-run: small:" "$1"; }
+slurm=("$bin/vri-run" --executor slurm --slurm-poll 0.2)
+
+# The same study on both executors, into the same results path one after the other.
+"$bin/vri-run" --results res exp.yaml 2> local.txt || { cat local.txt; fail "the local run failed"; }
+mv res local
+"${slurm[@]}" --slurm-bundle 0 --results res exp.yaml 2> slurm.txt || { cat slurm.txt; fail "the Slurm run failed"; }
+summary slurm.txt | grep -q "steps, [1-9][0-9]* ran, 0 cached" || { cat slurm.txt; fail "the Slurm run ran nothing"; }
+grep -q "Slurm jobs" slurm.txt || { cat slurm.txt; fail "the Slurm run did not say which jobs it submitted"; }
+# Images bitwise (pixels: a header holds its provenance, with times), PNGs and tables byte for byte.
+same_outputs() {  # same_outputs DIR-A DIR-B
+    local file name
+    for file in "$1"/*; do
+        name=$(basename "$file")
+        case "$name" in
+            *.exr) "$bin/vri-diff" "$file" "$2/$name" --fail 0 > /dev/null || fail "$name: pixels differ between $1 and $2" ;;
+            *.png|*.csv|*.md) cmp "$file" "$2/$name" || fail "$name differs between $1 and $2" ;;
+        esac
+    done
+}
+same_outputs local/small res/small
+# Manifests: equal but for hosts, job ids, times (the stats files hold the frame times, so their digests
+# differ too) and the executor; every Slurm step names its job.
+"$python" - local/small/manifest.json res/small/manifest.json <<'PY' || fail "the manifests differ beyond where and when"
+import json, sys
+def strip(m):
+    m.pop("machine")
+    for s in m["steps"]:
+        for k in ("execution", "wall_seconds", "ran_utc"):
+            s.pop(k)
+        for f in s["inputs"] + s["outputs"]:
+            if f["path"].endswith(".json"):
+                f.pop("sha512")
+    return m
+local, slurm = (json.load(open(p)) for p in sys.argv[1:])
+for s in slurm["steps"]:
+    e = s["execution"]
+    assert e["executor"] == "slurm" and e["job_id"].isdigit() and e["job_state"] == "COMPLETED" and e["node"], e
+assert all(s["execution"]["executor"] == "local" for s in local["steps"])
+assert strip(local) == strip(slurm)
+PY
+
+# Dependencies: with a job per step, every diff started after the renders it compares had ended.
+"$python" - res/small <<'PY' || fail "a step started before a step it depends on ended"
+import json, sys, glob, os
+d = sys.argv[1]
+status = {os.path.basename(p)[:-len(".status.json")]: json.load(open(p)) for p in glob.glob(d + "/.steps/*.status.json")}
+manifest = json.load(open(d + "/manifest.json"))
+writer = {o["path"]: s["id"] for s in manifest["steps"] for o in s["outputs"]}
+checked = 0
+for s in manifest["steps"]:
+    for i in s["inputs"]:
+        if i["path"] in writer:
+            up = status[writer[i["path"]]]
+            assert status[s["id"]]["started_epoch"] >= up["ended_epoch"], (s["id"], writer[i["path"]])
+            checked += 1
+assert checked >= 4, checked
+PY
+
+# Nothing changed: a second Slurm run submits nothing; a local run then finds everything cached too.
+"${slurm[@]}" --results res exp.yaml 2> again.txt || { cat again.txt; fail "the cached Slurm run failed"; }
+summary again.txt | grep -q "0 ran" || { cat again.txt; fail "a cached step ran again on Slurm"; }
+! grep -q "Slurm jobs" again.txt || { cat again.txt; fail "a fully cached run submitted jobs"; }
+
+# Bundled: the cheap steps of a priced plan share jobs (the default bundle of 60 s holds them all).
+"${slurm[@]}" --force --results res exp.yaml 2> bundled.txt || { cat bundled.txt; fail "the bundled run failed"; }
+steps=$(summary bundled.txt | sed 's/.*: \([0-9]*\) steps.*/\1/')
+grep -q "$steps steps in 1 Slurm jobs" bundled.txt || { cat bundled.txt; fail "the priced steps were not bundled"; }
+same_outputs local/small res/small
+
+# A slow render (about 15 s) and a diff that needs it.
+cat > slow.yaml <<'YAML'
+name: slow
+title: One slow render and a diff that needs it
+paper: {paper: A, item: Fig. 4, says: a test}
+scenes:
+  cube: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [64, 48]}
+methods:
+  riemann: {placement: [entry-exit-corner], rate: [2, 400000]}
+comparisons:
+  vs-fine: {reference: riemann-entry-exit-corner-r400000}
+YAML
+slow_job=vri:slow:riemann-entry-exit-corner-r400000
+# Starts the slow study on Slurm in the background ($run) and waits until the slow render's job runs ($job).
+start_slow() {
+    "${slurm[@]}" --slurm-bundle 0 --results res slow.yaml 2> "$1" &
+    run=$!
+    job=
+    for _ in $(seq 600); do
+        job=$(squeue --noheader --states=RUNNING --name="$slow_job" --format=%i 2>/dev/null || true)
+        [ -n "$job" ] && return 0
+        sleep 0.1
+    done
+    kill "$run"
+    cat "$1"
+    fail "the slow render's job never ran"
+}
+no_partial_outputs() {
+    ! ls res/slow/riemann-entry-exit-corner-r400000.* > /dev/null 2>&1 || fail "the cancelled render left an output"
+    [ -z "$(find res/slow -name '*.tmp.*')" ] || fail "a temporary file was left: $(find res/slow -name '*.tmp.*')"
+}
+
+# scancel of the slow job: its step fails naming the job and its state, the diff after it does not run.
+start_slow cancelled.txt
+scancel "$job"
+if wait "$run"; then fail "vri-run succeeded although its job was cancelled"; fi
+grep -q "step 'riemann-entry-exit-corner-r400000' failed: Slurm job $job CANCELLED" cancelled.txt ||
+    { cat cancelled.txt; fail "no line naming the cancelled job and its state"; }
+[ ! -e res/slow/vs-fine-riemann-entry-exit-corner-r2.json ] || fail "the diff ran although its render was cancelled"
+[ ! -e res/slow/manifest.json ] || fail "a failed run wrote a manifest"
+no_partial_outputs
+
+# SIGTERM to vri-run: every job it submitted is cancelled, and nothing is left half-written.
+start_slow terminated.txt
+kill -TERM "$run"
+if wait "$run"; then fail "vri-run exited 0 after SIGTERM"; fi
+grep -q "interrupted by SIGTERM: cancelled Slurm jobs" terminated.txt || { cat terminated.txt; fail "SIGTERM did not say what it cancelled"; }
+[ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "jobs are left after SIGTERM"; }
+no_partial_outputs
+
+# A rerun completes, running only what is missing (the fast render was cached by the runs above).
+"${slurm[@]}" --results res slow.yaml 2> rerun.txt || { cat rerun.txt; fail "the rerun failed"; }
+summary_slow=$(grep "vri-run: slow:" rerun.txt)
+[[ $summary_slow == *"3 steps, 2 ran, 1 cached"* ]] || { cat rerun.txt; fail "the rerun did not run just what was missing"; }
+"$bin/vri-run" --results local slow.yaml 2> /dev/null
+same_outputs local/slow res/slow
+
+# What the compute node does not see as vri-run does is refused before anything is submitted. vri-run
+# runs in a mount namespace of its own (unshare), where a path shows something else than on the node.
+if unshare --mount --propagation private true 2> /dev/null; then
+    # The results folder: vri-run sees a fresh tmpfs where the node sees the scratch folder's own.
+    mkdir -p hidden
+    if unshare --mount --propagation private sh -c 'mount -t tmpfs none "$1" && shift && exec "$@"' sh "$PWD/hidden" \
+        "${slurm[@]}" --results "$PWD/hidden" exp.yaml 2> unshared.txt; then
+        fail "vri-run ran on a results folder the compute node does not see"
+    fi
+    [ "$(wc -l < unshared.txt)" -eq 1 ] || { cat unshared.txt; fail "the refusal is not one line"; }
+    grep -q "/hidden: the Slurm check job could not leave its report in this results folder" unshared.txt || { cat unshared.txt; fail "the refusal does not name the results folder"; }
+    # A tool: vri-run's vri-diff differs from the one the node runs.
+    mkdir -p tools && cp "$bin"/vri-* tools/ && cp tools/vri-diff changed-vri-diff && echo >> changed-vri-diff
+    if unshare --mount --propagation private sh -c 'mount --bind "$1" "$2" && shift 2 && exec "$@"' sh \
+        "$PWD/changed-vri-diff" "$PWD/tools/vri-diff" tools/vri-run --executor slurm --slurm-poll 0.2 --results res2 exp.yaml 2> tool.txt; then
+        fail "vri-run ran with a tool the compute node sees differently"
+    fi
+    grep -q "tools/vri-diff: differs on node .* from vri-run's host" tool.txt || { cat tool.txt; fail "the refusal does not name the tool"; }
+    [ ! -e res2/small ] || fail "jobs were submitted although the check failed"
+else
+    echo "note: unshare cannot make a mount namespace here: the cases of paths the node does not share are not run"
+fi
+echo "slurm: OK"

@@ -1,0 +1,88 @@
+// How the Slurm executor cuts steps into jobs and what the jobs ask for, and how it reads what
+// Slurm's commands print.
+#include <doctest/doctest.h>
+
+#include "libvri/experiment/slurm_commands.h"
+#include "libvri/experiment/slurm_jobs.h"
+#include "libvri/util/error.h"
+
+namespace {
+
+vri::Step step(const std::string& id, const std::string& kind, std::vector<std::string> arguments = {}) {
+    return vri::Step{id, kind, "vri-x", std::move(arguments), {}, {}, {}};
+}
+
+std::vector<std::vector<std::size_t>> stepsOf(const std::vector<vri::JobBundle>& bundles) {
+    std::vector<std::vector<std::size_t>> steps;
+    for (const vri::JobBundle& b : bundles) steps.push_back(b.steps);
+    return steps;
+}
+
+}  // namespace
+
+TEST_CASE("bundleSteps packs cheap steps in plan order and keeps long or unpriced renders alone") {
+    vri::Plan plan{"/r/exp", "/r", {}, {}};
+    plan.steps = {step("a", "render"), step("b", "render"), step("c", "render"), step("d", "diff"),
+                  step("e", "diff"),   step("f", "table"),  step("g", "render"), step("h", "figure")};
+    const std::vector<std::optional<double>> prices{1.0, 2.0, 100.0, 0.5, 0.5, std::nullopt, std::nullopt, 0.1};
+    const std::vector<std::size_t> all{0, 1, 2, 3, 4, 5, 6, 7};
+
+    // c costs more than a bundle: alone, and it closes the bundle before it so jobs stay in plan order.
+    // g is an unpriced render: alone. f is an unpriced table: 1 s in its bundle.
+    CHECK(stepsOf(vri::bundleSteps(plan, all, prices, 60)) ==
+          std::vector<std::vector<std::size_t>>{{0, 1}, {2}, {3, 4, 5}, {6}, {7}});
+    // A bundle closes once it holds its seconds.
+    CHECK(stepsOf(vri::bundleSteps(plan, {0, 1, 3, 4, 7}, prices, 2.5)) ==
+          std::vector<std::vector<std::size_t>>{{0, 1}, {3, 4, 7}});
+    // 0: a job per step.
+    CHECK(vri::bundleSteps(plan, all, prices, 0).size() == 8);
+    // Only the steps asked for.
+    CHECK(stepsOf(vri::bundleSteps(plan, {6, 7}, prices, 60)) == std::vector<std::vector<std::size_t>>{{6}, {7}});
+    const auto bundles = vri::bundleSteps(plan, all, prices, 60);
+    CHECK(bundles[0].seconds == doctest::Approx(3.0));
+    CHECK(bundles[0].priced);
+    CHECK(!bundles[2].priced);
+}
+
+TEST_CASE("jobResources: threads, memory from the image size, time from the price") {
+    vri::Plan plan{"/r/exp", "/r", {}, {}};
+    plan.steps = {step("a", "render", {"--size", "1000x1000", "--threads", "3"}), step("b", "render", {"--size", "10x10"}),
+                  step("c", "diff")};
+    const vri::JobResources a = vri::jobResources(plan, {{0}, 90, true}, 2);
+    CHECK(a.cpus == 3);
+    CHECK(a.memoryMiB == 256 + 62);  // 64 bytes a pixel: 64e6 bytes, 61.04 MiB, rounded up with the 256
+    REQUIRE(a.minutes);
+    CHECK(*a.minutes == 8);  // (2 * 90 + 300) / 60 = 8
+    CHECK(vri::jobResources(plan, {{1}, 0, false}, 2).cpus == 2);
+    CHECK(!vri::jobResources(plan, {{1}, 0, false}, 2).minutes);
+    CHECK(vri::jobResources(plan, {{2}, 1, true}, 2).cpus == 1);
+    CHECK(vri::jobResources(plan, {{1, 2, 0}, 1, true}, 2).cpus == 3);  // the bundle's largest
+    CHECK(vri::jobName(plan, {{1, 2}, 1, true}) == "vri:exp:b+1");
+    CHECK(vri::jobName(plan, {{0}, 1, true}) == "vri:exp:a");
+}
+
+TEST_CASE("parseSqueue reads squeue's fields and refuses what is not a job line") {
+    const auto jobs = vri::parseSqueue("12|COMPLETED|0|node1|None|\n"
+                                       "13|FAILED|768|node2|NonZeroExitCode|\n"
+                                       "14|CANCELLED by 0|0||DependencyNeverSatisfied|\n"
+                                       "\n");
+    REQUIRE(jobs.size() == 3);
+    CHECK(jobs.at("12").state == "COMPLETED");
+    CHECK(jobs.at("12").node == "node1");
+    CHECK(jobs.at("13").exitStatus == 768);
+    CHECK(jobs.at("14").state == "CANCELLED");
+    CHECK(jobs.at("14").reason == "DependencyNeverSatisfied");
+    CHECK_THROWS_AS(vri::parseSqueue("12|COMPLETED|0\n"), vri::Error);
+    CHECK_THROWS_AS(vri::parseSqueue("12|COMPLETED|x|n|None|\n"), vri::Error);
+    CHECK(vri::isFinalJobState("TIMEOUT"));
+    CHECK(vri::isFinalJobState("PREEMPTED"));
+    CHECK(!vri::isFinalJobState("COMPLETING"));
+    CHECK(!vri::isFinalJobState("PENDING"));
+}
+
+TEST_CASE("parseSbatchJobId takes --parsable's id, with or without the cluster") {
+    CHECK(vri::parseSbatchJobId("42\n") == "42");
+    CHECK(vri::parseSbatchJobId("sbatch: warning: something\n43;cluster\n") == "43");
+    CHECK_THROWS_WITH_AS(vri::parseSbatchJobId("sbatch: error: Batch job submission failed\n"),
+                         doctest::Contains("sbatch: error: Batch job submission failed"), vri::Error);
+}
