@@ -19,7 +19,7 @@ title: P
 paper: {paper: none, item: peers, says: VTK as a peer}
 scenes:
 )";
-const std::string kScene = "  s: {volume: v_2x2x2_uint8.raw, convention: cell, tf: tf.yaml, size: [8, 6], "
+const std::string kPeerScene = "  s: {volume: v_2x2x2_uint8.raw, convention: cell, tf: tf.yaml, size: [8, 6], "
                            "camera: {eye: [1, 1, -5], target: [1, 1, 1], fov: 30}}\n";
 
 struct PeerDir {
@@ -42,7 +42,7 @@ using vri::test::hasOption;
 
 TEST_CASE("experiment files: a peer method runs vri-peer-vtk with the scene, its step and its outputs") {
     PeerDir d;
-    const vri::Experiment e = d.parse(kScene, R"(references:
+    const vri::Experiment e = d.parse(kPeerScene, R"(references:
   exact: {method: exact}
 methods:
   vtk-cpu: {method: vtk-fixed-point, step: [2, 0.5], repeat: 3, warm_up: 1}
@@ -67,9 +67,9 @@ comparisons:
 
 TEST_CASE("experiment files: a peer refuses vri's method options and scenes it cannot render") {
     PeerDir d;
-    CHECK(d.error(kScene, "methods:\n  v: {method: vtk-gpu, eps: 0.01}\n")
+    CHECK(d.error(kPeerScene, "methods:\n  v: {method: vtk-gpu, eps: 0.01}\n")
               .find("eps does not apply to method vtk-gpu (vri-peer-vtk") != std::string::npos);
-    CHECK(d.error(kScene, "methods:\n  v: {method: vtk-fixed-point, placement: eye}\n").find("placement does not apply") !=
+    CHECK(d.error(kPeerScene, "methods:\n  v: {method: vtk-fixed-point, placement: eye}\n").find("placement does not apply") !=
           std::string::npos);
     const std::string zoomed = "  s: {volume: v_2x2x2_uint8.raw, convention: cell, tf: tf.yaml, "
                                "camera: {eye: [1, 1, -5], target: [1, 1, 1], zoom: 2}}\n";
@@ -79,5 +79,5 @@ TEST_CASE("experiment files: a peer refuses vri's method options and scenes it c
     CHECK(d.error(field, "methods:\n  v: {method: vtk-fixed-point}\n").find("with --field") != std::string::npos);
     const std::string framed = "  s: {volume: v_2x2x2_uint8.raw, convention: cell, tf: tf.yaml}\n";
     CHECK(d.error(framed, "methods:\n  v: {method: vtk-gpu}\n").find("to set camera.eye") != std::string::npos);
-    CHECK(d.error(kScene, "methods:\n  v: {method: vtk-raycast}\n").find("vtk-raycast") != std::string::npos);
+    CHECK(d.error(kPeerScene, "methods:\n  v: {method: vtk-raycast}\n").find("vtk-raycast") != std::string::npos);
 }

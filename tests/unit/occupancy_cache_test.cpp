@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 
+#include "same_bits.h"
 #include "test_camera.h"
 #include "libvri/core/cpu_renderer.h"
 #include "libvri/core/occupancy_cache.h"
@@ -42,11 +43,6 @@ Scene rampScene(std::shared_ptr<const Volume> volume, TransferFunction tf) {
 Camera rampCamera() {
     const CameraSpec spec = test::cameraSpec(glm::dvec3(-20.0, 35.0, -40.0), glm::dvec3(14.5, 11.5, 8.5), 40.0, 37, 23);
     return Camera(spec);
-}
-
-bool sameBits(const Image& a, const Image& b) {
-    return a.pixels.size() == b.pixels.size() &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
 }
 
 }  // namespace
@@ -127,17 +123,17 @@ TEST_CASE("a render with the occupancy cache equals one without, and a changed t
                 RenderStats cached, alone;
                 const Image image = render(scene, camera, options, &cached, &cache);
                 CHECK(cached.setupReused == reused);
-                CHECK(sameBits(image, render(scene, camera, options, &alone)));
+                CHECK(test::sameBits(image, render(scene, camera, options, &alone)));
                 CHECK_FALSE(alone.setupReused);
                 CHECK(cached.emptyBrickFraction == alone.emptyBrickFraction);
                 CHECK(cached.samplesEvaluated == alone.samplesEvaluated);
                 return image;
             };
             const Image a = frame(rampTransferFunction(0.5), false);
-            CHECK(sameBits(a, frame(rampTransferFunction(0.5), true)));
+            CHECK(test::sameBits(a, frame(rampTransferFunction(0.5), true)));
             // Rendered with the first transfer function's grid, the second would skip bricks it can see.
             const Image b = frame(rampTransferFunction(0.3), false);
-            CHECK_FALSE(sameBits(a, b));
-            CHECK(sameBits(a, frame(rampTransferFunction(0.5), false)));
+            CHECK_FALSE(test::sameBits(a, b));
+            CHECK(test::sameBits(a, frame(rampTransferFunction(0.5), false)));
         }
 }

@@ -13,6 +13,7 @@
 #include <hwy/targets.h>
 #include <tbb/global_control.h>
 
+#include "same_bits.h"
 #include "test_camera.h"
 #include "libvri/core/cpu_renderer.h"
 #include "libvri/util/error.h"
@@ -59,11 +60,6 @@ Camera testCamera(int width, int height) {
     return Camera(spec);
 }
 
-bool sameBits(const Image& a, const Image& b) {
-    return a.pixels.size() == b.pixels.size() &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
-}
-
 }  // namespace
 
 TEST_CASE("the packet engine's image equals the scalar float path's bit for bit on every target") {
@@ -103,7 +99,7 @@ TEST_CASE("the packet engine's image equals the scalar float path's bit for bit 
                                          gridConventionName(convention), " ", integratorName(integrator), " ",
                                          placementName(placement), " skip ", skip, " points ", points);
                                     CHECK(stats.simdTarget == hwy::TargetName(target));
-                                    CHECK(sameBits(packets, scalar));
+                                    CHECK(test::sameBits(packets, scalar));
                                     CHECK(stats.samplesPlaced == scalarStats.samplesPlaced);
                                     // Skipping by finer bricks (StencilBricks, occupancy_grid.h), the
                                     // packets evaluate fewer samples (see the jumps' test below).
@@ -156,7 +152,7 @@ TEST_CASE("the packet engine's rays equal pixelRay()'s: axis-aligned views, zoom
                 RenderStats stats;
                 const Image packets = render(scene, camera, opt, &stats);
                 INFO(hwy::TargetName(target), " zoom ", spec.zoom, " tile ", tile);
-                CHECK(sameBits(packets, scalar));
+                CHECK(test::sameBits(packets, scalar));
                 CHECK(stats.raysHit == scalarStats.raysHit);
                 CHECK(stats.samplesPlaced == scalarStats.samplesPlaced);
             }
@@ -184,11 +180,11 @@ TEST_CASE("the packet engine's image does not depend on the thread count, with e
         b = render(scene, camera, opt, &two);
     }
     CHECK(!one.simdTarget.empty());
-    CHECK(sameBits(a, b));
+    CHECK(test::sameBits(a, b));
     CHECK(one.samplesPlaced == two.samplesPlaced);
     opt.simd = false;
     RenderStats scalarStats;
-    CHECK(sameBits(render(scene, camera, opt, &scalarStats), a));
+    CHECK(test::sameBits(render(scene, camera, opt, &scalarStats), a));
     CHECK(scalarStats.samplesPlaced == one.samplesPlaced);  // early termination stops both at the same sample
 }
 
@@ -228,7 +224,7 @@ TEST_CASE("the packet engine's jumps across empty space skip no visible sample")
                 RenderStats skipped;
                 const Image packets = render(scene, camera, opt, &skipped);
                 INFO(integratorName(integrator), " ", placementName(placement), " rate ", rate);
-                CHECK(sameBits(packets, all));
+                CHECK(test::sameBits(packets, all));
                 CHECK(skipped.samplesEvaluated * 50 < marched.samplesEvaluated);  // it did skip
                 // The scalar path skips by the 8^3 brick of a sample's position (with a margin), the
                 // packets by the 4^3 stencil brick of its stencil: they evaluate fewer, here far fewer

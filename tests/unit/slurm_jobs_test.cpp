@@ -8,7 +8,7 @@
 
 namespace {
 
-vri::Step step(const std::string& id, const std::string& kind, std::vector<std::string> arguments = {}) {
+vri::Step planStep(const std::string& id, const std::string& kind, std::vector<std::string> arguments = {}) {
     return vri::Step{id, kind, "vri-x", std::move(arguments), {}, {}, {}};
 }
 
@@ -22,8 +22,8 @@ std::vector<std::vector<std::size_t>> stepsOf(const std::vector<vri::JobBundle>&
 
 TEST_CASE("bundleSteps packs cheap steps in plan order and keeps long or unpriced renders alone") {
     vri::Plan plan{"/r/exp", "/r", {}, {}};
-    plan.steps = {step("a", "render"), step("b", "render"), step("c", "render"), step("d", "diff"),
-                  step("e", "diff"),   step("f", "table"),  step("g", "render"), step("h", "figure")};
+    plan.steps = {planStep("a", "render"), planStep("b", "render"), planStep("c", "render"), planStep("d", "diff"),
+                  planStep("e", "diff"),   planStep("f", "table"),  planStep("g", "render"), planStep("h", "figure")};
     const std::vector<std::optional<double>> prices{1.0, 2.0, 100.0, 0.5, 0.5, std::nullopt, std::nullopt, 0.1};
     const std::vector<std::size_t> all{0, 1, 2, 3, 4, 5, 6, 7};
 
@@ -46,8 +46,8 @@ TEST_CASE("bundleSteps packs cheap steps in plan order and keeps long or unprice
 
 TEST_CASE("jobResources: threads, memory from the image size, time from the price") {
     vri::Plan plan{"/r/exp", "/r", {}, {}};
-    plan.steps = {step("a", "render", {"--size", "1000x1000", "--threads", "3"}), step("b", "render", {"--size", "10x10"}),
-                  step("c", "diff")};
+    plan.steps = {planStep("a", "render", {"--size", "1000x1000", "--threads", "3"}), planStep("b", "render", {"--size", "10x10"}),
+                  planStep("c", "diff")};
     const vri::JobResources a = vri::jobResources(plan, {{0}, 90, true}, 2);
     CHECK(a.cpus == 3);
     CHECK(a.memoryMiB == 256 + 62);  // 64 bytes a pixel: 64e6 bytes, 61.04 MiB, rounded up with the 256

@@ -8,6 +8,7 @@
 #include <memory>
 #include <random>
 
+#include "same_bits.h"
 #include "test_camera.h"
 #include "libvri/core/cpu_renderer.h"
 #include "libvri/core/grid_sampler.h"
@@ -51,11 +52,6 @@ std::shared_ptr<Volume> blobs(glm::ivec3 dims, VoxelType type) {
 TransferFunction visibleAbove(double s) {
     return TransferFunction({{0.0, 0.0, 0.0, 0.0, 0.0}, {s, 0.8, 0.5, 0.2, 0.0}, {1.0, 0.9, 0.3, 0.1, 2.0}},
                             EmissionModel::ColourTimesExtinction);
-}
-
-bool sameBits(const Image& a, const Image& b) {
-    return a.pixels.size() == b.pixels.size() &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
 }
 
 template <class T, class Real>
@@ -156,9 +152,9 @@ TEST_CASE("a sparse scene renders the dense scene's image bit for bit with every
                 CHECK(a.box().lo == b.box().lo);
                 CHECK(a.box().hi == b.box().hi);
                 RenderStats sa, sb, sc;
-                CHECK(sameBits(render(a, camera, options, &sa), render(b, camera, options, &sb)));
+                CHECK(test::sameBits(render(a, camera, options, &sa), render(b, camera, options, &sb)));
                 options.simd = false;  // the packet engine counts the samples of its packets' lanes its own way
-                CHECK(sameBits(render(a, camera, options, &sa), render(b, camera, options, &sc)));
+                CHECK(test::sameBits(render(a, camera, options, &sa), render(b, camera, options, &sc)));
                 CHECK(sa.samplesEvaluated == sb.samplesEvaluated);
                 CHECK(sc.samplesEvaluated == sb.samplesEvaluated);
                 CHECK(sa.emptyBrickFraction == sb.emptyBrickFraction);
