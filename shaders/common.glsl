@@ -33,6 +33,7 @@ layout(std140, binding = 0) uniform Params {
     ivec4 bricks;   // empty-space bricks per axis (occupancy_grid.h); w: 1 when skipping empty space
     vec4 maxIndex;  // dims - 1, the voxel index range the bricks cover
     vec4 texel;     // the sampler: 1 / dims, and in w the voxel value of a texel that reads 1 (255 for R8 unorm)
+    ivec4 region;   // the pixels rendered: x, y, width, height in pixels of the whole width x height image
     // The camera (Camera's basis, in double) and the box in world units, for the rays.
     dvec4 eye;      // w: zoom
     dvec4 forward;  // w: tan of half the horizontal field of view

@@ -107,6 +107,6 @@ void trace(ivec2 pixel, int id) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (pixel.x < P.width && pixel.y < P.height) trace(pixel, pixel.y * P.width + pixel.x);
+    ivec2 local = ivec2(gl_GlobalInvocationID.xy);  // in the region; the output holds the region's pixels
+    if (local.x < P.region.z && local.y < P.region.w) trace(P.region.xy + local, local.y * P.region.z + local.x);
 }

@@ -144,20 +144,20 @@ AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler
     return method.integrate(length, evaluate, knownEmpty, counts, log);
 }
 
-// Calls renderTile(x0, y0, x1, y1, counts, adaptive) for every tile of the image, in parallel, and
-// adds up what the tiles counted.
+// Calls renderTile(x0, y0, x1, y1, counts, adaptive) for every tile of `area` (pixels of the camera's
+// image), in parallel, and adds up what the tiles counted.
 template <class RenderTile>
-void forEachTile(const RenderOptions& opt, const Image& image, Counters& counters, const RenderTile& renderTile) {
+void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& counters, const RenderTile& renderTile) {
     const int tile = opt.tileSize;
-    const int tilesX = (image.width + tile - 1) / tile, tilesY = (image.height + tile - 1) / tile;
+    const int tilesX = (area.width + tile - 1) / tile, tilesY = (area.height + tile - 1) / tile;
     Progress progress("render", static_cast<std::uint64_t>(tilesX) * tilesY, opt.progress);
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1), [&](const auto& tiles) {
         MarchCounts counts;
         AdaptiveCounts adaptive;
         for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
             for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
-                renderTile(tx * tile, ty * tile, std::min((tx + 1) * tile, image.width),
-                           std::min((ty + 1) * tile, image.height), counts, adaptive);
+                renderTile(area.x + tx * tile, area.y + ty * tile, area.x + std::min((tx + 1) * tile, area.width),
+                           area.y + std::min((ty + 1) * tile, area.height), counts, adaptive);
                 progress.advance(1);
             }
         counters.raysHit += counts.raysHit;
@@ -182,10 +182,11 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
     const bool simpson = isSimpson(opt.integrator);
     const TerminationRule termination(tf, opt, glm::length(box.size()));
     const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), static_cast<Real>(termination.simpsonThreshold()));
-    forEachTile(opt, image, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive) {
+    const PixelRegion area = renderedRegion(opt.region, camera);
+    forEachTile(opt, area, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive) {
         for (int py = y0; py < y1; ++py)
             for (int px = x0; px < x1; ++px) {
-                float* out = &image.at(px, py, 0);
+                float* out = &image.at(px - area.x, py - area.y, 0);
                 const auto clipped = pixelRay<Real>(camera, box, px, py);
                 if (!clipped) continue;
                 const TextureRay<Real>& ray = *clipped;
@@ -251,7 +252,8 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         }
         const PacketScene packets(scene, camera, stencils, opt);
         stats.simdTarget = packetTargetName();
-        forEachTile(opt, image, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&) {
+        forEachTile(opt, renderedRegion(opt.region, camera), counters,
+                    [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&) {
             marchPackets(packets, x0, y0, x1, y1, image, counts);
         });
         return;
@@ -264,6 +266,13 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
 }
 
 }  // namespace
+
+PixelRegion renderedRegion(const std::optional<PixelRegion>& region, const Camera& camera) {
+    if (region && !region->inside(camera.width(), camera.height()))
+        throw Error("the region " + region->text() + " (X,Y,WIDTH,HEIGHT) is not inside the " +
+                    std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " image");
+    return region.value_or(PixelRegion::whole(camera.width(), camera.height()));
+}
 
 AdaptiveParameters simpsonParameters(const RenderOptions& opt) {
     AdaptiveParameters p = opt.adaptive;
@@ -309,11 +318,12 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
                                                                "precision (a shorter step no longer advances the ray)"
                                                              : "1e9 steps on a ray through this volume"));
     }
-    if (options.logPixel && !(options.logPixel->x >= 0 && options.logPixel->y >= 0 &&
-                              options.logPixel->x < camera.width() && options.logPixel->y < camera.height()))
+    const PixelRegion area = renderedRegion(options.region, camera);
+    if (options.logPixel && !area.contains(options.logPixel->x, options.logPixel->y))
         throw Error("the logged pixel " + std::to_string(options.logPixel->x) + "," +
-                    std::to_string(options.logPixel->y) + " is outside the " + std::to_string(camera.width()) + "x" +
-                    std::to_string(camera.height()) + " image");
+                    std::to_string(options.logPixel->y) + " is outside the " +
+                    (options.region ? "region " + area.text() + " of the " : std::string()) +
+                    std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " image");
     // A float render converts the transfer function to float: a value beyond float's range becomes
     // infinity, and every sample of the segments next to it Inf or NaN (Inf * 0). Nothing the ray
     // does can save it, so it is refused here; overflows that depend on the ray are found after the
@@ -336,7 +346,8 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
 Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats,
              OccupancyCache* cache) {
     validateRender(scene, camera, options);
-    Image image(camera.width(), camera.height());
+    const PixelRegion area = renderedRegion(options.region, camera);
+    Image image(area.width, area.height);
     Counters counters;
     RenderStats local;
     OccupancyCache once;  // without a cache, this frame builds its own grid

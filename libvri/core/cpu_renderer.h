@@ -70,11 +70,14 @@ struct RenderOptions {
     // the scalar float path (false), which stays the reference.
     bool simd = true;
     int tileSize = 16;
+    // Render only these pixels of the camera's image (the image returned is the region's size): each is
+    // computed as in the whole image, bit for bit, since every pixel is computed on its own.
+    std::optional<PixelRegion> region;
     bool progress = false;  // report progress on stderr
 };
 
 struct RenderStats {
-    std::uint64_t rays = 0;              // pixels
+    std::uint64_t rays = 0;              // pixels (of the region, when RenderOptions::region is set)
     std::uint64_t raysHit = 0;           // rays whose segment in the box has positive length
     std::uint64_t samplesPlaced = 0;     // samples the placement puts on the rays (up to early termination)
     std::uint64_t samplesEvaluated = 0;  // of those, the ones not skipped as empty space
@@ -98,14 +101,18 @@ struct RenderStats {
     NonFinitePixels nonfinite;        // the image's NaN and infinite pixels, found after the render
 };
 
+// The pixels a render computes: `region` when given, else the camera's whole image. Throws vri::Error on a
+// region that is not inside the image.
+PixelRegion renderedRegion(const std::optional<PixelRegion>& region, const Camera& camera);
+
 // Throws vri::Error on options render() cannot honour (see render()); shared with the Vulkan backend.
 void validateRender(const Scene& scene, const Camera& camera, const RenderOptions& options);
 // The parameters the Simpson methods run with: uniform Simpson's h0 = h_min = h_max = 1 / samplingRate,
 // coupled; coupled and decoupled take options.adaptive with the coupling of their name.
 AdaptiveParameters simpsonParameters(const RenderOptions& options);
 
-// Throws vri::Error on a non-positive or non-finite sampling rate, bad adaptive parameters, or a
-// log pixel outside the image.
+// Throws vri::Error on a non-positive or non-finite sampling rate, bad adaptive parameters, a region that
+// is not inside the image, or a log pixel outside the region (the image when there is none).
 // With a `cache`, the empty-space grid is kept for the next frame of the same volume and transfer function.
 Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats = nullptr,
              OccupancyCache* cache = nullptr);

@@ -271,8 +271,9 @@ template <class Walk>
 void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOptions& opt, const Walk& walk,
                ExactReference& out, Counters& counters) {
     const Box box = scene.box();
+    const PixelRegion area = renderedRegion(opt.region, camera);  // `out` holds these pixels
     const int tile = opt.tileSize;
-    const int tilesX = (out.width + tile - 1) / tile, tilesY = (out.height + tile - 1) / tile;
+    const int tilesX = (area.width + tile - 1) / tile, tilesY = (area.height + tile - 1) / tile;
     Progress progress("reference", static_cast<std::uint64_t>(tilesX) * tilesY, opt.progress);
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1), [&](const auto& tiles) {
         ExactRay ray(scene.transferFunction, opt.tolerance);
@@ -280,9 +281,9 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
         std::uint64_t hit = 0, opaque = 0;
         for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
             for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
-                for (int py = ty * tile; py < std::min((ty + 1) * tile, out.height); ++py)
-                    for (int px = tx * tile; px < std::min((tx + 1) * tile, out.width); ++px) {
-                        const glm::dvec3 dir = camera.direction(px, py);
+                for (int iy = ty * tile; iy < std::min((ty + 1) * tile, area.height); ++iy)
+                    for (int ix = tx * tile; ix < std::min((tx + 1) * tile, area.width); ++ix) {
+                        const glm::dvec3 dir = camera.direction(area.x + ix, area.y + iy);
                         const auto segment = clipRay(camera.eye(), dir, box);
                         if (!segment || !(segment->tFar > segment->tNear)) continue;  // nothing to integrate
                         ++hit;
@@ -291,7 +292,7 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
                         ray.begin();
                         const double left = walk(entry, exit, segment->tFar - segment->tNear, ray, counts);
                         if (left > 0.0) ++opaque;
-                        const std::size_t at = (static_cast<std::size_t>(py) * out.width + px) * 4;
+                        const std::size_t at = (static_cast<std::size_t>(iy) * out.width + ix) * 4;
                         ray.finish(left, &out.values[at], &out.bounds[at]);
                     }
                 progress.advance(1);
@@ -344,8 +345,9 @@ void renderExactReference(const Scene& scene, const Camera& camera, const ExactR
                     exactNumber(diagonal) + " long: the optical depth overflows double");
 
     out.stats = {};
-    out.width = camera.width();
-    out.height = camera.height();
+    const PixelRegion area = renderedRegion(options.region, camera);  // checked before anything is allocated
+    out.width = area.width;
+    out.height = area.height;
     // Values and bounds in double: twice the image's bytes each, checked before they are allocated.
     const std::size_t n = checkedBytes("the exact reference of a " + std::to_string(out.width) + "x" +
                                            std::to_string(out.height) + " image",
@@ -381,8 +383,8 @@ void renderExactReference(const Scene& scene, const Camera& camera, const ExactR
 
     for (std::size_t i = 0; i < n; ++i)
         if (!std::isfinite(out.values[i]) || !std::isfinite(out.bounds[i]))
-            throw Error("exact method: pixel " + std::to_string(i / 4 % out.width) + "," +
-                        std::to_string(i / 4 / out.width) + " has a " +
+            throw Error("exact method: pixel " + std::to_string(area.x + i / 4 % out.width) + "," +
+                        std::to_string(area.y + i / 4 / out.width) + " has a " +
                         (std::isfinite(out.values[i]) ? "non-finite error bound" : "non-finite value") +
                         " (an extinction or transfer-function slope too large for double)");
 

@@ -11,6 +11,7 @@
 // with a 0.01-voxel step, is render() with those options.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "libvri/core/camera.h"
@@ -33,11 +34,12 @@ struct ExactReferenceOptions {
     // (exact_empty_space.h: the image and the bounds do not change by a bit; off only to test that).
     bool skipEmptySpace = true;
     int tileSize = 16;
+    std::optional<PixelRegion> region;  // only these pixels of the camera's image (RenderOptions::region)
     bool progress = false;  // report progress on stderr
 };
 
 struct ExactReferenceStats {
-    std::uint64_t rays = 0;               // pixels
+    std::uint64_t rays = 0;               // pixels (of the region, when there is one)
     std::uint64_t raysHit = 0;            // rays whose segment in the box has positive length
     std::uint64_t pieces = 0;             // cell pieces walked (the scalar is one cubic on each)
     std::uint64_t piecesVisible = 0;      // of those, the ones not skipped as invisible
@@ -56,7 +58,7 @@ struct ExactReferenceStats {
 // The result in double, pixel-interleaved RGBA with row 0 at the top like render()'s Image, and for
 // every pixel and channel a bound on |value - exact integral along the ray|.
 struct ExactReference {
-    int width = 0, height = 0;
+    int width = 0, height = 0;  // the region's, when the options name one
     std::vector<double> values;  // width * height * 4
     std::vector<double> bounds;  // width * height * 4
     ExactReferenceStats stats;

@@ -1,6 +1,7 @@
 #include "libvri/core/image.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "libvri/util/checked_size.h"
 #include "libvri/util/error.h"
@@ -22,6 +23,15 @@ Image::Image(int w, int h, int n) : width(w), height(h), channels(n) {
     channelNames.clear();
     for (int c = 0; c < n; ++c) channelNames.push_back(c < 4 ? names[c] : "C" + std::to_string(c));
     pixels.assign(bytes / sizeof(float), 0.0f);
+}
+
+bool PixelRegion::inside(int w, int h) const {
+    return x >= 0 && y >= 0 && width >= 1 && height >= 1 && std::int64_t(x) + width <= w &&
+           std::int64_t(y) + height <= h;
+}
+
+std::string PixelRegion::text() const {
+    return std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(width) + "," + std::to_string(height);
 }
 
 int channelIndex(const Image& image, std::string_view name) {

@@ -28,6 +28,20 @@ struct Image {
     float at(int x, int y, int c) const { return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c]; }
 };
 
+// A rectangle of an image's pixels, in the pixel coordinates of the whole image (x to the right, y down
+// from row 0 at the top, as Image::at and Camera::direction count them): the part of an image a render
+// computes when it is asked for a region (--region), and where a tile of a merged image goes.
+struct PixelRegion {
+    int x = 0, y = 0, width = 0, height = 0;
+
+    static PixelRegion whole(int w, int h) { return {0, 0, w, h}; }
+    // True when it has pixels and lies inside a w x h image (summed in 64 bits: no overflow).
+    bool inside(int w, int h) const;
+    bool contains(int px, int py) const { return px >= x && py >= y && px - x < width && py - y < height; }
+    std::string text() const;  // "X,Y,W,H", as --region spells it
+    bool operator==(const PixelRegion&) const = default;
+};
+
 // The index of the channel called `name`, or -1 when the image has none.
 int channelIndex(const Image& image, std::string_view name);
 

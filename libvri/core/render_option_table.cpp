@@ -198,6 +198,16 @@ const RenderOptionRow kRows[] = {
      [](const RenderRequest& r, std::vector<Setting>& s) {
          if (!r.exact) s.push_back({"skip_empty_space", r.options.skipEmptySpace});
      }},
+    // Command line only: an experiment asks for tiles (`tiles:`), and its planner writes the regions.
+    {"--region", "", "", OptionValueKind::Text,
+     "render only the pixels X,Y,WIDTH,HEIGHT of the --size image (x right, y down from the top row), each bit for bit "
+     "as in the whole image; the outputs hold the region (vri-merge-tiles joins them)",
+     "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         const glm::ivec4 v = parseRegion(text, where);
+         r.options.region = PixelRegion{v.x, v.y, v.z, v.w};
+     },
+     noDefault, noSetting},  // the stats record the region on its own: the settings are the whole image's
     {"--clamp", "clamp", "clamp-", OptionValueKind::Flag,
      "clamp each pixel's colour and alpha to [0, 1] after the render (the stats count what was outside first); off "
      "for accuracy studies",
@@ -229,6 +239,7 @@ ExactReferenceOptions RenderRequest::exactOptions() const {
     ExactReferenceOptions o;
     o.tolerance = exactTolerance;
     o.skipEmptySpace = options.skipEmptySpace;
+    o.region = options.region;
     o.progress = options.progress;
     return o;
 }

@@ -507,6 +507,8 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     const std::size_t n = hn::Lanes(df);
     const VectorTransferFunction tf(sc);
     const int width = x1 - x0;
+    // The image holds the render's region: pixel (x0, y0) of the camera's image is at x0 - area.x, y0 - area.y.
+    const PixelRegion area = renderedRegion(sc.options.region, sc.camera);
     PacketOrder order(width, y1 - y0, n);
     RayBatch batch(sc);
     Lanes L{};
@@ -536,7 +538,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     };
     // Writes the pixel of `lane` from L's sums and k.
     const auto finish = [&](std::size_t lane) {
-        float* out = &image.at(x0 + L.pixel[lane] % width, y0 + L.pixel[lane] / width, 0);
+        float* out = &image.at(x0 - area.x + L.pixel[lane] % width, y0 - area.y + L.pixel[lane] / width, 0);
         out[0] = L.r[lane];
         out[1] = L.g[lane];
         out[2] = L.b[lane];

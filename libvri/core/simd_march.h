@@ -82,7 +82,8 @@ struct PacketScene {
     float first[4], last[4];  // the channels at the first and the last point
 };
 
-// Renders the pixels x0 <= x < x1, y0 <= y < y1 into `image`, adding to `counts`.
+// Renders the pixels x0 <= x < x1, y0 <= y < y1 of the camera's image into `image`, which holds the
+// options' region (renderedRegion()), adding to `counts`.
 void marchPackets(const PacketScene& scene, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts);
 
 // The Highway target marchPackets() runs on ("AVX2", "AVX3", ...).

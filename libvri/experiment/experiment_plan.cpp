@@ -2,6 +2,7 @@
 #include "libvri/experiment/experiment_plan.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 
 #include "libvri/io/provenance.h"
@@ -41,6 +42,7 @@ public:
     Planner(const Experiment& experiment, Plan& plan) : experiment_(experiment), plan_(plan) {}
 
     void addRender(const RunSpec& run);
+    void addTiles(const RunSpec& run, const SceneSpec& scene, const Step& render);
     void addDiff(const ComparisonSpec& comparison);
     void addCommand(const CommandSpec& command);
     void addTable(const TableSpec& table);
@@ -88,12 +90,42 @@ void Planner::addRender(const RunSpec& run) {
     for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
+    if (run.tiles > 1) {
+        addTiles(run, scene, step);
+        return;
+    }
     output(step, "-o", renderImage(plan_, run.id));
     output(step, "--png", result(run.id + ".png"));
     output(step, "--stats", result(run.id + ".json"));
     if (std::ranges::any_of(run.parameters, [](auto& kv) { return kv.first == "log_ray"; }))
         output(step, "--log", result(run.id + "-ray.csv"));
     plan_.steps.push_back(std::move(step));
+}
+
+// The run's image as tiles: one step per band of rows (the render's command with --region), then
+// vri-merge-tiles writing the files the untiled step writes, so that everything downstream reads the same.
+void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& render) {
+    Step merge{run.id, "render", "vri-merge-tiles", {}, {}, {}, render.parameters};
+    merge.parameters.emplace_back("tiles", std::to_string(run.tiles));
+    const std::vector<PixelRegion> bands = rowBands(scene.width, scene.height, run.tiles);
+    for (std::size_t k = 0; k < bands.size(); ++k) {
+        Step tile = render;
+        tile.id = run.id + ".tile-" + std::to_string(k + 1);
+        tile.arguments.insert(tile.arguments.end(), {"--region", bands[k].text()});
+        tile.parameters.emplace_back("region", bands[k].text());
+        output(tile, "-o", result(tile.id + ".exr"));
+        output(tile, "--stats", result(tile.id + ".json"));
+        merge.arguments.push_back("--tile");
+        input(merge, "", result(tile.id + ".exr"));
+        input(merge, "", result(tile.id + ".json"));
+        plan_.steps.push_back(std::move(tile));
+    }
+    for (const ToolOption& o : scene.options)  // the preview's looks, made from the whole image
+        if (o.first == "--png-invert" || o.first == "--png-exposure" || o.first == "--background") option(merge, o);
+    output(merge, "-o", renderImage(plan_, run.id));
+    output(merge, "--png", result(run.id + ".png"));
+    output(merge, "--stats", result(run.id + ".json"));
+    plan_.steps.push_back(std::move(merge));
 }
 
 void Planner::addDiff(const ComparisonSpec& c) {
@@ -212,6 +244,17 @@ const Step& Plan::step(const std::string& id) const {
 }
 
 std::string Plan::commandPath(const fs::path& file) const { return displayPath(file, workDir); }
+
+std::vector<PixelRegion> rowBands(int width, int height, int n) {
+    std::vector<PixelRegion> bands;
+    for (int k = 0; k < n; ++k) {
+        // Rows [k H / n, (k + 1) H / n): heights differ by at most one, the taller bands last.
+        const int y0 = static_cast<int>(std::int64_t(k) * height / n);
+        const int y1 = static_cast<int>(std::int64_t(k + 1) * height / n);
+        bands.push_back({0, y0, width, y1 - y0});
+    }
+    return bands;
+}
 
 fs::path renderImage(const Plan& plan, const std::string& runId) { return plan.resultsDir / (runId + ".exr"); }
 

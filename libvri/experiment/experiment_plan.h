@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "libvri/core/image.h"
 #include "libvri/experiment/experiment_spec.h"
 
 namespace vri {
@@ -43,6 +44,11 @@ Plan planExperiment(const Experiment& experiment, const std::filesystem::path& r
 std::vector<std::string> commandWords(const Plan& plan, const Step& step, const std::filesystem::path& toolDir);
 // The same, as one line a POSIX shell reads back into those words.
 std::string shellCommand(const std::vector<std::string>& words);
+
+// A run's tiles (`tiles: n`, n <= height): n bands of whole rows, top to bottom, balanced in rows (heights
+// differ by at most one), not in cost. Bands keep each tile one rectangle whose pixels lie together in
+// memory, and any n up to the height divides the image.
+std::vector<PixelRegion> rowBands(int width, int height, int n);
 
 // The output files of a step by kind of content, for the manifest and the gallery.
 std::filesystem::path renderImage(const Plan& plan, const std::string& runId);  // <results>/<run>.exr

@@ -269,6 +269,8 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
             if (double x = yaml::toDouble(v, source_, "size"); x != std::floor(x) || x < 1 || x > 65536)
                 throw Error(at(v) + ": size must be whole numbers in 1..65536");
         scene.options.emplace_back("--size", size[0].Scalar() + "x" + size[1].Scalar());
+        scene.width = size[0].as<int>();
+        scene.height = size[1].as<int>();
     }
     if (const YAML::Node camera = node["camera"]) {
         yaml::requireMap(camera, source_, "camera");
@@ -316,8 +318,19 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         std::vector<Axis> axes;
         std::vector<std::string> scenes;
         bool hasMethod = false;
+        int tiles = 1;
+        std::string tilesAt;  // file:line:col of `tiles:`
         for (const auto& kv : entry) {
             const std::string key = text(kv.first, "key");
+            if (key == "tiles") {  // how the run is computed, not what: one value, never in the id
+                tilesAt = at(kv.second);
+                const std::string n = number(kv.second, "tiles");
+                if (double x = kv.second.as<double>(); x != std::floor(x) || x < 1 || x > kMaxTiles)
+                    throw Error(at(kv.second) + ": tiles must be a whole number in 1.." + std::to_string(kMaxTiles) +
+                                ", got " + n);
+                tiles = kv.second.as<int>();
+                continue;
+            }
             if (key == "scenes") {
                 scenes = names(kv.second, "scenes");
                 for (std::size_t i = 0; i < scenes.size(); ++i)
@@ -328,7 +341,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             }
             const RenderOptionRow* row = findRenderOption(key);
             if (!row) {
-                std::string list = "scenes";
+                std::string list = "scenes, tiles";
                 for (const RenderOptionRow& r : renderOptionTable())
                     if (!r.key.empty()) list += ", " + std::string(r.key);
                 throw Error(at(kv.first) + ": unknown key '" + key + "' (expected one of: " + list + ")");
@@ -420,6 +433,15 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                         throw Error(at(entry) + ": " + section + " entry '" + prefix + "': " + e.what());
                     }
                 }
+                if (tiles > 1) {
+                    const std::string tiled = tilesAt + ": tiles: " + std::to_string(tiles) + ": ";
+                    if (peer) throw Error(tiled + "method " + methodName + " (" + run.tool + ") renders whole images only");
+                    if (request.options.logPixel) throw Error(tiled + "log_ray logs one pixel: render it untiled");
+                    if (const int rows = experiment.scene(scene).height; tiles > rows)
+                        throw Error(tiled + "more tiles than the " + std::to_string(rows) + " rows of scene '" + scene +
+                                    "' (a tile is a band of whole rows)");
+                }
+                run.tiles = tiles;
                 if (!isSafeName(run.id))  // a swept value is part of the id
                     throw Error(at(entry) + ": " + section + " entry '" + prefix +
                                 "': a swept value does not fit in a run id (" + std::string(kSafeName) + ")");

@@ -31,11 +31,14 @@ struct SceneSpec {
     std::string datasetStatus, datasetNote;  // from the catalog: "exact", "reconstructed" or "stand-in", and why
     std::vector<std::filesystem::path> files;  // volume and transfer function, absolute: hashed for the cache
     ToolOptions options;                    // vri-render's scene options, paths as absolute paths
+    int width = 800, height = 600;          // the images' size: `size:`, else vri-render's default --size
 };
 
 // The most runs the sweeps of one experiment file may expand to (the largest of experiments/ has
 // under 100): a few lines of YAML can multiply out to 10^8 runs, refused before expanding.
 inline constexpr std::uint64_t kMaxRuns = 10000;
+// The most tiles one run may be split into (`tiles:`): each is a process and a step of its own.
+inline constexpr int kMaxTiles = 256;
 
 // One invocation of a run tool (vri-render today; vri-reference tomorrow): a point of a sweep.
 struct RunSpec {
@@ -45,6 +48,9 @@ struct RunSpec {
     bool reference = false;  // from `references:`: compared against, not compared by default
     std::vector<std::pair<std::string, std::string>> parameters;  // YAML key -> value, in file order
     ToolOptions options;  // the tool's method options
+    // `tiles: N`: the image rendered as N bands of rows, one step each (--region), then merged by
+    // vri-merge-tiles into the files the untiled run writes (experiment_plan.h). Not part of the id.
+    int tiles = 1;
 };
 
 // One vri-diff of a run against a reference run.

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string_view>
 
@@ -81,6 +82,20 @@ glm::ivec2 parsePixel(const std::string& text, const std::string& what) {
     glm::ivec2 v;
     bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
     if (!ok || v.x < 0 || v.y < 0) throw Error(what + ": expected a pixel X,Y (integers >= 0), got '" + text + "'");
+    return v;
+}
+
+glm::ivec4 parseRegion(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::ivec4 v;
+    bool ok = parts.size() == 4;
+    for (int i = 0; ok && i < 4; ++i) ok = parseNumber(parts[i], v[i]);
+    ok = ok && v.x >= 0 && v.y >= 0 && v.z >= 1 && v.w >= 1 &&
+         std::int64_t(v.x) + v.z <= std::numeric_limits<int>::max() &&
+         std::int64_t(v.y) + v.w <= std::numeric_limits<int>::max();
+    if (!ok)
+        throw UsageError(what + ": expected a pixel rectangle X,Y,WIDTH,HEIGHT (integers, X and Y >= 0, WIDTH and "
+                                "HEIGHT >= 1, X + WIDTH and Y + HEIGHT below 2^31), got '" + text + "'");
     return v;
 }
 

@@ -6,6 +6,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace vri {
 
@@ -21,6 +22,9 @@ glm::dvec2 parseRange(const std::string& text, const std::string& what);
 glm::ivec2 parseSize(const std::string& text, const std::string& what);
 // "X,Y" -> a pixel; throws vri::Error naming `what` unless both are integers >= 0.
 glm::ivec2 parsePixel(const std::string& text, const std::string& what);
+// "X,Y,W,H" -> a rectangle of pixels (x, y, width, height): four integers, X and Y >= 0, W and H >= 1,
+// X + W and Y + H within an int. A command line spells it, so what is not that is a vri::UsageError.
+glm::ivec4 parseRegion(const std::string& text, const std::string& what);
 // A finite number > 0 (parsePositive) or >= 0 (parseNonNegative); throws vri::Error
 // "<what>: expected a number > 0, got '<text>'" otherwise.
 double parsePositive(const std::string& text, const std::string& what);

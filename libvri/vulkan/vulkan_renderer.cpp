@@ -36,7 +36,7 @@ struct Params {
     std::int32_t bricks[4];  // w: 1 when skipping empty space
     float maxIndex[4];
     float texel[4];  // the sampler: 1 / dims, and in w the voxel value of a texel that reads 1
-    float padding[4];  // std140 aligns a dvec4 to 32 bytes
+    std::int32_t region[4];  // x, y, width, height: the pixels rendered
     // The camera and the box, in double for the shader's rays (common.glsl's makeRay).
     double eye[4], forward[4], right[4], up[4], boxLo[4], boxHi[4];
 };
@@ -212,7 +212,8 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     validateOptions(options);
     Impl& m = *impl_;
     const bool simpson = isSimpson(options.integrator);
-    const int width = camera.width(), height = camera.height();
+    const PixelRegion area = renderedRegion(options.region, camera);  // the image holds these pixels
+    const int width = area.width, height = area.height;
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
     const std::uint32_t groupsX = (width + 7) / 8, groupsY = (height + 7) / 8;
     const auto& limits = m.context.properties().limits;
@@ -294,8 +295,12 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     p.hMin = static_cast<float>(adaptive.hMin);
     p.hMax = static_cast<float>(adaptive.hMax);
     p.epsPerVoxel = static_cast<float>(adaptive.tolerance / adaptive.h0);
-    p.width = width;
-    p.height = height;
+    p.width = camera.width();  // the rays are the whole image's
+    p.height = camera.height();
+    p.region[0] = area.x;
+    p.region[1] = area.y;
+    p.region[2] = area.width;
+    p.region[3] = area.height;
     p.tfCount = static_cast<std::int32_t>(scene.transferFunction.points().size());
     p.accepted = adaptive.accepted == AcceptedValue::Richardson ? 0 : 1;
     const CameraBasis basis = camera.basis();

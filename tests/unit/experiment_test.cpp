@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "experiment_file_test.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
@@ -387,6 +388,40 @@ methods:
           vri::ToolOptions{{"--method", "riemann"}, {"--precision", "float"}, {"--simd", "off"}});
     CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods: {riemann: {simd: yes}}\n")
               .find("simd: unknown value 'yes' (expected on or off)") != std::string::npos);
+}
+
+TEST_CASE("experiment: tiles: N plans N bands with --region and a merge writing the run's own files") {
+    ExperimentDir d;
+    const std::string scene = "scenes: {s: {field: linear, convention: node, tf: a.yaml, size: [8, 5], png: {invert: true}}}\n";
+    const vri::Experiment e = d.parse(kHead + scene + "methods:\n  riemann: {rate: [1, 2], tiles: 3}\n");
+    CHECK(ids(e) == std::vector<std::string>{"riemann-r1", "riemann-r2"});  // tiles are not in the id
+    CHECK(e.run("riemann-r1").tiles == 3);
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    std::vector<std::string> steps;
+    for (const vri::Step& s : plan.steps) steps.push_back(s.id);
+    CHECK(steps == std::vector<std::string>{"riemann-r1.tile-1", "riemann-r1.tile-2", "riemann-r1.tile-3", "riemann-r1",
+                                            "riemann-r2.tile-1", "riemann-r2.tile-2", "riemann-r2.tile-3", "riemann-r2"});
+    const vri::Step& tile = plan.step("riemann-r1.tile-2");
+    CHECK(tile.tool == "vri-render");
+    CHECK(vri::test::hasOption(tile.arguments, "--region", "0,1,8,2"));  // rows 5/3 .. 10/3
+    CHECK(vri::test::hasOption(tile.arguments, "-o", "results/t/riemann-r1.tile-2.exr"));
+    const vri::Step& merge = plan.step("riemann-r1");
+    CHECK(merge.tool == "vri-merge-tiles");
+    CHECK(vri::test::hasOption(merge.arguments, "--tile", "results/t/riemann-r1.tile-3.exr"));
+    CHECK(std::ranges::find(merge.arguments, "--png-invert") != merge.arguments.end());
+    // The untiled run's outputs, so that diffs, tables and figures read the same files.
+    CHECK(merge.outputs == std::vector<fs::path>{d.dir / "results/t/riemann-r1.exr", d.dir / "results/t/riemann-r1.png",
+                                                 d.dir / "results/t/riemann-r1.json"});
+    CHECK(plan.dependencies[3] == std::vector<std::size_t>{0, 1, 2});
+
+    const std::string methods = kHead + scene + "methods:\n  ";
+    CHECK(d.error(methods + "riemann: {tiles: 0}\n") == "exp.yaml:6:20: tiles must be a whole number in 1..256, got 0");
+    CHECK(d.error(methods + "riemann: {tiles: 2.5}\n").starts_with("exp.yaml:6:20: tiles must be a whole number"));
+    CHECK(d.error(methods + "riemann: {tiles: [2, 3]}\n").starts_with("exp.yaml:6:20: tiles"));
+    CHECK(d.error(methods + "riemann: {tiles: 6}\n") ==
+          "exp.yaml:6:20: tiles: 6: more tiles than the 5 rows of scene 's' (a tile is a band of whole rows)");
+    CHECK(d.error(methods + "coupled: {log_ray: '1,1', tiles: 2}\n") ==
+          "exp.yaml:6:36: tiles: 2: log_ray logs one pixel: render it untiled");
 }
 
 TEST_CASE("experiment: a comparison's id writes once the words its name and the run's id share") {

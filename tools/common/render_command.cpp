@@ -135,6 +135,14 @@ int RenderCommand::run() {
             throw Error("--error-image needs --method exact (no other method has an error bound)");
         timing_.setFrames(request.warmUp, request.repeat);
         const PngOptions png = preview_.get();
+        const std::optional<PixelRegion>& region = request.options.region;
+        if (region) {  // before the volume is read: the two options disagree, whatever the scene
+            const glm::ivec2 size = scene_.imageSize();
+            if (!region->inside(size.x, size.y))
+                throw UsageError("--region: " + region->text() + " reaches outside the " + std::to_string(size.x) +
+                                 "x" + std::to_string(size.y) + " image of --size (expected X + WIDTH <= " +
+                                 std::to_string(size.x) + " and Y + HEIGHT <= " + std::to_string(size.y) + ")");
+        }
 
         const SceneSetup setup = scene_.load();
         const Scene& scene = setup.scene;
@@ -157,6 +165,10 @@ int RenderCommand::run() {
             f.seconds = f.stats.seconds;
             return f;
         });
+        if (region && frame.stats.nonfinite.count > 0) {  // in pixels of the whole image, as everything else
+            frame.stats.nonfinite.firstX += region->x;
+            frame.stats.nonfinite.firstY += region->y;
+        }
         const RenderStats& stats = frame.stats;
         nonfinite_.check(stats.nonfinite, name_);
         const OutOfRangePixels outOfRange = findOutOfRangePixels(frame.image);  // what the method returned
@@ -178,9 +190,15 @@ int RenderCommand::run() {
         if (frame.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
         record["stats"]["out_of_range_pixels"] = toJson(outOfRange);
         record["timing"] = timing_.toJson(wallSeconds);
-        const ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
-                                        {"vri:options", record["options"].dump()},
-                                        {"vri:scene", record["scene"].dump()}};
+        ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
+                                  {"vri:options", record["options"].dump()},
+                                  {"vri:scene", record["scene"].dump()}};
+        if (region) {
+            // The images hold the region alone, an ordinary WIDTH x HEIGHT image that every reader takes as it
+            // is; where it lies in the camera's image (the stats' camera.width x camera.height) is said here.
+            record["region"] = toJson(*region);
+            metadata.emplace_back("vri:region", region->text());
+        }
         writeExr(output_, image, metadata);
         if (!pngPath_.empty()) writePng(pngPath_, image, png);
         if (frame.bounds) writeExr(errorImagePath_, *frame.bounds, metadata);
@@ -188,7 +206,8 @@ int RenderCommand::run() {
         if (!logPath_.empty()) writeTextFile(logPath_, adaptiveLogCsv(stats.rayLog));
         if (!quiet_) {
             std::cerr << name_ << ": " << record["options"]["method"].get<std::string>() << ", " << image.width << "x"
-                      << image.height << ", ";
+                      << image.height << (region ? " at " + std::to_string(region->x) + "," + std::to_string(region->y) : "")
+                      << ", ";
             if (frame.exactStats)
                 std::cerr << frame.exactStats->piecesVisible << " visible pieces in " << timing_.summary(wallSeconds)
                           << " on " << frame.exactStats->threads << " threads; error bound max "

@@ -69,6 +69,10 @@ nlohmann::json toJson(const CameraSpec& c) {
             {"zoom_centre", c.zoomCentre ? nlohmann::json{c.zoomCentre->x, c.zoomCentre->y} : nlohmann::json()}};
 }
 
+nlohmann::json toJson(const PixelRegion& r) {
+    return {{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}};
+}
+
 nlohmann::json toJson(const TransferFunction& tf) {
     nlohmann::json points = nlohmann::json::array();
     for (const auto& p : tf.points()) points.push_back({p.s, p.r, p.g, p.b, p.tau});

@@ -16,6 +16,7 @@ nlohmann::json toJson(const AdaptiveCounts& counts);
 // {"pixels", "channels_above_1", "channels_below_0", "max", "min"}
 nlohmann::json toJson(const OutOfRangePixels& found);
 nlohmann::json toJson(const CameraSpec& camera);
+nlohmann::json toJson(const PixelRegion& region);  // {"x", "y", "width", "height"}
 nlohmann::json toJson(const TransferFunction& tf);
 nlohmann::json describeScene(const Scene& scene);  // kind, dims, voxel type, spacing, box, convention, range
 

@@ -38,8 +38,10 @@ void SceneOptions::addTo(CLI::App& app) {
                                                  "(default: the image centre)");
 }
 
+glm::ivec2 SceneOptions::imageSize() const { return parseSize(size_, "--size"); }
+
 SceneSetup SceneOptions::load() const {
-    const glm::ivec2 imageSize = parseSize(size_, "--size");
+    const glm::ivec2 imageSize = this->imageSize();
     const GridConvention conv = parseGridConvention(convention_, "--convention");
 
     nlohmann::json inputs = nlohmann::json::array();

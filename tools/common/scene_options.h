@@ -28,6 +28,8 @@ public:
     // Checks the options, reads the volume and the transfer function and frames the camera; throws
     // vri::Error naming the option or file that is wrong. The cheap checks come before any reading.
     SceneSetup load() const;
+    // --size, checked (the first thing load() checks).
+    glm::ivec2 imageSize() const;
 
 private:
     std::string volumePath_, field_, tfPath_, range_, fieldDims_ = "5,5,5";

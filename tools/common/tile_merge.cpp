@@ -1,0 +1,315 @@
+#include "common/tile_merge.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+
+#include "libvri/util/error.h"
+#include "libvri/util/json_file.h"
+#include "libvri/util/statistics.h"
+
+namespace vri {
+
+namespace {
+
+using nlohmann::json;
+
+// "stats.error_bound.max" for "/stats/error_bound/max".
+std::string dotted(const std::string& pointer) {
+    std::string name = pointer.substr(1);
+    std::replace(name.begin(), name.end(), '/', '.');
+    return name;
+}
+
+std::optional<TileRule> ruleOf(const std::string& pointer) {
+    for (const TileStatsRule& r : tileStatsRules())
+        if (pointer == r.pointer || (pointer.starts_with(r.pointer) && pointer[r.pointer.size()] == '/')) return r.rule;
+    return std::nullopt;
+}
+
+// Sum, Max, Min or PixelMean of numbers (`weights`: each tile's pixels, for PixelMean); nullopt when a
+// value is not a number.
+std::optional<json> combineNumbers(TileRule rule, const std::vector<const json*>& values,
+                                   const std::vector<double>& weights) {
+    if (!std::ranges::all_of(values, [](const json* v) { return v->is_number(); })) return std::nullopt;
+    if (rule == TileRule::Sum && std::ranges::all_of(values, [](const json* v) { return v->is_number_unsigned(); })) {
+        std::uint64_t sum = 0;  // counts stay exact integers
+        for (const json* v : values) sum += v->get<std::uint64_t>();
+        return json(sum);
+    }
+    double result = values[0]->get<double>(), pixels = 0.0;
+    if (rule == TileRule::Sum || rule == TileRule::PixelMean) result = 0.0;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const double v = values[i]->get<double>();
+        if (rule == TileRule::Sum) result += v;
+        else if (rule == TileRule::Max) result = std::max(result, v);
+        else if (rule == TileRule::Min) result = std::min(result, v);
+        else {
+            result += v * weights[i];
+            pixels += weights[i];
+        }
+    }
+    return json(rule == TileRule::PixelMean ? result / pixels : result);
+}
+
+class StatsCombiner {
+public:
+    StatsCombiner(const std::vector<json>& records, const std::vector<std::string>& names)
+        : records_(records), names_(names) {
+        for (std::size_t i = 0; i < records.size(); ++i)
+            weights_.push_back(readingJsonOf(names[i], [&] { return records[i].at("stats").at("rays").get<double>(); }));
+    }
+
+    // The combined value at `pointer`, or null (noted in notCombined) when it cannot be combined.
+    json combine(const std::string& pointer) {
+        std::vector<const json*> values;
+        const json::json_pointer at(pointer);
+        for (const json& r : records_)
+            if (r.contains(at)) values.push_back(&r.at(at));
+        const std::optional<TileRule> rule = ruleOf(pointer);
+        if (rule == TileRule::FirstPixel) return firstPixel(values);
+        if (values.size() != records_.size()) return notCombined(pointer);
+        const bool objects = std::ranges::all_of(values, [](const json* v) { return v->is_object(); });
+        if (objects && rule != TileRule::Same && rule != TileRule::Agree) {
+            json out = json::object();
+            for (const json* v : values)
+                for (const auto& [key, unused] : v->items())
+                    if (!out.contains(key)) out[key] = combine(pointer + "/" + key);
+            return out;
+        }
+        if (!rule) return notCombined(pointer);
+        switch (*rule) {
+        case TileRule::Same:
+        case TileRule::Agree:
+            for (std::size_t i = 1; i < values.size(); ++i)
+                if (*values[i] != *values[0]) {
+                    if (rule == TileRule::Same) return notCombined(pointer);
+                    throw Error(names_[i] + ": " + dotted(pointer) + " is " + values[i]->dump() + ", but " + names_[0] +
+                                " has " + values[0]->dump() + " (the tiles of one image must agree in it)");
+                }
+            return *values[0];
+        case TileRule::All:
+            if (!std::ranges::all_of(values, [](const json* v) { return v->is_boolean(); })) return notCombined(pointer);
+            return std::ranges::all_of(values, [](const json* v) { return v->get<bool>(); });
+        case TileRule::Derived:
+            return nullptr;  // filled in from the combined fields
+        default:
+            break;
+        }
+        if (values[0]->is_array()) {  // element by element
+            json out = json::array();
+            for (std::size_t k = 0; k < values[0]->size(); ++k) {
+                std::vector<const json*> elements;
+                for (std::size_t i = 0; i < values.size(); ++i) {
+                    if (!values[i]->is_array() || values[i]->size() != values[0]->size())
+                        throw Error(names_[i] + ": " + dotted(pointer) + " has " + std::to_string(values[i]->size()) +
+                                    " elements, but " + names_[0] + " has " + std::to_string(values[0]->size()));
+                    elements.push_back(&(*values[i])[k]);
+                }
+                const std::optional<json> e = combineNumbers(*rule, elements, weights_);
+                if (!e) return notCombined(pointer);
+                out.push_back(*e);
+            }
+            return out;
+        }
+        const std::optional<json> v = combineNumbers(*rule, values, weights_);
+        return v ? *v : notCombined(pointer);
+    }
+
+    json notCombinedList() const { return notCombined_; }
+
+private:
+    json notCombined(const std::string& pointer) {
+        notCombined_.push_back(dotted(pointer));
+        return nullptr;
+    }
+
+    // The first pixel [x, y] in row order among the tiles that have one.
+    json firstPixel(const std::vector<const json*>& values) {
+        const json* first = nullptr;
+        for (const json* v : values) {
+            if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number_integer() || !(*v)[1].is_number_integer())
+                return nullptr;
+            if (!first || std::pair((*v)[1].get<int>(), (*v)[0].get<int>()) <
+                              std::pair((*first)[1].get<int>(), (*first)[0].get<int>()))
+                first = v;
+        }
+        return first ? *first : json(nullptr);
+    }
+
+    const std::vector<json>& records_;
+    const std::vector<std::string>& names_;
+    std::vector<double> weights_;
+    json notCombined_ = json::array();
+};
+
+// The tiles' record of `key`, which every tile must have and share with the first.
+void requireShared(const std::vector<json>& records, const std::vector<std::string>& names, const char* key) {
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        if (!records[i].contains(key))
+            throw Error(names[i] + ": has no \"" + key + "\" (expected the stats file of vri-render or vri-reference)");
+        if (records[i][key] != records[0][key])
+            throw Error(names[i] + ": its \"" + key + "\" differs from " + names[0] +
+                        "'s (the tiles of one image share tool, build, inputs, scene, transfer function, camera and "
+                        "options)");
+    }
+}
+
+}  // namespace
+
+const std::vector<TileStatsRule>& tileStatsRules() {
+    using enum TileRule;
+    static const std::vector<TileStatsRule> rules = {
+        // vri-render's stats (render_json.cpp) and what both tools share.
+        {"/stats/wall_seconds", Sum},
+        {"/stats/setup_seconds", Sum},  // each tile's process built its own empty space
+        {"/stats/setup_reused", All},
+        {"/stats/threads", Same},
+        {"/stats/rays", Sum},
+        {"/stats/rays_hit", Sum},
+        {"/stats/samples_placed", Sum},
+        {"/stats/samples_evaluated", Sum},
+        {"/stats/samples_per_second", Derived},
+        {"/stats/empty_brick_fraction", Same},
+        {"/stats/rays_terminated", Sum},
+        {"/stats/termination_left_out_max", Max},
+        {"/stats/backend", Same},
+        {"/stats/device", Same},
+        {"/stats/interpolation", Same},
+        {"/stats/simd_target", Same},
+        {"/stats/adaptive", Sum},
+        {"/stats/nonfinite_pixels", Sum},
+        {"/stats/first_nonfinite_pixel", FirstPixel},
+        {"/stats/out_of_range_pixels/pixels", Sum},
+        {"/stats/out_of_range_pixels/channels_above_1", Sum},
+        {"/stats/out_of_range_pixels/channels_below_0", Sum},
+        {"/stats/out_of_range_pixels/max", Max},
+        {"/stats/out_of_range_pixels/min", Min},
+        // The exact method's (exact_reference_json.cpp).
+        {"/stats/rays_opaque", Sum},
+        {"/stats/pieces", Sum},
+        {"/stats/pieces_visible", Sum},
+        {"/stats/sub_pieces", Sum},
+        {"/stats/quadrature_intervals", Sum},
+        {"/stats/quadrature_nodes", Sum},
+        {"/stats/error_bound/channels", Same},
+        {"/stats/error_bound/max", Max},
+        {"/stats/error_bound/mean", PixelMean},
+        // The frames (frame_timing.cpp): frame k of the whole is frame k of every tile, one after another.
+        {"/timing/warm_up_frames", Agree},
+        {"/timing/repeats", Agree},
+        {"/timing/wall_seconds", Sum},
+        {"/timing/median_wall_seconds", Derived},
+        {"/machine", Same},  // tiles may run on different machines
+    };
+    return rules;
+}
+
+json combineTileStats(const std::vector<json>& records, const std::vector<std::string>& names) {
+    StatsCombiner combiner(records, names);
+    json out = {{"stats", combiner.combine("/stats")}, {"timing", combiner.combine("/timing")}};
+    if (std::ranges::all_of(records, [](const json& r) { return r.contains("machine"); }))
+        out["machine"] = combiner.combine("/machine");
+    json& stats = out["stats"];
+    if (stats.contains("samples_per_second")) {  // as render_json.cpp computes it
+        const json& samples = stats["samples_evaluated"];
+        const json& seconds = stats["wall_seconds"];
+        stats["samples_per_second"] = samples.is_number() && seconds.is_number() && seconds.get<double>() > 0
+                                          ? samples.get<double>() / seconds.get<double>()
+                                          : 0.0;
+    }
+    json& timing = out["timing"];
+    if (timing.contains("median_wall_seconds") && timing["wall_seconds"].is_array() && !timing["wall_seconds"].empty())
+        timing["median_wall_seconds"] = median(timing["wall_seconds"].get<std::vector<double>>());
+    out["not_combined"] = combiner.notCombinedList();
+    return out;
+}
+
+MergedTiles mergeTiles(const std::vector<TileFiles>& tiles) {
+    if (tiles.empty()) throw Error("no tiles to merge");
+    std::vector<json> records;
+    std::vector<std::string> names;
+    for (const TileFiles& t : tiles) {
+        records.push_back(readJsonFile(t.stats));
+        names.push_back(t.stats);
+    }
+    for (const char* key : {"tool", "build", "inputs", "scene", "transfer_function", "camera", "options"})
+        requireShared(records, names, key);
+    const auto [width, height] = readingJsonOf(names[0], [&] {
+        return std::pair(records[0].at("camera").at("width").get<int>(), records[0].at("camera").at("height").get<int>());
+    });
+    const std::string imageSize = std::to_string(width) + "x" + std::to_string(height);
+
+    std::vector<PixelRegion> regions;
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+        if (!records[i].contains("region"))
+            throw Error(names[i] + ": has no \"region\" (not a tile: render one with --region X,Y,WIDTH,HEIGHT)");
+        const PixelRegion r = readingJsonOf(names[i], [&] {
+            const json& j = records[i].at("region");
+            return PixelRegion{j.at("x").get<int>(), j.at("y").get<int>(), j.at("width").get<int>(),
+                               j.at("height").get<int>()};
+        });
+        if (!r.inside(width, height))
+            throw Error(names[i] + ": region " + r.text() + " is not inside its camera's " + imageSize + " image");
+        regions.push_back(r);
+    }
+
+    MergedTiles merged;
+    merged.image = Image(width, height);  // its size checked against the byte limit before allocating
+    // Which tile each pixel came from (-1: none yet): an overlap and a gap each name a pixel.
+    std::vector<int> owner(static_cast<std::size_t>(width) * height, -1);
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+        const PixelRegion& r = regions[i];
+        for (int y = r.y; y < r.y + r.height; ++y)
+            for (int x = r.x; x < r.x + r.width; ++x) {
+                int& o = owner[static_cast<std::size_t>(y) * width + x];
+                if (o >= 0)
+                    throw Error(names[i] + ": region " + r.text() + " overlaps " + names[o] + "'s region " +
+                                regions[o].text() + " at pixel " + std::to_string(x) + "," + std::to_string(y) +
+                                " (tiles must cover the image once)");
+                o = static_cast<int>(i);
+            }
+    }
+    if (const auto gap = std::ranges::find(owner, -1); gap != owner.end()) {
+        const std::size_t at = gap - owner.begin();
+        throw Error("the tiles leave pixel " + std::to_string(at % width) + "," + std::to_string(at / width) +
+                    " of the " + imageSize + " image uncovered (" +
+                    std::to_string(owner.size() - std::ranges::count(owner, -1)) + " of " +
+                    std::to_string(owner.size()) + " pixels; tiles must cover the image once)");
+    }
+
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+        const PixelRegion& r = regions[i];
+        const Image tile = readImage(tiles[i].image);
+        if (tile.width != r.width || tile.height != r.height || tile.channelNames != merged.image.channelNames)
+            throw Error(tiles[i].image + ": a " + std::to_string(tile.width) + "x" + std::to_string(tile.height) +
+                        " image of " + std::to_string(tile.channels) + " channels, but " + names[i] +
+                        " says a RGBA region " + r.text());
+        const ImageMetadata metadata = readImageMetadata(tiles[i].image);
+        const auto said = std::ranges::find(metadata, std::string("vri:region"), &ImageMetadata::value_type::first);
+        if (said == metadata.end() || said->second != r.text())
+            throw Error(tiles[i].image + ": its vri:region is '" + (said == metadata.end() ? "" : said->second) +
+                        "', but " + names[i] + " says " + r.text() + " (an image and stats of different tiles?)");
+        for (int y = 0; y < r.height; ++y)
+            std::copy_n(tile.pixels.begin() + std::ptrdiff_t(y) * r.width * 4, std::size_t(r.width) * 4,
+                        &merged.image.at(r.x, r.y + y, 0));
+    }
+
+    json record = records[0];
+    for (const char* key : {"region", "command", "time_utc"}) record.erase(key);
+    const json combined = combineTileStats(records, names);
+    for (const auto& [key, value] : combined.items()) record[key] = value;
+    record["tiles"] = json::array();
+    for (std::size_t i = 0; i < tiles.size(); ++i)
+        record["tiles"].push_back({{"image", tiles[i].image},
+                                   {"stats", tiles[i].stats},
+                                   {"region", records[i]["region"]},
+                                   {"command", records[i].value("command", json())},
+                                   {"time_utc", records[i].value("time_utc", json())}});
+    merged.record = std::move(record);
+    // The attributes vri-render writes (render_command.cpp), from the tiles' shared records.
+    merged.metadata = {{"vri:options", records[0]["options"].dump()}, {"vri:scene", records[0]["scene"].dump()}};
+    return merged;
+}
+
+}  // namespace vri
