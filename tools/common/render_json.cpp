@@ -15,7 +15,8 @@ nlohmann::json toJson(const RenderRequest& request) {
     nlohmann::json j = nlohmann::json::object();
     // A dotted name ("early_termination.bound") is a member of an object.
     for (const Setting& s : settingsRecord(request)) {
-        std::string pointer = "/" + std::string(s.name);
+        std::string pointer = "/";
+        pointer += s.name;
         std::replace(pointer.begin(), pointer.end(), '.', '/');
         std::visit([&](const auto& value) { j[nlohmann::json::json_pointer(pointer)] = value; }, s.value);
     }
