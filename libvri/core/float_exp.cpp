@@ -12,7 +12,7 @@ namespace vri {
 namespace {
 
 // exp_kernel.h's operations on one float.
-struct ScalarOps {
+struct ScalarExpOps {
     using Scalar = float;
     static float set(float c) { return c; }
     static float select(bool c, float a, float b) { return c ? a : b; }
@@ -28,7 +28,7 @@ struct ScalarOps {
 
 }  // namespace
 
-float expFloat(float x) { return exp_kernel::exp(ScalarOps{}, x); }
-float expm1Float(float x) { return exp_kernel::expm1(ScalarOps{}, x); }
+float expFloat(float x) { return exp_kernel::exp(ScalarExpOps{}, x); }
+float expm1Float(float x) { return exp_kernel::expm1(ScalarExpOps{}, x); }
 
 }  // namespace vri

@@ -10,7 +10,7 @@ namespace vri {
 namespace {
 
 // gauss_bound_kernel.h's operations on one double.
-struct ScalarOps {
+struct ScalarBoundOps {
     static double set(double c) { return c; }
     static double abs(double x) { return std::abs(x); }
     static double max(double a, double b) { return std::max(a, b); }
@@ -20,7 +20,7 @@ struct ScalarOps {
 
 std::array<double, 3> gaussErrorBounds(const std::array<double, 4> (&colour)[3], const std::array<double, 4>& tau,
                                        bool colourTimesExtinction, double ell, double transparencyMax) {
-    return gauss_bound_kernel::bounds(ScalarOps{}, colour, tau, colourTimesExtinction, ell, transparencyMax);
+    return gauss_bound_kernel::bounds(ScalarBoundOps{}, colour, tau, colourTimesExtinction, ell, transparencyMax);
 }
 
 const GaussRule& gaussRule(int n) {

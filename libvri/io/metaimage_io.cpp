@@ -21,7 +21,7 @@ struct MetaHeader {
 };
 
 // Lines up to and including ElementDataFile, which MetaIO requires to be the last.
-MetaHeader parseHeader(const fs::path& path) {
+MetaHeader parseMetaHeader(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path.string() + ": cannot open");
     MetaHeader header;
@@ -68,7 +68,7 @@ bool parseBool(const HeaderEntry& entry, const std::string& where) {
 
 Volume readMetaImage(const fs::path& path) {
     requireRegularFile(path);
-    const MetaHeader header = parseHeader(path);
+    const MetaHeader header = parseMetaHeader(path);
     const auto find = [&](const std::string& key) -> const HeaderEntry* {
         const auto it = header.entries.find(key);
         return it == header.entries.end() ? nullptr : &it->second;

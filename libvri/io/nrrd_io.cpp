@@ -38,7 +38,7 @@ struct NrrdHeader {
     std::optional<std::uintmax_t> dataOffset;  // attached data start right after the blank line
 };
 
-NrrdHeader parseHeader(const fs::path& path) {
+NrrdHeader parseNrrdHeader(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
     if (!std::getline(in, line) || line.size() < 8 || line.compare(0, 7, "NRRD000") != 0 ||
@@ -113,7 +113,7 @@ void requireSpanningSpacing(const RawLayout& layout, const std::string& where) {
 
 Volume readNrrd(const fs::path& path) {
     requireRegularFile(path);
-    const NrrdHeader header = parseHeader(path);
+    const NrrdHeader header = parseNrrdHeader(path);
     const auto where = [&](const std::string& name) {
         const auto it = header.fields.find(name);
         return path.string() + ":" + (it == header.fields.end() ? "" : std::to_string(it->second.line) + ":") +
