@@ -3,6 +3,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <csignal>
@@ -76,9 +77,21 @@ std::string signalName(int signal) {
     return "signal " + std::to_string(signal);
 }
 
-std::string joined(const std::vector<std::string>& words, const std::string& separator) {
+// Job ids as a reader takes them in: runs of consecutive ids as "12-40", then how many ("12-40,45 (30 jobs)").
+std::string jobList(const std::vector<std::string>& ids) {
+    std::vector<long long> numbers;
+    for (const std::string& id : ids) numbers.push_back(std::stoll(id));  // sbatch's ids: digits only
+    std::sort(numbers.begin(), numbers.end());
     std::string text;
-    for (const std::string& w : words) text += (text.empty() ? "" : separator) + w;
+    for (std::size_t i = 0; i < numbers.size();) {
+        std::size_t j = i;
+        while (j + 1 < numbers.size() && numbers[j + 1] == numbers[j] + 1) ++j;
+        if (!text.empty()) text += ',';
+        text += std::to_string(numbers[i]);
+        if (j > i) text.append(1, '-').append(std::to_string(numbers[j]));
+        i = j + 1;
+    }
+    text.append(" (").append(std::to_string(ids.size())).append(ids.size() == 1 ? " job)" : " jobs)");
     return text;
 }
 
@@ -264,7 +277,7 @@ void SlurmRun::watch() {
     for (std::vector<std::string> ids = unendedIds(); !ids.empty(); ids = unendedIds()) {
         if (gInterrupt) {
             cancelAndWait(ids, options_.slurm.pollSeconds);
-            throw Error("interrupted by " + signalName(gInterrupt) + ": cancelled Slurm jobs " + joined(ids, ","));
+            throw Error("interrupted by " + signalName(gInterrupt) + ": cancelled Slurm jobs " + jobList(ids));
         }
         pause(options_.slurm.pollSeconds);
         std::map<std::string, SlurmJob> states;
@@ -275,7 +288,7 @@ void SlurmRun::watch() {
             if (std::chrono::duration<double>(Clock::now() - lastAnswer).count() < kSqueueOutageSeconds) continue;
             cancelJobs(ids);
             throw Error(std::string(e.what()) + " for " + std::to_string(int(kSqueueOutageSeconds)) +
-                        " s; cancelled Slurm jobs " + joined(ids, ","));
+                        " s; cancelled Slurm jobs " + jobList(ids));
         }
         for (std::size_t j = 0; j < jobs_.size(); ++j) {
             if (jobs_[j].ended) continue;
@@ -309,11 +322,12 @@ std::vector<StepOutcome> SlurmRun::run() {
         const std::vector<std::string> submitted = unendedIds();
         cancelAndWait(submitted, options_.slurm.pollSeconds);
         throw Error(std::string(e.what()) +
-                    (submitted.empty() ? "" : "; cancelled the Slurm jobs submitted before: " + joined(submitted, ",")));
+                    (submitted.empty() ? "" : "; cancelled the Slurm jobs submitted before: " + jobList(submitted)));
     }
-    std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": " << steps.size() << " steps in "
-              << jobs_.size() << " Slurm jobs (" << jobs_.front().id << (jobs_.size() > 1 ? "-" + jobs_.back().id : "")
-              << ")\n";
+    std::vector<std::string> ids;
+    for (const Job& job : jobs_) ids.push_back(job.id);
+    std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": " << steps.size() << " steps in Slurm jobs "
+              << jobList(ids) << "\n";
     watch();
     return ledger_.result();
 }

@@ -25,7 +25,8 @@ std::vector<std::optional<double>> stepPrices(const Plan& plan, const fs::path& 
     for (const Step& step : plan.steps) {
         // The manifest's command starts with the tool as the run that wrote it named it (its build
         // folder); the arguments after it are what decide the work.
-        const std::string arguments = " " + shellCommand(step.arguments);
+        std::string arguments = " ";
+        arguments += shellCommand(step.arguments);
         const auto found = last.find(step.id);
         if (found == last.end() || !found->second.first.ends_with(arguments))
             prices.emplace_back();

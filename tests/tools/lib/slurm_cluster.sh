@@ -1,7 +1,9 @@
 # Sourced by the Slurm tests: a real single-node Slurm cluster from Debian's slurm-wlm and munge, all of
 # it in $1 (configuration, key, sockets, state, logs), on loopback ports of its own; SLURM_CONF points the
 # client commands at it. Nothing of the machine's own Slurm or munge is read or touched. The daemons are
-# stopped by the pids they wrote when the test exits.
+# stopped by the pids they wrote when the test exits. One setting departs from Slurm's defaults:
+# batch_sched_delay=0 starts a job as soon as the node is free instead of up to 3 s later, which halves
+# the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s).
 #   start_slurm_cluster DIR   exits 77 (skip) with one line when the daemons cannot start here
 
 slurm_daemon_pids=()
@@ -72,6 +74,7 @@ SelectTypeParameters=CR_Core_Memory
 MpiDefault=none
 ReturnToService=2
 MinJobAge=3600
+SchedulerParameters=batch_sched_delay=0
 PropagateResourceLimits=NONE
 NodeName=$node NodeAddr=127.0.0.1 NodeHostname=$node CPUs=$(nproc) RealMemory=$memory State=UNKNOWN
 PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP
