@@ -18,7 +18,7 @@
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
 #include "libvri/experiment/manifest.h"
-#include "libvri/experiment/slurm_executor.h"
+#include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_node.h"
 #include "libvri/experiment/step_costs.h"
 #include "libvri/util/atomic_file.h"
@@ -54,11 +54,17 @@ vri::SlurmOptions slurmOptions(const Options& options) {
     vri::SlurmOptions slurm;
     if (const char* site = std::getenv(kSiteSlurmArguments)) {
         std::istringstream words(site);
-        for (std::string word; words >> word;) slurm.sbatchArguments.push_back(word);
+        for (std::string word; words >> word;) {
+            vri::checkSiteSbatchOption(word, kSiteSlurmArguments);
+            slurm.sbatchArguments.push_back(word);
+        }
     }
     if (!options.slurmPartition.empty()) slurm.sbatchArguments.push_back("--partition=" + options.slurmPartition);
     if (!options.slurmAccount.empty()) slurm.sbatchArguments.push_back("--account=" + options.slurmAccount);
-    slurm.sbatchArguments.insert(slurm.sbatchArguments.end(), options.slurmArguments.begin(), options.slurmArguments.end());
+    for (const std::string& word : options.slurmArguments) {
+        vri::checkSiteSbatchOption(word, "--slurm-arg");
+        slurm.sbatchArguments.push_back(word);
+    }
     slurm.bundleSeconds = options.slurmBundle;
     slurm.cpus = options.slurmCpus;
     slurm.pollSeconds = options.slurmPoll;
@@ -143,12 +149,12 @@ int run(const Options& options) {
         experiments.push_back(vri::loadExperiment(file, options.quick));
         plans.push_back(vri::planExperiment(experiments.back(), resultsRoot / experiments.back().name, fs::current_path()));
     }
-    vri::RunOptions runOptions{toolDir, options.jobs, options.force,
-                               options.executor == "slurm" ? vri::Executor::Slurm : vri::Executor::Local,
-                               slurmOptions(options), {}};
+    vri::RunOptions runOptions{toolDir, options.jobs, options.force, vri::Executor::Local, {}, {}};
+    if (options.executor == "slurm") {
+        runOptions.executor = vri::Executor::Slurm;
+        runOptions.slurm = slurmOptions(options);
+    }
     vri::FileHasher hasher;
-    const bool runs = !options.estimate && !options.dryRun && !plans.empty();
-    if (runs && runOptions.executor == vri::Executor::Slurm) vri::checkSlurmNodes(plans, resultsRoot, runOptions, hasher);
     for (std::size_t e = 0; e < plans.size(); ++e) {
         const vri::Experiment& experiment = experiments[e];
         const vri::Plan& plan = plans[e];
@@ -261,8 +267,9 @@ Examples:
   vri-run --gallery results experiments/*.yaml                  # everything, then results/README.md
   vri-run --executor slurm --slurm-partition short experiments/convergence.yaml   # on a Slurm cluster
 
-On Slurm (--executor slurm), one small job first checks that the compute nodes see the tools, the inputs and
-the results folder at the same paths; then every step to run is submitted at once, ordered by the cluster
+On Slurm (--executor slurm), before the first job of a run, one small job checks that the compute nodes see the
+tools, the inputs and the results folder at the same paths; then every step of an experiment that must run
+is submitted at once, ordered by the cluster
 (--dependency=afterok). $VRI_SLURM_ARGS holds a site's sbatch options (blank-separated words). Ctrl-C or
 SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;

@@ -3,6 +3,7 @@
 // those the step cache vouches for. Where the processes run is the executor's choice: vri-run's own
 // children, up to `jobs` at once (local), or jobs of a Slurm cluster (slurm_executor.h).
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,9 @@ struct SlurmOptions {
     double bundleSeconds = 60;  // steps estimated below this share jobs of about this many seconds; 0: a job each
     int cpus = 2;               // CPUs of a step that does not set its own --threads
     double pollSeconds = 1;     // how often squeue is asked
+    // Whether a job has checked that the nodes share this host's files (slurm_executor.h): once a
+    // vri-run, before its first submitted job. Shared by the copies of these options.
+    std::shared_ptr<bool> nodesChecked = std::make_shared<bool>(false);
 };
 
 struct RunOptions {

@@ -2,7 +2,6 @@
 #include "libvri/experiment/slurm_commands.h"
 
 #include <algorithm>
-#include <charconv>
 #include <set>
 #include <sstream>
 
@@ -15,8 +14,8 @@ namespace vri {
 namespace {
 
 // squeue's fields, '|' after each (no field holds one): the format squeueArguments asks for.
-constexpr const char* kSqueueFormat = "JobID:|,State:|,exit_code:|,NodeList:|,Reason:|";
-constexpr std::size_t kSqueueFields = 5;
+constexpr const char* kSqueueFormat = "JobID:|,State:|,NodeList:|,Reason:|";
+constexpr std::size_t kSqueueFields = 4;
 
 std::filesystem::path slurmProgram(const std::string& name) {
     const auto program = findProgram(name);
@@ -47,7 +46,8 @@ bool isFinalJobState(const std::string& state) {
 std::vector<std::string> squeueArguments(const std::vector<std::string>& jobIds) {
     std::string list;
     for (const std::string& id : jobIds) list += (list.empty() ? "" : ",") + id;
-    return {"squeue", "--noheader", "--states=all", "--jobs=" + list, "--Format=" + std::string(kSqueueFormat)};
+    // --all: jobs in hidden partitions too; explicit options win over a user's SQUEUE_* variables.
+    return {"squeue", "--noheader", "--all", "--states=all", "--jobs=" + list, "--Format=" + std::string(kSqueueFormat)};
 }
 
 std::map<std::string, SlurmJob> parseSqueue(const std::string& output) {
@@ -65,13 +65,10 @@ std::map<std::string, SlurmJob> parseSqueue(const std::string& output) {
             s.erase(s.find_last_not_of(' ') + 1);
         };
         for (std::string& f : fields) trim(f);
-        int status = 0;
-        if (fields.size() != kSqueueFields || fields[0].empty() ||
-            std::from_chars(fields[2].data(), fields[2].data() + fields[2].size(), status).ec != std::errc{})
+        if (fields.size() != kSqueueFields || fields[0].empty() || fields[1].empty())
             throw Error("squeue printed a line vri-run cannot read: " + printable(line));
-        // A cancelled job may read "CANCELLED by 0"; the state is the first word.
-        const std::string state = fields[1].substr(0, fields[1].find(' '));
-        jobs[fields[0]] = {fields[0], state, status, fields[3], fields[4]};
+        // The state is its first word, should a Slurm version say more ("CANCELLED by 0", as sacct does).
+        jobs[fields[0]] = {fields[0], fields[1].substr(0, fields[1].find(' ')), fields[2], fields[3]};
     }
     return jobs;
 }
@@ -86,6 +83,30 @@ std::string parseSbatchJobId(const std::string& output) {
     throw Error("sbatch printed no job id: " + printable(firstErrorLine(output)));
 }
 
+void checkSiteSbatchOption(const std::string& option, const std::string& source) {
+    static const std::vector<std::pair<std::string, std::string>> owned{
+        {"--dependency", "the jobs' order"}, {"--kill-on-invalid-dep", "the jobs' order"},
+        {"--array", "one job per bundle"},   {"--clusters", "the cluster vri-run watches"},
+        {"--chdir", "the jobs' files"},      {"--output", "the jobs' files"},
+        {"--error", "the jobs' files"},      {"--parsable", "reading the job id"},
+        {"--wait", "watching the jobs"},     {"--wrap", "the job script"}};
+    static const std::map<char, std::string> shortForms{{'d', "--dependency"}, {'a', "--array"}, {'M', "--clusters"},
+                                                        {'D', "--chdir"},      {'o', "--output"}, {'e', "--error"},
+                                                        {'W', "--wait"}};
+    if (option.size() < 2 || option[0] != '-')
+        throw Error(source + ": '" + printable(option) + "' is not an sbatch option (expected one word such as --qos=long)");
+    std::string name = option.substr(0, option.find('='));
+    if (option[1] != '-') {
+        const auto found = shortForms.find(option[1]);
+        if (found == shortForms.end()) return;
+        name = found->second;
+    }
+    // sbatch, through getopt_long, takes any unambiguous beginning of a long option ("--depend=").
+    for (const auto& [owner, why] : owned)
+        if (name.size() > 2 && owner.starts_with(name))
+            throw Error(source + ": '" + printable(option) + "': vri-run sets " + owner + " itself (" + why + ")");
+}
+
 std::string submitJob(const std::vector<std::string>& arguments) {
     std::vector<std::string> words{"sbatch", "--parsable"};
     words.insert(words.end(), arguments.begin(), arguments.end());
@@ -97,14 +118,18 @@ std::string submitJob(const std::vector<std::string>& arguments) {
 
 std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds) {
     if (jobIds.empty()) return {};
-    const auto [status, output] = captureProcess(slurmProgram("squeue"), squeueArguments(jobIds),
-                                                 {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true});
-    if (!status.ok()) {
-        // squeue lists the ids it knows and skips the others, but fails when it knows none of them.
-        if (output.find("Invalid job id") != std::string::npos) return {};
-        throw Error("squeue failed (" + status.describe() + "): " + printable(firstErrorLine(output)));
-    }
-    return parseSqueue(output);
+    const std::filesystem::path squeue = slurmProgram("squeue");
+    const std::vector<std::string> words = squeueArguments(jobIds);
+    // Its warnings on stderr are not job lines: only stdout is read.
+    const auto [status, output] =
+        captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false});
+    if (status.ok()) return parseSqueue(output);
+    // squeue lists the ids it knows and skips the others, but fails when it knows none of them; asked
+    // again with its stderr, its message tells that from a controller that does not answer.
+    const auto [again, said] = captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true});
+    if (again.ok()) return parseSqueue(said);
+    if (said.find("Invalid job id") != std::string::npos) return {};
+    throw Error("squeue failed (" + again.describe() + "): " + printable(firstErrorLine(said)));
 }
 
 void cancelJobs(const std::vector<std::string>& jobIds) {

@@ -12,7 +12,6 @@ namespace vri {
 struct SlurmJob {
     std::string id;
     std::string state;   // PENDING, RUNNING, COMPLETED, FAILED, TIMEOUT, CANCELLED, ...
-    int exitStatus = 0;  // squeue's exit_code: the batch script's wait status (code << 8 | signal)
     std::string node;    // the node list, empty while pending
     std::string reason;  // why it waits or ended: None, Dependency, DependencyNeverSatisfied, NonZeroExitCode, ...
 };
@@ -28,6 +27,12 @@ std::map<std::string, SlurmJob> parseSqueue(const std::string& output);
 
 // The job id sbatch --parsable printed ("12" or "12;cluster"). Anything else is a vri::Error.
 std::string parseSbatchJobId(const std::string& output);
+
+// Refuses, as a vri::Error naming `source` (--slurm-arg, VRI_SLURM_ARGS), a site's or user's sbatch option
+// that would break vri-run's own: not an option at all (a word without '-' would be taken as the
+// script), or one of --dependency, --kill-on-invalid-dep, --array, --clusters, --chdir, --output,
+// --error, --parsable, --wait, --wrap (and their short forms).
+void checkSiteSbatchOption(const std::string& option, const std::string& source);
 
 // Runs sbatch with `arguments` (options, then the script and its arguments) and returns the job id.
 // A refusal is a vri::Error with sbatch's own first line.

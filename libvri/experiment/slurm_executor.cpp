@@ -119,10 +119,84 @@ void cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
     }
 }
 
+std::string randomToken() {
+    std::random_device device;
+    char text[33];
+    std::snprintf(text, sizeof text, "%08x%08x%08x%08x", device(), device(), device(), device());
+    return text;
+}
+
+// The check of slurm_executor.h, before the first job of a run: one small job on a compute node.
+void checkSlurmNodes(const Plan& plan, const RunOptions& options, FileHasher& hasher) {
+    const fs::path folder = fs::absolute(plan.resultsDir.parent_path()) / ".slurm-check";
+    const std::string token = randomToken();
+    NodeCheck check{token, {}, {}, folder / (token + ".report.json")};
+    std::set<fs::path> tools, files;
+    for (const fs::directory_entry& entry : fs::directory_iterator(options.toolDir))
+        if (entry.is_regular_file() && entry.path().filename().string().starts_with("vri-"))
+            tools.insert(fs::absolute(entry.path()));
+    for (const Step& step : plan.steps)
+        for (const fs::path& input : step.inputs)
+            if (fs::is_regular_file(input)) files.insert(fs::absolute(input));
+    for (const fs::path& tool : tools) check.tools.emplace_back(tool, hasher.digest(tool));
+    for (const fs::path& file : files) check.files.emplace_back(file, fs::file_size(file));
+    fs::create_directories(folder);
+    const fs::path checkFile = folder / (token + ".json"), script = folder / (token + ".sh"), out = folder / (token + ".out");
+    writeNodeCheck(checkFile, check);
+    writeJobScript(script);
+    // Only this check's files go, and its job's output stays when the check fails: the evidence.
+    const auto removeOwnFiles = [&](bool keepOutput) {
+        for (const fs::path& f : {checkFile, script, check.report}) fs::remove(f);
+        if (!keepOutput) fs::remove(out);
+        std::error_code ec;
+        fs::remove(folder, ec);  // only when empty: another run's check may be there
+    };
+    std::vector<std::string> arguments{"--job-name=vri:check", "--chdir=" + folder.string(), "--output=" + out.filename().string(),
+                                       "--cpus-per-task=1", "--mem=256M", "--time=10"};
+    arguments.insert(arguments.end(), options.slurm.sbatchArguments.begin(), options.slurm.sbatchArguments.end());
+    arguments.insert(arguments.end(), {script.string(), fs::absolute(options.toolDir / "vri-run").string(),
+                                       "--slurm-node-check", checkFile.string()});
+    std::vector<std::string> problems;
+    bool completed = true;  // unless squeue says otherwise (one that forgot it cannot)
+    try {
+        const std::string id = submitJob(arguments);
+        try {
+            for (;;) {
+                if (gInterrupt) throw Error("interrupted by " + signalName(gInterrupt) + ": cancelled the Slurm check job " + id);
+                pause(options.slurm.pollSeconds);
+                const std::map<std::string, SlurmJob> states = queryJobs({id});
+                const auto found = states.find(id);
+                if (found == states.end()) break;
+                if (isFinalJobState(found->second.state)) {
+                    completed = found->second.state == "COMPLETED";
+                    break;
+                }
+            }
+        } catch (...) {
+            cancelAndWait({id}, options.slurm.pollSeconds);
+            throw;
+        }
+        // A check that completed wrote its report, which a shared file system may show late.
+        const auto start = Clock::now();
+        while (completed && !fs::exists(check.report) && !gInterrupt &&
+               std::chrono::duration<double>(Clock::now() - start).count() < kSharedFileDelaySeconds)
+            pause(0.2);
+        problems = readNodeCheckReport(check);
+        if (!problems.empty())
+            throw Error(problems.front() + " (the Slurm check job " + id +
+                        "): tools, inputs and the results folder must be shared with the compute nodes at the same paths");
+    } catch (...) {
+        removeOwnFiles(true);
+        throw;
+    }
+    removeOwnFiles(false);
+}
+
 class SlurmRun {
 public:
     SlurmRun(const Plan& plan, const RunOptions& options, FileHasher& hasher)
-        : plan_(plan), options_(options), ledger_(plan, options, hasher), slurmDir_(plan.resultsDir / ".steps" / "slurm") {}
+        : plan_(plan), options_(options), hasher_(hasher), ledger_(plan, options, hasher),
+          slurmDir_(plan.resultsDir / ".steps" / "slurm") {}
 
     std::vector<StepOutcome> run();
 
@@ -140,6 +214,9 @@ private:
     void ended(std::size_t j, const SlurmJob& state);
     void abandonDependents(std::size_t j);
     std::vector<std::string> unendedIds() const;
+    // A run's job files carry a token of their own: a job of an earlier run still alive (one scancel
+    // could not stop in time) finds its own files gone, and never reads this run's.
+    std::string jobStem(std::size_t j) const { return "job-" + token_ + "-" + std::to_string(j); }
     fs::path statusPath(std::size_t i) const {
         fs::path status = ledger_.logPath(i);
         return status.replace_extension(".status.json");
@@ -147,8 +224,10 @@ private:
 
     const Plan& plan_;
     const RunOptions& options_;
+    FileHasher& hasher_;
     StepLedger ledger_;
     fs::path slurmDir_;
+    std::string token_ = randomToken();
     std::vector<Job> jobs_;
     std::map<std::size_t, std::size_t> jobOfStep_;
 };
@@ -157,9 +236,13 @@ std::vector<std::size_t> SlurmRun::stepsToRun() {
     std::vector<std::size_t> run;
     std::vector<bool> willRun(plan_.steps.size(), false);
     for (std::size_t i = 0; i < plan_.steps.size(); ++i) {
-        bool upstreamRuns = false;
-        for (std::size_t d : plan_.dependencies[i]) upstreamRuns = upstreamRuns || willRun[d];
-        if (upstreamRuns) {
+        bool upstreamRuns = false, upstreamUnavailable = false;
+        for (std::size_t d : plan_.dependencies[i]) {
+            upstreamRuns = upstreamRuns || willRun[d];
+            upstreamUnavailable = upstreamUnavailable || (ledger_.settled(d) &&
+                                                          ledger_.outcome(d).state == StepOutcome::State::Unavailable);
+        }
+        if (upstreamRuns && !upstreamUnavailable) {
             // Its inputs will be rewritten: nothing to compare a record with yet, so it runs. A step
             // whose own tool is not built is still settled (with its dependents) as locally.
             if (!fs::is_regular_file(ledger_.program(i))) {
@@ -187,7 +270,7 @@ void SlurmRun::submit(std::size_t j) {
             if (const auto found = jobOfStep_.find(d); found != jobOfStep_.end() && found->second != j)
                 job.dependsOn.insert(found->second);
     }
-    const std::string stem = "job-" + std::to_string(j);
+    const std::string stem = jobStem(j);
     writeNodeSteps(slurmDir_ / (stem + ".json"), steps);
 
     const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus);
@@ -205,7 +288,11 @@ void SlurmRun::submit(std::size_t j) {
     arguments.insert(arguments.end(), options_.slurm.sbatchArguments.begin(), options_.slurm.sbatchArguments.end());
     arguments.insert(arguments.end(), {(slurmDir_ / "vri-job.sh").string(), fs::absolute(options_.toolDir / "vri-run").string(),
                                        "--slurm-node-steps", (slurmDir_ / (stem + ".json")).string()});
-    job.id = submitJob(arguments);
+    try {
+        job.id = submitJob(arguments);
+    } catch (const Error& e) {
+        throw Error("step '" + plan_.steps[job.bundle.steps.front()].id + "': " + e.what());
+    }
 }
 
 std::vector<std::string> SlurmRun::unendedIds() const {
@@ -236,25 +323,31 @@ void SlurmRun::abandonDependents(std::size_t failed) {
 void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
     Job& job = jobs_[j];
     job.ended = true;
-    // A job that completed wrote every status file, and so may have one squeue no longer knows.
-    const bool completed = state.state == "COMPLETED" || state.state == kForgotten;
+    // A job that completed or failed wrote a status file for every step it ran (one squeue no longer
+    // knows ended long ago); a shared file system may show them late. A job killed (cancelled, timed
+    // out, preempted, out of memory) left none for the step it killed: nothing to wait for.
+    const bool wroteStatuses = state.state == "COMPLETED" || state.state == "FAILED" || state.state == kForgotten;
     const auto start = Clock::now();
+    // This job's status file for step i: one another job wrote (an earlier run's) is not this run's.
+    const auto statusOf = [&](std::size_t i) {
+        std::optional<NodeStepStatus> status = readNodeStepStatus(statusPath(i));
+        return status && status->jobId == job.id ? status : std::nullopt;
+    };
     bool failed = false;
     for (std::size_t i : job.bundle.steps) {
         if (ledger_.settled(i)) continue;
-        std::optional<NodeStepStatus> status = readNodeStepStatus(statusPath(i));
-        // A shared file system may show a file late.
-        while (!status && completed &&
+        std::optional<NodeStepStatus> status = failed ? std::nullopt : statusOf(i);
+        while (!failed && !status && wroteStatuses && !gInterrupt &&
                std::chrono::duration<double>(Clock::now() - start).count() < kSharedFileDelaySeconds) {
             pause(0.2);
-            status = readNodeStepStatus(statusPath(i));
+            status = statusOf(i);
         }
         const std::string where = "Slurm job " + job.id + " " + state.state + (state.node.empty() ? "" : " on " + state.node);
         if (failed) {
             ledger_.abandoned(i, "an earlier step of its " + where + " failed");
         } else if (status && status->exited && status->code == 0) {
-            ledger_.succeeded(i, status->wallSeconds,
-                              {.executor = "slurm", .node = status->node, .jobId = job.id, .jobState = state.state});
+            failed = !ledger_.succeeded(i, status->wallSeconds,
+                                        {.executor = "slurm", .node = status->node, .jobId = job.id, .jobState = state.state});
         } else if (status) {
             const ExitStatus exit{status->exited, status->code, status->signal};
             ledger_.failed(i, "failed (" + exit.describe() + ") in " + where, status->wallSeconds);
@@ -264,7 +357,7 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
             failed = true;
         } else {
             ledger_.failed(i, "failed: " + where + (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") +
-                                  "; the job's output: " + (slurmDir_ / ("job-" + std::to_string(j) + ".out")).string(),
+                                  "; the job's output: " + (slurmDir_ / (jobStem(j) + ".out")).string(),
                            0);
             failed = true;
         }
@@ -275,10 +368,8 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
 void SlurmRun::watch() {
     auto lastAnswer = Clock::now();
     for (std::vector<std::string> ids = unendedIds(); !ids.empty(); ids = unendedIds()) {
-        if (gInterrupt) {
-            cancelAndWait(ids, options_.slurm.pollSeconds);
-            throw Error("interrupted by " + signalName(gInterrupt) + ": cancelled Slurm jobs " + jobList(ids));
-        }
+        // run() cancels the jobs on the way out, whatever stops the watch.
+        if (gInterrupt) throw Error("interrupted by " + signalName(gInterrupt) + ": cancelled Slurm jobs " + jobList(ids));
         pause(options_.slurm.pollSeconds);
         std::map<std::string, SlurmJob> states;
         try {
@@ -286,7 +377,6 @@ void SlurmRun::watch() {
             lastAnswer = Clock::now();
         } catch (const Error& e) {
             if (std::chrono::duration<double>(Clock::now() - lastAnswer).count() < kSqueueOutageSeconds) continue;
-            cancelJobs(ids);
             throw Error(std::string(e.what()) + " for " + std::to_string(int(kSqueueOutageSeconds)) +
                         " s; cancelled Slurm jobs " + jobList(ids));
         }
@@ -295,7 +385,7 @@ void SlurmRun::watch() {
             const auto found = states.find(jobs_[j].id);
             // A job squeue has forgotten ended long enough ago; its status files say how.
             if (found == states.end())
-                ended(j, {jobs_[j].id, kForgotten, 0, "", "no longer known to squeue"});
+                ended(j, {jobs_[j].id, kForgotten, "", "no longer known to squeue"});
             else if (isFinalJobState(found->second.state))
                 ended(j, found->second);
         }
@@ -305,6 +395,11 @@ void SlurmRun::watch() {
 std::vector<StepOutcome> SlurmRun::run() {
     const std::vector<std::size_t> steps = stepsToRun();
     if (steps.empty()) return ledger_.result();
+    const InterruptGuard guard;
+    if (!*options_.slurm.nodesChecked) {
+        checkSlurmNodes(plan_, options_, hasher_);
+        *options_.slurm.nodesChecked = true;
+    }
     fs::remove_all(slurmDir_);  // the job files of an earlier run
     fs::create_directories(slurmDir_);
     writeJobScript(slurmDir_ / "vri-job.sh");
@@ -312,13 +407,12 @@ std::vector<StepOutcome> SlurmRun::run() {
         for (std::size_t i : bundle.steps) jobOfStep_[i] = jobs_.size();
         jobs_.push_back({std::move(bundle), "", false, {}});
     }
-    const InterruptGuard guard;
     try {
         for (std::size_t j = 0; j < jobs_.size(); ++j) {
             if (gInterrupt) throw Error("interrupted by " + signalName(gInterrupt) + " while submitting");
             submit(j);
         }
-    } catch (const Error& e) {
+    } catch (const std::exception& e) {
         const std::vector<std::string> submitted = unendedIds();
         cancelAndWait(submitted, options_.slurm.pollSeconds);
         throw Error(std::string(e.what()) +
@@ -328,69 +422,21 @@ std::vector<StepOutcome> SlurmRun::run() {
     for (const Job& job : jobs_) ids.push_back(job.id);
     std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": " << steps.size() << " steps in Slurm jobs "
               << jobList(ids) << "\n";
-    watch();
+    try {
+        watch();
+    } catch (...) {
+        // Whatever stops the watch (an interrupt, squeue failing for minutes, a record that cannot be
+        // written), no job of this run is left behind.
+        cancelAndWait(unendedIds(), options_.slurm.pollSeconds);
+        throw;
+    }
     return ledger_.result();
-}
-
-std::string randomToken() {
-    std::random_device device;
-    char text[33];
-    std::snprintf(text, sizeof text, "%08x%08x%08x%08x", device(), device(), device(), device());
-    return text;
 }
 
 }  // namespace
 
 std::vector<StepOutcome> runPlanOnSlurm(const Plan& plan, const RunOptions& options, FileHasher& hasher) {
     return SlurmRun(plan, options, hasher).run();
-}
-
-void checkSlurmNodes(const std::vector<Plan>& plans, const fs::path& resultsRoot, const RunOptions& options,
-                     FileHasher& hasher) {
-    const fs::path folder = fs::absolute(resultsRoot) / ".slurm-check";
-    const std::string token = randomToken();
-    NodeCheck check{token, {}, {}, folder / (token + ".report.json")};
-    std::set<fs::path> tools{fs::absolute(options.toolDir / "vri-run")}, files;
-    for (const Plan& plan : plans)
-        for (const Step& step : plan.steps) {
-            if (fs::is_regular_file(options.toolDir / step.tool)) tools.insert(fs::absolute(options.toolDir / step.tool));
-            for (const fs::path& input : step.inputs)
-                if (fs::is_regular_file(input)) files.insert(fs::absolute(input));
-        }
-    for (const fs::path& tool : tools) check.tools.emplace_back(tool, hasher.digest(tool));
-    for (const fs::path& file : files) check.files.emplace_back(file, fs::file_size(file));
-    fs::create_directories(folder);
-    const fs::path checkFile = folder / (token + ".json");
-    writeNodeCheck(checkFile, check);
-    writeJobScript(folder / "vri-job.sh");
-    std::vector<std::string> arguments{"--job-name=vri:check", "--chdir=" + folder.string(), "--output=" + token + ".out",
-                                       "--cpus-per-task=1", "--mem=256M", "--time=5"};
-    arguments.insert(arguments.end(), options.slurm.sbatchArguments.begin(), options.slurm.sbatchArguments.end());
-    arguments.insert(arguments.end(), {(folder / "vri-job.sh").string(), fs::absolute(options.toolDir / "vri-run").string(),
-                                       "--slurm-node-check", checkFile.string()});
-    const InterruptGuard guard;
-    const std::string id = submitJob(arguments);
-    for (;;) {
-        if (gInterrupt) {
-            cancelAndWait({id}, options.slurm.pollSeconds);
-            throw Error("interrupted by " + signalName(gInterrupt) + ": cancelled the Slurm check job " + id);
-        }
-        pause(options.slurm.pollSeconds);
-        const std::map<std::string, SlurmJob> states = queryJobs({id});
-        const auto found = states.find(id);
-        if (found == states.end() || isFinalJobState(found->second.state)) break;
-    }
-    std::vector<std::string> problems;
-    try {
-        problems = readNodeCheckReport(check);
-    } catch (const Error&) {
-        fs::remove_all(folder);
-        throw;
-    }
-    fs::remove_all(folder);
-    if (!problems.empty())
-        throw Error(problems.front() + " (the Slurm check job " + id +
-                    "): tools, inputs and the results folder must be shared with the compute nodes at the same paths");
 }
 
 }  // namespace vri

@@ -7,7 +7,6 @@
 // its steps in the step cache and the manifest as the local executor does, with the job's id, node
 // and state. Caching, the manifest and the images are the local executor's: the same commands on
 // the same files.
-#include <filesystem>
 #include <vector>
 
 #include "libvri/experiment/experiment_run.h"
@@ -20,12 +19,11 @@ namespace vri {
 // naming the job and Slurm's state; the jobs that depend on it are cancelled and their steps do not
 // run. SIGINT, SIGTERM or SIGHUP to vri-run cancels every job it submitted (scancel) and waits for
 // them to end before it returns with a vri::Error.
+//
+// Before the first job of a vri-run (options.slurm.nodesChecked), one small job checks that a compute
+// node sees the tools (SHA-512 of every vri-* program in the tool folder), the plan's existing inputs
+// (sizes) and the results root (it writes its report there) as this host does; anything else is a
+// vri::Error with the first problem, and nothing is submitted.
 std::vector<StepOutcome> runPlanOnSlurm(const Plan& plan, const RunOptions& options, FileHasher& hasher);
-
-// Once per run, before any plan is submitted: one small job checks that a compute node sees the
-// tools (SHA-512), the plans' existing inputs (sizes) and `resultsRoot` (it writes its report there)
-// as this host does. Anything else is a vri::Error with the first problem.
-void checkSlurmNodes(const std::vector<Plan>& plans, const std::filesystem::path& resultsRoot,
-                     const RunOptions& options, FileHasher& hasher);
 
 }  // namespace vri

@@ -23,8 +23,9 @@ std::string argumentAfter(const Step& step, const std::string& option) {
 }
 
 int stepCpus(const Step& step, int defaultCpus) {
-    if (const std::string threads = argumentAfter(step, "--threads"); !threads.empty())
-        return parseCount(threads, "step '" + step.id + "' --threads", 1);
+    const std::string threads = argumentAfter(step, "--threads");
+    // --threads 0 is the tools' "all cores": on a cluster, what a step without --threads gets.
+    if (!threads.empty() && threads != "0") return parseCount(threads, "step '" + step.id + "' --threads", 1);
     return mayBeLong(step) ? defaultCpus : 1;
 }
 
@@ -78,7 +79,7 @@ JobResources jobResources(const Plan& plan, const JobBundle& bundle, int default
         resources.cpus = std::max(resources.cpus, stepCpus(plan.steps[i], defaultCpus));
         resources.memoryMiB = std::max(resources.memoryMiB, stepMemoryMiB(plan.steps[i]));
     }
-    if (bundle.priced) resources.minutes = static_cast<long long>(std::ceil((2 * bundle.seconds + 300) / 60));
+    if (bundle.priced) resources.minutes = static_cast<long long>(std::ceil((3 * bundle.seconds + 600) / 60));
     return resources;
 }
 

@@ -35,8 +35,10 @@ struct JobResources {
 // CPUs: a step's own --threads N, else `defaultCpus` for a render or command, 1 for the rest (diffs,
 // tables and figures are light). Memory: 256 MiB, plus 8 bytes per byte of the step's input files (a
 // volume read and converted to float), plus 64 bytes per pixel of its --size (the image's RGBA in
-// float and double, the error images); the bundle asks for its largest step's. Time: twice the
-// bundle's price plus 5 minutes, rounded up to whole minutes.
+// float and double, the error images); an input not written yet counts nothing. The bundle asks for
+// its largest step's. Time: three times the bundle's price plus 10 minutes, rounded up to whole
+// minutes: the price may have been measured on more cores than the job gets, and a job past its
+// time loses all its work while one that asks too much only waits a little longer.
 JobResources jobResources(const Plan& plan, const JobBundle& bundle, int defaultCpus);
 
 // The job's name: "vri:<experiment>:<first step>" (+N for the other steps of a bundle).

@@ -123,7 +123,7 @@ int runNodeCheck(const fs::path& file) {
         return fs::path(j.at("report").get<std::string>());
     });
     writeJson(report, {{"token", j.at("token")}, {"node", node}, {"problems", problems}});
-    return problems.empty() ? 0 : 1;
+    return 0;  // the report says what is wrong; a job that failed wrote none
 }
 
 std::vector<std::string> readNodeCheckReport(const NodeCheck& check) {

@@ -55,7 +55,8 @@ struct NodeCheck {
 void writeNodeCheck(const std::filesystem::path& file, const NodeCheck& check);
 
 // Runs the check of `file` and writes its report: {"token", "node", "problems": [one line each]}.
-// Returns 0 when the node sees everything as vri-run does, else 1.
+// Returns 0 once the report is written, whatever it says, so that the job's state tells vri-run
+// whether to wait for a report (a shared file system may show it late) or that none will come.
 int runNodeCheck(const std::filesystem::path& file);
 
 // The report's problems, or a vri::Error when there is no report carrying `token`: the node could not

@@ -69,7 +69,7 @@ std::vector<std::string> StepLedger::prepare(std::size_t i) {
     return words;
 }
 
-void StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecution& execution) {
+bool StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecution& execution) {
     const Step& step = plan_.steps[i];
     StepRecord& record = outcomes_[i].record;
     record.wallSeconds = wallSeconds;
@@ -82,7 +82,7 @@ void StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecutio
     for (const FileDigest& out : record.outputs)
         if (out.sha512 == "missing") {
             failed(i, "succeeded but did not write " + out.path, wallSeconds);
-            return;
+            return false;
         }
     // Its outputs are sound whatever else failed: a rerun need not make them again.
     writeRecord(recordPath(plan_, step), record);
@@ -92,6 +92,7 @@ void StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecutio
     std::string how = seconds;
     if (!execution.jobId.empty()) how += ", job " + execution.jobId + " on " + execution.node;
     settle(i, StepOutcome::State::Ran, how);
+    return true;
 }
 
 void StepLedger::failed(std::size_t i, const std::string& why, double wallSeconds) {

@@ -35,8 +35,8 @@ public:
     const std::filesystem::path& program(std::size_t i) const { return programs_[i]; }
 
     // Step i ran and exited 0: its outputs are digested, its record written, its log removed. A
-    // declared output that is missing fails it instead.
-    void succeeded(std::size_t i, double wallSeconds, const StepExecution& execution);
+    // declared output that is missing fails it instead: false then.
+    bool succeeded(std::size_t i, double wallSeconds, const StepExecution& execution);
     // Step i failed: `why` says how ("exit status 3", "Slurm job 12 TIMEOUT on node n1"); the first
     // failure is what run() reports, with the command and the step's log.
     void failed(std::size_t i, const std::string& why, double wallSeconds);

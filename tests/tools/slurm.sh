@@ -42,7 +42,9 @@ slurm=("$bin/vri-run" --executor slurm --slurm-poll 0.2)
 # The same study on both executors, into the same results path one after the other.
 "$bin/vri-run" --results res exp.yaml 2> local.txt || { cat local.txt; fail "the local run failed"; }
 mv res local
-"${slurm[@]}" --slurm-bundle 0 --results res exp.yaml 2> slurm.txt || { cat slurm.txt; fail "the Slurm run failed"; }
+# A job per step, one CPU each: on the two CPUs of the test node, a diff could start beside a render if
+# nothing held it back but its dependency.
+"${slurm[@]}" --slurm-bundle 0 --slurm-cpus 1 --results res exp.yaml 2> slurm.txt || { cat slurm.txt; fail "the Slurm run failed"; }
 summary slurm.txt | grep -q "steps, [1-9][0-9]* ran, 0 cached" || { cat slurm.txt; fail "the Slurm run ran nothing"; }
 grep -q "steps in Slurm jobs [0-9-]* ([0-9]* jobs)" slurm.txt || { cat slurm.txt; fail "the Slurm run did not say which jobs it submitted"; }
 # Images bitwise (pixels: a header holds its provenance, with times), PNGs and tables byte for byte.
@@ -101,8 +103,10 @@ PY
 
 # Nothing changed: a second Slurm run submits nothing; a local run then finds everything cached too.
 "${slurm[@]}" --results res exp.yaml 2> again.txt || { cat again.txt; fail "the cached Slurm run failed"; }
-summary again.txt | grep -q "0 ran" || { cat again.txt; fail "a cached step ran again on Slurm"; }
-! grep -q "Slurm jobs" again.txt || { cat again.txt; fail "a fully cached run submitted jobs"; }
+summary again.txt | grep -q ", 0 ran," || { cat again.txt; fail "a cached step ran again on Slurm"; }
+jobs_before=$(squeue --noheader --states=all --format=%i | wc -l)
+"${slurm[@]}" --results res exp.yaml 2> again.txt || { cat again.txt; fail "the cached Slurm run failed"; }
+[ "$(squeue --noheader --states=all --format=%i | wc -l)" -eq "$jobs_before" ] || fail "a fully cached run submitted a job"
 
 # Bundled: the cheap steps of a priced plan share jobs (the default bundle of 60 s holds them all).
 "${slurm[@]}" --force --results res exp.yaml 2> bundled.txt || { cat bundled.txt; fail "the bundled run failed"; }
@@ -130,7 +134,8 @@ start_slow() {
     job=
     for _ in $(seq 600); do
         job=$(squeue --noheader --states=RUNNING --name="$slow_job" --format=%i 2>/dev/null || true)
-        [ -n "$job" ] && return 0
+        # Every job submitted, and the slow one running.
+        [ -n "$job" ] && grep -q "steps in Slurm jobs" "$1" && return 0
         sleep 0.1
     done
     kill "$run"
@@ -179,14 +184,22 @@ if unshare --mount --propagation private true 2> /dev/null; then
     [ "$(wc -l < unshared.txt)" -eq 1 ] || { cat unshared.txt; fail "the refusal is not one line"; }
     grep -q "/hidden: the Slurm check job could not leave its report in this results folder" unshared.txt || { cat unshared.txt; fail "the refusal does not name the results folder"; }
     # A tool: vri-run's vri-diff differs from the one the node runs.
+    renders_before=$(squeue --noheader --states=all --name=vri:small:riemann-entry --format=%i | wc -l)
     mkdir -p tools && cp "$bin"/vri-* tools/ && cp tools/vri-diff changed-vri-diff && echo >> changed-vri-diff
     if unshare --mount --propagation private sh -c 'mount --bind "$1" "$2" && shift 2 && exec "$@"' sh \
-        "$PWD/changed-vri-diff" "$PWD/tools/vri-diff" tools/vri-run --executor slurm --slurm-poll 0.2 --results res2 exp.yaml 2> tool.txt; then
+        "$PWD/changed-vri-diff" "$PWD/tools/vri-diff" tools/vri-run --executor slurm --slurm-poll 0.2 --slurm-bundle 0 --results res2 exp.yaml 2> tool.txt; then
         fail "vri-run ran with a tool the compute node sees differently"
     fi
     grep -q "tools/vri-diff: differs on node .* from vri-run's host" tool.txt || { cat tool.txt; fail "the refusal does not name the tool"; }
-    [ ! -e res2/small ] || fail "jobs were submitted although the check failed"
+    [ "$(wc -l < tool.txt)" -eq 1 ] || { cat tool.txt; fail "the refusal is not one line"; }
+    [ "$(squeue --noheader --states=all --name=vri:small:riemann-entry --format=%i | wc -l)" -eq "$renders_before" ] ||
+        fail "jobs were submitted although the check failed"
 else
     echo "note: unshare cannot make a mount namespace here: the cases of paths the node does not share are not run"
 fi
+# Options vri-run sets itself are refused, from the command line and from the site's variable.
+if "${slurm[@]}" --slurm-arg=--dependency=afterok:1 --results res exp.yaml 2> bad.txt; then fail "--slurm-arg=--dependency accepted"; fi
+grep -q "^vri-run: error: --slurm-arg: '--dependency=afterok:1': vri-run sets --dependency itself" bad.txt || { cat bad.txt; fail "no line for --dependency"; }
+if VRI_SLURM_ARGS="--qos=normal -o/tmp/x" "${slurm[@]}" --results res exp.yaml 2> bad.txt; then fail "VRI_SLURM_ARGS=-o accepted"; fi
+grep -q "^vri-run: error: VRI_SLURM_ARGS: '-o/tmp/x'" bad.txt || { cat bad.txt; fail "no line for -o in VRI_SLURM_ARGS"; }
 echo "slurm: OK"

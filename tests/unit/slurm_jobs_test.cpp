@@ -52,32 +52,54 @@ TEST_CASE("jobResources: threads, memory from the image size, time from the pric
     CHECK(a.cpus == 3);
     CHECK(a.memoryMiB == 256 + 62);  // 64 bytes a pixel: 64e6 bytes, 61.04 MiB, rounded up with the 256
     REQUIRE(a.minutes);
-    CHECK(*a.minutes == 8);  // (2 * 90 + 300) / 60 = 8
+    CHECK(*a.minutes == 15);  // (3 * 90 + 600) / 60 = 14.5, rounded up
     CHECK(vri::jobResources(plan, {{1}, 0, false}, 2).cpus == 2);
     CHECK(!vri::jobResources(plan, {{1}, 0, false}, 2).minutes);
     CHECK(vri::jobResources(plan, {{2}, 1, true}, 2).cpus == 1);
     CHECK(vri::jobResources(plan, {{1, 2, 0}, 1, true}, 2).cpus == 3);  // the bundle's largest
     CHECK(vri::jobName(plan, {{1, 2}, 1, true}) == "vri:exp:b+1");
     CHECK(vri::jobName(plan, {{0}, 1, true}) == "vri:exp:a");
+    plan.steps.push_back(planStep("d", "render", {"--threads", "0"}));
+    CHECK(vri::jobResources(plan, {{3}, 0, false}, 4).cpus == 4);  // 0, all cores: the default
 }
 
 TEST_CASE("parseSqueue reads squeue's fields and refuses what is not a job line") {
-    const auto jobs = vri::parseSqueue("12|COMPLETED|0|node1|None|\n"
-                                       "13|FAILED|768|node2|NonZeroExitCode|\n"
-                                       "14|CANCELLED by 0|0||DependencyNeverSatisfied|\n"
+    const auto jobs = vri::parseSqueue("12|COMPLETED by 0|node1|None|\n"
+                                       "13|FAILED|node2|NonZeroExitCode|\n"
+                                       "14|CANCELLED||DependencyNeverSatisfied|\n"
+                                       "15_3|RUNNING|node[1-2]|None|\n"
                                        "\n");
-    REQUIRE(jobs.size() == 3);
+    REQUIRE(jobs.size() == 4);
     CHECK(jobs.at("12").state == "COMPLETED");
     CHECK(jobs.at("12").node == "node1");
-    CHECK(jobs.at("13").exitStatus == 768);
+    CHECK(jobs.at("13").reason == "NonZeroExitCode");
     CHECK(jobs.at("14").state == "CANCELLED");
+    CHECK(jobs.at("14").node.empty());
     CHECK(jobs.at("14").reason == "DependencyNeverSatisfied");
-    CHECK_THROWS_AS(vri::parseSqueue("12|COMPLETED|0\n"), vri::Error);
-    CHECK_THROWS_AS(vri::parseSqueue("12|COMPLETED|x|n|None|\n"), vri::Error);
+    CHECK(jobs.at("15_3").node == "node[1-2]");
+    CHECK_THROWS_AS(vri::parseSqueue("12|COMPLETED|n\n"), vri::Error);
+    CHECK_THROWS_AS(vri::parseSqueue("squeue: warning: something\n"), vri::Error);
+    CHECK_THROWS_AS(vri::parseSqueue("|RUNNING|n|None|\n"), vri::Error);
     CHECK(vri::isFinalJobState("TIMEOUT"));
     CHECK(vri::isFinalJobState("PREEMPTED"));
     CHECK(!vri::isFinalJobState("COMPLETING"));
     CHECK(!vri::isFinalJobState("PENDING"));
+}
+
+TEST_CASE("checkSiteSbatchOption refuses the options vri-run sets itself, and words that are no option") {
+    CHECK_NOTHROW(vri::checkSiteSbatchOption("--qos=long", "--slurm-arg"));
+    CHECK_NOTHROW(vri::checkSiteSbatchOption("-pshort", "--slurm-arg"));
+    CHECK_NOTHROW(vri::checkSiteSbatchOption("--mem=0", "--slurm-arg"));
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("--dependency=afterok:1", "--slurm-arg"),
+                         doctest::Contains("--slurm-arg: '--dependency=afterok:1': vri-run sets --dependency itself"), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("-o/tmp/x", "VRI_SLURM_ARGS"),
+                         doctest::Contains("VRI_SLURM_ARGS: '-o/tmp/x': vri-run sets --output itself"), vri::Error);
+    CHECK_THROWS_AS(vri::checkSiteSbatchOption("--array=1-3", "--slurm-arg"), vri::Error);
+    CHECK_THROWS_AS(vri::checkSiteSbatchOption("--depend=afterany:2", "--slurm-arg"), vri::Error);
+    CHECK_NOTHROW(vri::checkSiteSbatchOption("--exclusive", "--slurm-arg"));
+    CHECK_THROWS_AS(vri::checkSiteSbatchOption("-Mother", "--slurm-arg"), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("script.sh", "--slurm-arg"),
+                         doctest::Contains("is not an sbatch option"), vri::Error);
 }
 
 TEST_CASE("parseSbatchJobId takes --parsable's id, with or without the cluster") {
