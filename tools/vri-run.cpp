@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -19,6 +20,7 @@
 #include "libvri/experiment/experiment_spec.h"
 #include "libvri/experiment/manifest.h"
 #include "libvri/experiment/slurm_commands.h"
+#include "libvri/experiment/slurm_executor.h"
 #include "libvri/experiment/slurm_node.h"
 #include "libvri/experiment/step_costs.h"
 #include "libvri/util/atomic_file.h"
@@ -134,6 +136,70 @@ void printEstimate(const std::vector<std::pair<std::string, vri::CostEstimate>>&
         std::cout << unpriced << " steps are new or changed since their experiment's last manifest and have no price.\n";
 }
 
+// Left by a vri-run or a step killed mid-write; a step of a killed vri-run that still runs keeps its own.
+void removeStaleTempFiles(const vri::Plan& plan) {
+    for (const fs::path& folder : {plan.resultsDir, plan.resultsDir / ".steps"})
+        for (const fs::path& stale : vri::removeStaleTempFiles(folder))
+            std::cerr << kTool << ": removed " << plan.commandPath(stale) << ", a temporary file of a process that is gone\n";
+}
+
+// After a plan's steps: its manifest, the summary line and, for --record or --check, the reproduce:
+// numbers; false on a reproduce mismatch.
+bool finish(const Options& options, const vri::Experiment& experiment, const vri::Plan& plan,
+            const std::vector<vri::StepOutcome>& outcomes, const fs::path& toolDir, vri::FileHasher& hasher,
+            std::chrono::steady_clock::time_point start) {
+    vri::writeManifest(experiment, plan, outcomes, toolDir, hasher);
+    std::size_t ran = 0, cached = 0;
+    for (const vri::StepOutcome& o : outcomes) {
+        ran += o.state == vri::StepOutcome::State::Ran;
+        cached += o.state == vri::StepOutcome::State::Cached;
+    }
+    std::cerr << kTool << ": " << experiment.name << ": " << plan.steps.size() << " steps, " << ran << " ran, " << cached
+              << " cached, in " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+              << " s -> " << plan.commandPath(plan.resultsDir) << '\n';
+    return !(options.record || options.check) || reproduce(options, experiment, plan);
+}
+
+// --executor slurm: every experiment's jobs are submitted before any is waited for, so that the cluster
+// runs the files side by side. A manifest goes only once the node check has passed, and is written
+// again for every experiment whose steps all succeeded; the first failure is the error, with how many
+// experiments failed. False on a reproduce mismatch.
+bool runOnSlurm(const Options& options, const std::vector<vri::Experiment>& experiments,
+                const std::vector<vri::Plan>& plans, const vri::RunOptions& runOptions, vri::FileHasher& hasher,
+                const fs::path& resultsRoot) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<std::unique_ptr<vri::FolderLock>> locks;  // until the manifests are written
+    vri::SlurmBatch batch(runOptions, hasher);
+    std::size_t toRun = 0;
+    for (std::size_t e = 0; e < plans.size(); ++e) {
+        requireCleanTree(options, experiments[e], resultsRoot);
+        locks.push_back(std::make_unique<vri::FolderLock>(plans[e].commandPath(plans[e].resultsDir)));
+        removeStaleTempFiles(plans[e]);
+        // The last run's wall times price the jobs; read before its manifest goes.
+        toRun += batch.add(plans[e], vri::stepPrices(plans[e], plans[e].resultsDir / "manifest.json"));
+    }
+    if (toRun > 0) batch.checkNodes();
+    for (const vri::Plan& plan : plans) fs::remove(plan.resultsDir / "manifest.json");
+    if (toRun > 0) batch.run();
+    bool reproduced = true;
+    std::optional<vri::Error> firstFailure;
+    std::size_t failures = 0;
+    for (std::size_t e = 0; e < plans.size(); ++e) {
+        try {
+            reproduced = finish(options, experiments[e], plans[e], batch.result(e), runOptions.toolDir, hasher, start) &&
+                         reproduced;
+        } catch (const vri::Error& error) {
+            if (!firstFailure) firstFailure = vri::Error(experiments[e].name + ": " + error.what());
+            ++failures;
+        }
+    }
+    if (failures > 1)
+        throw vri::Error(std::string(firstFailure->what()) + " (and " + std::to_string(failures - 1) +
+                         " more experiments failed: see their .steps/ logs)");
+    if (firstFailure) throw *firstFailure;
+    return reproduced;
+}
+
 int run(const Options& options) {
     if ((options.record || options.check) && !options.quick)
         throw vri::Error("--record and --check apply to quick runs (add --quick)");
@@ -155,7 +221,9 @@ int run(const Options& options) {
         runOptions.slurm = slurmOptions(options);
     }
     vri::FileHasher hasher;
-    for (std::size_t e = 0; e < plans.size(); ++e) {
+    const bool onSlurm = !options.estimate && !options.dryRun && runOptions.executor == vri::Executor::Slurm;
+    if (onSlurm) reproduced = runOnSlurm(options, experiments, plans, runOptions, hasher, resultsRoot);
+    for (std::size_t e = 0; !onSlurm && e < plans.size(); ++e) {
         const vri::Experiment& experiment = experiments[e];
         const vri::Plan& plan = plans[e];
         if (options.estimate) {
@@ -170,26 +238,10 @@ int run(const Options& options) {
         requireCleanTree(options, experiment, resultsRoot);
         const auto start = std::chrono::steady_clock::now();
         const vri::FolderLock lock(plan.commandPath(plan.resultsDir));  // until its manifest is written
-        // Left by a vri-run or a step killed mid-write; a step of a killed vri-run that still runs keeps its own.
-        for (const fs::path& folder : {plan.resultsDir, plan.resultsDir / ".steps"})
-            for (const fs::path& stale : vri::removeStaleTempFiles(folder))
-                std::cerr << kTool << ": removed " << plan.commandPath(stale)
-                          << ", a temporary file of a process that is gone\n";
-        // The last run's wall times price the Slurm jobs; read before its manifest goes.
-        runOptions.prices = vri::stepPrices(plan, plan.resultsDir / "manifest.json");
+        removeStaleTempFiles(plan);
         fs::remove(plan.resultsDir / "manifest.json");  // rewritten only once every step has succeeded
         const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, runOptions, hasher);
-        vri::writeManifest(experiment, plan, outcomes, toolDir, hasher);
-        std::size_t ran = 0, cached = 0;
-        for (const vri::StepOutcome& o : outcomes) {
-            ran += o.state == vri::StepOutcome::State::Ran;
-            cached += o.state == vri::StepOutcome::State::Cached;
-        }
-        std::cerr << kTool << ": " << experiment.name << ": " << plan.steps.size() << " steps, " << ran << " ran, "
-                  << cached << " cached, in "
-                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s -> "
-                  << plan.commandPath(plan.resultsDir) << '\n';
-        if (options.record || options.check) reproduced = reproduce(options, experiment, plan) && reproduced;
+        reproduced = finish(options, experiment, plan, outcomes, toolDir, hasher, start) && reproduced;
     }
     if (options.estimate) printEstimate(estimates);
     if (!options.gallery.empty()) {

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 
@@ -25,7 +26,8 @@ namespace vri {
 
 namespace fs = std::filesystem;
 
-namespace {
+// Named, not anonymous: SlurmBatch::Impl, a type of the header's, holds these (-Wsubobject-linkage).
+namespace slurm_detail {
 
 using Clock = std::chrono::steady_clock;
 
@@ -126,18 +128,20 @@ std::string randomToken() {
     return text;
 }
 
-// The check of slurm_executor.h, before the first job of a run: one small job on a compute node.
-void checkSlurmNodes(const Plan& plan, const RunOptions& options, FileHasher& hasher) {
-    const fs::path folder = fs::absolute(plan.resultsDir.parent_path()) / ".slurm-check";
+// The check of slurm_executor.h, before the first job of a run: one small job on a compute node sees
+// the tools, the plans' inputs and the first plan's results root.
+void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& options, FileHasher& hasher) {
+    const fs::path folder = fs::absolute(plans.front()->resultsDir.parent_path()) / ".slurm-check";
     const std::string token = randomToken();
     NodeCheck check{token, {}, {}, folder / (token + ".report.json")};
     std::set<fs::path> tools, files;
     for (const fs::directory_entry& entry : fs::directory_iterator(options.toolDir))
         if (entry.is_regular_file() && entry.path().filename().string().starts_with("vri-"))
             tools.insert(fs::absolute(entry.path()));
-    for (const Step& step : plan.steps)
-        for (const fs::path& input : step.inputs)
-            if (fs::is_regular_file(input)) files.insert(fs::absolute(input));
+    for (const Plan* plan : plans)
+        for (const Step& step : plan->steps)
+            for (const fs::path& input : step.inputs)
+                if (fs::is_regular_file(input)) files.insert(fs::absolute(input));
     for (const fs::path& tool : tools) check.tools.emplace_back(tool, hasher.digest(tool));
     for (const fs::path& file : files) check.files.emplace_back(file, fs::file_size(file));
     fs::create_directories(folder);
@@ -192,13 +196,23 @@ void checkSlurmNodes(const Plan& plan, const RunOptions& options, FileHasher& ha
     removeOwnFiles(false);
 }
 
+// One plan's part of a batch: its steps, its jobs and what became of them.
 class SlurmRun {
 public:
-    SlurmRun(const Plan& plan, const RunOptions& options, FileHasher& hasher)
-        : plan_(plan), options_(options), hasher_(hasher), ledger_(plan, options, hasher),
+    SlurmRun(const Plan& plan, RunOptions options, FileHasher& hasher)
+        : plan_(plan), options_(std::move(options)), ledger_(plan, options_, hasher),
           slurmDir_(plan.resultsDir / ".steps" / "slurm") {}
 
-    std::vector<StepOutcome> run();
+    // Settles the steps the cache vouches for and cuts the others into jobs; how many steps will run.
+    std::size_t prepare();
+    const Plan& plan() const { return plan_; }
+    // Submits the jobs, each after those it depends on. A failure leaves the jobs submitted so far in
+    // unendedIds() for the caller to cancel.
+    void submitAll();
+    std::vector<std::string> unendedIds() const;
+    // Settles the steps of every job that squeue shows ended (or no longer knows).
+    void update(const std::map<std::string, SlurmJob>& states);
+    std::vector<StepOutcome> result() const { return ledger_.result(); }
 
 private:
     struct Job {
@@ -210,10 +224,8 @@ private:
 
     std::vector<std::size_t> stepsToRun();
     void submit(std::size_t j);
-    void watch();
     void ended(std::size_t j, const SlurmJob& state);
     void abandonDependents(std::size_t j);
-    std::vector<std::string> unendedIds() const;
     // A run's job files carry a token of their own: a job of an earlier run still alive (one scancel
     // could not stop in time) finds its own files gone, and never reads this run's.
     std::string jobStem(std::size_t j) const { return "job-" + token_ + "-" + std::to_string(j); }
@@ -223,11 +235,11 @@ private:
     }
 
     const Plan& plan_;
-    const RunOptions& options_;
-    FileHasher& hasher_;
+    RunOptions options_;  // before ledger_, which keeps a reference
     StepLedger ledger_;
     fs::path slurmDir_;
     std::string token_ = randomToken();
+    std::size_t stepCount_ = 0;
     std::vector<Job> jobs_;
     std::map<std::size_t, std::size_t> jobOfStep_;
 };
@@ -365,78 +377,120 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
     if (failed) abandonDependents(j);
 }
 
-void SlurmRun::watch() {
-    auto lastAnswer = Clock::now();
-    for (std::vector<std::string> ids = unendedIds(); !ids.empty(); ids = unendedIds()) {
-        // run() cancels the jobs on the way out, whatever stops the watch.
-        if (gInterrupt) throw Error("interrupted by " + signalName(gInterrupt) + ": cancelled Slurm jobs " + jobList(ids));
-        pause(options_.slurm.pollSeconds);
-        std::map<std::string, SlurmJob> states;
-        try {
-            states = queryJobs(ids);
-            lastAnswer = Clock::now();
-        } catch (const Error& e) {
-            if (std::chrono::duration<double>(Clock::now() - lastAnswer).count() < kSqueueOutageSeconds) continue;
-            throw Error(std::string(e.what()) + " for " + std::to_string(int(kSqueueOutageSeconds)) +
-                        " s; cancelled Slurm jobs " + jobList(ids));
-        }
-        for (std::size_t j = 0; j < jobs_.size(); ++j) {
-            if (jobs_[j].ended) continue;
-            const auto found = states.find(jobs_[j].id);
-            // A job squeue has forgotten ended long enough ago; its status files say how.
-            if (found == states.end())
-                ended(j, {jobs_[j].id, kForgotten, "", "no longer known to squeue"});
-            else if (isFinalJobState(found->second.state))
-                ended(j, found->second);
-        }
+void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
+    for (std::size_t j = 0; j < jobs_.size(); ++j) {
+        if (jobs_[j].ended || jobs_[j].id.empty()) continue;
+        const auto found = states.find(jobs_[j].id);
+        // A job squeue has forgotten ended long enough ago; its status files say how.
+        if (found == states.end())
+            ended(j, {jobs_[j].id, kForgotten, "", "no longer known to squeue"});
+        else if (isFinalJobState(found->second.state))
+            ended(j, found->second);
     }
 }
 
-std::vector<StepOutcome> SlurmRun::run() {
+std::size_t SlurmRun::prepare() {
     const std::vector<std::size_t> steps = stepsToRun();
-    if (steps.empty()) return ledger_.result();
-    const InterruptGuard guard;
-    if (!*options_.slurm.nodesChecked) {
-        checkSlurmNodes(plan_, options_, hasher_);
-        *options_.slurm.nodesChecked = true;
-    }
-    fs::remove_all(slurmDir_);  // the job files of an earlier run
-    fs::create_directories(slurmDir_);
-    writeJobScript(slurmDir_ / "vri-job.sh");
+    stepCount_ = steps.size();
     for (JobBundle& bundle : bundleSteps(plan_, steps, options_.prices, options_.slurm.bundleSeconds)) {
         for (std::size_t i : bundle.steps) jobOfStep_[i] = jobs_.size();
         jobs_.push_back({std::move(bundle), "", false, {}});
     }
-    try {
-        for (std::size_t j = 0; j < jobs_.size(); ++j) {
-            if (gInterrupt) throw Error("interrupted by " + signalName(gInterrupt) + " while submitting");
-            submit(j);
-        }
-    } catch (const std::exception& e) {
-        const std::vector<std::string> submitted = unendedIds();
-        cancelAndWait(submitted, options_.slurm.pollSeconds);
-        throw Error(std::string(e.what()) +
-                    (submitted.empty() ? "" : "; cancelled the Slurm jobs submitted before: " + jobList(submitted)));
+    return stepCount_;
+}
+
+void SlurmRun::submitAll() {
+    if (jobs_.empty()) return;
+    fs::remove_all(slurmDir_);  // the job files of an earlier run
+    fs::create_directories(slurmDir_);
+    writeJobScript(slurmDir_ / "vri-job.sh");
+    for (std::size_t j = 0; j < jobs_.size(); ++j) {
+        if (gInterrupt) throw Error("interrupted by " + signalName(gInterrupt) + " while submitting");
+        submit(j);
     }
     std::vector<std::string> ids;
     for (const Job& job : jobs_) ids.push_back(job.id);
-    std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": " << steps.size() << " steps in Slurm jobs "
+    std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": " << stepCount_ << " steps in Slurm jobs "
               << jobList(ids) << "\n";
-    try {
-        watch();
-    } catch (...) {
-        // Whatever stops the watch (an interrupt, squeue failing for minutes, a record that cannot be
-        // written), no job of this run is left behind.
-        cancelAndWait(unendedIds(), options_.slurm.pollSeconds);
-        throw;
-    }
-    return ledger_.result();
 }
 
-}  // namespace
+}  // namespace slurm_detail
+
+struct SlurmBatch::Impl {
+    const RunOptions& options;
+    FileHasher& hasher;
+    slurm_detail::InterruptGuard guard;
+    std::vector<std::unique_ptr<slurm_detail::SlurmRun>> runs;
+
+    std::vector<std::string> unendedIds() const {
+        std::vector<std::string> ids;
+        for (const auto& run : runs)
+            for (std::string& id : run->unendedIds()) ids.push_back(std::move(id));
+        return ids;
+    }
+};
+
+SlurmBatch::SlurmBatch(const RunOptions& options, FileHasher& hasher) : impl_(new Impl{options, hasher, {}, {}}) {}
+SlurmBatch::~SlurmBatch() = default;
+
+std::size_t SlurmBatch::add(const Plan& plan, std::vector<std::optional<double>> prices) {
+    RunOptions options = impl_->options;
+    options.prices = std::move(prices);
+    impl_->runs.push_back(std::make_unique<slurm_detail::SlurmRun>(plan, std::move(options), impl_->hasher));
+    return impl_->runs.back()->prepare();
+}
+
+void SlurmBatch::checkNodes() {
+    if (*impl_->options.slurm.nodesChecked || impl_->runs.empty()) return;
+    std::vector<const Plan*> plans;
+    for (const auto& r : impl_->runs) plans.push_back(&r->plan());
+    slurm_detail::checkSlurmNodes(plans, impl_->options, impl_->hasher);
+    *impl_->options.slurm.nodesChecked = true;
+}
+
+void SlurmBatch::run() {
+    const double poll = impl_->options.slurm.pollSeconds;
+    try {
+        for (const auto& r : impl_->runs) r->submitAll();
+    } catch (const std::exception& e) {
+        const std::vector<std::string> submitted = impl_->unendedIds();
+        slurm_detail::cancelAndWait(submitted, poll);
+        throw Error(std::string(e.what()) +
+                    (submitted.empty() ? "" : "; cancelled the Slurm jobs submitted before: " + slurm_detail::jobList(submitted)));
+    }
+    try {
+        auto lastAnswer = slurm_detail::Clock::now();
+        for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty(); ids = impl_->unendedIds()) {
+            if (slurm_detail::gInterrupt) throw Error("interrupted by " + slurm_detail::signalName(slurm_detail::gInterrupt) + ": cancelled Slurm jobs " + slurm_detail::jobList(ids));
+            slurm_detail::pause(poll);
+            std::map<std::string, SlurmJob> states;
+            try {
+                states = queryJobs(ids);
+                lastAnswer = slurm_detail::Clock::now();
+            } catch (const Error& e) {
+                if (std::chrono::duration<double>(slurm_detail::Clock::now() - lastAnswer).count() < slurm_detail::kSqueueOutageSeconds) continue;
+                throw Error(std::string(e.what()) + " for " + std::to_string(int(slurm_detail::kSqueueOutageSeconds)) +
+                            " s; cancelled Slurm jobs " + slurm_detail::jobList(ids));
+            }
+            for (const auto& r : impl_->runs) r->update(states);
+        }
+    } catch (...) {
+        // Whatever stops the watch (an interrupt, squeue failing for minutes, a record that cannot be
+        // written), no job of this batch is left behind.
+        slurm_detail::cancelAndWait(impl_->unendedIds(), poll);
+        throw;
+    }
+}
+
+std::vector<StepOutcome> SlurmBatch::result(std::size_t k) const { return impl_->runs.at(k)->result(); }
 
 std::vector<StepOutcome> runPlanOnSlurm(const Plan& plan, const RunOptions& options, FileHasher& hasher) {
-    return SlurmRun(plan, options, hasher).run();
+    SlurmBatch batch(options, hasher);
+    if (batch.add(plan, options.prices) > 0) {
+        batch.checkNodes();
+        batch.run();
+    }
+    return batch.result(0);
 }
 
 }  // namespace vri

@@ -7,6 +7,9 @@
 // its steps in the step cache and the manifest as the local executor does, with the job's id, node
 // and state. Caching, the manifest and the images are the local executor's: the same commands on
 // the same files.
+#include <cstddef>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "libvri/experiment/experiment_run.h"
@@ -25,5 +28,32 @@ namespace vri {
 // (sizes) and the results root (it writes its report there) as this host does; anything else is a
 // vri::Error with the first problem, and nothing is submitted.
 std::vector<StepOutcome> runPlanOnSlurm(const Plan& plan, const RunOptions& options, FileHasher& hasher);
+
+// Several plans at once, as runPlanOnSlurm runs one: every plan's jobs are submitted before any is
+// watched, so that the cluster runs the experiments side by side. SIGINT, SIGTERM and SIGHUP are
+// caught while the batch lives.
+class SlurmBatch {
+public:
+    SlurmBatch(const RunOptions& options, FileHasher& hasher);
+    ~SlurmBatch();
+    SlurmBatch(const SlurmBatch&) = delete;
+    SlurmBatch& operator=(const SlurmBatch&) = delete;
+
+    // Takes a plan (kept by reference) with its steps' prices, settles what the cache vouches for and
+    // cuts the rest into jobs: how many of its steps will run.
+    std::size_t add(const Plan& plan, std::vector<std::optional<double>> prices);
+    // The node check, once a vri-run (options.slurm.nodesChecked), over every plan added.
+    void checkNodes();
+    // Submits every plan's jobs, then waits for them all. A plan's failed step fails that plan
+    // (result()); an interrupt, a refused submission or squeue failing for minutes cancels every job
+    // and is a vri::Error.
+    void run();
+    // Plan k's outcomes (in the order added), or a vri::Error with its first failure.
+    std::vector<StepOutcome> result(std::size_t k) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace vri

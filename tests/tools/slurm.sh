@@ -108,6 +108,18 @@ jobs_before=$(squeue --noheader --states=all --format=%i | wc -l)
 "${slurm[@]}" --results res exp.yaml 2> again.txt || { cat again.txt; fail "the cached Slurm run failed"; }
 [ "$(squeue --noheader --states=all --format=%i | wc -l)" -eq "$jobs_before" ] || fail "a fully cached run submitted a job"
 
+# Two files in one vri-run: both files' jobs are submitted before either is waited for, and each gets
+# its own manifest with the local run's images.
+sed 's/^name: small$/name: small2/' exp.yaml > exp2.yaml
+"${slurm[@]}" --results both exp.yaml exp2.yaml 2> both.txt || { cat both.txt; fail "the two-file Slurm run failed"; }
+last_submitted=$(grep -n "steps in Slurm jobs" both.txt | tail -1 | cut -d: -f1)
+first_done=$(grep -n "steps, [0-9]* ran" both.txt | head -1 | cut -d: -f1)
+[ "$(grep -c "steps in Slurm jobs" both.txt)" -eq 2 ] && [ "$last_submitted" -lt "$first_done" ] ||
+    { cat both.txt; fail "the second file's jobs waited for the first file's"; }
+same_outputs local/small both/small
+same_outputs local/small both/small2
+[ -s both/small/manifest.json ] && [ -s both/small2/manifest.json ] || fail "a manifest is missing after the two-file run"
+
 # Bundled: the cheap steps of a priced plan share jobs (the default bundle of 60 s holds them all).
 "${slurm[@]}" --force --results res exp.yaml 2> bundled.txt || { cat bundled.txt; fail "the bundled run failed"; }
 steps=$(summary bundled.txt | sed 's/.*: \([0-9]*\) steps.*/\1/')
