@@ -119,6 +119,23 @@ first_done=$(grep -n "steps, [0-9]* ran" both.txt | head -1 | cut -d: -f1)
 same_outputs local/small both/small
 same_outputs local/small both/small2
 [ -s both/small/manifest.json ] && [ -s both/small2/manifest.json ] || fail "a manifest is missing after the two-file run"
+# One file fails (a command exits 64 on its node): the other still completes with its manifest.
+cat > failing.yaml <<'YAML'
+name: failing
+title: A command that fails on its node
+paper: {paper: A, item: Fig. 4, says: a test}
+scenes:
+  cube: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [40, 30]}
+methods:
+  riemann: {placement: [entry-exit-corner], rate: 2}
+commands:
+  broken: {tool: vri-tf, options: {samples: 0}, outputs: {o: broken.csv}}
+YAML
+if "${slurm[@]}" --results mixed failing.yaml exp2.yaml 2> mixed.txt; then fail "a run with a failing step exited 0"; fi
+grep -q "vri-run: error: failing: step 'broken' failed (exit status 64) in Slurm job [0-9]* FAILED" mixed.txt ||
+    { cat mixed.txt; fail "the failure does not name its experiment, step, job and state"; }
+[ -s mixed/small2/manifest.json ] && [ ! -e mixed/failing/manifest.json ] || fail "manifests after a failed experiment"
+same_outputs local/small mixed/small2
 
 # Bundled: the cheap steps of a priced plan share jobs (the default bundle of 60 s holds them all).
 "${slurm[@]}" --force --results res exp.yaml 2> bundled.txt || { cat bundled.txt; fail "the bundled run failed"; }
