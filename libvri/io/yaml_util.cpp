@@ -34,8 +34,9 @@ public:
             // pos counts bytes of UTF-8 text after a byte-order mark: it names the ',' when it is there.
             const std::size_t at = std::size_t(mark.pos);
             const bool comma = at < text_.size() && text_[at] == ',';
-            throw Error(source_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1) +
-                        ": malformed YAML: " + (comma ? "',' outside a flow collection" : "a token that starts no node"));
+            throw Error(
+                source_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1) +
+                ": malformed YAML: " + (comma ? "',' outside a flow collection" : "a token that starts no node"));
         }
         lastDocumentPos_ = mark.pos;
     }

@@ -67,7 +67,7 @@ glm::dvec2 parseRange(const std::string& text, const std::string& what) {
     if (!ok) throw Error(what + ": expected lo,hi with hi > lo, got '" + text + "'");
     // Values map to (v - lo) / (hi - lo): a width past the largest double maps every value to 0.
     if (!std::isfinite(v.y - v.x))
-        throw Error(what + ": hi - lo must be a finite number (at most 1.8e308), got '" + text + "'");
+        throw Error(what + ": hi - lo must be at most the largest double (about 1.8e308), got '" + text + "'");
     return v;
 }
 

@@ -12,15 +12,13 @@ t() { timeout 10 "$@"; }
 
 # --- inputs, made before the cases: the work directory must stay as it is from here on ---
 write_blob_scene
-cat > exp.yaml <<'YAML'
-name: small
-title: One render
-paper: {paper: none, item: test, says: a test}
-scenes:
-  red: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [8, 6]}
-methods:
-  riemann: {rate: 1}
-YAML
+{
+  echo 'name: small'
+  echo 'title: One render'
+  echo 'paper: {paper: none, item: test, says: a test}'
+  echo 'scenes: {red: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [8, 6]}}'
+  echo 'methods: {riemann: {rate: 1}}'
+} > exp.yaml
 cp exp.yaml twin.yaml
 sed 's/riemann: {rate: 1}/riemann: {rate: 1, repeat: 1001}/' exp.yaml > repeat.yaml
 sed 's/riemann: {rate: 1}/riemann: {rate: 1, warm_up: [1, 100000]}/' exp.yaml > warm.yaml
@@ -49,7 +47,7 @@ bad 1 "${E}seq-comma\.yaml:1:4: malformed YAML: ','" -- t "$bin/vri-tf" seq-comm
 bad 1 "${E}item-comma\.yaml:2:1: malformed YAML: ','" -- t "$bin/vri-tf" item-comma.yaml -o out.csv
 bad 1 "${E}tf-bracket\.yaml:4:1: malformed YAML: illegal flow end$" -- t "$bin/vri-tf" tf-bracket.yaml -o out.csv
 bad 1 "${E}tf-brace\.yaml:3:1: malformed YAML: illegal flow end$" -- t "$bin/vri-tf" tf-brace.yaml -o out.csv
-bad 1 "^vri-run: error: exp-bracket\.yaml:9:1: malformed YAML: illegal flow end$" -- t "$bin/vri-run" --dry-run exp-bracket.yaml
+bad 1 "^vri-run: error: exp-bracket\.yaml:7:1: malformed YAML: illegal flow end$" -- t "$bin/vri-run" --dry-run exp-bracket.yaml
 bad 1 "^vri-run: error: exp-comma\.json\.yaml:1:41: malformed YAML: ','" -- t "$bin/vri-run" --results out exp-comma.json.yaml
 bad 1 "^vri-plot: error: flow-comma\.yaml:1:7: malformed YAML: ','" -- t "$bin/vri-plot" flow-comma.yaml -o fig.png
 bad 1 "^vri-data: error: item-comma\.yaml:2:1: malformed YAML: ','" -- t "$bin/vri-data" --catalog item-comma.yaml --data-dir .
@@ -65,8 +63,8 @@ bad 64 "^vri-render: error: Could not convert: --warm-up = 2147483648" -- \
   "$bin/vri-render" --field linear --tf tf.yaml -q -o out.exr --warm-up 2147483648
 bad 1 "^vri-reference: error: --repeat: expected a whole number from 1 to 1000" -- \
   "$bin/vri-reference" --field linear --tf tf.yaml -q -o out.exr --repeat 100000
-bad 1 "^vri-run: error: repeat\.yaml:7:[0-9]+: .*repeat.*expected a whole number from 1 to 1000, got '1001'$" -- "$bin/vri-run" --dry-run repeat.yaml
-bad 1 "^vri-run: error: warm\.yaml:7:[0-9]+: .*warm_up.*expected a whole number from 0 to 1000, got '100000'$" -- "$bin/vri-run" --dry-run warm.yaml
+bad 1 "^vri-run: error: repeat\.yaml:5:[0-9]+: .*repeat.*expected a whole number from 1 to 1000, got '1001'$" -- "$bin/vri-run" --dry-run repeat.yaml
+bad 1 "^vri-run: error: warm\.yaml:5:[0-9]+: .*warm_up.*expected a whole number from 0 to 1000, got '100000'$" -- "$bin/vri-run" --dry-run warm.yaml
 
 # --- item 6: text inputs within 64 MiB, checked while reading; what is not a regular file named so ---
 limit="more than 67108864 bytes, the limit for a YAML file"
@@ -83,9 +81,9 @@ bad 1 "^vri-tf: error: fifo: not a regular file, $limit$" -- t bash -c 'yes "a: 
 bad 1 "^vri-tf: error: sock: not a regular file, expected a YAML file$" -- t "$bin/vri-tf" sock -o out.csv
 
 # --- item 9: ranges whose width overflows a double ---
-bad 1 "^vri-render: error: --range: hi - lo must be a finite number .*got '-1e308,1e308'$" -- \
+bad 1 "^vri-render: error: --range: hi - lo must be at most the largest double .*got '-1e308,1e308'$" -- \
   "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml -q -o out.exr --range=-1e308,1e308
-bad 1 "^vri-reference: error: --range: hi - lo must be a finite number" -- \
+bad 1 "^vri-reference: error: --range: hi - lo must be at most the largest double" -- \
   "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml -q -o out.exr --range=-1.7e308,1.7e308
 bad 1 "^vri-render: error: --range: expected lo,hi with hi > lo, got '-1e309,1'$" -- \
   "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml -q -o out.exr --range=-1e309,1

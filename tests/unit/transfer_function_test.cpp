@@ -119,8 +119,8 @@ TEST_CASE("YAML: a comma outside a flow collection is refused where it is, not l
     CHECK_THROWS_WITH_AS(yaml::parse("[1],", "c.yaml"), doctest::Contains("c.yaml:1:4: malformed YAML: ','"), Error);
     CHECK_THROWS_WITH_AS(yaml::parse("- 1\n,", "c.yaml"), doctest::Contains("c.yaml:2:1: malformed YAML: ','"), Error);
     CHECK_THROWS_WITH_AS(yaml::parse(",", "c.yaml"), doctest::Contains("c.yaml:1:1: malformed YAML: ','"), Error);
-    CHECK_THROWS_WITH_AS(yaml::parse("---\na: 1\n---\n,\n", "c.yaml"), doctest::Contains("c.yaml:4:1: malformed YAML: ','"),
-                         Error);
+    CHECK_THROWS_WITH_AS(yaml::parse("---\na: 1\n---\n,\n", "c.yaml"),
+                         doctest::Contains("c.yaml:4:1: malformed YAML: ','"), Error);
     // After a block mapping, and a ']' or '}' anywhere outside a flow collection, yaml-cpp refuses itself.
     CHECK_THROWS_WITH_AS(yaml::parse("a: 1\n,\n", "c.yaml"), "c.yaml:2:1: malformed YAML: end of map not found", Error);
     CHECK_THROWS_WITH_AS(yaml::parse("a: [1, 2]\n]\n", "c.yaml"), doctest::Contains("c.yaml:2:1: malformed YAML"),
