@@ -112,6 +112,15 @@ TEST_CASE("transfer function YAML: a key given twice is an error naming both lin
                                         "ok.yaml"));
 }
 
+TEST_CASE("transfer function: points whose s span more than a double holds are refused") {
+    // Between two points the weight is (s - s0) / (s1 - s0): an infinite span gives every s the first point's value.
+    CHECK_THROWS_WITH_AS(
+        parseTransferFunction("points:\n  - [-1e308, 0, 0, 0, 0]\n  - [1e308, 1, 1, 1, 1]\n", "w.yaml"),
+        "w.yaml: the points' s from -1e+308 to 1e+308 span more than the largest double (expected a finite s1 - s0)",
+        Error);
+    CHECK_NOTHROW(parseTransferFunction("points:\n  - [-1e307, 0, 0, 0, 0]\n  - [1e307, 1, 1, 1, 1]\n", "w.yaml"));
+}
+
 TEST_CASE("YAML: a comma outside a flow collection is refused where it is, not looped on") {
     // yaml-cpp 0.7 reads a ',' there as an empty document it never consumes (its issue 1040).
     CHECK_THROWS_WITH_AS(yaml::parse("{a: 1},", "c.yaml"), "c.yaml:1:7: malformed YAML: ',' outside a flow collection",
