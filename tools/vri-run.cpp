@@ -213,6 +213,13 @@ int run(const Options& options) {
     std::vector<vri::Plan> plans;
     for (const std::string& file : options.experiments) {
         experiments.push_back(vri::loadExperiment(file, options.quick));
+        // The name is the results folder: a second experiment of that name would replace the first's
+        // manifest and reuse its runs' files.
+        for (std::size_t e = 0; e + 1 < experiments.size(); ++e)
+            if (experiments[e].name == experiments.back().name)
+                throw vri::Error(file + ": name '" + experiments.back().name + "' is also " +
+                                 experiments[e].source.string() + "'s (both would write " +
+                                 (resultsRoot / experiments.back().name).string() + "/)");
         plans.push_back(vri::planExperiment(experiments.back(), resultsRoot / experiments.back().name, fs::current_path()));
     }
     vri::RunOptions runOptions{toolDir, options.jobs, options.force, vri::Executor::Local, {}, {}};

@@ -104,10 +104,12 @@ const RenderOptionRow kRows[] = {
          else s.push_back({"early_termination", r.options.earlyTermination});
      }},
     {"--repeat", "repeat", "x", OptionValueKind::Count,
-     "render N times for timing: the stats give every wall time and their median, and any image that differs from "
-     "the first is an error",
+     "render N times (at most 1000) for timing: the stats give every wall time and their median, and any image that "
+     "differs from the first is an error",
      "", "", kBothTools, kBothBackends,
-     [](const std::string& text, const std::string& where, RenderRequest& r) { r.repeat = parseCount(text, where, 1); },
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.repeat = parseCount(text, where, 1, kMaxFrames);
+     },
      [](const RenderRequest& r) { return std::to_string(r.repeat); }, noSetting},  // in the timing record
     // Paper B's adaptive Simpson (coupled, decoupled); the exact method's tolerance per piece.
     {"--tolerance,--eps", "eps", "eps", OptionValueKind::Number,
@@ -186,8 +188,10 @@ const RenderOptionRow kRows[] = {
      },
      [](const RenderRequest& r) { return std::string(interpolationName(r.interpolation)); }, noSetting},
     {"--warm-up", "warm_up", "w", OptionValueKind::Count,
-     "render N untimed frames first (caches, clocks, a GPU's pipelines)", "", "", kBothTools, kBothBackends,
-     [](const std::string& text, const std::string& where, RenderRequest& r) { r.warmUp = parseCount(text, where, 0); },
+     "render N untimed frames first (at most 1000: caches, clocks, a GPU's pipelines)", "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.warmUp = parseCount(text, where, 0, kMaxFrames);
+     },
      [](const RenderRequest& r) { return std::to_string(r.warmUp); }, noSetting},  // in the timing record
     {"--no-skip-empty", "", "", OptionValueKind::Flag, "march through empty space too (the image does not change)", "",
      "", kRenderOnly, kBothBackends,

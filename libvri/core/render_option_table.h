@@ -19,6 +19,11 @@
 
 namespace vri {
 
+// The most frames --repeat and --warm-up (repeat, warm_up) may ask for: every frame keeps its timing
+// and is compared with the first, so memory and time grow with the count; 1000 frames give a median
+// far tighter than a machine's noise.
+inline constexpr int kMaxFrames = 1000;
+
 // The tools that render: vri-render (every method, either backend) and vri-reference (the exact
 // method, or paper B's reference: Riemann, entry placement, double, a 0.01-voxel step).
 enum class RenderTool : unsigned { Render = 1, Reference = 2 };
@@ -35,7 +40,7 @@ struct RenderRequest {
     Backend backend = Backend::Cpu;
     std::string device;  // Vulkan: an index of --list-devices or part of a name; empty: the first
     VulkanInterpolation interpolation = VulkanInterpolation::Shader;
-    int repeat = 1, warmUp = 0;  // timing: frames rendered, and untimed ones before them
+    int repeat = 1, warmUp = 0;  // timing: frames rendered, and untimed ones before them, each at most kMaxFrames
     bool clamp = false;          // clamp each pixel's colour and alpha to [0, 1] after the render
     std::vector<std::string_view> given;  // the flags of the options given, in the order given
 

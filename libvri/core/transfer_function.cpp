@@ -39,6 +39,14 @@ TransferFunction::TransferFunction(std::vector<TransferFunctionPoint> points, Em
         validateTransferFunctionPoint(points_[i], i > 0 ? &points_[i - 1] : nullptr,
                                       source + ": point " + std::to_string(i));
     const double span = points_.back().s - points_.front().s;
+    // Between two points a value is interpolated by (s - s0) / (s1 - s0): a span past the largest
+    // double gives every s in it the first point's value.
+    if (!std::isfinite(span)) {
+        std::ostringstream msg;
+        msg << source << ": the points' s from " << points_.front().s << " to " << points_.back().s
+            << " span more than the largest double (expected a finite s1 - s0)";
+        throw Error(msg.str());
+    }
     // A span below kBins times the smallest double (a subnormal span) makes the scale infinite, and the bin of
     // an s inside it (s - s0) * inf, which no int holds: such a function is searched from its first point.
     binScale_ = span > 0 && std::isfinite(kBins / span) ? kBins / span : 0.0;

@@ -191,9 +191,10 @@ namespace {
 
 void requireUsableGeometry(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origin,
                            const std::optional<ValueRange>& range, const std::string& source) {
-    if (range && !(range->lo < range->hi && std::isfinite(range->lo) && std::isfinite(range->hi)))
+    // Values map to (v - lo) / (hi - lo): a width past the largest double maps every value to 0.
+    if (range && !(range->lo < range->hi && std::isfinite(range->hi - range->lo)))
         throw Error(source + ": value range " + exactNumber(range->lo) + " " + exactNumber(range->hi) +
-                    ": expected finite lo < hi");
+                    ": expected finite lo < hi with a finite hi - lo");
     for (int axis = 0; axis < 3; ++axis) {
         const double end = origin[axis] + spacing[axis] * dims[axis];
         if (!std::isfinite(end))

@@ -17,11 +17,29 @@ namespace {
 // one of them. The parser's event stream shows every key once, in order, with its position: a
 // single pass over it finds the repeats. Aliases are events too, never expanded, so a document
 // whose anchors nest costs no more than its text.
+//
+// The same pass stops a known hang (yaml-cpp issue 1040, fixed after 0.8.0; Debian ships 0.7.0): a
+// ',' where a node should start outside a flow collection (after a flow collection at the top level,
+// as in a JSON-style trailing comma, or after a block sequence) is read as an empty document that
+// consumes nothing, so the next document starts at the same place, forever. A document that starts
+// where the previous one did has consumed nothing; it is refused there. This costs one comparison per
+// document and is exact, where a parse under a time limit would need a thread that cannot be stopped
+// and a guess at how long a large file may take.
 class DuplicateKeyFinder : public YAML::EventHandler {
 public:
-    explicit DuplicateKeyFinder(const std::string& source) : source_(source) {}
+    DuplicateKeyFinder(const std::string& text, const std::string& source) : text_(text), source_(source) {}
 
-    void OnDocumentStart(const YAML::Mark&) override {}
+    void OnDocumentStart(const YAML::Mark& mark) override {
+        if (mark.pos == lastDocumentPos_) {
+            // pos counts bytes of UTF-8 text after a byte-order mark: it names the ',' when it is there.
+            const std::size_t at = std::size_t(mark.pos);
+            const bool comma = at < text_.size() && text_[at] == ',';
+            throw Error(
+                source_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1) +
+                ": malformed YAML: " + (comma ? "',' outside a flow collection" : "a token that starts no node"));
+        }
+        lastDocumentPos_ = mark.pos;
+    }
     void OnDocumentEnd() override {}
     void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, "~"); }
     void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { node(mark, std::nullopt); }
@@ -59,7 +77,9 @@ private:
                         ": duplicate key '" + *scalar + "' (first at line " + std::to_string(it->second) + ")");
     }
 
+    const std::string& text_;
     const std::string& source_;
+    int lastDocumentPos_ = -1;
     std::vector<Collection> open_;
 };
 
@@ -75,7 +95,7 @@ YAML::Node parse(const std::string& text, const std::string& source) {
     try {
         std::istringstream events(text);
         YAML::Parser parser(events);
-        DuplicateKeyFinder duplicates(source);
+        DuplicateKeyFinder duplicates(text, source);
         while (parser.HandleNextDocument(duplicates)) {
         }
         return YAML::Load(text);

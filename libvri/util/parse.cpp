@@ -65,6 +65,9 @@ glm::dvec2 parseRange(const std::string& text, const std::string& what) {
     bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y) &&
               std::isfinite(v.x) && std::isfinite(v.y) && v.y > v.x;
     if (!ok) throw Error(what + ": expected lo,hi with hi > lo, got '" + text + "'");
+    // Values map to (v - lo) / (hi - lo): a width past the largest double maps every value to 0.
+    if (!std::isfinite(v.y - v.x))
+        throw Error(what + ": hi - lo must be at most the largest double (about 1.8e308), got '" + text + "'");
     return v;
 }
 
@@ -117,6 +120,14 @@ int parseCount(const std::string& text, const std::string& what, int least) {
     int v;
     if (!parseNumber(text, v) || v < least)
         throw Error(what + ": expected a whole number >= " + std::to_string(least) + ", got '" + text + "'");
+    return v;
+}
+
+int parseCount(const std::string& text, const std::string& what, int least, int most) {
+    int v;
+    if (!parseNumber(text, v) || v < least || v > most)
+        throw Error(what + ": expected a whole number from " + std::to_string(least) + " to " + std::to_string(most) +
+                    ", got '" + text + "'");
     return v;
 }
 

@@ -16,7 +16,7 @@ glm::dvec2 parseVec2(const std::string& text, const std::string& what);
 glm::dvec3 parseVec3(const std::string& text, const std::string& what);
 // "x,y,z" -> integer dims; throws vri::Error naming `what` unless all three are integers in [1, 1e9].
 glm::ivec3 parseDims(const std::string& text, const std::string& what);
-// "lo,hi" -> pair; throws vri::Error naming `what` unless both are finite and hi > lo.
+// "lo,hi" -> pair; throws vri::Error naming `what` unless both are finite, hi > lo and hi - lo is finite.
 glm::dvec2 parseRange(const std::string& text, const std::string& what);
 // "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive integers.
 glm::ivec2 parseSize(const std::string& text, const std::string& what);
@@ -31,6 +31,9 @@ double parsePositive(const std::string& text, const std::string& what);
 double parseNonNegative(const std::string& text, const std::string& what);
 // A whole number >= `least`; throws vri::Error "<what>: expected a whole number >= <least>, got '<text>'" otherwise.
 int parseCount(const std::string& text, const std::string& what, int least);
+// A whole number in [least, most]; throws vri::Error "<what>: expected a whole number from <least> to <most>, got
+// '<text>'" otherwise.
+int parseCount(const std::string& text, const std::string& what, int least, int most);
 // A positive finite number, or "none" -> +infinity (no limit); throws vri::Error naming `what` otherwise.
 double parseLimit(const std::string& text, const std::string& what);
 

@@ -15,7 +15,7 @@ E='^vri-render: error: '
 bad 1 "${E}--rate: expected a number > 0, got '-2'$" -- "${render[@]}" --rate -2
 bad 1 "${E}--step: expected a number > 0, got 'inf'$" -- "${render[@]}" --step inf
 bad 1 "${E}--early-termination: expected a transparency in \[0, 1\), 'auto' or 'auto:BOUND' with a bound in \(0, 1\), got '-0.1'$" -- "${render[@]}" --early-termination -0.1
-bad 1 "${E}--warm-up: expected a whole number >= 0, got '-1'$" -- "${render[@]}" --warm-up -1
+bad 1 "${E}--warm-up: expected a whole number from 0 to 1000, got '-1'$" -- "${render[@]}" --warm-up -1
 bad 1 "${E}--tolerance: expected a number >= 0, got '-1'$" -- "${render[@]}" --method coupled --eps -1
 bad 1 "${E}--h-min: expected a number > 0, got '0'$" -- "${render[@]}" --method decoupled --h-min 0
 bad 1 "${E}--log-ray: expected two integers|${E}--log-ray: " -- "${render[@]}" --method coupled --log-ray x --log r.csv
@@ -23,7 +23,7 @@ bad 1 "${E}--device: needs --backend vulkan$" -- "${render[@]}" --device 0
 bad 1 "^vri-reference: error: --method: unknown method 'coupled' \(expected exact or riemann\)$" -- \
     "${reference[@]}" --method coupled
 bad 1 "^vri-reference: error: --tolerance applies to --method exact only$" -- "${reference[@]}" --method riemann --tolerance 1e-6
-bad 1 "^vri-reference: error: --repeat: expected a whole number >= 1, got '0'$" -- "${reference[@]}" --repeat 0
+bad 1 "^vri-reference: error: --repeat: expected a whole number from 1 to 1000, got '0'$" -- "${reference[@]}" --repeat 0
 # What the row checks, the library's own checks still follow: h0 within [h_min, h_max].
 bad 1 "${E}the initial step h0 must be finite and at least h_min" -- "${render[@]}" --method coupled --h0 0.05
 # Options that only one tool takes stay unknown to the other.
@@ -51,7 +51,7 @@ experiment exact 'exact: {method: exact, log_ray: "1,1"}'
 experiment clamp 'riemann: {clamp: maybe}'
 R='^vri-run: error: '
 bad 1 "${R}exp/h0\.yaml:7:23: h0: expected a number > 0, got '0'$" -- "$bin/vri-run" --dry-run exp/h0.yaml
-bad 1 "${R}exp/warm\.yaml:7:22: warm_up: expected a whole number >= 0, got '-1'$" -- "$bin/vri-run" --dry-run exp/warm.yaml
+bad 1 "${R}exp/warm\.yaml:7:22: warm_up: expected a whole number from 0 to 1000, got '-1'$" -- "$bin/vri-run" --dry-run exp/warm.yaml
 bad 1 "${R}exp/flagword\.yaml:7:19: simd: unknown value 'maybe' \(expected on or off\)$" -- "$bin/vri-run" --dry-run exp/flagword.yaml
 bad 1 "${R}exp/device\.yaml:7:12: methods entry 'riemann': --device: needs --backend vulkan$" -- \
     "$bin/vri-run" --dry-run exp/device.yaml

@@ -108,7 +108,7 @@ bad 1 "${E}field of view must be in \(0, 180\) degrees" -- "${render[@]}" --fov 
 bad 64 "${E}Could not convert: --fov = abc" -- "${render[@]}" --fov abc
 bad 64 "${E}Could not convert: --threads = two" -- "${render[@]}" --threads two
 bad 1 "${E}--threads: expected a positive count, got -1" -- "${render[@]}" --threads -1
-bad 1 "${E}--repeat: expected a whole number >= 1, got '0'$" -- "${render[@]}" --repeat 0
+bad 1 "${E}--repeat: expected a whole number from 1 to 1000, got '0'$" -- "${render[@]}" --repeat 0
 bad 1 "${E}--step: expected a number > 0, got '0'$" -- "${render[@]}" --step 0
 bad 64 "${E}--step excludes --rate" -- "${render[@]}" --step 0.5 --rate 2
 bad 1 "${E}--early-termination: expected a transparency in \[0, 1\), .auto. or .auto:BOUND." -- "${render[@]}" --early-termination 2

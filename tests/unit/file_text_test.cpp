@@ -21,3 +21,21 @@ TEST_CASE("file text: a file's bytes, or one error naming what is wrong with the
     CHECK_THROWS_WITH_AS(vri::readFileText(dir.path, "a YAML file"),
                          (dir.path.string() + ": is a directory, expected a YAML file").c_str(), vri::Error);
 }
+
+TEST_CASE("file text: at most kTextFileLimit bytes, checked while reading") {
+    vri::test::TempDir dir("file-text-limit");
+    std::ofstream(dir / "big.txt", std::ios::binary).close();
+    std::filesystem::resize_file(dir / "big.txt", vri::kTextFileLimit + 1);  // sparse: no disk written
+    std::ofstream(dir / "edge.txt", std::ios::binary).close();
+    std::filesystem::resize_file(dir / "edge.txt", vri::kTextFileLimit);
+
+    CHECK(vri::readFileText(dir / "edge.txt", "a text file").size() == vri::kTextFileLimit);
+    CHECK_FALSE(vri::tryReadFileText(dir / "big.txt"));
+    CHECK_THROWS_WITH_AS(vri::readFileText(dir / "big.txt", "a YAML file"),
+                         ((dir / "big.txt").string() + ": more than 67108864 bytes, the limit for a YAML file").c_str(),
+                         vri::Error);
+    // A device without an end: refused after the limit, and named as what it is.
+    CHECK_THROWS_WITH_AS(vri::readFileText("/dev/zero", "a YAML file"),
+                         "/dev/zero: not a regular file, more than 67108864 bytes, the limit for a YAML file",
+                         vri::Error);
+}

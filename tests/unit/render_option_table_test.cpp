@@ -60,6 +60,17 @@ TEST_CASE("render option table: values land in the request as the tools had them
                          "--method: unknown method 'simpson' (expected exact or riemann)", vri::Error);
 }
 
+TEST_CASE("render option table: --repeat and --warm-up take at most kMaxFrames frames") {
+    CHECK(given(vri::RenderTool::Render, {{"--repeat", "1000"}, {"--warm-up", "1000"}}).repeat == vri::kMaxFrames);
+    CHECK(given(vri::RenderTool::Reference, {{"--warm-up", "0"}}).warmUp == 0);
+    CHECK_THROWS_WITH_AS(given(vri::RenderTool::Render, {{"--repeat", "1001"}}),
+                         "--repeat: expected a whole number from 1 to 1000, got '1001'", vri::Error);
+    CHECK_THROWS_WITH_AS(given(vri::RenderTool::Reference, {{"--repeat", "0"}}),
+                         "--repeat: expected a whole number from 1 to 1000, got '0'", vri::Error);
+    CHECK_THROWS_WITH_AS(given(vri::RenderTool::Render, {{"--warm-up", "99999999999"}}),
+                         "--warm-up: expected a whole number from 0 to 1000, got '99999999999'", vri::Error);
+}
+
 TEST_CASE("render option table: the settings record names what applies to the method") {
     CHECK(names(vri::settingsRecord(vri::RenderRequest(vri::RenderTool::Render))) ==
           std::set<std::string>{"method", "placement", "sampling_rate", "step_voxels", "precision", "simd",

@@ -5,6 +5,7 @@
 
 #include "libvri/core/transfer_function.h"
 #include "libvri/io/transfer_function_yaml.h"
+#include "libvri/io/yaml_util.h"
 #include "libvri/util/error.h"
 
 using namespace vri;
@@ -109,4 +110,37 @@ TEST_CASE("transfer function YAML: a key given twice is an error naming both lin
     CHECK_NOTHROW(parseTransferFunction("points:\n  - {s: 0, color: [0, 0, 0], tau: 0}\n"
                                         "  - {s: 1, color: [1, 1, 1], tau: 1}\nemission: color\n",
                                         "ok.yaml"));
+}
+
+TEST_CASE("transfer function: points whose s span more than a double holds are refused") {
+    // Between two points the weight is (s - s0) / (s1 - s0): an infinite span gives every s the first point's value.
+    CHECK_THROWS_WITH_AS(
+        parseTransferFunction("points:\n  - [-1e308, 0, 0, 0, 0]\n  - [1e308, 1, 1, 1, 1]\n", "w.yaml"),
+        "w.yaml: the points' s from -1e+308 to 1e+308 span more than the largest double (expected a finite s1 - s0)",
+        Error);
+    CHECK_NOTHROW(parseTransferFunction("points:\n  - [-1e307, 0, 0, 0, 0]\n  - [1e307, 1, 1, 1, 1]\n", "w.yaml"));
+}
+
+TEST_CASE("YAML: a comma outside a flow collection is refused where it is, not looped on") {
+    // yaml-cpp 0.7 reads a ',' there as an empty document it never consumes (its issue 1040).
+    CHECK_THROWS_WITH_AS(yaml::parse("{a: 1},", "c.yaml"), "c.yaml:1:7: malformed YAML: ',' outside a flow collection",
+                         Error);
+    CHECK_THROWS_WITH_AS(yaml::parse("[1],", "c.yaml"), doctest::Contains("c.yaml:1:4: malformed YAML: ','"), Error);
+    CHECK_THROWS_WITH_AS(yaml::parse("- 1\n,", "c.yaml"), doctest::Contains("c.yaml:2:1: malformed YAML: ','"), Error);
+    CHECK_THROWS_WITH_AS(yaml::parse(",", "c.yaml"), doctest::Contains("c.yaml:1:1: malformed YAML: ','"), Error);
+    CHECK_THROWS_WITH_AS(yaml::parse("---\na: 1\n---\n,\n", "c.yaml"),
+                         doctest::Contains("c.yaml:4:1: malformed YAML: ','"), Error);
+    // After a block mapping, and a ']' or '}' anywhere outside a flow collection, yaml-cpp refuses itself.
+    CHECK_THROWS_WITH_AS(yaml::parse("a: 1\n,\n", "c.yaml"), "c.yaml:2:1: malformed YAML: end of map not found", Error);
+    CHECK_THROWS_WITH_AS(yaml::parse("a: [1, 2]\n]\n", "c.yaml"), doctest::Contains("c.yaml:2:1: malformed YAML"),
+                         Error);
+    CHECK_THROWS_WITH_AS(yaml::parse("---\na: 1\n---\n}\n", "c.yaml"), doctest::Contains("c.yaml:4:1: malformed YAML"),
+                         Error);
+    // Commas inside quotes, flow collections and plain scalars stay valid.
+    CHECK(yaml::parse("a: 'x, y'\nb: \"1,2\"\n", "ok.yaml")["a"].as<std::string>() == "x, y");
+    CHECK(yaml::parse("a: [1, 2, 3]\nb: {c: 1, d: [4, 5]}\n", "ok.yaml")["a"].size() == 3);
+    CHECK(yaml::parse("a: 1, 2\n", "ok.yaml")["a"].as<std::string>() == "1, 2");
+    CHECK(yaml::parse("- [1, 2]\n- {a: 1,}\n", "ok.yaml").size() == 2);
+    CHECK(yaml::parse("", "ok.yaml").IsNull());
+    CHECK(yaml::parse("---\na: 1\n---\nb: 2\n", "ok.yaml")["a"].as<int>() == 1);
 }

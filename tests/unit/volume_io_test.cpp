@@ -16,6 +16,7 @@
 #include "libvri/io/volume_io.h"
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
+#include "libvri/util/parse.h"
 
 namespace fs = std::filesystem;
 using vri::test::readBytes;
@@ -359,6 +360,13 @@ TEST_CASE("volume io: NRRD types beyond uint8, uint16 and float32 become float32
     CHECK(int16.value(0, 0, 0) == -1000);
     CHECK(int16.value(1, 0, 0) == 3000);
     CHECK(int16.range == vri::ValueRange{-1000, 3000});  // the file's range wins
+    // A range whose width overflows a double would map every value to 0.
+    checkMentions(errorOf([&] { read("short", std::string(4, '\0'), "vri_range:=-1e308 1e308\n"); }),
+                  {"v.nhdr", "value range -1e+308 1e+308", "finite hi - lo"});
+    CHECK(vri::parseRange("-1e307,1e307", "--range") == glm::dvec2(-1e307, 1e307));
+    CHECK_THROWS_WITH_AS(vri::parseRange("-1e308,1e308", "--range"),
+                         "--range: hi - lo must be at most the largest double (about 1.8e308), got '-1e308,1e308'",
+                         vri::Error);
     const vri::Volume uint32 = read("uint", std::string("\x01\x00\x00\x01\xff\xff\xff\xff", 8));
     CHECK(uint32.value(0, 0, 0) == 16777217.0f);  // rounded to the nearest float: 2^24 + 1 is not one
     CHECK(uint32.value(0, 0, 0) == 16777216.0);
