@@ -20,6 +20,7 @@
 #include "libvri/experiment/manifest.h"
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_node.h"
+#include "libvri/experiment/step_cache.h"
 #include "libvri/experiment/step_costs.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/folder_lock.h"
@@ -170,9 +171,16 @@ int run(const Options& options) {
         requireCleanTree(options, experiment, resultsRoot);
         const auto start = std::chrono::steady_clock::now();
         const vri::FolderLock lock(plan.commandPath(plan.resultsDir));  // until its manifest is written
-        // Left by a vri-run or a step killed mid-write; a step of a killed vri-run that still runs keeps its own.
-        for (const fs::path& folder : {plan.resultsDir, plan.resultsDir / ".steps"})
-            for (const fs::path& stale : vri::removeStaleTempFiles(folder))
+        // Left by a vri-run or a step killed with kill -9 mid-write (a cached step is not rewritten, so its
+        // writer never cleans up); only the temporary names of the files this plan writes, so that a
+        // user's look-alike file stays, and a step of a killed vri-run that still runs keeps its own.
+        std::vector<fs::path> targets{plan.resultsDir / "manifest.json"};
+        for (const vri::Step& step : plan.steps) {
+            targets.insert(targets.end(), step.outputs.begin(), step.outputs.end());
+            targets.push_back(vri::recordPath(plan, step));
+        }
+        for (const fs::path& target : targets)
+            for (const fs::path& stale : vri::removeStaleTempFiles(target))
                 std::cerr << kTool << ": removed " << plan.commandPath(stale)
                           << ", a temporary file of a process that is gone\n";
         // The last run's wall times price the Slurm jobs; read before its manifest goes.
