@@ -12,13 +12,23 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string distinctError(const std::vector<OutputArgument>& outputs) {
+// The UsageError a check throws, or "no error".
+template <class Check>
+std::string usageError(Check&& check) {
     try {
-        requireDistinctOutputs(outputs);
+        check();
     } catch (const UsageError& e) {
         return e.what();
     }
     return "no error";
+}
+
+std::string distinctError(const std::vector<OutputArgument>& outputs) {
+    return usageError([&] { requireDistinctOutputs(outputs); });
+}
+
+std::string apartError(const std::vector<OutputArgument>& outputs, const std::vector<InputArgument>& inputs) {
+    return usageError([&] { requireOutputsApartFromInputs(outputs, inputs); });
 }
 
 }  // namespace
@@ -55,19 +65,6 @@ TEST_CASE("output arguments: one file named twice, however spelled, is an error"
     CHECK(distinctError({{"-o", "x.png"}, {"--png", x}}).ends_with("-o's output"));
     fs::current_path(cwd);
 }
-
-namespace {
-
-std::string apartError(const std::vector<OutputArgument>& outputs, const std::vector<InputArgument>& inputs) {
-    try {
-        requireOutputsApartFromInputs(outputs, inputs);
-    } catch (const UsageError& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
-}  // namespace
 
 TEST_CASE("same file: by device and inode, through links and spellings; a missing path is no file") {
     test::TempDir dir("same");
