@@ -2,7 +2,7 @@
 # Signals and temporary files (issue 29, item 12). A SIGTERM or SIGINT to a tool while a temporary file
 # exists removes it on the way out, and the tool still dies of the signal; only kill -9 leaves one, and
 # the next run that writes the same output removes it (its process is gone) while a user's look-alike
-# files stay. Deterministic: vri-convert writes a header and its raw file together, staging the 16 MiB raw
+# files stay. Deterministic first: vri-convert writes a header and its raw file together, staging the 16 MiB raw
 # beside its target before it opens the header, here a FIFO that nobody reads, so it blocks there with
 # the temporary file in place until the signal comes.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
@@ -35,10 +35,30 @@ for signal in TERM INT; do
   [ -p out.nhdr ] && [ ! -e out.raw ] || fail "SIG$signal: the outputs changed: $(ls -l out.*)"
 done
 
+# vri-render, signalled while it writes a 3000x3000 image (tens of MB, so the temporary file exists for a
+# while): polled without sleeping, the signal lands with the file in place; a try where the write was
+# over first proves nothing and is repeated.
+for signal in TERM INT; do
+  landed=0
+  for _ in 1 2 3 4 5; do
+    env --default-signal=INT "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 3000x3000 -q \
+        -o big.exr &
+    pid=$!
+    while [ ! -e ".big.tmp.$pid.exr" ] && kill -0 "$pid" 2> /dev/null; do :; done
+    seen=0; [ -e ".big.tmp.$pid.exr" ] && seen=1
+    kill -s "$signal" "$pid" 2> /dev/null || true
+    rc=0; wait "$pid" || rc=$?
+    [ -z "$(find . -name '.*.tmp.*')" ] || fail "vri-render: SIG$signal left $(find . -name '.*.tmp.*')"
+    rm -f big.exr
+    if [ "$seen" -eq 1 ] && [ "$rc" -eq $((128 + $(kill -l "$signal"))) ]; then landed=1; break; fi
+  done
+  [ "$landed" -eq 1 ] || fail "vri-render: no SIG$signal landed while its temporary file existed in 5 tries"
+done
+
 # kill -9 leaves the file; the next vri-convert writing out.nhdr removes it, keeping the look-alikes.
 blocked_convert
 kill -s KILL "$pid"
-wait "$pid" || true
+wait "$pid" 2> /dev/null || true  # bash reports the kill
 [ -e "$tmp" ] || fail "kill -9 should leave $tmp (nothing runs in a killed process)"
 dead=$pid
 touch ".out.tmp.$dead.raw.bak" ".out.tmp.$dead.nhdr.old" ".notes.tmp.$dead.raw" ".out.tmp.0$dead.raw" "sub.out.tmp.$dead.raw"
