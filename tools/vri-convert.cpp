@@ -150,11 +150,11 @@ or summarised sparse (--storage auto, the default, or sparse: its stored 8^3 bri
         if (!grid.empty()) readOptions.grid = grid;
         vri::requestedRawLayout(input, readOptions);  // its checks before anything is read or written
 
-        std::error_code notTheSame;
+        std::vector<vri::OutputArgument> outputs;
         if (!output.empty())
             for (const fs::path& written : vri::filesWrittenBy(output))
-                if (fs::equivalent(written, input, notTheSame))
-                    throw vri::Error(written.string() + ": writing " + output + " would overwrite the input");
+                outputs.push_back({written == output ? "output" : "output's raw file", written.string()});
+        vri::requireOutputsApartFromInputs(outputs, vri::volumeInputArguments("input", input));
 
         const vri::VolumeStorage storage = raw.storage();
         const auto start = std::chrono::steady_clock::now();

@@ -217,6 +217,10 @@ int run(int argc, char** argv) {
         }
     }
 
+    const std::vector<vri::OutputArgument> outputs{
+        {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram}};
+    vri::requireDistinctOutputs(outputs);
+    vri::requireOutputsApartFromInputs(outputs, {{"A", options.a}, {"B", options.b}});
     // A file that cannot be read or written is guardedMain's failure, exit 1.
     const vri::Image a = vri::readImage(options.a);
     const vri::Image b = vri::readImage(options.b);

@@ -48,14 +48,18 @@ Outputs are written atomically, only once every check has passed.)");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     vri::requireExrOutput({"-o", output});
-    vri::requireDistinctOutputs({{"-o", output}, {"--png", pngPath}, {"--stats", statsPath}});
+    const std::vector<vri::OutputArgument> outputs{{"-o", output}, {"--png", pngPath}, {"--stats", statsPath}};
+    vri::requireDistinctOutputs(outputs);
     const vri::PngOptions png = preview.get();
     std::vector<vri::TileFiles> tiles;
+    std::vector<vri::InputArgument> inputs;
     for (const std::vector<std::string>& t : tileArgs) {
         // CLI11 lets the last use of an option that takes two words fall short of them.
         if (t.size() != 2) throw vri::UsageError("--tile: expected two files, IMAGE.exr STATS.json, per tile");
         tiles.push_back({t[0], t[1]});
+        inputs.insert(inputs.end(), {{"--tile", t[0]}, {"--tile", t[1]}});
     }
+    vri::requireOutputsApartFromInputs(outputs, inputs);
     vri::MergedTiles merged = vri::mergeTiles(tiles);
 
     nlohmann::json& record = merged.record;

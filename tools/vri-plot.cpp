@@ -2,7 +2,9 @@
 // generated gnuplot script kept beside it.
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "common/cli.h"
 #include "libvri/report/plot.h"
@@ -63,6 +65,15 @@ int run(int argc, char** argv) {
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     const vri::PlotSpec spec = vri::loadPlotSpec(specPath, dataDir);
+    std::vector<vri::InputArgument> inputs{{"SPEC", specPath}};
+    for (const vri::PlotPanel& panel : spec.panels)
+        for (const vri::PlotSeries& series : panel.series) inputs.push_back({"SPEC's data file", series.file.string()});
+    std::vector<vri::OutputArgument> outputs{{"-o's script", std::filesystem::path(output).replace_extension(".gp").string()}};
+    if (!scriptOnly) {
+        outputs.push_back({"-o", output});
+        outputs.push_back({"-o's SVG", std::filesystem::path(output).replace_extension(".svg").string()});
+    }
+    vri::requireOutputsApartFromInputs(outputs, inputs);
     if (scriptOnly) vri::writePlotScript(spec, output);
     else vri::drawPlot(spec, output);
     return vri::kExitOk;

@@ -65,6 +65,12 @@ int run(int argc, char** argv) {
     const bool fanWanted = !output.empty() || !errors.empty() || !errorsCsv.empty() || !convergence.empty();
     if (!fanWanted && diagram.empty() && fieldImage.empty())
         throw vri::Error("nothing to write: give -o, --errors, --errors-csv, --convergence, --diagram or --field-image");
+    vri::requireDistinctOutputs({{"-o", output},
+                                 {"--errors", errors},
+                                 {"--errors-csv", errorsCsv},
+                                 {"--convergence", convergence},
+                                 {"--diagram", diagram},
+                                 {"--field-image", fieldImage}});
     study.convention = vri::parseGridConvention(convention, "--convention");
     study.eye = vri::parseVec2(eye, "--eye");
     if (!std::isfinite(rotationDegrees)) throw vri::Error("--rotation: expected a finite angle in degrees");

@@ -22,6 +22,7 @@
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_executor.h"
 #include "libvri/experiment/slurm_node.h"
+#include "libvri/experiment/step_cache.h"
 #include "libvri/experiment/step_costs.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/folder_lock.h"
@@ -136,10 +137,17 @@ void printEstimate(const std::vector<std::pair<std::string, vri::CostEstimate>>&
         std::cout << unpriced << " steps are new or changed since their experiment's last manifest and have no price.\n";
 }
 
-// Left by a vri-run or a step killed mid-write; a step of a killed vri-run that still runs keeps its own.
+// Left by a vri-run or a step killed with kill -9 mid-write (a cached step is not rewritten, so its
+// writer never cleans up); only the temporary names of the files this plan writes, so that a user's
+// look-alike file stays, and a step of a killed vri-run that still runs keeps its own.
 void removeStaleTempFiles(const vri::Plan& plan) {
-    for (const fs::path& folder : {plan.resultsDir, plan.resultsDir / ".steps"})
-        for (const fs::path& stale : vri::removeStaleTempFiles(folder))
+    std::vector<fs::path> targets{plan.resultsDir / "manifest.json"};
+    for (const vri::Step& step : plan.steps) {
+        targets.insert(targets.end(), step.outputs.begin(), step.outputs.end());
+        targets.push_back(vri::recordPath(plan, step));
+    }
+    for (const fs::path& target : targets)
+        for (const fs::path& stale : vri::removeStaleTempFiles(target))
             std::cerr << kTool << ": removed " << plan.commandPath(stale) << ", a temporary file of a process that is gone\n";
 }
 

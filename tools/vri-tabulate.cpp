@@ -120,6 +120,20 @@ vri::Table buildTable(const Options& options) {
     return vri::matrixTable(cells, matrix);
 }
 
+// The JSON files the table reads, each under the option that named it.
+std::vector<vri::InputArgument> inputFiles(const Options& options) {
+    std::vector<vri::InputArgument> inputs;
+    const auto add = [&](const char* option, const std::vector<std::vector<std::string>>& groups, std::size_t first) {
+        for (const auto& words : groups)
+            for (std::size_t i = first; i < words.size(); ++i) inputs.push_back({option, words[i]});
+    };
+    add("--row", options.rows, 1);
+    add("--cell", options.cells, 2);
+    add("--run", options.runs, 1);
+    add("--point", options.points, 2);
+    return inputs;
+}
+
 int run(int argc, char** argv) {
     Options options;
     CLI::App app{"Builds a paper table from the JSON files vri-diff (--json) and vri-render (--stats) write: "
@@ -198,6 +212,10 @@ int run(int argc, char** argv) {
         "      -o orders.md --points orders-points.csv");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
+    const std::vector<vri::OutputArgument> outputs{
+        {"-o", options.markdown}, {"--csv", options.csv}, {"--points", options.pointsCsv}};
+    vri::requireDistinctOutputs(outputs);
+    vri::requireOutputsApartFromInputs(outputs, inputFiles(options));
     vri::Table table = buildTable(options);
     table.title = options.title;
     if (options.rowHeader) table.rowHeader = *options.rowHeader;

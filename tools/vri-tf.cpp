@@ -69,6 +69,7 @@ int run(int argc, char** argv) {
                "atomically.");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
+    vri::requireOutputsApartFromInputs({{"-o", output}}, {{"TF", tfPath}});
     vri::writeTextFile(output, tabulate(vri::loadTransferFunction(tfPath), samples));
     return vri::kExitOk;
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "libvri/io/volume_formats.h"
 #include "libvri/io/volume_io.h"
@@ -38,6 +39,13 @@ std::map<std::string, HeaderEntry> parseDat(const fs::path& path) {
 }
 
 }  // namespace
+
+std::optional<fs::path> inviwoDatDataFile(const fs::path& path) {
+    const std::map<std::string, HeaderEntry> entries = parseDat(path);
+    const auto it = entries.find("rawfile");
+    if (it == entries.end()) return std::nullopt;
+    return dataFileNamedBy(path, it->second.value);
+}
 
 Volume readInviwoDat(const fs::path& path) {
     requireRegularFile(path);
@@ -97,8 +105,7 @@ Volume readInviwoDat(const fs::path& path) {
     }
 
     const HeaderEntry& rawFile = require("rawfile", "Rawfile");
-    const fs::path rawPath = fs::path(rawFile.value).is_absolute() ? fs::path(rawFile.value)
-                                                                   : path.parent_path() / rawFile.value;
+    const fs::path rawPath = dataFileNamedBy(path, rawFile.value);
     Volume volume;
     try {
         volume = readRaw(rawPath, layout);

@@ -5,6 +5,7 @@
 // cells around their centres; vri's Volume::origin, the box corner, is half a spacing before it.
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include "libvri/io/volume_formats.h"
 #include "libvri/util/error.h"
@@ -65,6 +66,13 @@ bool parseBool(const HeaderEntry& entry, const std::string& where) {
 }
 
 }  // namespace
+
+std::optional<fs::path> metaImageDataFile(const fs::path& path) {
+    const MetaHeader header = parseMetaHeader(path);
+    const std::string& value = header.entries.at("elementdatafile").value;
+    if (toLower(value) == "local") return std::nullopt;
+    return dataFileNamedBy(path, value);
+}
 
 Volume readMetaImage(const fs::path& path) {
     requireRegularFile(path);
@@ -136,7 +144,7 @@ Volume readMetaImage(const fs::path& path) {
             dataFile.value.find(' ') != std::string::npos)
             throw Error(where(dataFile) + ": only LOCAL or a single data file is supported, got '" + dataFile.value +
                         "'");
-        dataPath = fs::path(dataFile.value).is_absolute() ? fs::path(dataFile.value) : path.parent_path() / dataFile.value;
+        dataPath = dataFileNamedBy(path, dataFile.value);
         data.offset = 0;
         if (const HeaderEntry* headerSize = find("headersize")) {
             if (trim(headerSize->value) == "-1") {

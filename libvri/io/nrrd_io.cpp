@@ -111,6 +111,14 @@ void requireSpanningSpacing(const RawLayout& layout, const std::string& where) {
 
 }  // namespace
 
+std::optional<fs::path> nrrdDataFile(const fs::path& path) {
+    const NrrdHeader header = parseNrrdHeader(path);
+    for (const char* name : {"data file", "datafile"})
+        if (const auto it = header.fields.find(name); it != header.fields.end())
+            return dataFileNamedBy(path, it->second.value);
+    return std::nullopt;
+}
+
 Volume readNrrd(const fs::path& path) {
     requireRegularFile(path);
     const NrrdHeader header = parseNrrdHeader(path);
@@ -212,7 +220,7 @@ Volume readNrrd(const fs::path& path) {
             dataFile->starts_with("LIST"))
             throw Error(where(optionalField("data file") ? "data file" : "datafile") +
                         ": only a single data file is supported, got '" + *dataFile + "'");
-        dataPath = fs::path(*dataFile).is_absolute() ? fs::path(*dataFile) : path.parent_path() / *dataFile;
+        dataPath = dataFileNamedBy(path, *dataFile);
     } else if (!header.dataOffset) {
         throw Error(path.string() + ": no 'data file' field and no data after the header");
     }

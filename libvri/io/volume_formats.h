@@ -15,6 +15,11 @@
 namespace vri::detail {
 
 Volume readNrrd(const std::filesystem::path& path);  // .nhdr (detached) or .nrrd (attached or detached)
+// The data file a header names apart from itself (NRRD's `data file`, MetaImage's ElementDataFile other than
+// LOCAL, Inviwo's Rawfile), else nullopt; throws as the reader would when the header cannot be parsed.
+std::optional<std::filesystem::path> nrrdDataFile(const std::filesystem::path& path);
+std::optional<std::filesystem::path> metaImageDataFile(const std::filesystem::path& path);
+std::optional<std::filesystem::path> inviwoDatDataFile(const std::filesystem::path& path);
 // .nhdr: a detached header and NAME.raw beside it; .nrrd: the header with the data attached.
 void writeNrrd(const std::filesystem::path& path, const Volume& volume);
 Volume readMetaImage(const std::filesystem::path& path);  // .mhd (detached) or .mha (LOCAL data)
@@ -37,6 +42,8 @@ Volume readVoxelData(const std::filesystem::path& path, const VoxelData& data);
 // Throws "PATH: no such file" (or "is not a regular file") before a reader opens it.
 void requireRegularFile(const std::filesystem::path& path);
 
+// The file a header's data-file entry names: `value` itself when absolute, else relative to the header's folder.
+std::filesystem::path dataFileNamedBy(const std::filesystem::path& headerPath, std::string_view value);
 // The raw file written beside a header file: same directory and stem, extension .raw.
 std::filesystem::path rawFileBeside(const std::filesystem::path& headerPath);
 // The voxel bytes as a raw file in `order` holds them: a view of volume.bytes, or of `swapped` once

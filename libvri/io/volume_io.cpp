@@ -129,6 +129,11 @@ Volume readVoxelData(const fs::path& path, const VoxelData& data) {
     return decodeVoxels(path.string(), data.dims, data.type, data.order, bytes);
 }
 
+fs::path dataFileNamedBy(const fs::path& headerPath, std::string_view value) {
+    const fs::path named(value);
+    return named.is_absolute() ? named : headerPath.parent_path() / named;
+}
+
 fs::path rawFileBeside(const fs::path& headerPath) {
     fs::path raw = headerPath;
     return raw.replace_extension(".raw");
@@ -330,6 +335,20 @@ void writeVolume(const fs::path& path, const Volume& volume) {
 std::vector<fs::path> filesWrittenBy(const fs::path& path) {
     const std::string extension = detail::toLower(path.extension().string());
     if (extension == ".nhdr" || extension == ".dat") return {detail::rawFileBeside(path), path};
+    return {path};
+}
+
+std::vector<fs::path> filesReadBy(const fs::path& path) {
+    const std::string extension = detail::toLower(path.extension().string());
+    std::optional<fs::path> dataFile;
+    try {
+        if (extension == ".nhdr" || extension == ".nrrd") dataFile = detail::nrrdDataFile(path);
+        else if (extension == ".mhd" || extension == ".mha") dataFile = detail::metaImageDataFile(path);
+        else if (extension == ".dat") dataFile = detail::inviwoDatDataFile(path);
+    } catch (const Error&) {
+        // A header that cannot be parsed names no data file; reading the volume says what is wrong with it.
+    }
+    if (dataFile) return {path, *dataFile};
     return {path};
 }
 

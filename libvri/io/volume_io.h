@@ -66,6 +66,10 @@ void writeVolume(const std::filesystem::path& path, const Volume& volume);
 // The files writeVolume(path, ...) creates or replaces: `path`, and for .nhdr and .dat the raw
 // file beside it. A tool checks them against its input before it overwrites what it reads.
 std::vector<std::filesystem::path> filesWrittenBy(const std::filesystem::path& path);
+// The files readVolume(path) reads: `path`, and the data file a header names (NRRD `data file`,
+// MetaImage ElementDataFile, Inviwo .dat Rawfile). A tool checks its outputs against them before it
+// writes (an output onto an input's data file would destroy what the header describes).
+std::vector<std::filesystem::path> filesReadBy(const std::filesystem::path& path);
 
 // OpenVDB. Volumes written by writeVdb come back with their type, voxel values (bit for bit), dims, spacing
 // and range; the origin is kept as the first voxel's centre, origin + spacing / 2, exact whenever that sum

@@ -4,7 +4,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <climits>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "libvri/util/error.h"
+#include "libvri/util/stale_temp_files.h"
 
 namespace vri {
 
@@ -129,32 +132,110 @@ private:
 };
 
 // The temporary file beside `target`: hidden, named after the process, with the target's extension.
+// A stale one of the same target, left by a writer that is gone, is removed first: the next run of the
+// tool cleans up after a kill -9.
 fs::path temporaryBeside(const fs::path& target) {
-    // Appended piece by piece: `"." + std::string` trips a false -Wrestrict in GCC 12.
-    std::string name = ".";
-    name += target.stem().string();
-    name += ".tmp." + std::to_string(::getpid()) + target.extension().string();
-    return fs::path(target).replace_filename(name);
+    removeStaleTempFiles(target);
+    return temporaryFileFor(target, ::getpid());
 }
 
-// Removes a temporary file, and the private directory it lies in if any, unless released.
+// The temporary files that exist right now, for a handler of SIGINT, SIGTERM and SIGHUP to remove before
+// the process dies. A handler may only call async-signal-safe functions (no allocation, no locks), so the
+// paths live in fixed slots that it reads as they are; each slot's state says whether its path is whole.
+constexpr std::size_t kLiveSlots = 64;  // writeTogether's outputs at once, and writers on other threads
+enum SlotState : int { kFree, kFilling, kLive };
+struct LiveSlot {
+    std::atomic<int> state{kFree};
+    char file[PATH_MAX];
+    char privateDir[PATH_MAX];  // empty, or the directory that holds file, removed after it
+};
+LiveSlot gLiveSlots[kLiveSlots];
+static_assert(std::atomic<int>::is_always_lock_free, "the handler reads the slot states");
+
+extern "C" void removeLiveTemporaryFiles(int signal) {
+    for (LiveSlot& slot : gLiveSlots)
+        if (slot.state.load(std::memory_order_acquire) == kLive) {
+            ::unlink(slot.file);
+            if (slot.privateDir[0] != '\0') ::rmdir(slot.privateDir);
+        }
+    // SA_RESETHAND restored the default action: the signal, blocked until this returns, then ends the
+    // process as it would have without the handler (the parent sees the signal, not an exit code).
+    ::raise(signal);
+}
+
+// Installs the handler for the signals that end a process by default, once; a signal the program
+// ignores (nohup) or handles itself (vri-run's Slurm executor, which unwinds, so destructors clean up)
+// keeps its disposition.
+void removeTemporaryFilesOnSignals() {
+    static const bool installed = [] {
+        for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
+            struct sigaction current {};
+            if (::sigaction(signal, nullptr, &current) != 0 || current.sa_handler != SIG_DFL) continue;
+            struct sigaction action {};
+            action.sa_handler = removeLiveTemporaryFiles;
+            sigemptyset(&action.sa_mask);
+            action.sa_flags = SA_RESETHAND;
+            ::sigaction(signal, &action, nullptr);
+        }
+        return true;
+    }();
+    (void)installed;
+}
+
+// Copies `path` (absolute, so that it means the same in the handler whatever happens to the working
+// directory) into a slot's buffer; false when it does not fit.
+bool copyPath(const fs::path& path, char (&buffer)[PATH_MAX]) {
+    std::error_code ec;
+    const std::string absolute = path.empty() ? std::string() : fs::absolute(path, ec).string();
+    if (ec || absolute.size() >= PATH_MAX) return false;
+    std::memcpy(buffer, absolute.c_str(), absolute.size() + 1);
+    return true;
+}
+
+// Removes a temporary file, and the private directory it lies in if any, unless released; a signal that
+// ends the process meanwhile removes them too (unless every slot is taken or the path is too long: then
+// only a kill can leave the file, and the next write of the same target removes it).
 class TemporaryFile {
 public:
     TemporaryFile(fs::path file, fs::path privateDir = {})
-        : file_(std::move(file)), privateDir_(std::move(privateDir)) {}
+        : file_(std::move(file)), privateDir_(std::move(privateDir)) {
+        removeTemporaryFilesOnSignals();
+        for (LiveSlot& slot : gLiveSlots) {
+            int expected = kFree;
+            if (!slot.state.compare_exchange_strong(expected, kFilling, std::memory_order_acquire)) continue;
+            if (copyPath(file_, slot.file) && copyPath(privateDir_, slot.privateDir)) {
+                slot.state.store(kLive, std::memory_order_release);
+                slot_ = &slot;
+            } else {
+                slot.state.store(kFree, std::memory_order_release);
+            }
+            break;
+        }
+    }
     ~TemporaryFile() {
         std::error_code ignored;
         if (!file_.empty()) fs::remove(file_, ignored);
         if (!privateDir_.empty()) fs::remove_all(privateDir_, ignored);
+        release();
     }
     TemporaryFile(const TemporaryFile&) = delete;
     TemporaryFile& operator=(const TemporaryFile&) = delete;
     const fs::path& path() const { return file_; }
-    void renamed() { file_.clear(); }
+    // The file is no longer ours to remove: renamed into place, or never created.
+    void disown() {
+        file_.clear();
+        release();
+    }
 
 private:
+    // After the file is gone or renamed: a signal in between unlinks a name that no longer exists.
+    void release() {
+        if (slot_) std::exchange(slot_, nullptr)->state.store(kFree, std::memory_order_release);
+    }
+
     fs::path file_;
     fs::path privateDir_;
+    LiveSlot* slot_ = nullptr;
 };
 
 // Renames the synced temporary file over the target, then syncs the directory so that the rename
@@ -162,7 +243,7 @@ private:
 void moveIntoPlace(TemporaryFile& tmp, const Target& target, const fs::path& userPath) {
     if (::rename(tmp.path().c_str(), target.path.c_str()) != 0)
         fail(userPath, "cannot rename temporary file into place", errno);
-    tmp.renamed();
+    tmp.disown();
     const fs::path dir = target.path.parent_path().empty() ? fs::path(".") : target.path.parent_path();
     Descriptor dirFd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
     if (dirFd.get() < 0) fail(userPath, "cannot sync directory " + dir.string(), errno);
@@ -216,9 +297,14 @@ std::unique_ptr<TemporaryFile> stageBeside(const Target& target, const OutputByt
     // put there meanwhile, and O_NOFOLLOW a link planted at the name.
     ::unlink(tmpPath.c_str());
     // A new file gets 0666 less the umask, as open() gives; a replaced one keeps its bits.
-    Descriptor out(::open(tmpPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666));
-    if (out.get() < 0) fail(output.path, "cannot create temporary file " + tmpPath.string(), errno);
+    // Registered before it exists, so that no signal finds it unregistered.
     auto tmp = std::make_unique<TemporaryFile>(tmpPath);
+    Descriptor out(::open(tmpPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666));
+    if (out.get() < 0) {
+        const int error = errno;
+        tmp->disown();  // what is at the name is not ours
+        fail(output.path, "cannot create temporary file " + tmpPath.string(), error);
+    }
     if (target.keptMode && ::fchmod(out.get(), *target.keptMode) != 0)
         fail(output.path, "cannot keep the file's mode", errno);
     writeAll(out.get(), output.bytes, output.path);

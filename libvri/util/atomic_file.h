@@ -6,8 +6,11 @@
 //   - nothing, or a regular file: the bytes go to a temporary file beside it, ".STEM.tmp.PID.EXT"
 //     (the extension kept: image libraries pick the format from it; an existing file's permission bits
 //     kept), which is checked, fsync'ed and renamed over the path; then the directory is fsync'ed.
-//     A failed write leaves the old file as it was and removes the temporary file; a kill -9 can leave
-//     the temporary file behind, never a truncated output.
+//     A failed write leaves the old file as it was and removes the temporary file, and so does a SIGINT,
+//     SIGTERM or SIGHUP at their default action (a handler, installed with the first temporary file,
+//     removes every live one and re-raises the signal); a kill -9 can leave the temporary file behind,
+//     never a truncated output, and the next write of the same path removes it once its process is gone
+//     (stale_temp_files.h).
 //   - a symbolic link: followed to its final target (through chains of links), which is replaced as
 //     above, so the link stays a link; a dangling link gets its target created.
 //   - a character device, a FIFO, or "-" (stdout): written in place, every write checked; nothing is

@@ -190,8 +190,6 @@ bad 1 "${E}float64.dat:3: Format: unknown voxel type 'FLOAT64'" -- "$bin/vri-con
 bad 1 "${E}no_raw.dat: Rawfile missing.raw: no such file" -- "$bin/vri-convert" no_raw.dat --info
 bad 1 "${E}junk.vdb: .*not a VDB file" -- "$bin/vri-convert" junk.vdb --info
 bad 1 "${E}out.xyz: cannot write '.xyz' files" -- "$bin/vri-convert" blob_8x8x8_uint8.raw out.xyz
-bad 1 "${E}blob_8x8x8_uint8.raw: writing blob_8x8x8_uint8.raw would overwrite the input" -- \
-    "$bin/vri-convert" blob_8x8x8_uint8.raw blob_8x8x8_uint8.raw
 bad 1 "${E}--grid applies to .vdb input only" -- "$bin/vri-convert" blob_8x8x8_uint8.raw --grid density --info
 bad 1 "${E}--dims: expected three positive integers X,Y,Z, got '8,8'" -- \
     "$bin/vri-convert" blob_8x8x8_uint8.raw --dims 8,8 --type uint8 --info

@@ -58,8 +58,10 @@ grep -q "missing.raw: no such file" err.txt || fail "unexpected error for a miss
 
 # tiny.nhdr would write its voxels to tiny.raw: refuse when that is the input.
 cp tiny_4x3x2_uint8.raw tiny.raw
-if "$convert" tiny.raw tiny.nhdr --dims 4,3,2 --type uint8 2> err.txt; then fail "the input was overwritten"; fi
-grep -q "overwrite the input" err.txt || fail "unexpected error when overwriting the input: $(cat err.txt)"
+rc=0; "$convert" tiny.raw tiny.nhdr --dims 4,3,2 --type uint8 2> err.txt || rc=$?
+[ "$rc" -eq 64 ] || fail "overwriting the input: exit $rc, expected 64"
+grep -q "^vri-convert: error: output's raw file 'tiny.raw' is the same file as input 'tiny.raw'$" err.txt ||
+  fail "unexpected error when overwriting the input: $(cat err.txt)"
 [ ! -e tiny.nhdr ] || fail "tiny.nhdr was written despite the error"
 
 echo "convert: ok"

@@ -116,11 +116,14 @@ grep -q "0 ran" third.txt || fail "a rerun after the lock was released: $(cat th
 dead=4194000
 while kill -0 "$dead" 2> /dev/null; do dead=$((dead + 1)); done
 touch "both/small/.riemann-eye-r1.tmp.$dead.exr" "both/small/.steps/.rays.tmp.$dead.json" \
-      "both/small/.rays.tmp.$$.csv" both/small/.notes.tmp.abc
+      "both/small/.rays.tmp.$$.csv" both/small/.notes.tmp.abc "both/small/.notes.tmp.$dead.txt" \
+      "both/small/.riemann-eye-r1.tmp.$dead.exr.bak"
 "$bin/vri-run" --results both slow.yaml 2> stale.txt || fail "with stale files: $(cat stale.txt)"
 [ ! -e "both/small/.riemann-eye-r1.tmp.$dead.exr" ] && [ ! -e "both/small/.steps/.rays.tmp.$dead.json" ] ||
   fail "a dead process's temporary file is left"
-[ -e "both/small/.rays.tmp.$$.csv" ] && [ -e both/small/.notes.tmp.abc ] || fail "a live or foreign file was removed"
+# Only the temporary names of the files the plan writes: a user's look-alikes stay.
+[ -e "both/small/.rays.tmp.$$.csv" ] && [ -e both/small/.notes.tmp.abc ] && [ -e "both/small/.notes.tmp.$dead.txt" ] &&
+  [ -e "both/small/.riemann-eye-r1.tmp.$dead.exr.bak" ] || fail "a live or foreign file was removed"
 [ "$(grep -c "a temporary file of a process that is gone" stale.txt)" -eq 2 ] || fail "stale: $(cat stale.txt)"
 
 # --- kill -9 mid-way, several times ----------------------------------------------------------------

@@ -3,7 +3,6 @@
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -46,38 +45,40 @@ TEST_CASE("folder lock: one holder at a time, named to the second") {
     CHECK_THROWS_WITH_AS(vri::FolderLock(dir / "link"), doctest::Contains("cannot open the lock file"), vri::Error);
 }
 
-TEST_CASE("stale temp files: a dead writer's are removed, a live one's and all else kept") {
+TEST_CASE("stale temp files: a dead writer's of the target are removed; a live one's, look-alikes and all else kept") {
     vri::test::TempDir dir("stale");
     const std::string dead = std::to_string(deadPid()), live = std::to_string(::getpid());
-    const std::vector<std::string> stale = {".a.tmp." + dead, ".a.tmp." + dead + ".exr", ".b c.tmp." + dead + ".7.png",
-                                            "..fig.tmp." + dead + ".tmp." + dead + ".gp"};
-    const std::vector<std::string> kept = {".a.tmp." + live + ".exr",
-                                           "a.tmp." + dead + ".exr",
-                                           ".a.tmp.x" + dead,
-                                           ".a.tmp." + dead + "x",
-                                           ".tmp." + dead,
-                                           ".a.tmp.0.exr",
-                                           "manifest.json"};
+    CHECK(vri::temporaryFileFor(dir / "a.exr", 42) == dir / ".a.tmp.42.exr");
+    CHECK(vri::temporaryFileFor("fig", 7) == ".fig.tmp.7");
+    const std::vector<std::string> stale = {".a.tmp." + dead + ".exr"};
+    const std::vector<std::string> kept = {".a.tmp." + live + ".exr",        // its writer is at work
+                                           "a.tmp." + dead + ".exr",         // not hidden
+                                           ".a.tmp." + dead,                 // another target's (a)
+                                           ".a.tmp." + dead + ".exr.bak",    // a user's copy
+                                           ".a.tmp." + dead + ".png",        // another target's (a.png)
+                                           ".a.tmp.0" + dead + ".exr",       // no pid prints a leading zero
+                                           ".a.tmp.+" + dead + ".exr",
+                                           ".a.tmp.x" + dead + ".exr",
+                                           ".a.tmp..exr",
+                                           ".notes.tmp." + dead + ".txt",    // a look-alike of another name
+                                           ".b.a.tmp." + dead + ".exr",
+                                           "a.exr"};
     for (const auto& name : stale)
         std::ofstream(dir / name) << "x";
     for (const auto& name : kept)
         std::ofstream(dir / name) << "x";
-    fs::create_directories(dir / (".d.tmp." + dead));                               // not a file
-    fs::create_symlink(dir / "manifest.json", dir / (".l.tmp." + dead + ".json"));  // not a regular file
+    fs::create_directories(dir / "d" / (".a.tmp." + dead + ".exr"));  // not a file
+    fs::create_directories(dir / "l");
+    fs::create_symlink(dir / "a.exr", dir / "l" / (".a.tmp." + dead + ".exr"));  // not a regular file
 
-    auto removed = vri::removeStaleTempFiles(dir.path);
-    std::vector<std::string> names;
-    for (const fs::path& p : removed)
-        names.push_back(p.filename().string());
-    std::sort(names.begin(), names.end());
-    std::vector<std::string> expected = stale;
-    std::sort(expected.begin(), expected.end());
-    CHECK(names == expected);
+    CHECK(vri::removeStaleTempFiles(dir / "a.exr") == std::vector<fs::path>{dir / stale[0]});
     for (const auto& name : kept) {
         INFO(name);
         CHECK(fs::exists(dir / name));
     }
-    CHECK(fs::is_directory(dir / (".d.tmp." + dead)));
-    CHECK(fs::is_symlink(dir / (".l.tmp." + dead + ".json")));
-    CHECK(vri::removeStaleTempFiles(dir / "no-such-folder").empty());
+    CHECK(vri::removeStaleTempFiles(dir / "d" / "a.exr").empty());
+    CHECK(fs::is_directory(dir / "d" / (".a.tmp." + dead + ".exr")));
+    CHECK(vri::removeStaleTempFiles(dir / "l" / "a.exr").empty());
+    CHECK(fs::is_symlink(dir / "l" / (".a.tmp." + dead + ".exr")));
+    CHECK(vri::removeStaleTempFiles(dir / "no-such-folder" / "a.exr").empty());
 }

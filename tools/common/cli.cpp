@@ -9,7 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "libvri/io/provenance.h"
+#include "libvri/io/volume_io.h"
 #include "libvri/util/json_file.h"
+#include "libvri/util/same_file.h"
 
 namespace vri {
 
@@ -29,8 +31,7 @@ fs::path fileIdentity(const std::string& path) {
 
 bool sameFile(const std::string& a, const std::string& b) {
     if (fileIdentity(a) == fileIdentity(b)) return true;
-    std::error_code ec;  // hard links: two names, one inode (false, not an error, when one is missing)
-    return fs::equivalent(a, b, ec) && !ec;
+    return sameExistingFile(a, b);  // hard links: two names, one inode
 }
 
 }  // namespace
@@ -96,6 +97,25 @@ void requireDistinctOutputs(const std::vector<OutputArgument>& outputs) {
                 throw UsageError(outputs[i].option + ": '" + outputs[i].path + "' is also " + outputs[j].option +
                                  "'s output");
         }
+    }
+}
+
+std::vector<InputArgument> volumeInputArguments(const std::string& option, const std::string& path) {
+    if (path.empty()) return {};
+    std::vector<InputArgument> inputs;
+    for (const fs::path& file : filesReadBy(path))
+        inputs.push_back({inputs.empty() ? option : option + "'s data file", file.string()});
+    return inputs;
+}
+
+void requireOutputsApartFromInputs(const std::vector<OutputArgument>& outputs,
+                                   const std::vector<InputArgument>& inputs) {
+    for (const OutputArgument& output : outputs) {
+        if (output.path.empty() || output.path == "-") continue;
+        for (const InputArgument& input : inputs)
+            if (!input.path.empty() && input.path != "-" && sameExistingFile(output.path, input.path))
+                throw UsageError(output.option + " '" + output.path + "' is the same file as " + input.option + " '" +
+                                 input.path + "'");
     }
 }
 

@@ -44,6 +44,21 @@ void requireExrOutput(const OutputArgument& output);
 // replace the earlier one.
 void requireDistinctOutputs(const std::vector<OutputArgument>& outputs);
 
+// The files a tool reads, each with the option (or positional name) that named it.
+struct InputArgument {
+    std::string option;
+    std::string path;  // empty: not given; "-": standard input
+};
+// A volume file as the files reading it opens: the file, and the data file its header names (labelled
+// "<option>'s data file").
+std::vector<InputArgument> volumeInputArguments(const std::string& option, const std::string& path);
+// Throws UsageError "<output option> '<path>' is the same file as <input option> '<path>'" when an output
+// names an existing regular file that is one of the inputs (same device and inode: through any spelling,
+// symbolic or hard link), since writing it would destroy what is being read; an output that does not
+// exist yet names no input. Called with every option before any work, so that nothing is written.
+void requireOutputsApartFromInputs(const std::vector<OutputArgument>& outputs,
+                                   const std::vector<InputArgument>& inputs);
+
 // The one line for an exception that no check turned into vri::Error (out of memory, a file-system
 // or JSON library failure): said in words and naming the path where there is one, not as a library's
 // raw text.

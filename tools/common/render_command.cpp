@@ -124,11 +124,13 @@ int RenderCommand::run() {
         timing_.limitThreads(threadLimit);
         requireExrOutput({"-o", output_});
         if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
-        requireDistinctOutputs({{"-o", output_},
-                                {"--png", pngPath_},
-                                {"--error-image", errorImagePath_},
-                                {"--stats", statsPath_},
-                                {"--log", logPath_}});
+        const std::vector<OutputArgument> outputs{{"-o", output_},
+                                                  {"--png", pngPath_},
+                                                  {"--error-image", errorImagePath_},
+                                                  {"--stats", statsPath_},
+                                                  {"--log", logPath_}};
+        requireDistinctOutputs(outputs);
+        requireOutputsApartFromInputs(outputs, scene_.inputs());
         // Every option is checked before the render, so that a mistake never leaves some outputs written.
         const RenderRequest request = this->request();
         if (!errorImagePath_.empty() && !request.exact)

@@ -40,6 +40,12 @@ void SceneOptions::addTo(CLI::App& app) {
 
 glm::ivec2 SceneOptions::imageSize() const { return parseSize(size_, "--size"); }
 
+std::vector<InputArgument> SceneOptions::inputs() const {
+    std::vector<InputArgument> files = volumeInputArguments("--volume", volumePath_);
+    files.push_back({"--tf", tfPath_});
+    return files;
+}
+
 SceneSetup SceneOptions::load() const {
     const glm::ivec2 imageSize = this->imageSize();
     const GridConvention conv = parseGridConvention(convention_, "--convention");

@@ -2,10 +2,12 @@
 // The command-line options every tool that renders shares: what is rendered (a volume or an
 // analytic field, its grid convention and value range, the transfer function) and the camera.
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "common/cli.h"
 #include "common/raw_input_options.h"
 #include "libvri/core/camera.h"
 #include "libvri/core/cpu_renderer.h"
@@ -28,6 +30,8 @@ public:
     // Checks the options, reads the volume and the transfer function and frames the camera; throws
     // vri::Error naming the option or file that is wrong. The cheap checks come before any reading.
     SceneSetup load() const;
+    // The files load() reads (--volume with its data file, --tf), for the check against the outputs.
+    std::vector<InputArgument> inputs() const;
     // --size, checked (the first thing load() checks).
     glm::ivec2 imageSize() const;
 
