@@ -20,6 +20,7 @@
 #include "libvri/core/occupancy_cache.h"
 #include "libvri/core/occupancy_grid.h"
 #include "libvri/core/simd_march.h"
+#include "libvri/core/simd_target.h"
 #include "libvri/core/sparse_sampler.h"
 #include "libvri/util/csv.h"
 #include "libvri/util/error.h"
@@ -37,10 +38,17 @@ Precision parsePrecision(std::string_view name, const std::string& what) {
     throw Error(what + ": unknown precision '" + std::string(name) + "' (expected double or float)");
 }
 
-bool parseSimd(std::string_view name, const std::string& what) {
-    if (name == "on") return true;
-    if (name == "off") return false;
-    throw Error(what + ": unknown value '" + std::string(name) + "' (expected on or off)");
+void parseSimd(std::string_view name, const std::string& what, RenderOptions& options) {
+    options.simd = name != "off";
+    options.simdTarget.clear();
+    if (name == "on" || name == "off") return;
+    options.simdTarget = simdTargetNamed(name);
+    if (options.simdTarget.empty()) {
+        std::string targets;
+        for (const std::string& target : availableSimdTargets()) targets += (targets.empty() ? "" : ", ") + target;
+        throw Error(what + ": unknown value '" + printable(name) + "' (expected on, off or a SIMD target this CPU and " +
+                    "build have: " + targets + ")");
+    }
 }
 
 void parseEarlyTermination(const std::string& text, const std::string& what, RenderOptions& options) {
@@ -251,6 +259,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
             stats.setupReused = stats.setupReused && entry.reused;
         }
         const PacketScene packets(scene, camera, stencils, opt);
+        useSimdTarget(opt.simdTarget);
         stats.simdTarget = packetTargetName();
         forEachTile(opt, renderedRegion(opt.region, camera), counters,
                     [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&) {

@@ -27,8 +27,10 @@ class SparseVolume;    // sparse_volume.h
 enum class Precision { Double, Float };
 std::string_view precisionName(Precision p);  // "double", "float"
 Precision parsePrecision(std::string_view name, const std::string& what);
-bool parseSimd(std::string_view name, const std::string& what);  // "on" or "off"
 struct RenderOptions;
+// --simd: "on" (the best SIMD target, or VRI_SIMD_TARGET's), "off" (the scalar path) or a target's name
+// (simd_target.h); sets options.simd and options.simdTarget.
+void parseSimd(std::string_view name, const std::string& what, RenderOptions& options);
 // --early-termination: a transparency in [0, 1) below which rays stop (0: off), `auto` (rays stop once
 // what is left can change no channel by more than kAutoTerminationBound) or `auto:BOUND` with a bound in
 // (0, 1); sets options.earlyTermination or options.terminationBound.
@@ -69,6 +71,8 @@ struct RenderOptions {
     // Float Riemann and composite of a volume on packets of rays, one per SIMD lane; bitwise equal to
     // the scalar float path (false), which stays the reference.
     bool simd = true;
+    // The Highway target the packets run on (simd_target.h): empty for VRI_SIMD_TARGET's, else the best.
+    std::string simdTarget;
     int tileSize = 16;
     // Render only these pixels of the camera's image (the image returned is the region's size): each is
     // computed as in the whole image, bit for bit, since every pixel is computed on its own.

@@ -83,12 +83,18 @@ const RenderOptionRow kRows[] = {
          s.push_back({"precision", std::string(r.exact ? "double" : precisionName(r.options.precision))});
      }},
     {"--simd", "simd", "simd-", OptionValueKind::Text,
-     "on: float riemann and composite on packets of rays, one per SIMD lane (bitwise equal to off); off: the scalar path",
+     "on: float riemann and composite on packets of rays, one per SIMD lane (bitwise equal to off), on the best "
+     "target this CPU has or VRI_SIMD_TARGET's; a target's name (AVX3, AVX2, SSE4, ...) to run on that one; off: the "
+     "scalar path",
      "", "", kRenderOnly, kCpu,
-     [](const std::string& text, const std::string& where, RenderRequest& r) { r.options.simd = parseSimd(text, where); },
-     [](const RenderRequest& r) { return std::string(r.options.simd ? "on" : "off"); },
+     [](const std::string& text, const std::string& where, RenderRequest& r) { parseSimd(text, where, r.options); },
+     [](const RenderRequest& r) {
+         return r.options.simd ? (r.options.simdTarget.empty() ? std::string("on") : r.options.simdTarget) : "off";
+     },
      [](const RenderRequest& r, std::vector<Setting>& s) {
-         if (!r.exact) s.push_back({"simd", r.options.simd});
+         if (r.exact) return;
+         s.push_back({"simd", r.options.simd});
+         if (r.options.simd && !r.options.simdTarget.empty()) s.push_back({"simd_target", r.options.simdTarget});
      }},
     {"--early-termination", "early_termination", "ert", OptionValueKind::Text,
      "stop rays whose transparency drops below this (0 = off), or 'auto' (once the rest can change no channel by more "

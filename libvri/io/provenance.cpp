@@ -9,7 +9,10 @@
 #include <cstdint>
 #include <ctime>
 #include <fstream>
+#include <set>
+#include <sstream>
 #include <thread>
+#include <vector>
 
 #include <OpenEXR/OpenEXRConfig.h>
 #include <OpenImageIO/oiioversion.h>
@@ -18,6 +21,7 @@
 #include <openvdb/version.h>  // macros only: cheap, unlike openvdb/openvdb.h
 #include <png.h>
 
+#include "libvri/core/simd_target.h"
 #include "vri_git_commit.h"  // generated at every build: VRI_GIT_COMMIT
 
 namespace vri {
@@ -67,6 +71,21 @@ std::string kernelRelease() {
     return uname(&info) == 0 ? orUnknown(info.release) : kUnknown;
 }
 
+// The CPU's vector extensions a SIMD target needs (x86 "flags", Arm "Features"), in /proc/cpuinfo's order: a
+// benchmark's reader needs them beside the model name, which a virtual machine often hides ("AMD EPYC").
+std::vector<std::string> cpuSimdFlags() {
+    static const std::set<std::string, std::less<>> wanted = {
+        "sse4_1", "sse4_2", "avx", "avx2", "fma", "f16c", "bmi2", "avx512f", "avx512cd", "avx512dq", "avx512bw",
+        "avx512vl", "avx512_vnni", "avx512vbmi", "avx512_vbmi2", "avx512_bf16", "avx512_fp16", "asimd", "sve", "sve2"};
+    std::string line = findField("/proc/cpuinfo", "flags", ':');
+    if (line.empty()) line = findField("/proc/cpuinfo", "Features", ':');
+    std::vector<std::string> flags;
+    std::istringstream words(line);
+    for (std::string w; words >> w;)
+        if (wanted.contains(w)) flags.push_back(w);
+    return flags;
+}
+
 }  // namespace
 
 std::string hostName() {
@@ -76,6 +95,8 @@ std::string hostName() {
 
 nlohmann::json machineInfo() {
     return {{"cpu_model", orUnknown(findField("/proc/cpuinfo", "model name", ':'))},
+            {"cpu_simd_flags", cpuSimdFlags()},
+            {"simd_targets", availableSimdTargets()},  // the ones --simd may name, best first
             {"logical_cores", std::thread::hardware_concurrency()},
             {"usable_cores", usableCores()},
             {"memory_bytes", memoryBytes()},

@@ -52,7 +52,7 @@ experiment clamp 'riemann: {clamp: maybe}'
 R='^vri-run: error: '
 bad 1 "${R}exp/h0\.yaml:7:23: h0: expected a number > 0, got '0'$" -- "$bin/vri-run" --dry-run exp/h0.yaml
 bad 1 "${R}exp/warm\.yaml:7:22: warm_up: expected a whole number from 0 to 1000, got '-1'$" -- "$bin/vri-run" --dry-run exp/warm.yaml
-bad 1 "${R}exp/flagword\.yaml:7:19: simd: unknown value 'maybe' \(expected on or off\)$" -- "$bin/vri-run" --dry-run exp/flagword.yaml
+bad 1 "${R}exp/flagword\.yaml:7:19: simd: unknown value 'maybe' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-run" --dry-run exp/flagword.yaml
 bad 1 "${R}exp/device\.yaml:7:12: methods entry 'riemann': --device: needs --backend vulkan$" -- \
     "$bin/vri-run" --dry-run exp/device.yaml
 bad 1 "${R}exp/both\.yaml:7:12: methods entry 'riemann': --rate: cannot be given with --step$" -- \

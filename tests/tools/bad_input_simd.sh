@@ -6,8 +6,10 @@ bin=${VRI_BIN:?}
 source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
 scene=(--volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --stats out.json)
 
-bad 1 "^vri-render: error: --simd: unknown value 'yes' \(expected on or off\)$" -- "$bin/vri-render" "${scene[@]}" --simd yes
-bad 1 "^vri-render: error: --simd: unknown value '' \(expected on or off\)$" -- "$bin/vri-render" "${scene[@]}" --simd ''
+bad 1 "^vri-render: error: --simd: unknown value 'yes' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-render" "${scene[@]}" --simd yes
+bad 1 "^vri-render: error: --simd: unknown value '' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-render" "${scene[@]}" --simd ''
+bad 1 "^vri-render: error: VRI_SIMD_TARGET: 'AVX9000' is not a SIMD target this CPU and build have \([A-Z0-9, ]+\)$" -- env VRI_SIMD_TARGET=AVX9000 "$bin/vri-render" "${scene[@]}" --precision float
+bad 1 "^vri-render: error: --simd: unknown value 'avx2;x' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-render" "${scene[@]}" --simd 'avx2;x'
 if built_with_vulkan; then
   bad 1 "^vri-render: error: --simd: needs --backend cpu$" -- "$bin/vri-render" "${scene[@]}" --backend vulkan --simd on
 fi

@@ -21,6 +21,26 @@ render --step 0.3 -o once.exr --stats once.json
 render --step 0.3 --warm-up 1 --repeat 2 -o warm.exr --stats warm.json
 "$bin/vri-diff" warm.exr once.exr --fail 0 > /dev/null || fail "--warm-up: the image changed"
 
+# Every SIMD target this host has, forced by --simd TARGET and by VRI_SIMD_TARGET, gives the scalar path's
+# image bit for bit and is named in the stats; the machine record lists the targets and the CPU's flags.
+targets=$(/usr/bin/python3 -c 'import json,sys; print(" ".join(json.load(open(sys.argv[1]))["machine"]["simd_targets"]))' on.json)
+[[ -n $targets ]] || fail "machine.simd_targets is empty"
+render --step 0.3 --simd off -o scalar.exr
+for target in $targets; do
+  render --step 0.3 --simd "$target" -o forced.exr --stats forced.json
+  "$bin/vri-diff" forced.exr scalar.exr --fail 0 > /dev/null || fail "--simd $target differs from the scalar path"
+  VRI_SIMD_TARGET=$target render --step 0.3 -o env.exr --stats env.json
+  "$bin/vri-diff" env.exr scalar.exr --fail 0 > /dev/null || fail "VRI_SIMD_TARGET=$target differs from the scalar path"
+  /usr/bin/python3 - "$target" <<'PY' || fail "stats of --simd $target"
+import json, sys
+target = sys.argv[1]
+forced, env = json.load(open("forced.json")), json.load(open("env.json"))
+assert forced["stats"]["simd_target"] == target and forced["options"]["simd_target"] == target, forced["stats"]
+assert env["stats"]["simd_target"] == target and "simd_target" not in env["options"], env["stats"]
+assert isinstance(forced["machine"]["cpu_simd_flags"], list), "machine.cpu_simd_flags"
+PY
+done
+
 python3 - <<'PY' || fail "stats JSON"
 import json
 on, off, double = (json.load(open(f)) for f in ("on.json", "off.json", "double.json"))
@@ -33,4 +53,4 @@ once, warm = json.load(open("once.json")), json.load(open("warm.json"))
 assert once["stats"]["setup_reused"] is False and on["stats"]["setup_seconds"] > 0, "the first frame builds the grid"
 assert warm["stats"]["setup_reused"] is True and warm["stats"]["setup_seconds"] > 0, "a later frame reuses it"
 PY
-echo "simd: on and off bitwise equal; stats name the target; later frames reuse the grid"
+echo "simd: on, off and every target ($targets) bitwise equal; stats name the target; later frames reuse the grid"

@@ -387,7 +387,7 @@ methods:
     CHECK(e.run("riemann-simd-off").options ==
           vri::ToolOptions{{"--method", "riemann"}, {"--precision", "float"}, {"--simd", "off"}});
     CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods: {riemann: {simd: yes}}\n")
-              .find("simd: unknown value 'yes' (expected on or off)") != std::string::npos);
+              .find("simd: unknown value 'yes' (expected on, off or a SIMD target") != std::string::npos);
 }
 
 TEST_CASE("experiment: tiles: N plans N bands with --region and a merge writing the run's own files") {

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <random>
@@ -16,6 +17,7 @@
 #include "same_bits.h"
 #include "test_camera.h"
 #include "libvri/core/cpu_renderer.h"
+#include "libvri/core/simd_target.h"
 #include "libvri/util/error.h"
 
 using namespace vri;
@@ -256,8 +258,53 @@ TEST_CASE("--simd leaves double precision, the Simpson methods and analytic fiel
     CHECK(stats.simdTarget.empty());
 }
 
-TEST_CASE("parseSimd takes on and off") {
-    CHECK(parseSimd("on", "--simd"));
-    CHECK(!parseSimd("off", "--simd"));
-    CHECK_THROWS_WITH_AS(parseSimd("yes", "--simd"), "--simd: unknown value 'yes' (expected on or off)", Error);
+TEST_CASE("parseSimd takes on, off and the name of a target this CPU runs") {
+    RenderOptions opt;
+    parseSimd("off", "--simd", opt);
+    CHECK((!opt.simd && opt.simdTarget.empty()));
+    parseSimd("on", "--simd", opt);
+    CHECK((opt.simd && opt.simdTarget.empty()));
+    const std::vector<std::string> targets = availableSimdTargets();
+    REQUIRE(!targets.empty());
+    CHECK(targets.back() == hwy::TargetName(HWY_STATIC_TARGET));  // the baseline, last
+    std::string lower = targets.front();
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    parseSimd(lower, "--simd", opt);
+    CHECK((opt.simd && opt.simdTarget == targets.front()));
+    std::string list;
+    for (const std::string& t : targets) list += (list.empty() ? "" : ", ") + t;
+    CHECK_THROWS_WITH_AS(parseSimd("yes", "--simd", opt),
+                         ("--simd: unknown value 'yes' (expected on, off or a SIMD target this CPU and build have: " +
+                          list + ")").c_str(),
+                         Error);
+}
+
+TEST_CASE("--simd TARGET and VRI_SIMD_TARGET run the packets on that target, bit for bit as the best") {
+    const Scene scene{testVolume(VoxelType::UInt16), std::nullopt, GridConvention::CellCentred,
+                      testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
+    const Camera camera = testCamera(23, 17);
+    RenderOptions opt;
+    opt.precision = Precision::Float;
+    RenderStats best;
+    const Image reference = render(scene, camera, opt, &best);
+    CHECK(best.simdTarget == availableSimdTargets().front());
+    for (const std::string& target : availableSimdTargets()) {
+        INFO(target);
+        opt.simdTarget = target;
+        RenderStats stats;
+        CHECK(test::sameBits(render(scene, camera, opt, &stats), reference));
+        CHECK(stats.simdTarget == target);
+        opt.simdTarget.clear();
+        ::setenv("VRI_SIMD_TARGET", target.c_str(), 1);
+        CHECK(test::sameBits(render(scene, camera, opt, &stats), reference));
+        CHECK(stats.simdTarget == target);
+        ::unsetenv("VRI_SIMD_TARGET");
+    }
+    render(scene, camera, opt, &best);  // and back to the best
+    CHECK(best.simdTarget == availableSimdTargets().front());
+    ::setenv("VRI_SIMD_TARGET", "AVX9000", 1);
+    CHECK_THROWS_WITH_AS(render(scene, camera, opt, &best),
+                         doctest::Contains("VRI_SIMD_TARGET: 'AVX9000' is not a SIMD target this CPU and build have"),
+                         Error);
+    ::unsetenv("VRI_SIMD_TARGET");
 }
