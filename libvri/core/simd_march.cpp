@@ -169,19 +169,29 @@ HWY_INLINE VI samplesInEmptyCube(const Stencil& st, VI distance, const VF (&du)[
 }
 
 // TransferFunction::operator()<float>: the bracket p_i <= s < p_i+1 is the number of inner points
-// p_1 .. p_n-2 at or below s, the same bracket the scalar search finds; its constants come from
-// registers when every segment fits one vector, else from memory.
+// p_1 .. p_n-2 at or below s, the same bracket the scalar search finds. Its constants come from
+// registers when every segment fits one vector or two (a lane permutation each, and a select between
+// the two), else from memory (a gather each). On AVX2's 8 lanes a gather costs far more than the
+// permutations: Bonsai's 8 segments in memory made AVX2 packets twice as slow, per lane, as AVX-512's
+// 16, which held them in one register.
 class VectorTransferFunction {
 public:
-    explicit VectorTransferFunction(const PacketScene& sc)
-        : sc_(sc), inRegisters_(sc.segmentStart.size() <= hn::Lanes(DF())) {
+    explicit VectorTransferFunction(const PacketScene& sc) : sc_(sc) {
         const DF df;
-        if (inRegisters_) {
-            start_ = hn::LoadU(df, sc.segmentStart.data());
-            width_ = hn::LoadU(df, sc.segmentWidth.data());
+        const std::size_t n = hn::Lanes(df);
+        tables_ = sc.segments <= n ? 1 : sc.segments <= 2 * n && sc.segmentStart.size() >= 2 * n ? 2 : 0;
+        for (int half = 0; half < 2; ++half) {
+            start_[half] = width_[half] = hn::Zero(df);
+            for (int c = 0; c < 4; ++c)
+                value_[half][c] = slope_[half][c] = hn::Zero(df);
+        }
+        for (int half = 0; half < tables_; ++half) {
+            const std::size_t at = half * n;
+            start_[half] = hn::LoadU(df, sc.segmentStart.data() + at);
+            width_[half] = hn::LoadU(df, sc.segmentWidth.data() + at);
             for (int c = 0; c < 4; ++c) {
-                value_[c] = hn::LoadU(df, sc.value[c].data());
-                slope_[c] = hn::LoadU(df, sc.slope[c].data());
+                value_[half][c] = hn::LoadU(df, sc.value[c].data() + at);
+                slope_[half][c] = hn::LoadU(df, sc.slope[c].data() + at);
             }
         }
     }
@@ -206,25 +216,39 @@ public:
         }
         const MF above = hn::Ge(s, hn::Set(df, sc_.pointS.front()));
         const MF below = hn::Lt(s, hn::Set(df, sc_.pointS.back()));
-        if (inRegisters_) {
+        if (tables_ == 1) {
             const auto idx = hn::IndicesFromVec(df, segment);
-            const VF w = hn::Div(hn::Sub(s, hn::TableLookupLanes(start_, idx)), hn::TableLookupLanes(width_, idx));
-            for (int c = 0; c < 4; ++c)
-                out[c] = select(
-                    above, below,
-                    hn::Add(hn::TableLookupLanes(value_[c], idx), hn::Mul(w, hn::TableLookupLanes(slope_[c], idx))), c);
+            const auto lookup = [&](const VF(&table)[2]) { return hn::TableLookupLanes(table[0], idx); };
+            evaluate(s, lookup, above, below, out);
+        } else if (tables_ == 2) {
+            // Segments n .. 2n - 1 lie in the second vector, at their index less n.
+            const VI lanes = hn::Set(di, static_cast<std::int32_t>(hn::Lanes(df)));
+            const auto second = hn::Gt(segment, hn::Sub(lanes, hn::Set(di, 1)));
+            const auto idx = hn::IndicesFromVec(df, hn::IfThenElse(second, hn::Sub(segment, lanes), segment));
+            const MF inSecond = hn::RebindMask(df, second);
+            const auto lookup = [&](const VF(&table)[2]) {
+                return hn::IfThenElse(inSecond, hn::TableLookupLanes(table[1], idx), hn::TableLookupLanes(table[0], idx));
+            };
+            evaluate(s, lookup, above, below, out);
         } else {
-            const VF w = hn::Div(hn::Sub(s, hn::GatherIndex(df, sc_.segmentStart.data(), segment)),
-                                 hn::GatherIndex(df, sc_.segmentWidth.data(), segment));
+            const auto gather = [&](const std::vector<float>& table) { return hn::GatherIndex(df, table.data(), segment); };
+            const VF w = hn::Div(hn::Sub(s, gather(sc_.segmentStart)), gather(sc_.segmentWidth));
             for (int c = 0; c < 4; ++c)
-                out[c] = select(above, below,
-                                hn::Add(hn::GatherIndex(df, sc_.value[c].data(), segment),
-                                        hn::Mul(w, hn::GatherIndex(df, sc_.slope[c].data(), segment))),
-                                c);
+                out[c] = select(above, below, hn::Add(gather(sc_.value[c]), hn::Mul(w, gather(sc_.slope[c]))), c);
         }
     }
 
 private:
+    // The lerp within the lanes' segments, its constants from `lookup` (one or two vectors per constant).
+    template <class Lookup>
+    HWY_INLINE void evaluate(VF s, const Lookup& lookup, MF above, MF below, VF (&out)[4]) const {
+        const VF w = hn::Div(hn::Sub(s, lookup(start_)), lookup(width_));
+        for (int c = 0; c < 4; ++c) {
+            const VF value[2] = {value_[0][c], value_[1][c]}, slope[2] = {slope_[0][c], slope_[1][c]};
+            out[c] = select(above, below, hn::Add(lookup(value), hn::Mul(w, lookup(slope))), c);
+        }
+    }
+
     // Below the first point (or NaN): the first point's value; at or past the last: the last's.
     HWY_INLINE VF select(MF above, MF below, VF inside, int c) const {
         const DF df;
@@ -233,8 +257,8 @@ private:
     }
 
     const PacketScene& sc_;
-    bool inRegisters_;
-    VF start_, width_, value_[4], slope_[4];
+    int tables_ = 0;  // vectors per constant in registers: 1 or 2; 0: the constants are gathered from memory
+    VF start_[2], width_[2], value_[2][4], slope_[2][4];
 };
 
 constexpr std::size_t kMaxLanes = PacketScene::kMaxLanes;
@@ -764,7 +788,7 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Stencil
         last[c] = static_cast<float>(channels(p.back())[c]);
     }
     // A single point has no segment; the selects in VectorTransferFunction then always pick `first`.
-    const std::size_t segments = std::max<std::size_t>(p.size(), 2) - 1;
+    segments = std::max<std::size_t>(p.size(), 2) - 1;
     const std::size_t padded = (segments + kMaxLanes - 1) / kMaxLanes * kMaxLanes;  // whole vectors for LoadU
     for (std::size_t i = 0; i < padded; ++i) {
         const auto& a = p[std::min(i, segments - 1)];

@@ -78,6 +78,7 @@ struct PacketScene {
     // tau), padded with copies of the last segment to a whole number of the widest vectors.
     std::vector<float> pointS;
     std::vector<float> innerS;  // pointS[1 .. n-2], padded with NaN to a multiple of 4
+    std::size_t segments = 1;  // before the padding
     std::vector<float> segmentStart, segmentWidth, value[4], slope[4];
     float first[4], last[4];  // the channels at the first and the last point
 };

@@ -72,7 +72,7 @@ TEST_CASE("the packet engine's image equals the scalar float path's bit for bit 
     for (VoxelType type : {VoxelType::UInt8, VoxelType::UInt16, VoxelType::Float32})
         for (GridConvention convention : {GridConvention::CellCentred, GridConvention::NodeCentred})
             for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour})
-                for (int points : {9, 24}) {
+                for (int points : {3, 9, 14, 24}) {  // 2, 8, 13, 23 segments: in one vector, two or memory
                     const Scene scene{testVolume(type), std::nullopt, convention,
                                       testTransferFunction(emission, points)};
                     for (Integrator integrator : {Integrator::Riemann, Integrator::Composite})
