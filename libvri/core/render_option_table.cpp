@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libvri/core/simd_target.h"
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
 #include "libvri/util/parse.h"
@@ -85,7 +86,7 @@ const RenderOptionRow kRows[] = {
     {"--simd", "simd", "simd-", OptionValueKind::Text,
      "on: float riemann and composite on packets of rays, one per SIMD lane (bitwise equal to off), on the best "
      "target this CPU has or VRI_SIMD_TARGET's; a target's name (AVX3, AVX2, SSE4, ...) to run on that one; off: the "
-     "scalar path",
+     "scalar path (experiment files: `lower` is a run per target below the best)",
      "", "", kRenderOnly, kCpu,
      [](const std::string& text, const std::string& where, RenderRequest& r) { parseSimd(text, where, r.options); },
      [](const RenderRequest& r) {
@@ -95,6 +96,12 @@ const RenderOptionRow kRows[] = {
          if (r.exact) return;
          s.push_back({"simd", r.options.simd});
          if (r.options.simd && !r.options.simdTarget.empty()) s.push_back({"simd_target", r.options.simdTarget});
+     },
+     [](std::string_view text) -> std::optional<std::vector<std::string>> {
+         if (text != "lower") return std::nullopt;
+         std::vector<std::string> lower = availableSimdTargets();
+         lower.erase(lower.begin());  // the best is `on`'s
+         return lower;
      }},
     {"--early-termination", "early_termination", "ert", OptionValueKind::Text,
      "stop rays whose transparency drops below this (0 = off), or 'auto' (once the rest can change no channel by more "

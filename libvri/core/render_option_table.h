@@ -7,6 +7,7 @@
 //
 // The table is plain data, below any command-line library: tools/common turns its rows into CLI11
 // options, the experiment reader into keys.
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -75,6 +76,9 @@ struct RenderOptionRow {
     std::string (*shownDefault)(const RenderRequest& request);
     // Appends what the stats file says about this option's setting (nothing where it does not apply).
     void (*record)(const RenderRequest& request, std::vector<Setting>& settings);
+    // Experiment files only: the values `text` stands for on this host (simd's `lower`: one run per SIMD
+    // target below the best this CPU has), or nullopt when it is a value of its own. Null: no such value.
+    std::optional<std::vector<std::string>> (*hostValues)(std::string_view text) = nullptr;
 
     std::string_view flag() const { return names.substr(0, names.find(',')); }
     bool takenBy(RenderTool tool) const { return (tools & unsigned(tool)) != 0; }

@@ -351,6 +351,14 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             if (axis.swept && kv.second.size() == 0) throw Error(at(kv.second) + ": " + key + ": an empty list");
             const auto value = [&](const YAML::Node& v) {
                 if (!v.IsScalar()) throw Error(at(v) + ": " + key + " must be a value or a list of values");
+                if (auto values = row->hostValues ? row->hostValues(v.Scalar()) : std::nullopt) {
+                    // A value that stands for this host's list (simd: lower): swept.
+                    if (values->empty())
+                        throw Error(at(v) + ": " + key + ": '" + v.Scalar() + "' stands for no value on this host");
+                    for (std::string& each : *values) axis.values.push_back(std::move(each));
+                    axis.swept = true;
+                    return;
+                }
                 RenderRequest scratch(RenderTool::Render);  // the row's own check, where the value is
                 if (!(key == "method" && peerMethod(v.Scalar()))) row->apply(v.Scalar(), at(v) + ": " + key, scratch);
                 axis.values.push_back(v.Scalar());

@@ -82,6 +82,7 @@ std::string medianNote(std::size_t fewest, std::size_t most) {
 }
 
 // A run's method family from its stats, what one series of a chart draws: "riemann float SIMD",
+// "riemann float SIMD AVX2" (a forced target),
 // "coupled double", "riemann float vulkan", "exact" (vri-reference's stats name no backend), "vtk-gpu".
 std::string methodFamily(const json& stats, const fs::path& file) {
     return readingJsonOf(file, [&] {
@@ -94,8 +95,33 @@ std::string methodFamily(const json& stats, const fs::path& file) {
         const json& run = stats.at("stats");
         if (run.value("backend", "cpu") == "vulkan") family += " vulkan";
         else if (run.contains("simd_target") && !run["simd_target"].is_null()) family += " SIMD";
+        // A target forced below the best (--simd AVX2) is a family of its own, so that a chart or a
+        // table's rows keep one host's targets apart.
+        if (options.contains("simd_target")) family += " " + options.at("simd_target").get<std::string>();
         return family;
     });
+}
+
+// What a reader of seconds needs to know of the host, from a run's machine record (provenance.h): its CPU,
+// the vector extensions it has and the SIMD targets vri could run on it; empty for a record without them.
+std::string hostNote(const json& stats) {
+    if (!stats.contains("machine") || !stats["machine"].is_object()) return {};
+    const json& machine = stats["machine"];
+    const auto list = [&](const char* key) {
+        std::string text;
+        if (machine.contains(key) && machine[key].is_array())
+            for (const json& item : machine[key])
+                if (item.is_string()) text += (text.empty() ? "" : " ") + item.get<std::string>();
+        return text;
+    };
+    if (!machine.contains("cpu_model") || !machine["cpu_model"].is_string()) return {};
+    std::string note = "host: " + machine["cpu_model"].get<std::string>();
+    if (machine.contains("usable_cores") && machine["usable_cores"].is_number_integer())
+        note += ", " + std::to_string(machine["usable_cores"].get<long long>()) + " usable cores";
+    if (const std::string flags = list("cpu_simd_flags"); !flags.empty()) note += "; CPU flags: " + flags;
+    if (const std::string targets = list("simd_targets"); !targets.empty())
+        note += "; SIMD targets, best first: " + targets;
+    return note + ".";
 }
 
 }  // namespace
@@ -296,13 +322,14 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     }
 
     const std::string front = "worst" + above(options.thresholds.front());
-    table.notes.push_back("method: the run's method and precision, SIMD where the float packets ran, vulkan on that "
-                          "backend. seconds: median wall time per frame (the run's timing.median_wall_seconds)." +
+    table.notes.push_back("method: the run's method and precision, SIMD where the float packets ran (and the SIMD "
+                          "target when a run asked for one below the best), vulkan on that backend. seconds: median wall time per frame (the run's timing.median_wall_seconds)." +
                           (options.baseline.empty() ? std::string()
                                                     : " time ratio: seconds over those of " + options.baseline +
                                                           ", timed in the same run."));
     table.notes.push_back("Msamples/s: millions of samples evaluated per second (stats.samples_evaluated over "
                           "seconds; - where the method counts none).");
+    if (const std::string host = hostNote(readJsonFile(rows.front().stats)); !host.empty()) table.notes.push_back(host);
     std::string percents;
     for (double t : options.thresholds) percents += (percents.empty() ? "" : ", ") + formatThreshold(t);
     const std::string rays = "% of rays (all pixels, background included) whose absolute error exceeds t (t = " +

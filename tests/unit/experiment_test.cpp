@@ -8,6 +8,7 @@
 #include <string>
 
 #include "experiment_file_test.h"
+#include "libvri/core/simd_target.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
@@ -388,6 +389,17 @@ methods:
           vri::ToolOptions{{"--method", "riemann"}, {"--precision", "float"}, {"--simd", "off"}});
     CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\nmethods: {riemann: {simd: yes}}\n")
               .find("simd: unknown value 'yes' (expected on, off or a SIMD target") != std::string::npos);
+    // `lower`: a run per SIMD target this CPU has below its best, named by the target.
+    const vri::Experiment lower = d.parse(kHead + R"(scenes: {s: {field: linear, convention: node, tf: a.yaml}}
+methods:
+  riemann: {precision: float, simd: [on, lower]}
+)");
+    std::vector<std::string> expected{"riemann-simd-on"};
+    const std::vector<std::string> targets = vri::availableSimdTargets();
+    for (std::size_t i = 1; i < targets.size(); ++i) expected.push_back("riemann-simd-" + targets[i]);
+    CHECK(ids(lower) == expected);
+    CHECK(lower.run(expected.back()).options ==
+          vri::ToolOptions{{"--method", "riemann"}, {"--precision", "float"}, {"--simd", targets.back()}});
 }
 
 TEST_CASE("experiment: tiles: N plans N bands with --region and a merge writing the run's own files") {
