@@ -52,14 +52,21 @@ constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
 constexpr double kGaussTolerance = 1e-10;
 
 // How many of the sorted values are <= x (upper_bound's index), and with it how many are < y
-// (lower_bound's): counts without branches, over the few points of a transfer function, where a binary
-// search mispredicts at every step; one pass for both ends of a piece's range.
+// (lower_bound's): counts without branches over the few points of a transfer function, where a binary
+// search mispredicts at every step; one pass for both ends of a piece's range. Past kLinearCount
+// values a binary search, so that a sub-piece costs the logarithm of the points, not their number
+// (10,000 points made a 16x16 image of an 8^3 volume take 5.9 s). Both give the same counts.
+constexpr std::size_t kLinearCount = 64;
 std::size_t countAtMost(const std::vector<double>& sorted, double x) {
+    if (sorted.size() > kLinearCount)  // a NaN is at or above no value, as in the loop
+        return std::isnan(x) ? 0 : std::size_t(std::upper_bound(sorted.begin(), sorted.end(), x) - sorted.begin());
     std::size_t n = 0;
     for (double v : sorted) n += v <= x;
     return n;
 }
 std::pair<std::size_t, std::size_t> countAtMostAndBelow(const std::vector<double>& sorted, double x, double y) {
+    if (sorted.size() > kLinearCount)
+        return {countAtMost(sorted, x), std::size_t(std::lower_bound(sorted.begin(), sorted.end(), y) - sorted.begin())};
     std::size_t atMost = 0, below = 0;
     for (double v : sorted) {
         atMost += v <= x;

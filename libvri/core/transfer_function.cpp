@@ -35,6 +35,9 @@ TransferFunction::TransferFunction(std::vector<TransferFunctionPoint> points, Em
                                    const std::string& source)
     : points_(std::move(points)), emission_(emission) {
     if (points_.empty()) throw Error(source + ": a transfer function needs at least one point");
+    if (points_.size() > kMaxPoints)
+        throw Error(source + ": " + std::to_string(points_.size()) + " points, more than the limit of " +
+                    std::to_string(kMaxPoints));
     for (std::size_t i = 0; i < points_.size(); ++i)
         validateTransferFunctionPoint(points_[i], i > 0 ? &points_[i - 1] : nullptr,
                                       source + ": point " + std::to_string(i));

@@ -35,8 +35,12 @@ struct TransferFunctionSample {
 
 class TransferFunction {
 public:
-    // Throws vri::Error naming `source` when there are no points, a value is negative or not finite,
-    // or the points are not sorted by s (equal s is allowed and makes a jump).
+    // The most points a transfer function may have: far more than any classification in use (lookup
+    // tables hold 256 or 1024 entries), and what a YAML file of kMaxYamlNodes nodes can hold.
+    static constexpr std::size_t kMaxPoints = 10000;
+
+    // Throws vri::Error naming `source` when there are no points or more than kMaxPoints, a value is
+    // negative or not finite, or the points are not sorted by s (equal s is allowed and makes a jump).
     TransferFunction(std::vector<TransferFunctionPoint> points, EmissionModel emission,
                      const std::string& source = "transfer function");
 

@@ -43,7 +43,11 @@ TransferFunction transferFunctionFromYaml(const YAML::Node& root, const std::str
     const YAML::Node pts = root["points"];
     if (!pts || !pts.IsSequence() || pts.size() == 0)
         throw Error(yaml::where(source, pts ? pts : root) + ": 'points' must be a non-empty list");
+    if (pts.size() > TransferFunction::kMaxPoints)
+        throw Error(yaml::where(source, pts) + ": 'points' has " + std::to_string(pts.size()) +
+                    " points, more than the limit of " + std::to_string(TransferFunction::kMaxPoints));
     std::vector<TransferFunctionPoint> points;
+    points.reserve(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) {
         points.push_back(parsePoint(pts[i], source, i));
         // Validated here as well, so that the message carries the point's line and column.

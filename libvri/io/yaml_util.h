@@ -1,5 +1,6 @@
 #pragma once
 // Private helpers for reading YAML with errors that point at file, line and column.
+#include <cstddef>
 #include <filesystem>
 #include <initializer_list>
 #include <string>
@@ -14,8 +15,13 @@ namespace vri::yaml {
 // "source:line:column" of a node (1-based), or just "source" when the node has no position.
 std::string where(const std::string& source, const YAML::Node& node);
 
+// The most nodes (scalars, sequences, mappings) a YAML file may hold: a transfer function of
+// TransferFunction::kMaxPoints points takes 6 a point, the largest experiment file a few thousand.
+constexpr std::size_t kMaxYamlNodes = 200000;
+
 // Parses text; a syntax error becomes vri::Error "source:line:column: malformed YAML: ...", a key
-// repeated in one mapping "source:line:column: duplicate key 'k' (first at line N)".
+// repeated in one mapping "source:line:column: duplicate key 'k' (first at line N)", a file of more
+// than kMaxYamlNodes nodes "source:line:column: more than N YAML nodes ..." (before the tree is built).
 YAML::Node parse(const std::string& text, const std::string& source);
 YAML::Node load(const std::filesystem::path& path);
 

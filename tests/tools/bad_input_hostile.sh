@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hostile input (issue 29 items 1, 3, 6, 9, 10): YAML that once hung every reader, frame counts
+# Hostile input (issue 29 items 1, 2, 3, 6, 9, 10): YAML that once hung every reader, frame counts
 # without a bound, text inputs without an end, ranges whose width overflows, and two experiments that
 # would share a folder. Each case: the exit code, the one stderr line and an unchanged work directory
 # (lib/bad_input.sh). A case that hangs again fails on `timeout 10` (exit 124) instead of stalling ctest.
@@ -32,6 +32,15 @@ printf 'points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 1, 1, 1]\n]\n' > tf-bracket.yam
 printf 'points: [[0, 0, 0, 0, 0], [1, 1, 1, 1, 1]]\n---\n}\n' > tf-brace.yaml
 printf 'points:\n  - [-1e308, 0, 0, 0, 0]\n  - [1e308, 1, 1, 1, 1]\n' > tf-wide.yaml
 printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: raw\ndata file: blob_8x8x8_uint8.raw\nvri_range:=-1e308 1e308\n' > wide.nhdr
+# Item 2: transfer functions past 10,000 points, and YAML past 200,000 nodes, block and flow.
+python3 - <<'PY'
+with open("tf-points.yaml", "w") as f:
+    f.write("points:\n" + "".join(f"  - [{i / 10000:.6f}, 0.5, 0.5, 0.5, {i % 7 / 10}]\n" for i in range(10001)))
+with open("tf-nodes.yaml", "w") as f:
+    f.write("points: [" + ", ".join("[0.5, 0, 0, 0, 0]" for _ in range(40000)) + "]\n")
+with open("exp-nodes.yaml", "w") as f:
+    f.write("name: big\nmethods:\n" + "".join(f"  m{i}: {{step: [0.5, 0.25, 0.125]}}\n" for i in range(60000)))
+PY
 mkfifo fifo
 python3 -c 'import socket, sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' sock
 # 64 MiB + 1 byte, sparse, outside the work directory (the harness hashes every file in it).
@@ -53,6 +62,12 @@ bad 1 "^vri-plot: error: flow-comma\.yaml:1:7: malformed YAML: ','" -- t "$bin/v
 bad 1 "^vri-data: error: item-comma\.yaml:2:1: malformed YAML: ','" -- t "$bin/vri-data" --catalog item-comma.yaml --data-dir .
 bad 1 "^vri-render: error: flow-comma\.yaml:1:7: malformed YAML: ','" -- t "$bin/vri-render" --field linear --tf flow-comma.yaml -q -o out.exr
 bad 1 "^vri-reference: error: seq-comma\.yaml:1:4: malformed YAML: ','" -- t "$bin/vri-reference" --field linear --tf seq-comma.yaml -q -o out.exr
+
+# --- item 2: a bounded transfer function, refused on the event stream before yaml-cpp builds its tree ---
+bad 1 "${E}tf-points\.yaml:2:3: 'points' has 10001 points, more than the limit of 10000$" -- t "$bin/vri-tf" tf-points.yaml -o out.csv
+bad 1 "${E}tf-nodes\.yaml:1:[0-9]+: more than 200000 YAML nodes \(the limit of a vri YAML file\)$" -- t "$bin/vri-tf" tf-nodes.yaml -o out.csv
+bad 1 "^vri-render: error: tf-nodes\.yaml:1:[0-9]+: more than 200000 YAML nodes" -- t "$bin/vri-render" --field linear --tf tf-nodes.yaml -q -o out.exr
+bad 1 "^vri-run: error: exp-nodes\.yaml:[0-9]+:[0-9]+: more than 200000 YAML nodes" -- t "$bin/vri-run" --dry-run exp-nodes.yaml
 
 # --- item 3: frame counts within 1000, on the command line and in experiment files ---
 bad 1 "^vri-render: error: --repeat: expected a whole number from 1 to 1000, got '1001'$" -- \

@@ -593,3 +593,33 @@ TEST_CASE("exact ray: the table of zero spans answers as TransferFunction::isInv
         CHECK(agree > 0);
     }
 }
+
+TEST_CASE("exact reference: a transfer function of many points (binary searches for its segments) stays within bounds") {
+    // The same function twice: 21 points (their segments found by counting), and 301 points that put 14
+    // more on each of its segments, collinear (found by binary search, past 64 points). The two images
+    // differ only by the roundings of different splits: within the sum of their bounds.
+    const auto at = [](double s) {
+        const int i = std::min(19, static_cast<int>(s * 20));  // segment i of the 21 points' 20
+        const double k = (s * 20 - i);
+        const auto tau = [](int j) { return j < 4 ? 0.0 : 0.05 * (1 + j % 5); };
+        const auto red = [](int j) { return 0.5 + 0.4 * std::sin(0.35 * j); };
+        return TransferFunctionPoint{s, red(i) + k * (red(i + 1) - red(i)), 0.3, 0.2,
+                                     tau(i) + k * (tau(i + 1) - tau(i))};
+    };
+    std::vector<TransferFunctionPoint> few, many;
+    for (int i = 0; i <= 20; ++i) few.push_back(at(i / 20.0));
+    for (int i = 0; i <= 300; ++i) many.push_back(at(i / 300.0));
+    many.back() = few.back();  // s = 1 exactly
+    const Scene coarse = largeBlob(TransferFunction(few, EmissionModel::ColourTimesExtinction));
+    const Scene fine = largeBlob(TransferFunction(many, EmissionModel::ColourTimesExtinction));
+    const Camera camera = blobCamera(coarse);
+    for (double tolerance : {1e-13, 1e-7}) {
+        CAPTURE(tolerance);
+        ExactReferenceOptions opt;
+        opt.tolerance = tolerance;
+        const ExactReference a = renderExactReference(coarse, camera, opt), b = renderExactReference(fine, camera, opt);
+        checkWithinBounds(a, b);
+        CHECK(b.stats.subPieces > 5 * a.stats.subPieces);  // it did split at many more levels
+        CHECK(*std::max_element(a.values.begin(), a.values.end()) > 0.1);
+    }
+}

@@ -76,6 +76,11 @@ TEST_CASE("transfer function: bad points are rejected with a clear message") {
     CHECK_THROWS_WITH_AS(TransferFunction({{0.5, 0, 0, 0, -1}}, EmissionModel::Colour, "tf"),
                          doctest::Contains("negative extinction"), Error);
     CHECK_THROWS_AS(TransferFunction({}, EmissionModel::Colour, "tf"), Error);
+    std::vector<TransferFunctionPoint> many(TransferFunction::kMaxPoints, {0.5, 0, 0, 0, 0});
+    CHECK_NOTHROW(TransferFunction(many, EmissionModel::Colour, "tf"));
+    many.push_back({0.5, 0, 0, 0, 0});
+    CHECK_THROWS_WITH_AS(TransferFunction(many, EmissionModel::Colour, "tf"),
+                         "tf: 10001 points, more than the limit of 10000", Error);
 }
 
 TEST_CASE("transfer function YAML: both point forms, and errors with line and column") {
