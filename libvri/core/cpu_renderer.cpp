@@ -180,8 +180,8 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
     const Vec eyeU(box.toTexture(camera.eye()));
     const TransferFunction& tf = scene.transferFunction;
     const bool simpson = isSimpson(opt.integrator);
-    const TerminationRule termination(tf, opt, glm::length(box.size()));
-    const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), static_cast<Real>(termination.simpsonThreshold()));
+    const TerminationRule termination(tf, opt, box, scene.dims());
+    const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), termination.simpsonThreshold<Real>());
     const PixelRegion area = renderedRegion(opt.region, camera);
     forEachTile(opt, area, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive) {
         for (int py = y0; py < y1; ++py)
@@ -297,6 +297,21 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
         throw Error("early termination bound must be in [0, 1), got " + std::to_string(options.terminationBound));
     if (options.earlyTermination > 0.0 && options.terminationBound > 0.0)
         throw Error("early termination takes a transparency threshold or a bound, not both");
+    if (options.terminationBound > 0.0 && isSimpson(options.integrator)) {
+        // The Simpson methods' K (early_termination.h) grows as exp(tau_max h / 48): a step without an
+        // h_max may leave it beyond double's range, and then no ray could end.
+        const TerminationRule rule(scene.transferFunction, options, scene.box(), scene.dims());
+        const bool none = options.precision == Precision::Double ? !(rule.simpsonThreshold<double>() > 0.0)
+                                                                 : !(rule.simpsonThreshold<float>() > 0.0f);
+        if (none) {
+            const double hMax = simpsonParameters(options).hMax;
+            throw Error("--early-termination auto:" + exactNumber(options.terminationBound) + ": " +
+                        std::string(integratorName(options.integrator)) + " with steps up to " +
+                        (std::isfinite(hMax) ? exactNumber(hMax) + " voxels" : std::string("the whole ray (no h_max)")) +
+                        " at this transfer function's largest tau cannot bound what an ended ray leaves out (" +
+                        exactNumber(rule.simpsonFactor()) + " times its transparency): give --h-max or a transparency threshold");
+        }
+    }
     const glm::dvec3 dims = scene.dims();
     // The longest ray crosses |dims| voxels; keep its sample count well inside an int64 and a float.
     if (options.samplingRate * glm::length(dims) > 1e9)
