@@ -70,6 +70,7 @@ struct Counters {
     std::atomic<std::uint64_t> raysHit{0}, samplesPlaced{0}, samplesEvaluated{0}, raysTerminated{0};
     std::mutex mutex;  // guards the rest
     AdaptiveCounts adaptive;
+    SimpsonRange simpsonRange;
     double terminationLeftOut = 0.0;
 };
 
@@ -144,8 +145,8 @@ AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler
     return method.integrate(length, evaluate, knownEmpty, counts, log);
 }
 
-// Calls renderTile(x0, y0, x1, y1, counts, adaptive) for every tile of `area` (pixels of the camera's
-// image), in parallel, and adds up what the tiles counted.
+// Calls renderTile(x0, y0, x1, y1, counts, adaptive, range) for every tile of `area` (pixels of the
+// camera's image), in parallel, and adds up what the tiles counted.
 template <class RenderTile>
 void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& counters, const RenderTile& renderTile) {
     const int tile = opt.tileSize;
@@ -154,10 +155,11 @@ void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& co
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1), [&](const auto& tiles) {
         MarchCounts counts;
         AdaptiveCounts adaptive;
+        SimpsonRange range{counters.simpsonRange.limit};
         for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
             for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
                 renderTile(area.x + tx * tile, area.y + ty * tile, area.x + std::min((tx + 1) * tile, area.width),
-                           area.y + std::min((ty + 1) * tile, area.height), counts, adaptive);
+                           area.y + std::min((ty + 1) * tile, area.height), counts, adaptive, range);
                 progress.advance(1);
             }
         counters.raysHit += counts.raysHit;
@@ -166,7 +168,10 @@ void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& co
         counters.raysTerminated += counts.raysTerminated;
         const std::lock_guard lock(counters.mutex);
         counters.terminationLeftOut = std::max(counters.terminationLeftOut, counts.terminationLeftOut);
-        if (isSimpson(opt.integrator)) counters.adaptive += adaptive;
+        if (isSimpson(opt.integrator)) {
+            counters.adaptive += adaptive;
+            counters.simpsonRange.merge(range);
+        }
     });
 }
 
@@ -183,7 +188,8 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
     const TerminationRule termination(tf, opt, box, scene.dims());
     const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), termination.simpsonThreshold<Real>());
     const PixelRegion area = renderedRegion(opt.region, camera);
-    forEachTile(opt, area, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive) {
+    forEachTile(opt, area, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive,
+                                         SimpsonRange& range) {
         for (int py = y0; py < y1; ++py)
             for (int px = x0; px < x1; ++px) {
                 float* out = &image.at(px - area.x, py - area.y, 0);
@@ -200,6 +206,7 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                     out[2] = static_cast<float>(r.b);
                     out[3] = static_cast<float>(r.alpha);
                     if (r.terminated) counts.terminated(termination.simpsonLeftOut(r.transparency));
+                    range.addRay(static_cast<double>(r.largestStepDepth));
                 } else {
                     const RayAccumulator<Real> acc =
                         marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt, termination, counts);
@@ -253,7 +260,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         const PacketScene packets(scene, camera, stencils, opt);
         stats.simdTarget = packetTargetName();
         forEachTile(opt, renderedRegion(opt.region, camera), counters,
-                    [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&) {
+                    [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&, SimpsonRange&) {
             marchPackets(packets, x0, y0, x1, y1, image, counts);
         });
         return;
@@ -364,6 +371,7 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     const PixelRegion area = renderedRegion(options.region, camera);
     Image image(area.width, area.height);
     Counters counters;
+    counters.simpsonRange.limit = simpsonStepDepthLimit(simpsonParameters(options).accepted);
     RenderStats local;
     OccupancyCache once;  // without a cache, this frame builds its own grid
     OccupancyCache& grids = cache ? *cache : once;
@@ -381,7 +389,10 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     local.samplesEvaluated = counters.samplesEvaluated;
     local.raysTerminated = counters.raysTerminated;
     local.terminationLeftOut = counters.terminationLeftOut;
-    if (isSimpson(options.integrator)) local.adaptive = counters.adaptive;
+    if (isSimpson(options.integrator)) {
+        local.adaptive = counters.adaptive;
+        local.simpsonRange = counters.simpsonRange;
+    }
     // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
     local.threads = static_cast<int>(std::min<std::size_t>(
         tbb::this_task_arena::max_concurrency(),
