@@ -143,8 +143,8 @@ int run(int argc, char** argv) {
                    "thresholds: % of rays above each threshold per channel (paper B Tables I, II, VI); "
                    "matrix: one value per row and column (Tables III-V); "
                    "tradeoff: per run its seconds per frame against its errors, with the Pareto front flagged; "
-                   "convergence: per series of a step sweep its observed order, the fitted slope of log error "
-                   "against log h")
+                   "convergence: per series of a step sweep its largest and mean error and their orders, the "
+                   "slopes of log error against log h over the smallest steps")
         ->required()
         ->check(CLI::IsMember({"thresholds", "matrix", "tradeoff", "convergence"}));
     app.add_option("-o,--output", options.markdown, "Markdown table ('-' for stdout)")->required();
@@ -176,8 +176,8 @@ int run(int argc, char** argv) {
                    "vri-diff JSON against the accurate reference and, for an error bound, its stats")
         ->expected(3, 4);
     app.add_option("--points", options.pointsCsv,
-                   "convergence: also write the points as CSV (series,h,error,legend; legend holds the fitted "
-                   "slope) for a log-log plot");
+                   "convergence: also write the points as CSV (series,h,error,legend: the largest error; legend "
+                   "holds the max order) for a log-log plot");
     app.add_option("--threshold", options.tradeoffThresholds,
                    "tradeoff: the error thresholds of the % columns, comma separated (default 0.001), each one the "
                    "diffs counted; the first is the % front's")

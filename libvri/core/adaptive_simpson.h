@@ -116,6 +116,9 @@ struct AdaptiveResult {
     Real r = 0, g = 0, b = 0, alpha = 0;
     Real transparency = 1;
     bool terminated = false;  // ended by early termination before its length
+    // The largest optical depth of an accepted step at its largest extinction, h max(kappa_k): tau h of
+    // simpson_range.h, beyond whose limit one step may leave [0, 1].
+    Real largestStepDepth = 0;
 };
 
 // The five points t + k h / 4 of one Simpson try, remembered so that the next try reuses what it
@@ -283,6 +286,7 @@ private:
                 out.b += accepted(d[2], s[2]);
                 out.alpha += accepted(d[3], s[3]);
                 out.transparency *= std::exp(-accepted(depthD, depthS));
+                out.largestStepDepth = std::max(out.largestStepDepth, h * std::max({k0, k1, k2, k3, k4}));
                 control.succeeded(hMax_);
                 t = b;
             } else {

@@ -78,6 +78,7 @@ struct Counters {
     std::atomic<std::uint64_t> raysHit{0}, samplesPlaced{0}, samplesEvaluated{0}, raysTerminated{0};
     std::mutex mutex;  // guards the rest
     AdaptiveCounts adaptive;
+    SimpsonRange simpsonRange;
     double terminationLeftOut = 0.0;
 };
 
@@ -152,8 +153,8 @@ AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler
     return method.integrate(length, evaluate, knownEmpty, counts, log);
 }
 
-// Calls renderTile(x0, y0, x1, y1, counts, adaptive) for every tile of `area` (pixels of the camera's
-// image), in parallel, and adds up what the tiles counted.
+// Calls renderTile(x0, y0, x1, y1, counts, adaptive, range) for every tile of `area` (pixels of the
+// camera's image), in parallel, and adds up what the tiles counted.
 template <class RenderTile>
 void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& counters, const RenderTile& renderTile) {
     const int tile = opt.tileSize;
@@ -162,10 +163,11 @@ void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& co
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1), [&](const auto& tiles) {
         MarchCounts counts;
         AdaptiveCounts adaptive;
+        SimpsonRange range{counters.simpsonRange.limit};
         for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
             for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
                 renderTile(area.x + tx * tile, area.y + ty * tile, area.x + std::min((tx + 1) * tile, area.width),
-                           area.y + std::min((ty + 1) * tile, area.height), counts, adaptive);
+                           area.y + std::min((ty + 1) * tile, area.height), counts, adaptive, range);
                 progress.advance(1);
             }
         counters.raysHit += counts.raysHit;
@@ -174,7 +176,10 @@ void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& co
         counters.raysTerminated += counts.raysTerminated;
         const std::lock_guard lock(counters.mutex);
         counters.terminationLeftOut = std::max(counters.terminationLeftOut, counts.terminationLeftOut);
-        if (isSimpson(opt.integrator)) counters.adaptive += adaptive;
+        if (isSimpson(opt.integrator)) {
+            counters.adaptive += adaptive;
+            counters.simpsonRange.merge(range);
+        }
     });
 }
 
@@ -188,10 +193,11 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
     const Vec eyeU(box.toTexture(camera.eye()));
     const TransferFunction& tf = scene.transferFunction;
     const bool simpson = isSimpson(opt.integrator);
-    const TerminationRule termination(tf, opt, glm::length(box.size()));
-    const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), static_cast<Real>(termination.simpsonThreshold()));
+    const TerminationRule termination(tf, opt, box, scene.dims());
+    const AdaptiveSimpsonRay<Real> method(simpsonParameters(opt), termination.simpsonThreshold<Real>());
     const PixelRegion area = renderedRegion(opt.region, camera);
-    forEachTile(opt, area, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive) {
+    forEachTile(opt, area, counters, [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts& adaptive,
+                                         SimpsonRange& range) {
         for (int py = y0; py < y1; ++py)
             for (int px = x0; px < x1; ++px) {
                 float* out = &image.at(px - area.x, py - area.y, 0);
@@ -208,6 +214,7 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                     out[2] = static_cast<float>(r.b);
                     out[3] = static_cast<float>(r.alpha);
                     if (r.terminated) counts.terminated(termination.simpsonLeftOut(r.transparency));
+                    range.addRay(static_cast<double>(r.largestStepDepth));
                 } else {
                     const RayAccumulator<Real> acc =
                         marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt, termination, counts);
@@ -262,7 +269,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         useSimdTarget(opt.simdTarget);
         stats.simdTarget = packetTargetName();
         forEachTile(opt, renderedRegion(opt.region, camera), counters,
-                    [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&) {
+                    [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&, SimpsonRange&) {
             marchPackets(packets, x0, y0, x1, y1, image, counts);
         });
         return;
@@ -306,6 +313,21 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
         throw Error("early termination bound must be in [0, 1), got " + std::to_string(options.terminationBound));
     if (options.earlyTermination > 0.0 && options.terminationBound > 0.0)
         throw Error("early termination takes a transparency threshold or a bound, not both");
+    if (options.terminationBound > 0.0 && isSimpson(options.integrator)) {
+        // The Simpson methods' K (early_termination.h) grows as exp(tau_max h / 48): a step without an
+        // h_max may leave it beyond double's range, and then no ray could end.
+        const TerminationRule rule(scene.transferFunction, options, scene.box(), scene.dims());
+        const bool none = options.precision == Precision::Double ? !(rule.simpsonThreshold<double>() > 0.0)
+                                                                 : !(rule.simpsonThreshold<float>() > 0.0f);
+        if (none) {
+            const double hMax = simpsonParameters(options).hMax;
+            throw Error("--early-termination auto:" + exactNumber(options.terminationBound) + ": " +
+                        std::string(integratorName(options.integrator)) + " with steps up to " +
+                        (std::isfinite(hMax) ? exactNumber(hMax) + " voxels" : std::string("the whole ray (no h_max)")) +
+                        " at this transfer function's largest tau cannot bound what an ended ray leaves out (" +
+                        exactNumber(rule.simpsonFactor()) + " times its transparency): give --h-max or a transparency threshold");
+        }
+    }
     const glm::dvec3 dims = scene.dims();
     // The longest ray crosses |dims| voxels; keep its sample count well inside an int64 and a float.
     if (options.samplingRate * glm::length(dims) > 1e9)
@@ -358,6 +380,7 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     const PixelRegion area = renderedRegion(options.region, camera);
     Image image(area.width, area.height);
     Counters counters;
+    counters.simpsonRange.limit = simpsonStepDepthLimit(simpsonParameters(options).accepted);
     RenderStats local;
     OccupancyCache once;  // without a cache, this frame builds its own grid
     OccupancyCache& grids = cache ? *cache : once;
@@ -375,7 +398,10 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     local.samplesEvaluated = counters.samplesEvaluated;
     local.raysTerminated = counters.raysTerminated;
     local.terminationLeftOut = counters.terminationLeftOut;
-    if (isSimpson(options.integrator)) local.adaptive = counters.adaptive;
+    if (isSimpson(options.integrator)) {
+        local.adaptive = counters.adaptive;
+        local.simpsonRange = counters.simpsonRange;
+    }
     // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
     local.threads = static_cast<int>(std::min<std::size_t>(
         tbb::this_task_arena::max_concurrency(),

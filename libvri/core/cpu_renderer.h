@@ -16,6 +16,7 @@
 #include "libvri/core/integrator.h"
 #include "libvri/core/nonfinite_pixels.h"
 #include "libvri/core/placement.h"
+#include "libvri/core/simpson_range.h"
 #include "libvri/core/transfer_function.h"
 #include "libvri/core/volume.h"
 
@@ -97,6 +98,8 @@ struct RenderStats {
     std::uint64_t raysTerminated = 0;
     double terminationLeftOut = 0.0;
     std::optional<AdaptiveCounts> adaptive;  // Simpson methods: tries, failures, steps and points of all rays
+    // Simpson methods on the CPU: the largest tau h of a step and the rays beyond simpson_range.h's limit.
+    std::optional<SimpsonRange> simpsonRange;
     std::vector<AdaptiveTry> rayLog;  // the tries along RenderOptions::logPixel's ray
     std::string backend = "cpu";      // "cpu" or "vulkan" (vulkan_renderer.h)
     std::string device;               // the Vulkan device's name; empty on the CPU

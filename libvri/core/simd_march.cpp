@@ -758,7 +758,7 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Stencil
       dims(scene.dims()),
       indexMap(scene.volume->dims, scene.convention),
       options(options),
-      termination(scene.transferFunction, options, glm::length(box.size())),
+      termination(scene.transferFunction, options, box, scene.dims()),
       emission(scene.transferFunction.emission()),
       voxels(scene.volume->bytes.data()),
       type(scene.volume->type),

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -20,18 +22,26 @@ using nlohmann::json;
 
 namespace {
 
-// The largest absolute error of any channel (vri-diff writes an infinite one as null).
-double largestError(const fs::path& diff) {
+// The largest absolute error of any pixel and channel, and the mean absolute error over pixels and
+// channels (vri-diff writes an infinite one as null).
+struct Errors {
+    double max = 0, mean = 0;
+};
+Errors imageErrors(const fs::path& diff) {
     const json root = readJsonFile(diff);
     return readingJsonOf(diff, [&] {
         const json& channels = jsonAtPath(root, "channels", diff);
         if (!channels.is_array() || channels.empty()) throw Error(diff.string() + ": has no channels");
-        double worst = 0;
+        const auto number = [](const json& value) {
+            return value.is_null() ? std::numeric_limits<double>::infinity() : value.get<double>();
+        };
+        Errors e;
         for (const json& channel : channels) {
-            const json& value = channel.at("max_abs");
-            worst = std::max(worst, value.is_null() ? std::numeric_limits<double>::infinity() : value.get<double>());
+            e.max = std::max(e.max, number(channel.at("max_abs")));
+            e.mean += number(channel.at("mean_abs"));
         }
-        return worst;
+        e.mean /= static_cast<double>(channels.size());
+        return e;
     });
 }
 
@@ -47,12 +57,29 @@ std::optional<double> largestBound(const fs::path& stats) {
     });
 }
 
+// The slope of log error against log h over the asymptotic range, the kConvergenceFitSteps smallest steps
+// whose error is above the floor, and the largest step of that range; none where fewer than two remain.
+std::pair<std::optional<double>, std::optional<double>> asymptoticOrder(const std::vector<double>& steps,
+                                                                         const std::vector<double>& errors, double floor) {
+    std::vector<std::pair<double, double>> usable;  // (h, error), smallest h first
+    for (std::size_t i = 0; i < steps.size(); ++i)
+        if (errors[i] > floor && std::isfinite(errors[i])) usable.emplace_back(steps[i], errors[i]);
+    std::ranges::sort(usable);
+    if (usable.size() > kConvergenceFitSteps) usable.resize(kConvergenceFitSteps);
+    if (usable.size() < 2 || usable.front().first == usable.back().first) return {};
+    std::vector<double> h, e;
+    for (const auto& [step, error] : usable) h.push_back(step), e.push_back(error);
+    return {observedOrder(h, e), h.back()};
+}
+
 struct Series {
     std::string name;
-    std::vector<double> steps, errors;    // in the order given
-    std::optional<double> unstepped;      // the error of a run without a step
+    std::vector<double> steps;            // in the order given
+    std::vector<Errors> errors;
+    std::optional<Errors> unstepped;      // the error of a run without a step
     std::optional<double> bound;
-    std::optional<double> slope, order;   // over the points above the floor
+    std::optional<double> maxOrder, meanOrder;     // over the asymptotic range (convergence_table.h)
+    std::optional<double> maxFitFrom, meanFitFrom;  // the largest step of that range
 };
 
 std::vector<Series> measure(const std::vector<ConvergencePoint>& points, double floor) {
@@ -60,8 +87,8 @@ std::vector<Series> measure(const std::vector<ConvergencePoint>& points, double 
     std::vector<Series> all;
     for (const ConvergencePoint& point : points) {
         auto it = std::ranges::find(all, point.series, &Series::name);
-        if (it == all.end()) it = all.insert(all.end(), Series{point.series, {}, {}, {}, {}, {}, {}});
-        const double error = largestError(point.diff);
+        if (it == all.end()) it = all.insert(all.end(), Series{point.series, {}, {}, {}, {}, {}, {}, {}, {}});
+        const Errors errors = imageErrors(point.diff);
         if (point.step && !(*point.step > 0 && std::isfinite(*point.step)))
             throw Error(point.diff.string() + ": series '" + point.series + "': the step must be positive");
         const bool mixed = point.step ? it->unstepped.has_value() : !it->steps.empty() || it->unstepped.has_value();
@@ -70,23 +97,18 @@ std::vector<Series> measure(const std::vector<ConvergencePoint>& points, double 
                         "' takes either runs with a step or one run without");
         if (point.step) {
             it->steps.push_back(*point.step);
-            it->errors.push_back(error);
+            it->errors.push_back(errors);
         } else {
-            it->unstepped = error;
+            it->unstepped = errors;
         }
         if (const std::optional<double> bound = largestBound(point.stats))
             it->bound = std::max(it->bound.value_or(0.0), *bound);
     }
     for (Series& s : all) {
-        std::vector<std::pair<double, double>> fitted;  // (h, error) above the floor, by h
-        for (std::size_t i = 0; i < s.steps.size(); ++i)
-            if (s.errors[i] > floor && std::isfinite(s.errors[i])) fitted.emplace_back(s.steps[i], s.errors[i]);
-        std::ranges::sort(fitted);
-        if (fitted.size() < 2 || fitted.front().first == fitted.back().first) continue;
-        std::vector<double> h, e;
-        for (const auto& [step, error] : fitted) h.push_back(step), e.push_back(error);
-        s.slope = observedOrder(h, e);
-        s.order = std::log(e[1] / e[0]) / std::log(h[1] / h[0]);  // the two smallest steps
+        std::vector<double> largest, mean;
+        for (const Errors& e : s.errors) largest.push_back(e.max), mean.push_back(e.mean);
+        std::tie(s.maxOrder, s.maxFitFrom) = asymptoticOrder(s.steps, largest, floor);
+        std::tie(s.meanOrder, s.meanFitFrom) = asymptoticOrder(s.steps, mean, kConvergenceMeanFloor);
     }
     return all;
 }
@@ -106,9 +128,10 @@ Table convergenceTable(const std::vector<ConvergencePoint>& points, double floor
         const char* name;
         int precision;
         bool significant;
-    } columns[] = {{"points", 0, false},        {"h max", 3, true},         {"h min", 3, true},
-                   {"error at h max", 3, true}, {"error at h min", 3, true}, {"observed order", 2, false},
-                   {"fitted slope", 2, false},  {"error bound", 2, true}};
+    } columns[] = {{"points", 0, false},          {"h max", 3, true},           {"h min", 3, true},
+                   {"max error at h max", 3, true}, {"max error at h min", 3, true}, {"max order", 2, false},
+                   {"max fitted from h", 3, true}, {"mean error at h max", 3, true}, {"mean error at h min", 3, true},
+                   {"mean order", 2, false},       {"mean fitted from h", 3, true}, {"error bound", 2, true}};
     for (const auto& c : columns) {
         table.columns.push_back(c.name);
         table.precision.push_back(c.precision);
@@ -118,31 +141,35 @@ Table convergenceTable(const std::vector<ConvergencePoint>& points, double floor
         table.rows.push_back(s.name);
         auto& cells = table.cells.emplace_back();
         if (s.unstepped) {
-            cells = {std::nullopt, std::nullopt, std::nullopt, std::nullopt, *s.unstepped, std::nullopt, std::nullopt, s.bound};
+            cells = {std::nullopt, std::nullopt,      std::nullopt, std::nullopt, s.unstepped->max, std::nullopt,
+                     std::nullopt, std::nullopt,      s.unstepped->mean, std::nullopt, std::nullopt, s.bound};
             continue;
         }
         const auto largest = std::ranges::max_element(s.steps) - s.steps.begin();
         const auto smallest = std::ranges::min_element(s.steps) - s.steps.begin();
-        cells = {double(s.steps.size()), s.steps[largest], s.steps[smallest], s.errors[largest], s.errors[smallest],
-                 s.order, s.slope, s.bound};
+        cells = {double(s.steps.size()), s.steps[largest],       s.steps[smallest],      s.errors[largest].max,
+                 s.errors[smallest].max, s.maxOrder,             s.maxFitFrom,           s.errors[largest].mean,
+                 s.errors[smallest].mean, s.meanOrder,           s.meanFitFrom,          s.bound};
     }
     table.notes.push_back(
-        "error: the largest absolute error of any pixel and channel against the accurate reference (vri-diff "
-        "max_abs). observed order: log(e1 / e2) / log(h1 / h2) of the two smallest steps h1 < h2; fitted slope: "
-        "the least-squares slope of log(error) against log(h) over the sweep (Etiene et al.); both leave out "
-        "errors at or below " + formatNumber("%g", floor) + " (float32 rounding of the images), - where fewer "
-        "than two points remain. error bound: the largest per-pixel bound the run's stats give (the exact method).");
+        "max error: the largest absolute error of any pixel and channel against the accurate reference (vri-diff "
+        "max_abs); mean error: the mean absolute error over pixels and channels (mean_abs). max order, mean order: "
+        "the least-squares slope of log(error) against log(h) (Etiene et al.) over the asymptotic range, the " +
+        std::to_string(kConvergenceFitSteps) + " smallest steps whose error is above float32 rounding of the images (" +
+        formatNumber("%g", floor) + " for the max, " + formatNumber("%.2g", kConvergenceMeanFloor) +
+        " for the mean), from the step 'fitted from h' down; - where fewer than two remain. error bound: the "
+        "largest per-pixel bound the run's stats give (the exact method).");
     return table;
 }
 
 std::string convergencePointsCsv(const std::vector<ConvergencePoint>& points, double floor) {
     std::string out = "series,h,error,legend\n";
     for (const Series& s : measure(points, floor)) {
-        const std::string legend = s.slope ? s.name + ": slope " + formatNumber("%.2f", *s.slope) : s.name;
+        const std::string legend = s.maxOrder ? s.name + ": max order " + formatNumber("%.2f", *s.maxOrder) : s.name;
         for (std::size_t i = 0; i < s.steps.size(); ++i)
-            if (s.errors[i] > floor && std::isfinite(s.errors[i]))
+            if (s.errors[i].max > floor && std::isfinite(s.errors[i].max))
                 out += csvField(s.name) + "," + formatNumber("%.17g", s.steps[i]) + "," +
-                       formatNumber("%.17g", s.errors[i]) + "," + csvField(legend) + "\n";
+                       formatNumber("%.17g", s.errors[i].max) + "," + csvField(legend) + "\n";
     }
     return out;
 }

@@ -11,159 +11,183 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.2,0.08748488128185272
-0.1,0.031018897891044617
-0.05,0.0165865421295166
-0.025,0.010469615459442139
+0.2,0.10962894186377525
+0.1,0.05399167537689209
+0.05,0.029317021369934082
+0.025,0.013313084840774536
+0.0125,0.007166564464569092
 EOD
 $series1_2 << EOD
-0.2,0.05851826071739197
-0.1,0.029889225959777832
-0.05,0.017001062631607056
-0.025,0.008510172367095947
+0.2,0.07342664897441864
+0.1,0.035163938999176025
+0.05,0.017452776432037354
+0.025,0.008942484855651855
+0.0125,0.004311591386795044
 EOD
 $series1_3 << EOD
-0.2,0.08748488128185272
-0.1,0.019038259983062744
-0.05,0.00932401418685913
-0.025,0.00464475154876709
+0.2,0.13130833208560944
+0.1,0.06878729164600372
+0.05,0.033044688403606415
+0.025,0.016250640153884888
+0.0125,0.006681104190647602
 EOD
 $series1_4 << EOD
-0.2,0.04542261362075806
-0.1,0.022578716278076172
-0.05,0.011309981346130371
-0.025,0.005720674991607666
+0.2,0.04744553565979004
+0.1,0.023416578769683838
+0.05,0.011766314506530762
+0.025,0.005860805511474609
+0.0125,0.0029458999633789062
 EOD
 $series1_5 << EOD
-0.2,0.08748488128185272
-0.1,0.031018897891044617
-0.05,0.014074921607971191
-0.025,0.009374216198921204
+0.2,0.10294245183467865
+0.1,0.04951648414134979
+0.05,0.029317021369934082
+0.025,0.013313084840774536
+0.0125,0.006681104190647602
 EOD
 $series1_6 << EOD
-0.2,0.05618986487388611
-0.1,0.02305479347705841
-0.05,0.014210104942321777
-0.025,0.006122589111328125
+0.2,0.06878729164600372
+0.1,0.033044688403606415
+0.05,0.016250640153884888
+0.025,0.00810977816581726
+0.0125,0.003794848918914795
 EOD
 $series1_7 << EOD
-0.2,0.08748488128185272
-0.1,4.245340824127197e-05
-0.05,1.0073184967041016e-05
-0.025,2.4586915969848633e-06
+0.2,0.13130833208560944
+0.1,0.06878729164600372
+0.05,0.033044688403606415
+0.025,0.016250640153884888
+0.0125,0.006681104190647602
 EOD
 $series1_8 << EOD
-0.2,0.00023251771926879883
-0.1,5.811452865600586e-05
-0.05,1.4871358871459961e-05
-0.025,3.7550926208496094e-06
+0.2,0.00023761391639709473
+0.1,5.9604644775390625e-05
+0.05,1.5035271644592285e-05
+0.025,3.769993782043457e-06
 EOD
 $series2_1 << EOD
-0.2,0.1424579620361328
-0.1,0.06880420446395874
-0.05,0.03298145532608032
-0.025,0.01535254716873169
+0.2,0.17244048044085503
+0.1,0.07152897119522095
+0.05,0.03212669491767883
+0.025,0.015860676765441895
+0.0125,0.008229613304138184
 EOD
 $series2_2 << EOD
-0.2,0.1423923373222351
-0.1,0.06103503704071045
-0.05,0.03137493133544922
-0.025,0.014329016208648682
+0.2,0.1301422119140625
+0.1,0.07215668261051178
+0.05,0.03219789266586304
+0.025,0.015327990055084229
+0.0125,0.008714273571968079
 EOD
 $series2_3 << EOD
-0.2,0.11937636137008667
-0.1,0.06006985902786255
-0.05,0.029391944408416748
-0.025,0.01415717601776123
+0.2,0.16329024732112885
+0.1,0.06997885555028915
+0.05,0.045987773686647415
+0.025,0.016323572024703026
+0.0125,0.007461130619049072
 EOD
 $series2_4 << EOD
-0.2,0.1291273832321167
-0.1,0.07265245914459229
-0.05,0.03466755151748657
-0.025,0.01712656021118164
+0.2,0.1593189239501953
+0.1,0.07853102684020996
+0.05,0.037621140480041504
+0.025,0.01854574680328369
+0.0125,0.009397149085998535
 EOD
 $series2_5 << EOD
-0.2,0.10280495882034302
-0.1,0.05379953980445862
-0.05,0.025192558765411377
-0.025,0.010701537132263184
+0.2,0.15023107454180717
+0.1,0.06214018166065216
+0.05,0.030052348971366882
+0.025,0.013909012079238892
+0.0125,0.007107485085725784
 EOD
 $series2_6 << EOD
-0.2,0.1026928722858429
-0.1,0.03925606608390808
-0.05,0.014096938073635101
-0.025,0.005932360887527466
+0.2,0.12746694684028625
+0.1,0.05937202274799347
+0.05,0.031314313411712646
+0.025,0.016059011220932007
+0.0125,0.008051782846450806
 EOD
 $series2_7 << EOD
-0.2,0.08952116221189499
-0.1,0.011822730302810669
-0.05,0.006204277276992798
-0.025,0.004104048013687134
+0.2,0.16329024732112885
+0.1,0.06997885555028915
+0.05,0.045987773686647415
+0.025,0.016323572024703026
+0.0125,0.006693277042359114
 EOD
 $series2_8 << EOD
-0.2,0.044153690338134766
-0.1,0.019533991813659668
-0.05,0.013013690710067749
-0.025,0.006125897169113159
+0.2,0.05882234871387482
+0.1,0.025914758443832397
+0.05,0.017514199018478394
+0.025,0.007193565368652344
+0.0125,0.004385009407997131
 EOD
 $series2_9 << EOD
-0.2,0.008442223072052002
-0.1,0.00447535514831543
-0.05,0.0021689534187316895
-0.025,0.0013959109783172607
+0.2,0.01774546504020691
+0.1,0.009343475103378296
+0.05,0.004786252975463867
+0.025,0.002351045608520508
+0.0125,0.0011239498853683472
 EOD
 $series3_1 << EOD
-0.2,0.005331873893737793
-0.1,0.002682507038116455
-0.05,0.0013436675071716309
-0.025,0.0006711483001708984
+0.2,0.006026029586791992
+0.1,0.002938985824584961
+0.05,0.0014791488647460938
+0.025,0.000744163990020752
+0.0125,0.0003783702850341797
 EOD
 $series3_2 << EOD
-0.2,0.005470871925354004
-0.1,0.0026907920837402344
-0.05,0.0013402104377746582
-0.025,0.0006721019744873047
+0.2,0.005924224853515625
+0.1,0.003022491931915283
+0.05,0.001479506492614746
+0.025,0.0007454752922058105
+0.0125,0.00037848949432373047
 EOD
 $series3_3 << EOD
-0.2,0.0055130720138549805
-0.1,0.002667844295501709
-0.05,0.0013418197631835938
-0.025,0.0006707310676574707
+0.2,0.00595623254776001
+0.1,0.0029463768005371094
+0.05,0.0014771819114685059
+0.025,0.0007374882698059082
+0.0125,0.00036901235580444336
 EOD
 $series3_4 << EOD
-0.2,0.005519568920135498
-0.1,0.002702951431274414
-0.05,0.0013691186904907227
-0.025,0.0006815195083618164
+0.2,0.006058335304260254
+0.1,0.0029886960983276367
+0.05,0.0014977455139160156
+0.025,0.0007498860359191895
+0.0125,0.00037467479705810547
 EOD
 $series3_5 << EOD
-0.2,0.0015666782855987549
-0.1,0.0005437973886728287
-0.05,0.0004979521036148071
-0.025,0.0001828521490097046
+0.2,0.0030392110347747803
+0.1,0.0015562474727630615
+0.05,0.000809401273727417
+0.025,0.0004051774740219116
+0.0125,0.00017933547496795654
 EOD
 $series3_6 << EOD
-0.2,0.0009717941284179688
-0.1,0.0008814632892608643
-0.05,0.0002511739730834961
-0.025,0.0002504587173461914
+0.2,0.0025460124015808105
+0.1,0.0011717528104782104
+0.05,0.0006154477596282959
+0.025,0.0002535879611968994
+0.0125,0.00014895200729370117
 EOD
 $series3_7 << EOD
-0.2,0.00014847517013549805
-0.1,4.488229751586914e-05
-0.05,1.913309097290039e-05
-0.025,4.51505184173584e-06
+0.2,0.0004582703113555908
+0.1,8.19675624370575e-05
+0.05,1.730024814605713e-05
+0.025,8.314847946166992e-06
+0.0125,1.4901161193847656e-06
 EOD
 $series3_8 << EOD
-0.2,0.00019559264183044434
-0.1,2.6613473892211914e-05
-0.05,1.1339783668518066e-05
-0.025,4.544854164123535e-06
+0.2,0.0003758668899536133
+0.1,0.00011959671974182129
+0.05,3.555417060852051e-05
+0.025,5.036592483520508e-06
+0.0125,1.6242265701293945e-06
 EOD
 $series3_9 << EOD
-0.2,6.498396396636963e-05
-0.1,9.864568710327148e-06
-0.05,1.5497207641601562e-06
+0.2,3.7789344787597656e-05
+0.1,1.2665987014770508e-05
+0.05,2.86102294921875e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -180,74 +204,74 @@ do for [format in "png svg"] {
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2)
-    set xrange [0.02173913043478261:0.22999999999999998] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2)
+    set xrange [0.01058431640453159:0.23619853228590607] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [1.3110834038045715e-06:0.16406152487837602] noextend
+    set yrange [2.012906187536828e-06:0.24592879616461905] noextend
     set key top left
     set size noratio
     unset label
-    plot $series1_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-eye: slope 1.01', \
-         $series1_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry: slope 0.92', \
-         $series1_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit: slope 1.37', \
-         $series1_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit-corner: slope 1.00', \
-         $series1_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-eye: slope 1.08', \
-         $series1_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry: slope 1.03', \
-         $series1_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry-exit: slope 4.74', \
-         $series1_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry-exit-corner: slope 1.98'
+    plot $series1_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-eye: max order 1.02', \
+         $series1_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry: max order 1.01', \
+         $series1_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit: max order 1.15', \
+         $series1_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit-corner: max order 1.00', \
+         $series1_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-eye: max order 1.07', \
+         $series1_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry: max order 1.05', \
+         $series1_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry-exit: max order 1.15', \
+         $series1_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-composite-entry-exit-corner: max order 1.99'
     # panel 2
     set title 'analytic ramp, TF with a jump'
     unset arrow
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2)
-    set xrange [0.02173913043478261:0.22999999999999998] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2)
+    set xrange [0.01058431640453159:0.23619853228590607] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set ytics (0.002, 0.005, 0.01, 0.02, 0.05, 0.1)
-    set yrange [0.00105761592746335:0.18802537669028482] noextend
+    set ytics (0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2)
+    set yrange [0.0008309854329825856:0.2332344834598603] noextend
     set key top left
     set size noratio
     unset label
-    plot $series2_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-eye: slope 1.07', \
-         $series2_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry: slope 1.09', \
-         $series2_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit: slope 1.03', \
-         $series2_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit-corner: slope 0.98', \
-         $series2_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-eye: slope 1.09', \
-         $series2_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry: slope 1.38', \
-         $series2_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit: slope 1.43', \
-         $series2_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit-corner: slope 0.91', \
-         $series2_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'ramp-jump-simpson: slope 0.88'
+    plot $series2_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-eye: max order 0.98', \
+         $series2_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry: max order 0.94', \
+         $series2_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit: max order 1.31', \
+         $series2_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit-corner: max order 1.00', \
+         $series2_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-eye: max order 1.04', \
+         $series2_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry: max order 0.98', \
+         $series2_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit: max order 1.39', \
+         $series2_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit-corner: max order 1.00', \
+         $series2_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'ramp-jump-simpson: max order 1.05'
     # panel 3
     set title 'Neghip 64^3 (trilinear)'
     unset arrow
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2)
-    set xrange [0.02173913043478261:0.22999999999999998] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2)
+    set xrange [0.01058431640453159:0.23619853228590607] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [9.487555938935428e-07:0.009015799874911546] noextend
+    set yrange [9.050490589326488e-07:0.009974733418498392] noextend
     set key top left
     set size noratio
     unset label
-    plot $series3_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-eye: slope 1.00', \
-         $series3_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry: slope 1.01', \
-         $series3_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit: slope 1.01', \
-         $series3_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit-corner: slope 1.00', \
-         $series3_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-eye: slope 0.94', \
-         $series3_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry: slope 0.77', \
-         $series3_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit: slope 1.63', \
-         $series3_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit-corner: slope 1.75', \
-         $series3_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'neghip-simpson: slope 2.70'
+    plot $series3_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-eye: max order 0.98', \
+         $series3_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry: max order 0.98', \
+         $series3_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit: max order 1.00', \
+         $series3_4 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit-corner: max order 1.00', \
+         $series3_5 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-eye: max order 1.09', \
+         $series3_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry: max order 1.02', \
+         $series3_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit: max order 1.77', \
+         $series3_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit-corner: max order 2.23', \
+         $series3_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'neghip-simpson: max order 1.86'
     unset multiplot
     unset output
 }

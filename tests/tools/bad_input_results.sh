@@ -31,7 +31,7 @@ bad 1 '^vri-run: error: results: tracked files of .* differ from commit [0-9a-f]
 bad 1 '^vri-run: error: \./results/?: tracked files of ' -- "$bin/vri-run" --results ./results/ experiments/tiny.yaml
 
 # The convergence layout (vri-tabulate) and a key taken from the data (vri-plot).
-printf '{"channels": [{"name": "R", "max_abs": 0.5}]}\n' > diff.json
+printf '{"channels": [{"name": "R", "max_abs": 0.5, "mean_abs": 0.1}]}\n' > diff.json
 printf 'series,h,error,legend\na,0.1,0.01,a: slope 1.00\n' > points.csv
 printf 'series:\n  - {file: points.csv, x: h, y: error, where: {series: b}, label_from: legend}\n' > nokept.yaml
 printf 'series:\n  - {file: points.csv, x: h, y: error, label: x, label_from: legend}\n' > both.yaml

@@ -173,6 +173,8 @@ int RenderCommand::run() {
         }
         const RenderStats& stats = frame.stats;
         nonfinite_.check(stats.nonfinite, name_);
+        if (stats.simpsonRange && stats.simpsonRange->pixelsBeyond > 0)
+            std::cerr << name_ << ": warning: " << stats.simpsonRange->describe(stats.rays) << '\n';
         const OutOfRangePixels outOfRange = findOutOfRangePixels(frame.image);  // what the method returned
         if (request.clamp) clampToUnitRange(frame.image);
         const Image& image = frame.image;

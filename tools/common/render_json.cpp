@@ -43,6 +43,10 @@ nlohmann::json toJson(const RenderStats& s) {
     if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;
     if (s.backend == "cpu") j["simd_target"] = s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget);
     if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
+    if (s.simpsonRange)  // and on the CPU, their steps against the range where they mean something
+        j["simpson_range"] = {{"tau_h_limit", s.simpsonRange->limit},
+                              {"largest_tau_h", s.simpsonRange->largest},
+                              {"pixels_beyond", s.simpsonRange->pixelsBeyond}};
     j["nonfinite_pixels"] = s.nonfinite.count;
     if (s.nonfinite.count > 0) j["first_nonfinite_pixel"] = {s.nonfinite.firstX, s.nonfinite.firstY};
     return j;
