@@ -91,18 +91,22 @@ TEST_CASE("observed orders on the smooth analytic scene: Riemann 1 for every pla
     CHECK(std::abs(measuredOrder(scene, Integrator::Composite, Placement::EntryAlign, kSteps) - 1.0) <= 0.2);
 }
 
-TEST_CASE("uniform Simpson is exact to float rounding on the analytic ramp under a linear transfer function") {
-    // Extinction and colour are linear along every ray, the optical depth quadratic: each Simpson step
-    // integrates them exactly, so no step size shows an error above float's rounding of the image.
+TEST_CASE("uniform Simpson on the analytic ramp: below float rounding at the sweep's steps, not exact") {
+    // Extinction and colour are linear along every ray and the optical depth quadratic, but the
+    // integrand carries exp(-depth): Simpson's error is of high order in h, not zero. At the sweep's
+    // steps it stays below float's rounding of the image; at h = 4 it shows (the convergence
+    // experiment's caption says no more than that).
     const Scene scene = smoothAnalyticScene();
     const Camera camera = cornerCamera(scene);
     const ExactReference exact = renderExactReference(scene, camera);
+    RenderOptions options;
+    options.integrator = Integrator::Simpson;
     for (const double h : kSteps) {
-        RenderOptions options;
-        options.integrator = Integrator::Simpson;
         options.samplingRate = 1.0 / h;
         CHECK(largestError(render(scene, camera, options), exact) < 1e-7);
     }
+    options.samplingRate = 0.25;
+    CHECK(largestError(render(scene, camera, options), exact) > 1e-6);
 }
 
 TEST_CASE("observedOrder fits the slope of log error against log step") {
