@@ -178,6 +178,7 @@ const std::vector<TileStatsRule>& tileStatsRules() {
         {"/stats/interpolation", Same},
         {"/stats/simd_target", Same},
         {"/stats/adaptive", Sum},
+        {"/stats/preintegration", Same},  // every tile builds the same table
         {"/stats/nonfinite_pixels", Sum},
         {"/stats/first_nonfinite_pixel", FirstPixel},
         {"/stats/out_of_range_pixels/pixels", Sum},
