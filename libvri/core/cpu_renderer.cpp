@@ -16,6 +16,7 @@
 
 #include "libvri/core/early_termination.h"
 #include "libvri/core/fixed_step_ray.h"
+#include "libvri/core/frame_average.h"
 #include "libvri/core/grid_sampler.h"
 #include "libvri/core/occupancy_cache.h"
 #include "libvri/core/occupancy_grid.h"
@@ -88,10 +89,10 @@ template <class Real, class Sampler>
 RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sample, const OccupancyGrid* occupancy,
                                   const GridIndexing& indexMap, const glm::vec<3, Real>& eyeU, const glm::vec<3, Real>& dims,
                                   const TransferFunction& tf, const RenderOptions& opt,
-                                  const TerminationRule& termination, MarchCounts& counts) {
+                                  const TerminationRule& termination, std::optional<Real> jitter, MarchCounts& counts) {
     RayAccumulator<Real> acc;
     const EmissionModel emission = tf.emission();
-    FixedStepRay<Real> march(ray, opt, eyeU, dims, indexMap);
+    FixedStepRay<Real> march(ray, opt, eyeU, dims, indexMap, jitter);
     const std::int64_t count = march.schedule.count;
     const Real ert = termination.threshold<Real>(march.dx, count);
     std::size_t segment = 0;  // the transfer function's last bracket
@@ -108,6 +109,33 @@ RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sa
     }
     counts.samplesPlaced += static_cast<std::uint64_t>(k);
     if (k < count) counts.terminated(termination.leftOut(acc.transparency, march.dx, count));
+    return acc;
+}
+
+// Pre-integration: sample k of paper A's placement stands for the segment from half a step before it to
+// half a step after (as in composite), whose integral the table gives from the scalars at its ends (and
+// at the sample itself, the midpoint, for order 2). The segments share their ends, so a ray of n
+// samples reads n + 1 scalars (2n + 1 for order 2). Every segment is looked up: an entry interpolates
+// its neighbours in the table, so a segment in an empty brick need not look up exactly zero.
+template <class Real, class Sampler>
+RayAccumulator<Real> marchSegments(const TextureRay<Real>& ray, const Sampler& sample, const glm::vec<3, Real>& eyeU,
+                                   const glm::vec<3, Real>& dims, const PreintegrationTable& table,
+                                   const RenderOptions& opt, std::optional<Real> jitter, MarchCounts& counts) {
+    RayAccumulator<Real> acc;
+    const FixedStepSamples<Real> march(ray, opt, eyeU, dims, jitter);
+    const std::int64_t count = march.schedule.count;
+    if (count == 0) return acc;
+    const Real lengthRatio = march.dx / static_cast<Real>(table.segmentLength());
+    const bool secondOrder = table.order() == 2;
+    Real front = sample(march.segmentStart(0));
+    for (std::int64_t k = 0; k < count; ++k) {
+        const Real back = sample(march.segmentStart(k + 1));
+        const Real delta = secondOrder ? sample(march.position(k)) - Real(0.5) * (front + back) : Real(0);
+        acc.addSegment(table(front, back, delta), lengthRatio);
+        front = back;
+    }
+    counts.samplesPlaced += static_cast<std::uint64_t>(count);
+    counts.samplesEvaluated += static_cast<std::uint64_t>(count);
     return acc;
 }
 
@@ -186,7 +214,7 @@ void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& co
 template <class Real, class Sampler>
 void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* occupancy, const GridIndexing& indexMap,
                 const Camera& camera, const RenderOptions& opt, Image& image, Counters& counters,
-                std::vector<AdaptiveTry>* rayLog) {
+                std::vector<AdaptiveTry>* rayLog, const PreintegrationTable* table) {
     using Vec = glm::vec<3, Real>;
     const Box box = scene.box();
     const Vec dims(scene.dims());
@@ -216,8 +244,13 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                     if (r.terminated) counts.terminated(termination.simpsonLeftOut(r.transparency));
                     range.addRay(static_cast<double>(r.largestStepDepth));
                 } else {
+                    const std::optional<Real> jitter =
+                        opt.jitter ? std::optional<Real>(static_cast<Real>(jitterFraction(px, py, opt.seed)))
+                                   : std::nullopt;
                     const RayAccumulator<Real> acc =
-                        marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt, termination, counts);
+                        table ? marchSegments(ray, sample, eyeU, dims, *table, opt, jitter, counts)
+                              : marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt, termination,
+                                             jitter, counts);
                     out[0] = static_cast<float>(acc.r);
                     out[1] = static_cast<float>(acc.g);
                     out[2] = static_cast<float>(acc.b);
@@ -232,17 +265,28 @@ template <class Real>
 void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& opt, Image& image,
                  Counters& counters, RenderStats& stats, OccupancyCache& cache, double& setupSpent) {
     std::vector<AdaptiveTry>* log = opt.logPixel ? &stats.rayLog : nullptr;
+    std::optional<PreintegrationTable> table;
+    if (opt.integrator == Integrator::Preintegrated) {
+        const auto start = std::chrono::steady_clock::now();
+        table.emplace(scene.transferFunction, preintegrationSegmentLength(scene, opt), opt.preintegrationSize,
+                      opt.preintegrationOrder);
+        stats.preintegration = {table->size(), table->order(), table->segmentLength(), table->check(scene.transferFunction)};
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats.setupSeconds += seconds;
+        setupSpent += seconds;
+    }
+    const PreintegrationTable* lookup = table ? &*table : nullptr;
     if (!scene.volume && !scene.sparse) {
         renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, GridIndexing{}, camera, opt, image, counters,
-                         log);
+                         log, lookup);
         return;
     }
     const OccupancyGrid* occupancy = nullptr;
-    if (opt.skipEmptySpace) {
+    if (opt.skipEmptySpace && !table) {
         const auto grid = scene.sparse ? cache.grid(scene.sparse, scene.convention, scene.transferFunction)
                                        : cache.grid(scene.volume, scene.convention, scene.transferFunction);
         occupancy = &grid.structure;
-        stats.setupSeconds = grid.buildSeconds;
+        stats.setupSeconds += grid.buildSeconds;
         stats.setupReused = grid.reused;
         if (!grid.reused) setupSpent += grid.buildSeconds;
         stats.emptyBrickFraction = occupancy->emptyFraction();
@@ -251,7 +295,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     if (scene.sparse) {  // the scalar path whatever opt.simd says: the packet engine reads dense volumes only
         dispatchVoxelType(scene.sparse->type, [&](auto voxel) {
             const SparseGridSampler<decltype(voxel), Real> sampler(*scene.sparse, scene.convention);
-            renderWith<Real>(scene, sampler, occupancy, indexMap, camera, opt, image, counters, log);
+            renderWith<Real>(scene, sampler, occupancy, indexMap, camera, opt, image, counters, log, lookup);
         });
         return;
     }
@@ -277,7 +321,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     const Volume& volume = *scene.volume;
     dispatchVoxelType(volume.type, [&](auto voxel) {
         const GridSampler<decltype(voxel), Real> sampler(volume, scene.convention);
-        renderWith<Real>(scene, sampler, occupancy, indexMap, camera, opt, image, counters, log);
+        renderWith<Real>(scene, sampler, occupancy, indexMap, camera, opt, image, counters, log, lookup);
     });
 }
 
@@ -328,6 +372,27 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
                         exactNumber(rule.simpsonFactor()) + " times its transparency): give --h-max or a transparency threshold");
         }
     }
+    const bool preintegrated = options.integrator == Integrator::Preintegrated;
+    // A looked-up segment's colour is not bounded by C_max times its alpha (the table interpolates colour
+    // and depth apart), so early_termination.h's bounds do not hold for it.
+    if (preintegrated && (options.earlyTermination > 0.0 || options.terminationBound > 0.0))
+        throw Error("early termination: not available for the preintegrated method (its bound does not hold for "
+                    "interpolated table entries)");
+    if (options.jitter && (isSimpson(options.integrator)))
+        throw Error("jitter: applies to the placed fixed-step methods (riemann, composite, preintegrated), not " +
+                    std::string(integratorName(options.integrator)));
+    if (options.frames < 1) throw Error("frames must be at least 1, got " + std::to_string(options.frames));
+    if (options.frames > 1 && !options.jitter) throw Error("frames: averaging frames needs jitter (each frame a seed)");
+    if (preintegrated) {
+        if (options.preintegrationSize < PreintegrationTable::kMinSize ||
+            options.preintegrationSize > PreintegrationTable::kMaxSize)
+            throw Error("pre-integration table size must be in [" + std::to_string(PreintegrationTable::kMinSize) +
+                        ", " + std::to_string(PreintegrationTable::kMaxSize) + "], got " +
+                        std::to_string(options.preintegrationSize));
+        if (options.preintegrationOrder != 1 && options.preintegrationOrder != 2)
+            throw Error("pre-integration order must be 1 or 2, got " + std::to_string(options.preintegrationOrder));
+        if (options.logPixel) throw Error("the logged ray: applies to coupled and decoupled only");
+    }
     const glm::dvec3 dims = scene.dims();
     // The longest ray crosses |dims| voxels; keep its sample count well inside an int64 and a float.
     if (options.samplingRate * glm::length(dims) > 1e9)
@@ -374,9 +439,19 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
         throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
 }
 
+double preintegrationSegmentLength(const Scene& scene, const RenderOptions& options) {
+    // Entry Exit Align Corner counts the step on dims - 1 voxels (placement.h), the others on dims.
+    const double voxels = scene.dims().x - (options.placement == Placement::EntryExitAlignCorner ? 1.0 : 0.0);
+    return scene.box().size().x / voxels / options.samplingRate;
+}
+
 Image render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats,
              OccupancyCache* cache) {
     validateRender(scene, camera, options);
+    if (options.frames > 1)
+        return averageFrames(options, stats, [&](const RenderOptions& frame, RenderStats* frameStats) {
+            return render(scene, camera, frame, frameStats, cache);
+        });
     const PixelRegion area = renderedRegion(options.region, camera);
     Image image(area.width, area.height);
     Counters counters;

@@ -17,6 +17,7 @@
 #include "libvri/core/nonfinite_pixels.h"
 #include "libvri/core/placement.h"
 #include "libvri/core/simpson_range.h"
+#include "libvri/core/preintegration_table.h"
 #include "libvri/core/transfer_function.h"
 #include "libvri/core/volume.h"
 
@@ -68,6 +69,15 @@ struct RenderOptions {
     // Or stop a ray once the samples left could change no channel by more than this (0: off; see
     // libvri/core/early_termination.h). The stats give the most any ended ray left out.
     double terminationBound = 0.0;
+    // Pre-integrated classification (--method preintegrated): the table's entries per axis and its order
+    // (1: the scalar linear along a segment; 2: quadratic through the midpoint too).
+    int preintegrationSize = PreintegrationTable::kDefaultSize;
+    int preintegrationOrder = 1;
+    // Jittered sampling (jitter.h) of the placed fixed-step methods: frame f of `frames` moves each ray's
+    // first sample by the hash of its pixel and seed + f, and the image is the frames' mean.
+    bool jitter = false;
+    std::uint32_t seed = 0;
+    int frames = 1;
     bool skipEmptySpace = true;  // never changes the image (see occupancy_grid.h)
     // Float Riemann and composite of a volume on packets of rays, one per SIMD lane; bitwise equal to
     // the scalar float path (false), which stays the reference.
@@ -100,6 +110,14 @@ struct RenderStats {
     std::optional<AdaptiveCounts> adaptive;  // Simpson methods: tries, failures, steps and points of all rays
     // Simpson methods on the CPU: the largest tau h of a step and the rays beyond simpson_range.h's limit.
     std::optional<SimpsonRange> simpsonRange;
+    // Pre-integration: the table's segment length (world units) and its own error against direct
+    // evaluation (PreintegrationTable::check); building and checking it is setup (setupSeconds).
+    struct Preintegration {
+        int size = 0, order = 0;
+        double segmentLength = 0.0;
+        PreintegrationError error;
+    };
+    std::optional<Preintegration> preintegration;
     std::vector<AdaptiveTry> rayLog;  // the tries along RenderOptions::logPixel's ray
     std::string backend = "cpu";      // "cpu" or "vulkan" (vulkan_renderer.h)
     std::string device;               // the Vulkan device's name; empty on the CPU
@@ -117,6 +135,11 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
 // The parameters the Simpson methods run with: uniform Simpson's h0 = h_min = h_max = 1 / samplingRate,
 // coupled; coupled and decoupled take options.adaptive with the coupling of their name.
 AdaptiveParameters simpsonParameters(const RenderOptions& options);
+
+// The length in world units of the segments a pre-integration table is built for: the step h along the
+// box's x axis as the placement counts voxels (every segment of Entry or Eye Align on a volume of equal
+// spacings; other segments scale it, RayAccumulator::addSegment).
+double preintegrationSegmentLength(const Scene& scene, const RenderOptions& options);
 
 // Throws vri::Error on a non-positive or non-finite sampling rate, bad adaptive parameters, a region that
 // is not inside the image, or a log pixel outside the region (the image when there is none).

@@ -39,6 +39,8 @@ public:
     // Ends the ray, `remainingLength` world units of which were left out after done(): RGBA and
     // a bound on each channel's error.
     void finish(double remainingLength, double value[4], double bound[4]);
+    // The optical depth of the ray so far, complete once finish() has run (pre-integration tabulates it).
+    double opticalDepth() const { return opticalDepth_; }
 
     // Whether the TF is zero on all of [s0, s1]: tf.isInvisible(s0, s1) from a table of the spans where
     // it is zero, not a search (true only where that is; an ulp short of a jump out of zero).

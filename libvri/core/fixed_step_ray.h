@@ -13,6 +13,7 @@
 #include "libvri/core/camera.h"
 #include "libvri/core/cpu_renderer.h"
 #include "libvri/core/grid_sampler.h"
+#include "libvri/core/jitter.h"
 #include "libvri/core/occupancy_grid.h"
 #include "libvri/core/placement.h"
 
@@ -41,9 +42,10 @@ template <class Real>
 struct FixedStepSamples {
     using Vec = glm::vec<3, Real>;
 
-    FixedStepSamples(const TextureRay<Real>& ray, const RenderOptions& opt, const Vec& eyeU, const Vec& dims)
-        : schedule(
-              placeSamples<Real>(opt.placement, ray.entry, ray.exit, eyeU, dims, static_cast<Real>(opt.samplingRate))),
+    // `jitter`: the fraction of a step past the entry where the first sample goes (jitter.h), or none.
+    FixedStepSamples(const TextureRay<Real>& ray, const RenderOptions& opt, const Vec& eyeU, const Vec& dims,
+                     std::optional<Real> jitter = std::nullopt)
+        : schedule(placed(ray, opt, eyeU, dims, jitter)),
           entry(ray.entry),
           du(schedule.count > 0 ? (ray.exit - ray.entry) / schedule.tEnd : Vec(0)),
           dx(schedule.count > 0
@@ -51,10 +53,23 @@ struct FixedStepSamples {
                  : Real(0)) {}
 
     Vec position(std::int64_t k) const { return entry + schedule.t(k) * du; }
+    // Where sample k's segment begins (k = 0 .. count, the last the end of the last segment): half a step
+    // before it, so that the segments tile the part of the ray the samples stand for.
+    Vec segmentStart(std::int64_t k) const { return entry + (schedule.tStart - halfStep() + static_cast<Real>(k) * schedule.tIncr) * du; }
+    Real halfStep() const { return Real(0.5) * schedule.tIncr; }
 
     SampleSchedule<Real> schedule;
     Vec entry, du;  // sample k at entry + t(k) du
     Real dx;        // world length per sample
+
+private:
+    static SampleSchedule<Real> placed(const TextureRay<Real>& ray, const RenderOptions& opt, const Vec& eyeU,
+                                       const Vec& dims, std::optional<Real> jitter) {
+        SampleSchedule<Real> s =
+            placeSamples<Real>(opt.placement, ray.entry, ray.exit, eyeU, dims, static_cast<Real>(opt.samplingRate));
+        if (jitter) jitterSchedule(s, *jitter);
+        return s;
+    }
 };
 
 // The samples of FixedStepSamples and the empty-space bricks the ray crosses (occupancy_grid.h), as
@@ -64,8 +79,8 @@ struct FixedStepRay : FixedStepSamples<Real> {
     using Vec = glm::vec<3, Real>;
 
     FixedStepRay(const TextureRay<Real>& ray, const RenderOptions& opt, const Vec& eyeU, const Vec& dims,
-                 const GridIndexing& indexMap)
-        : FixedStepSamples<Real>(ray, opt, eyeU, dims),
+                 const GridIndexing& indexMap, std::optional<Real> jitter = std::nullopt)
+        : FixedStepSamples<Real>(ray, opt, eyeU, dims, jitter),
           indexRay(glm::dvec3(ray.entry) * indexMap.scale - indexMap.offset, glm::dvec3(this->du) * indexMap.scale) {}
 
     // True when sample k lies past the part of the ray known to be occupied: skipEmpty() must look

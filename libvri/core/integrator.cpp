@@ -6,7 +6,7 @@ namespace vri {
 
 namespace {
 constexpr Integrator kIntegrators[] = {Integrator::Riemann, Integrator::Composite, Integrator::Simpson,
-                                       Integrator::Coupled, Integrator::Decoupled};
+                                       Integrator::Coupled, Integrator::Decoupled, Integrator::Preintegrated};
 }  // namespace
 
 std::string_view integratorName(Integrator i) {
@@ -15,16 +15,17 @@ std::string_view integratorName(Integrator i) {
     case Integrator::Composite: return "composite";
     case Integrator::Simpson: return "simpson";
     case Integrator::Coupled: return "coupled";
-    case Integrator::Decoupled: break;
+    case Integrator::Decoupled: return "decoupled";
+    case Integrator::Preintegrated: break;
     }
-    return "decoupled";
+    return "preintegrated";
 }
 
 Integrator parseIntegrator(std::string_view name, const std::string& what) {
     for (Integrator i : kIntegrators)
         if (name == integratorName(i)) return i;
     throw Error(what + ": unknown method '" + std::string(name) +
-                "' (expected riemann, composite, simpson, coupled or decoupled)");
+                "' (expected riemann, composite, simpson, coupled, decoupled or preintegrated)");
 }
 
 }  // namespace vri

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "libvri/core/simd_target.h"
 #include "libvri/util/error.h"
@@ -26,6 +27,8 @@ bool flagValue(const std::string& text, const std::string& where) {
     throw Error(where + ": expected true or false, got '" + text + "'");
 }
 
+bool preintegrated(const RenderRequest& r) { return !r.exact && r.options.integrator == Integrator::Preintegrated; }
+
 std::string noDefault(const RenderRequest&) { return {}; }
 void noSetting(const RenderRequest&, std::vector<Setting>&) {}
 
@@ -33,8 +36,8 @@ void noSetting(const RenderRequest&, std::vector<Setting>&) {}
 const RenderOptionRow kRows[] = {
     {"--method", "method", "", OptionValueKind::Text,
      "riemann (paper A eq. 5), composite (opacity-corrected), simpson (uniform steps of --step), coupled or decoupled "
-     "(paper B's adaptive Simpson), exact (vri-reference's method, with a per-pixel error bound); vri-reference: "
-     "exact or riemann (paper B's reference)",
+     "(paper B's adaptive Simpson), preintegrated (a table of each step's segment integral, --preint-size), exact "
+     "(vri-reference's method, with a per-pixel error bound); vri-reference: exact or riemann (paper B's reference)",
      "", "", kBothTools, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) {
          r.exact = text == "exact";
@@ -116,6 +119,52 @@ const RenderOptionRow kRows[] = {
          if (r.options.terminationBound > 0.0) s.push_back({"early_termination.bound", r.options.terminationBound});
          else s.push_back({"early_termination", r.options.earlyTermination});
      }},
+    {"--preint-size", "preint_size", "n", OptionValueKind::Count,
+     "preintegrated: entries of the table per scalar axis, from 2 to 1024 (its error against direct evaluation is in "
+     "the stats)",
+     "", "", kRenderOnly, kCpu,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.preintegrationSize =
+             parseCount(text, where, PreintegrationTable::kMinSize, PreintegrationTable::kMaxSize);
+     },
+     [](const RenderRequest& r) { return std::to_string(r.options.preintegrationSize); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (preintegrated(r)) s.push_back({"preint_size", static_cast<long long>(r.options.preintegrationSize)});
+     }},
+    {"--preint-order", "preint_order", "o", OptionValueKind::Count,
+     "preintegrated: 1 (the scalar linear along a segment) or 2 (quadratic through the sample at its midpoint: "
+     "a second table of the derivative in the midpoint's deviation)",
+     "", "", kRenderOnly, kCpu,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.preintegrationOrder = parseCount(text, where, 1, 2);
+     },
+     [](const RenderRequest& r) { return std::to_string(r.options.preintegrationOrder); },
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (preintegrated(r)) s.push_back({"preint_order", static_cast<long long>(r.options.preintegrationOrder)});
+     }},
+    {"--jitter", "jitter", "jitter-", OptionValueKind::Flag,
+     "riemann, composite, preintegrated: put each ray's first sample at a fraction in [0, 1) of the step past the "
+     "entry, hashed from the pixel and --seed",
+     "", "", kRenderOnly, kCpu,
+     [](const std::string& text, const std::string& where, RenderRequest& r) { r.options.jitter = flagValue(text, where); },
+     noDefault,
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (!r.options.jitter) return;  // unjittered records stay as they were
+         s.push_back({"jitter", true});
+         s.push_back({"seed", static_cast<long long>(r.options.seed)});
+         s.push_back({"frames", static_cast<long long>(r.options.frames)});
+     }},
+    {"--seed", "seed", "seed", OptionValueKind::Count, "--jitter's seed, from 0 to 2^31 - 1", "", "", kRenderOnly, kCpu,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.seed = static_cast<std::uint32_t>(parseCount(text, where, 0, std::numeric_limits<int>::max()));
+     },
+     [](const RenderRequest& r) { return std::to_string(r.options.seed); }, noSetting},  // recorded with --jitter
+    {"--frames", "frames", "f", OptionValueKind::Count,
+     "--jitter: the mean of N frames (at most 1000), frame f jittered with seed + f", "", "", kRenderOnly, kCpu,
+     [](const std::string& text, const std::string& where, RenderRequest& r) {
+         r.options.frames = parseCount(text, where, 1, kMaxFrames);
+     },
+     [](const RenderRequest& r) { return std::to_string(r.options.frames); }, noSetting},  // recorded with --jitter
     {"--repeat", "repeat", "x", OptionValueKind::Count,
      "render N times (at most 1000) for timing: the stats give every wall time and their median, and any image that "
      "differs from the first is an error",
@@ -291,6 +340,17 @@ void finishRenderRequest(RenderRequest& r) {
             throw Error("--early-termination: --method exact ends rays by its --tolerance");
         if (r.options.logPixel) throw Error("--log-ray: applies to coupled and decoupled only");
     }
+    if (!preintegrated(r))
+        for (const std::string_view flag : {"--preint-size", "--preint-order"})
+            if (r.wasGiven(flag)) throw Error(std::string(flag) + ": applies to --method preintegrated only");
+    if (r.options.jitter && (r.exact || isSimpson(r.options.integrator)))
+        throw Error("--jitter: applies to --method riemann, composite and preintegrated only");
+    if (!r.options.jitter)
+        for (const std::string_view flag : {"--seed", "--frames"})
+            if (r.wasGiven(flag)) throw Error(std::string(flag) + ": needs --jitter");
+    if (preintegrated(r) && r.wasGiven("--early-termination"))
+        throw Error("--early-termination: not available for --method preintegrated (its bound does not hold for "
+                    "interpolated table entries)");
     if (r.exact && !(r.exactTolerance > 0.0))
         throw Error("--tolerance: must be > 0 for --method exact, got " + exactNumber(r.exactTolerance));
     for (const std::string_view flag : r.given)

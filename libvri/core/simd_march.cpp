@@ -739,6 +739,7 @@ std::string packetTargetName() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 bool PacketScene::supports(const Scene& scene, const RenderOptions& options) {
     if (!scene.volume || options.precision != Precision::Float) return false;
     if (options.integrator != Integrator::Riemann && options.integrator != Integrator::Composite) return false;
+    if (options.jitter) return false;  // the scalar path jitters (bitwise the same image either way)
     const Volume& v = *scene.volume;
     // The offsets gathered: voxels, and the eight octants of stencil-brick distances (StencilBricks),
     // which a thin volume (a few voxels across two axes) makes almost an eighth as many as its voxels.

@@ -204,6 +204,9 @@ void VulkanRenderer::validateOptions(const RenderOptions& options) {
     if (options.logPixel) throw Error("the Vulkan backend does not log a ray (the per-ray log is CPU only)");
     if (options.terminationBound > 0.0)
         throw Error("early termination 'auto': the Vulkan backend takes a transparency threshold only");
+    if (options.integrator == Integrator::Preintegrated)
+        throw Error("the Vulkan backend has no preintegrated method yet (--backend cpu renders it)");
+    if (options.jitter) throw Error("the Vulkan backend does not jitter yet (--backend cpu does)");
 }
 
 Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {

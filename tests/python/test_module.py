@@ -136,8 +136,8 @@ class BadInput(unittest.TestCase):
 
     def test_option_values(self):
         self.assertOneLine("step: expected a number > 0, got '-1'", vri.render, self.field, self.tf, step=-1)
-        self.assertOneLine("method: unknown method 'simpsons' (expected riemann, composite, simpson, coupled or "
-                           "decoupled)", vri.render, self.field, self.tf, method="simpsons")
+        self.assertOneLine("method: unknown method 'simpsons' (expected riemann, composite, simpson, coupled, "
+                           "decoupled or preintegrated)", vri.render, self.field, self.tf, method="simpsons")
         self.assertOneLine("--step, --rate: --method exact has no step", vri.render, self.field, self.tf,
                            method="exact", step=0.5)
         self.assertOneLine("threads: expected a whole number >= 1, got '0'", vri.render, self.field, self.tf, threads=0)

@@ -20,6 +20,15 @@ bad 1 "${E}--tolerance: expected a number >= 0, got '-1'$" -- "${render[@]}" --m
 bad 1 "${E}--h-min: expected a number > 0, got '0'$" -- "${render[@]}" --method decoupled --h-min 0
 bad 1 "${E}--log-ray: expected two integers|${E}--log-ray: " -- "${render[@]}" --method coupled --log-ray x --log r.csv
 bad 1 "${E}--device: needs --backend vulkan$" -- "${render[@]}" --device 0
+# Pre-integration and jitter: their rows' ranges and the rules between them.
+bad 1 "${E}--preint-size: expected a whole number from 2 to 1024, got '1025'$" -- "${render[@]}" --method preintegrated --preint-size 1025
+bad 1 "${E}--preint-order: expected a whole number from 1 to 2, got '3'$" -- "${render[@]}" --method preintegrated --preint-order 3
+bad 1 "${E}--preint-size: applies to --method preintegrated only$" -- "${render[@]}" --preint-size 64
+bad 1 "${E}--early-termination: not available for --method preintegrated " -- "${render[@]}" --method preintegrated --early-termination 0.01
+bad 1 "${E}--seed: needs --jitter$" -- "${render[@]}" --seed 3
+bad 1 "${E}--frames: expected a whole number from 1 to 1000, got '0'$" -- "${render[@]}" --jitter --frames 0
+bad 1 "${E}--jitter: applies to --method riemann, composite and preintegrated only$" -- "${render[@]}" --method simpson --jitter
+bad 1 "${E}--jitter: needs --backend cpu$" -- "${render[@]}" --backend vulkan --jitter
 bad 1 "^vri-reference: error: --method: unknown method 'coupled' \(expected exact or riemann\)$" -- \
     "${reference[@]}" --method coupled
 bad 1 "^vri-reference: error: --tolerance applies to --method exact only$" -- "${reference[@]}" --method riemann --tolerance 1e-6

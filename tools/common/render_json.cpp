@@ -47,6 +47,15 @@ nlohmann::json toJson(const RenderStats& s) {
         j["simpson_range"] = {{"tau_h_limit", s.simpsonRange->limit},
                               {"largest_tau_h", s.simpsonRange->largest},
                               {"pixels_beyond", s.simpsonRange->pixelsBeyond}};
+    if (s.preintegration) {  // the table's own error: the largest |lookup - direct evaluation| it found
+        const RenderStats::Preintegration& p = *s.preintegration;
+        j["preintegration"] = {{"size", p.size},
+                               {"order", p.order},
+                               {"segment_length", p.segmentLength},
+                               {"table_error_colour", p.error.colour},
+                               {"table_error_alpha", p.error.alpha},
+                               {"table_points_checked", p.error.points}};
+    }
     j["nonfinite_pixels"] = s.nonfinite.count;
     if (s.nonfinite.count > 0) j["first_nonfinite_pixel"] = {s.nonfinite.firstX, s.nonfinite.firstY};
     return j;

@@ -181,6 +181,7 @@ const std::vector<TileStatsRule>& tileStatsRules() {
         {"/stats/simpson_range/tau_h_limit", Same},
         {"/stats/simpson_range/largest_tau_h", Max},
         {"/stats/simpson_range/pixels_beyond", Sum},
+        {"/stats/preintegration", Same},  // every tile builds the same table
         {"/stats/nonfinite_pixels", Sum},
         {"/stats/first_nonfinite_pixel", FirstPixel},
         {"/stats/out_of_range_pixels/pixels", Sum},
