@@ -137,26 +137,12 @@ void copyToVolume(const fs::path& path, const openvdb::GridBase& grid, const ope
     openvdb::tools::copyToDense(typed, dense, /*serial=*/false);
 }
 
-// A sparse grid stores nothing for background voxels and one tile for a constant region, so its file
-// says little about its dense size; metadata claiming 1024^3 voxels in a 10 KB file is still far more
-// likely an error (or an attack) than a volume. Unless VRI_MAX_BYTES states the limit, a dense
-// volume may take 1024 times the file's bytes, or 256 MiB whatever the file.
-constexpr std::uint64_t kPlausibleExpansion = 1024;
-constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
-
-// Why `bytes` sized from the file's metadata are too many: over the byte limit (checked_size.h), or over
-// the plausible expansion of the file's size; nullopt when they are not.
+// Why `bytes` sized from the file's metadata are too many: over the byte limit, or over the plausible
+// expansion of the file's size (checked_size.h); nullopt when they are not.
 std::optional<std::string> sizeRefusal(const fs::path& path, const std::string& what,
                                        std::initializer_list<std::uint64_t> factors) {
     try {
-        const std::uint64_t bytes = checkedBytes(what, factors);
-        const std::uint64_t fileBytes = fs::file_size(path);
-        const std::uint64_t plausible =
-            std::max(kAlwaysPlausibleBytes, checkedProduct({fileBytes, kPlausibleExpansion}).value_or(UINT64_MAX));
-        if (bytes > plausible && !byteLimitIsExplicit())
-            return what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
-                   " for a file of " + std::to_string(fileBytes) + " bytes (" + std::to_string(kPlausibleExpansion) +
-                   " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)";
+        checkedUnpackedBytes(what, factors, fs::file_size(path), "a file", kPlausibleSparseExpansion);
         return std::nullopt;
     } catch (const Error& e) {
         return e.what();

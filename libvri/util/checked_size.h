@@ -30,6 +30,22 @@ std::uint64_t checkedCount(const std::string& what, std::initializer_list<std::u
 // names VRI_MAX_BYTES, the way to raise the limit.
 std::size_t checkedBytes(const std::string& what, std::initializer_list<std::uint64_t> factors);
 
+// Data that unpack (a deflate stream, a compressed TIFF page, a sparse grid's tiles) can claim far more
+// bytes than the file holds them in: 110 bytes of header claiming 4 GiB are far more likely an error or an
+// attack than a volume, and the claim alone must not make the reader allocate. So, unless VRI_MAX_BYTES
+// states the limit, the product of `factors` may be at most `maxExpansion` times the `packedBytes` it
+// unpacks from, or kAlwaysPlausibleBytes whatever those are; and always within checkedBytes' limit.
+// Throws vri::Error("<what>: needs N bytes, limit L for <packedWhat> of P bytes (R times its size or
+// 256 MiB; set VRI_MAX_BYTES to allow more)").
+inline constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
+// A deflate stream's ratio: zlib reaches 1032 on a run of zeros; real volumes stay far below 256 (the
+// test volumes 1 to 51).
+inline constexpr std::uint64_t kPlausibleCompressedExpansion = 256;
+// A sparse grid stores one tile for a constant region, so its file says little about its dense size.
+inline constexpr std::uint64_t kPlausibleSparseExpansion = 1024;
+std::size_t checkedUnpackedBytes(const std::string& what, std::initializer_list<std::uint64_t> factors,
+                                 std::uint64_t packedBytes, std::string_view packedWhat, std::uint64_t maxExpansion);
+
 // For work estimated in floating point (a rate times a length): throws
 // vri::Error("<what>: needs N <unit>, limit M") unless 0 <= amount <= limit.
 void requireWithin(const std::string& what, double amount, double limit, std::string_view unit);
