@@ -7,6 +7,7 @@
 #include <string>
 
 #include "libvri/io/oiio_module.h"
+#include "libvri/io/tiff_page_chain.h"
 #include "libvri/io/volume_formats.h"
 #include "libvri/util/checked_size.h"
 #include "libvri/util/error.h"
@@ -17,6 +18,7 @@ namespace fs = std::filesystem;
 
 Volume readTiffStack(const fs::path& path) {
     requireRegularFile(path);
+    const int chainedPages = tiffPageCount(path);
     glm::ivec3 dims(0);
     StoredType type = StoredType::UInt8;
     // Not zero-filled (new char[], not a string): a page takes memory once OpenImageIO has read it, so that
@@ -24,17 +26,20 @@ Volume readTiffStack(const fs::path& path) {
     std::unique_ptr<char[]> voxels;
     std::size_t voxelBytes = 0;
     const auto allocate = [&](const TiffStackShape& shape) {
+        if (shape.pages != chainedPages)
+            throw Error(path.string() + ": page " + std::to_string(shape.pages) + " cannot be read, the file chains " +
+                        std::to_string(chainedPages) + " pages");
         dims = glm::ivec3(shape.width, shape.height, shape.pages);
         type = shape.type;
         if (dims.x < 1 || dims.y < 1)
             throw Error(path.string() + ": pages of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
                         " pixels");
         // Pages may be compressed (deflate, LZW, PackBits): the file's size bounds what they plausibly hold.
-        voxelBytes = checkedUnpackedBytes(path.string() + ": " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
-                                              "x" + std::to_string(dims.z) + " " + std::string(storedTypeName(type)),
-                                          {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z),
-                                           storedSize(type)},
-                                          fs::file_size(path), "a file", kPlausibleCompressedExpansion);
+        voxelBytes = checkedUnpackedBytes(
+            path.string() + ": " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                std::to_string(dims.z) + " " + std::string(storedTypeName(type)),
+            {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), storedSize(type)},
+            fs::file_size(path), "a file", kPlausibleCompressedExpansion);
         voxels.reset(new char[voxelBytes]);
         return voxels.get();
     };

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Volume files whose few bytes claim gigabytes (issue 29 item 5): gzip NRRD and MetaImage whose header
-# claims more than the stream could plausibly hold (256 times its size, or 256 MiB) or than it does hold,
-# a TIFF of a few bytes claiming 4 GiB of pages. Each case: the exit code, the one stderr line
+# Volume files whose few bytes claim gigabytes, and stacks cut short (issue 29 items 5 and 8): gzip NRRD
+# and MetaImage whose header claims more than the stream could plausibly hold (256 times its size, or
+# 256 MiB) or than it does hold, a TIFF of a few bytes claiming 4 GiB of pages; TIFF stacks cut in a
+# directory or in a strip, strips shorter than their page, a chain of pages that loops. Each case: the exit code, the one stderr line
 # naming the file (and page), an unchanged work directory (lib/bad_input.sh) and a peak resident memory
 # under 256 MiB (GNU time), however much the file claims.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
@@ -65,7 +66,8 @@ tiff("many.tif", 65535, 65535, pages=8, strip=16)        # 32 GiB: over the byte
 tiff("short.tif", 64, 64, pages=3, strip=100)            # strips of 100 bytes where a page needs 4096
 whole = tiff("stack.tif", 16, 8, pages=4)
 tiff("cut-ifd.tif", 16, 8, pages=4, cut=whole - 60)      # the last directory cut in two
-tiff("cut-data.tif", 16, 8, pages=4, cut=whole - 200)    # into page 2's directory
+tiff("cut-data.tif", 16, 8, pages=4, cut=whole - 200)    # into page 3's strip, before its directory
+tiff("cut-mid.tif", 16, 8, pages=4, cut=whole - 330)     # into page 2's directory
 tiff("cut-header.tif", 16, 8, pages=4, cut=6)
 tiff("loop.tif", 16, 8, pages=3, loop=True)              # page 2 chains back to page 0
 open("tf.yaml", "w").write("points: [[0, 0, 0, 0, 0], [1, 1, 1, 1, 1]]\n")
@@ -107,5 +109,23 @@ bad 1 "${E}huge\.tif: 65535x65535x1 uint8: needs 4294836225 bytes, limit 2684354
 bad 1 "${E}pages\.tif: 4096x4096x64 uint8: needs 1073741824 bytes, limit 268435456 for a file of [0-9]+ bytes" -- timeout 20 "$convert" --info pages.tif
 bad 1 "${E}many\.tif: 65535x65535x8 uint8: needs 34358689800 bytes, limit 17179869184 \(VRI_MAX_BYTES\)$" -- timeout 20 "$convert" --info many.tif
 bad 1 "^vri-render: error: huge\.tif: 65535x65535x1 uint8: needs" -- timeout 20 "$VRI_BIN/vri-render" --volume huge.tif --tf tf.yaml -q -o out.exr
+
+# --- item 8: a stack cut short is an error naming the page, never fewer pages or pages of zeros ---
+bad 1 "${E}cut-ifd\.tif: page 3: its directory at byte 862 \(9 entries\) ends beyond the file's end \(916 bytes\)$" -- timeout 20 "$convert" --info cut-ifd.tif
+bad 1 "${E}cut-data\.tif: page 3: its directory at byte 862 lies beyond the file's end \(776 bytes\)$" -- timeout 20 "$convert" --info cut-data.tif
+bad 1 "${E}cut-mid\.tif: page 2: its directory at byte 620 \(9 entries\) ends beyond the file's end \(646 bytes\)$" -- timeout 20 "$convert" --info cut-mid.tif
+bad 1 "${E}cut-header\.tif: the header ends at byte 6, before its first page$" -- timeout 20 "$convert" --info cut-header.tif
+bad 1 "${E}short\.tif: page 0: .*got [0-9]+ bytes, expected 4096$" -- timeout 20 "$convert" --info short.tif
+bad 1 "${E}loop\.tif: page [0-9]+: its directory at byte [0-9]+ is an earlier page's \(the chain of pages loops\)$" -- timeout 20 "$convert" --info loop.tif
+bad 1 "${E}text\.tif: not a TIFF file \(expected II or MM as its first bytes\)$" -- timeout 20 "$convert" --info text.tif
+bad 1 "${E}beyond\.tif: page 0: its directory at byte 1048576 lies beyond the file's end \(16 bytes\)$" -- timeout 20 "$convert" --info beyond.tif
+bad 1 "${E}entries\.tif: page 0: its directory at byte 8 claims 60000 entries, more than the file's 18 bytes hold$" -- timeout 20 "$convert" --info entries.tif
+if [ -f libtiff-cut.tif ]; then
+  bad 1 "${E}libtiff-cut\.tif: page [0-9]: " -- timeout 20 "$convert" --info libtiff-cut.tif
+fi
+bad 1 "^vri-render: error: cut-ifd\.tif: page 3: " -- timeout 20 "$VRI_BIN/vri-render" --volume cut-ifd.tif --tf tf.yaml -q -o out.exr
+# The whole stack reads, all four pages of it.
+"$convert" --info --json stack.tif | "$python" -c 'import json, sys; assert json.load(sys.stdin)["dims"] == [16, 8, 4]' ||
+  fail "stack.tif: not read as 16x8x4"
 
 bad_done
