@@ -245,9 +245,10 @@ SparseVolume toSparse(const fs::path& path, const GridT& grid, const GridPlaceme
     if constexpr (!std::is_same_v<T, typename GridT::ValueType>) requireRepresentable<T>(path, grid);
     const glm::ivec3 dims = p.layout.dims;
     const glm::ivec3 bricks = SparseVolume::bricksOf(dims);
-    const std::string what = boxDescription(path, p.source, dims, p.layout.type) + " kept sparse, its brick table";
-    if (const auto refusal = sizeRefusal(path, what, {std::uint64_t(bricks.x), std::uint64_t(bricks.y),
-                                                      std::uint64_t(bricks.z), sizeof(std::uint32_t)}))
+    const std::string sparse = boxDescription(path, p.source, dims, p.layout.type) + " kept sparse";
+    if (const auto refusal = sizeRefusal(path, sparse + ", its brick table",
+                                         {std::uint64_t(bricks.x), std::uint64_t(bricks.y), std::uint64_t(bricks.z),
+                                          sizeof(std::uint32_t)}))
         throw Error(*refusal);
     const T background = static_cast<T>(grid.background());
     std::vector<std::uint8_t> candidates(static_cast<std::size_t>(bricks.x) * bricks.y * bricks.z, 0);
@@ -277,6 +278,13 @@ SparseVolume toSparse(const fs::path& path, const GridT& grid, const GridPlaceme
         tile.getBoundingBox(region);
         mark(region);
     }
+    // A tile stands for up to 4096^3 voxels in a few bytes of the file: the bricks that tiles and leaves
+    // fill, each read voxel by voxel and then stored, are counted and checked before any is read.
+    const auto filled = static_cast<std::uint64_t>(std::count(candidates.begin(), candidates.end(), 1));
+    if (const auto refusal =
+            sizeRefusal(path, sparse + ", the " + std::to_string(filled) + " bricks that its tiles and leaves fill",
+                        {filled, SparseVolume::kBlockVoxels, sizeof(T)}))
+        throw Error(*refusal);
     SparseVolume volume = SparseVolume::fromVoxels<T>(dims, background, candidates, [&] {
         return [accessor = grid.getConstAccessor(), boxMin](int x, int y, int z) mutable {
             return static_cast<T>(accessor.getValue(boxMin.offsetBy(x, y, z)));
