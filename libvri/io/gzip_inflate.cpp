@@ -4,6 +4,7 @@
 
 #include <zlib.h>
 
+#include "libvri/util/checked_size.h"
 #include "libvri/util/error.h"
 
 namespace vri::detail {
@@ -36,7 +37,7 @@ std::vector<std::byte> inflateFile(const fs::path& path, std::uintmax_t offset, 
     // Reserved, not resized: the untouched pages of the reservation take no memory; each step below
     // grows the buffer by what inflate may write next.
     std::vector<std::byte> out;
-    out.reserve(expectedBytes);
+    allocateOrExplain(where, expectedBytes, [&] { out.reserve(expectedBytes); });
     InflateStream stream(where);
     z_stream& z = stream.z;
     // One byte more than expected of room: a stream that fills it holds too much.

@@ -35,12 +35,12 @@ Volume readTiffStack(const fs::path& path) {
             throw Error(path.string() + ": pages of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
                         " pixels");
         // Pages may be compressed (deflate, LZW, PackBits): the file's size bounds what they plausibly hold.
+        const std::string what = path.string() + ": " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                                 std::to_string(dims.z) + " " + std::string(storedTypeName(type));
         voxelBytes = checkedUnpackedBytes(
-            path.string() + ": " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
-                std::to_string(dims.z) + " " + std::string(storedTypeName(type)),
-            {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), storedSize(type)},
+            what, {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), storedSize(type)},
             fs::file_size(path), "a file", kPlausibleCompressedExpansion);
-        voxels.reset(new char[voxelBytes]);
+        allocateOrExplain(what, voxelBytes, [&] { voxels.reset(new char[voxelBytes]); });
         return voxels.get();
     };
     requireModuleSuccess(oiioModule(path, "read a TIFF stack").readTiffStack(path, allocate));

@@ -22,6 +22,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 
+#include "libvri/io/vdb_file_extent.h"
 #include "libvri/io/vdb_grid_layout.h"
 #include "libvri/io/volume_formats.h"
 #include "libvri/io/volume_io.h"
@@ -344,16 +345,8 @@ public:
     }
 };
 
-}  // namespace
-
-Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName) {
-    LoadedVolume loaded = readVdb(path, gridName, VolumeStorage::Dense);
-    return std::move(*loaded.dense);
-}
-
-LoadedVolume readVdb(const fs::path& path, const std::optional<std::string>& gridName, VolumeStorage storage) {
-    detail::requireRegularFile(path);
-    initializeOpenVdb();
+// The grid as a volume, dense or sparse; OpenVDB's exceptions become vri::Error naming the file.
+LoadedVolume readGrid(const fs::path& path, const std::optional<std::string>& gridName, VolumeStorage storage) {
     try {
         const openvdb::GridBase::Ptr grid = readScalarGrid(path, gridName);
         const GridPlacement p = placement(path, *grid);
@@ -370,6 +363,20 @@ LoadedVolume readVdb(const fs::path& path, const std::optional<std::string>& gri
     } catch (const openvdb::Exception& e) {
         throw Error(path.string() + ": " + e.what());
     }
+}
+
+}  // namespace
+
+Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName) {
+    LoadedVolume loaded = readVdb(path, gridName, VolumeStorage::Dense);
+    return std::move(*loaded.dense);
+}
+
+LoadedVolume readVdb(const fs::path& path, const std::optional<std::string>& gridName, VolumeStorage storage) {
+    detail::requireRegularFile(path);
+    detail::requireWholeVdbFile(path);
+    initializeOpenVdb();
+    return detail::namingFileIfOutOfMemory(path, [&] { return readGrid(path, gridName, storage); });
 }
 
 void writeVdb(const fs::path& path, const Volume& volume) {

@@ -133,7 +133,10 @@ Volume readVoxelData(const fs::path& path, const VoxelData& data) {
         if (data.order != nativeByteOrder()) reverseEachVoxel(volume.bytes, voxelSize(volumeType));
         return volume;
     }
-    std::string bytes(checkedBytes(path.string() + ": " + layoutText, {*voxelBytes}), '\0');
+    const std::string what = path.string() + ": " + layoutText;
+    const std::size_t size = checkedBytes(what, {*voxelBytes});
+    std::string bytes;
+    allocateOrExplain(what, size, [&] { bytes.resize(size); });
     in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     if (!in) throw Error(path.string() + ": read failed");
     return decodeVoxels(path.string(), data.dims, data.type, data.order, bytes);
@@ -328,7 +331,7 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
         throw Error(path.string() + ": raw file of unknown layout: give its dims and voxel type (--dims X,Y,Z "
                     "--type uint8|uint16|float32) or name it NAME_XxYxZ_TYPE.raw");
     };
-    Volume volume = read();
+    Volume volume = detail::namingFileIfOutOfMemory(path, read);
     requireUsableValues(volume, path.string());
     return volume;
 }

@@ -5,9 +5,12 @@
 // asks for ("<what>: needs N bytes, limit M"). A wrapped product or a bare std::bad_alloc says neither.
 #include <cstdint>
 #include <initializer_list>
+#include <new>
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "libvri/util/error.h"
 
 namespace vri {
 
@@ -45,6 +48,25 @@ inline constexpr std::uint64_t kPlausibleCompressedExpansion = 256;
 inline constexpr std::uint64_t kPlausibleSparseExpansion = 1024;
 std::size_t checkedUnpackedBytes(const std::string& what, std::initializer_list<std::uint64_t> factors,
                                  std::uint64_t packedBytes, std::string_view packedWhat, std::uint64_t maxExpansion);
+
+// A size within the limit that the machine still cannot give (VRI_MAX_BYTES above its memory, a
+// ulimit, other processes): a bare std::bad_alloc would say neither what nor how much.
+class OutOfMemory : public Error {
+public:
+    using Error::Error;
+};
+
+// Runs allocate(), which allocates `bytes` for `what`; its std::bad_alloc becomes
+// OutOfMemory("<what>: needs N bytes: out of memory"). A reader that knows the file adds its name.
+template <class Allocate>
+decltype(auto) allocateOrExplain(const std::string& what, std::uint64_t bytes, Allocate&& allocate) {
+    try {
+        return allocate();
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(what + ": needs " + std::to_string(bytes) +
+                          " bytes: out of memory (VRI_MAX_BYTES below the free memory refuses such sizes before allocating)");
+    }
+}
 
 // For work estimated in floating point (a rate times a length): throws
 // vri::Error("<what>: needs N <unit>, limit M") unless 0 <= amount <= limit.

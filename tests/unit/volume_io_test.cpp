@@ -278,6 +278,31 @@ TEST_CASE("volume io: VDB errors name the file") {
                   {(dir / "v.vdb").string() + ":", "temperature", "density"});
 }
 
+TEST_CASE("volume io: a .vdb cut short anywhere is refused with one message naming where its bytes end") {
+    TempDir dir;
+    vri::writeVolume(dir / "v.vdb", testVolume({20, 12, 9}, vri::VoxelType::Float32));
+    const std::string whole = readBytes(dir / "v.vdb");
+    for (const std::size_t keep : {std::size_t(4), std::size_t(30), std::size_t(70), std::size_t(130),
+                                   whole.size() / 2, whole.size() - 1}) {
+        CAPTURE(keep);
+        writeBytes(dir / "cut.vdb", whole.substr(0, keep));
+        const std::string path = (dir / "cut.vdb").string();
+        const std::string message = errorOf([&] { vri::readVolume(path); });
+        // The same message every time: it comes from the file's length, not from what OpenVDB reads past it.
+        CHECK(errorOf([&] { vri::readVolume(path); }) == message);
+        if (keep < 8) {
+            CHECK(message == path + ": not a VDB file (its first 8 bytes are not OpenVDB's magic number)");
+            continue;
+        }
+        checkMentions(message, {path + ": cut short: ", "beyond the file's end (" + std::to_string(keep) + " bytes)"});
+    }
+    checkMentions(errorOf([&] {
+                      writeBytes(dir / "cut.vdb", whole.substr(0, whole.size() / 2));
+                      vri::readVolume(dir / "cut.vdb");
+                  }),
+                  {"grid 0 ends at byte " + std::to_string(whole.size())});
+}
+
 TEST_CASE("volume io: NRRD .nhdr write and read round trip") {
     TempDir dir;
     for (vri::VoxelType type : kAllTypes) {
