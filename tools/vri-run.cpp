@@ -362,6 +362,7 @@ SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
         if (!options.nodeCheck.empty()) return vri::runNodeCheck(options.nodeCheck);
         if (options.experiments.empty() && options.gallery.empty())
             throw vri::Error("nothing to do: name experiment files or --gallery DIR (see --help)");
+        vri::requireUtf8Arguments(argc, argv);  // the steps' commands and the manifest name these files
         return run(options);
     });
 }

@@ -20,6 +20,13 @@ small_machine=(bash -c 'ulimit -v 900000 && exec "$@"' small_machine)
 write_blob_scene
 "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o a.exr
 "$bin/vri-convert" -q blob_8x8x8_uint8.raw blob.vdb
+{
+  echo 'name: small'
+  echo 'title: One render'
+  echo 'paper: {paper: none, item: test, says: a test}'
+  echo 'scenes: {red: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [8, 6]}}'
+  echo 'methods: {riemann: {rate: 1}}'
+} > run.yaml
 "$python" - <<'PY'
 whole = open("blob.vdb", "rb").read()
 for name, keep in [("half.vdb", len(whole) // 2), ("last.vdb", len(whole) - 1), ("header.vdb", 30),
@@ -59,6 +66,7 @@ bad 64 "^vri-render: error: argument [0-9]+ 'v\\\\xE9\.raw' $U" -- \
 bad 64 "^vri-diff: error: argument [0-9]+ 'd\\\\xFF\.json' $U" -- "$bin/vri-diff" a.exr a.exr --json $'d\xff.json'
 bad 64 "^vri-merge-tiles: error: argument [0-9]+ 'm\\\\xFF\.exr' $U" -- \
   "$bin/vri-merge-tiles" --tile a.exr a.json -o $'m\xff.exr'
+bad 64 "^vri-run: error: argument [0-9]+ 'r\\\\xFF' $U" -- "$bin/vri-run" --results $'r\xff' --dry-run run.yaml
 
 # --- out of memory: the file or image and the size ---
 # (Not under AddressSanitizer, whose shadow memory needs more address space than the ulimit leaves.)
