@@ -221,6 +221,7 @@ int run(int argc, char** argv) {
         {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram}};
     vri::requireDistinctOutputs(outputs);
     vri::requireOutputsApartFromInputs(outputs, {{"A", options.a}, {"B", options.b}});
+    if (!options.json.empty()) vri::requireUtf8Arguments(argc, argv);
     // A file that cannot be read or written is guardedMain's failure, exit 1.
     const vri::Image a = vri::readImage(options.a);
     const vri::Image b = vri::readImage(options.b);

@@ -47,6 +47,7 @@ combined is null and named in "not_combined"; "tiles" lists each tile's files, r
 Outputs are written atomically, only once every check has passed.)");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
+    vri::requireUtf8Arguments(argc, argv);
     vri::requireExrOutput({"-o", output});
     const std::vector<vri::OutputArgument> outputs{{"-o", output}, {"--png", pngPath}, {"--stats", statsPath}};
     vri::requireDistinctOutputs(outputs);

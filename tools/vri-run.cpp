@@ -19,6 +19,7 @@
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
 #include "libvri/experiment/manifest.h"
+#include "libvri/experiment/plan_waves.h"
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_executor.h"
 #include "libvri/experiment/slurm_node.h"
@@ -235,10 +236,26 @@ int run(const Options& options) {
         runOptions.executor = vri::Executor::Slurm;
         runOptions.slurm = slurmOptions(options);
     }
+    // An experiment that reads another's results runs after it (plan_waves.h).
+    std::vector<std::string> names;
+    for (const vri::Experiment& experiment : experiments) names.push_back(experiment.source.string());
+    const std::vector<std::vector<std::size_t>> waves = vri::planWaves(plans, names);
     vri::FileHasher hasher;
     const bool onSlurm = !options.estimate && !options.dryRun && runOptions.executor == vri::Executor::Slurm;
-    if (onSlurm) reproduced = runOnSlurm(options, experiments, plans, runOptions, hasher, resultsRoot);
-    for (std::size_t e = 0; !onSlurm && e < plans.size(); ++e) {
+    // On Slurm each wave's jobs are submitted once the wave before has finished (its outputs are the next's inputs).
+    for (std::size_t w = 0; onSlurm && w < waves.size(); ++w) {
+        std::vector<vri::Experiment> waveExperiments;
+        std::vector<vri::Plan> wavePlans;
+        for (std::size_t e : waves[w]) {
+            waveExperiments.push_back(experiments[e]);
+            wavePlans.push_back(plans[e]);
+        }
+        reproduced = runOnSlurm(options, waveExperiments, wavePlans, runOptions, hasher, resultsRoot) && reproduced;
+    }
+    std::vector<std::size_t> order;
+    for (const std::vector<std::size_t>& wave : waves) order.insert(order.end(), wave.begin(), wave.end());
+    for (std::size_t k = 0; !onSlurm && k < order.size(); ++k) {
+        const std::size_t e = order[k];
         const vri::Experiment& experiment = experiments[e];
         const vri::Plan& plan = plans[e];
         if (options.estimate) {
@@ -345,6 +362,7 @@ SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
         if (!options.nodeCheck.empty()) return vri::runNodeCheck(options.nodeCheck);
         if (options.experiments.empty() && options.gallery.empty())
             throw vri::Error("nothing to do: name experiment files or --gallery DIR (see --help)");
+        vri::requireUtf8Arguments(argc, argv);  // the steps' commands and the manifest name these files
         return run(options);
     });
 }

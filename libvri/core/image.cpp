@@ -22,7 +22,8 @@ Image::Image(int w, int h, int n) : width(w), height(h), channels(n) {
     static const char* names[] = {"R", "G", "B", "A"};
     channelNames.clear();
     for (int c = 0; c < n; ++c) channelNames.push_back(c < 4 ? names[c] : "C" + std::to_string(c));
-    pixels.assign(bytes / sizeof(float), 0.0f);
+    allocateOrExplain("a " + std::to_string(w) + "x" + std::to_string(h) + " image", bytes,
+                      [&] { pixels.assign(bytes / sizeof(float), 0.0f); });
 }
 
 bool PixelRegion::inside(int w, int h) const {

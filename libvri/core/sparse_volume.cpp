@@ -33,10 +33,11 @@ void SparseVolume::allocateBlocks(std::size_t blocks) {
     if (blocks > std::numeric_limits<std::uint32_t>::max())
         throw Error(describe(dims, type) + ": " + std::to_string(blocks) + " bricks, more than a 32-bit table holds");
     // The blocks and the table together, as the byte count a dense volume is checked by.
-    checkedBytes(describe(dims, type) + " (" + std::to_string(blocks - 1) + " stored bricks of " +
-                     std::to_string(kBlock) + "^3 voxels and the brick table)",
-                 {std::uint64_t(blocks) * kBlockVoxels * voxelSize(type) + table_.size() * sizeof(std::uint32_t)});
-    voxels_.assign(blocks * kBlockVoxels * voxelSize(type), std::byte{0});
+    const std::string what = describe(dims, type) + " (" + std::to_string(blocks - 1) + " stored bricks of " +
+                             std::to_string(kBlock) + "^3 voxels and the brick table)";
+    const std::size_t bytes =
+        checkedBytes(what, {std::uint64_t(blocks) * kBlockVoxels * voxelSize(type) + table_.size() * sizeof(std::uint32_t)});
+    allocateOrExplain(what, bytes, [&] { voxels_.assign(blocks * kBlockVoxels * voxelSize(type), std::byte{0}); });
     blocks_ = blocks;
 }
 

@@ -13,11 +13,11 @@ Volume::Volume(glm::ivec3 d, VoxelType t) : dims(d), type(t) {
         throw Error("volume dimensions must be at least 1x1x1, got " + std::to_string(d.x) + "x" +
                     std::to_string(d.y) + "x" + std::to_string(d.z));
     // Checked before voxelCount() multiplies in size_t, where 2097152 x 2097152 x 4194304 wraps to 0.
-    const std::size_t size = checkedBytes(
-        "a " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z) + " " +
-            std::string(voxelTypeName(t)) + " volume",
-        {std::uint64_t(d.x), std::uint64_t(d.y), std::uint64_t(d.z), voxelSize(t)});
-    bytes.assign(size, std::byte{0});
+    const std::string what = "a " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z) +
+                             " " + std::string(voxelTypeName(t)) + " volume";
+    const std::size_t size =
+        checkedBytes(what, {std::uint64_t(d.x), std::uint64_t(d.y), std::uint64_t(d.z), voxelSize(t)});
+    allocateOrExplain(what, size, [&] { bytes.assign(size, std::byte{0}); });
 }
 
 std::size_t Volume::voxelCount() const {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 
+#include "libvri/io/plot_data_files.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/error.h"
 
@@ -229,6 +230,10 @@ void Planner::addFigure(const FigureSpec& figure) {
             throw Error(figure.dataAt + ": figure '" + figure.name + "' reads '" + file + "', which no step writes");
         step.inputs.push_back(path);
     }
+    // What the spec itself names is read too, wherever it lies (another experiment's results): the step's
+    // key and record cover it, and a step of this run that writes it runs first.
+    for (const fs::path& path : plotDataFiles(figure.spec, plan_.resultsDir))
+        if (std::find(step.inputs.begin(), step.inputs.end(), path) == step.inputs.end()) step.inputs.push_back(path);
     output(step, "-o", result(figure.name + ".png"));
     step.outputs.push_back(result(figure.name + ".svg"));  // vri-plot writes these beside the PNG
     step.outputs.push_back(result(figure.name + ".gp"));

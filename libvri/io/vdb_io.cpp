@@ -22,6 +22,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 
+#include "libvri/io/vdb_file_extent.h"
 #include "libvri/io/vdb_grid_layout.h"
 #include "libvri/io/volume_formats.h"
 #include "libvri/io/volume_io.h"
@@ -137,26 +138,12 @@ void copyToVolume(const fs::path& path, const openvdb::GridBase& grid, const ope
     openvdb::tools::copyToDense(typed, dense, /*serial=*/false);
 }
 
-// A sparse grid stores nothing for background voxels and one tile for a constant region, so its file
-// says little about its dense size; metadata claiming 1024^3 voxels in a 10 KB file is still far more
-// likely an error (or an attack) than a volume. Unless VRI_MAX_BYTES states the limit, a dense
-// volume may take 1024 times the file's bytes, or 256 MiB whatever the file.
-constexpr std::uint64_t kPlausibleExpansion = 1024;
-constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
-
-// Why `bytes` sized from the file's metadata are too many: over the byte limit (checked_size.h), or over
-// the plausible expansion of the file's size; nullopt when they are not.
+// Why `bytes` sized from the file's metadata are too many: over the byte limit, or over the plausible
+// expansion of the file's size (checked_size.h); nullopt when they are not.
 std::optional<std::string> sizeRefusal(const fs::path& path, const std::string& what,
                                        std::initializer_list<std::uint64_t> factors) {
     try {
-        const std::uint64_t bytes = checkedBytes(what, factors);
-        const std::uint64_t fileBytes = fs::file_size(path);
-        const std::uint64_t plausible =
-            std::max(kAlwaysPlausibleBytes, checkedProduct({fileBytes, kPlausibleExpansion}).value_or(UINT64_MAX));
-        if (bytes > plausible && !byteLimitIsExplicit())
-            return what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
-                   " for a file of " + std::to_string(fileBytes) + " bytes (" + std::to_string(kPlausibleExpansion) +
-                   " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)";
+        checkedUnpackedBytes(what, factors, fs::file_size(path), "a file", kPlausibleSparseExpansion);
         return std::nullopt;
     } catch (const Error& e) {
         return e.what();
@@ -259,9 +246,10 @@ SparseVolume toSparse(const fs::path& path, const GridT& grid, const GridPlaceme
     if constexpr (!std::is_same_v<T, typename GridT::ValueType>) requireRepresentable<T>(path, grid);
     const glm::ivec3 dims = p.layout.dims;
     const glm::ivec3 bricks = SparseVolume::bricksOf(dims);
-    const std::string what = boxDescription(path, p.source, dims, p.layout.type) + " kept sparse, its brick table";
-    if (const auto refusal = sizeRefusal(path, what, {std::uint64_t(bricks.x), std::uint64_t(bricks.y),
-                                                      std::uint64_t(bricks.z), sizeof(std::uint32_t)}))
+    const std::string sparse = boxDescription(path, p.source, dims, p.layout.type) + " kept sparse";
+    if (const auto refusal = sizeRefusal(path, sparse + ", its brick table",
+                                         {std::uint64_t(bricks.x), std::uint64_t(bricks.y), std::uint64_t(bricks.z),
+                                          sizeof(std::uint32_t)}))
         throw Error(*refusal);
     const T background = static_cast<T>(grid.background());
     std::vector<std::uint8_t> candidates(static_cast<std::size_t>(bricks.x) * bricks.y * bricks.z, 0);
@@ -291,6 +279,13 @@ SparseVolume toSparse(const fs::path& path, const GridT& grid, const GridPlaceme
         tile.getBoundingBox(region);
         mark(region);
     }
+    // A tile stands for up to 4096^3 voxels in a few bytes of the file: the bricks that tiles and leaves
+    // fill, each read voxel by voxel and then stored, are counted and checked before any is read.
+    const auto filled = static_cast<std::uint64_t>(std::count(candidates.begin(), candidates.end(), 1));
+    if (const auto refusal =
+            sizeRefusal(path, sparse + ", the " + std::to_string(filled) + " bricks that its tiles and leaves fill",
+                        {filled, SparseVolume::kBlockVoxels, sizeof(T)}))
+        throw Error(*refusal);
     SparseVolume volume = SparseVolume::fromVoxels<T>(dims, background, candidates, [&] {
         return [accessor = grid.getConstAccessor(), boxMin](int x, int y, int z) mutable {
             return static_cast<T>(accessor.getValue(boxMin.offsetBy(x, y, z)));
@@ -350,16 +345,8 @@ public:
     }
 };
 
-}  // namespace
-
-Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName) {
-    LoadedVolume loaded = readVdb(path, gridName, VolumeStorage::Dense);
-    return std::move(*loaded.dense);
-}
-
-LoadedVolume readVdb(const fs::path& path, const std::optional<std::string>& gridName, VolumeStorage storage) {
-    detail::requireRegularFile(path);
-    initializeOpenVdb();
+// The grid as a volume, dense or sparse; OpenVDB's exceptions become vri::Error naming the file.
+LoadedVolume readGrid(const fs::path& path, const std::optional<std::string>& gridName, VolumeStorage storage) {
     try {
         const openvdb::GridBase::Ptr grid = readScalarGrid(path, gridName);
         const GridPlacement p = placement(path, *grid);
@@ -376,6 +363,20 @@ LoadedVolume readVdb(const fs::path& path, const std::optional<std::string>& gri
     } catch (const openvdb::Exception& e) {
         throw Error(path.string() + ": " + e.what());
     }
+}
+
+}  // namespace
+
+Volume readVdb(const fs::path& path, const std::optional<std::string>& gridName) {
+    LoadedVolume loaded = readVdb(path, gridName, VolumeStorage::Dense);
+    return std::move(*loaded.dense);
+}
+
+LoadedVolume readVdb(const fs::path& path, const std::optional<std::string>& gridName, VolumeStorage storage) {
+    detail::requireRegularFile(path);
+    detail::requireWholeVdbFile(path);
+    initializeOpenVdb();
+    return detail::namingFileIfOutOfMemory(path, [&] { return readGrid(path, gridName, storage); });
 }
 
 void writeVdb(const fs::path& path, const Volume& volume) {

@@ -3,6 +3,7 @@
 // writeVolume dispatch to, and the small text helpers the header formats share.
 #include <cstdint>
 #include <filesystem>
+#include <new>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -11,6 +12,7 @@
 #include "libvri/core/volume.h"
 #include "libvri/io/stored_voxels.h"
 #include "libvri/io/volume_io.h"
+#include "libvri/util/checked_size.h"
 
 namespace vri::detail {
 
@@ -38,6 +40,22 @@ struct VoxelData {
 // The volume (voxel types converted as stored_voxels.h says) whose voxels `data` describes in `path`.
 // Sizes are checked against the file and the byte limit before anything is allocated.
 Volume readVoxelData(const std::filesystem::path& path, const VoxelData& data);
+
+// Runs read(), the reading of `path`: an OutOfMemory (checked_size.h) that does not name the file gets its
+// name in front, and a std::bad_alloc that no check explained (a library's own allocation) becomes
+// "PATH: out of memory while reading it".
+template <class Read>
+decltype(auto) namingFileIfOutOfMemory(const std::filesystem::path& path, Read&& read) {
+    try {
+        return read();
+    } catch (const OutOfMemory& e) {
+        const std::string what = e.what();
+        if (what.starts_with(path.string() + ":")) throw;
+        throw OutOfMemory(path.string() + ": " + what);
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(path.string() + ": out of memory while reading it");
+    }
+}
 
 // Throws "PATH: no such file" (or "is not a regular file") before a reader opens it.
 void requireRegularFile(const std::filesystem::path& path);

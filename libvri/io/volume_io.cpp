@@ -100,9 +100,19 @@ Volume readVoxelData(const fs::path& path, const VoxelData& data) {
         if (offset > fileBytes)
             throw Error(path.string() + ": file is " + std::to_string(fileBytes) + " bytes, its compressed data start at byte " +
                         std::to_string(offset));
-        checkedBytes(path.string() + ": " + layoutText, {*voxelBytes});
+        checkedUnpackedBytes(path.string() + ": " + layoutText, {*voxelBytes}, fileBytes - offset, "compressed data",
+                             kPlausibleCompressedExpansion);
+        std::vector<std::byte> bytes = inflateFile(path, offset, *voxelBytes, path.string() + ": gzip data of " + layoutText);
+        const VoxelType volumeType = volumeTypeFor(data.type);
+        if (storedTypeOf(volumeType) == data.type) {  // kept as stored: the inflated bytes become the volume
+            Volume volume;
+            volume.dims = data.dims;
+            volume.type = volumeType;
+            volume.bytes = std::move(bytes);
+            if (data.order != nativeByteOrder()) reverseEachVoxel(volume.bytes, voxelSize(volumeType));
+            return volume;
+        }
         // The output of a stored type that vri converts is a second buffer beside the volume.
-        const std::vector<std::byte> bytes = inflateFile(path, offset, *voxelBytes, path.string() + ": gzip data of " + layoutText);
         return decodeVoxels(path.string(), data.dims, data.type, data.order,
                             {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
     }
@@ -123,7 +133,10 @@ Volume readVoxelData(const fs::path& path, const VoxelData& data) {
         if (data.order != nativeByteOrder()) reverseEachVoxel(volume.bytes, voxelSize(volumeType));
         return volume;
     }
-    std::string bytes(checkedBytes(path.string() + ": " + layoutText, {*voxelBytes}), '\0');
+    const std::string what = path.string() + ": " + layoutText;
+    const std::size_t size = checkedBytes(what, {*voxelBytes});
+    std::string bytes;
+    allocateOrExplain(what, size, [&] { bytes.resize(size); });
     in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     if (!in) throw Error(path.string() + ": read failed");
     return decodeVoxels(path.string(), data.dims, data.type, data.order, bytes);
@@ -318,7 +331,7 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
         throw Error(path.string() + ": raw file of unknown layout: give its dims and voxel type (--dims X,Y,Z "
                     "--type uint8|uint16|float32) or name it NAME_XxYxZ_TYPE.raw");
     };
-    Volume volume = read();
+    Volume volume = detail::namingFileIfOutOfMemory(path, read);
     requireUsableValues(volume, path.string());
     return volume;
 }

@@ -68,7 +68,8 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
     }
     auto dense = std::make_shared<Volume>(readVolume(input, options));
     if (storage != VolumeStorage::Sparse) return {std::move(dense), nullptr};
-    auto sparse = std::make_shared<SparseVolume>(SparseVolume::fromDense(*dense));
+    auto sparse = std::make_shared<SparseVolume>(
+        detail::namingFileIfOutOfMemory(input, [&] { return SparseVolume::fromDense(*dense); }));
     return {nullptr, std::move(sparse)};
 }
 

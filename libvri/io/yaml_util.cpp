@@ -3,6 +3,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/eventhandler.h>
@@ -48,12 +49,12 @@ public:
     }
     void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
         node(mark, std::nullopt);
-        open_.push_back({});
+        open(mark, {});
     }
     void OnSequenceEnd() override { open_.pop_back(); }
     void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
         node(mark, std::nullopt);
-        open_.push_back({true, true, {}});
+        open(mark, {true, true, {}});
     }
     void OnMapEnd() override { open_.pop_back(); }
 
@@ -63,6 +64,17 @@ private:
         bool nextIsKey = true;            // mappings alternate key, value
         std::map<std::string, int> keys;  // scalar key -> its line (1-based)
     };
+
+    // yaml-cpp stops at 500 nested nodes with its message for an unreadable file, "bad file", at the end
+    // of the text; a collection nested deeper than any of vri's files needs is refused here first, where
+    // it starts.
+    void open(const YAML::Mark& mark, Collection collection) {
+        if (open_.size() == kMaxNesting)
+            throw Error(source_ + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1) +
+                        ": malformed YAML: collections nested deeper than " + std::to_string(kMaxNesting) +
+                        " levels, the limit");
+        open_.push_back(std::move(collection));
+    }
 
     // A node starts at `mark`; `scalar` is its text when it is a scalar (a key that can repeat).
     void node(const YAML::Mark& mark, const std::optional<std::string>& scalar) {
@@ -81,6 +93,7 @@ private:
                         ": duplicate key '" + *scalar + "' (first at line " + std::to_string(it->second) + ")");
     }
 
+    static constexpr std::size_t kMaxNesting = 200;
     const std::string& text_;
     const std::string& source_;
     int lastDocumentPos_ = -1;

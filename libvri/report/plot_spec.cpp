@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libvri/io/plot_data_files.h"
 #include "libvri/io/yaml_util.h"
 #include "libvri/report/plot.h"
 #include "libvri/report/plot_csv.h"
@@ -204,7 +205,7 @@ PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std:
     requireStyleKeys(node, src, what, series.style);
 
     const std::string file = yaml::toString(node["file"], src.name, what + ".file");
-    series.file = (fs::path(file).is_absolute() ? fs::path(file) : src.baseDir / file).lexically_normal();
+    series.file = plotDataPath(file, src.baseDir);
     if (!fs::is_regular_file(series.file))
         throw Error(src.at(node["file"]) + ": data file " + series.file.string() + " does not exist");
     findColumns(series, node, src, what);

@@ -79,6 +79,19 @@ std::size_t checkedBytes(const std::string& what, std::initializer_list<std::uin
     return static_cast<std::size_t>(*product);
 }
 
+std::size_t checkedUnpackedBytes(const std::string& what, std::initializer_list<std::uint64_t> factors,
+                                 std::uint64_t packedBytes, std::string_view packedWhat, std::uint64_t maxExpansion) {
+    const std::size_t bytes = checkedBytes(what, factors);
+    if (byteLimitIsExplicit()) return bytes;
+    const std::uint64_t plausible =
+        std::max(kAlwaysPlausibleBytes, checkedProduct({packedBytes, maxExpansion}).value_or(std::numeric_limits<std::uint64_t>::max()));
+    if (bytes > plausible)
+        throw Error(what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) + " for " +
+                    std::string(packedWhat) + " of " + std::to_string(packedBytes) + " bytes (" +
+                    std::to_string(maxExpansion) + " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)");
+    return bytes;
+}
+
 void requireWithin(const std::string& what, double amount, double limit, std::string_view unit) {
     if (amount >= 0.0 && amount <= limit) return;
     throw Error(what + ": needs " + (std::isfinite(amount) ? amountText(amount) : "unboundedly many") + " " +

@@ -5,9 +5,12 @@
 // asks for ("<what>: needs N bytes, limit M"). A wrapped product or a bare std::bad_alloc says neither.
 #include <cstdint>
 #include <initializer_list>
+#include <new>
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "libvri/util/error.h"
 
 namespace vri {
 
@@ -29,6 +32,41 @@ std::uint64_t checkedCount(const std::string& what, std::initializer_list<std::u
 // The product of `factors` as a byte count within byteLimit() (and within size_t); the message
 // names VRI_MAX_BYTES, the way to raise the limit.
 std::size_t checkedBytes(const std::string& what, std::initializer_list<std::uint64_t> factors);
+
+// Data that unpack (a deflate stream, a compressed TIFF page, a sparse grid's tiles) can claim far more
+// bytes than the file holds them in: 110 bytes of header claiming 4 GiB are far more likely an error or an
+// attack than a volume, and the claim alone must not make the reader allocate. So, unless VRI_MAX_BYTES
+// states the limit, the product of `factors` may be at most `maxExpansion` times the `packedBytes` it
+// unpacks from, or kAlwaysPlausibleBytes whatever those are; and always within checkedBytes' limit.
+// Throws vri::Error("<what>: needs N bytes, limit L for <packedWhat> of P bytes (R times its size or
+// 256 MiB; set VRI_MAX_BYTES to allow more)").
+inline constexpr std::uint64_t kAlwaysPlausibleBytes = std::uint64_t(1) << 28;
+// A deflate stream's ratio: zlib reaches 1032 on a run of zeros; real volumes stay far below 256 (the
+// test volumes 1 to 51).
+inline constexpr std::uint64_t kPlausibleCompressedExpansion = 256;
+// A sparse grid stores one tile for a constant region, so its file says little about its dense size.
+inline constexpr std::uint64_t kPlausibleSparseExpansion = 1024;
+std::size_t checkedUnpackedBytes(const std::string& what, std::initializer_list<std::uint64_t> factors,
+                                 std::uint64_t packedBytes, std::string_view packedWhat, std::uint64_t maxExpansion);
+
+// A size within the limit that the machine still cannot give (VRI_MAX_BYTES above its memory, a
+// ulimit, other processes): a bare std::bad_alloc would say neither what nor how much.
+class OutOfMemory : public Error {
+public:
+    using Error::Error;
+};
+
+// Runs allocate(), which allocates `bytes` for `what`; its std::bad_alloc becomes
+// OutOfMemory("<what>: needs N bytes: out of memory"). A reader that knows the file adds its name.
+template <class Allocate>
+decltype(auto) allocateOrExplain(const std::string& what, std::uint64_t bytes, Allocate&& allocate) {
+    try {
+        return allocate();
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory(what + ": needs " + std::to_string(bytes) +
+                          " bytes: out of memory (VRI_MAX_BYTES below the free memory refuses such sizes before allocating)");
+    }
+}
 
 // For work estimated in floating point (a rate times a length): throws
 // vri::Error("<what>: needs N <unit>, limit M") unless 0 <= amount <= limit.

@@ -4,10 +4,14 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <span>
 #include <string>
 #include <string_view>
+
+#include "libvri/util/sha512.h"
 
 namespace vri {
 
@@ -20,12 +24,35 @@ struct TemporaryName {
     std::string prefix, suffix;
 };
 
+// The longest file name Linux's file systems take (NAME_MAX), and the most digits a pid prints with.
+constexpr std::size_t kMaxNameBytes = 255;
+constexpr std::size_t kMaxPidDigits = 10;
+constexpr std::size_t kHashChars = 16;
+
 TemporaryName temporaryName(const fs::path& target) {
+    std::string stem = target.stem().string();
+    std::string extension = target.extension().string();
+    // ".", ".tmp.", the pid: up to 16 bytes more than the target's name, which a name of 240 to 255 bytes
+    // has no room for. Its stem is then cut to fit and followed by "~" and 16 hex digits of the SHA-512 of
+    // the whole name, so that two long names alike at the start keep their own temporary files; an
+    // extension too long to leave room for them (it names no format vri writes) is dropped as well.
+    const auto length = [&] { return 1 + stem.size() + 5 + kMaxPidDigits + extension.size(); };
+    if (length() > kMaxNameBytes) {
+        const std::string name = target.filename().string();
+        const std::string hash =
+            "~" + sha512Hex(std::as_bytes(std::span(name.data(), name.size()))).substr(0, kHashChars);
+        if (1 + hash.size() + 5 + kMaxPidDigits + extension.size() > kMaxNameBytes) extension.clear();
+        std::size_t keep = kMaxNameBytes - (1 + hash.size() + 5 + kMaxPidDigits + extension.size());
+        keep = std::min(keep, stem.size());
+        // Cut between characters, not inside a UTF-8 sequence (its continuation bytes are 10xxxxxx).
+        while (keep > 0 && keep < stem.size() && (static_cast<unsigned char>(stem[keep]) & 0xc0) == 0x80) --keep;
+        stem = stem.substr(0, keep) + hash;
+    }
     // Appended piece by piece: `"." + std::string` trips a false -Wrestrict in GCC 12.
     std::string prefix = ".";
-    prefix += target.stem().string();
+    prefix += stem;
     prefix += ".tmp.";
-    return {prefix, target.extension().string()};
+    return {prefix, extension};
 }
 
 bool processGone(pid_t pid) { return ::kill(pid, 0) != 0 && errno == ESRCH; }

@@ -1,6 +1,7 @@
 #pragma once
 // The temporary files writeAtomically writes through, by name: ".STEM.tmp.PID.EXT" beside the target
-// (STEM and EXT the target's, PID the writer's). A process ended by kill -9 or a power cut leaves its
+// (STEM and EXT the target's, PID the writer's; for a target name of more than 239 bytes, STEM is cut and
+// ends in "~" and 16 hex digits of the name's SHA-512, so that the name stays within 255 bytes). A process ended by kill -9 or a power cut leaves its
 // file there (a SIGINT, SIGTERM or SIGHUP removes it: atomic_file.cpp); its pid tells whether the
 // writer may still be at work.
 #include <sys/types.h>

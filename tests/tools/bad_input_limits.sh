@@ -71,7 +71,7 @@ bad 1 'raw.*file is 8 bytes, expected 1000000000000000000' -- "$bin/vri-convert"
 # The last resort: an allocation the limits allowed and the machine does not have. (Not under
 # AddressSanitizer, whose shadow memory needs more address space than the ulimit leaves.)
 if ! ldd "$bin/vri-render" | grep -q libasan; then
-  bad 1 '^vri-render: error: out of memory: the input asks for more memory than is available' -- bash -c \
+  bad 1 '^vri-render: error: a 60000x60000 image: needs 57600000000 bytes: out of memory' -- bash -c \
     'ulimit -v 4000000; VRI_MAX_BYTES=100000000000 exec "$0" --field linear --tf "$1" -q -o out.exr --size 60000x60000' "$bin/vri-render" "$tf"
 fi
 

@@ -84,6 +84,31 @@ TEST_CASE("checked size: work estimated in floating point") {
     CHECK_THROWS_AS(requireWithin("w", std::numeric_limits<double>::quiet_NaN(), 1e9, "samples"), Error);
 }
 
+TEST_CASE("checked size: unpacked bytes within a ratio of what they unpack from, or 256 MiB") {
+    if (!std::getenv("VRI_MAX_BYTES")) {
+        CHECK(checkedUnpackedBytes("v", {1024, 1024, 256}, 12, "compressed data", 256) == kAlwaysPlausibleBytes);
+        CHECK_THROWS_WITH_AS(checkedUnpackedBytes("v", {1024, 1024, 257}, 12, "compressed data", 256),
+                             "v: needs 269484032 bytes, limit 268435456 for compressed data of 12 bytes (256 times its "
+                             "size or 256 MiB; set VRI_MAX_BYTES to allow more)",
+                             Error);
+        // Past the floor the ratio rules: 2 MB compressed may unpack to 512 MB, not 513.
+        CHECK(checkedUnpackedBytes("v", {512000000}, 2000000, "a file", 256) == 512000000u);
+        CHECK_THROWS_WITH_AS(checkedUnpackedBytes("v", {512000001}, 2000000, "a file", 256),
+                             doctest::Contains("v: needs 512000001 bytes, limit 512000000 for a file of 2000000 bytes"),
+                             Error);
+        CHECK(checkedUnpackedBytes("v", {1024000000}, 1000000, "a file", 1024) == 1024000000u);
+        // A packed size whose ratio would wrap is no limit but the byte limit's.
+        CHECK(checkedUnpackedBytes("v", {std::uint64_t(1) << 34}, kMax, "a file", 1024) == std::size_t(1) << 34);
+        CHECK_THROWS_WITH_AS(checkedUnpackedBytes("v", {std::uint64_t(1) << 35}, kMax, "a file", 1024),
+                             "v: needs 34359738368 bytes, limit 17179869184 (VRI_MAX_BYTES)", Error);
+    }
+    // A stated limit is the only one.
+    const ByteLimitOverride limit("1000000000");
+    CHECK(checkedUnpackedBytes("v", {1000000000}, 1, "compressed data", 256) == 1000000000u);
+    CHECK_THROWS_WITH_AS(checkedUnpackedBytes("v", {1000000001}, 1, "compressed data", 256),
+                         "v: needs 1000000001 bytes, limit 1000000000 (VRI_MAX_BYTES)", Error);
+}
+
 TEST_CASE("checked size: volumes and images refuse sizes that wrap or exceed the limit before allocating") {
     CHECK_THROWS_WITH_AS(Volume(glm::ivec3(2097152, 2097152, 4194304), VoxelType::Float32),
                          "a 2097152x2097152x4194304 float32 volume: needs about 7.38e+19 bytes, limit 17179869184 "

@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include <unistd.h>
+#include <zlib.h>
 
 #include "file_bytes.h"
 #include "libvri/io/volume_io.h"
@@ -276,6 +278,31 @@ TEST_CASE("volume io: VDB errors name the file") {
                   {(dir / "v.vdb").string() + ":", "temperature", "density"});
 }
 
+TEST_CASE("volume io: a .vdb cut short anywhere is refused with one message naming where its bytes end") {
+    TempDir dir;
+    vri::writeVolume(dir / "v.vdb", testVolume({20, 12, 9}, vri::VoxelType::Float32));
+    const std::string whole = readBytes(dir / "v.vdb");
+    for (const std::size_t keep : {std::size_t(4), std::size_t(30), std::size_t(70), std::size_t(130),
+                                   whole.size() / 2, whole.size() - 1}) {
+        CAPTURE(keep);
+        writeBytes(dir / "cut.vdb", whole.substr(0, keep));
+        const std::string path = (dir / "cut.vdb").string();
+        const std::string message = errorOf([&] { vri::readVolume(path); });
+        // The same message every time: it comes from the file's length, not from what OpenVDB reads past it.
+        CHECK(errorOf([&] { vri::readVolume(path); }) == message);
+        if (keep < 8) {
+            CHECK(message == path + ": not a VDB file (its first 8 bytes are not OpenVDB's magic number)");
+            continue;
+        }
+        checkMentions(message, {path + ": cut short: ", "beyond the file's end (" + std::to_string(keep) + " bytes)"});
+    }
+    checkMentions(errorOf([&] {
+                      writeBytes(dir / "cut.vdb", whole.substr(0, whole.size() / 2));
+                      vri::readVolume(dir / "cut.vdb");
+                  }),
+                  {"grid 0 ends at byte " + std::to_string(whole.size())});
+}
+
 TEST_CASE("volume io: NRRD .nhdr write and read round trip") {
     TempDir dir;
     for (vri::VoxelType type : kAllTypes) {
@@ -341,6 +368,43 @@ TEST_CASE("volume io: NRRD headers from other programs") {
     text.insert(text.find("encoding"), "centers: node cell ???\n");
     writeBytes(dir / "centred.nrrd", text);
     CHECK(vri::readVolume(dir / "centred.nrrd").origin == glm::dvec3(10, 18.5, 28));
+}
+
+TEST_CASE("volume io: gzip NRRD reads back every kept type in either byte order, and a converted one") {
+    TempDir dir;
+    const auto deflated = [](const std::string& bytes) {
+        std::string packed(compressBound(bytes.size()), '\0');
+        uLongf size = packed.size();
+        REQUIRE(compress(reinterpret_cast<Bytef*>(packed.data()), &size,
+                         reinterpret_cast<const Bytef*>(bytes.data()), bytes.size()) == Z_OK);
+        packed.resize(size);
+        return packed;
+    };
+    for (const vri::VoxelType type : kAllTypes)
+        for (const char* endian : {"little", "big"}) {
+            CAPTURE(vri::voxelTypeName(type));
+            CAPTURE(endian);
+            // 40^3 voxels: more than one of the reader's steps of growth for 16- and 32-bit voxels.
+            const vri::Volume volume = testVolume({40, 40, 40}, type);
+            std::string bytes(reinterpret_cast<const char*>(volume.bytes.data()), volume.bytes.size());
+            const std::size_t voxel = vri::voxelSize(type);
+            if (std::string(endian) == "big")
+                for (std::size_t i = 0; i < bytes.size(); i += voxel) std::reverse(&bytes[i], &bytes[i] + voxel);
+            const std::string name = type == vri::VoxelType::UInt8    ? "uchar"
+                                     : type == vri::VoxelType::UInt16 ? "ushort"
+                                                                      : "float";
+            writeBytes(dir / "v.nrrd", "NRRD0004\ntype: " + name + "\ndimension: 3\nsizes: 40 40 40\nendian: " +
+                                           endian + "\nencoding: gzip\n\n" + deflated(bytes));
+            const vri::Volume read = vri::readVolume(dir / "v.nrrd");
+            CHECK(read.type == type);
+            CHECK(read.bytes == volume.bytes);
+        }
+    writeBytes(dir / "v.nrrd", "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 1 1\nendian: big\nencoding: gzip\n\n" +
+                                   deflated(std::string("\xfc\x18\x0b\xb8", 4)));
+    const vri::Volume int16 = vri::readVolume(dir / "v.nrrd");
+    CHECK(int16.type == vri::VoxelType::Float32);
+    CHECK(int16.value(0, 0, 0) == -1000);
+    CHECK(int16.value(1, 0, 0) == 3000);
 }
 
 TEST_CASE("volume io: NRRD types beyond uint8, uint16 and float32 become float32 by the stated rule") {

@@ -12,6 +12,7 @@
 #include "libvri/io/volume_io.h"
 #include "libvri/util/json_file.h"
 #include "libvri/util/same_file.h"
+#include "libvri/util/utf8.h"
 
 namespace vri {
 
@@ -60,6 +61,14 @@ std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc
         return kExitUsage;
     }
     return std::nullopt;
+}
+
+void requireUtf8Arguments(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i)
+        if (const auto at = firstInvalidUtf8(argv[i]))
+            throw UsageError("argument " + std::to_string(i) + " '" + escapeInvalidUtf8(argv[i]) +
+                             "' is not valid UTF-8 (byte " + std::to_string(*at) +
+                             "): the JSON record keeps the command line, and JSON holds UTF-8 text only");
 }
 
 std::string describeUnexpected(const std::exception& e) {

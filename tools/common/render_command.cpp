@@ -122,6 +122,7 @@ int RenderCommand::run() {
     return guardedMain(name_, [&] {
         std::optional<tbb::global_control> threadLimit;
         timing_.limitThreads(threadLimit);
+        requireUtf8Arguments(argc_, argv_);
         requireExrOutput({"-o", output_});
         if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
         const std::vector<OutputArgument> outputs{{"-o", output_},

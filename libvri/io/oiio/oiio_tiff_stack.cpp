@@ -45,21 +45,28 @@ std::string readTiffStack(const fs::path& path, const std::function<char*(const 
         shape.type = pageStoredType(path, first.format, readAs);
         while (in->seek_subimage(shape.pages, 0)) {
             const OIIO::ImageSpec& spec = in->spec();
-            if (spec.width != first.width || spec.height != first.height || spec.nchannels != 1 ||
-                spec.depth != 1 || spec.format != first.format)
+            if (spec.width != first.width || spec.height != first.height || spec.nchannels != 1 || spec.depth != 1 ||
+                spec.format != first.format)
                 throw Error(path.string() + ": page " + std::to_string(shape.pages) + " is " +
                             std::to_string(spec.width) + "x" + std::to_string(spec.height) + " " +
                             std::string(spec.format.c_str()) + " with " + std::to_string(spec.nchannels) +
-                            " channels, expected " + std::to_string(first.width) + "x" +
-                            std::to_string(first.height) + " " + std::string(first.format.c_str()) +
-                            " with one, as page 0");
+                            " channels, expected " + std::to_string(first.width) + "x" + std::to_string(first.height) +
+                            " " + std::string(first.format.c_str()) + " with one, as page 0");
             ++shape.pages;
         }
         char* voxels = allocate(shape);  // checks the pages' size against the limits before allocating
         const std::size_t pageBytes = std::size_t(shape.width) * std::size_t(shape.height) * readAs.size();
-        for (int z = 0; z < shape.pages; ++z)
-            if (!in->read_image(z, 0, 0, 1, readAs, voxels + std::size_t(z) * pageBytes))
+        // read_image succeeds on a page whose strips or tiles end early (libtiff reports a short read, the
+        // rest of the page stays as it was): the error that it leaves behind marks the page as bad. libtiff's
+        // warnings about a page's directory (an unknown tag) are errors to OpenImageIO too: they are dropped
+        // once the seek to the page has read it, so that only what the read itself reports counts.
+        for (int z = 0; z < shape.pages; ++z) {
+            if (!in->seek_subimage(z, 0))
                 throw Error(path.string() + ": page " + std::to_string(z) + ": " + oneLine(in->geterror()));
+            (void)in->geterror();
+            if (!in->read_image(z, 0, 0, 1, readAs, voxels + std::size_t(z) * pageBytes) || in->has_error())
+                throw Error(path.string() + ": page " + std::to_string(z) + ": " + oneLine(in->geterror()));
+        }
     });
 }
 
