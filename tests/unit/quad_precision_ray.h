@@ -2,7 +2,9 @@
 // The emission-absorption integral along vri's own ray, in quadruple precision (__float128,
 // libquadmath): an arbiter for the exact method's per-pixel bound that shares none of its code. The ray is
 // what vri makes of a pixel (camera, clipRay, Box::toTexture: entry and exit in texture coordinates and the
-// length in world units); from there everything is redone in 113-bit arithmetic: the cell faces the ray
+// length in world units; in a volume the line entry + phi delta of voxel-index coordinates that the exact
+// method forms from them in double, the ray it integrates along); from there everything is redone in
+// 113-bit arithmetic: the cell faces the ray
 // crosses, the trilinear interpolant along each cell piece (a cubic, from the corner values and the
 // weights), where it crosses each transfer-function point (bisection to the last bit), the optical depth
 // (the exact quartic) and the emission integral (Gauss-Legendre 10 against 20 on intervals across which
@@ -87,9 +89,10 @@ private:
         Quad x0[3], dx[3];
         std::vector<Quad> cuts = {0, 1};
         for (int a = 0; a < 3; ++a) {
-            const Quad scale = cell ? v.dims[a] : v.dims[a] - 1, offset = cell ? Quad(0.5) : 0;
-            x0[a] = Quad(uEntry[a]) * scale - offset;
-            dx[a] = (Quad(uExit[a]) - Quad(uEntry[a])) * scale;
+            const double scale = cell ? v.dims[a] : v.dims[a] - 1.0, offset = cell ? 0.5 : 0.0;
+            const double entry = uEntry[a] * scale - offset;
+            x0[a] = entry;
+            dx[a] = (uExit[a] * scale - offset) - entry;
             if (dx[a] == 0) continue;
             for (int k = 0; k <= v.dims[a] - 1; ++k) {
                 const Quad phi = (k - x0[a]) / dx[a];
