@@ -35,7 +35,7 @@ print(max(x + y for x, y in zip(a, b)))' loose.json render.json)  # the bounds o
     fail "stored_max is not the double's bound plus the float32 rounding: $(stat render.json 's["error_bound"]')"
 "$bin/vri-render" "${blob[@]}" --method exact --tolerance 1e-12 -o again.exr --error-image bound.exr
 printf 'points:\n  - [0.0, 0.0, 0.0, 0.0, 0.0]\n' > zero.yaml  # an image of zeros, to read the bounds through vri-diff
-"$bin/vri-render" "${blob[@]}" --tf zero.yaml --method exact -o zero.exr
+"$bin/vri-render" --volume blob_8x8x8_uint8.raw --spacing 1,0.75,1 --tf zero.yaml --size 40x30 -q --method exact -o zero.exr
 "$bin/vri-diff" bound.exr zero.exr --json diff.json > /dev/null || true
 python3 - render.json diff.json <<'PY' || fail "the error image's largest values are not stored_max"
 import json, sys
