@@ -286,18 +286,19 @@ ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a,
     WrongSide r;
     const double eps = 48.0 * kUnit * sScale;
     const std::size_t below = countAtMost(levels_, s(0.5 * (a + b)));  // levels <= s at the middle
+    const double sa = s(a), sb = s(b);
     for (int side = 0; side < 2; ++side) {
         // Side 0: the level under the segment (s must stay above it); side 1: the level over it.
         if (side == 0 ? below == 0 : below == levels_.size()) continue;
         const std::size_t i = side == 0 ? below - 1 : below;
         const double level = levels_[i];
         const bool above = side == 0;
-        auto near = [&](double x) { return !((above ? s(x) - level : level - s(x)) > 2.0 * eps); };
+        auto near = [&](double value) { return !((above ? value - level : level - value) > 2.0 * eps); };
         double width = 0.0;
-        if (near(a)) width += wrongSideWidth(s, a, b, level, above, eps);
-        if (near(b)) width += wrongSideWidth(s, b, a, level, above, eps);
+        if (near(sa)) width += wrongSideWidth(s, a, sa, b, level, above, eps);
+        if (near(sb)) width += wrongSideWidth(s, b, sb, a, level, above, eps);
         for (int k = 1; k < parts; ++k)
-            if (ends[k] > a && ends[k] < b && near(ends[k])) width = b - a;
+            if (ends[k] > a && ends[k] < b && near(s(ends[k]))) width = b - a;
         width = std::min(width, b - a);
         if (width == 0.0) continue;
         const LevelStep& step = steps_[i];
@@ -321,11 +322,12 @@ ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a,
     return r;
 }
 
-// The window around `at` (towards `into`) in which s may be on the wrong side of `level` (above: s must
-// exceed it), or the whole distance to `into` where no window can be shown (see wrongSide).
-double ExactRay::wrongSideWidth(const Cubic& s, double at, double into, double level, bool above, double eps) const {
+// The window around `at`, where s is sAt, (towards `into`) in which s may be on the wrong side of `level`
+// (above: s must exceed it), or the whole distance to `into` where no window can be shown (see wrongSide).
+double ExactRay::wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above,
+                                double eps) const {
     const double span = std::abs(into - at);
-    const double d0 = std::abs(s.derivative(at)), r = std::abs(s(at) - level);
+    const double d0 = std::abs(s.derivative(at)), r = std::abs(sAt - level);
     const double curvature = 2.0 * std::abs(s.c[2]) + 6.0 * std::abs(s.c[3]);
     const double w = 2.0 * (r + 3.0 * eps) / d0;
     if (!(w < span) || !(curvature * w <= 0.5 * d0)) return span;

@@ -88,7 +88,7 @@ private:
     bool doneAtDepth(double depth, double remainingLength) const;  // done() past terminationDepth_
     WrongSide wrongSide(double length, const Cubic& s, double a, double b, double sScale, int parts,
                         const double* ends) const;
-    double wrongSideWidth(const Cubic& s, double at, double into, double level, bool above, double eps) const;
+    double wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above, double eps) const;
     static Linear alongSegment(const Cubic& local, double sA, double v, double m, double ds);
     void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale, const WrongSide& wrong);
     SubPiece setUp(const Cubic& local, double ell, double sScale, const Segment& segment, bool withColour) const;
