@@ -18,7 +18,10 @@ constexpr vri::RenderCommandHelp kHelp{
 
 exact: the ray is split where the trilinear field changes form (voxel-index planes) and where it crosses a
 transfer-function point; on each piece the scalar, extinction and colour are cubics, the optical depth an
-exact quartic, and the outer integral adaptive Gauss-Kronrod. The stats give the error bound per channel.
+exact quartic, and the outer integral adaptive Gauss-Kronrod. The stats give the error bound per channel,
+for the double value; the EXR holds float32, which adds up to half an ulp of each value (often more than
+the bound): the stats' "stored_max" and --error-image bound the float32 value (the double's bound plus its
+rounding, rounded up).
 riemann: vri-render's Riemann sum, entry placement, double precision, --step in voxels.)"};
 
 }  // namespace

@@ -24,7 +24,9 @@ constexpr vri::RenderCommandHelp kHelp{
 
 exact: vri-reference's method (pieces on which the field is a cubic, Gauss-Kronrod quadrature), in double
 on the CPU; --tolerance is the error allowed per transfer-function piece (default 1e-7 for exact) and the
-stats give the per-pixel error bound ("error_bound": max and mean per channel).
+stats give the per-pixel error bound ("error_bound": max and mean per channel). The bound is for the double
+value; the EXR holds float32, which adds up to half an ulp of each value: "stored_max" and --error-image
+bound the float32 value (the double's bound plus its rounding).
 Steps are in voxels: --step h is --rate 1/h. Colours are in the TF's units, alpha = 1 - transparency
 (Simpson methods: alpha = the integral of extinction times transparency, paper B's fourth channel).
 A quadrature can return colour and alpha above 1: the Simpson methods overshoot on steep rises (decoupled

@@ -179,6 +179,25 @@ ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
     }
     segments_.push_back({points.front().s, channels(points.front()), {}});
     segments_.push_back({points.back().s, channels(points.back()), {}});
+    // Per level: the left limit is the first point at it, the value from it on the last (right-continuous);
+    // the segments beside it are the one ending at its first point and the one starting at its last.
+    for (const auto& p : points)
+        for (int k = 0; k < 4; ++k) channelMax_[k] = std::max(channelMax_[k], channels(p)[k]);
+    for (std::size_t i = 0, first = 0; i < levels_.size(); ++i) {
+        std::size_t last = first;
+        while (last + 1 < points.size() && points[last + 1].s == levels_[i]) ++last;
+        const auto left = channels(points[first]), right = channels(points[last]);
+        LevelStep step;
+        for (int k = 0; k < 4; ++k) {
+            step.jump[k] = std::abs(right[k] - left[k]);
+            step.slope[k] = std::max(first > 0 ? std::abs(segments_[first - 1].slope[k]) : 0.0,
+                                     last + 1 < points.size() ? std::abs(segments_[last].slope[k]) : 0.0);
+            step.high[k] = std::max(left[k], right[k]);
+        }
+        step.gap = std::min(i > 0 ? levels_[i] - levels_[i - 1] : inf, i + 1 < levels_.size() ? levels_[i + 1] - levels_[i] : inf);
+        steps_.push_back(step);
+        first = last + 1;
+    }
     if (tolerance >= kGaussTolerance) batch_ = std::make_unique<GaussBatch>();
 }
 
@@ -195,12 +214,13 @@ bool ExactRay::invisible(double s0, double s1) const {
 
 void ExactRay::begin() {
     queued_ = 0;
-    opticalDepth_ = depthError_ = 0.0;
+    opticalDepth_ = depthError_ = lengthWalked_ = 0.0;
     colour_ = quadratureError_ = roundingError_ = {};
 }
 
 void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     if (!(length > 0.0)) return;
+    lengthWalked_ += length;
     double ends[4] = {0.0}, values[4];
     // Where s' = c1 + 2 c2 x + 3 c3 x^2 cannot vanish on [0, 1], |c1| > |2 c2| + |3 c3| (with room for
     // the rounding of that test), s is monotone on the piece: no critical points to solve for, as on most
@@ -238,7 +258,81 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     }
     splits_.push_back(1.0);
     for (std::size_t i = 0; i + 1 < splits_.size(); ++i)
-        if (splits_[i + 1] > splits_[i]) integrateSubPiece(length, s, splits_[i], splits_[i + 1], sScale);
+        if (splits_[i + 1] > splits_[i]) {
+            const WrongSide wrong = wrongSide(length, s, splits_[i], splits_[i + 1], sScale, parts, ends);
+            integrateSubPiece(length, s, splits_[i], splits_[i + 1], sScale, wrong);
+        }
+}
+
+// Where s may lie beyond its segment. A sub-piece [a, b] is integrated with the TF segment [L_lo, L_hi]
+// that holds s at its middle, but s is only known to eps = 48 u sScale (its coefficients to 32 u sScale,
+// see below, and Horner's evaluation to 8 u sScale) and a split to where the computed s crosses the level
+// to an ulp: wherever the computed s comes within 2 eps of L_lo or L_hi, the exact s may be on the other
+// side. Nearest a level the computed s is at the sub-piece's ends and at the critical points inside it
+// (between them it is monotone): each of these within 2 eps of a level is a place where s may be on the
+// wrong side. Around an end the place is a window: with d0 = |s'| there and |s''| <= M2 = 2|c2| + 6|c3|,
+// s' keeps its sign and |s'| >= d0 / 2 over w = 2 (r + 3 eps) / d0 (r the end's distance from the level)
+// when M2 w <= d0 / 2, so s has left the level by more than 2 eps at the window's far side (checked), and
+// beyond it until the next critical point or end (checked as well). Where that cannot be shown (s nearly
+// tangent to the level, or constant on it), and around a critical point, the whole sub-piece.
+// On such a place |s - L| <= 4 eps, so the value used there (the segment's v + m (s - s_A)) and the TF's
+// differ per channel by at most the jump at L plus 8 eps times the steeper slope beside it, and the TF's
+// value is at most the larger value at L plus that (levels closer than 8 eps: the TF's largest value).
+// Over a width w in the piece that changes the optical depth by length w dtau and g by dg (g = C tau:
+// dC (tau_high + dtau) + (C_high + dC) dtau); a misplaced jump is the jump's height over w, a misplaced
+// kink only the slopes over 8 eps, which on ordinary scenes adds nothing visible to the bound.
+ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a, double b, double sScale, int parts,
+                                        const double* ends) const {
+    WrongSide r;
+    const double eps = 48.0 * kUnit * sScale;
+    const std::size_t below = countAtMost(levels_, s(0.5 * (a + b)));  // levels <= s at the middle
+    const double sa = s(a), sb = s(b);
+    for (int side = 0; side < 2; ++side) {
+        // Side 0: the level under the segment (s must stay above it); side 1: the level over it.
+        if (side == 0 ? below == 0 : below == levels_.size()) continue;
+        const std::size_t i = side == 0 ? below - 1 : below;
+        const double level = levels_[i];
+        const bool above = side == 0;
+        auto near = [&](double value) { return !((above ? value - level : level - value) > 2.0 * eps); };
+        double width = 0.0;
+        if (near(sa)) width += wrongSideWidth(s, a, sa, b, level, above, eps);
+        if (near(sb)) width += wrongSideWidth(s, b, sb, a, level, above, eps);
+        for (int k = 1; k < parts; ++k)
+            if (ends[k] > a && ends[k] < b && near(s(ends[k]))) width = b - a;
+        width = std::min(width, b - a);
+        if (width == 0.0) continue;
+        const LevelStep& step = steps_[i];
+        const bool apart = step.gap > 8.0 * eps;
+        double change[4], high[4];
+        for (int k = 0; k < 4; ++k) {
+            change[k] = apart ? step.jump[k] + 8.0 * eps * step.slope[k] : channelMax_[k];
+            high[k] = apart ? step.high[k] + 8.0 * eps * step.slope[k] : channelMax_[k];
+        }
+        const double span = length * width;
+        r.depth += span * change[0];
+        for (int c = 0; c < 3; ++c) {
+            const double dg = emission_ == EmissionModel::ColourTimesExtinction
+                                  ? change[c + 1] * (high[0] + change[0]) + (high[c + 1] + change[c + 1]) * change[0]
+                                  : change[c + 1];
+            r.colour[c] += span * dg;
+            r.seen[c] += span * (emission_ == EmissionModel::ColourTimesExtinction ? (high[c + 1] + change[c + 1]) * (high[0] + change[0])
+                                                                                   : high[c + 1] + change[c + 1]);
+        }
+    }
+    return r;
+}
+
+// The window around `at`, where s is sAt, (towards `into`) in which s may be on the wrong side of `level`
+// (above: s must exceed it), or the whole distance to `into` where no window can be shown (see wrongSide).
+double ExactRay::wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above,
+                                double eps) const {
+    const double span = std::abs(into - at);
+    const double d0 = std::abs(s.derivative(at)), r = std::abs(sAt - level);
+    const double curvature = 2.0 * std::abs(s.c[2]) + 6.0 * std::abs(s.c[3]);
+    const double w = 2.0 * (r + 3.0 * eps) / d0;
+    if (!(w < span) || !(curvature * w <= 0.5 * d0)) return span;
+    const double far = s(into > at ? at + w : at - w);
+    return (above ? far - level : level - far) > 2.0 * eps ? w : span;
 }
 
 // Error analysis. The result is exact for the model (trilinear field, piecewise-linear TF, along the
@@ -267,7 +361,14 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
 //    continuous, the TF may jump), and with g = C tau never more than 2 C_max T (what any part can add).
 //  - the quadrature sums and the running colour sum: 32 u of each term, u of the sum per add.
 // Every bound is a sum of non-negative terms evaluated in double; its own rounding is irrelevant.
-void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale) {
+void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale,
+                                 const WrongSide& wrong) {
+    // Where s may be beyond the segment: the depth from here on is uncertain by wrong.depth more, and the
+    // colour by wrong.colour plus what the true emission there, at most C_high tau_high, may see of the
+    // depth's uncertainty (the sum of the sub-piece covers the used emission's).
+    depthError_ += wrong.depth;
+    std::array<double, 3> wrongColour = wrong.colour;
+    for (int c = 0; c < 3; ++c) wrongColour[c] += wrong.seen[c] * depthError_;
     // The TF segment [A, B] the sub-piece lies in (constant beyond the ends; right-continuous at jumps).
     const auto& points = tf_.points();
     const double sMid = s(0.5 * (a + b));
@@ -284,8 +385,15 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     const TransferFunctionPoint& B = points[iB];
     const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
     if (A.tau == 0.0 && B.tau == 0.0 &&
-        (colourTimesExtinction || (A.r == 0.0 && A.g == 0.0 && A.b == 0.0 && B.r == 0.0 && B.g == 0.0 && B.b == 0.0)))
-        return;  // adds exactly nothing and multiplies the transparency by exactly 1
+        (colourTimesExtinction || (A.r == 0.0 && A.g == 0.0 && A.b == 0.0 && B.r == 0.0 && B.g == 0.0 && B.b == 0.0))) {
+        // Adds exactly nothing and multiplies the transparency by exactly 1, but where s may be beyond
+        // the segment the TF may not be zero.
+        if (wrong.depth > 0.0 || wrongColour[0] > 0.0 || wrongColour[1] > 0.0 || wrongColour[2] > 0.0) {
+            const double front = std::exp(-(opticalDepth_ - depthError_));
+            for (int c = 0; c < 3; ++c) roundingError_[c] += front * wrongColour[c];
+        }
+        return;
+    }
     ++subPieces;
 
     // Everything as polynomials in lambda in [0, 1] over the sub-piece.
@@ -310,11 +418,12 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
         q.depthInFront[j] = opticalDepth_;
         queuedLength_[j] = length;
         queuedDepthError_[j] = depthErrorInFront;
+        queuedWrongSide_[j] = wrongColour;
     } else {
         double sum[3] = {}, error[3] = {}, rounding[3] = {};
         const double front = std::exp(-opticalDepth_);
         adaptiveQuadrature(piece, front, sum, error, rounding);
-        accumulate(front, depthErrorInFront, sum, error, rounding, piece.gMax, length);
+        accumulate(front, depthErrorInFront, sum, error, rounding, piece.gMax, length, wrongColour);
     }
     opticalDepth_ += horner(piece.depth, 1.0);
     depthError_ += piece.depthError + length * 4.0 * kUnit * piece.tau.sum + kUnit * opticalDepth_;
@@ -362,7 +471,7 @@ void ExactRay::flush() {
             const double error[3] = {q.error[0][j], q.error[1][j], q.error[2][j]};
             const double rounding[3] = {q.rounding[0][j], q.rounding[1][j], q.rounding[2][j]};
             const double gMax[3] = {q.gMax[0][j], q.gMax[1][j], q.gMax[2][j]};
-            accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, gMax, queuedLength_[j]);
+            accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, gMax, queuedLength_[j], queuedWrongSide_[j]);
         } else {  // no Gauss rule within reach
             const Cubic local{{q.c[0][j], q.c[1][j], q.c[2][j], q.c[3][j]}};
             const Segment segment{q.segmentS[j],
@@ -371,7 +480,8 @@ void ExactRay::flush() {
             const SubPiece piece = setUp(local, q.ell[j], q.sScale[j], segment, true);
             double sum[3] = {}, error[3] = {}, rounding[3] = {};
             adaptiveQuadrature(piece, q.front[j], sum, error, rounding);
-            accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, piece.gMax, queuedLength_[j]);
+            accumulate(q.front[j], queuedDepthError_[j], sum, error, rounding, piece.gMax, queuedLength_[j],
+                       queuedWrongSide_[j]);
         }
     }
     queued_ = 0;
@@ -420,8 +530,10 @@ void ExactRay::adaptiveQuadrature(const SubPiece& piece, double front, double su
         const bool last = iv.depth >= kMaxDepth || intervals >= kMaxIntervals;
         const double d0 = horner(depth, iv.x0), d1 = horner(depth, iv.x1);
         const double dd0 = iv.x0 * depthError, dd1 = iv.x1 * depthError;
-        // The depth grows along the interval: the transparency on it is at most tHigh.
-        const double tHigh = iv.x0 == 0.0 ? 1.0 : std::exp(-(d0 - dd0));
+        // The depth grows along the interval: the transparency on it is at most tHigh. The exact depth
+        // never falls (tau >= 0), so no transparency after the sub-piece's start exceeds 1, whatever the
+        // depth's error (a huge one made exp(-(d0 - dd0)) inf, and 0 times it NaN).
+        const double tHigh = iv.x0 == 0.0 ? 1.0 : std::min(1.0, std::exp(-(d0 - dd0)));
         if (d1 - d0 <= kResolvedDepth) {
             double K[3], G[3], e[3], worst = 0.0;
             if (lowOrder_)
@@ -445,7 +557,8 @@ void ExactRay::adaptiveQuadrature(const SubPiece& piece, double front, double su
         } else {
             double cLow[3], cHigh[3];
             for (int c = 0; c < 3; ++c) range(colour[c], iv.x0, iv.x1, cLow[c], cHigh[c]);
-            const double tLow0 = std::exp(-(d0 + dd0)), tHigh1 = std::exp(-(d1 - dd1)), tLow1 = std::exp(-(d1 + dd1));
+            const double tLow0 = std::exp(-(d0 + dd0)), tHigh1 = std::min(1.0, std::exp(-(d1 - dd1))),
+                         tLow1 = std::exp(-(d1 + dd1));
             const double fLow = colourTimesExtinction ? std::max(0.0, tLow0 - tHigh1) : ell * width * tLow1;
             const double fHigh = colourTimesExtinction ? tHigh - tLow1 : ell * width * tHigh;
             double lo[3], hi[3], worst = 0.0;
@@ -471,14 +584,15 @@ void ExactRay::adaptiveQuadrature(const SubPiece& piece, double front, double su
 }
 
 void ExactRay::accumulate(double front, double depthErrorInFront, const double sum[3], const double error[3],
-                          const double rounding[3], const double gMax[3], double length) {
+                          const double rounding[3], const double gMax[3], double length,
+                          const std::array<double, 3>& wrong) {
     const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
     const double frontError = depthErrorInFront + 2.0 * kUnit;  // relative, of `front`
     for (int c = 0; c < 3; ++c) {
         colour_[c] += front * sum[c];
         quadratureError_[c] += front * error[c];
-        const double sliver = std::min(4.0 * kUnit * length * gMax[c],
-                                       colourTimesExtinction ? 2.0 * maxColour_[c] : gMax[c] * length);
+        const double sliver = std::min(4.0 * kUnit * length * gMax[c] + wrong[c],
+                                       colourTimesExtinction ? 2.0 * maxColour_[c] : gMax[c] * length + wrong[c]);
         roundingError_[c] += front * (rounding[c] + (std::abs(sum[c]) + error[c]) * frontError + sliver) +
                              kUnit * std::abs(colour_[c]);
     }
@@ -496,10 +610,13 @@ void ExactRay::finish(double remainingLength, double value[4], double bound[4]) 
         const double tail = cut ? transparencyHigh * maxColour_[c] * (colourTimesExtinction ? 1.0 : remainingLength)
                                 : 0.0;
         bound[c] = quadratureError_[c] + roundingError_[c] + tail;
-        // With g = C tau the exact colour lies in [0, C_max] whatever the extinction: a bound never
-        // needs to exceed the distance to the farther end (this also replaces an overflowed one).
-        const double widest = std::max(std::abs(value[c]), std::abs(maxColour_[c] - value[c]));
-        if (colourTimesExtinction && !(bound[c] <= widest)) bound[c] = widest;
+        // The exact colour lies in [0, C_max] with g = C tau, in [0, C_max L] with g = C (T <= 1; L the
+        // length of the pieces walked and cut off, the ray's only parts where g may be non-zero) whatever
+        // the extinction: a bound never needs to exceed the distance to the farther end (this also
+        // replaces an overflowed one).
+        const double most = maxColour_[c] * (colourTimesExtinction ? 1.0 : lengthWalked_ + remainingLength);
+        const double widest = std::max(std::abs(value[c]), std::abs(most - value[c]));
+        if (!(bound[c] <= widest)) bound[c] = widest;
     }
     value[3] = -std::expm1(-opticalDepth_);  // 1 - T, accurate for thin media too
     bound[3] = transparencyHigh * depthError_ + kUnit * value[3] + (cut ? transparencyHigh : 0.0);

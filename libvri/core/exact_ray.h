@@ -72,13 +72,31 @@ private:
         double depthError;            // bound on the depth's error at lambda = 1 (lambda times it at lambda)
     };
 
+    // What a split at TF level i can change where rounding puts s on its wrong side (exact_ray.cpp):
+    // per channel (tau, R, G, B) the jump across the level, the steeper slope of the two segments
+    // beside it and the larger value at it; `gap` the distance to the nearest other level.
+    struct LevelStep {
+        std::array<double, 4> jump, slope, high;
+        double gap;
+    };
+    // Per sub-piece, in units of the transparency in front of it: the optical depth and the colour that
+    // the parts of it where s may lie beyond its segment can change (exact_ray.cpp, "wrong side").
+    struct WrongSide {
+        double depth = 0.0;
+        std::array<double, 3> colour{};
+        std::array<double, 3> seen{};  // the width times the TF's largest emission there
+    };
+
     bool doneAtDepth(double depth, double remainingLength) const;  // done() past terminationDepth_
+    WrongSide wrongSide(double length, const Cubic& s, double a, double b, double sScale, int parts,
+                        const double* ends) const;
+    double wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above, double eps) const;
     static Linear alongSegment(const Cubic& local, double sA, double v, double m, double ds);
-    void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale);
+    void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale, const WrongSide& wrong);
     SubPiece setUp(const Cubic& local, double ell, double sScale, const Segment& segment, bool withColour) const;
     void adaptiveQuadrature(const SubPiece& piece, double front, double sum[3], double error[3], double rounding[3]);
     void accumulate(double front, double depthErrorInFront, const double sum[3], const double error[3],
-                    const double rounding[3], const double gMax[3], double length);
+                    const double rounding[3], const double gMax[3], double length, const std::array<double, 3>& wrong);
     void flush();  // integrates the queued sub-pieces, in order
 
     const TransferFunction& tf_;
@@ -91,6 +109,8 @@ private:
     double largestColour_;         // max(1, C_max over channels): what bounds a tail per unit T
     std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
     std::vector<double> levels_;   // the distinct s of the TF points: where a piece is split
+    std::vector<LevelStep> steps_;  // per level
+    std::array<double, 4> channelMax_{};  // the largest tau, R, G, B of the TF
     std::vector<double> splits_;   // scratch: a piece's split points in sigma
     std::vector<std::pair<double, double>> invisibleSpans_;  // closed spans of s where the TF is zero
     // Segment i < n - 1 runs from point i to point i + 1; n - 1 and n are the constants below the first
@@ -100,6 +120,7 @@ private:
 
     // The ray so far.
     double opticalDepth_ = 0.0, depthError_ = 0.0;
+    double lengthWalked_ = 0.0;  // of the pieces given to addPiece: the rest of the ray's segment has g = 0
     std::array<double, 3> colour_{}, quadratureError_{}, roundingError_{};
 
     // From kGaussTolerance up: the sub-pieces waiting for their Gauss rules, with what the ray needs of
@@ -107,6 +128,7 @@ private:
     std::unique_ptr<GaussBatch> batch_;
     int queued_ = 0;
     std::array<double, GaussBatch::kCapacity> queuedLength_, queuedDepthError_;
+    std::array<std::array<double, 3>, GaussBatch::kCapacity> queuedWrongSide_;
 };
 
 }  // namespace vri

@@ -307,6 +307,14 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
     });
 }
 
+// A bound on |float(value) - exact| from the double's bound: plus the rounding |float(v) - v| (exact in
+// double: the two are within a factor 2, Sterbenz), the sum rounded up to the next float.
+float storedValueBound(double value, double bound) {
+    const double total = bound + std::abs(static_cast<double>(static_cast<float>(value)) - value);
+    const float f = static_cast<float>(total);
+    return static_cast<double>(f) >= total ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+}
+
 Image toImage(const std::vector<double>& v, int width, int height) {
     Image image(width, height);
     std::transform(v.begin(), v.end(), image.pixels.begin(), [](double x) { return static_cast<float>(x); });
@@ -317,7 +325,12 @@ Image toImage(const std::vector<double>& v, int width, int height) {
 
 Image ExactReference::image() const { return toImage(values, width, height); }
 
-Image ExactReference::boundImage() const { return toImage(bounds, width, height); }
+Image ExactReference::boundImage() const {
+    Image image(width, height);
+    for (std::size_t i = 0; i < values.size(); ++i)
+        image.pixels[i] = storedValueBound(values[i], bounds[i]);
+    return image;
+}
 
 ExactReference renderExactReference(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options,
                                     OccupancyCache* cache) {
@@ -409,6 +422,9 @@ void renderExactReference(const Scene& scene, const Camera& camera, const ExactR
         for (std::size_t i = c; i < n; i += 4) {
             st.maxBound[c] = std::max(st.maxBound[c], out.bounds[i]);
             sum += out.bounds[i];
+            const double rounding = std::abs(static_cast<double>(static_cast<float>(out.values[i])) - out.values[i]);
+            st.maxFloatRounding[c] = std::max(st.maxFloatRounding[c], rounding);
+            st.maxStoredBound[c] = std::max(st.maxStoredBound[c], static_cast<double>(storedValueBound(out.values[i], out.bounds[i])));
         }
         st.meanBound[c] = sum / static_cast<double>(st.rays);
     }

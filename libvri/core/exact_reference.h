@@ -51,8 +51,13 @@ struct ExactReferenceStats {
     double setupSeconds = 0.0;  // building the empty space (exact_empty_space.h), this frame or an earlier one
     bool setupReused = false;   // the empty space came from an earlier frame (occupancy_cache.h)
     int threads = 0;
-    // Per channel R, G, B, A over all pixels: the largest and the mean error bound.
+    // Per channel R, G, B, A over all pixels: the largest and the mean error bound. These bound the
+    // values in double (ExactReference::values), before any rounding to float32.
     std::array<double, 4> maxBound{}, meanBound{};
+    // Per channel: the largest rounding of a value to float32 (|float(v) - v|, at most half an ulp of
+    // the float), and the largest bound on the float32 value's error, bound + that rounding (what
+    // ExactReference::image() and boundImage() hold).
+    std::array<double, 4> maxFloatRounding{}, maxStoredBound{};
 };
 
 // The result in double, pixel-interleaved RGBA with row 0 at the top like render()'s Image, and for
@@ -63,8 +68,10 @@ struct ExactReference {
     std::vector<double> bounds;  // width * height * 4
     ExactReferenceStats stats;
 
-    Image image() const;       // the values as float RGBA (rounding to float dwarfs the bound)
-    Image boundImage() const;  // the bounds as float, channels R, G, B, A
+    Image image() const;  // the values as float RGBA (its rounding often exceeds the double's bound)
+    // A bound on each of image()'s values, channels R, G, B, A: the double's bound plus its rounding to
+    // float32, rounded up to a float (so it bounds what the EXR holds, not just the double).
+    Image boundImage() const;
 };
 
 // The same rays as render(scene, camera, ...). With a cache, the empty space of an earlier frame of

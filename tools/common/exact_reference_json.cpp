@@ -15,8 +15,18 @@ nlohmann::json toJson(const ExactReferenceStats& s) {
             {"sub_pieces", s.subPieces},
             {"quadrature_intervals", s.quadratureIntervals},
             {"quadrature_nodes", s.quadratureNodes},
-            // Per channel R, G, B, A, over all pixels (rays that miss the box have bound 0).
-            {"error_bound", {{"channels", {"R", "G", "B", "A"}}, {"max", s.maxBound}, {"mean", s.meanBound}}}};
+            // Per channel R, G, B, A, over all pixels (rays that miss the box have bound 0): max and mean
+            // bound the values in double; the EXR's float32 values add their rounding (stored_max, what
+            // --error-image holds per pixel).
+            {"error_bound",
+             {{"channels", {"R", "G", "B", "A"}},
+              {"applies_to", "double value before float32 rounding"},
+              {"max", s.maxBound},
+              {"mean", s.meanBound},
+              {"float32_rounding_max", s.maxFloatRounding},
+              {"stored_max", s.maxStoredBound},
+              {"error_image", "bound on the stored float32 value: the double's bound plus its float32 rounding, "
+                              "rounded up"}}}};
 }
 
 }  // namespace vri

@@ -97,7 +97,9 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
     app_.add_option("-o,--output", output_, "output image (.exr: float RGBA)")->required();
     app_.add_option("--png", pngPath_, "8-bit preview PNG");
     preview_.addTo(app_);
-    app_.add_option("--error-image", errorImagePath_, "exact: per-pixel error bounds as float RGBA OpenEXR");
+    app_.add_option("--error-image", errorImagePath_,
+                    "exact: per-pixel error bounds as float RGBA OpenEXR, each bounding the EXR's float32 value (the "
+                    "double's bound plus its float32 rounding, rounded up)");
     app_.add_option("--stats", statsPath_, "write statistics and provenance as JSON ('-' for stdout)");
     nonfinite_.addTo(app_);
     app_.add_flag("-q,--quiet", quiet_, "no progress on stderr");

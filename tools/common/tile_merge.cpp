@@ -199,6 +199,10 @@ const std::vector<TileStatsRule>& tileStatsRules() {
         {"/stats/error_bound/channels", Same},
         {"/stats/error_bound/max", Max},
         {"/stats/error_bound/mean", PixelMean},
+        {"/stats/error_bound/applies_to", Same},
+        {"/stats/error_bound/float32_rounding_max", Max},
+        {"/stats/error_bound/stored_max", Max},
+        {"/stats/error_bound/error_image", Same},
         // The frames (frame_timing.cpp): frame k of the whole is frame k of every tile, one after another.
         {"/timing/warm_up_frames", Agree},
         {"/timing/repeats", Agree},

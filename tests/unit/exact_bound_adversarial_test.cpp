@@ -1,0 +1,188 @@
+// The exact method's per-pixel bound against the truth, on the inputs where a bound is hardest to keep:
+// transfer functions with thin pulses (1e-12 to 1e-4 wide in s), jumps and huge extinctions, crossed by
+// rays along which the scalar barely changes (grazing the analytic field's planes of equal s, near-tangent
+// to a trilinear field's iso-surfaces). Every pixel and channel of vri's result, at every tolerance from
+// 1e-13 (the scalar adaptive quadrature, vri-reference) to 1e-3 (the batched Gauss rules of vri-render
+// --method exact), must lie within its bound of the integral along the same ray in quadruple precision
+// (quad_precision_ray.h).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "quad_precision_ray.h"
+#include "test_camera.h"
+#include "libvri/core/analytic_field.h"
+#include "libvri/core/camera.h"
+#include "libvri/core/exact_reference.h"
+
+using namespace vri;
+using V = glm::dvec3;
+
+namespace {
+
+constexpr double kTolerances[] = {1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3};
+
+struct Excess {
+    int outside = 0;        // pixel-channels whose true error exceeds the bound
+    double worstRatio = 0;  // the largest true error / bound
+    std::string worst;      // where it is
+};
+
+// The truth along every pixel's ray, then vri at every tolerance against it.
+Excess checkBounds(const Scene& scene, const Camera& camera, const std::string& what) {
+    test::QuadPrecisionRay arbiter(scene.transferFunction);
+    std::vector<test::Quad> truth;
+    for (int py = 0; py < camera.height(); ++py)
+        for (int px = 0; px < camera.width(); ++px) {
+            const auto v = arbiter.pixel(scene, camera, px, py);
+            truth.insert(truth.end(), v.begin(), v.end());
+        }
+    Excess excess;
+    for (double tolerance : kTolerances) {
+        ExactReferenceOptions options;
+        options.tolerance = tolerance;
+        const ExactReference r = renderExactReference(scene, camera, options);
+        for (std::size_t i = 0; i < truth.size(); ++i) {
+            const double error = static_cast<double>(fabsq(test::Quad(r.values[i]) - truth[i]));
+            if (error > r.bounds[i]) {
+                ++excess.outside;
+                if (excess.outside <= 3)
+                    MESSAGE(what << " tolerance " << tolerance << " pixel " << i / 4 % camera.width() << ","
+                                 << i / 4 / camera.width() << " channel " << i % 4 << ": error " << error
+                                 << " bound " << r.bounds[i]);
+            }
+            if (error / r.bounds[i] > excess.worstRatio) {
+                excess.worstRatio = error / r.bounds[i];
+                excess.worst = "tolerance " + std::to_string(tolerance) + " channel " + std::to_string(i % 4) + ": " +
+                               std::to_string(r.values[i]) + " against " + std::to_string(static_cast<double>(truth[i])) +
+                               ", bound " + std::to_string(r.bounds[i]);
+            }
+        }
+    }
+    if (excess.worstRatio > 0.1)
+        MESSAGE(what << ": worst true error / bound " << excess.worstRatio << " (" << excess.worst << "), " << excess.outside
+                     << " outside");
+    return excess;
+}
+
+// A transfer function zero but for a pulse of extinction and colour `width` wide at s = centre: a tent
+// (continuous, slope tau / (width / 2)) or a box (two jumps).
+TransferFunction pulse(double centre, double width, double tau, bool box, EmissionModel emission) {
+    const double lo = centre - width / 2, hi = centre + width / 2;
+    if (box)
+        return TransferFunction({{0, 0, 0, 0, 0}, {lo, 0, 0, 0, 0}, {lo, 0.9, 0.5, 0.2, tau}, {hi, 0.3, 0.6, 1.0, tau},
+                                 {hi, 0, 0, 0, 0}, {1, 0, 0, 0, 0}},
+                                emission);
+    return TransferFunction({{0, 0, 0, 0, 0}, {lo, 0, 0, 0, 0}, {centre, 0.9, 0.5, 0.2, tau}, {hi, 0, 0, 0, 0},
+                             {1, 0, 0, 0, 0}},
+                            emission);
+}
+
+// A jump of extinction and colour at s = at, from a faint medium to a dense one.
+TransferFunction jump(double at, double tau, EmissionModel emission) {
+    return TransferFunction({{0, 0.2, 0.2, 0.2, 1e-3}, {at, 0.2, 0.2, 0.2, 1e-3}, {at, 1.0, 0.4, 0.7, tau}, {1, 0.5, 1.0, 0.1, tau}},
+                            emission);
+}
+
+// Cameras on the analytic field s = (x + 1.5) / 3 whose rays barely move in x: each looks along -z from
+// x = 8 k at x = 0 (s = 1/2) in the box's centre plane, over a field of view that spreads the rays' slope
+// in x by about +-15 % around k, so that they all cross s = 1/2 inside the box; one looks straight down
+// the plane x = 0 (its middle column lies in it: s = 1/2 all along); the last across the planes.
+std::vector<Camera> grazingCameras() {
+    std::vector<Camera> cameras;
+    for (double k : {1e-3, 1e-6, 1e-9, 1e-12})
+        cameras.emplace_back(test::cameraSpec(V(8.0 * k, 0.2, 8.0), V(0.0, 0.1, 0.0),
+                                              2.0 * std::atan(0.12 * k) * 180.0 / M_PI, 10, 8));
+    cameras.emplace_back(test::cameraSpec(V(0.0, 0.2, 8.0), V(0.0, 0.1, 0.0), 1e-4, 9, 8));
+    cameras.emplace_back(test::cameraSpec(V(-4.0, 1.5, 2.5), V(0.1, -0.2, 0.0), 40.0, 10, 8));
+    return cameras;
+}
+
+}  // namespace
+
+TEST_CASE("exact bound, adversarial: thin pulses and jumps on the analytic field, grazing rays, huge tau") {
+    const LinearField field;
+    std::vector<std::pair<std::string, TransferFunction>> tfs;
+    for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour}) {
+        const std::string model = emission == EmissionModel::Colour ? " g=C" : " g=C tau";
+        for (double width : {1e-12, 1e-9, 1e-6, 1e-4}) {
+            // tau such that a ray at slope k = 1e-6 (s changing by ~3e-7 per unit) gathers a depth of
+            // order one across the pulse, and a thousand times that.
+            for (double tau : {1e-6 / width, 1e-3 / width})
+                for (bool box : {false, true})
+                    tfs.emplace_back((box ? "box " : "tent ") + std::to_string(width) + " tau " + std::to_string(tau) + model,
+                                     pulse(0.5, width, tau, box, emission));
+        }
+        for (double tau : {1.0, 1e3, 1e9}) tfs.emplace_back("jump tau " + std::to_string(tau) + model, jump(0.5, tau, emission));
+    }
+    int outside = 0;
+    const std::vector<Camera> cameras = grazingCameras();
+    for (const auto& [name, tf] : tfs)
+        for (std::size_t c = 0; c < cameras.size(); ++c) {
+            const Scene scene{nullptr, field, GridConvention::NodeCentred, tf};
+            outside += checkBounds(scene, cameras[c], name + " camera " + std::to_string(c)).outside;
+        }
+    CHECK(outside == 0);
+}
+
+namespace {
+
+// A 12^3 uint8 volume: a noisy ball whose values step by whole raw values, so that whole cells sit
+// exactly on a TF point (s constant on the level) and rays graze the iso-surfaces of every value.
+std::shared_ptr<Volume> steppedBall() {
+    auto v = std::make_shared<Volume>(glm::ivec3(12), VoxelType::UInt8);
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> noise(0, 2);
+    for (int z = 0; z < 12; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 12; ++x) {
+                const double r = glm::length(V(x, y, z) - V(5.5)) / 6.0;
+                const int value = std::clamp(static_cast<int>(200.0 * (1.0 - r)) / 20 * 20 + noise(rng) * (x % 3 == 0), 0, 255);
+                v->data<std::uint8_t>()[v->index(x, y, z)] = static_cast<std::uint8_t>(value);
+            }
+    return v;
+}
+
+}  // namespace
+
+TEST_CASE("exact bound, adversarial: thin pulses and jumps in trilinear fields, near-tangent and grazing rays") {
+    std::vector<std::pair<std::string, TransferFunction>> tfs;
+    for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour}) {
+        const std::string model = emission == EmissionModel::Colour ? " g=C" : " g=C tau";
+        // Centred on a raw value (the plateaus) and between two.
+        for (double centre : {100.0 / 255.0, 0.5})
+            for (double width : {1e-12, 1e-9, 1e-6, 1e-4})
+                for (bool box : {false, true})
+                    tfs.emplace_back((box ? "box " : "tent ") + std::to_string(width) + " at " + std::to_string(centre) + model,
+                                     pulse(centre, width, 1e-4 / width, box, emission));
+        tfs.emplace_back("jump tau 1e4" + model, jump(100.0 / 255.0, 1e4, emission));
+    }
+    int outside = 0;
+    // The ball from outside and from inside, one camera along a row of voxel centres (rays in the planes
+    // of the grid), one nearly so.
+    const Scene ball{steppedBall(), std::nullopt, GridConvention::CellCentred, tfs.front().second};
+    const V centre = ball.box().centre();
+    std::vector<Camera> cameras = {
+        Camera(test::cameraSpec(centre + V(17.0, 9.0, 25.0), centre, 30.0, 10, 8)),
+        Camera(test::cameraSpec(V(5.5, 6.5, 40.0), V(5.5, 6.5, 0.0), 3.0, 10, 8)),
+        Camera(test::cameraSpec(V(5.5 + 1e-9, 6.5, 40.0), V(5.5, 6.5 - 1e-9, 0.0), 1e-6, 10, 8))};
+    // The analytic field's ramp sampled onto a node-centred 5^3 grid (trilinear: the same ramp), under
+    // the analytic field's grazing cameras.
+    const auto ramp = std::make_shared<Volume>(sampleOntoGrid(LinearField{}, GridConvention::NodeCentred));
+    for (const auto& [name, tf] : tfs) {
+        for (std::size_t c = 0; c < cameras.size(); ++c)
+            outside += checkBounds(Scene{ball.volume, std::nullopt, GridConvention::CellCentred, tf}, cameras[c],
+                                   "ball, " + name + " camera " + std::to_string(c)).outside;
+        if (tf.points()[2].s > 0.45) {  // the ramp's pulses at s = 1/2, where the cameras graze
+            const std::vector<Camera> grazing = grazingCameras();
+            for (std::size_t c = 0; c < grazing.size(); ++c)
+                outside += checkBounds(Scene{ramp, std::nullopt, GridConvention::NodeCentred, tf}, grazing[c],
+                                       "ramp, " + name + " camera " + std::to_string(c)).outside;
+        }
+    }
+    CHECK(outside == 0);
+}
