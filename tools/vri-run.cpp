@@ -37,7 +37,7 @@ constexpr const char* kTool = "vri-run";
 
 struct Options {
     std::vector<std::string> experiments;
-    bool quick = false, dryRun = false, estimate = false, force = false, record = false, check = false, allowDirty = false;
+    bool quick = false, quiet = false, dryRun = false, estimate = false, force = false, record = false, check = false, allowDirty = false;
     std::string results, committed = "results", gallery;
     int jobs = 1;
     std::string executor = "local";
@@ -162,7 +162,8 @@ bool finish(const Options& options, const vri::Experiment& experiment, const vri
         ran += o.state == vri::StepOutcome::State::Ran;
         cached += o.state == vri::StepOutcome::State::Cached;
     }
-    std::cerr << kTool << ": " << experiment.name << ": " << plan.steps.size() << " steps, " << ran << " ran, " << cached
+    if (!options.quiet)
+        std::cerr << kTool << ": " << experiment.name << ": " << plan.steps.size() << " steps, " << ran << " ran, " << cached
               << " cached, in " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
               << " s -> " << plan.commandPath(plan.resultsDir) << '\n';
     return !(options.record || options.check) || reproduce(options, experiment, plan);
@@ -230,7 +231,7 @@ int run(const Options& options) {
                                  (resultsRoot / experiments.back().name).string() + "/)");
         plans.push_back(vri::planExperiment(experiments.back(), resultsRoot / experiments.back().name, fs::current_path()));
     }
-    vri::RunOptions runOptions{toolDir, options.jobs, options.force, vri::Executor::Local, {}, {}};
+    vri::RunOptions runOptions{toolDir, options.jobs, options.force, options.quiet, vri::Executor::Local, {}, {}};
     if (options.executor == "slurm") {
         runOptions.executor = vri::Executor::Slurm;
         runOptions.slurm = slurmOptions(options);
@@ -254,8 +255,11 @@ int run(const Options& options) {
         const auto start = std::chrono::steady_clock::now();
         const vri::FolderLock lock(plan.commandPath(plan.resultsDir));  // until its manifest is written
         removeStaleTempFiles(plan);
+        vri::RunOptions planOptions = runOptions;
+        // The last run's wall times give the progress line its ETA; read before the manifest goes.
+        planOptions.prices = vri::stepPrices(plan, plan.resultsDir / "manifest.json");
         fs::remove(plan.resultsDir / "manifest.json");  // rewritten only once every step has succeeded
-        const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, runOptions, hasher);
+        const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, planOptions, hasher);
         reproduced = finish(options, experiment, plan, outcomes, toolDir, hasher, start) && reproduced;
     }
     if (options.estimate) printEstimate(estimates);
@@ -283,6 +287,9 @@ int main(int argc, char** argv) {
                  "print what each experiment costs from nothing, its steps priced by the wall times of the last "
                  "manifest in the results root; run nothing")
         ->excludes("--dry-run");
+    app.add_flag("-q,--quiet", options.quiet,
+                 "no progress: without a terminal a line per started and finished step, on one a live line with "
+                 "an ETA; and no summary line");
     app.add_flag("--force", options.force, "run every step even when its cache record vouches for it");
     app.add_option("--results", options.results, "results root (default: results, with --quick build/experiments-quick)");
     app.add_flag("--allow-dirty", options.allowDirty,

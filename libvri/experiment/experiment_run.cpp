@@ -51,6 +51,7 @@ bool LocalScheduler::startReady() {
         started_[i] = true;
         if (!ledger_.needsRun(i)) continue;
         const std::vector<std::string> words = ledger_.prepare(i);
+        ledger_.started(i);
         running_[startProcess(ledger_.program(i), words,
                               {.in = "/dev/null", .out = ledger_.logPath(i), .err = {}, .errToOut = true})] =
             Child{i, Clock::now()};

@@ -1,8 +1,6 @@
 // The steps of a run: cache decisions, records of steps that ran, progress and the first failure.
 #include "libvri/experiment/step_ledger.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <iostream>
 
@@ -14,23 +12,31 @@ namespace vri {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string secondsDetail(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f s", seconds);
+    return text;
+}
+
+}  // namespace
+
 StepLedger::StepLedger(const Plan& plan, const RunOptions& options, FileHasher& hasher)
     : plan_(plan), options_(options), hasher_(hasher), outcomes_(plan.steps.size()),
       settled_(plan.steps.size(), false), keys_(stepKeys(plan, options.toolDir, hasher)),
-      showProgress_(::isatty(STDERR_FILENO)) {
+      progress_(plan, options.prices, options.executor == Executor::Local ? options.jobs : 1,
+                StepProgress::styleFor(options.quiet)) {
     for (const Step& step : plan.steps) programs_.push_back(options.toolDir / step.tool);
 }
 
-void StepLedger::settle(std::size_t i, StepOutcome::State state, const std::string& how) {
+void StepLedger::settle(std::size_t i, StepOutcome::State state, const std::string& how, const std::string& detail) {
     settled_[i] = true;
     outcomes_[i].state = state;
-    ++settledCount_;
-    if (!showProgress_) return;
-    std::fprintf(stderr, "[%zu/%zu] %s %s (%s)\n", settledCount_, plan_.steps.size(), plan_.steps[i].tool.c_str(),
-                 plan_.steps[i].id.c_str(), how.c_str());
+    progress_.settled(i, how, detail);
 }
 
-void StepLedger::settleUnavailable(std::size_t i) { settle(i, StepOutcome::State::Unavailable, "not built, skipped"); }
+void StepLedger::settleUnavailable(std::size_t i) { settle(i, StepOutcome::State::Unavailable, "skipped", "not built"); }
 
 bool StepLedger::needsRun(std::size_t i) {
     for (std::size_t d : plan_.dependencies[i])
@@ -48,7 +54,7 @@ bool StepLedger::needsRun(std::size_t i) {
     if (!options_.force) {
         if (auto last = readRecord(recordPath(plan_, step)); last && recordIsCurrent(*last, keys_[i], plan_, step, hasher_)) {
             outcomes_[i].record = *last;
-            settle(i, StepOutcome::State::Cached, "cached");
+            settle(i, StepOutcome::State::Cached, "cached", secondsDetail(last->wallSeconds) + " when it ran");
             return false;
         }
     }
@@ -87,11 +93,9 @@ bool StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecutio
     // Its outputs are sound whatever else failed: a rerun need not make them again.
     writeRecord(recordPath(plan_, step), record);
     fs::remove(logPath(i));
-    char seconds[32];
-    std::snprintf(seconds, sizeof seconds, "%.2f s", wallSeconds);
-    std::string how = seconds;
-    if (!execution.jobId.empty()) how += ", job " + execution.jobId + " on " + execution.node;
-    settle(i, StepOutcome::State::Ran, how);
+    std::string detail = secondsDetail(wallSeconds);
+    if (!execution.jobId.empty()) detail += ", job " + execution.jobId + " on " + execution.node;
+    settle(i, StepOutcome::State::Ran, "ran", detail);
     return true;
 }
 
@@ -101,13 +105,13 @@ void StepLedger::failed(std::size_t i, const std::string& why, double wallSecond
         failure_ = "step '" + plan_.steps[i].id + "' " + why + ":\n  " + outcomes_[i].record.command + "\n" +
                    tryReadFileText(logPath(i)).value_or("");
     settled_[i] = true;
-    ++settledCount_;
+    progress_.settled(i, "failed", why);
 }
 
 void StepLedger::abandoned(std::size_t i, const std::string& why) {
     if (failure_.empty()) failure_ = "step '" + plan_.steps[i].id + "' did not run: " + why;
     settled_[i] = true;
-    ++settledCount_;
+    progress_.settled(i, "did not run", why);
 }
 
 std::vector<StepOutcome> StepLedger::result() const {

@@ -135,7 +135,7 @@ int RenderCommand::run() {
         const RenderRequest request = this->request();
         if (!errorImagePath_.empty() && !request.exact)
             throw Error("--error-image needs --method exact (no other method has an error bound)");
-        timing_.setFrames(request.warmUp, request.repeat);
+        timing_.setFrames(request.warmUp, request.repeat, name_, quiet_);
         const PngOptions png = preview_.get();
         const std::optional<PixelRegion>& region = request.options.region;
         if (region) {  // before the volume is read: the two options disagree, whatever the scene
