@@ -1,4 +1,5 @@
 // vri-run: runs experiment files as graphs of small tool invocations, with caching and provenance.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -191,22 +192,29 @@ bool runOnSlurm(const Options& options, const std::vector<vri::Experiment>& expe
     for (const vri::Plan& plan : plans) fs::remove(plan.resultsDir / "manifest.json");
     if (toRun > 0) batch.run();
     bool reproduced = true;
-    std::optional<vri::Error> firstFailure;
+    std::optional<std::string> firstFailure;
+    bool firstFailureDetailed = false;  // a failed step's DetailedError: its first line, then its command and output
     std::size_t failures = 0;
     for (std::size_t e = 0; e < plans.size(); ++e) {
         try {
             reproduced = finish(options, experiments[e], plans[e], batch.result(e), runOptions.toolDir, hasher, start) &&
                          reproduced;
         } catch (const vri::Error& error) {
-            if (!firstFailure) firstFailure = vri::Error(experiments[e].name + ": " + error.what());
+            if (!firstFailure) {
+                firstFailure = experiments[e].name + ": " + error.what();
+                firstFailureDetailed = dynamic_cast<const vri::DetailedError*>(&error) != nullptr;
+            }
             ++failures;
         }
     }
-    if (failures > 1)
-        throw vri::Error(std::string(firstFailure->what()) + " (and " + std::to_string(failures - 1) +
-                         " more experiments failed: see their .steps/ logs)");
-    if (firstFailure) throw *firstFailure;
-    return reproduced;
+    if (!firstFailure) return reproduced;
+    if (failures > 1) {  // said on the first line, before the failed step's details
+        const std::size_t lineEnd = std::min(firstFailure->find('\n'), firstFailure->size());
+        firstFailure->insert(lineEnd, " (and " + std::to_string(failures - 1) +
+                                          " more experiments failed: see their .steps/ logs)");
+    }
+    if (firstFailureDetailed) throw vri::DetailedError(*firstFailure);
+    throw vri::Error(*firstFailure);
 }
 
 int run(const Options& options) {

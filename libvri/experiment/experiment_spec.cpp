@@ -495,7 +495,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
         for (const std::string& run : runs) {
             ComparisonSpec c = base;
-            c.id = comparisonId(group, run);
+            c.id = comparisonId(group, run, experiment.run(run).scene);
             const auto sameId = [&](const auto& other) { return other.id == c.id; };
             if (std::ranges::any_of(experiment.runs, sameId) || std::ranges::any_of(experiment.comparisons, sameId))
                 throw Error(at(entry) + ": comparison '" + group + "' of run '" + run + "' has the id '" + c.id +
@@ -761,7 +761,7 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
 
 }  // namespace
 
-std::string comparisonId(const std::string& name, const std::string& run) {
+std::string comparisonId(const std::string& name, const std::string& run, const std::string& scene) {
     const auto words = [](const std::string& text) {
         std::vector<std::string> list;
         for (std::size_t start = 0, end;; start = end + 1) {
@@ -771,8 +771,11 @@ std::string comparisonId(const std::string& name, const std::string& run) {
         }
     };
     const std::vector<std::string> a = words(name), b = words(run);
+    // Only a run id that starts with its scene shares words, and then at least the scene's.
+    const std::size_t least = run.starts_with(scene + "-") ? words(scene).size() : b.size() + 1;
     std::size_t shared = std::min(a.size() - 1, b.size());
-    while (shared > 0 && !std::equal(a.end() - static_cast<std::ptrdiff_t>(shared), a.end(), b.begin())) --shared;
+    while (shared >= least && !std::equal(a.end() - static_cast<std::ptrdiff_t>(shared), a.end(), b.begin())) --shared;
+    if (shared < least) shared = 0;
     std::string id = name;
     for (std::size_t i = shared; i < b.size(); ++i) id += "-" + b[i];
     return id;

@@ -55,7 +55,7 @@ struct RunSpec {
 
 // One vri-diff of a run against a reference run.
 struct ComparisonSpec {
-    std::string id;  // comparisonId(group, run)
+    std::string id;  // comparisonId(group, run, the run's scene)
     std::string group;  // the comparison's name in the file
     std::string reference, run;  // RunSpec ids
     std::vector<std::string> thresholds;
@@ -65,9 +65,11 @@ struct ComparisonSpec {
 };
 
 // A comparison's id, the name of its files: its name and the run's id, with the words (between '-') that
-// the name ends with and the run's id starts with written once: vs-exact-bonsai and bonsai-riemann-h0.5
-// make vs-exact-bonsai-riemann-h0.5. The name keeps a word of its own, so the id is never the run's.
-std::string comparisonId(const std::string& name, const std::string& run);
+// the name ends with and the run's id starts with written once, when they begin with the run's scene:
+// vs-exact-bonsai and bonsai-riemann-h0.5 make vs-exact-bonsai-riemann-h0.5. Other shared words stay twice,
+// so that the run's id is whole in the file name: vs-exact of run exact-tol1e-4 is vs-exact-exact-tol1e-4,
+// never vs-exact-tol1e-4 (which reads as a comparison against "exact-tol"). The name keeps a word of its own.
+std::string comparisonId(const std::string& name, const std::string& run, const std::string& scene);
 
 // One invocation of any vri tool that writes data files (vri-rays2d, ...), from `commands:`: the step
 // that stands for it is called `name`. Its inputs are source files, its outputs land in the results folder.

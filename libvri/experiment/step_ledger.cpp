@@ -7,6 +7,7 @@
 #include "libvri/io/provenance.h"
 #include "libvri/util/error.h"
 #include "libvri/util/file_text.h"
+#include "libvri/util/printable.h"
 
 namespace vri {
 
@@ -101,11 +102,19 @@ bool StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecutio
 
 void StepLedger::failed(std::size_t i, const std::string& why, double wallSeconds) {
     outcomes_[i].record.wallSeconds = wallSeconds;
-    if (failure_.empty())
-        failure_ = "step '" + plan_.steps[i].id + "' " + why + ":\n  " + outcomes_[i].record.command + "\n" +
-                   tryReadFileText(logPath(i)).value_or("");
+    if (failure_.empty()) {
+        // The command on a line of its own (a path in it may hold a newline: escaped), then the tool's own output.
+        std::string log = tryReadFileText(logPath(i)).value_or("");
+        while (!log.empty() && (log.back() == '\n' || log.back() == ' ')) log.pop_back();
+        failure_ = "step '" + plan_.steps[i].id + "' " + why + ":\n  " + printable(outcomes_[i].record.command) +
+                   (log.empty() ? "" : "\n" + log);
+    }
     settled_[i] = true;
-    progress_.settled(i, "failed", why);
+    // "failed (exit status 3)" reads "failed vri-x id (exit status 3)" in the progress line.
+    std::string detail = why;
+    if (detail.starts_with("failed (") && detail.ends_with(")")) detail = detail.substr(8, detail.size() - 9);
+    else if (detail.starts_with("failed: ")) detail = detail.substr(8);
+    progress_.settled(i, "failed", detail);
 }
 
 void StepLedger::abandoned(std::size_t i, const std::string& why) {
@@ -115,7 +124,7 @@ void StepLedger::abandoned(std::size_t i, const std::string& why) {
 }
 
 std::vector<StepOutcome> StepLedger::result() const {
-    if (!failure_.empty()) throw Error(failure_);
+    if (!failure_.empty()) throw DetailedError(failure_);
     return outcomes_;
 }
 

@@ -192,6 +192,15 @@ int RenderCommand::run() {
         if (frame.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
         record["stats"]["out_of_range_pixels"] = toJson(outOfRange);
         record["timing"] = timing_.toJson(wallSeconds);
+        if (record["stats"]["rays_hit"] == 0) {
+            // A black image with exit 0 looks like a render; said on stderr and kept in the stats.
+            const std::string warning = "no ray enters the volume's box: the camera (eye " +
+                                        record["camera"]["eye"].dump() + ", target " +
+                                        record["camera"]["target"].dump() +
+                                        ") misses the volume, and the image is empty (stats: rays_hit 0)";
+            std::cerr << name_ << ": warning: " << warning << '\n';
+            record["warnings"] = {warning};
+        }
         ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
                                   {"vri:options", record["options"].dump()},
                                   {"vri:scene", record["scene"].dump()}};
