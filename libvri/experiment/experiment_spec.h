@@ -18,10 +18,11 @@ namespace vri {
 using ToolOption = std::pair<std::string, std::string>;
 using ToolOptions = std::vector<ToolOption>;
 
+// `paper:` is optional: an own study has none (paper "none", item and says empty).
 struct PaperItem {
-    std::string paper;  // "A" or "B"
-    std::string item;   // "Fig. 4", "Table I"
-    std::string says;   // one line: what the paper shows there
+    std::string paper = "none";  // "A", "B" or "none"
+    std::string item;            // "Fig. 4", "Table I"; optional with paper none
+    std::string says;            // one line: what the paper shows there; optional with paper none
 };
 
 // What the images show: volume or analytic field, transfer function, camera, image size, preview.
@@ -139,6 +140,9 @@ struct Experiment {
     std::vector<TableSpec> tables;
     std::vector<FigureSpec> figures;
     std::vector<ReproduceCheck> reproduce;
+    // What the file left out and was filled in, one line each ("title: the file name 'study'", "scene 'h':
+    // convention cell, the tools' default"): the manifest lists them.
+    std::vector<std::string> defaults;
 
     const SceneSpec& scene(const std::string& name) const;
     const RunSpec& run(const std::string& id) const;
