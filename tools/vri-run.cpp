@@ -20,6 +20,7 @@
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
 #include "libvri/experiment/manifest.h"
+#include "libvri/experiment/new_study.h"
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_executor.h"
 #include "libvri/experiment/slurm_node.h"
@@ -47,6 +48,7 @@ struct Options {
     double slurmBundle = 60, slurmPoll = 1;
     int slurmCpus = 2;
     std::string nodeSteps, nodeCheck;  // inside a Slurm job (hidden)
+    std::string newStudy;
 };
 
 // The environment variable a site sets its sbatch options in (README "On a cluster").
@@ -324,6 +326,9 @@ int main(int argc, char** argv) {
     app.add_option("--slurm-poll", options.slurmPoll, "seconds between two looks at the jobs (squeue), 0.1 to 600")
         ->check(CLI::Range(0.1, 600.0))
         ->capture_default_str();
+    app.add_option("--new", options.newStudy,
+                   "write NAME.yaml, NAME-tf.yaml and NAME-plot.yaml: a commented study to start an own one from, "
+                   "which runs as written (an analytic field; no data set); then vri-run NAME.yaml");
     app.add_option("--slurm-node-steps", options.nodeSteps)->group("");  // what a Slurm job runs (slurm_node.h)
     app.add_option("--slurm-node-check", options.nodeCheck)->group("");
     app.add_flag("--record", options.record, "with --quick: write the reproduce: numbers to COMMITTED/<experiment>/reproduce.json");
@@ -342,6 +347,7 @@ Temporary files (.NAME.tmp.PID.*) whose process is gone are removed first.
 The sweeps of one file may expand to at most 10000 runs (counted before expanding, --dry-run included).
 
 Examples:
+  vri-run --new mystudy && vri-run mystudy.yaml                 # an own study: written, then run
   vri-run experiments/paper-a-fig4.yaml
   vri-run --dry-run experiments/paper-a-fig4.yaml > fig4.sh     # the commands, to rerun by hand
   vri-run --estimate experiments/*.yaml                         # what make experiments costs from nothing
@@ -358,6 +364,12 @@ SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
     return vri::guardedMain(kTool, [&] {
         if (!options.nodeSteps.empty()) return vri::runNodeSteps(options.nodeSteps);
         if (!options.nodeCheck.empty()) return vri::runNodeCheck(options.nodeCheck);
+        if (!options.newStudy.empty()) {
+            if (!options.experiments.empty()) throw vri::UsageError("--new writes files and runs none: name no EXPERIMENT");
+            for (const fs::path& file : vri::writeNewStudy(options.newStudy))
+                std::cerr << kTool << ": wrote " << file.string() << '\n';
+            return vri::kExitOk;
+        }
         if (options.experiments.empty() && options.gallery.empty())
             throw vri::Error("nothing to do: name experiment files or --gallery DIR (see --help)");
         return run(options);

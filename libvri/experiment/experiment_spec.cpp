@@ -42,9 +42,6 @@ const PeerMethod* peerMethod(std::string_view method) {
     return nullptr;
 }
 
-constexpr std::string_view kSafeName =
-    "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
-
 // The options with which vri tools write a file: in `commands:` they belong under `outputs:`, where
 // the file lands in the results folder, never under `options:` or `inputs:` (an input named `o`
 // would be overwritten wherever it is). A tool with a new output option adds it here.

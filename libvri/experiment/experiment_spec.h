@@ -154,6 +154,9 @@ struct Experiment {
 // a blank, a shell or gnuplot character or a control character. Every name an experiment file gives
 // is held to this, with an error naming the file, line, column and key.
 bool isSafeName(std::string_view name);
+// What a safe name is, for messages that refuse one.
+inline constexpr std::string_view kSafeName =
+    "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
 
 // Parses and validates; every problem is a vri::Error "file:line:col: ...". Relative paths are
 // resolved against `baseDir` (the experiment file's folder) and must exist. With `quick`, the
