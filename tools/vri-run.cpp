@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/cli.h"
+#include "libvri/experiment/datasets.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_reproduce.h"
 #include "libvri/experiment/experiment_run.h"
@@ -231,6 +232,10 @@ int run(const Options& options) {
     std::vector<vri::Experiment> experiments;
     std::vector<vri::Plan> plans;
     for (const std::string& file : options.experiments) {
+        if (vri::isDatasetCatalog(file)) {  // beside the experiments, so experiments/*.yaml names it
+            std::cerr << kTool << ": " << file << " is the dataset catalog, not an experiment: skipped\n";
+            continue;
+        }
         experiments.push_back(vri::loadExperiment(file, options.quick));
         // The name is the results folder: a second experiment of that name would replace the first's
         // manifest and reuse its runs' files.

@@ -133,6 +133,15 @@ std::vector<DatasetInfo> parseDatasetCatalog(const std::string& yamlText, const 
     return catalogFromYaml(yaml::parse(yamlText, source), source);
 }
 
+bool isDatasetCatalog(const fs::path& yamlPath) {
+    try {
+        const YAML::Node root = yaml::load(yamlPath);
+        return root.IsMap() && root["datasets"] && !root["name"];
+    } catch (const Error&) {
+        return false;
+    }
+}
+
 std::vector<DatasetInfo> loadDatasetCatalog(const fs::path& yamlPath) {
     return catalogFromYaml(yaml::load(yamlPath), yamlPath.string());
 }

@@ -34,6 +34,11 @@ struct DatasetInfo {
 // Stand-in: a different dataset used in place of one the papers name.
 inline constexpr const char* kDatasetStatuses[] = {"exact", "reconstructed", "stand-in"};
 
+// True when `yaml` is a dataset catalog (a map with `datasets:` and no experiment `name:`), as
+// experiments/datasets.yaml beside the experiments: what `vri-run experiments/*.yaml` skips. A file that is
+// not YAML is not one (reading it as an experiment then says what is wrong).
+bool isDatasetCatalog(const std::filesystem::path& yaml);
+
 // Reads and validates the catalog; any error is a vri::Error "file:line:col: what is wrong".
 std::vector<DatasetInfo> loadDatasetCatalog(const std::filesystem::path& yaml);
 std::vector<DatasetInfo> parseDatasetCatalog(const std::string& yamlText, const std::string& source);
