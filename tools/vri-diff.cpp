@@ -43,15 +43,17 @@ struct Options {
     int binsPerDecade = 5;
     double fail = 1e-6, failPercent = 0;
     double warn = 1e-6, warnPercent = 0;
+    bool perPixel = false;  // the verdict counts pixels with any channel above, as idiff does
 };
 
-// How many pixel-channels, over all channels, have an error above a limit, and whether that is
-// more than the allowed share.
+// How many pixel-channels, over all channels (or, --per-pixel, how many pixels in any channel), have an
+// error above a limit, and whether that is more than the allowed share.
 struct LimitCheck {
     double limit = 0;
     double allowedPercent = 0;
     std::uint64_t count = 0;
     double percent = 0;
+    const char* counted = "pixel-channels";  // or "pixels"
     bool exceeded() const { return percent > allowedPercent; }
 };
 
@@ -61,11 +63,28 @@ bool isPng(const std::string& path) {
     return ext == ".png";
 }
 
-LimitCheck checkLimit(const vri::ImageDiff& diff, std::size_t thresholdIndex, double allowedPercent) {
+// The share of pixel-channels above the threshold: every channel's count over pixels x channels.
+double pixelChannelPercent(const vri::ImageDiff& diff, std::size_t thresholdIndex) {
+    std::uint64_t count = 0;
+    for (const vri::ChannelDiff& channel : diff.channels) count += channel.countAbove[thresholdIndex];
+    return 100.0 * static_cast<double>(count) /
+           (static_cast<double>(diff.pixels) * static_cast<double>(diff.channels.size()));
+}
+
+double pixelPercent(const vri::ImageDiff& diff, std::size_t thresholdIndex) {
+    return 100.0 * static_cast<double>(diff.pixelsAbove[thresholdIndex]) / static_cast<double>(diff.pixels);
+}
+
+LimitCheck checkLimit(const vri::ImageDiff& diff, std::size_t thresholdIndex, double allowedPercent, bool perPixel) {
     LimitCheck check{diff.thresholds.at(thresholdIndex), allowedPercent, 0, 0};
-    for (const vri::ChannelDiff& channel : diff.channels) check.count += channel.countAbove[thresholdIndex];
-    const double pixelChannels = static_cast<double>(diff.pixels) * static_cast<double>(diff.channels.size());
-    check.percent = 100.0 * static_cast<double>(check.count) / pixelChannels;
+    if (perPixel) {
+        check.counted = "pixels";
+        check.count = diff.pixelsAbove[thresholdIndex];
+        check.percent = pixelPercent(diff, thresholdIndex);
+    } else {
+        for (const vri::ChannelDiff& channel : diff.channels) check.count += channel.countAbove[thresholdIndex];
+        check.percent = pixelChannelPercent(diff, thresholdIndex);
+    }
     return check;
 }
 
@@ -74,6 +93,7 @@ nlohmann::json toJson(const LimitCheck& check) {
             {"allowed_percent", check.allowedPercent},
             {"count", check.count},
             {"percent", check.percent},
+            {"counted", check.counted},
             {"exceeded", check.exceeded()}};
 }
 
@@ -98,10 +118,12 @@ private:
     std::size_t column_ = 0;
 };
 
-// "FAIL: 25% of pixel-channels above 1e-06 (allowed 0%)"
+// "FAIL: 25% of pixel-channels above 1e-06 (allowed 0%)", or with --per-pixel "FAIL: 30% of pixels above
+// 1e-06 in some channel (allowed 0%)"
 std::string describe(const char* verdict, const LimitCheck& check) {
-    return std::string(verdict) + ": " + format("%g", check.percent) + "% of pixel-channels above " +
-           format("%g", check.limit) + " (allowed " + format("%g", check.allowedPercent) + "%)";
+    return std::string(verdict) + ": " + format("%g", check.percent) + "% of " + check.counted + " above " +
+           format("%g", check.limit) + (std::string_view(check.counted) == "pixels" ? " in some channel" : "") +
+           " (allowed " + format("%g", check.allowedPercent) + "%)";
 }
 
 void printSummary(const Options& options, const vri::ImageDiff& diff, const std::string& verdict) {
@@ -109,7 +131,7 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const std:
               << diff.channels.size() << " channels, all " << diff.pixels << " pixels counted\n";
     Row header;
     header.cell("channel", 8).cell("max", 13).cell("at (x,y)", 12).cell("mean", 13).cell("RMSE", 13);
-    for (double t : diff.thresholds) header.cell("% > " + format("%g", t), 12);
+    for (double t : diff.thresholds) header.cell("% > " + format("%g", t), 12);  // of the channel's pixels
     std::cout << header.str() << '\n';
     for (const vri::ChannelDiff& channel : diff.channels) {
         Row row;
@@ -121,7 +143,16 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const std:
         for (double percent : channel.percentAbove) row.cell(format("%.4f", percent), 12);
         std::cout << row.str() << '\n';
     }
-    std::cout << verdict << '\n';
+    // A channel's % is of its pixels; over the channels two counts differ, and each says which it is.
+    constexpr std::size_t kLabelWidth = 8 + 13 + 12 + 13 + 13;
+    Row pixelChannels, pixels;
+    pixelChannels.cell("all channels: % of pixel-channels (pixels x channels)", kLabelWidth);
+    pixels.cell("any channel: % of pixels (as idiff counts, --per-pixel)", kLabelWidth);
+    for (std::size_t t = 0; t < diff.thresholds.size(); ++t) {
+        pixelChannels.cell(format("%.4f", pixelChannelPercent(diff, t)), 12);
+        pixels.cell(format("%.4f", pixelPercent(diff, t)), 12);
+    }
+    std::cout << pixelChannels.str() << '\n' << pixels.str() << '\n' << verdict << '\n';
 }
 
 // CLI11's own PositiveNumber and NonNegativeNumber print the largest double in full when they reject a value.
@@ -184,6 +215,9 @@ int run(int argc, char** argv) {
     app.add_option("--fail", options.fail, "failure threshold on the absolute error")
         ->check(kNonNegative)
         ->capture_default_str();
+    app.add_flag("--per-pixel", options.perPixel,
+                 "--failpercent and --warnpercent count pixels with any channel above the limit, as OpenImageIO's "
+                 "idiff does, instead of pixel-channels (pixels x channels)");
     app.add_option("--failpercent", options.failPercent, "fail when more than this % of pixel-channels is above --fail")
         ->check(CLI::Range(0.0, 100.0))
         ->capture_default_str();
@@ -196,7 +230,8 @@ int run(int argc, char** argv) {
     app.footer(
         "Exit codes (idiff's, one up): 0 pass, 2 warning, 3 failure, 4 images differ in size or channel count;\n"
         "1 a file is missing or unreadable (or an output cannot be written), 64 bad arguments.\n"
-        "Percentages of --failpercent/--warnpercent are over all pixel-channels (pixels x channels).\n"
+        "Percentages of --failpercent/--warnpercent are over all pixel-channels (pixels x channels), or with\n"
+        "--per-pixel over pixels, a pixel counting when any channel is above, as idiff counts (more of them).\n"
         "\n"
         "Examples:\n"
         "  vri-diff reference.exr render.exr\n"
@@ -232,8 +267,8 @@ int run(int argc, char** argv) {
 
     const vri::ImageDiff diff = vri::compareImages(a, b, options.thresholds);
     const vri::ImageDiff limits = vri::compareImages(a, b, {options.fail, options.warn});
-    const LimitCheck failCheck = checkLimit(limits, 0, options.failPercent);
-    const LimitCheck warnCheck = checkLimit(limits, 1, options.warnPercent);
+    const LimitCheck failCheck = checkLimit(limits, 0, options.failPercent, options.perPixel);
+    const LimitCheck warnCheck = checkLimit(limits, 1, options.warnPercent, options.perPixel);
     int code = kExitPass;
     std::string verdict = "PASS";
     if (failCheck.exceeded()) {
