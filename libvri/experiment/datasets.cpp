@@ -133,6 +133,14 @@ std::vector<DatasetInfo> parseDatasetCatalog(const std::string& yamlText, const 
     return catalogFromYaml(yaml::parse(yamlText, source), source);
 }
 
+std::optional<fs::path> findVolume(const fs::path& path, const fs::path& base) {
+    const fs::path beside = (base / path).lexically_normal();
+    if (fs::is_regular_file(beside)) return fs::absolute(beside);
+    const fs::path inData = (defaultDataDir() / path).lexically_normal();
+    if (path.is_relative() && fs::is_regular_file(inData)) return fs::absolute(inData);
+    return std::nullopt;
+}
+
 bool isDatasetCatalog(const fs::path& yamlPath) {
     try {
         const YAML::Node root = yaml::load(yamlPath);

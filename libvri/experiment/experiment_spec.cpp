@@ -96,8 +96,6 @@ private:
     void requireRun(const Experiment& experiment, const std::string& id, const YAML::Node& where) const;
 
     PaperItem readPaper(const YAML::Node& node) const;
-    // `volume:`: a path relative to the experiment's folder, else (a relative one) to $VRI_DATA_DIR.
-    std::filesystem::path volumeFile(const YAML::Node& node) const;
     // Every required key of the experiment, its paper and its scenes that the file lacks, in one error: a
     // first file then fails once, not once per key. (Comparisons, commands and figures name a missing key
     // after their unknown keys, which are the likelier mistake there: a misspelt required key.)
@@ -134,19 +132,6 @@ fs::path ExperimentReader::existingFile(const YAML::Node& node, std::string_view
     if (!fs::is_regular_file(path))
         throw Error(at(node) + ": " + std::string(what) + ": no such file: " + path.string());
     return fs::absolute(path);
-}
-
-fs::path ExperimentReader::volumeFile(const YAML::Node& node) const {
-    const std::string name = text(node, "volume");
-    const fs::path beside = (baseDir_ / name).lexically_normal();
-    if (fs::is_regular_file(beside)) return fs::absolute(beside);
-    const fs::path dataDir = defaultDataDir();
-    const fs::path inData = (dataDir / name).lexically_normal();
-    if (fs::path(name).is_relative() && fs::is_regular_file(inData)) return fs::absolute(inData);
-    throw Error(at(node) + ": volume: no such file: " + beside.string() +
-                (fs::path(name).is_relative() ? " nor " + inData.string() + " ($VRI_DATA_DIR" +
-                                                    (std::getenv("VRI_DATA_DIR") ? "" : ", not set") + ")"
-                                              : ""));
 }
 
 YAML::Node ExperimentReader::required(const YAML::Node& map, const char* key, std::string_view what) const {
@@ -297,7 +282,14 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
             scene.options.emplace_back("--spacing", join(layout.spacing));
         }
     } else if (const YAML::Node n = node["volume"]) {
-        scene.files.push_back(volumeFile(n));
+        const fs::path path = text(n, "volume");
+        const std::optional<fs::path> file = findVolume(path, baseDir_);
+        if (!file)
+            throw Error(at(n) + ": volume: no such file: " + (baseDir_ / path).lexically_normal().string() +
+                        (path.is_relative() ? " nor " + (defaultDataDir() / path).lexically_normal().string() +
+                                                  " ($VRI_DATA_DIR" + (std::getenv("VRI_DATA_DIR") ? "" : ", not set") + ")"
+                                            : ""));
+        scene.files.push_back(*file);
         scene.options.emplace_back("--volume", scene.files.back().string());
     } else {
         const std::string field = text(node["field"], "field");
