@@ -54,7 +54,7 @@ printf ',CPU (s),GPU (fps)\nRiemann h = 0.5,2.00,0.5\n' | diff -u - t3.csv || fa
 # Speed against accuracy: per run its seconds (stats) and errors (diff) at 0.001; Simpson is faster and
 # better in % than h = 0.5, but its infinite maximum error keeps it off the max front.
 timing_json() {  # timing_json FILE SECONDS: 2e6 samples of Riemann in double on the CPU's scalar path
-    echo "{\"timing\": {\"repeats\": 3, \"median_wall_seconds\": $2}, \"options\": {\"method\": \"riemann\", \"precision\": \"double\"}," \
+    echo "{\"timing\": {\"repeats\": 3, \"median_wall_seconds\": $2, \"wall_seconds\": [$2, $2, $2]}, \"options\": {\"method\": \"riemann\", \"precision\": \"double\"}," \
          "\"stats\": {\"backend\": \"cpu\", \"simd_target\": null, \"samples_evaluated\": 2e6}}" > "$1"
 }
 timing_json riemann-h1.json 0.1 && diff_json vs-riemann-h1.json 30 20 20 10 0.3 0.2
@@ -66,28 +66,28 @@ timing_json simpson.json 0.2 && diff_json vs-simpson.json 0 0 0 0.5 0.001 null
 cat > expected.md <<'MD'
 **Speed against accuracy**
 
-| run | method | seconds | Msamples/s | R > 0.001 | A > 0.001 | worst > 0.001 | max R | max A | max | rmse | pareto % | pareto max |
-|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
-| riemann-h1 | riemann double | 0.1 | 20 | 20 | 10 | 20 | 0.3 | 0.2 | 0.3 | 0.02 | 1 | 1 |
-| riemann-h0.5 | riemann double | 0.4 | 5 | 5 | 1 | 5 | 0.05 | 0.1 | 0.1 | 0.02 | 0 | 1 |
-| simpson-e0.001 | riemann double | 0.2 | 10 | 0 | 0.5 | 0.5 | 0.001 | inf | inf | 0.02 | 1 | 0 |
+| run | method | seconds | frames | spread % | Msamples/s | R > 0.001 | A > 0.001 | worst > 0.001 | max R | max A | max | rmse | pareto % | pareto max |
+|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
+| riemann-h1 | riemann double | 0.1 | 3 | 0 | 20 | 20 | 10 | 20 | 0.3 | 0.2 | 0.3 | 0.02 | 1 | 1 |
+| riemann-h0.5 | riemann double | 0.4 | 3 | 0 | 5 | 5 | 1 | 5 | 0.05 | 0.1 | 0.1 | 0.02 | 0 | 1 |
+| simpson-e0.001 | riemann double | 0.2 | 3 | 0 | 10 | 0 | 0.5 | 0.5 | 0.001 | inf | inf | 0.02 | 1 | 0 |
 
-method: the run's method and precision, SIMD where the float packets ran, vulkan on that backend. seconds: median wall time per frame (the run's timing.median_wall_seconds).
+method: the run's method and precision, SIMD where the float packets ran, vulkan on that backend. seconds: median wall time per frame (the run's timing.median_wall_seconds); frames: the timed frames it is the median of (after the run's warm-up frames); spread %: (slowest - fastest frame) / median, 0 for one frame, whose time is one sample.
 Msamples/s: millions of samples evaluated per second (stats.samples_evaluated over seconds; - where the method counts none).
 R > t ... worst > t: % of rays (all pixels, background included) whose absolute error exceeds t (t = 0.001), to 3 significant digits (0: no ray), per channel and in the worst channel; max R ... max: the largest absolute error, per channel and over all; rmse: the largest root mean square error of a channel.
 pareto % (pareto max): 1 on the Pareto front of seconds against worst > 0.001 (against max), where no other row is at least as fast and as accurate and better in one; an infinite error is never on it.
 MD
 diff -u expected.md speed.md || fail "tradeoff Markdown"
 cat > expected.csv <<'CSV'
-run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,pareto max
-riemann-h1,riemann double,0.1,20,20,10,20,0.3,0.2,0.3,0.02,1,1
-riemann-h0.5,riemann double,0.4,5,5,1,5,0.05,0.1,0.1,0.02,0,1
-simpson-e0.001,riemann double,0.2,10,0,0.5,0.5,0.001,inf,inf,0.02,1,0
+run,method,seconds,frames,spread %,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,pareto max
+riemann-h1,riemann double,0.1,3,0,20,20,10,20,0.3,0.2,0.3,0.02,1,1
+riemann-h0.5,riemann double,0.4,3,0,5,5,1,5,0.05,0.1,0.1,0.02,0,1
+simpson-e0.001,riemann double,0.2,3,0,10,0,0.5,0.5,0.001,inf,inf,0.02,1,0
 CSV
 diff -u expected.csv speed.csv || fail "tradeoff CSV"
 # Another threshold the diffs counted, other decimals and row heading.
 "$tabulate" --layout tradeoff --threshold 0.01 --precision 1 --row-header Method \
-    --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o - | grep -q "^| Method | method | seconds | Msamples/s | R > 0.01 | A > 0.01 | worst > 0.01 |" ||
+    --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o - | grep -q "^| Method | method | seconds | frames | spread % | Msamples/s | R > 0.01 | A > 0.01 | worst > 0.01 |" ||
     fail "tradeoff at 0.01"
 
 # Failures: one line, non-zero exit, nothing written.
