@@ -237,6 +237,9 @@ int run(const Options& options) {
             continue;
         }
         experiments.push_back(vri::loadExperiment(file, options.quick));
+        if (!options.quick)  // quick runs are for checking, not for reading times
+            for (const std::string& warning : experiments.back().warnings)
+                std::cerr << kTool << ": warning: " << experiments.back().name << ": " << warning << '\n';
         // The name is the results folder: a second experiment of that name would replace the first's
         // manifest and reuse its runs' files.
         for (std::size_t e = 0; e + 1 < experiments.size(); ++e)

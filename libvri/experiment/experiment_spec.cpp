@@ -13,6 +13,7 @@
 #include "libvri/experiment/datasets.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_spec.h"
+#include "libvri/experiment/timing_defaults.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
 #include "libvri/io/yaml_util.h"
@@ -816,12 +817,13 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     if (root["comparisons"]) readComparisons(root["comparisons"], experiment);
     if (root["commands"]) readCommands(root["commands"], experiment);
     if (root["tables"]) readTables(root["tables"], experiment);
+    applyTimingDefaults(experiment);
     if (root["figures"]) readFigures(root["figures"], experiment);
     if (root["reproduce"]) readReproduce(root["reproduce"], experiment);
     // Which step writes which file only the plan knows; planning once here (where to does not matter)
     // makes a figure that reads a file no step writes a mistake in the file like any other.
     planExperiment(experiment, fs::current_path() / "results" / experiment.name, fs::current_path());
-    experiment.defaults = defaults_;
+    experiment.defaults.insert(experiment.defaults.begin(), defaults_.begin(), defaults_.end());
     return experiment;
 }
 

@@ -143,6 +143,8 @@ struct Experiment {
     // What the file left out and was filled in, one line each ("title: the file name 'study'", "scene 'h':
     // convention cell, the tools' default"): the manifest lists them.
     std::vector<std::string> defaults;
+    // What vri-run warns of before running it (timing_defaults.h: a timed table on one frame).
+    std::vector<std::string> warnings;
 
     const SceneSpec& scene(const std::string& name) const;
     const RunSpec& run(const std::string& id) const;

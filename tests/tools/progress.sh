@@ -17,6 +17,10 @@ diff <(sed -n 's/.*: start \(.*\)$/\1/p' first.txt | sort) <(sed -n 's/.*: ran \
 grep -q "\[$steps/$steps\] .*: ran " first.txt || fail "no line counts $steps/$steps: $(cat first.txt)"
 grep -q "^vri-run: paper-a-fig4: $steps steps, $steps ran, 0 cached" first.txt || fail "summary: $(cat first.txt)"
 
+# The manifest records the machine's load when each step started and ended.
+[ "$(grep -c '"load_average": {' out/paper-a-fig4/manifest.json)" -eq "$steps" ] ||
+    fail "not a load average per step in the manifest"
+
 # Again: every step cached, said per step with the time of the run that made it; nothing starts.
 "$bin/vri-run" --quick --results out "$src/experiments/paper-a-fig4.yaml" 2> second.txt
 [ "$(grep -c ': cached vri-.* s when it ran)$' second.txt)" -eq "$steps" ] || fail "cached lines: $(cat second.txt)"

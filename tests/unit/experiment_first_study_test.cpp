@@ -3,8 +3,6 @@
 // dataset outside the repository's catalog pointing at volume: and VRI_DATA_DIR.
 #include <doctest/doctest.h>
 
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +10,7 @@
 #include <string>
 
 #include "experiment_file_test.h"
+#include "temp_dir.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_spec.h"
 
@@ -20,13 +19,13 @@ namespace fs = std::filesystem;
 namespace {
 
 struct StudyDir {
-    fs::path dir = fs::temp_directory_path() / ("vri-first-study-test-" + std::to_string(::getpid()));
+    vri::test::TempDir temp{"first-study"};
+    const fs::path& dir = temp.path;
     StudyDir() {
         fs::create_directories(dir / "data");
         std::ofstream(dir / "tf.yaml") << "points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 1, 1, 0.5]\n";
         std::ofstream(dir / "data" / "blob_4x4x4_uint8.raw") << std::string(64, '\x40');
     }
-    ~StudyDir() { fs::remove_all(dir); }
     vri::Experiment parse(const std::string& text) const { return vri::parseExperiment(text, "study.yaml", dir, false); }
     std::string error(const std::string& text) const { return vri::test::errorOf([&] { parse(text); }); }
 };
