@@ -59,10 +59,11 @@ std::string keywordOf(const RenderOptionRow& row) {
 }
 
 // The rows vri.render takes: vri-render's, less the Vulkan backend's (the module renders on the CPU), the
-// timing repeats (one call is one frame: time it from Python) and the ray log (a file of its own).
+// timing repeats (one call is one frame: time it from Python), the ray log (a file of its own) and
+// --max-error (a search of several renders: call reference() at tightening tolerances, or the tool).
 bool takenByRender(const RenderOptionRow& row) {
-    static constexpr std::string_view kLeftOut[] = {"--backend", "--device",  "--interpolation",
-                                                    "--repeat",  "--warm-up", "--log-ray"};
+    static constexpr std::string_view kLeftOut[] = {"--backend", "--device",  "--interpolation", "--repeat",
+                                                    "--warm-up", "--log-ray", "--max-error"};
     return row.takenBy(RenderTool::Render) && std::ranges::find(kLeftOut, row.flag()) == std::end(kLeftOut);
 }
 

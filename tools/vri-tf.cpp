@@ -101,7 +101,7 @@ int run(int argc, char** argv) {
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     if (checkOnly) return check(tfPath, vri::loadTransferFunction(tfPath));
-    if (output.empty()) throw vri::UsageError("-o is required (or --check)");
+    if (output.empty()) throw vri::UsageError("--output is required (or --check)");
     vri::requireOutputsApartFromInputs({{"-o", output}}, {{"TF", tfPath}});
     vri::writeTextFile(output, tabulate(vri::loadTransferFunction(tfPath), samples));
     return vri::kExitOk;

@@ -1,5 +1,6 @@
 #include "common/render_command.h"
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 
@@ -15,6 +16,7 @@
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/atomic_file.h"
+#include "libvri/util/format.h"
 
 namespace vri {
 
@@ -104,6 +106,31 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
     exitCode_ = parseArguments(app_, name_, argc, argv);
 }
 
+namespace {
+
+// --max-error E: the exact method's tolerance bounds the quadrature per piece of a ray, not a pixel's error;
+// the stats' per-pixel bound is what E asks for. Untimed renders from --tolerance (else E), each further one
+// at the tolerance times E / bound / 2, until the largest bound is at most E; at most kTries renders.
+double toleranceForMaxError(RenderBackend& backend, const Scene& scene, const Camera& camera,
+                            const RenderRequest& request) {
+    constexpr int kTries = 8;
+    const double wanted = *request.maxError;
+    ExactReferenceOptions options = request.exactOptions();
+    if (!request.wasGiven("--tolerance")) options.tolerance = wanted;
+    double bound = 0;
+    for (int k = 0; k < kTries; ++k) {
+        const ExactReference& ref = backend.renderExact(scene, camera, options);
+        bound = *std::max_element(ref.stats.maxBound.begin(), ref.stats.maxBound.end());
+        if (bound <= wanted) return options.tolerance;
+        options.tolerance *= 0.5 * wanted / bound;
+    }
+    throw Error("--max-error " + exactNumber(wanted) + ": the largest per-pixel bound is still " + exactNumber(bound) +
+                " after " + std::to_string(kTries) + " renders (last tolerance " + exactNumber(options.tolerance) +
+                "); ask for a larger error");
+}
+
+}  // namespace
+
 RenderRequest RenderCommand::request() const {
     RenderRequest request(tool_);
     for (const TableOption& t : tableOptions_) {
@@ -132,7 +159,7 @@ int RenderCommand::run() {
         requireDistinctOutputs(outputs);
         requireOutputsApartFromInputs(outputs, scene_.inputs());
         // Every option is checked before the render, so that a mistake never leaves some outputs written.
-        const RenderRequest request = this->request();
+        RenderRequest request = this->request();
         if (!errorImagePath_.empty() && !request.exact)
             throw Error("--error-image needs --method exact (no other method has an error bound)");
         timing_.setFrames(request.warmUp, request.repeat, name_, quiet_);
@@ -154,9 +181,10 @@ int RenderCommand::run() {
                         ".vdb too large to unpack): use --storage dense");
         const Camera camera(setup.camera);
         RenderBackend backend(request);
+        if (request.maxError) request.exactTolerance = toleranceForMaxError(backend, scene, camera, request);
         auto [frame, wallSeconds] = timing_.run([&] {
             if (request.exact) {
-                const ExactReference& ref = backend.renderExact(scene, camera, request.exactOptions());
+                const ExactReference& ref = backend.renderExact(scene, camera, request.exactOptions());  // at the tolerance --max-error found
                 Frame f{ref.image(), std::nullopt, {}, ref.stats, ref.stats.seconds};
                 if (!errorImagePath_.empty()) f.bounds = ref.boundImage();
                 f.stats.nonfinite = findNonFinitePixels(f.image);
