@@ -19,6 +19,7 @@
 #include <pybind11/stl.h>
 #include <tbb/global_control.h>
 
+#include "common/diff_verdict.h"
 #include "common/exact_reference_json.h"
 #include "common/image_compare_json.h"
 #include "common/render_json.h"
@@ -31,10 +32,14 @@
 #include "libvri/core/image_compare.h"
 #include "libvri/core/out_of_range_pixels.h"
 #include "libvri/core/render_option_table.h"
+#include "libvri/experiment/datasets.h"
 #include "libvri/io/image_io.h"
+#include "libvri/io/stored_voxels.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/volume_read_options.h"
+#include "libvri/util/checked_size.h"
 #include "libvri/util/error.h"
+#include "libvri/util/format.h"
 #include "libvri/util/parse.h"
 
 namespace py = pybind11;
@@ -54,10 +59,11 @@ std::string keywordOf(const RenderOptionRow& row) {
 }
 
 // The rows vri.render takes: vri-render's, less the Vulkan backend's (the module renders on the CPU), the
-// timing repeats (one call is one frame: time it from Python) and the ray log (a file of its own).
+// timing repeats (one call is one frame: time it from Python), the ray log (a file of its own) and
+// --max-error (a search of several renders: call reference() at tightening tolerances, or the tool).
 bool takenByRender(const RenderOptionRow& row) {
-    static constexpr std::string_view kLeftOut[] = {"--backend", "--device",  "--interpolation",
-                                                    "--repeat",  "--warm-up", "--log-ray"};
+    static constexpr std::string_view kLeftOut[] = {"--backend", "--device",  "--interpolation", "--repeat",
+                                                    "--warm-up", "--log-ray", "--max-error"};
     return row.takenBy(RenderTool::Render) && std::ranges::find(kLeftOut, row.flag()) == std::end(kLeftOut);
 }
 
@@ -220,30 +226,43 @@ std::shared_ptr<Volume> loadVolume(const std::string& path, const py::object& di
         const glm::dvec2 r = parseRange(optionText(range, "range"), "range");
         valueRange = ValueRange{r.x, r.y};
     }
-    auto volume = std::make_shared<Volume>(readVolume(path, options));
+    auto volume = std::make_shared<Volume>(readVolume(findVolume(path, ".").value_or(path), options));
     if (valueRange) volume->range = valueRange;
     return volume;
 }
 
-// A volume of an array indexed [z, y, x] (x fastest, as vri stores voxels), uint8, uint16 or float32.
+// A volume of an array indexed [z, y, x] (x fastest, as vri stores voxels). uint8, uint16 and float32 are
+// kept; every other type a volume file may store (int8, int16, int32, uint32, float64, NumPy's default) by the
+// formats' one rule (libvri/io/stored_voxels.h): float64 rounded to the nearest float32, a value beyond
+// float32's range refused; integers to the nearest float, normalised over their type's full range.
 std::shared_ptr<Volume> volumeFromArray(const py::array& array, const py::object& spacing, const py::object& origin,
                                         const py::object& range) {
+    if (array.ndim() != 3)
+        throw Error("array: expected 3 dimensions [z, y, x], got " + std::to_string(array.ndim()) +
+                    (array.ndim() == 2 ? " (one 2-D slice is array[None], a volume of depth 1)" : ""));
     const py::dtype dtype = array.dtype();
-    VoxelType type;
-    if (dtype.is(py::dtype::of<std::uint8_t>())) type = VoxelType::UInt8;
-    else if (dtype.is(py::dtype::of<std::uint16_t>())) type = VoxelType::UInt16;
-    else if (dtype.is(py::dtype::of<float>())) type = VoxelType::Float32;
-    else throw Error("array: expected uint8, uint16 or float32 voxels, got " + py::str(py::handle(dtype)).cast<std::string>());
-    if (array.ndim() != 3) throw Error("array: expected 3 dimensions [z, y, x], got " + std::to_string(array.ndim()));
+    const std::pair<py::dtype, detail::StoredType> types[] = {
+        {py::dtype::of<std::uint8_t>(), detail::StoredType::UInt8},   {py::dtype::of<std::uint16_t>(), detail::StoredType::UInt16},
+        {py::dtype::of<float>(), detail::StoredType::Float32},        {py::dtype::of<double>(), detail::StoredType::Float64},
+        {py::dtype::of<std::int8_t>(), detail::StoredType::Int8},     {py::dtype::of<std::int16_t>(), detail::StoredType::Int16},
+        {py::dtype::of<std::int32_t>(), detail::StoredType::Int32},   {py::dtype::of<std::uint32_t>(), detail::StoredType::UInt32}};
+    const auto found = std::find_if(std::begin(types), std::end(types), [&](const auto& t) { return dtype.is(t.first); });
+    if (found == std::end(types))
+        throw Error("array: expected uint8, uint16 or float32 voxels (kept), or int8, int16, int32, uint32 or float64 "
+                    "(converted to float32), in native byte order; got " +
+                    py::str(py::handle(dtype)).cast<std::string>());
     glm::ivec3 dims;
     for (int axis = 0; axis < 3; ++axis) {
         const py::ssize_t n = array.shape(2 - axis);
         if (n > std::numeric_limits<int>::max()) throw Error("array: " + std::to_string(n) + " voxels along an axis");
         dims[axis] = int(n);
     }
-    auto volume = std::make_shared<Volume>(dims, type);  // checks the size against the limit
     const auto contiguous = py::array::ensure(array, py::array::c_style);
-    std::memcpy(volume->bytes.data(), contiguous.data(), volume->byteCount());
+    const std::size_t bytes = checkedBytes("array", {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z),
+                                                     detail::storedSize(found->second)});
+    auto volume = std::make_shared<Volume>(detail::decodeVoxels(
+        "array", dims, found->second, nativeByteOrder(),
+        std::string_view(static_cast<const char*>(contiguous.data()), bytes)));
     if (!spacing.is_none()) volume->spacing = parseVec3(optionText(spacing, "spacing"), "spacing");
     if (!origin.is_none()) volume->origin = parseVec3(optionText(origin, "origin"), "origin");
     if (!range.is_none()) {
@@ -291,6 +310,19 @@ py::array_t<double> pointArray(const TransferFunction& tf) {
 
 py::tuple vec3(const glm::dvec3& v) { return py::make_tuple(v.x, v.y, v.z); }
 
+// "(1, 2.5, 3)": a tuple as Python prints it, for the reprs.
+std::string tupleText(const py::tuple& t) { return py::repr(t).cast<std::string>(); }
+
+double requireNonNegative(double value, const char* name) {
+    if (!(value >= 0)) throw Error(std::string(name) + ": expected a number >= 0, got " + exactNumber(value));
+    return value;
+}
+
+double requirePercent(double value, const char* name) {
+    if (!(value >= 0 && value <= 100)) throw Error(std::string(name) + ": expected a percentage in [0, 100], got " + exactNumber(value));
+    return value;
+}
+
 }  // namespace
 
 }  // namespace vri
@@ -304,7 +336,9 @@ PYBIND11_MODULE(vri, m) {
     py::class_<Volume, std::shared_ptr<Volume>>(m, "Volume", "A regular scalar volume in its native voxel type")
         .def_static("from_array", &volumeFromArray, py::arg("array"), py::kw_only(), py::arg("spacing") = py::none(),
                     py::arg("origin") = py::none(), py::arg("range") = py::none(),
-                    "A volume of a [z, y, x] array of uint8, uint16 or float32 (copied)")
+                    "A volume of a [z, y, x] array (copied): uint8, uint16 and float32 kept; int8, int16, int32, uint32 "
+                    "and float64 (NumPy's default) converted to float32 as the volume formats' rule (README, "
+                    "\"Formats\"): float64 rounded to the nearest float32, a value beyond its range refused")
         .def_property_readonly("dims", [](const Volume& v) { return py::make_tuple(v.dims.x, v.dims.y, v.dims.z); })
         .def_property_readonly("spacing", [](const Volume& v) { return vec3(v.spacing); })
         .def_property_readonly("origin", [](const Volume& v) { return vec3(v.origin); },
@@ -317,8 +351,11 @@ PYBIND11_MODULE(vri, m) {
                                })
         .def("values", &voxelArray, "the voxels as a [z, y, x] array (a copy)")
         .def("__repr__", [](const Volume& v) {
-            return "<vri.Volume " + std::to_string(v.dims.x) + "x" + std::to_string(v.dims.y) + "x" +
-                   std::to_string(v.dims.z) + " " + std::string(voxelTypeName(v.type)) + ">";
+            std::string text = "vri.Volume(dims=" + tupleText(py::make_tuple(v.dims.x, v.dims.y, v.dims.z)) +
+                               ", voxel_type='" + std::string(voxelTypeName(v.type)) + "', spacing=" +
+                               tupleText(vec3(v.spacing)) + ", origin=" + tupleText(vec3(v.origin));
+            if (v.range) text += ", range=" + tupleText(py::make_tuple(v.range->lo, v.range->hi));
+            return text + ")";
         });
 
     py::class_<LinearField>(m, "LinearField", "Paper A's analytic field f = (x + 1.5) / 3 on the box [-1.5, 1.5]^3")
@@ -332,19 +369,28 @@ PYBIND11_MODULE(vri, m) {
              [](const LinearField& f, const std::string& convention) {
                  return std::make_shared<Volume>(sampleOntoGrid(f, parseGridConvention(convention, "convention")));
              },
-             py::arg("convention") = "cell", "the field sampled onto its grid (vri-render's --field-as-grid)");
+             py::arg("convention") = "cell", "the field sampled onto its grid (vri-render's --field-as-grid)")
+        .def("__repr__", [](const LinearField& f) {
+            return "vri.LinearField(dims=" + tupleText(py::make_tuple(f.dims.x, f.dims.y, f.dims.z)) + ")";
+        });
 
     m.def("load_volume", &loadVolume, py::arg("path"), py::kw_only(), py::arg("dims") = py::none(),
           py::arg("type") = py::none(), py::arg("byte_order") = py::none(), py::arg("header_bytes") = py::none(),
           py::arg("spacing") = py::none(), py::arg("grid") = py::none(), py::arg("range") = py::none(),
-          "Reads any volume file vri reads (README, \"Formats\"), with the tools' --dims, --type, --byte-order, "
+          "Reads any volume file vri reads (README, \"Formats\"); a relative path that is not here is looked up in "
+          "$VRI_DATA_DIR. With the tools' --dims, --type, --byte-order, "
           "--header-bytes, --spacing, --grid (vri-convert) and --range");
 
     py::class_<TransferFunction>(m, "TransferFunction", "A piecewise-linear transfer function s -> r, g, b, tau")
         .def(py::init(&transferFunctionFromArray), py::arg("points"), py::arg("emission") = "color-times-extinction",
              "From rows s, r, g, b, tau (sorted by s) and the emission model (color-times-extinction or color)")
         .def_property_readonly("points", &pointArray, "rows s, r, g, b, tau")
-        .def_property_readonly("emission", [](const TransferFunction& tf) { return std::string(emissionModelName(tf.emission())); });
+        .def_property_readonly("emission", [](const TransferFunction& tf) { return std::string(emissionModelName(tf.emission())); })
+        .def("__repr__", [](const TransferFunction& tf) {
+            const auto& p = tf.points();
+            return "vri.TransferFunction(" + std::to_string(p.size()) + " points, s from " + exactNumber(p.front().s) +
+                   " to " + exactNumber(p.back().s) + ", emission='" + std::string(emissionModelName(tf.emission())) + "')";
+        });
     m.def("load_transfer_function", [](const std::string& path) { return loadTransferFunction(path); },
           py::arg("path"), "Reads a transfer-function YAML file (vri-render's --tf)");
     m.def("parse_transfer_function", [](const std::string& text) { return parseTransferFunction(text, "yaml"); },
@@ -357,7 +403,13 @@ PYBIND11_MODULE(vri, m) {
              "size (width, height) or 'WxH' (default 800x600); eye and target default to the tools' framing of "
              "the box (in front of it, +z, looking at its centre); up (0, 1, 0); fov 30 degrees, vertical")
         .def_property_readonly("size", [](const CameraOptions& c) { return py::make_tuple(c.size.x, c.size.y); })
-        .def_property_readonly("fov", [](const CameraOptions& c) { return c.fov; });
+        .def_property_readonly("fov", [](const CameraOptions& c) { return c.fov; })
+        .def("__repr__", [](const CameraOptions& c) {
+            std::string text = "vri.Camera(size=" + tupleText(py::make_tuple(c.size.x, c.size.y));
+            if (c.eye) text += ", eye=" + tupleText(vec3(*c.eye));
+            if (c.target) text += ", target=" + tupleText(vec3(*c.target));
+            return text + ", up=" + tupleText(vec3(c.up)) + ", fov=" + exactNumber(c.fov) + ")";
+        });
 
     const char* renderHelp =
         "render(source, tf, camera, convention='cell', **options) -> (image, stats)\n"
@@ -375,12 +427,24 @@ PYBIND11_MODULE(vri, m) {
           "(height, width, 4), and its stats as a dict. The GIL is released while it renders.");
 
     m.def("compare",
-          [](const py::object& a, const py::object& b, const std::vector<double>& thresholds) {
+          [](const py::object& a, const py::object& b, const std::vector<double>& thresholds, double fail,
+             double failPercent, double warn, double warnPercent, bool perPixel) {
               const Image reference = fromNumpy(a, "a");  // a's shape is checked first
-              return toPython(toJson(compareImages(reference, fromNumpy(b, "b"), thresholds)));
+              const Image other = fromNumpy(b, "b");
+              const DiffLimits limits{requireNonNegative(fail, "fail"), requirePercent(failPercent, "failpercent"),
+                                      requireNonNegative(warn, "warn"), requirePercent(warnPercent, "warnpercent"),
+                                      perPixel};
+              nlohmann::json record = toJson(compareImages(reference, other, thresholds));
+              addVerdict(record, diffVerdict(reference, other, limits));
+              return toPython(record);
           },
-          py::arg("a"), py::arg("b"), py::arg("thresholds") = vri::kDefaultThresholds,
-          "vri-diff's metrics of |a - b| per channel (its --json record) as a dict; a is the reference");
+          py::arg("a"), py::arg("b"), py::arg("thresholds") = vri::kDefaultThresholds, py::kw_only(),
+          py::arg("fail") = DiffLimits{}.fail, py::arg("failpercent") = DiffLimits{}.failPercent,
+          py::arg("warn") = DiffLimits{}.warn, py::arg("warnpercent") = DiffLimits{}.warnPercent,
+          py::arg("per_pixel") = false,
+          "vri-diff's --json record of |a - b| per channel as a dict, a the reference, with its verdict: 'verdict' "
+          "(pass, warn or fail), 'exit_code' (vri-diff's: 0, 2 or 3) and the 'fail' and 'warn' counts, from vri-diff's "
+          "--fail, --failpercent, --warn, --warnpercent and --per-pixel");
     m.def("read_image", [](const std::string& path) { return toNumpy(readImage(path)); }, py::arg("path"),
           "An image file (EXR, PNG, ...) as a float32 array (height, width, channels)");
     m.def("write_exr", [](const std::string& path, const py::object& image) { writeExr(path, fromNumpy(image, "image")); },

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/cli.h"
+#include "common/diff_verdict.h"
 #include "common/image_compare_json.h"
 #include "libvri/core/heat_map.h"
 #include "libvri/core/image_compare.h"
@@ -26,13 +27,6 @@ namespace {
 
 constexpr const char* kTool = "vri-diff";
 
-// idiff's ErrOK, ErrWarn, ErrFail and ErrDifferentSize are 0 to 3, and its ErrFile 4; here the verdicts
-// are idiff's plus one, so that a warning never reads as a failure to read or write a file, which is
-// exit 1 as in every tool.
-constexpr int kExitPass = vri::kExitOk;
-constexpr int kExitWarn = 2;
-constexpr int kExitFail = 3;
-constexpr int kExitDifferentShape = 4;
 
 struct Options {
     std::string a, b;
@@ -41,40 +35,13 @@ struct Options {
     double diffScale = 1.0;
     std::vector<double> histogramRange{1e-6, 1.0};
     int binsPerDecade = 5;
-    double fail = 1e-6, failPercent = 0;
-    double warn = 1e-6, warnPercent = 0;
-};
-
-// How many pixel-channels, over all channels, have an error above a limit, and whether that is
-// more than the allowed share.
-struct LimitCheck {
-    double limit = 0;
-    double allowedPercent = 0;
-    std::uint64_t count = 0;
-    double percent = 0;
-    bool exceeded() const { return percent > allowedPercent; }
+    vri::DiffLimits limits;
 };
 
 bool isPng(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     return ext == ".png";
-}
-
-LimitCheck checkLimit(const vri::ImageDiff& diff, std::size_t thresholdIndex, double allowedPercent) {
-    LimitCheck check{diff.thresholds.at(thresholdIndex), allowedPercent, 0, 0};
-    for (const vri::ChannelDiff& channel : diff.channels) check.count += channel.countAbove[thresholdIndex];
-    const double pixelChannels = static_cast<double>(diff.pixels) * static_cast<double>(diff.channels.size());
-    check.percent = 100.0 * static_cast<double>(check.count) / pixelChannels;
-    return check;
-}
-
-nlohmann::json toJson(const LimitCheck& check) {
-    return {{"threshold", check.limit},
-            {"allowed_percent", check.allowedPercent},
-            {"count", check.count},
-            {"percent", check.percent},
-            {"exceeded", check.exceeded()}};
 }
 
 std::string format(const char* pattern, double value) {
@@ -98,18 +65,12 @@ private:
     std::size_t column_ = 0;
 };
 
-// "FAIL: 25% of pixel-channels above 1e-06 (allowed 0%)"
-std::string describe(const char* verdict, const LimitCheck& check) {
-    return std::string(verdict) + ": " + format("%g", check.percent) + "% of pixel-channels above " +
-           format("%g", check.limit) + " (allowed " + format("%g", check.allowedPercent) + "%)";
-}
-
 void printSummary(const Options& options, const vri::ImageDiff& diff, const std::string& verdict) {
     std::cout << options.a << " vs " << options.b << ": " << diff.width << "x" << diff.height << ", "
               << diff.channels.size() << " channels, all " << diff.pixels << " pixels counted\n";
     Row header;
     header.cell("channel", 8).cell("max", 13).cell("at (x,y)", 12).cell("mean", 13).cell("RMSE", 13);
-    for (double t : diff.thresholds) header.cell("% > " + format("%g", t), 12);
+    for (double t : diff.thresholds) header.cell("% > " + format("%g", t), 12);  // of the channel's pixels
     std::cout << header.str() << '\n';
     for (const vri::ChannelDiff& channel : diff.channels) {
         Row row;
@@ -121,7 +82,16 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const std:
         for (double percent : channel.percentAbove) row.cell(format("%.4f", percent), 12);
         std::cout << row.str() << '\n';
     }
-    std::cout << verdict << '\n';
+    // A channel's % is of its pixels; over the channels two counts differ, and each says which it is.
+    constexpr std::size_t kLabelWidth = 8 + 13 + 12 + 13 + 13;
+    Row pixelChannels, pixels;
+    pixelChannels.cell("all channels: % of pixel-channels (pixels x channels)", kLabelWidth);
+    pixels.cell("any channel: % of pixels (as idiff counts, --per-pixel)", kLabelWidth);
+    for (std::size_t t = 0; t < diff.thresholds.size(); ++t) {
+        pixelChannels.cell(format("%.4f", pixelChannelPercent(diff, t)), 12);
+        pixels.cell(format("%.4f", pixelPercent(diff, t)), 12);
+    }
+    std::cout << pixelChannels.str() << '\n' << pixels.str() << '\n' << verdict << '\n';
 }
 
 // CLI11's own PositiveNumber and NonNegativeNumber print the largest double in full when they reject a value.
@@ -181,22 +151,26 @@ int run(int argc, char** argv) {
     app.add_option("--bins-per-decade", options.binsPerDecade, "histogram bins per factor of ten")
         ->check(kPositive)
         ->capture_default_str();
-    app.add_option("--fail", options.fail, "failure threshold on the absolute error")
+    app.add_option("--fail", options.limits.fail, "failure threshold on the absolute error")
         ->check(kNonNegative)
         ->capture_default_str();
-    app.add_option("--failpercent", options.failPercent, "fail when more than this % of pixel-channels is above --fail")
+    app.add_flag("--per-pixel", options.limits.perPixel,
+                 "--failpercent and --warnpercent count pixels with any channel above the limit, as OpenImageIO's "
+                 "idiff does, instead of pixel-channels (pixels x channels)");
+    app.add_option("--failpercent", options.limits.failPercent, "fail when more than this % of pixel-channels is above --fail")
         ->check(CLI::Range(0.0, 100.0))
         ->capture_default_str();
-    app.add_option("--warn", options.warn, "warning threshold on the absolute error")
+    app.add_option("--warn", options.limits.warn, "warning threshold on the absolute error")
         ->check(kNonNegative)
         ->capture_default_str();
-    app.add_option("--warnpercent", options.warnPercent, "warn when more than this % of pixel-channels is above --warn")
+    app.add_option("--warnpercent", options.limits.warnPercent, "warn when more than this % of pixel-channels is above --warn")
         ->check(CLI::Range(0.0, 100.0))
         ->capture_default_str();
     app.footer(
         "Exit codes (idiff's, one up): 0 pass, 2 warning, 3 failure, 4 images differ in size or channel count;\n"
         "1 a file is missing or unreadable (or an output cannot be written), 64 bad arguments.\n"
-        "Percentages of --failpercent/--warnpercent are over all pixel-channels (pixels x channels).\n"
+        "Percentages of --failpercent/--warnpercent are over all pixel-channels (pixels x channels), or with\n"
+        "--per-pixel over pixels, a pixel counting when any channel is above, as idiff counts (more of them).\n"
         "\n"
         "Examples:\n"
         "  vri-diff reference.exr render.exr\n"
@@ -228,22 +202,11 @@ int run(int argc, char** argv) {
     try {
         vri::requireSameShape(a, b);
     } catch (const vri::Error& e) {
-        return exitWith(kExitDifferentShape, e);
+        return exitWith(vri::kDiffDifferentShape, e);
     }
 
     const vri::ImageDiff diff = vri::compareImages(a, b, options.thresholds);
-    const vri::ImageDiff limits = vri::compareImages(a, b, {options.fail, options.warn});
-    const LimitCheck failCheck = checkLimit(limits, 0, options.failPercent);
-    const LimitCheck warnCheck = checkLimit(limits, 1, options.warnPercent);
-    int code = kExitPass;
-    std::string verdict = "PASS";
-    if (failCheck.exceeded()) {
-        code = kExitFail;
-        verdict = describe("FAIL", failCheck);
-    } else if (warnCheck.exceeded()) {
-        code = kExitWarn;
-        verdict = describe("WARN", warnCheck);
-    }
+    const vri::DiffVerdict verdict = vri::diffVerdict(a, b, options.limits);
 
     std::optional<double> heatTop;  // the top of a PNG heat map's scale
     if (!options.diffImage.empty() && isPng(options.diffImage)) {
@@ -261,10 +224,7 @@ int run(int argc, char** argv) {
         nlohmann::json json = vri::toJson(diff);
         json["a"] = options.a;
         json["b"] = options.b;
-        json["verdict"] = code == kExitPass ? "pass" : code == kExitWarn ? "warn" : "fail";
-        json["exit_code"] = code;
-        json["fail"] = toJson(failCheck);
-        json["warn"] = toJson(warnCheck);
+        vri::addVerdict(json, verdict);
         json["command"] = vri::commandLine(argc, argv);
         if (heatTop)
             json["heat_map"] = {{"file", options.diffImage},
@@ -273,8 +233,8 @@ int run(int argc, char** argv) {
                                 {"top", *heatTop}};
         vri::writeTextFile(options.json, json.dump(2) + "\n");
     }
-    if (options.json != "-") printSummary(options, diff, verdict);
-    return code;
+    if (options.json != "-") printSummary(options, diff, verdict.text);
+    return verdict.code;
 }
 
 }  // namespace

@@ -58,10 +58,10 @@ int run(int argc, char** argv) {
         "  palette: viridis (default), gray, diverging (blue, white, red)\n"
         "\n"
         "Example:\n"
-        "  vri-plot experiments/figs/speed-accuracy.yaml -o results/speed/speed-accuracy.png\n"
-        "      writes speed-accuracy.png, .svg and .gp; a malformed spec is one line FILE:LINE:COL: what\n"
-        "  vri-plot experiments/figs/speed-accuracy.yaml --data-dir results/speed-cpu -o results/speed-cpu/f.png\n"
-        "      the same figure of another results folder's data");
+        "  vri-plot experiments/plots/paper-b-speed-bonsai.yaml -o results/paper-b-cpu/speed-bonsai.png\n"
+        "      writes speed-bonsai.png, .svg and .gp; a malformed spec is one line FILE:LINE:COL: what\n"
+        "  vri-plot experiments/plots/paper-b-speed-bonsai.yaml --data-dir build/experiments-quick/paper-b-cpu \\\n"
+        "      -o speed-bonsai-quick.png       the same figure of another results folder's data");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     const vri::PlotSpec spec = vri::loadPlotSpec(specPath, dataDir);

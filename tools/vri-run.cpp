@@ -1,4 +1,5 @@
 // vri-run: runs experiment files as graphs of small tool invocations, with caching and provenance.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,11 +15,13 @@
 #include <nlohmann/json.hpp>
 
 #include "common/cli.h"
+#include "libvri/experiment/datasets.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_reproduce.h"
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
 #include "libvri/experiment/manifest.h"
+#include "libvri/experiment/new_study.h"
 #include "libvri/experiment/plan_waves.h"
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_executor.h"
@@ -38,7 +41,7 @@ constexpr const char* kTool = "vri-run";
 
 struct Options {
     std::vector<std::string> experiments;
-    bool quick = false, dryRun = false, estimate = false, force = false, record = false, check = false, allowDirty = false;
+    bool quick = false, quiet = false, dryRun = false, estimate = false, force = false, record = false, check = false, allowDirty = false;
     std::string results, committed = "results", gallery;
     int jobs = 1;
     std::string executor = "local";
@@ -47,6 +50,7 @@ struct Options {
     double slurmBundle = 60, slurmPoll = 1;
     int slurmCpus = 2;
     std::string nodeSteps, nodeCheck;  // inside a Slurm job (hidden)
+    std::string newStudy;
 };
 
 // The environment variable a site sets its sbatch options in (README "On a cluster").
@@ -163,7 +167,8 @@ bool finish(const Options& options, const vri::Experiment& experiment, const vri
         ran += o.state == vri::StepOutcome::State::Ran;
         cached += o.state == vri::StepOutcome::State::Cached;
     }
-    std::cerr << kTool << ": " << experiment.name << ": " << plan.steps.size() << " steps, " << ran << " ran, " << cached
+    if (!options.quiet)
+        std::cerr << kTool << ": " << experiment.name << ": " << plan.steps.size() << " steps, " << ran << " ran, " << cached
               << " cached, in " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
               << " s -> " << plan.commandPath(plan.resultsDir) << '\n';
     return !(options.record || options.check) || reproduce(options, experiment, plan);
@@ -191,22 +196,29 @@ bool runOnSlurm(const Options& options, const std::vector<vri::Experiment>& expe
     for (const vri::Plan& plan : plans) fs::remove(plan.resultsDir / "manifest.json");
     if (toRun > 0) batch.run();
     bool reproduced = true;
-    std::optional<vri::Error> firstFailure;
+    std::optional<std::string> firstFailure;
+    bool firstFailureDetailed = false;  // a failed step's DetailedError: its first line, then its command and output
     std::size_t failures = 0;
     for (std::size_t e = 0; e < plans.size(); ++e) {
         try {
             reproduced = finish(options, experiments[e], plans[e], batch.result(e), runOptions.toolDir, hasher, start) &&
                          reproduced;
         } catch (const vri::Error& error) {
-            if (!firstFailure) firstFailure = vri::Error(experiments[e].name + ": " + error.what());
+            if (!firstFailure) {
+                firstFailure = experiments[e].name + ": " + error.what();
+                firstFailureDetailed = dynamic_cast<const vri::DetailedError*>(&error) != nullptr;
+            }
             ++failures;
         }
     }
-    if (failures > 1)
-        throw vri::Error(std::string(firstFailure->what()) + " (and " + std::to_string(failures - 1) +
-                         " more experiments failed: see their .steps/ logs)");
-    if (firstFailure) throw *firstFailure;
-    return reproduced;
+    if (!firstFailure) return reproduced;
+    if (failures > 1) {  // said on the first line, before the failed step's details
+        const std::size_t lineEnd = std::min(firstFailure->find('\n'), firstFailure->size());
+        firstFailure->insert(lineEnd, " (and " + std::to_string(failures - 1) +
+                                          " more experiments failed: see their .steps/ logs)");
+    }
+    if (firstFailureDetailed) throw vri::DetailedError(*firstFailure);
+    throw vri::Error(*firstFailure);
 }
 
 int run(const Options& options) {
@@ -221,7 +233,14 @@ int run(const Options& options) {
     std::vector<vri::Experiment> experiments;
     std::vector<vri::Plan> plans;
     for (const std::string& file : options.experiments) {
+        if (vri::isDatasetCatalog(file)) {  // beside the experiments, so experiments/*.yaml names it
+            std::cerr << kTool << ": " << file << " is the dataset catalog, not an experiment: skipped\n";
+            continue;
+        }
         experiments.push_back(vri::loadExperiment(file, options.quick));
+        if (!options.quick)  // quick runs are for checking, not for reading times
+            for (const std::string& warning : experiments.back().warnings)
+                std::cerr << kTool << ": warning: " << experiments.back().name << ": " << warning << '\n';
         // The name is the results folder: a second experiment of that name would replace the first's
         // manifest and reuse its runs' files.
         for (std::size_t e = 0; e + 1 < experiments.size(); ++e)
@@ -231,7 +250,7 @@ int run(const Options& options) {
                                  (resultsRoot / experiments.back().name).string() + "/)");
         plans.push_back(vri::planExperiment(experiments.back(), resultsRoot / experiments.back().name, fs::current_path()));
     }
-    vri::RunOptions runOptions{toolDir, options.jobs, options.force, vri::Executor::Local, {}, {}};
+    vri::RunOptions runOptions{toolDir, options.jobs, options.force, options.quiet, vri::Executor::Local, {}, {}};
     if (options.executor == "slurm") {
         runOptions.executor = vri::Executor::Slurm;
         runOptions.slurm = slurmOptions(options);
@@ -271,8 +290,11 @@ int run(const Options& options) {
         const auto start = std::chrono::steady_clock::now();
         const vri::FolderLock lock(plan.commandPath(plan.resultsDir));  // until its manifest is written
         removeStaleTempFiles(plan);
+        vri::RunOptions planOptions = runOptions;
+        // The last run's wall times give the progress line its ETA; read before the manifest goes.
+        planOptions.prices = vri::stepPrices(plan, plan.resultsDir / "manifest.json");
         fs::remove(plan.resultsDir / "manifest.json");  // rewritten only once every step has succeeded
-        const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, runOptions, hasher);
+        const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, planOptions, hasher);
         reproduced = finish(options, experiment, plan, outcomes, toolDir, hasher, start) && reproduced;
     }
     if (options.estimate) printEstimate(estimates);
@@ -300,6 +322,9 @@ int main(int argc, char** argv) {
                  "print what each experiment costs from nothing, its steps priced by the wall times of the last "
                  "manifest in the results root; run nothing")
         ->excludes("--dry-run");
+    app.add_flag("-q,--quiet", options.quiet,
+                 "no progress: without a terminal a line per started and finished step, on one a live line with "
+                 "an ETA; and no summary line");
     app.add_flag("--force", options.force, "run every step even when its cache record vouches for it");
     app.add_option("--results", options.results, "results root (default: results, with --quick build/experiments-quick)");
     app.add_flag("--allow-dirty", options.allowDirty,
@@ -326,6 +351,9 @@ int main(int argc, char** argv) {
     app.add_option("--slurm-poll", options.slurmPoll, "seconds between two looks at the jobs (squeue), 0.1 to 600")
         ->check(CLI::Range(0.1, 600.0))
         ->capture_default_str();
+    app.add_option("--new", options.newStudy,
+                   "write NAME.yaml, NAME-tf.yaml and NAME-plot.yaml: a commented study to start an own one from, "
+                   "which runs as written (an analytic field; no data set); then vri-run NAME.yaml");
     app.add_option("--slurm-node-steps", options.nodeSteps)->group("");  // what a Slurm job runs (slurm_node.h)
     app.add_option("--slurm-node-check", options.nodeCheck)->group("");
     app.add_flag("--record", options.record, "with --quick: write the reproduce: numbers to COMMITTED/<experiment>/reproduce.json");
@@ -344,6 +372,7 @@ Temporary files (.NAME.tmp.PID.*) whose process is gone are removed first.
 The sweeps of one file may expand to at most 10000 runs (counted before expanding, --dry-run included).
 
 Examples:
+  vri-run --new mystudy && vri-run mystudy.yaml                 # an own study: written, then run
   vri-run experiments/paper-a-fig4.yaml
   vri-run --dry-run experiments/paper-a-fig4.yaml > fig4.sh     # the commands, to rerun by hand
   vri-run --estimate experiments/*.yaml                         # what make experiments costs from nothing
@@ -360,6 +389,12 @@ SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
     return vri::guardedMain(kTool, [&] {
         if (!options.nodeSteps.empty()) return vri::runNodeSteps(options.nodeSteps);
         if (!options.nodeCheck.empty()) return vri::runNodeCheck(options.nodeCheck);
+        if (!options.newStudy.empty()) {
+            if (!options.experiments.empty()) throw vri::UsageError("--new writes files and runs none: name no EXPERIMENT");
+            for (const fs::path& file : vri::writeNewStudy(options.newStudy))
+                std::cerr << kTool << ": wrote " << file.string() << '\n';
+            return vri::kExitOk;
+        }
         if (options.experiments.empty() && options.gallery.empty())
             throw vri::Error("nothing to do: name experiment files or --gallery DIR (see --help)");
         vri::requireUtf8Arguments(argc, argv);  // the steps' commands and the manifest name these files

@@ -15,6 +15,9 @@ enum class GridConvention {
     NodeCentred,
 };
 
+// What the tools assume when none is named (--convention), and so an experiment's scene without one.
+inline constexpr GridConvention kDefaultConvention = GridConvention::CellCentred;
+
 std::string_view gridConventionName(GridConvention c);  // "cell" or "node"
 GridConvention parseGridConvention(std::string_view name, const std::string& what);
 

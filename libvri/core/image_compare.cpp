@@ -68,8 +68,13 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double
         channel.countAbove.assign(thresholds.size(), 0);
         diff.channels.push_back(std::move(channel));
     }
+    diff.pixelsAbove.assign(thresholds.size(), 0);
+    double pixelLargest = 0;  // the largest error over the channels of the pixel being visited
     forEachError(a, b, [&](int c, int x, int y, double error) {
         ChannelDiff& channel = diff.channels[c];
+        pixelLargest = c == 0 ? error : std::max(pixelLargest, error);
+        if (c + 1 == a.channels)
+            for (std::size_t t = 0; t < thresholds.size(); ++t) diff.pixelsAbove[t] += pixelLargest > thresholds[t];
         sum[c] += error;
         sumOfSquares[c] += error * error;
         if (error > channel.maxAbs) {

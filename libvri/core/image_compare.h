@@ -32,6 +32,9 @@ struct ImageDiff {
     std::vector<double> thresholds;
     std::vector<ChannelDiff> channels;  // in the order of the images' channels, named after a's
     std::uint64_t pixels = 0;           // width * height: all pixels count
+    // Per threshold: pixels whose error in some channel is above it, as OpenImageIO's idiff counts (a
+    // channel's countAbove counts that channel's pixels; summed over the channels, pixel-channels).
+    std::vector<std::uint64_t> pixelsAbove;
 };
 
 // Throws vri::Error naming both shapes when a and b differ in size or channel count.

@@ -188,6 +188,15 @@ const RenderOptionRow kRows[] = {
          if (r.exact) s.push_back({"tolerance", r.exactTolerance});
          else if (adaptive(r)) s.push_back({"tolerance", r.options.adaptive.tolerance});
      }},
+    {"--max-error", "max_error", "maxerr", OptionValueKind::Number,
+     "exact: the largest per-pixel error bound wanted; the tolerance is tightened (from --tolerance, else from E) "
+     "by untimed renders until every pixel's bound is at most E, and the stats record the tolerance found",
+     "", "", kBothTools, kBothBackends,
+     [](const std::string& text, const std::string& where, RenderRequest& r) { r.maxError = parsePositive(text, where); },
+     noDefault,
+     [](const RenderRequest& r, std::vector<Setting>& s) {
+         if (r.exact && r.maxError) s.push_back({"max_error", *r.maxError});
+     }},
     {"--h0", "h0", "h0-", OptionValueKind::Number, "initial step", "adaptive", "", kRenderOnly, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) {
          r.options.adaptive.h0 = parsePositive(text, where);
@@ -351,6 +360,8 @@ void finishRenderRequest(RenderRequest& r) {
     if (preintegrated(r) && r.wasGiven("--early-termination"))
         throw Error("--early-termination: not available for --method preintegrated (its bound does not hold for "
                     "interpolated table entries)");
+    if (r.maxError && !r.exact)
+        throw Error("--max-error applies to --method exact only (the only method with a per-pixel error bound)");
     if (r.exact && !(r.exactTolerance > 0.0))
         throw Error("--tolerance: must be > 0 for --method exact, got " + exactNumber(r.exactTolerance));
     for (const std::string_view flag : r.given)

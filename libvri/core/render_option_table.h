@@ -9,6 +9,7 @@
 // options, the experiment reader into keys.
 #include <optional>
 #include <span>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -38,6 +39,9 @@ struct RenderRequest {
     bool exact = false;           // --method exact: vri-reference's method, in double on the CPU
     RenderOptions options;        // every other method's settings
     double exactTolerance = 0.0;  // --method exact's --tolerance (its own default, not the adaptive one's)
+    // --method exact's --max-error: the largest per-pixel error bound asked for; the tool then searches the
+    // tolerance that gives it (render_command.h), since the tolerance is per piece of a ray, not per pixel.
+    std::optional<double> maxError;
     Backend backend = Backend::Cpu;
     std::string device;  // Vulkan: an index of --list-devices or part of a name; empty: the first
     VulkanInterpolation interpolation = VulkanInterpolation::Shader;

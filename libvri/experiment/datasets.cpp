@@ -133,6 +133,23 @@ std::vector<DatasetInfo> parseDatasetCatalog(const std::string& yamlText, const 
     return catalogFromYaml(yaml::parse(yamlText, source), source);
 }
 
+std::optional<fs::path> findVolume(const fs::path& path, const fs::path& base) {
+    const fs::path beside = (base / path).lexically_normal();
+    if (fs::is_regular_file(beside)) return fs::absolute(beside);
+    const fs::path inData = (defaultDataDir() / path).lexically_normal();
+    if (path.is_relative() && fs::is_regular_file(inData)) return fs::absolute(inData);
+    return std::nullopt;
+}
+
+bool isDatasetCatalog(const fs::path& yamlPath) {
+    try {
+        const YAML::Node root = yaml::load(yamlPath);
+        return root.IsMap() && root["datasets"] && !root["name"];
+    } catch (const Error&) {
+        return false;
+    }
+}
+
 std::vector<DatasetInfo> loadDatasetCatalog(const fs::path& yamlPath) {
     return catalogFromYaml(yaml::load(yamlPath), yamlPath.string());
 }

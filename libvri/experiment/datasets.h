@@ -3,6 +3,7 @@
 // is published, how its voxels are laid out, the SHA-512 it must have, and how exact our copy is.
 // The files themselves are not in the repository; they live in a data directory ($VRI_DATA_DIR).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,6 +34,16 @@ struct DatasetInfo {
 // `note` says how close it is; its digest identifies our reconstruction, not a published file.
 // Stand-in: a different dataset used in place of one the papers name.
 inline constexpr const char* kDatasetStatuses[] = {"exact", "reconstructed", "stand-in"};
+
+// A volume file as experiment files (`volume:`) and the Python module's load_volume name it: `path` when it
+// exists (a relative one taken from `base`), else, for a relative path, that path in defaultDataDir()
+// ($VRI_DATA_DIR); nullopt when neither exists.
+std::optional<std::filesystem::path> findVolume(const std::filesystem::path& path, const std::filesystem::path& base);
+
+// True when `yaml` is a dataset catalog (a map with `datasets:` and no experiment `name:`), as
+// experiments/datasets.yaml beside the experiments: what `vri-run experiments/*.yaml` skips. A file that is
+// not YAML is not one (reading it as an experiment then says what is wrong).
+bool isDatasetCatalog(const std::filesystem::path& yaml);
 
 // Reads and validates the catalog; any error is a vri::Error "file:line:col: what is wrong".
 std::vector<DatasetInfo> loadDatasetCatalog(const std::filesystem::path& yaml);

@@ -3,11 +3,13 @@
 
 #include <chrono>
 #include <map>
+#include <optional>
 
 #include "libvri/experiment/slurm_executor.h"
 #include "libvri/experiment/step_ledger.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/error.h"
+#include "libvri/util/load_average.h"
 #include "libvri/util/process.h"
 
 namespace vri {
@@ -27,6 +29,7 @@ private:
     struct Child {
         std::size_t step;
         Clock::time_point start;
+        std::optional<double> loadBefore;
     };
 
     bool startReady();  // starts or settles every step whose dependencies are settled; false when nothing changed
@@ -51,9 +54,10 @@ bool LocalScheduler::startReady() {
         started_[i] = true;
         if (!ledger_.needsRun(i)) continue;
         const std::vector<std::string> words = ledger_.prepare(i);
+        ledger_.started(i);
         running_[startProcess(ledger_.program(i), words,
                               {.in = "/dev/null", .out = ledger_.logPath(i), .err = {}, .errToOut = true})] =
-            Child{i, Clock::now()};
+            Child{i, Clock::now(), loadAverage()};
     }
     return changed;
 }
@@ -65,7 +69,9 @@ void LocalScheduler::finish(pid_t pid, const ExitStatus& status) {
     running_.erase(found);
     const double seconds = std::chrono::duration<double>(Clock::now() - child.start).count();
     if (status.ok())
-        ledger_.succeeded(child.step, seconds, {.executor = "local", .node = host_, .jobId = {}, .jobState = {}});
+        ledger_.succeeded(child.step, seconds,
+                          {.executor = "local", .node = host_, .jobId = {}, .jobState = {},
+                           .loadBefore = child.loadBefore, .loadAfter = loadAverage()});
     else
         ledger_.failed(child.step, "failed (" + status.describe() + ")", seconds);
 }

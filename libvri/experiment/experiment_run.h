@@ -30,10 +30,11 @@ struct RunOptions {
     std::filesystem::path toolDir;  // where vri-render, vri-diff, ... are
     int jobs = 1;                   // steps run at once (local)
     bool force = false;             // run every step, cached or not
+    bool quiet = false;             // no progress lines (step_progress.h)
     Executor executor = Executor::Local;
     SlurmOptions slurm;
     // Per step of the plan, its wall time in the last manifest (step_costs.h), when known: what a
-    // Slurm job asks for as its time limit, and how steps are bundled.
+    // Slurm job asks for as its time limit, how steps are bundled, and the progress line's ETA.
     std::vector<std::optional<double>> prices;
 };
 
@@ -45,7 +46,7 @@ struct StepOutcome {
 // Runs the steps in dependency order. A step whose tool is not built is reported on stderr and
 // skipped with everything that depends on it. When a step fails, the steps already running finish
 // (locally) and the steps that depend on it do not run; a vri::Error carries the failed command and
-// its output. Progress lines go to stderr when it is a terminal.
+// its output. Progress goes to stderr (step_progress.h) unless options.quiet.
 std::vector<StepOutcome> runPlan(const Plan& plan, const RunOptions& options, FileHasher& hasher);
 
 }  // namespace vri

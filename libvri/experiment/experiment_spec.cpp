@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <optional>
 #include <set>
 
+#include "libvri/core/grid_convention.h"
 #include "libvri/core/render_option_table.h"
 #include "libvri/core/transfer_function.h"
 #include "libvri/experiment/datasets.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_spec.h"
+#include "libvri/experiment/timing_defaults.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
 #include "libvri/io/yaml_util.h"
@@ -39,9 +42,6 @@ const PeerMethod* peerMethod(std::string_view method) {
         if (peer.method == method) return &peer;
     return nullptr;
 }
-
-constexpr std::string_view kSafeName =
-    "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
 
 // The options with which vri tools write a file: in `commands:` they belong under `outputs:`, where
 // the file lands in the results folder, never under `options:` or `inputs:` (an input named `o`
@@ -97,6 +97,10 @@ private:
     void requireRun(const Experiment& experiment, const std::string& id, const YAML::Node& where) const;
 
     PaperItem readPaper(const YAML::Node& node) const;
+    // Every required key of the experiment, its paper and its scenes that the file lacks, in one error: a
+    // first file then fails once, not once per key. (Comparisons, commands and figures name a missing key
+    // after their unknown keys, which are the likelier mistake there: a misspelt required key.)
+    void requireAllKeys(const YAML::Node& root) const;
     SceneSpec readScene(const std::string& name, const YAML::Node& node);
     void readRuns(const YAML::Node& node, bool reference, Experiment& experiment) const;
     void readComparisons(const YAML::Node& node, Experiment& experiment) const;
@@ -107,6 +111,7 @@ private:
 
     std::string source_;
     fs::path baseDir_;
+    std::vector<std::string> defaults_;  // Experiment::defaults
     std::optional<std::vector<DatasetInfo>> catalog_;  // experiments/datasets.yaml, read when a scene names a dataset
 };
 
@@ -201,11 +206,45 @@ void ExperimentReader::requireRun(const Experiment& experiment, const std::strin
 PaperItem ExperimentReader::readPaper(const YAML::Node& node) const {
     yaml::requireMap(node, source_, "paper");
     yaml::requireKeys(node, source_, {"paper", "item", "says"});
-    PaperItem paper{text(required(node, "paper", "paper"), "paper.paper"), text(required(node, "item", "paper"), "paper.item"),
-                    text(required(node, "says", "paper"), "paper.says")};
+    PaperItem paper{text(required(node, "paper", "paper"), "paper.paper"), "", ""};
     if (paper.paper != "A" && paper.paper != "B" && paper.paper != "none")
         throw Error(at(node["paper"]) + ": paper.paper must be A, B or none, got '" + paper.paper + "'");
+    if (paper.paper != "none" || node["item"]) paper.item = text(required(node, "item", "paper"), "paper.item");
+    if (paper.paper != "none" || node["says"]) paper.says = text(required(node, "says", "paper"), "paper.says");
     return paper;
+}
+
+void ExperimentReader::requireAllKeys(const YAML::Node& root) const {
+    std::vector<std::string> missing;
+    const auto need = [&](const YAML::Node& map, const char* key, const std::string& what) {
+        if (!map[key]) missing.push_back(at(map) + ": " + what + " has no '" + key + "'");
+    };
+    const auto eachEntry = [](const YAML::Node& node, const auto& visit) {
+        if (node && node.IsMap())
+            for (const auto& kv : node)
+                if (kv.second.IsMap()) visit(kv.first.Scalar(), kv.second);
+    };
+    need(root, "name", "the experiment");
+    if (const YAML::Node paper = root["paper"]; paper && paper.IsMap()) {
+        need(paper, "paper", "paper");
+        if (paper["paper"] && paper["paper"].Scalar() != "none") {
+            need(paper, "item", "paper");
+            need(paper, "says", "paper");
+        }
+    }
+    if (root["scenes"] || root["methods"] || root["references"] || !root["commands"]) {
+        need(root, "scenes", "the experiment");
+        need(root, "methods", "the experiment");
+    }
+    eachEntry(root["scenes"], [&](const std::string& name, const YAML::Node& scene) {
+        if (!scene["dataset"] && !scene["volume"] && !scene["field"])
+            missing.push_back(at(scene) + ": scene '" + name + "' has none of 'volume', 'dataset' or 'field'");
+        need(scene, "tf", "scene '" + name + "'");
+    });
+    if (missing.empty()) return;
+    std::string message = missing.size() == 1 ? "" : std::to_string(missing.size()) + " required keys missing: ";
+    for (std::size_t i = 0; i < missing.size(); ++i) message += (i ? "; " : "") + missing[i];
+    throw Error(message);
 }
 
 SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node& node) {
@@ -217,13 +256,21 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
     if (inputs != 1) throw Error(at(node) + ": " + what + " needs exactly one of dataset, volume or field");
     if (const YAML::Node n = node["dataset"]) {
         scene.dataset = text(n, "dataset");
-        if (!catalog_) catalog_ = loadDatasetCatalog(baseDir_ / "datasets.yaml");
-        const DatasetInfo& info = findDataset(*catalog_, scene.dataset, at(n));
+        const fs::path catalog = baseDir_ / "datasets.yaml";
+        if (!catalog_ && !fs::exists(catalog))
+            throw Error(at(n) + ": dataset '" + scene.dataset + "': no catalog " + catalog.string() +
+                        " beside the experiment (dataset: names an entry of the repository's experiments/datasets.yaml; "
+                        "elsewhere name the file with volume: PATH, relative to the experiment or to $VRI_DATA_DIR)");
+        if (!catalog_) catalog_ = loadDatasetCatalog(catalog);
+        const DatasetInfo& info = findDataset(*catalog_, scene.dataset, at(n) + " (volume: PATH names any other file)");
         scene.datasetStatus = info.status;
         scene.datasetNote = info.note;
         const fs::path file = fs::absolute(datasetPath(info, defaultDataDir())).lexically_normal();
         if (!fs::is_regular_file(file))
-            throw Error(at(n) + ": dataset '" + scene.dataset + "': no such file: " + file.string() + " (run make data)");
+            throw Error(at(n) + ": dataset '" + scene.dataset + "': no such file: " + file.string() +
+                        " (the volumes are looked up in $VRI_DATA_DIR, " +
+                        (std::getenv("VRI_DATA_DIR") ? "set" : "not set: ../shared/data/volumes") +
+                        "; make data downloads them)");
         scene.files.push_back(file);
         scene.options.emplace_back("--volume", file.string());
         if (info.header.empty()) {
@@ -236,7 +283,14 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
             scene.options.emplace_back("--spacing", join(layout.spacing));
         }
     } else if (const YAML::Node n = node["volume"]) {
-        scene.files.push_back(existingFile(n, "volume"));
+        const fs::path path = text(n, "volume");
+        const std::optional<fs::path> file = findVolume(path, baseDir_);
+        if (!file)
+            throw Error(at(n) + ": volume: no such file: " + (baseDir_ / path).lexically_normal().string() +
+                        (path.is_relative() ? " nor " + (defaultDataDir() / path).lexically_normal().string() +
+                                                  " ($VRI_DATA_DIR" + (std::getenv("VRI_DATA_DIR") ? "" : ", not set") + ")"
+                                            : ""));
+        scene.files.push_back(*file);
         scene.options.emplace_back("--volume", scene.files.back().string());
     } else {
         const std::string field = text(node["field"], "field");
@@ -254,9 +308,14 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
     if ((node["field_dims"] || node["as_grid"]) && !node["field"])
         throw Error(at(node) + ": field_dims and as_grid apply to analytic fields only");
 
-    const YAML::Node convention = required(node, "convention", what);
-    parseGridConvention(text(convention, "convention"), at(convention) + ": convention");
-    scene.options.emplace_back("--convention", convention.Scalar());
+    if (const YAML::Node convention = node["convention"]) {
+        parseGridConvention(text(convention, "convention"), at(convention) + ": convention");
+        scene.options.emplace_back("--convention", convention.Scalar());
+    } else {  // written into the commands all the same, so that a command read alone says it
+        const std::string name(gridConventionName(kDefaultConvention));
+        scene.options.emplace_back("--convention", name);
+        defaults_.push_back(what + ": convention " + name + ", the tools' default");
+    }
 
     const YAML::Node tf = required(node, "tf", what);
     scene.files.push_back(existingFile(tf, "tf"));
@@ -503,7 +562,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
         for (const std::string& run : runs) {
             ComparisonSpec c = base;
-            c.id = comparisonId(group, run);
+            c.id = comparisonId(group, run, experiment.run(run).scene);
             const auto sameId = [&](const auto& other) { return other.id == c.id; };
             if (std::ranges::any_of(experiment.runs, sameId) || std::ranges::any_of(experiment.comparisons, sameId))
                 throw Error(at(entry) + ": comparison '" + group + "' of run '" + run + "' has the id '" + c.id +
@@ -738,6 +797,7 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
                           {"title", "scenes", "methods", "references", "comparisons", "commands", "tables", "figures"});
         if (quick) mergeOverrides(root, q);
     }
+    requireAllKeys(root);
     Experiment experiment;
     experiment.source = source_;
     experiment.quick = quick;
@@ -745,8 +805,14 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     experiment.name = text(name, "name");
     if (!isSafeName(experiment.name))  // the experiment's folder in the results root
         throw Error(at(name) + ": name must be " + std::string(kSafeName));
-    experiment.title = text(required(root, "title", "the experiment"), "title");
-    experiment.paper = readPaper(required(root, "paper", "the experiment"));
+    if (root["title"]) {
+        experiment.title = text(root["title"], "title");
+    } else {
+        experiment.title = fs::path(source_).stem().string();
+        defaults_.push_back("title: the file name '" + experiment.title + "'");
+    }
+    if (root["paper"]) experiment.paper = readPaper(root["paper"]);
+    else defaults_.push_back("paper: none (an own study)");
     if (root["agreement"]) experiment.agreement = text(root["agreement"], "agreement");
     // Renders need scenes and methods; an experiment of commands alone (a 2D study) has neither.
     if (root["scenes"] || root["methods"] || root["references"] || !root["commands"]) {
@@ -759,17 +825,19 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     if (root["comparisons"]) readComparisons(root["comparisons"], experiment);
     if (root["commands"]) readCommands(root["commands"], experiment);
     if (root["tables"]) readTables(root["tables"], experiment);
+    applyTimingDefaults(experiment);
     if (root["figures"]) readFigures(root["figures"], experiment);
     if (root["reproduce"]) readReproduce(root["reproduce"], experiment);
     // Which step writes which file only the plan knows; planning once here (where to does not matter)
     // makes a figure that reads a file no step writes a mistake in the file like any other.
     planExperiment(experiment, fs::current_path() / "results" / experiment.name, fs::current_path());
+    experiment.defaults.insert(experiment.defaults.begin(), defaults_.begin(), defaults_.end());
     return experiment;
 }
 
 }  // namespace
 
-std::string comparisonId(const std::string& name, const std::string& run) {
+std::string comparisonId(const std::string& name, const std::string& run, const std::string& scene) {
     const auto words = [](const std::string& text) {
         std::vector<std::string> list;
         for (std::size_t start = 0, end;; start = end + 1) {
@@ -779,8 +847,11 @@ std::string comparisonId(const std::string& name, const std::string& run) {
         }
     };
     const std::vector<std::string> a = words(name), b = words(run);
+    // Only a run id that starts with its scene shares words, and then at least the scene's.
+    const std::size_t least = run.starts_with(scene + "-") ? words(scene).size() : b.size() + 1;
     std::size_t shared = std::min(a.size() - 1, b.size());
-    while (shared > 0 && !std::equal(a.end() - static_cast<std::ptrdiff_t>(shared), a.end(), b.begin())) --shared;
+    while (shared >= least && !std::equal(a.end() - static_cast<std::ptrdiff_t>(shared), a.end(), b.begin())) --shared;
+    if (shared < least) shared = 0;
     std::string id = name;
     for (std::size_t i = shared; i < b.size(); ++i) id += "-" + b[i];
     return id;

@@ -18,10 +18,11 @@ namespace vri {
 using ToolOption = std::pair<std::string, std::string>;
 using ToolOptions = std::vector<ToolOption>;
 
+// `paper:` is optional: an own study has none (paper "none", item and says empty).
 struct PaperItem {
-    std::string paper;  // "A" or "B"
-    std::string item;   // "Fig. 4", "Table I"
-    std::string says;   // one line: what the paper shows there
+    std::string paper = "none";  // "A", "B" or "none"
+    std::string item;            // "Fig. 4", "Table I"; optional with paper none
+    std::string says;            // one line: what the paper shows there; optional with paper none
 };
 
 // What the images show: volume or analytic field, transfer function, camera, image size, preview.
@@ -55,7 +56,7 @@ struct RunSpec {
 
 // One vri-diff of a run against a reference run.
 struct ComparisonSpec {
-    std::string id;  // comparisonId(group, run)
+    std::string id;  // comparisonId(group, run, the run's scene)
     std::string group;  // the comparison's name in the file
     std::string reference, run;  // RunSpec ids
     std::vector<std::string> thresholds;
@@ -65,9 +66,11 @@ struct ComparisonSpec {
 };
 
 // A comparison's id, the name of its files: its name and the run's id, with the words (between '-') that
-// the name ends with and the run's id starts with written once: vs-exact-bonsai and bonsai-riemann-h0.5
-// make vs-exact-bonsai-riemann-h0.5. The name keeps a word of its own, so the id is never the run's.
-std::string comparisonId(const std::string& name, const std::string& run);
+// the name ends with and the run's id starts with written once, when they begin with the run's scene:
+// vs-exact-bonsai and bonsai-riemann-h0.5 make vs-exact-bonsai-riemann-h0.5. Other shared words stay twice,
+// so that the run's id is whole in the file name: vs-exact of run exact-tol1e-4 is vs-exact-exact-tol1e-4,
+// never vs-exact-tol1e-4 (which reads as a comparison against "exact-tol"). The name keeps a word of its own.
+std::string comparisonId(const std::string& name, const std::string& run, const std::string& scene);
 
 // One invocation of any vri tool that writes data files (vri-rays2d, ...), from `commands:`: the step
 // that stands for it is called `name`. Its inputs are source files, its outputs land in the results folder.
@@ -137,6 +140,11 @@ struct Experiment {
     std::vector<TableSpec> tables;
     std::vector<FigureSpec> figures;
     std::vector<ReproduceCheck> reproduce;
+    // What the file left out and was filled in, one line each ("title: the file name 'study'", "scene 'h':
+    // convention cell, the tools' default"): the manifest lists them.
+    std::vector<std::string> defaults;
+    // What vri-run warns of before running it (timing_defaults.h: a timed table on one frame).
+    std::vector<std::string> warnings;
 
     const SceneSpec& scene(const std::string& name) const;
     const RunSpec& run(const std::string& id) const;
@@ -148,6 +156,9 @@ struct Experiment {
 // a blank, a shell or gnuplot character or a control character. Every name an experiment file gives
 // is held to this, with an error naming the file, line, column and key.
 bool isSafeName(std::string_view name);
+// What a safe name is, for messages that refuse one.
+inline constexpr std::string_view kSafeName =
+    "letters, digits, '.', '_', '+' or '-', starting with a letter or digit, no '..'";
 
 // Parses and validates; every problem is a vri::Error "file:line:col: ...". Relative paths are
 // resolved against `baseDir` (the experiment file's folder) and must exist. With `quick`, the

@@ -194,7 +194,7 @@ void writeManifest(const Experiment& experiment, const Plan& plan, const std::ve
         if (!scene.dataset.empty())
             datasets.push_back({{"scene", scene.name}, {"dataset", scene.dataset}, {"status", scene.datasetStatus},
                                 {"note", scene.datasetNote}});
-    const nlohmann::json manifest = {
+    nlohmann::json manifest = {
         {"experiment",
          {{"name", experiment.name},
           {"title", experiment.title},
@@ -210,6 +210,8 @@ void writeManifest(const Experiment& experiment, const Plan& plan, const std::ve
         {"datasets", datasets},
         {"outputs", outputs},
         {"steps", steps}};
+    // Only where the file left something out, so that a complete file's manifest is as it was.
+    if (!experiment.defaults.empty()) manifest["experiment"]["defaults"] = experiment.defaults;
     writeTextFile(plan.resultsDir / "manifest.json", manifest.dump(2) + "\n");
 }
 

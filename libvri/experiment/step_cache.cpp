@@ -34,6 +34,10 @@ StepExecution executionFromJson(const nlohmann::json& j) {
     e.node = j.at("node").get<std::string>();
     if (j.contains("job_id")) e.jobId = j.at("job_id").get<std::string>();
     if (j.contains("job_state")) e.jobState = j.at("job_state").get<std::string>();
+    if (j.contains("load_average")) {
+        e.loadBefore = j.at("load_average").at("before").get<double>();
+        e.loadAfter = j.at("load_average").at("after").get<double>();
+    }
     return e;
 }
 
@@ -43,6 +47,8 @@ nlohmann::json toJson(const StepExecution& execution) {
     nlohmann::json j = {{"executor", execution.executor}, {"node", execution.node}};
     if (!execution.jobId.empty()) j["job_id"] = execution.jobId;
     if (!execution.jobState.empty()) j["job_state"] = execution.jobState;
+    if (execution.loadBefore && execution.loadAfter)
+        j["load_average"] = {{"before", *execution.loadBefore}, {"after", *execution.loadAfter}};
     return j;
 }
 

@@ -47,6 +47,9 @@ struct StepExecution {
     std::string node;
     std::string jobId;     // Slurm only
     std::string jobState;  // Slurm only: COMPLETED, FAILED, TIMEOUT, CANCELLED, ...
+    // The node's 1-minute load average when the step started and when it ended (local executor): a time
+    // measured beside other work says so.
+    std::optional<double> loadBefore, loadAfter;
 };
 nlohmann::json toJson(const StepExecution& execution);
 

@@ -10,6 +10,31 @@ namespace vri {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// A command without where its files lie: every word's folders dropped ("../data/bonsai.raw" and
+// "/mnt/v/bonsai.raw" both "bonsai.raw"), so that a price holds when the data or the results move
+// (VRI_DATA_DIR, the Makefile's data/ fallback, another results root); the file names, sizes, methods
+// and every other argument still decide.
+std::string commandShape(const std::string& command) {
+    std::string shape;
+    std::size_t start = 0;
+    while (start <= command.size()) {
+        std::size_t end = command.find(' ', start);
+        if (end == std::string::npos) end = command.size();
+        std::string word = command.substr(start, end - start);
+        if (const std::size_t slash = word.rfind('/'); slash != std::string::npos) {
+            const bool quoted = !word.empty() && word.front() == '\'';  // shellCommand quotes a word whole
+            word = (quoted ? "'" : "") + word.substr(slash + 1);
+        }
+        shape += (shape.empty() ? "" : " ") + word;
+        start = end + 1;
+    }
+    return shape;
+}
+
+}  // namespace
+
 std::vector<std::optional<double>> stepPrices(const Plan& plan, const fs::path& manifest) {
     // id -> {command, seconds} of the last run
     std::map<std::string, std::pair<std::string, double>> last;
@@ -24,11 +49,10 @@ std::vector<std::optional<double>> stepPrices(const Plan& plan, const fs::path& 
     std::vector<std::optional<double>> prices;
     for (const Step& step : plan.steps) {
         // The manifest's command starts with the tool as the run that wrote it named it (its build
-        // folder); the arguments after it are what decide the work.
-        std::string arguments = " ";
-        arguments += shellCommand(step.arguments);
+        // folder); the arguments after it, wherever their files lie, are what decide the work.
+        const std::string arguments = " " + commandShape(shellCommand(step.arguments));
         const auto found = last.find(step.id);
-        if (found == last.end() || !found->second.first.ends_with(arguments))
+        if (found == last.end() || !commandShape(found->second.first).ends_with(arguments))
             prices.emplace_back();
         else
             prices.emplace_back(found->second.second);

@@ -2,7 +2,8 @@
 // What an experiment costs to compute from nothing, read from its last manifest. Every step there
 // keeps the wall time of the run that made its outputs (a cached step, the time of the run it
 // skipped to), so a manifest written by a fully cached run still prices every step. A planned step
-// is priced when the manifest holds a step of the same id with the same arguments; a new or changed
+// is priced when the manifest holds a step of the same id with the same arguments, file names taken
+// without their folders (data and results may lie elsewhere than when it ran); a new or changed
 // step has no price yet, and the estimate counts it instead of guessing.
 #include <cstddef>
 #include <filesystem>

@@ -1,36 +1,43 @@
 // The steps of a run: cache decisions, records of steps that ran, progress and the first failure.
 #include "libvri/experiment/step_ledger.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <iostream>
 
 #include "libvri/io/provenance.h"
 #include "libvri/util/error.h"
 #include "libvri/util/file_text.h"
+#include "libvri/util/printable.h"
 
 namespace vri {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string secondsDetail(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f s", seconds);
+    return text;
+}
+
+}  // namespace
+
 StepLedger::StepLedger(const Plan& plan, const RunOptions& options, FileHasher& hasher)
     : plan_(plan), options_(options), hasher_(hasher), outcomes_(plan.steps.size()),
       settled_(plan.steps.size(), false), keys_(stepKeys(plan, options.toolDir, hasher)),
-      showProgress_(::isatty(STDERR_FILENO)) {
+      progress_(plan, options.prices, options.executor == Executor::Local ? options.jobs : 1,
+                StepProgress::styleFor(options.quiet)) {
     for (const Step& step : plan.steps) programs_.push_back(options.toolDir / step.tool);
 }
 
-void StepLedger::settle(std::size_t i, StepOutcome::State state, const std::string& how) {
+void StepLedger::settle(std::size_t i, StepOutcome::State state, const std::string& how, const std::string& detail) {
     settled_[i] = true;
     outcomes_[i].state = state;
-    ++settledCount_;
-    if (!showProgress_) return;
-    std::fprintf(stderr, "[%zu/%zu] %s %s (%s)\n", settledCount_, plan_.steps.size(), plan_.steps[i].tool.c_str(),
-                 plan_.steps[i].id.c_str(), how.c_str());
+    progress_.settled(i, how, detail);
 }
 
-void StepLedger::settleUnavailable(std::size_t i) { settle(i, StepOutcome::State::Unavailable, "not built, skipped"); }
+void StepLedger::settleUnavailable(std::size_t i) { settle(i, StepOutcome::State::Unavailable, "skipped", "not built"); }
 
 bool StepLedger::needsRun(std::size_t i) {
     for (std::size_t d : plan_.dependencies[i])
@@ -48,7 +55,7 @@ bool StepLedger::needsRun(std::size_t i) {
     if (!options_.force) {
         if (auto last = readRecord(recordPath(plan_, step)); last && recordIsCurrent(*last, keys_[i], plan_, step, hasher_)) {
             outcomes_[i].record = *last;
-            settle(i, StepOutcome::State::Cached, "cached");
+            settle(i, StepOutcome::State::Cached, "cached", secondsDetail(last->wallSeconds) + " when it ran");
             return false;
         }
     }
@@ -87,31 +94,37 @@ bool StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecutio
     // Its outputs are sound whatever else failed: a rerun need not make them again.
     writeRecord(recordPath(plan_, step), record);
     fs::remove(logPath(i));
-    char seconds[32];
-    std::snprintf(seconds, sizeof seconds, "%.2f s", wallSeconds);
-    std::string how = seconds;
-    if (!execution.jobId.empty()) how += ", job " + execution.jobId + " on " + execution.node;
-    settle(i, StepOutcome::State::Ran, how);
+    std::string detail = secondsDetail(wallSeconds);
+    if (!execution.jobId.empty()) detail += ", job " + execution.jobId + " on " + execution.node;
+    settle(i, StepOutcome::State::Ran, "ran", detail);
     return true;
 }
 
 void StepLedger::failed(std::size_t i, const std::string& why, double wallSeconds) {
     outcomes_[i].record.wallSeconds = wallSeconds;
-    if (failure_.empty())
-        failure_ = "step '" + plan_.steps[i].id + "' " + why + ":\n  " + outcomes_[i].record.command + "\n" +
-                   tryReadFileText(logPath(i)).value_or("");
+    if (failure_.empty()) {
+        // The command on a line of its own (a path in it may hold a newline: escaped), then the tool's own output.
+        std::string log = tryReadFileText(logPath(i)).value_or("");
+        while (!log.empty() && (log.back() == '\n' || log.back() == ' ')) log.pop_back();
+        failure_ = "step '" + plan_.steps[i].id + "' " + why + ":\n  " + printable(outcomes_[i].record.command) +
+                   (log.empty() ? "" : "\n" + log);
+    }
     settled_[i] = true;
-    ++settledCount_;
+    // "failed (exit status 3)" reads "failed vri-x id (exit status 3)" in the progress line.
+    std::string detail = why;
+    if (detail.starts_with("failed (") && detail.ends_with(")")) detail = detail.substr(8, detail.size() - 9);
+    else if (detail.starts_with("failed: ")) detail = detail.substr(8);
+    progress_.settled(i, "failed", detail);
 }
 
 void StepLedger::abandoned(std::size_t i, const std::string& why) {
     if (failure_.empty()) failure_ = "step '" + plan_.steps[i].id + "' did not run: " + why;
     settled_[i] = true;
-    ++settledCount_;
+    progress_.settled(i, "did not run", why);
 }
 
 std::vector<StepOutcome> StepLedger::result() const {
-    if (!failure_.empty()) throw Error(failure_);
+    if (!failure_.empty()) throw DetailedError(failure_);
     return outcomes_;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "libvri/experiment/experiment_run.h"
+#include "libvri/experiment/step_progress.h"
 
 namespace vri {
 
@@ -31,6 +32,8 @@ public:
     // Before step i runs: its old record goes (an interrupted run leaves nothing that vouches for
     // half-made outputs) and its folder is made. Returns the command's words; the step's log is logPath(i).
     std::vector<std::string> prepare(std::size_t i);
+    // Step i's process has started (the local executor; a Slurm job's start is the cluster's).
+    void started(std::size_t i) { progress_.started(i); }
     std::filesystem::path logPath(std::size_t i) const;  // <results>/.steps/<id>.log
     const std::filesystem::path& program(std::size_t i) const { return programs_[i]; }
 
@@ -48,7 +51,7 @@ public:
     std::vector<StepOutcome> result() const;
 
 private:
-    void settle(std::size_t i, StepOutcome::State state, const std::string& how);
+    void settle(std::size_t i, StepOutcome::State state, const std::string& how, const std::string& detail);
 
     const Plan& plan_;
     const RunOptions& options_;
@@ -57,8 +60,7 @@ private:
     std::vector<bool> settled_;
     std::vector<std::string> keys_;
     std::vector<std::filesystem::path> programs_;
-    bool showProgress_;
-    std::size_t settledCount_ = 0;
+    StepProgress progress_;
     std::set<std::string> missingTools_;
     std::string failure_;  // the first failed step's command and output
 };

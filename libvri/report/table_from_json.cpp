@@ -253,7 +253,14 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         table.precision.push_back(digits);
         table.significant.push_back(significant);
     };
+    // The exact method's per-pixel error bound, where a row has one: its tolerance is no bound.
+    const bool anyBound = std::ranges::any_of(rows, [](const TradeoffRow& row) {
+        const json stats = readJsonFile(row.stats);
+        return stats.contains("stats") && stats["stats"].contains("error_bound");
+    });
     addColumn("seconds", kDigits, true);
+    addColumn("frames", 0, false);
+    addColumn("spread %", 2, true);
     if (!options.baseline.empty()) addColumn("time ratio", kDigits, true);
     addColumn("Msamples/s", kDigits, true);
     for (double t : options.thresholds) {
@@ -266,6 +273,7 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         for (const std::string& channel : channels) addColumn("max " + channel, kDigits, true);
     addColumn("max", kDigits, true);
     addColumn("rmse", kDigits, true);
+    if (anyBound) addColumn("bound", kDigits, true);
     addColumn("pareto %", 0, false);
     addColumn("pareto max", 0, false);
 
@@ -286,6 +294,14 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         table.texts.push_back({methodFamily(stats, row.stats)});
         auto& cells = table.cells.emplace_back();
         cells.push_back(seconds);
+        // How far one frame's time strays: (slowest - fastest) / median over the timed frames; 0 for one frame.
+        const json& frames = stats.at("timing").at("wall_seconds");
+        std::vector<double> times;
+        for (const json& t : frames) times.push_back(t.get<double>());
+        if (times.empty()) throw Error(row.stats.string() + ": timing.wall_seconds has no frame");
+        const auto [fastest, slowest] = std::ranges::minmax(times);
+        cells.push_back(static_cast<double>(times.size()));
+        cells.push_back(seconds > 0 ? 100 * (slowest - fastest) / seconds : 0.0);
         if (!options.baseline.empty()) cells.push_back(seconds / baselineSeconds);
         const json* samples = stats.contains("stats") ? &stats["stats"] : nullptr;
         if (samples && samples->contains("samples_evaluated") && seconds > 0)
@@ -311,6 +327,15 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         }
         cells.push_back(worstMax);
         cells.push_back(worstRmse);
+        if (anyBound) {
+            if (stats.contains("stats") && stats["stats"].contains("error_bound")) {
+                double bound = 0;
+                for (const json& b : stats["stats"]["error_bound"].at("max")) bound = std::max(bound, b.get<double>());
+                cells.push_back(bound);
+            } else {
+                cells.emplace_back();
+            }
+        }
         byMax.emplace_back(seconds, worstMax);
     }
     std::vector<double> onPercent(rows.size(), 0), onMax(rows.size(), 0);
@@ -323,7 +348,10 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
 
     const std::string front = "worst" + above(options.thresholds.front());
     table.notes.push_back("method: the run's method and precision, SIMD where the float packets ran (and the SIMD "
-                          "target when a run asked for one below the best), vulkan on that backend. seconds: median wall time per frame (the run's timing.median_wall_seconds)." +
+                          "target when a run asked for one below the best), vulkan on that backend. seconds: median "
+                          "wall time per frame (the run's timing.median_wall_seconds); frames: the timed frames it is "
+                          "the median of (after the run's warm-up frames); spread %: (slowest - fastest frame) / "
+                          "median, 0 for one frame, whose time is one sample." +
                           (options.baseline.empty() ? std::string()
                                                     : " time ratio: seconds over those of " + options.baseline +
                                                           ", timed in the same run."));
@@ -341,6 +369,9 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     else
         table.notes.push_back("worst > t: " + rays + " in the worst channel; max: the largest absolute error; rmse: "
                               "the largest root mean square error of a channel.");
+    if (anyBound)
+        table.notes.push_back("bound: the exact method's per-pixel error bound, the largest over the pixels and channels "
+                              "(stats.error_bound.max; rigorous); its tolerance is not one. - for the other methods.");
     table.notes.push_back("pareto % (pareto max): 1 on the Pareto front of seconds against " + front +
                           " (against max), where no other row is at least as fast and as accurate and better in one; "
                           "an infinite error is never on it.");

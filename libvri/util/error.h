@@ -18,4 +18,12 @@ public:
     using Error::Error;
 };
 
+// A failure whose first line is the message and whose further lines show what explains it: a failed
+// step's command and the tool's own output. Printed as real lines (only other control characters are
+// escaped), since a command and a tool's message folded into one line with \x0a between them read as noise.
+class DetailedError : public Error {
+public:
+    using Error::Error;
+};
+
 }  // namespace vri

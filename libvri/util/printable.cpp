@@ -4,7 +4,9 @@
 
 namespace vri {
 
-std::string printable(std::string_view text) {
+namespace {
+
+std::string escapeControls(std::string_view text, bool keepNewlines) {
     static constexpr char kHex[] = "0123456789abcdef";
     std::string out;
     out.reserve(text.size());
@@ -13,7 +15,9 @@ std::string printable(std::string_view text) {
         const auto c = static_cast<unsigned char>(text[i]);
         const bool c1 = c == 0xc2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
                         static_cast<unsigned char>(text[i + 1]) <= 0x9f;
-        if (c < 0x20 || c == 0x7f) {
+        if (c == '\n' && keepNewlines) {
+            out.push_back('\n');
+        } else if (c < 0x20 || c == 0x7f) {
             escape(c);
         } else if (c1) {
             escape(static_cast<unsigned char>(text[++i]));
@@ -23,6 +27,12 @@ std::string printable(std::string_view text) {
     }
     return out;
 }
+
+}  // namespace
+
+std::string printable(std::string_view text) { return escapeControls(text, false); }
+
+std::string printableLines(std::string_view text) { return escapeControls(text, true); }
 
 std::string oneLine(std::string message) {
     while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();

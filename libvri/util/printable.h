@@ -10,6 +10,9 @@ namespace vri {
 // controls as their code point, \x80..\x9f); everything else, other UTF-8 included, unchanged.
 std::string printable(std::string_view text);
 
+// The same, newlines kept: text of several lines (a DetailedError's) shown as those lines.
+std::string printableLines(std::string_view text);
+
 // A library's message (OpenImageIO's, OpenEXR's) as one line: trailing white space dropped, each newline
 // written as "; ", "unknown error" for an empty one.
 std::string oneLine(std::string message);

@@ -116,6 +116,56 @@ class RenderEqualsTools(unittest.TestCase):
         self.assertGreater(mine["channels"][0]["max_abs"], 0.0)
 
 
+class AsUsersExpect(unittest.TestCase):
+    def test_float64_is_rounded_to_float32(self):
+        values = np.linspace(0.0, 1.0, 3 * 4 * 5).reshape(3, 4, 5)  # float64, NumPy's default
+        volume = vri.Volume.from_array(values)
+        self.assertEqual(volume.voxel_type, "float32")
+        self.assertTrue(np.array_equal(volume.values(), values.astype(np.float32)))  # nearest float32, each
+
+    def test_load_volume_looks_in_vri_data_dir(self):
+        name = os.path.basename(blob_volume())
+        old = os.environ.get("VRI_DATA_DIR")
+        os.environ["VRI_DATA_DIR"] = SCRATCH
+        try:
+            self.assertEqual(vri.load_volume(name).dims, (24, 20, 16))
+        finally:
+            if old is None:
+                del os.environ["VRI_DATA_DIR"]
+            else:
+                os.environ["VRI_DATA_DIR"] = old
+
+    def test_compare_gives_vri_diffs_verdict(self):
+        a = np.zeros((4, 4, 4), np.float32)
+        b = a.copy()
+        b[1, 2, 0:2] = 0.25  # one pixel, two channels: 2 of 64 pixel-channels, 1 of 16 pixels
+        vri.write_exr(scratch("v-a.exr"), a)
+        vri.write_exr(scratch("v-b.exr"), b)
+        for options, kwargs in (([], {}), (["--fail", "0.5"], dict(fail=0.5)),
+                                (["--fail", "0.5", "--warn", "0.5"], dict(fail=0.5, warn=0.5)),
+                                (["--per-pixel", "--failpercent", "5"], dict(per_pixel=True, failpercent=5))):
+            code, err = run_tool("vri-diff", scratch("v-a.exr"), scratch("v-b.exr"), *options, "--json",
+                                 scratch("v.json"))
+            with open(scratch("v.json")) as f:
+                tool = json.load(f)
+            mine = vri.compare(a, b, **kwargs)
+            self.assertEqual(mine["exit_code"], code, options)
+            for key in ("verdict", "fail", "warn"):
+                self.assertEqual(mine[key], tool[key], (options, key))
+        self.assertEqual(vri.compare(a, b)["verdict"], "fail")
+        self.assertEqual(vri.compare(a, b, fail=0.5, warn=0.5)["verdict"], "pass")
+
+    def test_reprs_say_what_they_hold(self):
+        self.assertEqual(repr(vri.load_volume(blob_volume())),
+                         "vri.Volume(dims=(24, 20, 16), voxel_type='uint8', spacing=(1.0, 1.0, 1.0), "
+                         "origin=(0.0, 0.0, 0.0))")
+        self.assertEqual(repr(vri.LinearField((5, 5, 5))), "vri.LinearField(dims=(5, 5, 5))")
+        self.assertEqual(repr(vri.Camera(size=(32, 24), eye=(1, 2, 3))),
+                         "vri.Camera(size=(32, 24), eye=(1.0, 2.0, 3.0), up=(0.0, 1.0, 0.0), fov=30)")
+        self.assertEqual(repr(vri.TransferFunction([[0, 0, 0, 0, 0], [1, 1, 1, 1, 1]])),
+                         "vri.TransferFunction(2 points, s from 0 to 1, emission='color-times-extinction')")
+
+
 class BadInput(unittest.TestCase):
     def assertOneLine(self, expected, call, *args, **kwargs):
         with self.assertRaises(vri.Error) as raised:
@@ -160,8 +210,13 @@ class BadInput(unittest.TestCase):
     def test_arrays(self):
         self.assertOneLine("points: point 2 has s = 0.2 below the previous point's s = 0.5 (points must be sorted by s)",
                            vri.TransferFunction, [[0, 0, 0, 0, 0], [0.5, 1, 1, 1, 1], [0.2, 1, 1, 1, 1]])
-        self.assertOneLine("array: expected uint8, uint16 or float32 voxels, got int64", vri.Volume.from_array,
+        self.assertOneLine("array: expected uint8, uint16 or float32 voxels (kept), or int8, int16, int32, uint32 or "
+                           "float64 (converted to float32), in native byte order; got int64", vri.Volume.from_array,
                            np.zeros((2, 2, 2), dtype=np.int64))
+        self.assertOneLine("array: expected 3 dimensions [z, y, x], got 2 (one 2-D slice is array[None], a volume of "
+                           "depth 1)", vri.Volume.from_array, np.zeros((4, 4), dtype=np.float64))
+        self.assertOneLine("array: float64 voxel 1 is 1e+300, beyond float32's range (float64 volumes are kept as "
+                           "float32)", vri.Volume.from_array, np.array([[[0.0, 1e300]]]))
         self.assertOneLine("a: expected an image array of shape (height, width, channels)", vri.compare,
                            np.zeros((4, 4)), np.zeros((4, 4)))
 

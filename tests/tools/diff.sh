@@ -101,6 +101,26 @@ run_diff garbage.exr a.exr
 expect_rc 1 "unreadable file"
 [[ $(wc -l <err.txt) -eq 1 ]] || fail "unreadable file: stderr is not one line"
 
+# Pixel-channels or pixels: one pixel off in R and G is 2 of 256 pixel-channels (0.78125 %) but 1 of 64 pixels
+# (1.5625 %, idiff's count, --per-pixel); every percentage says which.
+oiiotool a.exr --pattern constant:color=0.25,0.25,0,0 1x1 4 -d float --origin +3+2 --add -o two.exr
+run_diff a.exr two.exr --threshold 0.1 --json two.json
+expect_rc 3 "two channels of one pixel"
+grep -q "^all channels: % of pixel-channels (pixels x channels) *0.7812$" out.txt || fail "pixel-channel row: $(cat out.txt)"
+grep -q "^any channel: % of pixels (as idiff counts, --per-pixel) *1.5625$" out.txt || fail "pixel row: $(cat out.txt)"
+grep -q "^FAIL: 0.78125% of pixel-channels above 1e-06 (allowed 0%)$" out.txt || fail "verdict: $(cat out.txt)"
+[[ $(json_value two.json 'j["fail"]["counted"]') == pixel-channels ]] || fail "the JSON does not say what it counted"
+run_diff a.exr two.exr --per-pixel --failpercent 1.5 --json two-pixels.json
+expect_rc 3 "--per-pixel: 1.5625 % of pixels is more than 1.5 %"
+grep -q "^FAIL: 1.5625% of pixels above 1e-06 in some channel (allowed 1.5%)$" out.txt || fail "--per-pixel: $(cat out.txt)"
+[[ $(json_value two-pixels.json 'j["fail"]["counted"], j["fail"]["count"]') == "pixels 1" ]] || fail "--per-pixel JSON"
+run_diff a.exr two.exr --failpercent 1.5 --warnpercent 1.5
+expect_rc 0 "pixel-channels: 0.78125 % is within 1.5 %"
+if command -v idiff >/dev/null; then  # the same count as idiff's own
+    idiff a.exr two.exr > idiff.txt 2>&1 || true
+    grep -q "1 pixels (1.56%) over 1e-06" idiff.txt || fail "idiff counts otherwise: $(cat idiff.txt)"
+fi
+
 # Help: exit 0, exit codes and examples.
 run_diff --help
 expect_rc 0 "--help"

@@ -40,4 +40,18 @@ experiment 32 > exp.yaml
 grep -q '^| small | 3 | 2 | ' changed.md || fail "changed: $(cat changed.md)"
 grep -q '^From nothing, one step at a time: at least ' changed.md || fail "changed total: $(cat changed.md)"
 grep -q '^2 steps are new or changed' changed.md || fail "changed note: $(cat changed.md)"
+
+# Where the files lie does not change a price: from another folder every command names the transfer
+# function, the results and the tools by other paths, and every step keeps its price.
+experiment 24 > exp.yaml
+"$bin/vri-run" --results out exp.yaml 2> /dev/null
+mkdir -p elsewhere
+(cd elsewhere && "$bin/vri-run" --estimate --results ../out ../exp.yaml > ../moved.md)
+grep -q "^| small | 3 | 0 | " moved.md || fail "moved: $(cat moved.md)"
+
+# A dataset catalog among the files (experiments/*.yaml names experiments/datasets.yaml) is skipped with a note.
+printf 'datasets:\n  - {name: x, file: x_2x2x2_uint8.raw, bytes: 8, sha512: "00"}\n' > datasets.yaml
+"$bin/vri-run" --estimate --results out datasets.yaml exp.yaml > both.md 2> both.txt
+grep -q "^vri-run: datasets.yaml is the dataset catalog, not an experiment: skipped$" both.txt || fail "$(cat both.txt)"
+grep -q "^| small | 3 | 0 | " both.md || fail "with the catalog: $(cat both.md)"
 echo "estimate: all checks passed"

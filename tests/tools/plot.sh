@@ -7,6 +7,14 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 plot="$VRI_BIN/vri-plot"
 
 grep -q "Example" <<<"$("$plot" --help)" || fail "--help shows no example"
+# The examples name a spec and a results folder of the repository that exist.
+help=$("$plot" --help)
+for path in $(grep -oE '(experiments|results)/[A-Za-z0-9_./-]+' <<<"$help"); do
+    case $path in
+        *.png) path=$(dirname "$path") ;;  # an output: its folder must exist
+    esac
+    [ -e "$VRI_SOURCE/$path" ] || fail "--help names $path, which is not in the repository"
+done
 
 mkdir -p data figs
 printf 'method,seconds,error\nriemann,2,0.1\ncoupled,1,0.2\nslow,3,0.3\n' > data/speed.csv

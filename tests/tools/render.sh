@@ -47,6 +47,18 @@ expect_error "--step" --volume blob_8x8x8_uint8.raw --tf tf.yaml --step 0
 expect_error "--step" --volume blob_8x8x8_uint8.raw --tf tf.yaml --step -0.5
 expect_error "placement" --volume blob_8x8x8_uint8.raw --tf tf.yaml --placement middle
 
+# A camera that misses the volume: exit 0 with its empty image, but a warning on stderr and in the stats;
+# a camera that sees it, neither.
+for tool in vri-render vri-reference; do
+    "$bin/$tool" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 --eye 40,40,40 --target 80,80,80 -q \
+        -o miss.exr --stats miss.json 2> miss.txt
+    grep -q "^$tool: warning: no ray enters the volume's box: the camera (eye \[40.0,40.0,40.0\], target .*rays_hit 0)$" \
+        miss.txt || { echo "$tool: no warning for a camera that misses: $(cat miss.txt)"; exit 1; }
+    grep -q '"warnings": \[' miss.json || { echo "$tool: the stats lack the warning"; exit 1; }
+    "$bin/$tool" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o hit.exr --stats hit.json 2> hit.txt
+    [ ! -s hit.txt ] && ! grep -q '"warnings"' hit.json || { echo "$tool: a warning for a camera that sees it"; exit 1; }
+done
+
 help=$("$bin/vri-render" --help)  # captured whole: grep -q on a pipe would cut the writer off (SIGPIPE)
 grep -q "Example" <<<"$help"
 echo "render: all checks passed"

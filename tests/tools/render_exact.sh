@@ -47,4 +47,20 @@ PY
 # The same with every brick walked (the unit tests count the pieces skipped): not one bit changes.
 "$bin/vri-render" "${blob[@]}" --method exact --no-skip-empty -o all.exr --stats all.json
 "$bin/vri-diff" all.exr loose.exr --fail 0 > /dev/null || fail "--no-skip-empty changed the exact image"
+# --max-error E: a pixel bound asked for directly. The default tolerance's bound is above 1e-9 here; asked for
+# 1e-9, both tools search a tolerance whose largest bound is at most that, record it, and give the image that
+# tolerance gives when asked for directly.
+[ "$(stat loose.json 'max(s["error_bound"]["max"]) > 1e-9')" = True ] || fail "the default bound is already below 1e-9"
+for tool in vri-render vri-reference; do
+    method=(); [ "$tool" = vri-render ] && method=(--method exact)
+    "$bin/$tool" "${blob[@]}" "${method[@]}" --max-error 1e-9 -o max-error.exr --stats max-error.json
+    [ "$(stat max-error.json 'max(s["error_bound"]["max"]) <= 1e-9')" = True ] ||
+        fail "$tool --max-error 1e-9: bound $(stat max-error.json 's["error_bound"]["max"]')"
+    found=$(python3 -c 'import json, sys; o = json.load(open(sys.argv[1]))["options"]; print(o["max_error"], repr(o["tolerance"]))' max-error.json)
+    [ "${found%% *}" = 1e-09 ] || fail "$tool: the stats do not record max_error: $found"
+    "$bin/$tool" "${blob[@]}" "${method[@]}" --tolerance "${found#* }" -o direct.exr
+    "$bin/vri-diff" direct.exr max-error.exr --fail 0 > /dev/null || fail "$tool: --max-error's image is not its tolerance's"
+done
+if "$bin/vri-render" "${blob[@]}" --method riemann --max-error 1e-3 -o bad.exr 2> bad.txt; then fail "--max-error with riemann"; fi
+grep -q "^vri-render: error: --max-error applies to --method exact only" bad.txt || fail "$(cat bad.txt)"
 echo "render_exact: all checks passed"

@@ -81,6 +81,11 @@ set +e; "$bin/vri-run" --results auto failing.yaml 2> failed.txt; rc=$?; set -e
 grep -q "step 'blue-riemann-entry' failed" failed.txt || { cat failed.txt; exit 1; }
 grep -q -- "--volume short_8x8x8_uint8.raw" failed.txt || { cat failed.txt; exit 1; }
 grep -q "vri-render: error: .*short_8x8x8_uint8.raw" failed.txt || { cat failed.txt; exit 1; }
+# On lines of their own: the failure, the command indented under it, then the tool's own error; no escaped newline.
+grep -q "^vri-run: error: step 'blue-riemann-entry' failed (exit status 1):$" failed.txt || { cat failed.txt; exit 1; }
+grep -q "^  .*vri-render .*--volume short_8x8x8_uint8.raw" failed.txt || { cat failed.txt; exit 1; }
+grep -q "^vri-render: error: .*short_8x8x8_uint8.raw" failed.txt || { cat failed.txt; exit 1; }
+! grep -q 'x0a' failed.txt || { echo "an escaped newline in the failure"; cat failed.txt; exit 1; }
 [ ! -e auto/small/.steps/blue-riemann-entry.json ] || { echo "record written for a failed step"; exit 1; }
 [ ! -e auto/small/manifest.json ] || { echo "manifest left by a failed run"; exit 1; }
 

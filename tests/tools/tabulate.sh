@@ -54,7 +54,7 @@ printf ',CPU (s),GPU (fps)\nRiemann h = 0.5,2.00,0.5\n' | diff -u - t3.csv || fa
 # Speed against accuracy: per run its seconds (stats) and errors (diff) at 0.001; Simpson is faster and
 # better in % than h = 0.5, but its infinite maximum error keeps it off the max front.
 timing_json() {  # timing_json FILE SECONDS: 2e6 samples of Riemann in double on the CPU's scalar path
-    echo "{\"timing\": {\"repeats\": 3, \"median_wall_seconds\": $2}, \"options\": {\"method\": \"riemann\", \"precision\": \"double\"}," \
+    echo "{\"timing\": {\"repeats\": 3, \"median_wall_seconds\": $2, \"wall_seconds\": [$2, $2, $2]}, \"options\": {\"method\": \"riemann\", \"precision\": \"double\"}," \
          "\"stats\": {\"backend\": \"cpu\", \"simd_target\": null, \"samples_evaluated\": 2e6}}" > "$1"
 }
 timing_json riemann-h1.json 0.1 && diff_json vs-riemann-h1.json 30 20 20 10 0.3 0.2
@@ -74,13 +74,13 @@ timing_json simpson.json 0.2 && diff_json vs-simpson.json 0 0 0 0.5 0.001 null
 cat > expected.md <<'MD'
 **Speed against accuracy**
 
-| run | method | seconds | Msamples/s | R > 0.001 | A > 0.001 | worst > 0.001 | max R | max A | max | rmse | pareto % | pareto max |
-|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
-| riemann-h1 | riemann double | 0.1 | 20 | 20 | 10 | 20 | 0.3 | 0.2 | 0.3 | 0.02 | 1 | 1 |
-| riemann-h0.5 | riemann double | 0.4 | 5 | 5 | 1 | 5 | 0.05 | 0.1 | 0.1 | 0.02 | 0 | 1 |
-| simpson-e0.001 | riemann double | 0.2 | 10 | 0 | 0.5 | 0.5 | 0.001 | inf | inf | 0.02 | 1 | 0 |
+| run | method | seconds | frames | spread % | Msamples/s | R > 0.001 | A > 0.001 | worst > 0.001 | max R | max A | max | rmse | pareto % | pareto max |
+|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
+| riemann-h1 | riemann double | 0.1 | 3 | 0 | 20 | 20 | 10 | 20 | 0.3 | 0.2 | 0.3 | 0.02 | 1 | 1 |
+| riemann-h0.5 | riemann double | 0.4 | 3 | 0 | 5 | 5 | 1 | 5 | 0.05 | 0.1 | 0.1 | 0.02 | 0 | 1 |
+| simpson-e0.001 | riemann double | 0.2 | 3 | 0 | 10 | 0 | 0.5 | 0.5 | 0.001 | inf | inf | 0.02 | 1 | 0 |
 
-method: the run's method and precision, SIMD where the float packets ran (and the SIMD target when a run asked for one below the best), vulkan on that backend. seconds: median wall time per frame (the run's timing.median_wall_seconds).
+method: the run's method and precision, SIMD where the float packets ran (and the SIMD target when a run asked for one below the best), vulkan on that backend. seconds: median wall time per frame (the run's timing.median_wall_seconds); frames: the timed frames it is the median of (after the run's warm-up frames); spread %: (slowest - fastest frame) / median, 0 for one frame, whose time is one sample.
 Msamples/s: millions of samples evaluated per second (stats.samples_evaluated over seconds; - where the method counts none).
 host: Test CPU, 2 usable cores; CPU flags: sse4_2 avx2; SIMD targets, best first: AVX2 SSE4 SCALAR.
 R > t ... worst > t: % of rays (all pixels, background included) whose absolute error exceeds t (t = 0.001), to 3 significant digits (0: no ray), per channel and in the worst channel; max R ... max: the largest absolute error, per channel and over all; rmse: the largest root mean square error of a channel.
@@ -88,20 +88,20 @@ pareto % (pareto max): 1 on the Pareto front of seconds against worst > 0.001 (a
 MD
 diff -u expected.md speed.md || fail "tradeoff Markdown"
 cat > expected.csv <<'CSV'
-run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,pareto max
-riemann-h1,riemann double,0.1,20,20,10,20,0.3,0.2,0.3,0.02,1,1
-riemann-h0.5,riemann double,0.4,5,5,1,5,0.05,0.1,0.1,0.02,0,1
-simpson-e0.001,riemann double,0.2,10,0,0.5,0.5,0.001,inf,inf,0.02,1,0
+run,method,seconds,frames,spread %,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,pareto max
+riemann-h1,riemann double,0.1,3,0,20,20,10,20,0.3,0.2,0.3,0.02,1,1
+riemann-h0.5,riemann double,0.4,3,0,5,5,1,5,0.05,0.1,0.1,0.02,0,1
+simpson-e0.001,riemann double,0.2,3,0,10,0,0.5,0.5,0.001,inf,inf,0.02,1,0
 CSV
 diff -u expected.csv speed.csv || fail "tradeoff CSV"
 # Another threshold the diffs counted, other decimals and row heading.
 "$tabulate" --layout tradeoff --threshold 0.01 --precision 1 --row-header Method \
-    --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o - | grep -q "^| Method | method | seconds | Msamples/s | R > 0.01 | A > 0.01 | worst > 0.01 |" ||
+    --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o - | grep -q "^| Method | method | seconds | frames | spread % | Msamples/s | R > 0.01 | A > 0.01 | worst > 0.01 |" ||
     fail "tradeoff at 0.01"
 # A run on a SIMD target forced below the best is a family of its own; the best's keeps its name.
 for target in best AVX2; do
   forced=$([[ $target == best ]] || echo ", \"simd_target\": \"$target\"")
-  echo "{\"timing\": {\"repeats\": 3, \"median_wall_seconds\": 0.1}, \"options\": {\"method\": \"riemann\", \"precision\": \"float\"$forced}," \
+  echo "{\"timing\": {\"repeats\": 3, \"median_wall_seconds\": 0.1, \"wall_seconds\": [0.1, 0.1, 0.1]}, \"options\": {\"method\": \"riemann\", \"precision\": \"float\"$forced}," \
        "\"stats\": {\"backend\": \"cpu\", \"simd_target\": \"AVX3\", \"samples_evaluated\": 2e6}}" > "simd-$target.json"
 done
 "$tabulate" --layout tradeoff --run on simd-best.json vs-riemann-h1.json --run avx2 simd-AVX2.json vs-riemann-h1.json -o - > simd.md

@@ -74,4 +74,19 @@ printf 'points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 1, 1, -0.5]\n' > negative.yaml
 bad "negative.yaml:3:.*negative extinction" negative.yaml
 bad "missing.yaml" missing.yaml
 bad "--samples" jump.yaml --samples 1
+
+# --check: the documented example (experiments/README.md, "Transfer functions") reads as documented; a function
+# that shows nothing, or covers only part of [0, 1], is said with warnings; a mistake is the usual one line.
+sed -n '/^## Transfer functions/,/^## What lands/p' "$VRI_SOURCE/experiments/README.md" |
+    sed -n '/^```yaml$/,/^```$/p' | sed '1d;$d' > documented.yaml
+"$tf" --check documented.yaml > check.txt 2> check-err.txt || fail "the documented example: $(cat check-err.txt)"
+[ "$(cat check.txt)" = "documented.yaml: 5 points, s from 0 to 1, emission color-times-extinction, largest tau 8, largest colour 1" ] ||
+    fail "--check said: $(cat check.txt)"
+[ ! -s check-err.txt ] || fail "warnings for the documented example: $(cat check-err.txt)"
+printf 'points:\n  - [0.2, 1, 1, 1, 0]\n  - [0.5, 1, 1, 1, 0]\n' > invisible.yaml
+"$tf" --check invisible.yaml > /dev/null 2> check-err.txt
+grep -q "^vri-tf: warning: invisible.yaml: every tau is 0: the volume is invisible$" check-err.txt || fail "$(cat check-err.txt)"
+grep -q "^vri-tf: warning: invisible.yaml: the points cover s from 0.2 to 0.5;" check-err.txt || fail "$(cat check-err.txt)"
+if "$tf" --check unsorted.yaml > /dev/null 2> check-err.txt; then fail "--check accepted unsorted.yaml"; fi
+[ "$(wc -l < check-err.txt)" -eq 1 ] && grep -q "unsorted.yaml" check-err.txt || fail "$(cat check-err.txt)"
 echo "tf: ok"

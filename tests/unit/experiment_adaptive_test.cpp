@@ -77,10 +77,10 @@ TEST_CASE("experiment files: bad adaptive parameters and exact with method optio
     CHECK(d.error("methods:\n  coupled: {h_max: lots}\n").find("'none'") != std::string::npos);
     CHECK(d.error("methods:\n  coupled: {accepted: boole}\n").find("accepted") != std::string::npos);
     CHECK(d.error("methods:\n  coupled: {log_ray: \"1\"}\n").find("X,Y") != std::string::npos);
-    CHECK(d.error("references:\n  exact: {method: exact, placement: eye}\n").find("does not apply to method exact") !=
+    CHECK(d.error("references:\n  exact: {method: exact, placement: eye}\nmethods: {r: {method: riemann}}\n").find("does not apply to method exact") !=
           std::string::npos);
     // vri-reference's own rule, checked when the file is read: its step belongs to its Riemann method.
-    CHECK(d.error("references:\n  exact: {method: exact, step: 0.1}\n").find("--step applies to --method riemann only") !=
+    CHECK(d.error("references:\n  exact: {method: exact, step: 0.1}\nmethods: {r: {method: riemann}}\n").find("--step applies to --method riemann only") !=
           std::string::npos);
 }
 

@@ -14,7 +14,7 @@
 
 namespace {
 
-const std::string kHead = R"(name: p
+const std::string kPeersHead = R"(name: p
 title: P
 paper: {paper: none, item: peers, says: VTK as a peer}
 scenes:
@@ -29,7 +29,7 @@ struct PeerDir {
         std::ofstream(dir / "v_2x2x2_uint8.raw") << "abcdefgh";
     }
     vri::Experiment parse(const std::string& scenes, const std::string& rest) const {
-        return vri::parseExperiment(kHead + scenes + rest, "exp.yaml", dir.path, false);
+        return vri::parseExperiment(kPeersHead + scenes + rest, "exp.yaml", dir.path, false);
     }
     std::string error(const std::string& scenes, const std::string& rest) const {
         return vri::test::errorOf([&] { parse(scenes, rest); });

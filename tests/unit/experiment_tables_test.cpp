@@ -63,9 +63,9 @@ TEST_CASE("experiment tables: a tradeoff table takes rows from several compariso
     const vri::Step& step = plan.step("table-speed");
     const std::vector<std::string> expected{
         "--layout", "tradeoff", "--title", "Speed", "--threshold", "0.001",
-        "--run", "riemann-h1", "results/t/riemann-h1.json", "results/t/vs-riemann-h1.json",
-        "--run", "riemann-h0.5", "results/t/riemann-h0.5.json", "results/t/vs-riemann-h0.5.json",
-        "--run", "fine", "results/t/fine.json", "results/t/vs-fine.json",
+        "--run", "riemann-h1", "results/t/riemann-h1.json", "results/t/vs-riemann-riemann-h1.json",
+        "--run", "riemann-h0.5", "results/t/riemann-h0.5.json", "results/t/vs-riemann-riemann-h0.5.json",
+        "--run", "fine", "results/t/fine.json", "results/t/vs-fine-fine.json",
         "--precision", "2", "-o", "results/t/speed.md", "--csv", "results/t/speed.csv"};
     CHECK(step.arguments == expected);
     // It runs after every render and comparison whose file it reads, so a new timing or error re-runs it.
@@ -73,8 +73,8 @@ TEST_CASE("experiment tables: a tradeoff table takes rows from several compariso
     const auto index = static_cast<std::size_t>(&step - plan.steps.data());
     for (std::size_t i : plan.dependencies[index]) after.push_back(plan.steps[i].id);
     std::sort(after.begin(), after.end());
-    CHECK(after == std::vector<std::string>{"fine", "riemann-h0.5", "riemann-h1", "vs-fine", "vs-riemann-h0.5",
-                                            "vs-riemann-h1"});
+    CHECK(after == std::vector<std::string>{"fine", "riemann-h0.5", "riemann-h1", "vs-fine-fine", "vs-riemann-riemann-h0.5",
+                                            "vs-riemann-riemann-h1"});
 
     // Several thresholds, a baseline and the worst channel only reach vri-tabulate as its options.
     const vri::Experiment bench = d.parse("  speed: {layout: tradeoff, comparisons: [vs-riemann, vs-fine], "

@@ -436,18 +436,24 @@ TEST_CASE("experiment: tiles: N plans N bands with --region and a merge writing 
           "exp.yaml:6:36: tiles: 2: log_ray logs one pixel: render it untiled");
 }
 
-TEST_CASE("experiment: a comparison's id writes once the words its name and the run's id share") {
-    CHECK(vri::comparisonId("vs-exact-bonsai", "bonsai-riemann-h0.5") == "vs-exact-bonsai-riemann-h0.5");
-    CHECK(vri::comparisonId("vs-corner", "riemann-eye") == "vs-corner-riemann-eye");
-    CHECK(vri::comparisonId("vs-shader-bonsai-riemann", "bonsai-riemann-sampler") == "vs-shader-bonsai-riemann-sampler");
+TEST_CASE("experiment: a comparison's id writes the run's scene once and the run's id whole") {
+    CHECK(vri::comparisonId("vs-exact-bonsai", "bonsai-riemann-h0.5", "bonsai") == "vs-exact-bonsai-riemann-h0.5");
+    CHECK(vri::comparisonId("vs-corner", "riemann-eye", "cube") == "vs-corner-riemann-eye");
+    // A shared word that is not the scene stays twice: vs-exact of run exact-tol1e-4 must not read as a
+    // comparison against "exact-tol".
+    CHECK(vri::comparisonId("vs-exact", "exact-tol1e-4", "cube") == "vs-exact-exact-tol1e-4");
+    CHECK(vri::comparisonId("vs-shader-bonsai-riemann", "bonsai-riemann-sampler", "bonsai") ==
+          "vs-shader-bonsai-riemann-sampler");
     // The name keeps a word of its own: never the run's id.
-    CHECK(vri::comparisonId("bonsai-riemann", "bonsai-riemann-sampler") == "bonsai-riemann-bonsai-riemann-sampler");
-    CHECK(vri::comparisonId("vs-fine", "fine") == "vs-fine");
+    CHECK(vri::comparisonId("bonsai-riemann", "bonsai-riemann-sampler", "bonsai") == "bonsai-riemann-bonsai-riemann-sampler");
+    CHECK(vri::comparisonId("vs-fine", "fine", "cube") == "vs-fine-fine");
+    // A word that is only the start of the scene's name is not the scene.
+    CHECK(vri::comparisonId("vs-bon", "bon-sai-riemann", "bon-sai") == "vs-bon-bon-sai-riemann");
     // Two comparisons that would write one file are refused, naming the comparison to rename.
     ExperimentDir d;
     CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml}}\n"
                           "methods: {a: {method: riemann}, b-a: {method: riemann}, c: {method: riemann}}\n"
-                          "comparisons:\n  vs-b: {reference: c, runs: [b-a]}\n  vs: {reference: c, runs: [b-a]}\n") ==
+                          "comparisons:\n  vs-b: {reference: c, runs: [a]}\n  vs: {reference: c, runs: [b-a]}\n") ==
           "exp.yaml:8:7: comparison 'vs' of run 'b-a' has the id 'vs-b-a', which another run or comparison has "
           "(rename the comparison)");
 }

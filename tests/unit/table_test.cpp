@@ -154,10 +154,12 @@ std::string tradeoffDiff(double percentR, double percentA, const std::string& ma
            channel("A", percentA, maxA) + "]}";
 }
 
-// A run's stats: its median time per frame, its method and, where it counts them, its samples evaluated.
-std::string timingJson(double seconds, const std::string& options, const std::string& stats) {
+// A run's stats: its median time per frame and its frames' times (default: one frame of that time), its
+// method and, where it counts them, its samples evaluated.
+std::string timingJson(double seconds, const std::string& options, const std::string& stats, std::string frames = "") {
+    if (frames.empty()) frames = "[" + std::to_string(seconds) + "]";
     return "{\"timing\": {\"repeats\": 1, \"median_wall_seconds\": " + std::to_string(seconds) +
-           "}, \"options\": " + options + ", \"stats\": " + stats + "}";
+           ", \"wall_seconds\": " + frames + "}, \"options\": " + options + ", \"stats\": " + stats + "}";
 }
 
 }  // namespace
@@ -168,36 +170,40 @@ TEST_CASE("table: tradeoff layout, seconds against errors with the Pareto fronts
     const std::string riemann = R"({"method": "riemann", "precision": "double"})";
     const std::string cpu = R"({"backend": "cpu", "simd_target": null, "samples_evaluated": 4e6})";
     auto add = [&](const std::string& run, double seconds, double percentR, double percentA, const std::string& maxR,
-                   const std::string& maxA, const std::string& options, const std::string& stats) {
-        writeFile(dir / (run + ".json"), timingJson(seconds, options, stats));
+                   const std::string& maxA, const std::string& options, const std::string& stats,
+                   const std::string& frames = "") {
+        writeFile(dir / (run + ".json"), timingJson(seconds, options, stats, frames));
         writeFile(dir / ("vs-" + run + ".json"), tradeoffDiff(percentR, percentA, maxR, maxA));
         rows.push_back({run, dir / (run + ".json"), dir / ("vs-" + run + ".json")});
     };
     add("riemann-h1", 0.1, 20, 10, "0.3", "0.2", riemann, cpu);
-    add("riemann-h0.5", 0.2, 5, 1, "0.05", "0.1", riemann, cpu);
+    add("riemann-h0.5", 0.2, 5, 1, "0.05", "0.1", riemann, cpu, "[0.26, 0.18, 0.2]");  // spread (0.26 - 0.18) / 0.2
     // slower than h0.5 with more rays above; float on the packets of rays
     add("riemann-h0.25", 0.4, 6, 1, "0.01", "0.001", R"({"method": "riemann", "precision": "float"})",
         R"({"backend": "cpu", "simd_target": "AVX2", "samples_evaluated": 4e6})");
     // as fast as h0.5, as many rays above: both on the % front; on the Vulkan backend
     add("simpson-e0.01", 0.2, 1, 5, "0.001", "0.0001", R"({"method": "coupled", "precision": "float"})",
         R"({"backend": "vulkan", "samples_evaluated": 4e6})");
-    // an infinite error: never on the max front; vri-reference's stats count no samples
-    add("exact", 0.3, 0, 0, "0.0001", "null", R"({"method": "exact", "precision": "double"})", "{}");
+    // an infinite error: never on the max front; vri-reference's stats count no samples, and bound the error
+    add("exact", 0.3, 0, 0, "0.0001", "null", R"({"method": "exact", "precision": "double"})",
+        R"({"error_bound": {"max": [1e-5, 2.5e-5, 1e-5, 1e-6]}})");
     TradeoffOptions twoDecimals;
     twoDecimals.decimals = 2;
     const Table table = tradeoffTable(rows, twoDecimals);
     CHECK(toCsv(table) ==
-          "run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,pareto max\n"
-          "riemann-h1,riemann double,0.1,40,20.00,10.00,20.00,0.3,0.2,0.3,0.3,1,1\n"
-          "riemann-h0.5,riemann double,0.2,20,5.00,1.00,5.00,0.05,0.1,0.1,0.1,1,0\n"
-          "riemann-h0.25,riemann float SIMD,0.4,10,6.00,1.00,6.00,0.01,0.001,0.01,0.01,0,0\n"
-          "simpson-e0.01,coupled float vulkan,0.2,20,1.00,5.00,5.00,0.001,0.0001,0.001,0.001,1,1\n"
-          "exact,exact,0.3,,0.00,0.00,0.00,0.0001,inf,inf,inf,1,0\n");
+          "run,method,seconds,frames,spread %,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,"
+          "bound,pareto %,pareto max\n"
+          "riemann-h1,riemann double,0.1,1,0,40,20.00,10.00,20.00,0.3,0.2,0.3,0.3,,1,1\n"
+          "riemann-h0.5,riemann double,0.2,3,40,20,5.00,1.00,5.00,0.05,0.1,0.1,0.1,,1,0\n"
+          "riemann-h0.25,riemann float SIMD,0.4,1,0,10,6.00,1.00,6.00,0.01,0.001,0.01,0.01,,0,0\n"
+          "simpson-e0.01,coupled float vulkan,0.2,1,0,20,1.00,5.00,5.00,0.001,0.0001,0.001,0.001,,1,1\n"
+          "exact,exact,0.3,1,0,,0.00,0.00,0.00,0.0001,inf,inf,inf,2.5e-05,1,0\n");
     const std::string markdown = toMarkdown(table);
-    CHECK(markdown.starts_with("| run | method | seconds | Msamples/s | R > 0.001 | A > 0.001 | worst > 0.001 | max R | "
-                               "max A | max | rmse | pareto % | pareto max |\n"
-                               "|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n"));
-    CHECK(markdown.find("| exact | exact | 0.3 | - | ") != std::string::npos);
+    CHECK(markdown.starts_with("| run | method | seconds | frames | spread % | Msamples/s | R > 0.001 | A > 0.001 | "
+                               "worst > 0.001 | max R | max A | max | rmse | bound | pareto % | pareto max |\n"
+                               "|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n"));
+    CHECK(markdown.find("| exact | exact | 0.3 | 1 | 0 | - | ") != std::string::npos);
+    CHECK(markdown.find("bound: the exact method's per-pixel error bound") != std::string::npos);
     CHECK(markdown.find("whose absolute error exceeds t (t = 0.001), to 2 decimals, per channel") != std::string::npos);
     CHECK(markdown.find("pareto % (pareto max): 1 on the Pareto front of seconds against worst > 0.001 (against max)") !=
           std::string::npos);
@@ -205,9 +211,9 @@ TEST_CASE("table: tradeoff layout, seconds against errors with the Pareto fronts
     SUBCASE("a single run is on both fronts; times and errors keep 4 significant digits, percentages 3") {
         add("alone", 1.23456, 0.5, 0.25, "1.234567e-07", "0", riemann, cpu);
         CHECK(toCsv(tradeoffTable({rows.back()})) ==
-              "run,method,seconds,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,pareto %,"
-              "pareto max\n"
-              "alone,riemann double,1.235,3.24,0.5,0.25,0.5,1.235e-07,0,1.235e-07,1.235e-07,1,1\n");
+              "run,method,seconds,frames,spread %,Msamples/s,R > 0.001,A > 0.001,worst > 0.001,max R,max A,max,rmse,"
+              "pareto %,pareto max\n"
+              "alone,riemann double,1.235,1,0,3.24,0.5,0.25,0.5,1.235e-07,0,1.235e-07,1.235e-07,1,1\n");
     }
     SUBCASE("a benchmark's table: each time over the baseline's, two thresholds, the worst channel only") {
         TradeoffOptions options;
@@ -217,12 +223,13 @@ TEST_CASE("table: tradeoff layout, seconds against errors with the Pareto fronts
         options.perChannel = false;
         const Table bench = tradeoffTable(rows, options);
         CHECK(toCsv(bench) ==
-              "run,method,seconds,time ratio,Msamples/s,worst > 0.001,worst > 0.01,max,rmse,pareto %,pareto max\n"
-              "riemann-h1,riemann double,0.1,0.5,40,20.0,0.0,0.3,0.3,1,1\n"
-              "riemann-h0.5,riemann double,0.2,1,20,5.0,0.0,0.1,0.1,1,0\n"
-              "riemann-h0.25,riemann float SIMD,0.4,2,10,6.0,0.0,0.01,0.01,0,0\n"
-              "simpson-e0.01,coupled float vulkan,0.2,1,20,5.0,0.0,0.001,0.001,1,1\n"
-              "exact,exact,0.3,1.5,,0.0,0.0,inf,inf,1,0\n");
+              "run,method,seconds,frames,spread %,time ratio,Msamples/s,worst > 0.001,worst > 0.01,max,rmse,bound,"
+              "pareto %,pareto max\n"
+              "riemann-h1,riemann double,0.1,1,0,0.5,40,20.0,0.0,0.3,0.3,,1,1\n"
+              "riemann-h0.5,riemann double,0.2,3,40,1,20,5.0,0.0,0.1,0.1,,1,0\n"
+              "riemann-h0.25,riemann float SIMD,0.4,1,0,2,10,6.0,0.0,0.01,0.01,,0,0\n"
+              "simpson-e0.01,coupled float vulkan,0.2,1,0,1,20,5.0,0.0,0.001,0.001,,1,1\n"
+              "exact,exact,0.3,1,0,1.5,,0.0,0.0,inf,inf,2.5e-05,1,0\n");
         CHECK(toMarkdown(bench).find("time ratio: seconds over those of riemann-h0.5, timed in the same run.") !=
               std::string::npos);
         options.baseline = "riemann-h2";

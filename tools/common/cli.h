@@ -70,7 +70,7 @@ void requireOutputsApartFromInputs(const std::vector<OutputArgument>& outputs,
 std::string describeUnexpected(const std::exception& e);
 
 // Runs body() and turns an escaping exception into the single line "<tool>: error: <what>", its
-// control characters escaped (printable.h); exit kExitUsage for a UsageError, kExitError otherwise.
+// control characters escaped (printable.h; a DetailedError keeps its lines); exit kExitUsage for a UsageError, kExitError otherwise.
 // What body() printed must have reached stdout: a full disk behind a redirection is a failure too.
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
@@ -82,6 +82,8 @@ int guardedMain(std::string_view tool, Body&& body) {
     } catch (const UsageError& e) {
         report(e.what());
         return kExitUsage;
+    } catch (const DetailedError& e) {
+        std::cerr << tool << ": error: " << printableLines(e.what()) << '\n';
     } catch (const Error& e) {
         report(e.what());
     } catch (const std::exception& e) {

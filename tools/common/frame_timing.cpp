@@ -1,5 +1,6 @@
 #include "common/frame_timing.h"
 
+#include <cstdio>
 #include <sstream>
 
 #include "libvri/util/statistics.h"
@@ -15,9 +16,16 @@ void FrameTiming::limitThreads(std::optional<tbb::global_control>& control) cons
     if (threads_ > 0) control.emplace(tbb::global_control::max_allowed_parallelism, threads_);
 }
 
-void FrameTiming::setFrames(int warmUp, int repeat) {
+void FrameTiming::setFrames(int warmUp, int repeat, std::string tool, bool quiet) {
     warmUp_ = warmUp;
     repeat_ = repeat;
+    tool_ = std::move(tool);
+    quiet_ = quiet;
+}
+
+void FrameTiming::report(const char* what, int index, int count, double seconds) const {
+    if (quiet_ || warmUp_ + repeat_ < 2) return;
+    std::fprintf(stderr, "%s: %s %d of %d: %.3g s\n", tool_.c_str(), what, index + 1, count, seconds);
 }
 
 nlohmann::json FrameTiming::toJson(const std::vector<double>& wallSeconds) const {

@@ -19,18 +19,21 @@ public:
     void addTo(CLI::App& app);  // --threads
     // Checks the count and, with --threads, limits oneTBB for as long as `control` lives.
     void limitThreads(std::optional<tbb::global_control>& control) const;
-    // The untimed frames, then the timed ones (>= 1).
-    void setFrames(int warmUp, int repeat);
+    // The untimed frames, then the timed ones (>= 1). Unless `quiet`, when there is more than one frame,
+    // a line per frame on stderr ("<tool>: frame 2 of 5: 0.41 s"): progress, and each frame's time in a log.
+    void setFrames(int warmUp, int repeat, std::string tool, bool quiet);
 
     // frame() returns a result with `image` (vri::Image) and `seconds` (its wall time). Runs the
     // warm-up frames untimed, then the timed ones; returns the first result and every wall time.
     template <class Frame>
     auto run(const Frame& frame) const {
-        for (int i = 0; i < warmUp_; ++i) frame();
+        for (int i = 0; i < warmUp_; ++i) report("warm-up frame", i, warmUp_, frame().seconds);
         auto first = frame();
+        report("frame", 0, repeat_, first.seconds);
         std::vector<double> wallSeconds{first.seconds};
         for (int i = 1; i < repeat_; ++i) {
             const auto again = frame();
+            report("frame", i, repeat_, again.seconds);
             if (again.image.pixels != first.image.pixels)
                 throw Error("--repeat: frame " + std::to_string(i + 1) + " differs from the first");
             wallSeconds.push_back(again.seconds);
@@ -44,7 +47,11 @@ public:
     std::string summary(const std::vector<double>& wallSeconds) const;
 
 private:
+    void report(const char* what, int index, int count, double seconds) const;
+
     int threads_ = 0, repeat_ = 1, warmUp_ = 0;
+    std::string tool_;
+    bool quiet_ = true;
 };
 
 }  // namespace vri

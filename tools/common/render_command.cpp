@@ -1,5 +1,6 @@
 #include "common/render_command.h"
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 
@@ -15,6 +16,7 @@
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/atomic_file.h"
+#include "libvri/util/format.h"
 
 namespace vri {
 
@@ -106,6 +108,31 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
     exitCode_ = parseArguments(app_, name_, argc, argv);
 }
 
+namespace {
+
+// --max-error E: the exact method's tolerance bounds the quadrature per piece of a ray, not a pixel's error;
+// the stats' per-pixel bound is what E asks for. Untimed renders from --tolerance (else E), each further one
+// at the tolerance times E / bound / 2, until the largest bound is at most E; at most kTries renders.
+double toleranceForMaxError(RenderBackend& backend, const Scene& scene, const Camera& camera,
+                            const RenderRequest& request) {
+    constexpr int kTries = 8;
+    const double wanted = *request.maxError;
+    ExactReferenceOptions options = request.exactOptions();
+    if (!request.wasGiven("--tolerance")) options.tolerance = wanted;
+    double bound = 0;
+    for (int k = 0; k < kTries; ++k) {
+        const ExactReference& ref = backend.renderExact(scene, camera, options);
+        bound = *std::max_element(ref.stats.maxBound.begin(), ref.stats.maxBound.end());
+        if (bound <= wanted) return options.tolerance;
+        options.tolerance *= 0.5 * wanted / bound;
+    }
+    throw Error("--max-error " + exactNumber(wanted) + ": the largest per-pixel bound is still " + exactNumber(bound) +
+                " after " + std::to_string(kTries) + " renders (last tolerance " + exactNumber(options.tolerance) +
+                "); ask for a larger error");
+}
+
+}  // namespace
+
 RenderRequest RenderCommand::request() const {
     RenderRequest request(tool_);
     for (const TableOption& t : tableOptions_) {
@@ -135,10 +162,10 @@ int RenderCommand::run() {
         requireDistinctOutputs(outputs);
         requireOutputsApartFromInputs(outputs, scene_.inputs());
         // Every option is checked before the render, so that a mistake never leaves some outputs written.
-        const RenderRequest request = this->request();
+        RenderRequest request = this->request();
         if (!errorImagePath_.empty() && !request.exact)
             throw Error("--error-image needs --method exact (no other method has an error bound)");
-        timing_.setFrames(request.warmUp, request.repeat);
+        timing_.setFrames(request.warmUp, request.repeat, name_, quiet_);
         const PngOptions png = preview_.get();
         const std::optional<PixelRegion>& region = request.options.region;
         if (region) {  // before the volume is read: the two options disagree, whatever the scene
@@ -157,9 +184,10 @@ int RenderCommand::run() {
                         ".vdb too large to unpack): use --storage dense");
         const Camera camera(setup.camera);
         RenderBackend backend(request);
+        if (request.maxError) request.exactTolerance = toleranceForMaxError(backend, scene, camera, request);
         auto [frame, wallSeconds] = timing_.run([&] {
             if (request.exact) {
-                const ExactReference& ref = backend.renderExact(scene, camera, request.exactOptions());
+                const ExactReference& ref = backend.renderExact(scene, camera, request.exactOptions());  // at the tolerance --max-error found
                 Frame f{ref.image(), std::nullopt, {}, ref.stats, ref.stats.seconds};
                 if (!errorImagePath_.empty()) f.bounds = ref.boundImage();
                 f.stats.nonfinite = findNonFinitePixels(f.image);
@@ -197,6 +225,15 @@ int RenderCommand::run() {
         if (frame.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
         record["stats"]["out_of_range_pixels"] = toJson(outOfRange);
         record["timing"] = timing_.toJson(wallSeconds);
+        if (record["stats"]["rays_hit"] == 0) {
+            // A black image with exit 0 looks like a render; said on stderr and kept in the stats.
+            const std::string warning = "no ray enters the volume's box: the camera (eye " +
+                                        record["camera"]["eye"].dump() + ", target " +
+                                        record["camera"]["target"].dump() +
+                                        ") misses the volume, and the image is empty (stats: rays_hit 0)";
+            std::cerr << name_ << ": warning: " << warning << '\n';
+            record["warnings"] = {warning};
+        }
         ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
                                   {"vri:options", record["options"].dump()},
                                   {"vri:scene", record["scene"].dump()}};

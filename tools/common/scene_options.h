@@ -10,6 +10,7 @@
 #include "common/cli.h"
 #include "common/raw_input_options.h"
 #include "libvri/core/camera.h"
+#include "libvri/core/grid_convention.h"
 #include "libvri/core/cpu_renderer.h"
 
 namespace vri {
@@ -38,7 +39,7 @@ public:
 private:
     std::string volumePath_, field_, tfPath_, range_, fieldDims_ = "5,5,5";
     RawInputOptions raw_;
-    std::string convention_ = "cell", size_ = "800x600", eye_, target_, up_ = "0,1,0", zoomCentre_;
+    std::string convention_ = std::string(gridConventionName(kDefaultConvention)), size_ = "800x600", eye_, target_, up_ = "0,1,0", zoomCentre_;
     double fov_ = 30.0, zoom_ = 1.0;
     bool fieldAsGrid_ = false;
 };
