@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "libvri/core/simd_march.cpp"
@@ -14,6 +15,7 @@
 #include <hwy/highway.h>
 
 #include "libvri/core/fixed_step_ray.h"
+#include "libvri/core/jitter.h"
 
 HWY_BEFORE_NAMESPACE();
 #include "libvri/core/exp_kernel.h"  // once per target, see there
@@ -327,11 +329,17 @@ public:
         if (next_ == size_) return false;
         const std::size_t i = next_++;
         ray.pixel = pixel_[i];
+        const int px = x0 + ray.pixel % width, py = y0 + ray.pixel / width;
+        // The scalar path's jitter (cpu_renderer.cpp): the hashed fraction, exact in float, moves the
+        // first sample after the placement, and the count follows from it.
+        const std::optional<float> jitter =
+            sc_.options.jitter ? std::optional<float>(static_cast<float>(jitterFraction(px, py, sc_.options.seed)))
+                               : std::nullopt;
         if (scalar_[i] != 0.0) {
-            const auto clipped = pixelRay<float>(sc_.camera, sc_.box, x0 + ray.pixel % width, y0 + ray.pixel / width);
+            const auto clipped = pixelRay<float>(sc_.camera, sc_.box, px, py);
             ray.hit = clipped.has_value();
             if (!clipped) return true;
-            const FixedStepSamples<float> samples(*clipped, sc_.options, sc_.eyeU, sc_.dims);
+            const FixedStepSamples<float> samples(*clipped, sc_.options, sc_.eyeU, sc_.dims, jitter);
             ray.worldLength = clipped->worldLength;
             ray.schedule = samples.schedule;
             ray.entry = samples.entry;
@@ -351,6 +359,7 @@ public:
         s.count = placement == Placement::EntryExitAlign || placement == Placement::EntryExitAlignCorner
                       ? static_cast<std::int64_t>(samples_[i])
                       : countBelowEnd(s);
+        if (jitter) jitterSchedule(s, *jitter);
         ray.entry = glm::vec3(entryF_[0][i], entryF_[1][i], entryF_[2][i]);
         ray.du = glm::vec3(du_[0][i], du_[1][i], du_[2][i]);
         ray.dx = s.count > 0 ? s.tIncr * static_cast<float>(ray.worldLength / static_cast<double>(s.tEnd)) : 0.f;
@@ -739,7 +748,6 @@ std::string packetTargetName() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 bool PacketScene::supports(const Scene& scene, const RenderOptions& options) {
     if (!scene.volume || options.precision != Precision::Float) return false;
     if (options.integrator != Integrator::Riemann && options.integrator != Integrator::Composite) return false;
-    if (options.jitter) return false;  // the scalar path jitters (bitwise the same image either way)
     const Volume& v = *scene.volume;
     // The offsets gathered: voxels, and the eight octants of stencil-brick distances (StencilBricks),
     // which a thin volume (a few voxels across two axes) makes almost an eighth as many as its voxels.
