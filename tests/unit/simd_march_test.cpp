@@ -161,6 +161,47 @@ TEST_CASE("jittered packets equal the jittered scalar float path bit for bit: ev
                 }
 }
 
+TEST_CASE("pre-integration on packets equals the scalar float path bit for bit: orders, placements, jitter") {
+    const Camera camera = testCamera(37, 23);
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    for (VoxelType type : {VoxelType::UInt8, VoxelType::Float32})
+        for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour}) {
+            const Scene scene{testVolume(type), std::nullopt, GridConvention::CellCentred,
+                              testTransferFunction(emission, 9)};
+            for (int order : {1, 2})
+                for (Placement placement : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,
+                                            Placement::EntryExitAlignCorner})
+                    for (bool jitter : {false, true}) {
+                        RenderOptions opt;
+                        opt.precision = Precision::Float;
+                        opt.integrator = Integrator::Preintegrated;
+                        opt.preintegrationOrder = order;
+                        opt.preintegrationSize = 64;
+                        opt.placement = placement;
+                        opt.samplingRate = 1.3;
+                        opt.jitter = jitter;
+                        opt.simd = false;
+                        RenderStats scalarStats;
+                        const Image scalar = render(scene, camera, opt, &scalarStats);
+                        CHECK(*std::max_element(scalar.pixels.begin(), scalar.pixels.end()) > 0.05f);
+                        opt.simd = true;
+                        for (std::int64_t target : targets) {
+                            hwy::SetSupportedTargetsForTest(target);
+                            RenderStats stats;
+                            const Image packets = render(scene, camera, opt, &stats);
+                            INFO(hwy::TargetName(target), " ", voxelTypeName(type), " order ", order, " ",
+                                 placementName(placement), " jitter ", jitter);
+                            CHECK(stats.simdTarget == hwy::TargetName(target));
+                            CHECK(test::sameBits(packets, scalar));
+                            CHECK(stats.samplesPlaced == scalarStats.samplesPlaced);
+                            CHECK(stats.samplesEvaluated == scalarStats.samplesEvaluated);
+                            CHECK(stats.raysHit == scalarStats.raysHit);
+                        }
+                        hwy::SetSupportedTargetsForTest(0);
+                    }
+        }
+}
+
 TEST_CASE("the packet engine's rays equal pixelRay()'s: axis-aligned views, zoom, odd tiles, every target") {
     // The packets clip their rays in vectors of doubles (simd_march.cpp, RayBatch): any operation done
     // otherwise than in Camera::direction(), clipRay() or Box::toTexture() moves some ray's float entry
