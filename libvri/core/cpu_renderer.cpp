@@ -301,7 +301,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     }
     if (opt.simd && PacketScene::supports(scene, opt)) {
         const StencilBricks* stencils = nullptr;
-        if (opt.skipEmptySpace) {
+        if (opt.skipEmptySpace && !table) {
             const auto entry =
                 cache.stencilBricks(scene.volume, scene.convention, scene.transferFunction, rayOctants(camera));
             stencils = &entry.structure;
@@ -309,7 +309,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
             if (!entry.reused) setupSpent += entry.buildSeconds;
             stats.setupReused = stats.setupReused && entry.reused;
         }
-        const PacketScene packets(scene, camera, stencils, opt);
+        const PacketScene packets(scene, camera, stencils, opt, lookup);
         useSimdTarget(opt.simdTarget);
         stats.simdTarget = packetTargetName();
         forEachTile(opt, renderedRegion(opt.region, camera), counters,

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "libvri/core/simd_march.cpp"
@@ -14,6 +15,8 @@
 #include <hwy/highway.h>
 
 #include "libvri/core/fixed_step_ray.h"
+#include "libvri/core/jitter.h"
+#include "libvri/core/preintegration_table.h"
 
 HWY_BEFORE_NAMESPACE();
 #include "libvri/core/exp_kernel.h"  // once per target, see there
@@ -327,11 +330,17 @@ public:
         if (next_ == size_) return false;
         const std::size_t i = next_++;
         ray.pixel = pixel_[i];
+        const int px = x0 + ray.pixel % width, py = y0 + ray.pixel / width;
+        // The scalar path's jitter (cpu_renderer.cpp): the hashed fraction, exact in float, moves the
+        // first sample after the placement, and the count follows from it.
+        const std::optional<float> jitter =
+            sc_.options.jitter ? std::optional<float>(static_cast<float>(jitterFraction(px, py, sc_.options.seed)))
+                               : std::nullopt;
         if (scalar_[i] != 0.0) {
-            const auto clipped = pixelRay<float>(sc_.camera, sc_.box, x0 + ray.pixel % width, y0 + ray.pixel / width);
+            const auto clipped = pixelRay<float>(sc_.camera, sc_.box, px, py);
             ray.hit = clipped.has_value();
             if (!clipped) return true;
-            const FixedStepSamples<float> samples(*clipped, sc_.options, sc_.eyeU, sc_.dims);
+            const FixedStepSamples<float> samples(*clipped, sc_.options, sc_.eyeU, sc_.dims, jitter);
             ray.worldLength = clipped->worldLength;
             ray.schedule = samples.schedule;
             ray.entry = samples.entry;
@@ -351,6 +360,7 @@ public:
         s.count = placement == Placement::EntryExitAlign || placement == Placement::EntryExitAlignCorner
                       ? static_cast<std::int64_t>(samples_[i])
                       : countBelowEnd(s);
+        if (jitter) jitterSchedule(s, *jitter);
         ray.entry = glm::vec3(entryF_[0][i], entryF_[1][i], entryF_[2][i]);
         ray.du = glm::vec3(du_[0][i], du_[1][i], du_[2][i]);
         ray.dx = s.count > 0 ? s.tIncr * static_cast<float>(ray.worldLength / static_cast<double>(s.tEnd)) : 0.f;
@@ -690,8 +700,161 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     counts.samplesEvaluated += evaluated;
 }
 
+// PreintegrationTable::operator()<float> in lanes: the four entries around each lane's (front, back)
+// gathered per channel and interpolated bilinearly in its order; order 2 adds delta times the slopes'.
+struct TableLookup {
+    VI at;      // entry (i, j)'s first float
+    VF fi, fj;  // the fractions along front and back
+};
+
+HWY_INLINE TableLookup lookupAt(const PreintegrationTable& table, VF front, VF back) {
+    const DF df;
+    const DI di;
+    const VF zero = hn::Zero(df), one = hn::Set(df, 1.f), last = hn::Set(df, static_cast<float>(table.size() - 1));
+    const auto locate = [&](VF s, VI& i) {
+        const VF x = hn::Mul(hn::IfThenElse(hn::Gt(s, zero), hn::IfThenElse(hn::Lt(s, one), s, one), zero), last);
+        i = hn::Min(hn::ConvertTo(di, x), hn::Set(di, table.size() - 2));
+        return hn::Sub(x, hn::ConvertTo(df, i));
+    };
+    VI i, j;
+    TableLookup l;
+    l.fi = locate(front, i);
+    l.fj = locate(back, j);
+    l.at = hn::ShiftLeft<2>(hn::Add(hn::Mul(i, hn::Set(di, table.size())), j));
+    return l;
+}
+
+HWY_INLINE void interpolateTable(const float* v, const TableLookup& l, int size, VF (&out)[4]) {
+    const DF df;
+    const DI di;
+    const VI right = hn::Set(di, 4), down = hn::Set(di, size * 4), both = hn::Set(di, size * 4 + 4);
+    for (int c = 0; c < 4; ++c) {
+        const VI at = hn::Add(l.at, hn::Set(di, c));
+        const VF near = lerp(hn::GatherIndex(df, v, at), hn::GatherIndex(df, v, hn::Add(at, right)), l.fj);
+        const VF far = lerp(hn::GatherIndex(df, v, hn::Add(at, down)), hn::GatherIndex(df, v, hn::Add(at, both)), l.fj);
+        out[c] = lerp(near, far, l.fi);
+    }
+}
+
+// Pre-integration (cpu_renderer.cpp's marchSegments) on packets: every lane looks up every segment (no
+// empty-space jumps: an interpolated entry next to an empty brick need not be zero), its scalars read
+// by the same stencils as a sample, and RayAccumulator::addSegment in lanes.
+template <class T>
+void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
+    const DF df;
+    const DI di;
+    const VectorOps ops{df, di};
+    const std::size_t n = hn::Lanes(df);
+    const PreintegrationTable& table = *sc.preintegration;
+    const float* values = table.values<float>();
+    const float* slopes = table.slopes<float>();
+    const bool secondOrder = table.order() == 2;
+    const float segmentLength = static_cast<float>(table.segmentLength());
+    const int width = x1 - x0;
+    const PixelRegion area = renderedRegion(sc.options.region, sc.camera);
+    PacketOrder order(width, y1 - y0, n);
+    RayBatch batch(sc);
+    HWY_ALIGN float tStart[kMaxLanes], tIncr[kMaxLanes], entry[3][kMaxLanes], du[3][kMaxLanes], ratio[kMaxLanes];
+    HWY_ALIGN float r[kMaxLanes], g[kMaxLanes], b[kMaxLanes], transparency[kMaxLanes];
+    HWY_ALIGN std::int32_t count[kMaxLanes];
+    int pixel[kMaxLanes];
+    const auto scalarAt = [&](VF t, MF valid, const VF (&e)[3], const VF (&d)[3]) {
+        VF u[3];
+        for (int a = 0; a < 3; ++a)
+            u[a] = hn::Add(e[a], hn::Mul(t, d[a]));
+        return interpolate<T>(sc, locate(sc, u, valid));
+    };
+    for (;;) {
+        std::size_t filled = 0;
+        for (std::size_t lane = 0; lane < n; ++lane) {
+            count[lane] = 0;
+            tStart[lane] = tIncr[lane] = ratio[lane] = 0.f;
+            for (int a = 0; a < 3; ++a)
+                entry[a][lane] = du[a][lane] = 0.f;
+            PixelSamples ray{};
+            while (batch.next(order, x0, y0, width, ray)) {
+                if (!ray.hit) continue;
+                if (ray.worldLength > 0) ++counts.raysHit;
+                if (ray.schedule.count == 0) continue;
+                pixel[lane] = ray.pixel;
+                tStart[lane] = ray.schedule.tStart;
+                tIncr[lane] = ray.schedule.tIncr;
+                count[lane] = static_cast<std::int32_t>(ray.schedule.count);
+                for (int a = 0; a < 3; ++a) {
+                    entry[a][lane] = ray.entry[a];
+                    du[a][lane] = ray.du[a];
+                }
+                ratio[lane] = ray.dx / segmentLength;
+                ++filled;
+                break;
+            }
+        }
+        if (filled == 0) break;
+        VF e[3], d[3];
+        for (int a = 0; a < 3; ++a) {
+            e[a] = hn::Load(df, entry[a]);
+            d[a] = hn::Load(df, du[a]);
+        }
+        const VF start = hn::Load(df, tStart), step = hn::Load(df, tIncr), lengthRatio = hn::Load(df, ratio);
+        const VF segmentOffset = hn::Sub(start, hn::Mul(hn::Set(df, 0.5f), step));  // FixedStepSamples::segmentStart
+        const VI lanesCount = hn::Load(di, count);
+        const VF zero = hn::Zero(df), one = hn::Set(df, 1.f);
+        VF cr = zero, cg = zero, cb = zero, left = one;
+        MF active = hn::RebindMask(df, hn::Lt(hn::Zero(di), lanesCount));
+        VF front = scalarAt(hn::Add(segmentOffset, hn::Mul(zero, step)), active, e, d);  // segmentStart(0)
+        std::int32_t most = 0;
+        for (std::size_t lane = 0; lane < n; ++lane)
+            most = std::max(most, count[lane]);
+        for (std::int32_t k = 0; k < most; ++k) {
+            active = hn::RebindMask(df, hn::Lt(hn::Set(di, k), lanesCount));
+            const VF next = hn::ConvertTo(df, hn::Set(di, k + 1));
+            const VF back = scalarAt(hn::Add(segmentOffset, hn::Mul(next, step)), active, e, d);
+            VF v[4];
+            const TableLookup l = lookupAt(table, front, back);
+            interpolateTable(values, l, table.size(), v);
+            if (secondOrder) {
+                const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, hn::Set(di, k)), step));
+                const VF delta = hn::Sub(scalarAt(t, active, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
+                VF slope[4];
+                interpolateTable(slopes, l, table.size(), slope);
+                for (int c = 0; c < 4; ++c)
+                    v[c] = hn::Add(v[c], hn::Mul(delta, slope[c]));
+            }
+            // RayAccumulator::addSegment.
+            const MF adds = hn::AndNot(hn::And(hn::And(hn::Eq(v[3], zero), hn::Eq(v[0], zero)),
+                                               hn::And(hn::Eq(v[1], zero), hn::Eq(v[2], zero))),
+                                       active);
+            const VF depth = hn::Mul(v[3], lengthRatio);
+            const VF corrected = hn::Div(exp_kernel::expm1(ops, hn::Neg(depth)), exp_kernel::expm1(ops, hn::Neg(v[3])));
+            const VF scale = hn::IfThenElse(hn::Eq(lengthRatio, one), one,
+                                            hn::IfThenElse(hn::Gt(v[3], zero), corrected, lengthRatio));
+            const VF w = hn::Mul(left, scale);
+            cr = hn::IfThenElse(adds, hn::Add(cr, hn::Mul(w, v[0])), cr);
+            cg = hn::IfThenElse(adds, hn::Add(cg, hn::Mul(w, v[1])), cg);
+            cb = hn::IfThenElse(adds, hn::Add(cb, hn::Mul(w, v[2])), cb);
+            left = hn::IfThenElse(adds, hn::Mul(left, exp_kernel::exp(ops, hn::Neg(depth))), left);
+            front = back;
+        }
+        hn::Store(cr, df, r);
+        hn::Store(cg, df, g);
+        hn::Store(cb, df, b);
+        hn::Store(left, df, transparency);
+        for (std::size_t lane = 0; lane < n; ++lane) {
+            if (count[lane] == 0) continue;
+            float* out = &image.at(x0 - area.x + pixel[lane] % width, y0 - area.y + pixel[lane] / width, 0);
+            out[0] = r[lane];
+            out[1] = g[lane];
+            out[2] = b[lane];
+            out[3] = 1.f - transparency[lane];
+            counts.samplesPlaced += static_cast<std::uint64_t>(count[lane]);
+            counts.samplesEvaluated += static_cast<std::uint64_t>(count[lane]);
+        }
+    }
+}
+
 template <class T>
 void marchTileOfType(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
+    if (sc.preintegration) return marchSegmentsTile<T>(sc, x0, y0, x1, y1, image, counts);
     const bool composite = sc.options.integrator == Integrator::Composite;
     if (sc.emission == EmissionModel::ColourTimesExtinction) {
         if (composite)
@@ -738,8 +901,9 @@ std::string packetTargetName() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 
 bool PacketScene::supports(const Scene& scene, const RenderOptions& options) {
     if (!scene.volume || options.precision != Precision::Float) return false;
-    if (options.integrator != Integrator::Riemann && options.integrator != Integrator::Composite) return false;
-    if (options.jitter) return false;  // the scalar path jitters (bitwise the same image either way)
+    if (options.integrator != Integrator::Riemann && options.integrator != Integrator::Composite &&
+        options.integrator != Integrator::Preintegrated)
+        return false;
     const Volume& v = *scene.volume;
     // The offsets gathered: voxels, and the eight octants of stencil-brick distances (StencilBricks),
     // which a thin volume (a few voxels across two axes) makes almost an eighth as many as its voxels.
@@ -752,7 +916,7 @@ bool PacketScene::supports(const Scene& scene, const RenderOptions& options) {
 }
 
 PacketScene::PacketScene(const Scene& scene, const Camera& camera, const StencilBricks* stencils,
-                         const RenderOptions& options)
+                         const RenderOptions& options, const PreintegrationTable* preintegration)
     : camera(camera),
       box(scene.box()),
       eyeU(box.toTexture(camera.eye())),
@@ -766,7 +930,8 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Stencil
       voxelBytes(static_cast<std::int32_t>(scene.volume->byteCount())),
       layout(*scene.volume, scene.convention),
       prefetchSamples(static_cast<float>(std::ceil(kPrefetchVoxels * options.samplingRate))),
-      prefetchEvery(std::max(1, static_cast<int>(kPrefetchEveryVoxels * options.samplingRate))) {
+      prefetchEvery(std::max(1, static_cast<int>(kPrefetchEveryVoxels * options.samplingRate))),
+      preintegration(preintegration) {
     if (stencils) {
         emptyDistance = stencils->distances().data();
         const glm::ivec3 b = stencils->bricks();

@@ -1,5 +1,5 @@
 #pragma once
-// The packet engine: Riemann and composite in float on packets of rays, one ray per SIMD lane, with
+// The packet engine: Riemann, composite and pre-integration in float on packets of rays, one ray per SIMD lane, with
 // Google Highway dispatching at run time to the widest of SSE4, AVX2 and AVX-512 (AVX3) the CPU has.
 // Each lane performs the scalar float path's operations in its order (the placement and empty-space
 // jumps of fixed_step_ray.h, GridSampler's trilinear formula, TransferFunction's bracket and lerp,
@@ -23,6 +23,7 @@
 #include "libvri/core/grid_sampler.h"
 #include "libvri/core/image.h"
 #include "libvri/core/occupancy_grid.h"
+#include "libvri/core/preintegration_table.h"
 
 namespace vri {
 
@@ -40,15 +41,16 @@ struct MarchCounts {
 
 // A scene as the packet engine reads it, built once per render.
 struct PacketScene {
-    // True when the packet engine can render this: float Riemann or composite of a volume whose voxel
-    // and stencil-brick offsets fit 32-bit gathers, at least 2 voxels along x (the x neighbours are
+    // True when the packet engine can render this: float Riemann, composite or pre-integration of a volume
+    // whose voxel and stencil-brick offsets fit 32-bit gathers, at least 2 voxels along x (the x neighbours are
     // gathered as a pair) and 4 bytes, and a transfer function of at most kMaxPoints points.
     static bool supports(const Scene& scene, const RenderOptions& options);
     static constexpr std::size_t kMaxPoints = 64;
     static constexpr std::size_t kMaxLanes = 16;  // floats in the widest vector (AVX-512)
 
-    // stencils: null when empty space is not skipped.
-    PacketScene(const Scene& scene, const Camera& camera, const StencilBricks* stencils, const RenderOptions& options);
+    // stencils: null when empty space is not skipped; preintegration: the table of --method preintegrated.
+    PacketScene(const Scene& scene, const Camera& camera, const StencilBricks* stencils, const RenderOptions& options,
+                const PreintegrationTable* preintegration = nullptr);
 
     const Camera& camera;
     Box box;
@@ -67,6 +69,7 @@ struct PacketScene {
     static constexpr double kPrefetchVoxels = 2.0, kPrefetchEveryVoxels = 0.5;
     float prefetchSamples;
     int prefetchEvery;
+    const PreintegrationTable* preintegration;  // null unless the method is preintegrated
     // Per octant of ray directions and stencil brick, its distance to the nearest stencil brick ahead
     // that is not empty (StencilBricks::distances(), 0 when not empty), a byte each, padded for
     // 32-bit loads; null when skipping is off.

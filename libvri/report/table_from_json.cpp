@@ -83,7 +83,8 @@ std::string medianNote(std::size_t fewest, std::size_t most) {
 
 // A run's method family from its stats, what one series of a chart draws: "riemann float SIMD",
 // "riemann float SIMD AVX2" (a forced target),
-// "coupled double", "riemann float vulkan", "exact" (vri-reference's stats name no backend), "vtk-gpu".
+// "coupled double", "riemann float vulkan", "exact" (vri-reference's stats name no backend), "vtk-gpu",
+// "preintegrated double order 2", "riemann double jitter 4 frames".
 std::string methodFamily(const json& stats, const fs::path& file) {
     return readingJsonOf(file, [&] {
         const std::string method = stats.at("options").at("method").get<std::string>();
@@ -98,6 +99,14 @@ std::string methodFamily(const json& stats, const fs::path& file) {
         // A target forced below the best (--simd AVX2) is a family of its own, so that a chart or a
         // table's rows keep one host's targets apart.
         if (options.contains("simd_target")) family += " " + options.at("simd_target").get<std::string>();
+        // Second-order pre-integration and jittered sampling are methods of their own on a chart, and so is
+        // the mean of several jittered frames (a frame costs N renders): unmarked, a family's line would join
+        // them with the plain runs it is compared against.
+        if (options.value("preint_order", 1) == 2) family += " order 2";
+        if (options.value("jitter", false)) {
+            family += " jitter";
+            if (const int frames = options.value("frames", 1); frames > 1) family += " " + std::to_string(frames) + " frames";
+        }
         return family;
     });
 }

@@ -1,7 +1,7 @@
 // The packet engine (--simd on) against the scalar float path (--simd off): bitwise equal images and
 // equal sample counts for every placement, integrator, voxel type, grid convention and emission
-// model, with and without empty-space skipping, on odd image sizes (partly filled packets), on every
-// Highway target this CPU runs, and on 1 and 2 threads.
+// model, with and without empty-space skipping, jittered or not, on odd image sizes (partly filled packets),
+// on every Highway target this CPU runs, and on 1 and 2 threads.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 
 #include <hwy/targets.h>
 #include <tbb/global_control.h>
@@ -116,6 +117,89 @@ TEST_CASE("the packet engine's image equals the scalar float path's bit for bit 
                             }
                 }
     MESSAGE(renders, " packet renders on ", targets.size(), " targets");
+}
+
+TEST_CASE("jittered packets equal the jittered scalar float path bit for bit: every placement, seeds, frames") {
+    const Camera camera = testCamera(37, 23);
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    const Scene scene{testVolume(VoxelType::UInt8), std::nullopt, GridConvention::CellCentred,
+                      testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
+    for (Integrator integrator : {Integrator::Riemann, Integrator::Composite})
+        for (Placement placement :
+             {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign, Placement::EntryExitAlignCorner})
+            for (bool skip : {true, false})
+                for (const auto& [seed, frames] : {std::pair{0u, 1}, std::pair{12345u, 1}, std::pair{7u, 3}}) {
+                    RenderOptions opt;
+                    opt.precision = Precision::Float;
+                    opt.integrator = integrator;
+                    opt.placement = placement;
+                    opt.samplingRate = 1.3;  // a coarse step: the jitter moves samples visibly
+                    opt.skipEmptySpace = skip;
+                    opt.jitter = true;
+                    opt.seed = seed;
+                    opt.frames = frames;
+                    opt.simd = false;
+                    RenderStats scalarStats;
+                    const Image scalar = render(scene, camera, opt, &scalarStats);
+                    opt.jitter = false;  // not a blank test: the jitter changes the image
+                    opt.frames = 1;
+                    CHECK_FALSE(test::sameBits(render(scene, camera, opt), scalar));
+                    opt.jitter = true;
+                    opt.frames = frames;
+                    opt.simd = true;
+                    for (std::int64_t target : targets) {
+                        hwy::SetSupportedTargetsForTest(target);
+                        RenderStats stats;
+                        const Image packets = render(scene, camera, opt, &stats);
+                        INFO(hwy::TargetName(target), " ", integratorName(integrator), " ", placementName(placement),
+                             " skip ", skip, " seed ", seed, " frames ", frames);
+                        CHECK(stats.simdTarget == hwy::TargetName(target));
+                        CHECK(test::sameBits(packets, scalar));
+                        CHECK(stats.samplesPlaced == scalarStats.samplesPlaced);
+                    }
+                    hwy::SetSupportedTargetsForTest(0);
+                }
+}
+
+TEST_CASE("pre-integration on packets equals the scalar float path bit for bit: orders, placements, jitter") {
+    const Camera camera = testCamera(37, 23);
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    for (VoxelType type : {VoxelType::UInt8, VoxelType::Float32})
+        for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour}) {
+            const Scene scene{testVolume(type), std::nullopt, GridConvention::CellCentred,
+                              testTransferFunction(emission, 9)};
+            for (int order : {1, 2})
+                for (Placement placement : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,
+                                            Placement::EntryExitAlignCorner})
+                    for (bool jitter : {false, true}) {
+                        RenderOptions opt;
+                        opt.precision = Precision::Float;
+                        opt.integrator = Integrator::Preintegrated;
+                        opt.preintegrationOrder = order;
+                        opt.preintegrationSize = 64;
+                        opt.placement = placement;
+                        opt.samplingRate = 1.3;
+                        opt.jitter = jitter;
+                        opt.simd = false;
+                        RenderStats scalarStats;
+                        const Image scalar = render(scene, camera, opt, &scalarStats);
+                        CHECK(*std::max_element(scalar.pixels.begin(), scalar.pixels.end()) > 0.05f);
+                        opt.simd = true;
+                        for (std::int64_t target : targets) {
+                            hwy::SetSupportedTargetsForTest(target);
+                            RenderStats stats;
+                            const Image packets = render(scene, camera, opt, &stats);
+                            INFO(hwy::TargetName(target), " ", voxelTypeName(type), " order ", order, " ",
+                                 placementName(placement), " jitter ", jitter);
+                            CHECK(stats.simdTarget == hwy::TargetName(target));
+                            CHECK(test::sameBits(packets, scalar));
+                            CHECK(stats.samplesPlaced == scalarStats.samplesPlaced);
+                            CHECK(stats.samplesEvaluated == scalarStats.samplesEvaluated);
+                            CHECK(stats.raysHit == scalarStats.raysHit);
+                        }
+                        hwy::SetSupportedTargetsForTest(0);
+                    }
+        }
 }
 
 TEST_CASE("the packet engine's rays equal pixelRay()'s: axis-aligned views, zoom, odd tiles, every target") {

@@ -215,6 +215,18 @@ TEST_CASE("table: tradeoff layout, seconds against errors with the Pareto fronts
               "pareto %,pareto max\n"
               "alone,riemann double,1.235,1,0,3.24,0.5,0.25,0.5,1.235e-07,0,1.235e-07,1.235e-07,1,1\n");
     }
+    SUBCASE("second-order pre-integration and jittered runs, one frame or the mean of several, are families of their own") {
+        add("pre1", 1, 1, 1, "0.1", "0.1", R"({"method": "preintegrated", "precision": "double", "preint_order": 1})", cpu);
+        add("pre2", 1, 1, 1, "0.1", "0.1", R"({"method": "preintegrated", "precision": "double", "preint_order": 2})", cpu);
+        add("jit1", 1, 1, 1, "0.1", "0.1", R"({"method": "riemann", "precision": "double", "jitter": true, "frames": 1})", cpu);
+        add("jit4", 1, 1, 1, "0.1", "0.1", R"({"method": "riemann", "precision": "double", "jitter": true, "frames": 4})", cpu);
+        const Table table = tradeoffTable({rows.end() - 4, rows.end()});
+        REQUIRE(table.texts.size() == 4);
+        CHECK(table.texts[0][0] == "preintegrated double");
+        CHECK(table.texts[1][0] == "preintegrated double order 2");
+        CHECK(table.texts[2][0] == "riemann double jitter");
+        CHECK(table.texts[3][0] == "riemann double jitter 4 frames");
+    }
     SUBCASE("a benchmark's table: each time over the baseline's, two thresholds, the worst channel only") {
         TradeoffOptions options;
         options.thresholds = {0.001, 0.01};
