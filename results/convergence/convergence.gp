@@ -128,6 +128,20 @@ $series2_9 << EOD
 0.025,0.002351045608520508
 0.0125,0.0011239498853683472
 EOD
+$series2_10 << EOD
+0.2,0.0024966001510620117
+0.1,0.0023912787437438965
+0.05,0.0022094249725341797
+0.025,0.002029240131378174
+0.0125,0.0015740394592285156
+EOD
+$series2_11 << EOD
+0.2,0.0024966001510620117
+0.1,0.0023912787437438965
+0.05,0.0022094249725341797
+0.025,0.002029240131378174
+0.0125,0.0015740394592285156
+EOD
 $series3_1 << EOD
 0.2,0.006026029586791992
 0.1,0.002938985824584961
@@ -189,6 +203,40 @@ $series3_9 << EOD
 0.1,1.2665987014770508e-05
 0.05,2.86102294921875e-06
 EOD
+$series3_10 << EOD
+0.2,0.0011768043041229248
+0.1,0.00023639202117919922
+0.05,7.346272468566895e-05
+0.025,1.169741153717041e-05
+0.0125,7.170252501964569e-06
+EOD
+$series3_11 << EOD
+0.2,0.00012040138244628906
+0.1,4.793703556060791e-05
+0.05,1.952052116394043e-05
+0.025,7.808208465576172e-06
+0.0125,7.207505404949188e-06
+EOD
+$series3_12 << EOD
+0.2,0.001180410385131836
+0.1,0.0002415180206298828
+0.05,7.727742195129395e-05
+0.025,1.5228986740112305e-05
+0.0125,3.3974647521972656e-06
+EOD
+$series3_13 << EOD
+0.2,0.00011530518531799316
+0.1,4.4226646423339844e-05
+0.05,1.570582389831543e-05
+0.025,2.0265579223632812e-06
+EOD
+$series3_14 << EOD
+0.2,0.001112431287765503
+0.1,0.00019747018814086914
+0.05,0.00012284889817237854
+0.025,0.00012320932000875473
+0.0125,0.00012331828474998474
+EOD
 do for [format in "png svg"] {
     if (format eq "png") {
         set terminal pngcairo size 1800,800 noenhanced font "sans,10"
@@ -246,7 +294,9 @@ do for [format in "png svg"] {
          $series2_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry: max order 0.98', \
          $series2_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit: max order 1.39', \
          $series2_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'ramp-jump-composite-entry-exit-corner: max order 1.00', \
-         $series2_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'ramp-jump-simpson: max order 1.05'
+         $series2_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'ramp-jump-simpson: max order 1.05', \
+         $series2_10 using 1:2 with linespoints lw 2 pt 13 ps 0.8 lc rgb '#b5179e' title 'ramp-jump-preintegrated-o1: max order 0.24', \
+         $series2_11 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#b5179e' title 'ramp-jump-preintegrated-o2: max order 0.24'
     # panel 3
     set title 'Neghip 64^3 (trilinear)'
     unset arrow
@@ -271,7 +321,12 @@ do for [format in "png svg"] {
          $series3_6 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry: max order 1.02', \
          $series3_7 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit: max order 1.77', \
          $series3_8 using 1:2 with linespoints lw 2 pt 2 ps 0.8 lc rgb '#2a9d3a' title 'neghip-composite-entry-exit-corner: max order 2.23', \
-         $series3_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'neghip-simpson: max order 1.86'
+         $series3_9 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#e07b00' title 'neghip-simpson: max order 1.86', \
+         $series3_10 using 1:2 with linespoints lw 2 pt 13 ps 0.8 lc rgb '#b5179e' title 'neghip-preintegrated-o1: max order 1.68', \
+         $series3_11 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#b5179e' title 'neghip-preintegrated-o2: max order 0.72', \
+         $series3_12 using 1:2 with linespoints lw 2 pt 13 ps 0.8 lc rgb '#e377c2' title 'neghip-preintegrated-table-n1024-o1: max order 2.25', \
+         $series3_13 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#e377c2' title 'neghip-preintegrated-table-n1024-o2: max order 2.22', \
+         $series3_14 using 1:2 with linespoints lw 2 pt 13 ps 0.8 lc rgb '#6a0572' title 'neghip-preintegrated-table-n64-o1: max order -0.00'
     unset multiplot
     unset output
 }
