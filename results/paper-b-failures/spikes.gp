@@ -11,78 +11,100 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.08067,13.6
-0.2516,13.4
+0.08651,13.6
+0.2409,13.4
 EOD
 $series1_2 << EOD
-0.5492,13.6
-0.3113,13.6
-0.1752,13.7
-0.1159,13.7
-0.04615,13.7
+0.5099,13.6
+0.2782,13.6
+0.1756,13.7
+0.1227,13.7
+0.0487,13.7
 EOD
 $series1_3 << EOD
-0.5766,12.8
-0.3339,13.3
-0.1978,13.4
-0.1353,13.5
-0.05408,13.7
+0.6375,12.8
+0.3397,13.3
+0.1941,13.4
+0.1292,13.5
+0.0575,13.7
 EOD
 $series1_4 << EOD
-0.6086,11.8
-0.3393,12.5
-0.216,12.9
-0.1424,13.1
-0.05381,13.6
+0.5698,11.8
+0.3418,12.5
+0.2018,12.9
+0.1486,13.1
+0.0537,13.6
 EOD
 $series1_5 << EOD
-0.04847,13.7
-0.04418,13.7
+0.056,13.7
+0.05106,13.7
+EOD
+$series1_6 << EOD
+0.1236,13.4
+0.2045,13
+0.4397,12.2
+EOD
+$series1_7 << EOD
+0.2771,13.2
+0.3504,12.6
+0.7601,11.3
 EOD
 $pareto1 << EOD
-0.04418,13.7
-0.05381,13.6
-0.1353,13.5
-0.1424,13.1
-0.216,12.9
-0.3393,12.5
-0.6086,11.8
+0.0487,13.7
+0.0537,13.6
+0.1236,13.4
+0.1486,13.1
+0.2018,12.9
+0.3418,12.5
+0.4397,12.2
+0.5698,11.8
+0.7601,11.3
 EOD
 $series2_1 << EOD
-0.08067,0.857
-0.2516,0.1806
+0.08651,0.857
+0.2409,0.1806
 EOD
 $series2_2 << EOD
-0.5492,0.5765
-0.3113,0.7753
-0.1752,0.9509
-0.1159,0.9954
-0.04615,2.031
+0.5099,0.5765
+0.2782,0.7753
+0.1756,0.9509
+0.1227,0.9954
+0.0487,2.031
 EOD
 $series2_3 << EOD
-0.5766,0.5169
-0.3339,0.7695
-0.1978,0.9509
-0.1353,0.9954
-0.05408,1
+0.6375,0.5169
+0.3397,0.7695
+0.1941,0.9509
+0.1292,0.9954
+0.0575,1
 EOD
 $series2_4 << EOD
-0.6086,0.5073
-0.3393,0.7359
-0.216,0.9529
-0.1424,0.9954
-0.05381,1
+0.5698,0.5073
+0.3418,0.7359
+0.2018,0.9529
+0.1486,0.9954
+0.0537,1
 EOD
 $series2_5 << EOD
-0.04847,13.74
-0.04418,13.75
+0.056,13.74
+0.05106,13.75
+EOD
+$series2_6 << EOD
+0.1236,0.8769
+0.2045,0.5492
+0.4397,0.271
+EOD
+$series2_7 << EOD
+0.2771,1495000
+0.3504,3.189
+0.7601,0.5518
 EOD
 $pareto2 << EOD
-0.04418,13.75
-0.04615,2.031
-0.05381,1
-0.08067,0.857
-0.2516,0.1806
+0.0487,2.031
+0.0537,1
+0.08651,0.857
+0.2045,0.5492
+0.2409,0.1806
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -100,12 +122,12 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.05, 0.1, 0.2, 0.5)
-    set xrange [0.037746730233923526:0.7123252221681288] noextend
+    set xrange [0.04129794627279291:0.8963368240029582] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set ytics autofreq
-    set yrange [10.260869565217392:15.754999999999997] noextend
+    set ytics (10)
+    set yrange [9.82608695652174:15.754999999999997] noextend
     unset key
     set size noratio
     unset label
@@ -114,6 +136,8 @@ do for [format in "png svg"] {
          $series1_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#c0392b' title 'coupled eps = 0.001, hmax1 to hmaxnone', \
          $series1_4 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'coupled eps = 0.0001, hmax1 to hmaxnone', \
          $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.5 lc rgb '#000000' title 'decoupled eps = 0.01, no h_max, double to float', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#b5179e' title 'pre-integrated, h2 to h0.5', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated, order 2, h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -122,12 +146,12 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.05, 0.1, 0.2, 0.5)
-    set xrange [0.037746730233923526:0.7123252221681288] noextend
+    set xrange [0.04129794627279291:0.8963368240029582] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
-    set ytics (0.2, 0.5, 1, 2, 5, 10)
-    set yrange [0.13925880010504882:17.831907198157523] noextend
+    set ytics autofreq
+    set yrange [0.0694452169775145:3887913.548998222] noextend
     set key outside right top
     set size noratio
     unset label
@@ -136,6 +160,8 @@ do for [format in "png svg"] {
          $series2_3 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#c0392b' title 'coupled eps = 0.001, hmax1 to hmaxnone', \
          $series2_4 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'coupled eps = 0.0001, hmax1 to hmaxnone', \
          $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.5 lc rgb '#000000' title 'decoupled eps = 0.01, no h_max, double to float', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#b5179e' title 'pre-integrated, h2 to h0.5', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated, order 2, h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output
