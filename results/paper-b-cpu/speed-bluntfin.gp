@@ -11,111 +11,161 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3592,14.2
-0.4346,10
-0.5735,6.21
-0.8388,5.14
-1.587,2.9
+0.3201,14.2
+0.3453,10
+0.4488,6.21
+0.6148,5.14
+1.278,2.9
 EOD
 $series1_2 << EOD
-0.05596,14.2
-0.07175,10
-0.08698,6.21
-0.1263,5.14
-0.242,2.9
+0.05496,14.2
+0.07021,10
+0.08572,6.21
+0.1181,5.14
+0.2426,2.9
 EOD
 $series1_3 << EOD
-0.01971,15
-0.03375,2.85
-0.05732,1.26
+0.0234,15
+0.03401,2.85
+0.05697,1.26
 EOD
 $series1_4 << EOD
-0.6486,1.61
-0.6385,1.61
-0.6253,1.61
+0.5382,1.61
+0.5315,1.61
+0.4986,1.61
 EOD
 $series1_5 << EOD
-0.6579,1.58
-0.5879,1.58
-0.575,1.58
+0.5541,1.58
+0.5777,1.58
+0.6098,1.58
 EOD
 $series1_6 << EOD
-0.9016,0.7233647780484344
-0.8712,0.7233647780484344
+0.1514,18.9
+0.2752,4.13
+0.5288,1.69
 EOD
 $series1_7 << EOD
-0.07927,25.2
-0.1258,26
-0.2684,26.8
-0.4611,26.9
-0.9078,27.4
-1.67,27.5
+0.1849,6.99
+0.3621,1.88
+0.6578,0.14
 EOD
 $series1_8 << EOD
-0.1302,17.8
-0.2435,16.9
-0.4435,17
+0.3235,14.1
+0.3542,10.1
+0.4224,6.22
+0.6896,5.14
+1.198,2.9
+EOD
+$series1_9 << EOD
+1.151,14.1
+1.362,9.99
+1.742,6.16
+2.891,5.13
+5.595,2.9
+EOD
+$series1_10 << EOD
+0.923,0.05411917869835199
+0.9186,0.05411917869835199
+EOD
+$series1_11 << EOD
+0.08037,25.2
+0.1047,26
+0.1703,26.8
+0.3145,26.9
+0.711,27.4
+1.266,27.5
+EOD
+$series1_12 << EOD
+0.1041,17.8
+0.203,16.9
+0.3289,17
 EOD
 $pareto1 << EOD
-0.01971,15
-0.03375,2.85
-0.05732,1.26
-0.8712,0.7233647780484344
+0.0234,15
+0.03401,2.85
+0.05697,1.26
+0.6578,0.14
+0.9186,0.05411917869835199
 EOD
 $series2_1 << EOD
-0.3592,0.04754
-0.4346,0.03703
-0.5735,0.02677
-0.8388,0.01692
-1.587,0.008352
+0.3201,0.04754
+0.3453,0.03703
+0.4488,0.02677
+0.6148,0.01692
+1.278,0.008352
 EOD
 $series2_2 << EOD
-0.05596,0.04754
-0.07175,0.03703
-0.08698,0.02677
-0.1263,0.01692
-0.242,0.008352
+0.05496,0.04754
+0.07021,0.03703
+0.08572,0.02677
+0.1181,0.01692
+0.2426,0.008352
 EOD
 $series2_3 << EOD
-0.01971,0.223
-0.03375,0.05481
-0.05732,0.02029
+0.0234,0.223
+0.03401,0.05481
+0.05697,0.02029
 EOD
 $series2_4 << EOD
-0.6486,0.03639
-0.6385,0.03639
-0.6253,0.03639
+0.5382,0.03639
+0.5315,0.03639
+0.4986,0.03639
 EOD
 $series2_5 << EOD
-0.6579,0.0364
-0.5879,0.0364
-0.575,0.0364
+0.5541,0.0364
+0.5777,0.0364
+0.6098,0.0364
 EOD
 $series2_6 << EOD
-0.9016,1.076e-05
-0.8712,2.325e-06
+0.1514,0.2196
+0.2752,0.06813
+0.5288,0.01726
 EOD
 $series2_7 << EOD
-0.07927,0.1418
-0.1258,0.04936
-0.2684,0.05017
-0.4611,0.05409
-0.9078,0.05721
-1.67,0.08155
+0.1849,0.3709
+0.3621,0.03801
+0.6578,0.007797
 EOD
 $series2_8 << EOD
-0.1302,0.1497
-0.2435,0.0476
-0.4435,0.01615
+0.3235,0.04855
+0.3542,0.03697
+0.4224,0.02721
+0.6896,0.0167
+1.198,0.008275
+EOD
+$series2_9 << EOD
+1.151,0.04535
+1.362,0.03444
+1.742,0.02558
+2.891,0.0168
+5.595,0.008052
+EOD
+$series2_10 << EOD
+0.923,1.076e-05
+0.9186,2.325e-06
+EOD
+$series2_11 << EOD
+0.08037,0.1418
+0.1047,0.04936
+0.1703,0.05017
+0.3145,0.05409
+0.711,0.05721
+1.266,0.08155
+EOD
+$series2_12 << EOD
+0.1041,0.1497
+0.203,0.0476
+0.3289,0.01615
 EOD
 $pareto2 << EOD
-0.01971,0.223
-0.03375,0.05481
-0.05596,0.04754
-0.05732,0.02029
-0.1263,0.01692
-0.242,0.008352
-0.8712,2.325e-06
+0.0234,0.223
+0.03401,0.05481
+0.05496,0.04754
+0.05697,0.02029
+0.1181,0.01692
+0.2426,0.008352
+0.6578,0.007797
+0.9186,2.325e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -132,15 +182,15 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.015100969606492619:2.179707717963222] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
+    set xrange [0.016846155431473855:7.771684200146648] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set ytics (2, 5, 10, 20)
-    set ytics add ('0' 0.7233647780484344)
-    set arrow from graph 0, first 0.7233647780484344 to graph 1, first 0.7233647780484344 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [0.6012009102033671:33.08799281358861] noextend
+    set ytics (0.2, 0.5, 1, 2, 5, 10, 20)
+    set ytics add ('0' 0.05411917869835199)
+    set arrow from graph 0, first 0.05411917869835199 to graph 1, first 0.05411917869835199 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [0.039423839467666116:37.750696895600605] noextend
     unset key
     set size noratio
     unset label
@@ -149,9 +199,13 @@ do for [format in "png svg"] {
          $series1_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
          $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series1_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
-         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
-         $series1_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#b5179e' title 'pre-integrated double, h2 to h0.5', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
+         $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -159,13 +213,13 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.015100969606492619:2.179707717963222] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
+    set xrange [0.016846155431473855:7.771684200146648] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [1.1681807432357551e-06:0.44383114770739257] noextend
+    set yrange [1.1330600432571975e-06:0.7610739652605097] noextend
     set key outside right top
     set size noratio
     unset label
@@ -174,9 +228,13 @@ do for [format in "png svg"] {
          $series2_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
          $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series2_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
-         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
-         $series2_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#b5179e' title 'pre-integrated double, h2 to h0.5', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
+         $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

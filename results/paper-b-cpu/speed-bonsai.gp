@@ -11,112 +11,160 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.5355,27
-0.6279,26.5
-0.7056,25.7
-0.9684,23.4
-1.808,16.4
+0.4426,27
+0.5493,26.5
+0.6805,25.7
+1.059,23.4
+1.555,16.4
 EOD
 $series1_2 << EOD
-0.0751,27
-0.09083,26.5
-0.1135,25.7
-0.1619,23.4
-0.2944,16.4
+0.07552,27
+0.08905,26.5
+0.1126,25.7
+0.153,23.4
+0.2673,16.4
 EOD
 $series1_3 << EOD
-0.03359,27.4
-0.04849,21.8
-0.08107,11.3
+0.03075,27.4
+0.04908,21.8
+0.08277,11.3
 EOD
 $series1_4 << EOD
-1.499,14.7
-1.45,14.7
-1.548,14.2
+1.174,14.7
+1.205,14.7
+1.312,14.2
 EOD
 $series1_5 << EOD
-1.539,12.5
-1.587,12.5
-1.593,12.3
+1.266,12.5
+1.443,12.5
+1.311,12.3
 EOD
 $series1_6 << EOD
-0.4704,7.429933426481469
-0.489,7.429933426481469
+0.5044,28.2
+0.7939,24
+1.475,11.8
 EOD
 $series1_7 << EOD
-0.1374,29.9
-0.1686,29.9
-0.3347,29.9
-0.5134,29.9
-1.128,29.8
-2.171,29.9
+0.6626,22.5
+1.219,11.4
+2.244,7.35
 EOD
 $series1_8 << EOD
-0.3086,28.3
-0.6444,27.4
-1.305,27.1
+0.5221,27.1
+0.5222,26.6
+0.6834,25.7
+0.9231,23.4
+1.548,16.4
+EOD
+$series1_9 << EOD
+1.858,26.9
+2.1,26.4
+2.801,25.6
+3.68,23.2
+6.816,16.1
+EOD
+$series1_10 << EOD
+0.4637,4.832744308375114
+0.4665,4.832744308375114
+EOD
+$series1_11 << EOD
+0.1141,29.9
+0.144,29.9
+0.2079,29.9
+0.3413,29.9
+0.8219,29.8
+1.551,29.9
+EOD
+$series1_12 << EOD
+0.3231,28.3
+0.5728,27.4
+1.095,27.1
 EOD
 $pareto1 << EOD
-0.03359,27.4
-0.04849,21.8
-0.08107,11.3
-0.4704,7.429933426481469
+0.03075,27.4
+0.04908,21.8
+0.08277,11.3
+0.4637,4.832744308375114
 EOD
 $series2_1 << EOD
-0.5355,0.1074
-0.6279,0.09284
-0.7056,0.05965
-0.9684,0.03929
-1.808,0.01856
+0.4426,0.1074
+0.5493,0.09284
+0.6805,0.05965
+1.059,0.03929
+1.555,0.01856
 EOD
 $series2_2 << EOD
-0.0751,0.1074
-0.09083,0.09284
-0.1135,0.05965
-0.1619,0.03929
-0.2944,0.01856
+0.07552,0.1074
+0.08905,0.09284
+0.1126,0.05965
+0.153,0.03929
+0.2673,0.01856
 EOD
 $series2_3 << EOD
-0.03359,0.2766
-0.04849,0.1414
-0.08107,0.05138
+0.03075,0.2766
+0.04908,0.1414
+0.08277,0.05138
 EOD
 $series2_4 << EOD
-1.499,0.04547
-1.45,0.04547
-1.548,0.04005
+1.174,0.04547
+1.205,0.04547
+1.312,0.04005
 EOD
 $series2_5 << EOD
-1.539,0.03886
-1.587,0.03886
-1.593,0.03609
+1.266,0.03886
+1.443,0.03886
+1.311,0.03609
 EOD
 $series2_6 << EOD
-0.4704,7.778e-06
-0.489,7.898e-07
+0.5044,0.2483
+0.7939,0.1241
+1.475,0.04762
 EOD
 $series2_7 << EOD
-0.1374,0.4228
-0.1686,0.402
-0.3347,0.3922
-0.5134,0.9932
-1.128,0.9938
-2.171,0.9938
+0.6626,0.2226
+1.219,0.1105
+2.244,0.04851
 EOD
 $series2_8 << EOD
-0.3086,0.4893
-0.6444,0.3752
-1.305,0.3207
+0.5221,0.1169
+0.5222,0.08383
+0.6834,0.05987
+0.9231,0.0394
+1.548,0.01886
+EOD
+$series2_9 << EOD
+1.858,0.1069
+2.1,0.07774
+2.801,0.05721
+3.68,0.03938
+6.816,0.01874
+EOD
+$series2_10 << EOD
+0.4637,7.778e-06
+0.4665,7.898e-07
+EOD
+$series2_11 << EOD
+0.1141,0.4228
+0.144,0.402
+0.2079,0.3922
+0.3413,0.9932
+0.8219,0.9938
+1.551,0.9938
+EOD
+$series2_12 << EOD
+0.3231,0.4893
+0.5728,0.3752
+1.095,0.3207
 EOD
 $pareto2 << EOD
-0.03359,0.2766
-0.04849,0.1414
-0.0751,0.1074
-0.08107,0.05138
-0.1619,0.03929
-0.2944,0.01856
-0.4704,7.778e-06
-0.489,7.898e-07
+0.03075,0.2766
+0.04908,0.1414
+0.07552,0.1074
+0.08277,0.05138
+0.153,0.03929
+0.2673,0.01856
+0.4637,7.778e-06
+0.4665,7.898e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -133,15 +181,15 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.02615670381380733:2.787961759979317] noextend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5)
+    set xrange [0.022238426362499612:9.424767588476152] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set ytics (10, 20, 30)
-    set ytics add ('0' 7.429933426481469)
-    set arrow from graph 0, first 7.429933426481469 to graph 1, first 7.429933426481469 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [6.460811675201278:34.385] noextend
+    set ytics (7, 8, 9, 10, 20, 30)
+    set ytics add ('0' 4.832744308375114)
+    set arrow from graph 0, first 4.832744308375114 to graph 1, first 4.832744308375114 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [4.2023863551087945:34.385] noextend
     unset key
     set size noratio
     unset label
@@ -150,9 +198,13 @@ do for [format in "png svg"] {
          $series1_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
          $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series1_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
-         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
-         $series1_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#b5179e' title 'pre-integrated double, h2 to h0.5', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
+         $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -160,8 +212,8 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.02615670381380733:2.787961759979317] noextend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5)
+    set xrange [0.022238426362499612:9.424767588476152] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -175,9 +227,13 @@ do for [format in "png svg"] {
          $series2_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
          $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series2_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
-         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
-         $series2_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#b5179e' title 'pre-integrated double, h2 to h0.5', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
+         $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -11,110 +11,159 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.4182,23.1
-0.5099,20.9
-0.578,17.1
-0.8343,10.7
-1.489,9.26
+0.3616,23.1
+0.4181,20.9
+0.5222,17.1
+0.7171,10.7
+1.294,9.26
 EOD
 $series1_2 << EOD
-0.0664,23.1
-0.07763,20.9
-0.09971,17.1
-0.1418,10.7
-0.2634,9.26
+0.07064,23.1
+0.08673,20.9
+0.1386,17.1
+0.1493,10.7
+0.281,9.26
 EOD
 $series1_3 << EOD
-0.02666,22.8
-0.04073,13.3
-0.06886,7.55
+0.02552,22.8
+0.03889,13.3
+0.07079,7.55
 EOD
 $series1_4 << EOD
-1.1,7.09
-1.165,7.09
-1.202,7.08
+0.98,7.09
+0.9387,7.09
+0.9888,7.08
 EOD
 $series1_5 << EOD
-1.044,6.69
-1.074,6.69
-1.064,6.69
+0.9787,6.69
+1.09,6.69
+0.9815,6.69
 EOD
 $series1_6 << EOD
-0.8071,4.398783594970002
-0.8217,4.398783594970002
+0.3164,27.3
+0.5229,22.9
+1.028,7.79
 EOD
 $series1_7 << EOD
-0.1628,25.2
-0.2554,25.4
-0.3379,26.7
-0.5595,27.8
-1.241,28.4
-2.136,28.6
+0.4563,14.3
+0.8106,6.09
+1.862,1.61
 EOD
 $series1_8 << EOD
-0.2294,24.5
-0.4584,23.6
-0.8908,24.1
+0.4449,23.1
+0.4873,20.8
+0.6474,17.1
+0.8137,10.7
+1.41,9.26
+EOD
+$series1_9 << EOD
+1.578,23.2
+2.014,20.8
+2.153,16.9
+2.938,10.3
+5.257,9.26
+EOD
+$series1_10 << EOD
+0.8573,0.9591988463477427
+0.8631,0.9591988463477427
+EOD
+$series1_11 << EOD
+0.085,25.2
+0.1396,25.4
+0.2695,26.7
+0.3904,27.8
+0.8253,28.4
+1.498,28.6
+EOD
+$series1_12 << EOD
+0.2444,24.5
+0.4378,23.6
+0.7534,24.1
 EOD
 $pareto1 << EOD
-0.02666,22.8
-0.04073,13.3
-0.06886,7.55
-0.8071,4.398783594970002
+0.02552,22.8
+0.03889,13.3
+0.07079,7.55
+0.8106,6.09
+0.8573,0.9591988463477427
 EOD
 $series2_1 << EOD
-0.4182,0.06248
-0.5099,0.04992
-0.578,0.03695
-0.8343,0.02473
-1.489,0.01212
+0.3616,0.06248
+0.4181,0.04992
+0.5222,0.03695
+0.7171,0.02473
+1.294,0.01212
 EOD
 $series2_2 << EOD
-0.0664,0.06248
-0.07763,0.04992
-0.09971,0.03695
-0.1418,0.02473
-0.2634,0.01212
+0.07064,0.06248
+0.08673,0.04992
+0.1386,0.03695
+0.1493,0.02473
+0.281,0.01212
 EOD
 $series2_3 << EOD
-0.02666,0.1125
-0.04073,0.04035
-0.06886,0.0149
+0.02552,0.1125
+0.03889,0.04035
+0.07079,0.0149
 EOD
 $series2_4 << EOD
-1.1,0.02604
-1.165,0.02604
-1.202,0.02124
+0.98,0.02604
+0.9387,0.02604
+0.9888,0.02124
 EOD
 $series2_5 << EOD
-1.044,0.02591
-1.074,0.02591
-1.064,0.02103
+0.9787,0.02591
+1.09,0.02591
+0.9815,0.02103
 EOD
 $series2_6 << EOD
-0.8071,1.296e-05
-0.8217,1.431e-06
+0.3164,0.1469
+0.5229,0.04854
+1.028,0.01691
 EOD
 $series2_7 << EOD
-0.1628,0.1676
-0.2554,0.1323
-0.3379,0.131
-0.5595,0.1349
-1.241,0.131
-2.136,0.1252
+0.4563,0.1722
+0.8106,0.05081
+1.862,0.01408
 EOD
 $series2_8 << EOD
-0.2294,0.1495
-0.4584,0.1113
-0.8908,0.09071
+0.4449,0.06325
+0.4873,0.0497
+0.6474,0.03759
+0.8137,0.02473
+1.41,0.01216
+EOD
+$series2_9 << EOD
+1.578,0.06274
+2.014,0.04945
+2.153,0.03726
+2.938,0.02451
+5.257,0.01216
+EOD
+$series2_10 << EOD
+0.8573,1.296e-05
+0.8631,1.431e-06
+EOD
+$series2_11 << EOD
+0.085,0.1676
+0.1396,0.1323
+0.2695,0.131
+0.3904,0.1349
+0.8253,0.131
+1.498,0.1252
+EOD
+$series2_12 << EOD
+0.2444,0.1495
+0.4378,0.1113
+0.7534,0.09071
 EOD
 $pareto2 << EOD
-0.02666,0.1125
-0.04073,0.04035
-0.06886,0.0149
-0.2634,0.01212
-0.8071,1.296e-05
-0.8217,1.431e-06
+0.02552,0.1125
+0.03889,0.04035
+0.07079,0.0149
+0.281,0.01212
+0.8573,1.296e-05
+0.8631,1.431e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -131,15 +180,15 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.02049442220643339:2.7785979729706263] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
+    set xrange [0.018537417517057595:7.237180684771818] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
-    set ytics (6, 7, 8, 9, 10, 20, 30)
-    set ytics add ('0' 4.398783594970002)
-    set arrow from graph 0, first 4.398783594970002 to graph 1, first 4.398783594970002 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [3.8250292130173933:32.89] noextend
+    set ytics (2, 5, 10, 20)
+    set ytics add ('0' 0.9591988463477427)
+    set arrow from graph 0, first 0.9591988463477427 to graph 1, first 0.9591988463477427 nohead dt 3 lw 1 lc rgb 'gray50' back
+    set yrange [0.8071165233859663:33.989004326735646] noextend
     unset key
     set size noratio
     unset label
@@ -148,9 +197,13 @@ do for [format in "png svg"] {
          $series1_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
          $series1_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series1_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
-         $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
-         $series1_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_6 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#b5179e' title 'pre-integrated double, h2 to h0.5', \
+         $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
+         $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
+         $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -158,13 +211,13 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.02049442220643339:2.7785979729706263] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
+    set xrange [0.018537417517057595:7.237180684771818] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [7.10430455423473e-07:0.33759194607871773] noextend
+    set yrange [7.092772383071053e-07:0.347421553507269] noextend
     set key outside right top
     set size noratio
     unset label
@@ -173,9 +226,13 @@ do for [format in "png svg"] {
          $series2_3 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#17a2b8' title 'composite float SIMD, h2 to h0.5', \
          $series2_4 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series2_5 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
-         $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
-         $series2_7 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_6 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#b5179e' title 'pre-integrated double, h2 to h0.5', \
+         $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
+         $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
+         $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output
