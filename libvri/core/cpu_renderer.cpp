@@ -44,12 +44,9 @@ void parseSimd(std::string_view name, const std::string& what, RenderOptions& op
     options.simdTarget.clear();
     if (name == "on" || name == "off") return;
     options.simdTarget = simdTargetNamed(name);
-    if (options.simdTarget.empty()) {
-        std::string targets;
-        for (const std::string& target : availableSimdTargets()) targets += (targets.empty() ? "" : ", ") + target;
+    if (options.simdTarget.empty())
         throw Error(what + ": unknown value '" + printable(name) + "' (expected on, off or a SIMD target this CPU and " +
-                    "build have: " + targets + ")");
-    }
+                    "build have: " + simdTargetList() + ")");
 }
 
 void parseEarlyTermination(const std::string& text, const std::string& what, RenderOptions& options) {

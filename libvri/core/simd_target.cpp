@@ -35,12 +35,6 @@ std::int64_t targetBit(const std::string& name) {
     return 0;
 }
 
-std::string targetList() {
-    std::string list;
-    for (const std::string& name : availableSimdTargets()) list += (list.empty() ? "" : ", ") + name;
-    return list;
-}
-
 }  // namespace
 
 std::vector<std::string> availableSimdTargets() {
@@ -48,6 +42,12 @@ std::vector<std::string> availableSimdTargets() {
     std::vector<std::string> names;
     for (std::int64_t target : allTargets()) names.emplace_back(hwy::TargetName(target));
     return names;
+}
+
+std::string simdTargetList() {
+    std::string list;
+    for (const std::string& name : availableSimdTargets()) list += (list.empty() ? "" : ", ") + name;
+    return list;
 }
 
 std::string simdTargetNamed(std::string_view name) {
@@ -63,7 +63,7 @@ std::string simdTargetFromEnvironment() {
     std::string target = simdTargetNamed(value);
     if (target.empty())
         throw Error("VRI_SIMD_TARGET: '" + printable(value) + "' is not a SIMD target this CPU and build have (" +
-                    targetList() + ")");
+                    simdTargetList() + ")");
     return target;
 }
 

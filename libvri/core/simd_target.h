@@ -13,6 +13,8 @@ namespace vri {
 // The targets this build compiled and this CPU runs, best first, by Highway's names ("AVX3", "AVX2",
 // "SSE4", "SSSE3", "SCALAR", "NEON", ...).
 std::vector<std::string> availableSimdTargets();
+// The same, as one line for messages: "AVX3, AVX2, SSE4, SSSE3, SCALAR".
+std::string simdTargetList();
 
 // `name` (any case) as Highway spells it, when it is one of availableSimdTargets(); empty otherwise.
 std::string simdTargetNamed(std::string_view name);
