@@ -22,7 +22,7 @@ grep -q "^vri-run: hydrogen: $steps steps, $steps ran, 0 cached" run.txt || fail
 
 # The table: a row per method run, each with its time and error; the chart: a PNG beside its SVG.
 for run in riemann-h2 riemann-h0.125 coupled-eps0.01 coupled-eps0.0001; do
-    grep -qE "^\| $run \| (riemann|coupled) double \| [0-9.e-]+ \|" results/hydrogen/speed.md ||
+    grep -qE "^\| $run \| (riemann|coupled) double \| [0-9.e+-]+ \|" results/hydrogen/speed.md ||
         fail "no row for $run: $(cat results/hydrogen/speed.md)"
 done
 [[ $(head -c 8 results/hydrogen/speed.png | od -An -tx1 | tr -d ' ') == 89504e470d0a1a0a ]] || fail "speed.png is not a PNG"

@@ -34,9 +34,9 @@ grep -q "^vri-run: paper-a-fig4: $steps steps, $steps ran, 0 cached" first.txt |
 render=("$bin/vri-render" --field linear --convention node --tf "$src/experiments/tf/paper-a-linear.yaml"
         --size 16x12 --step 0.5 -o r.exr)
 "${render[@]}" --warm-up 1 --repeat 3 2> frames.txt
-grep -qE '^vri-render: warm-up frame 1 of 1: [0-9.e-]+ s$' frames.txt || fail "warm-up line: $(cat frames.txt)"
+grep -qE '^vri-render: warm-up frame 1 of 1: [0-9.e+-]+ s$' frames.txt || fail "warm-up line: $(cat frames.txt)"
 for k in 1 2 3; do
-    grep -qE "^vri-render: frame $k of 3: [0-9.e-]+ s$" frames.txt || fail "frame $k line: $(cat frames.txt)"
+    grep -qE "^vri-render: frame $k of 3: [0-9.e+-]+ s$" frames.txt || fail "frame $k line: $(cat frames.txt)"
 done
 "${render[@]}" --warm-up 1 --repeat 3 -q 2> frames-quiet.txt
 [ ! -s frames-quiet.txt ] || fail "-q printed: $(cat frames-quiet.txt)"

@@ -94,7 +94,7 @@ bench=out/small/bench.csv
 base=$(awk -F, '$1 == "riemann-h1" { print $3 }' $bench)
 awk -F, -v base="$base" 'NR > 1 { r = $3 / base; if ((r - $6) / r > 1.6e-3 || ($6 - r) / r > 1.6e-3) { print $1; bad = 1 } }
                           END { exit bad }' $bench || fail "time ratios disagree with the seconds: $(cat $bench)"
-grep -q "^riemann-h1,riemann double,[0-9.e-]*,[0-9]*,[0-9.e-]*,1," $bench || fail "the baseline's ratio is not 1: $(cat $bench)"
+grep -q "^riemann-h1,riemann double,[0-9.e+-]*,[0-9]*,[0-9.e+-]*,1," $bench || fail "the baseline's ratio is not 1: $(cat $bench)"
 number() { grep -o "\"$1\": [0-9.e+-]*" out/small/riemann-h0.5.json | head -1 | cut -d' ' -f2; }
 evaluated=$(number samples_evaluated) median=$(number median_wall_seconds)
 awk -F, -v n="$evaluated" -v t="$median" '$1 == "riemann-h0.5" { s = n / t / 1e6; d = ($7 - s) / s; exit !(d < 5e-4 && d > -5e-4) }' $bench ||
