@@ -13,6 +13,7 @@ packages=(
   python3-openvdb python3-numpy pybind11-dev python3-dev libopenvdb-tools teem-apps libtiff-tools
   python3-vtk9 python3-openimageio python3-yaml xvfb xauth   # tools/peers: VTK as a peer
   slurm-wlm munge iproute2   # vri-run --executor slurm, and the test cluster of tests/tools/slurm.sh
+  time                       # GNU time: the bad-input suites' peak resident memory (tests/tools/lib/bad_input.sh)
   ccache                     # the Makefile compiles through it when it is there: a rebuild reuses objects
 )
 if [ "${1:-}" = fuzz ]; then

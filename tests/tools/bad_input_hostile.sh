@@ -8,7 +8,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh"
 
 bin=$VRI_BIN
-t() { timeout 10 "$@"; }
+t=(timeout 10)  # an array, not a function: each case runs under GNU time (lib/bad_input.sh)
 
 # --- inputs, made before the cases: the work directory must stay as it is from here on ---
 write_blob_scene
@@ -50,24 +50,24 @@ truncate -s $((64 * 1024 * 1024 + 1)) "$big"
 # --- item 1: a ',' (or ']', '}') outside a flow collection, in every tool that reads YAML ---
 E='^vri-tf: error: '
 # After a block mapping, and a ']' or '}' anywhere, yaml-cpp refuses it itself; a ',' elsewhere looped.
-bad 1 "${E}block-comma\.yaml:2:1: malformed YAML: end of map not found$" -- t "$bin/vri-tf" block-comma.yaml -o out.csv
-bad 1 "${E}flow-comma\.yaml:1:7: malformed YAML: ',' outside a flow collection$" -- t "$bin/vri-tf" flow-comma.yaml -o out.csv
-bad 1 "${E}seq-comma\.yaml:1:4: malformed YAML: ','" -- t "$bin/vri-tf" seq-comma.yaml -o out.csv
-bad 1 "${E}item-comma\.yaml:2:1: malformed YAML: ','" -- t "$bin/vri-tf" item-comma.yaml -o out.csv
-bad 1 "${E}tf-bracket\.yaml:4:1: malformed YAML: illegal flow end$" -- t "$bin/vri-tf" tf-bracket.yaml -o out.csv
-bad 1 "${E}tf-brace\.yaml:3:1: malformed YAML: illegal flow end$" -- t "$bin/vri-tf" tf-brace.yaml -o out.csv
-bad 1 "^vri-run: error: exp-bracket\.yaml:7:1: malformed YAML: illegal flow end$" -- t "$bin/vri-run" --dry-run exp-bracket.yaml
-bad 1 "^vri-run: error: exp-comma\.json\.yaml:1:41: malformed YAML: ','" -- t "$bin/vri-run" --results out exp-comma.json.yaml
-bad 1 "^vri-plot: error: flow-comma\.yaml:1:7: malformed YAML: ','" -- t "$bin/vri-plot" flow-comma.yaml -o fig.png
-bad 1 "^vri-data: error: item-comma\.yaml:2:1: malformed YAML: ','" -- t "$bin/vri-data" --catalog item-comma.yaml --data-dir .
-bad 1 "^vri-render: error: flow-comma\.yaml:1:7: malformed YAML: ','" -- t "$bin/vri-render" --field linear --tf flow-comma.yaml -q -o out.exr
-bad 1 "^vri-reference: error: seq-comma\.yaml:1:4: malformed YAML: ','" -- t "$bin/vri-reference" --field linear --tf seq-comma.yaml -q -o out.exr
+bad 1 "${E}block-comma\.yaml:2:1: malformed YAML: end of map not found$" -- "${t[@]}" "$bin/vri-tf" block-comma.yaml -o out.csv
+bad 1 "${E}flow-comma\.yaml:1:7: malformed YAML: ',' outside a flow collection$" -- "${t[@]}" "$bin/vri-tf" flow-comma.yaml -o out.csv
+bad 1 "${E}seq-comma\.yaml:1:4: malformed YAML: ','" -- "${t[@]}" "$bin/vri-tf" seq-comma.yaml -o out.csv
+bad 1 "${E}item-comma\.yaml:2:1: malformed YAML: ','" -- "${t[@]}" "$bin/vri-tf" item-comma.yaml -o out.csv
+bad 1 "${E}tf-bracket\.yaml:4:1: malformed YAML: illegal flow end$" -- "${t[@]}" "$bin/vri-tf" tf-bracket.yaml -o out.csv
+bad 1 "${E}tf-brace\.yaml:3:1: malformed YAML: illegal flow end$" -- "${t[@]}" "$bin/vri-tf" tf-brace.yaml -o out.csv
+bad 1 "^vri-run: error: exp-bracket\.yaml:7:1: malformed YAML: illegal flow end$" -- "${t[@]}" "$bin/vri-run" --dry-run exp-bracket.yaml
+bad 1 "^vri-run: error: exp-comma\.json\.yaml:1:41: malformed YAML: ','" -- "${t[@]}" "$bin/vri-run" --results out exp-comma.json.yaml
+bad 1 "^vri-plot: error: flow-comma\.yaml:1:7: malformed YAML: ','" -- "${t[@]}" "$bin/vri-plot" flow-comma.yaml -o fig.png
+bad 1 "^vri-data: error: item-comma\.yaml:2:1: malformed YAML: ','" -- "${t[@]}" "$bin/vri-data" --catalog item-comma.yaml --data-dir .
+bad 1 "^vri-render: error: flow-comma\.yaml:1:7: malformed YAML: ','" -- "${t[@]}" "$bin/vri-render" --field linear --tf flow-comma.yaml -q -o out.exr
+bad 1 "^vri-reference: error: seq-comma\.yaml:1:4: malformed YAML: ','" -- "${t[@]}" "$bin/vri-reference" --field linear --tf seq-comma.yaml -q -o out.exr
 
 # --- item 2: a bounded transfer function, refused on the event stream before yaml-cpp builds its tree ---
-bad 1 "${E}tf-points\.yaml:2:3: 'points' has 10001 points, more than the limit of 10000$" -- t "$bin/vri-tf" tf-points.yaml -o out.csv
-bad 1 "${E}tf-nodes\.yaml:1:[0-9]+: more than 200000 YAML nodes \(the limit of a vri YAML file\)$" -- t "$bin/vri-tf" tf-nodes.yaml -o out.csv
-bad 1 "^vri-render: error: tf-nodes\.yaml:1:[0-9]+: more than 200000 YAML nodes" -- t "$bin/vri-render" --field linear --tf tf-nodes.yaml -q -o out.exr
-bad 1 "^vri-run: error: exp-nodes\.yaml:[0-9]+:[0-9]+: more than 200000 YAML nodes" -- t "$bin/vri-run" --dry-run exp-nodes.yaml
+bad 1 "${E}tf-points\.yaml:2:3: 'points' has 10001 points, more than the limit of 10000$" -- "${t[@]}" "$bin/vri-tf" tf-points.yaml -o out.csv
+bad 1 "${E}tf-nodes\.yaml:1:[0-9]+: more than 200000 YAML nodes \(the limit of a vri YAML file\)$" -- "${t[@]}" "$bin/vri-tf" tf-nodes.yaml -o out.csv
+bad 1 "^vri-render: error: tf-nodes\.yaml:1:[0-9]+: more than 200000 YAML nodes" -- "${t[@]}" "$bin/vri-render" --field linear --tf tf-nodes.yaml -q -o out.exr
+bad 1 "^vri-run: error: exp-nodes\.yaml:[0-9]+:[0-9]+: more than 200000 YAML nodes" -- "${t[@]}" "$bin/vri-run" --dry-run exp-nodes.yaml
 
 # --- item 3: frame counts within 1000, on the command line and in experiment files ---
 bad 1 "^vri-render: error: --repeat: expected a whole number from 1 to 1000, got '1001'$" -- \
@@ -83,17 +83,17 @@ bad 1 "^vri-run: error: warm\.yaml:5:[0-9]+: .*warm_up.*expected a whole number 
 
 # --- item 6: text inputs within 64 MiB, checked while reading; what is not a regular file named so ---
 limit="more than 67108864 bytes, the limit for a YAML file"
-bad 1 "^vri-tf: error: /dev/zero: not a regular file, $limit$" -- t "$bin/vri-tf" /dev/zero -o out.csv
-bad 1 "^vri-render: error: /dev/zero: not a regular file, $limit$" -- t "$bin/vri-render" --field linear --tf /dev/zero -q -o out.exr
-bad 1 "^vri-run: error: /dev/zero: not a regular file, $limit$" -- t "$bin/vri-run" --dry-run /dev/zero
-bad 1 "^vri-plot: error: /dev/zero: not a regular file, $limit$" -- t "$bin/vri-plot" /dev/zero -o fig.png
-bad 1 "^vri-data: error: /dev/zero: not a regular file, $limit$" -- t "$bin/vri-data" --catalog /dev/zero --data-dir .
+bad 1 "^vri-tf: error: /dev/zero: not a regular file, $limit$" -- "${t[@]}" "$bin/vri-tf" /dev/zero -o out.csv
+bad 1 "^vri-render: error: /dev/zero: not a regular file, $limit$" -- "${t[@]}" "$bin/vri-render" --field linear --tf /dev/zero -q -o out.exr
+bad 1 "^vri-run: error: /dev/zero: not a regular file, $limit$" -- "${t[@]}" "$bin/vri-run" --dry-run /dev/zero
+bad 1 "^vri-plot: error: /dev/zero: not a regular file, $limit$" -- "${t[@]}" "$bin/vri-plot" /dev/zero -o fig.png
+bad 1 "^vri-data: error: /dev/zero: not a regular file, $limit$" -- "${t[@]}" "$bin/vri-data" --catalog /dev/zero --data-dir .
 bad 1 "^vri-tabulate: error: /dev/zero: not a regular file, more than 67108864 bytes, the limit for a JSON file$" -- \
-  t "$bin/vri-tabulate" --layout thresholds --row a /dev/zero -o table.md
-bad 1 "^vri-tf: error: .*/big\.yaml: $limit$" -- t "$bin/vri-tf" "$big" -o out.csv
+  "${t[@]}" "$bin/vri-tabulate" --layout thresholds --row a /dev/zero -o table.md
+bad 1 "^vri-tf: error: .*/big\.yaml: $limit$" -- "${t[@]}" "$bin/vri-tf" "$big" -o out.csv
 # A FIFO whose writer never stops, as --tf <(yes) would be.
-bad 1 "^vri-tf: error: fifo: not a regular file, $limit$" -- t bash -c 'yes "a: 1" > fifo & exec "$0" fifo -o out.csv' "$bin/vri-tf"
-bad 1 "^vri-tf: error: sock: not a regular file, expected a YAML file$" -- t "$bin/vri-tf" sock -o out.csv
+bad 1 "^vri-tf: error: fifo: not a regular file, $limit$" -- "${t[@]}" bash -c 'yes "a: 1" > fifo & exec "$0" fifo -o out.csv' "$bin/vri-tf"
+bad 1 "^vri-tf: error: sock: not a regular file, expected a YAML file$" -- "${t[@]}" "$bin/vri-tf" sock -o out.csv
 
 # --- item 9: ranges whose width overflows a double ---
 bad 1 "^vri-render: error: --range: hi - lo must be at most the largest double .*got '-1e308,1e308'$" -- \

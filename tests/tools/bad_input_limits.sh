@@ -7,7 +7,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
 
 bin=$VRI_BIN
 tf=$VRI_SOURCE/experiments/tf/paper-a-linear.yaml
-render() { "$bin/vri-render" --field linear --tf "$tf" -q -o out.exr "$@"; }
+render=("$bin/vri-render" --field linear --tf "$tf" -q -o out.exr)  # an array: cases run under GNU time
 
 # --- inputs, made before the cases: the work directory must stay as it is from here on ---
 "$bin/vri-render" --field linear --tf "$tf" -q --size 4x4 -o a.exr
@@ -47,10 +47,10 @@ methods:
 YAML
 
 # --- item 4: sizes ---
-bad 1 '^vri-render: error: a 100000x100000 image of 4 float channels: needs 160000000000 bytes, limit 17179869184 \(VRI_MAX_BYTES\)$' -- render --size 100000x100000
-bad 1 'a 2000000000x2000000000 image .*: needs about 6\.4e\+19 bytes' -- render --size 2000000000x2000000000
-bad 1 '^vri-render: error: a 2097152x2097152x4194304 float32 volume: needs about 7\.38e\+19 bytes, limit 17179869184' -- render --field-as-grid --field-dims 2097152,2097152,4194304
-bad 1 'a 2000x2000x2000 float32 volume: needs 32000000000 bytes, limit 17179869184' -- render --field-as-grid --field-dims 2000,2000,2000
+bad 1 '^vri-render: error: a 100000x100000 image of 4 float channels: needs 160000000000 bytes, limit 17179869184 \(VRI_MAX_BYTES\)$' -- "${render[@]}" --size 100000x100000
+bad 1 'a 2000000000x2000000000 image .*: needs about 6\.4e\+19 bytes' -- "${render[@]}" --size 2000000000x2000000000
+bad 1 '^vri-render: error: a 2097152x2097152x4194304 float32 volume: needs about 7\.38e\+19 bytes, limit 17179869184' -- "${render[@]}" --field-as-grid --field-dims 2097152,2097152,4194304
+bad 1 'a 2000x2000x2000 float32 volume: needs 32000000000 bytes, limit 17179869184' -- "${render[@]}" --field-as-grid --field-dims 2000,2000,2000
 bad 1 'a 100x100x100 float32 volume: needs 4000000 bytes, limit 1000000 \(VRI_MAX_BYTES\)$' -- env VRI_MAX_BYTES=1000000 "$bin/vri-render" --field linear --tf "$tf" -q -o out.exr --field-as-grid --field-dims 100,100,100
 bad 1 '^vri-render: error: VRI_MAX_BYTES: expected a positive byte count, got '"'"'16G'"'"'$' -- env VRI_MAX_BYTES=16G "$bin/vri-render" --field linear --tf "$tf" -q -o out.exr --size 8x8
 # Read dense (--storage dense): the dense box's bytes, which wrap size_t, and the plausible size for the file.
@@ -76,11 +76,11 @@ if ! ldd "$bin/vri-render" | grep -q libasan; then
 fi
 
 # --- item 8: unbounded work ---
-bad 1 '^vri-render: error: h_min 1e-300 would allow more than 1e9 steps on a ray through this volume$' -- render --method coupled --h-min 1e-300 --tolerance 0
-bad 1 'h_min 1e-300 would allow more than 1e9 steps' -- render --method decoupled --h-min 1e-300 --h0 1e-300 --tolerance 0
-bad 1 'sampling rate .* would put more than 1e9 samples on a ray' -- render --step 1e-12
-bad 1 'step 1e-06 would allow more than 2\^22 steps on a ray through this volume in float precision' -- render --method simpson --step 1e-6 --precision float
-bad 1 'h_min 1e-07 would allow more than 2\^22 steps .* in float precision' -- render --method coupled --h-min 1e-7 --precision float
+bad 1 '^vri-render: error: h_min 1e-300 would allow more than 1e9 steps on a ray through this volume$' -- "${render[@]}" --method coupled --h-min 1e-300 --tolerance 0
+bad 1 'h_min 1e-300 would allow more than 1e9 steps' -- "${render[@]}" --method decoupled --h-min 1e-300 --h0 1e-300 --tolerance 0
+bad 1 'sampling rate .* would put more than 1e9 samples on a ray' -- "${render[@]}" --step 1e-12
+bad 1 'step 1e-06 would allow more than 2\^22 steps on a ray through this volume in float precision' -- "${render[@]}" --method simpson --step 1e-6 --precision float
+bad 1 'h_min 1e-07 would allow more than 2\^22 steps .* in float precision' -- "${render[@]}" --method coupled --h-min 1e-7 --precision float
 bad 1 'h_min 1e-300 would allow' -- "$bin/vri-render" --volume v_2x2x2_uint8.raw --tf "$tf" -q -o out.exr --method coupled --h-min 1e-300
 bad 1 '^vri-rays2d: error: 2D study: the fan: needs 2000000000 rays, limit 1000000$' -- "$bin/vri-rays2d" -o rays.csv --rays 2000000000
 bad 1 '^vri-rays2d: error: 2D study: 120 rays x 4 placements at rates summing to 1e\+12 on a 5x5 grid: needs 4354112549695428 samples, limit 1000000000$' -- "$bin/vri-rays2d" -o rays.csv --rates 1e12
@@ -95,11 +95,11 @@ bad 64 '^vri-diff: error: logarithmic bins from 1e-300 to 1e\+300 at 100000000 p
   "$bin/vri-diff" a.exr a.exr --histogram histogram.csv --histogram-range 1e-300,1e300 --bins-per-decade 100000000
 
 # --- item 9: messages ---
-bad 1 '^vri-render: error: camera eye 1e\+308,0,0: coordinates must be finite and at most 1e\+150 in magnitude$' -- render --eye 1e308,0,0
-bad 1 'camera target 0,1e\+200,0: coordinates must be finite' -- render --target 0,1e200,0
-bad 1 'camera up vector 0,0,0 is zero or shorter than 1e-150$' -- render --up 0,0,0
-bad 1 'camera eye and target coincide at 1,2,3$' -- render --eye 1,2,3 --target 1,2,3
-bad 1 'camera up vector is parallel to the view direction$' -- render --eye 0,0,5 --target 0,0,0 --up 0,0,1
+bad 1 '^vri-render: error: camera eye 1e\+308,0,0: coordinates must be finite and at most 1e\+150 in magnitude$' -- "${render[@]}" --eye 1e308,0,0
+bad 1 'camera target 0,1e\+200,0: coordinates must be finite' -- "${render[@]}" --target 0,1e200,0
+bad 1 'camera up vector 0,0,0 is zero or shorter than 1e-150$' -- "${render[@]}" --up 0,0,0
+bad 1 'camera eye and target coincide at 1,2,3$' -- "${render[@]}" --eye 1,2,3 --target 1,2,3
+bad 1 'camera up vector is parallel to the view direction$' -- "${render[@]}" --eye 0,0,5 --target 0,0,0 --up 0,0,1
 bad 1 'camera eye and target are only [0-9.e+-]+ apart, below the 1e-150 the camera resolves \(is the scene, e\.g\. its voxel spacing, that small\?\)$' -- \
   "$bin/vri-render" --volume v_2x2x2_uint8.raw --tf "$tf" -q -o out.exr --spacing 1e-300,1e-300,1e-300
 bad 1 'camera eye [0-9.e+,-]+: coordinates must be finite and at most 1e\+150' -- \
@@ -107,8 +107,8 @@ bad 1 'camera eye [0-9.e+,-]+: coordinates must be finite and at most 1e\+150' -
 bad 1 "escape\.dat:3: Format: unknown voxel type 'UINT8\\\\x1b\[2J'" -- "$bin/vri-convert" --info escape.dat
 bad 1 "bell\.nhdr:2: type: 'uchar\\\\x07' is not supported" -- "$bin/vri-convert" --info bell.nhdr
 bad 1 "escape-tf\.yaml:3:1: unknown key 'po\\\\x1bints'" -- "$bin/vri-render" --field linear --tf escape-tf.yaml -q -o out.exr
-bad 1 "--method: unknown method 'x\\\\x0ay'" -- render --method $'x\ny'
-bad nonzero "--size: expected a positive image size WIDTHxHEIGHT, got '1x\\\\x1b1'" -- render --size $'1x\e1'
+bad 1 "--method: unknown method 'x\\\\x0ay'" -- "${render[@]}" --method $'x\ny'
+bad nonzero "--size: expected a positive image size WIDTHxHEIGHT, got '1x\\\\x1b1'" -- "${render[@]}" --size $'1x\e1'
 bad 1 '^vri-tabulate: error: wrong-type\.json: type must be number, but is string$' -- "$bin/vri-tabulate" --layout thresholds --row a wrong-type.json -o table.md
 bad 1 '^vri-tabulate: error: truncated\.json: not valid JSON: parse error at line 2, column 1: syntax error while parsing value - unexpected end of input' -- "$bin/vri-tabulate" --layout thresholds --row a truncated.json -o table.md
 bad 1 '^vri-run: error: missing-dir: No such file or directory$' -- "$bin/vri-run" --gallery missing-dir

@@ -9,8 +9,6 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh"
 python=/usr/bin/python3
-[ -x /usr/bin/time ] || { echo "skip: GNU time (/usr/bin/time) missing"; exit 77; }
-bad_max_rss_kb=$((256 * 1024))
 bin=$VRI_BIN
 # A command under a virtual-memory limit of 900 MB: an allocation within VRI_MAX_BYTES that the machine
 # cannot give, as on a smaller machine (an array, not a function: GNU time runs programs).

@@ -14,60 +14,55 @@ bin=$VRI_BIN
 # Inputs, in the work directory (each case checks that it is left exactly as it was).
 write_blob_scene
 head -c 32768 /dev/urandom > noise_32x32x32_uint8.raw   # noise: no format compresses it below 32 KB
-render() { "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 64x64 -q "$@"; }
-render --step 0.5 -o a.exr
-render --step 0.25 -o b.exr
+# Helpers are arrays, not functions: each case runs under GNU time (lib/bad_input.sh), which runs programs.
+render=("$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 64x64 -q)
+"${render[@]}" --step 0.5 -o a.exr
+"${render[@]}" --step 0.25 -o b.exr
 mkdir taken.exr
 
 # limited KB COMMAND...: COMMAND under a file size limit of KB kilobytes (ulimit -f, RLIMIT_FSIZE). A write
 # past it fails with EFBIG; the tools ignore SIGXFSZ themselves, so the test does not trap it. The limit
 # holds for the harness's stderr log too, so it is at least 1 KB and every output under test is larger.
-limited() { local kb=$1; shift; ( ulimit -f "$kb"; exec "$@" ); }
+limited=(bash -c 'ulimit -f "$0" && exec "$@"')
 
 # A FIFO with a reader that discards what it gets, for an output that is not the one under test.
 mkfifo stream.exr
-drained() {
-  cat stream.exr > /dev/null &
-  local reader=$! rc=0
-  "$@" || rc=$?
-  : <> stream.exr   # releases the reader if the command never opened the FIFO
-  wait "$reader"
-  return "$rc"
-}
+# (': <> stream.exr' releases the reader if the command never opened the FIFO.)
+drained=(bash -c 'cat stream.exr > /dev/null & reader=$!; rc=0; "$@" || rc=$?; : <> stream.exr; wait "$reader"; exit "$rc"' drained)
 
 # A full disk, as a file size limit: every output kind of every tool that writes files.
 efbig="cannot write: File too large$"
-bad 1 "^vri-render: error: out\.exr: $efbig" -- limited 8 "$bin/vri-render" --volume blob_8x8x8_uint8.raw \
+bad 1 "^vri-render: error: out\.exr: $efbig" -- "${limited[@]}" 8 "$bin/vri-render" --volume blob_8x8x8_uint8.raw \
     --tf tf.yaml --size 64x64 --step 0.5 -q -o out.exr
-bad 1 "^vri-render: error: out\.png: $efbig" -- drained limited 1 "$bin/vri-render" --volume blob_8x8x8_uint8.raw \
+bad 1 "^vri-render: error: out\.png: $efbig" -- "${drained[@]}" "${limited[@]}" 1 "$bin/vri-render" --volume blob_8x8x8_uint8.raw \
     --tf tf.yaml --size 64x64 --step 0.5 -q -o stream.exr --png out.png
-bad 1 "^vri-render: error: out\.json: $efbig" -- drained limited 1 "$bin/vri-render" \
+bad 1 "^vri-render: error: out\.json: $efbig" -- "${drained[@]}" "${limited[@]}" 1 "$bin/vri-render" \
     --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 64x64 --step 0.5 -q -o stream.exr --stats out.json
-bad 1 "^vri-render: error: ray\.csv: $efbig" -- drained limited 1 "$bin/vri-render" \
+bad 1 "^vri-render: error: ray\.csv: $efbig" -- "${drained[@]}" "${limited[@]}" 1 "$bin/vri-render" \
     --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 64x64 --method coupled --log-ray 32,32 --log ray.csv -q \
     -o stream.exr
-bad 1 "^vri-reference: error: out\.exr: $efbig" -- limited 1 "$bin/vri-reference" --volume blob_8x8x8_uint8.raw \
+bad 1 "^vri-reference: error: out\.exr: $efbig" -- "${limited[@]}" 1 "$bin/vri-reference" --volume blob_8x8x8_uint8.raw \
     --tf tf.yaml --size 16x16 -q -o out.exr
 for ext in vdb raw; do
-  bad 1 "^vri-convert: error: out\.$ext: $efbig" -- limited 8 "$bin/vri-convert" noise_32x32x32_uint8.raw out.$ext
+  bad 1 "^vri-convert: error: out\.$ext: $efbig" -- "${limited[@]}" 8 "$bin/vri-convert" noise_32x32x32_uint8.raw out.$ext
 done
 for ext in nhdr dat; do   # the raw file beside the header is the large one
-  bad 1 "^vri-convert: error: out\.raw: $efbig" -- limited 8 "$bin/vri-convert" noise_32x32x32_uint8.raw out.$ext
+  bad 1 "^vri-convert: error: out\.raw: $efbig" -- "${limited[@]}" 8 "$bin/vri-convert" noise_32x32x32_uint8.raw out.$ext
 done
-bad 1 "^vri-tf: error: out\.csv: $efbig" -- limited 8 "$bin/vri-tf" tf.yaml -o out.csv
-bad 1 "^vri-diff: error: out\.json: $efbig" -- limited 1 "$bin/vri-diff" a.exr a.exr --json out.json
-bad 1 "^vri-diff: error: out\.csv: $efbig" -- limited 1 "$bin/vri-diff" a.exr a.exr --histogram out.csv
-bad 1 "^vri-diff: error: out\.exr: $efbig" -- limited 1 "$bin/vri-diff" a.exr b.exr --diff-image out.exr
-bad 1 "^vri-rays2d: error: out\.csv: $efbig" -- limited 1 "$bin/vri-rays2d" --placements entry --rates 2 -o out.csv
+bad 1 "^vri-tf: error: out\.csv: $efbig" -- "${limited[@]}" 8 "$bin/vri-tf" tf.yaml -o out.csv
+bad 1 "^vri-diff: error: out\.json: $efbig" -- "${limited[@]}" 1 "$bin/vri-diff" a.exr a.exr --json out.json
+bad 1 "^vri-diff: error: out\.csv: $efbig" -- "${limited[@]}" 1 "$bin/vri-diff" a.exr a.exr --histogram out.csv
+bad 1 "^vri-diff: error: out\.exr: $efbig" -- "${limited[@]}" 1 "$bin/vri-diff" a.exr b.exr --diff-image out.exr
+bad 1 "^vri-rays2d: error: out\.csv: $efbig" -- "${limited[@]}" 1 "$bin/vri-rays2d" --placements entry --rates 2 -o out.csv
 "$bin/vri-diff" a.exr a.exr --json d.json > /dev/null
 rows=()
 for i in $(seq 30); do rows+=(--row "row $i" d.json); done
-bad 1 "^vri-tabulate: error: out\.md: $efbig" -- limited 1 "$bin/vri-tabulate" --layout thresholds "${rows[@]}" \
+bad 1 "^vri-tabulate: error: out\.md: $efbig" -- "${limited[@]}" 1 "$bin/vri-tabulate" --layout thresholds "${rows[@]}" \
     -o out.md
 rm d.json
 
 # Outputs that are neither a file, a device, a FIFO nor '-': refused, and left as they are.
-bad 1 "^vri-render: error: taken\.exr: cannot write: it is a directory; expected a regular file" -- render -o taken.exr
+bad 1 "^vri-render: error: taken\.exr: cannot write: it is a directory; expected a regular file" -- "${render[@]}" -o taken.exr
 bad 1 "^vri-tf: error: taken\.exr: cannot write: it is a directory" -- "$bin/vri-tf" tf.yaml -o taken.exr
 mkdir taken.nhdr   # the header cannot be written: its raw file is not written either
 bad 1 "^vri-convert: error: taken\.nhdr: cannot write: it is a directory" -- "$bin/vri-convert" noise_32x32x32_uint8.raw \
@@ -89,11 +84,11 @@ if [ "$(id -u)" -eq 0 ] && mknod full c 1 7 2> /dev/null; then
   enospc="cannot write: No space left on device$"
   ln -s full full.exr && ln -s full full.vdb   # a link to a device: written through, and it stays a link
   bad 1 "^vri-tf: error: full: $enospc" -- "$bin/vri-tf" tf.yaml -o full
-  bad 1 "^vri-render: error: full\.exr: $enospc" -- render -o full.exr
+  bad 1 "^vri-render: error: full\.exr: $enospc" -- "${render[@]}" -o full.exr
   bad 1 "^vri-convert: error: full\.vdb: $enospc" -- "$bin/vri-convert" noise_32x32x32_uint8.raw full.vdb
-  to_full() { "$@" > full; }
-  bad 1 "^vri-tf: error: -: $enospc" -- to_full "$bin/vri-tf" tf.yaml -o -
-  bad 1 "^vri-convert: error: stdout: cannot write what was printed" -- to_full "$bin/vri-convert" --info --json \
+  to_full=(bash -c '"$@" > full' to_full)
+  bad 1 "^vri-tf: error: -: $enospc" -- "${to_full[@]}" "$bin/vri-tf" tf.yaml -o -
+  bad 1 "^vri-convert: error: stdout: cannot write what was printed" -- "${to_full[@]}" "$bin/vri-convert" --info --json \
       noise_32x32x32_uint8.raw
   [ -L full.exr ] && [ -L full.vdb ] || fail "a link to the device is no longer a link"
   rm full.exr full.vdb
@@ -110,7 +105,7 @@ if [ "$(id -u)" -eq 0 ] && mount -t tmpfs -o size=16k tmpfs "$tiny" 2> /dev/null
   trap 'umount "$tiny"' EXIT
   enospc="cannot write: No space left on device$"
   bad 1 "^vri-convert: error: $tiny/out\.vdb: $enospc" -- "$bin/vri-convert" noise_32x32x32_uint8.raw "$tiny/out.vdb"
-  bad 1 "^vri-render: error: $tiny/out\.exr: $enospc" -- render -o "$tiny/out.exr"
+  bad 1 "^vri-render: error: $tiny/out\.exr: $enospc" -- "${render[@]}" -o "$tiny/out.exr"
   [ -z "$(ls -A "$tiny")" ] || fail "the full tmpfs holds $(ls -A "$tiny")"
 else
   echo "not root (or mount not allowed): the tmpfs ENOSPC cases are skipped"

@@ -9,8 +9,6 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
 python=/usr/bin/python3
 "$python" -c "import pyopenvdb, numpy" 2>/dev/null || { echo "skip: python3-openvdb or python3-numpy missing"; exit 77; }
-[ -x /usr/bin/time ] || { echo "skip: GNU time (/usr/bin/time) missing"; exit 77; }
-bad_max_rss_kb=$((256 * 1024))
 bin="$VRI_BIN"
 tf="$VRI_SOURCE/experiments/tf/bonsai.yaml"
 R='^vri-render: error: '

@@ -8,8 +8,6 @@
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
 python=/usr/bin/python3
-[ -x /usr/bin/time ] || { echo "skip: GNU time (/usr/bin/time) missing"; exit 77; }
-bad_max_rss_kb=$((256 * 1024))
 convert="$VRI_BIN/vri-convert"
 E='^vri-convert: error: '
 

@@ -474,7 +474,6 @@ def opengl_renderer(window):
 def render(a):
     import numpy as np
     import OpenImageIO as oiio
-    import vtk
 
     if a.threads is None:
         a.threads = len(os.sched_getaffinity(0))
@@ -484,6 +483,7 @@ def render(a):
     longest = sum((n * d / min(info["spacing"])) ** 2 for n, d in zip(info["dims"], info["spacing"])) ** 0.5
     if longest / a.step > MAX_SAMPLES_PER_RAY:
         raise UsageError("--step %g would put more than 1e9 samples on a ray through this volume" % a.step)
+    import vtk  # after every check: VTK's libraries alone make a quarter of a gigabyte resident
     window, mapper, scene, options = build_scene(a, voxels, info, tf_rows)
     read = (lambda: read_raycast_image(mapper, a.width, a.height)) if a.image == "raycast" else \
         (lambda: read_display(window, a.width, a.height))
