@@ -143,6 +143,7 @@ or summarised sparse (--storage auto, the default, or sparse: its stored 8^3 bri
     if (auto exitCode = vri::parseArguments(app, "vri-convert", argc, argv)) return *exitCode;
 
     return vri::guardedMain("vri-convert", [&] {
+        if (json) vri::requireUtf8Arguments(argc, argv, "--json names the input, and JSON holds UTF-8 text only");
         info = info || json;
         if (output.empty() && !info) throw vri::Error("give an output file, or --info to summarise the input");
 

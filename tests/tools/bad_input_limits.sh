@@ -112,7 +112,7 @@ bad nonzero "--size: expected a positive image size WIDTHxHEIGHT, got '1x\\\\x1b
 bad 1 '^vri-tabulate: error: wrong-type\.json: type must be number, but is string$' -- "$bin/vri-tabulate" --layout thresholds --row a wrong-type.json -o table.md
 bad 1 '^vri-tabulate: error: truncated\.json: not valid JSON: parse error at line 2, column 1: syntax error while parsing value - unexpected end of input' -- "$bin/vri-tabulate" --layout thresholds --row a truncated.json -o table.md
 bad 1 '^vri-run: error: missing-dir: No such file or directory$' -- "$bin/vri-run" --gallery missing-dir
-bad 1 '^vri-convert: error: a file name or text to be written as JSON is not valid UTF-8 \(invalid UTF-8 byte at index 5: 0xFF\)$' -- \
+bad 64 "^vri-convert: error: argument 3 'latin\\\\xFF_2x2x2_uint8\.raw' is not valid UTF-8 \(byte 5\): --json names the input, and JSON holds UTF-8 text only$" -- \
   "$bin/vri-convert" --info --json $'latin\xff_2x2x2_uint8.raw'
 
 bad_done

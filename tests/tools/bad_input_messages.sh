@@ -66,6 +66,16 @@ bad 64 "^vri-merge-tiles: error: argument [0-9]+ 'm\\\\xFF\.exr' $U" -- \
   "$bin/vri-merge-tiles" --tile a.exr a.json -o $'m\xff.exr'
 bad 64 "^vri-run: error: argument [0-9]+ 'r\\\\xFF' $U" -- "$bin/vri-run" --results $'r\xff' --dry-run run.yaml
 
+# Tools whose outputs hold no JSON take such names and write under them (exit 0): a CSV, a volume and its
+# raw file, a figure whose spec names a non-UTF-8 CSV (gnuplot gets the path as a quoted string).
+"$bin/vri-tf" tf.yaml -o $'t\xff.csv' || fail "vri-tf -o a non-UTF-8 name"
+"$bin/vri-convert" -q blob_8x8x8_uint8.raw $'c\xff.nhdr' || fail "vri-convert to a non-UTF-8 name"
+[ -s $'t\xff.csv' ] && [ -s $'c\xff.nhdr' ] && [ -s $'c\xff.raw' ] || fail "non-UTF-8 outputs missing: $(ls)"
+printf 'panels:\n  - x: {label: s}\n    y: {label: tau}\n    series:\n      - {file: "t\xff.csv", x: s, y: tau}\n' > plot.yaml
+"$bin/vri-plot" plot.yaml -o $'f\xfe.png' 2> plot.err || fail "vri-plot of a non-UTF-8 CSV: $(cat plot.err)"
+[ -s $'f\xfe.png' ] && [ -s $'f\xfe.svg' ] || fail "vri-plot wrote no figure: $(ls)"
+rm $'t\xff.csv' $'c\xff.nhdr' $'c\xff.raw' plot.yaml plot.err $'f\xfe'.*
+
 # --- out of memory: the file or image and the size ---
 # (Not under AddressSanitizer, whose shadow memory needs more address space than the ulimit leaves.)
 if ! ldd "$bin/vri-render" | grep -q libasan; then

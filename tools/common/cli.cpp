@@ -63,12 +63,11 @@ std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc
     return std::nullopt;
 }
 
-void requireUtf8Arguments(int argc, char** argv) {
+void requireUtf8Arguments(int argc, char** argv, std::string_view why) {
     for (int i = 1; i < argc; ++i)
         if (const auto at = firstInvalidUtf8(argv[i]))
             throw UsageError("argument " + std::to_string(i) + " '" + escapeInvalidUtf8(argv[i]) +
-                             "' is not valid UTF-8 (byte " + std::to_string(*at) +
-                             "): the JSON record keeps the command line, and JSON holds UTF-8 text only");
+                             "' is not valid UTF-8 (byte " + std::to_string(*at) + "): " + std::string(why));
 }
 
 std::string describeUnexpected(const std::exception& e) {

@@ -31,10 +31,11 @@ std::string versionText(std::string_view tool);
 // (exit 0). Returns the exit code to leave with, if any.
 std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv);
 
-// Throws UsageError "argument N '<arg>' is not valid UTF-8 (...)" for the first argument that is not: a
-// tool whose JSON record keeps its command line (stats, comparisons) checks before any work, since the
-// record, written last, could not hold it.
-void requireUtf8Arguments(int argc, char** argv);
+// Throws UsageError "argument N '<arg>' is not valid UTF-8 (byte B): <why>" for the first argument that is
+// not: a tool whose JSON output holds its arguments checks before any work, since that output, written last,
+// could not hold them. `why` says what JSON would hold them.
+inline constexpr std::string_view kJsonKeepsCommandLine = "the JSON record keeps the command line, and JSON holds UTF-8 text only";
+void requireUtf8Arguments(int argc, char** argv, std::string_view why = kJsonKeepsCommandLine);
 
 // The files a tool writes, each with the option that named it ("-o", "--png", ...).
 struct OutputArgument {
