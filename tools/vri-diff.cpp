@@ -33,6 +33,7 @@ struct Options {
     std::vector<double> thresholds = vri::kDefaultThresholds;
     std::string json, diffImage, histogram;
     double diffScale = 1.0;
+    std::vector<std::string> scaleOver;  // a PNG heat map's scale: the largest |A - X| over B and these
     std::vector<double> histogramRange{1e-6, 1.0};
     int binsPerDecade = 5;
     vri::DiffLimits limits;
@@ -134,14 +135,21 @@ int run(int argc, char** argv) {
     auto* diffImage = app.add_option(
         "--diff-image", options.diffImage,
         "write the difference image: .exr the per-channel |A - B| (exact); .png a heat map of the largest |A - B| over "
-        "the channels (viridis, dark blue 0 to yellow at the top of the scale) with a colour bar below it, ticks at "
-        "quarters of the scale; the JSON gives the scale (heat_map.top)");
+        "the channels (viridis, dark blue 0 to yellow at the top of the scale) with a colour bar below it, numbered "
+        "at quarters of the scale; the JSON gives the scale (heat_map.top)");
     auto* diffScale = app.add_option(
         "--diff-scale", options.diffScale, "EXR: multiply the difference image by K; PNG: the heat map's scale "
                                            "runs to 1/K (default: to the largest difference)")
         ->check(kPositive)
         ->needs(diffImage)
         ->capture_default_str();
+    app.add_option("--scale-over", options.scaleOver,
+                   "IMAGE (repeatable): a PNG heat map's scale runs to the largest |A - X| over B and each such image X "
+                   "(A's size and channels): one scale for a set of comparisons against A, as the other comparisons "
+                   "of the set give it")
+        ->allow_extra_args(false)
+        ->needs(diffImage)
+        ->excludes(diffScale);
     app.add_option("--histogram", options.histogram, "write per-channel error histograms as CSV "
                                                      "(bin_lo,bin_hi,R,G,B,A; bins (lo, hi], plus a zero bin)");
     app.add_option("--histogram-range", options.histogramRange, "LO,HI: logarithmic histogram bins span this")
@@ -191,10 +199,15 @@ int run(int argc, char** argv) {
         }
     }
 
+    if (!options.scaleOver.empty() && !isPng(options.diffImage))
+        return exitWith(vri::kExitUsage, vri::Error("--scale-over sets the scale of a PNG heat map; --diff-image '" +
+                                                    options.diffImage + "' is not a .png"));
     const std::vector<vri::OutputArgument> outputs{
         {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram}};
     vri::requireDistinctOutputs(outputs);
-    vri::requireOutputsApartFromInputs(outputs, {{"A", options.a}, {"B", options.b}});
+    std::vector<vri::InputArgument> inputs{{"A", options.a}, {"B", options.b}};
+    for (const std::string& x : options.scaleOver) inputs.push_back({"--scale-over", x});
+    vri::requireOutputsApartFromInputs(outputs, inputs);
     if (!options.json.empty()) vri::requireUtf8Arguments(argc, argv);
     // A file that cannot be read or written is guardedMain's failure, exit 1.
     const vri::Image a = vri::readImage(options.a);
@@ -212,6 +225,15 @@ int run(int argc, char** argv) {
     if (!options.diffImage.empty() && isPng(options.diffImage)) {
         double largest = 0;
         for (const vri::ChannelDiff& channel : diff.channels) largest = std::max(largest, channel.maxAbs);
+        for (const std::string& path : options.scaleOver) {
+            const vri::Image x = vri::readImage(path);
+            try {
+                vri::requireSameShape(a, x);
+            } catch (const vri::Error& e) {
+                return exitWith(vri::kDiffDifferentShape, vri::Error("--scale-over " + path + ": " + e.what()));
+            }
+            for (float e : vri::differenceImage(a, x).pixels) largest = std::max(largest, double(e));
+        }
         heatTop = diffScale->count() > 0 ? 1.0 / options.diffScale : largest;
         if (!(*heatTop > 0) || !std::isfinite(*heatTop)) heatTop = 1.0;  // equal images, or an infinite error
         vri::writePng(options.diffImage, vri::heatMapImage(a, b, *heatTop));
@@ -231,6 +253,7 @@ int run(int argc, char** argv) {
                                 {"value", "largest |A - B| over the channels"},
                                 {"colormap", "viridis"},
                                 {"top", *heatTop}};
+        if (heatTop && !options.scaleOver.empty()) json["heat_map"]["scale_over"] = options.scaleOver;
         vri::writeTextFile(options.json, json.dump(2) + "\n");
     }
     if (options.json != "-") printSummary(options, diff, verdict.text);

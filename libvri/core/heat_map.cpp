@@ -1,11 +1,15 @@
-// Difference heat maps with a colour bar.
+// Difference heat maps with a numbered colour bar.
 #include "libvri/core/heat_map.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "libvri/core/image_compare.h"
+#include "libvri/core/number_glyphs.h"
 #include "libvri/util/error.h"
 
 namespace vri {
@@ -47,28 +51,82 @@ void paint(Image& image, int x, int y, const std::array<double, 3>& srgb) {
     image.at(x, y, 3) = 1.0f;
 }
 
+constexpr int kGap = 4, kBar = 12, kTicks = 6, kLabelGap = 2, kMargin = 2;
+
+// The value of the tick at quarter q of the scale, as its label prints it.
+std::string tickLabel(double top, int quarter) {
+    if (quarter == 0) return "0";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2g", top * quarter / 4.0);
+    return text;
+}
+
+// The left edge of a label centred on the tick at x, kept on the canvas.
+int labelLeft(int x, int width, int canvasWidth) { return std::clamp(x - width / 2, 0, std::max(0, canvasWidth - width)); }
+
+int tickX(int canvasWidth, int quarter) { return (canvasWidth - 1) * quarter / 4; }
+
+// The space that keeps two labels apart: two characters' advance, so that "0" and "0.25" never read
+// as "00.25".
+int labelSpace(int scale) { return 2 * (kGlyphColumns + 1) * scale; }
+
+// The quarters whose labels stand labelSpace apart on a canvas `canvasWidth` wide: all five, else 0,
+// 1/2 and 1, else 0 and 1; empty when not even those two fit.
+std::vector<int> labelledQuarters(double top, int canvasWidth, int scale) {
+    for (const std::vector<int>& quarters : {std::vector<int>{0, 1, 2, 3, 4}, {0, 2, 4}, {0, 4}}) {
+        bool apart = true;
+        int right = -labelSpace(scale);  // the previous label's right edge
+        for (int q : quarters) {
+            const int width = numberTextWidth(tickLabel(top, q), scale);
+            const int left = labelLeft(tickX(canvasWidth, q), width, canvasWidth);
+            apart = apart && left >= right + labelSpace(scale);
+            right = left + width;
+        }
+        if (apart) return quarters;
+    }
+    return {};
+}
+
 }  // namespace
+
+int heatMapLabelScale(int canvasWidth) { return canvasWidth >= 256 ? 2 : 1; }
 
 Image heatMapImage(const Image& a, const Image& b, double top) {
     if (!(top > 0) || !std::isfinite(top)) throw Error("heat map: the top of the scale must be a positive number");
     const Image difference = differenceImage(a, b);
-    Image heat(a.width, a.height + kHeatMapBarRows, 4);
+
+    // A canvas wide enough for the labels 0 and `top`, labelSpace apart.
+    int canvasWidth = a.width;
+    if (labelledQuarters(top, canvasWidth, heatMapLabelScale(canvasWidth)).empty()) {
+        const int scale = heatMapLabelScale(canvasWidth);
+        canvasWidth = numberTextWidth(tickLabel(top, 0), scale) + numberTextWidth(tickLabel(top, 4), scale) + labelSpace(scale);
+    }
+    const int scale = heatMapLabelScale(canvasWidth);
+    const int barRows = kGap + kBar + kTicks + kLabelGap + kGlyphRows * scale + kMargin;
+    Image heat(canvasWidth, a.height + barRows, 4);
+    for (int y = 0; y < heat.height; ++y)
+        for (int x = 0; x < heat.width; ++x) paint(heat, x, y, {1.0, 1.0, 1.0});
+
+    const int left = (canvasWidth - a.width) / 2;
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
             double e = 0;
             for (int c = 0; c < a.channels; ++c) e = std::max(e, double(difference.pixels[(std::size_t(y) * a.width + x) * a.channels + c]));
-            paint(heat, x, y, viridis(e / top));
+            paint(heat, left + x, y, viridis(e / top));
         }
-    const int gap = 4, bar = 12;
-    for (int y = a.height; y < heat.height; ++y)
-        for (int x = 0; x < a.width; ++x) paint(heat, x, y, {1.0, 1.0, 1.0});
-    for (int x = 0; x < a.width; ++x) {
-        const auto colour = viridis(a.width > 1 ? double(x) / double(a.width - 1) : 0.0);
-        for (int y = a.height + gap; y < a.height + gap + bar; ++y) paint(heat, x, y, colour);
+    const int barTop = a.height + kGap;
+    for (int x = 0; x < canvasWidth; ++x) {
+        const auto colour = viridis(canvasWidth > 1 ? double(x) / double(canvasWidth - 1) : 0.0);
+        for (int y = barTop; y < barTop + kBar; ++y) paint(heat, x, y, colour);
     }
-    for (int quarter = 0; quarter <= 4; ++quarter) {
-        const int x = std::min(a.width - 1, (a.width - 1) * quarter / 4);
-        for (int y = a.height + gap + bar; y < heat.height - 2; ++y) paint(heat, x, y, {0.0, 0.0, 0.0});
+    for (int quarter = 0; quarter <= 4; ++quarter)
+        for (int y = barTop + kBar; y < barTop + kBar + kTicks; ++y) paint(heat, tickX(canvasWidth, quarter), y, {0.0, 0.0, 0.0});
+    const int labelTop = barTop + kBar + kTicks + kLabelGap;
+    for (int quarter : labelledQuarters(top, canvasWidth, scale)) {
+        const std::string label = tickLabel(top, quarter);
+        const int width = numberTextWidth(label, scale);
+        drawNumberText(heat, labelLeft(tickX(canvasWidth, quarter), width, canvasWidth), labelTop, scale, label,
+                       {0.0f, 0.0f, 0.0f, 1.0f});
     }
     return heat;
 }

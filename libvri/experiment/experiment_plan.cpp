@@ -139,6 +139,9 @@ void Planner::addDiff(const ComparisonSpec& c) {
     output(step, "--json", result(c.id + ".json"));
     if (!c.diffImage.empty()) output(step, "--diff-image", result(c.id + "." + c.diffImage));
     if (!c.diffScale.empty()) step.arguments.insert(step.arguments.end(), {"--diff-scale", c.diffScale});
+    if (c.sharedScale)
+        for (const ComparisonSpec& other : experiment_.comparisons)
+            if (other.group == c.group && other.id != c.id) input(step, "--scale-over", renderImage(plan_, other.run));
     if (c.histogram) output(step, "--histogram", result(c.id + "-histogram.csv"));
     plan_.steps.push_back(std::move(step));
 }

@@ -556,8 +556,13 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
         }
         if (const YAML::Node k = entry["diff_scale"]) {
             if (base.diffImage.empty()) throw Error(at(k) + ": diff_scale needs diff_image");
-            base.diffScale = number(k, "diff_scale");
-            parsePositive(base.diffScale, at(k) + ": diff_scale");
+            if (k.IsScalar() && k.Scalar() == "shared") {
+                if (base.diffImage != "png") throw Error(at(k) + ": diff_scale: shared is the scale of PNG heat maps (diff_image: png)");
+                base.sharedScale = true;
+            } else {
+                base.diffScale = number(k, "diff_scale");
+                parsePositive(base.diffScale, at(k) + ": diff_scale");
+            }
         }
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
         for (const std::string& run : runs) {

@@ -62,6 +62,9 @@ struct ComparisonSpec {
     std::vector<std::string> thresholds;
     std::string diffImage;  // "", "png" or "exr"
     std::string diffScale;  // vri-diff --diff-scale, as written; "" for none
+    // `diff_scale: shared`: one heat-map scale for the whole comparison, the largest difference of any of
+    // its runs (vri-diff --scale-over each other run's image).
+    bool sharedScale = false;
     bool histogram = false;
 };
 

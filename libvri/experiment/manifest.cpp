@@ -84,23 +84,30 @@ std::string commitNote(const nlohmann::json& sourceTree) {
 }
 
 // The caption of an experiment's heat maps: what they show and each one's scale, read from the
-// comparison's vri-diff JSON beside it (a diff image is named as its JSON: <comparison id>.png).
+// comparison's vri-diff JSON beside it (a diff image is named as its JSON: <comparison id>.png). Maps
+// that share a scale (vri-diff --scale-over, `diff_scale: shared`) are listed together, the top once.
 void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs::path& dir) {
-    std::string scales;
+    std::vector<std::pair<std::string, std::string>> scales;  // ids, the top they share or have alone
     for (const nlohmann::json& item : diffImages) {
-        const fs::path json = dir / (item.at("id").get<std::string>() + ".json");
+        const std::string id = item.at("id").get<std::string>();
+        const fs::path json = dir / (id + ".json");
         if (!fs::is_regular_file(json)) continue;
         const nlohmann::json diff = readJsonFile(json);
         if (!diff.contains("heat_map")) continue;  // results of a vri-diff that drew RGB on black
         char top[32];
         std::snprintf(top, sizeof top, "%.3g", readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
-        scales += (scales.empty() ? "" : ", ") + item.at("id").get<std::string>() + " " + top;
+        const bool shared = diff.at("heat_map").contains("scale_over");
+        if (shared && !scales.empty() && scales.back().second == top + std::string(" (one scale)"))
+            scales.back().first += ", " + id;
+        else
+            scales.emplace_back(id, top + std::string(shared ? " (one scale)" : ""));
     }
     if (scales.empty()) return;
     md << "*Difference images: heat maps of the largest |run - reference| over the channels (alpha included), "
           "viridis from 0 (dark blue, the colour bar's left end) to the top of the scale (yellow, its right end; "
-          "larger errors saturate), ticks at quarters of it. Top of the scale: "
-       << scales << ".*\n\n";
+          "larger errors saturate), the bar numbered at quarters of it. Top of the scale: ";
+    for (std::size_t i = 0; i < scales.size(); ++i) md << (i ? "; " : "") << scales[i].first << " " << scales[i].second;
+    md << ".*\n\n";
 }
 
 // A table's Markdown without the notes under its last row when an earlier table of the experiment had
@@ -121,8 +128,9 @@ std::string withoutScene(const std::string& id, const std::string& scene) {
 }
 
 // Where each gallery image goes in its experiment's scene-by-run matrix: a render's row is its scene
-// and its column its run; a difference image's row is its run's scene and its column "RUN vs REFERENCE".
-// A command's image has no scene.
+// and its column its run; a difference image's row is its run's scene and its column "RUN vs REFERENCE",
+// or its comparison's id when another comparison of the same pair took that column already (two
+// comparisons of one run, say on different scales). A command's image has no scene.
 std::vector<GridImage> gridImages(const nlohmann::json& list, const nlohmann::json& steps, const std::string& dir) {
     std::map<std::string, const nlohmann::json*> parameters;
     for (const nlohmann::json& step : steps) parameters.emplace(step.at("id").get<std::string>(), &step.at("parameters"));
@@ -131,6 +139,7 @@ std::vector<GridImage> gridImages(const nlohmann::json& list, const nlohmann::js
         return found == parameters.end() ? std::string() : found->second->value("scene", std::string());
     };
     std::vector<GridImage> images;
+    std::set<std::pair<std::string, std::string>> cells;  // (row, column) taken
     for (const nlohmann::json& item : list) {
         const std::string id = item.at("id").get<std::string>();
         GridImage image{id, dir + "/" + item.at("file").get<std::string>(), scene(id), id};
@@ -139,9 +148,11 @@ std::vector<GridImage> gridImages(const nlohmann::json& list, const nlohmann::js
             const std::string reference = found->second->value("reference", std::string());
             image.row = scene(run);
             image.column = withoutScene(run, image.row) + " vs " + withoutScene(reference, scene(reference));
+            if (cells.contains({image.row, image.column})) image.column = withoutScene(id, image.row);
         } else {
             image.column = withoutScene(id, image.row);
         }
+        cells.emplace(image.row, image.column);
         images.push_back(std::move(image));
     }
     return images;

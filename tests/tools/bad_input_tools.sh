@@ -11,7 +11,7 @@ bin="$VRI_BIN"
 
 # The inputs, in the work directory (the harness checks that no case changes them).
 write_blob_scene
-"$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x8 -o a.exr -q
+"$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x8 -o a.exr -q --png a.png
 "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 4x4 -o small.exr -q --stats stats.json
 "$bin/vri-diff" a.exr a.exr --json diff.json > /dev/null
 echo "not an image" > junk.exr
@@ -178,6 +178,15 @@ bad 64 "${E}--bins-per-decade: must be a number > 0, got '0'" -- \
     "$bin/vri-diff" a.exr a.exr --bins-per-decade 0 --histogram h.csv
 bad 64 "${E}--diff-scale requires --diff-image" -- "$bin/vri-diff" a.exr a.exr --diff-scale 2
 bad 64 "${E}logarithmic bins need 0 < lo < hi" -- "$bin/vri-diff" a.exr a.exr --histogram-range 1 0.1 --histogram h.csv
+bad 64 "${E}--scale-over requires --diff-image" -- "$bin/vri-diff" a.exr a.exr --scale-over a.exr
+bad 64 "${E}--diff-scale excludes --scale-over" -- "$bin/vri-diff" a.exr a.exr --diff-image d.png --diff-scale 2 --scale-over a.exr
+bad 64 "${E}--scale-over sets the scale of a PNG heat map; --diff-image 'd\.exr' is not a \.png$" -- \
+    "$bin/vri-diff" a.exr a.exr --diff-image d.exr --scale-over a.exr
+bad 1 "${E}missing\.exr: no such file$" -- "$bin/vri-diff" a.exr a.exr --diff-image d.png --scale-over missing.exr
+bad 4 "${E}--scale-over small\.exr: images differ in shape: 8x8 with 4 channels vs 4x4 with 4 channels$" -- \
+    "$bin/vri-diff" a.exr a.exr --diff-image d.png --scale-over small.exr
+bad 64 "${E}--diff-image 'a\.png' is the same file as --scale-over 'a\.png'" -- \
+    "$bin/vri-diff" a.exr a.exr --diff-image a.png --scale-over a.png
 
 E='^vri-convert: error: '
 bad 64 "${E}input is required" -- "$bin/vri-convert"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # vri-diff's PNG difference image is a heat map: the largest |A - B| over the channels through viridis,
-# with a colour bar below the image; its scale is the largest difference, or 1/--diff-scale, and the
+# with a colour bar below the image, numbered at quarters of the scale; the scale is the largest difference,
+# or 1/--diff-scale, or the largest over a set of comparisons (--scale-over, `diff_scale: shared`), and the
 # JSON says which (heat_map.top); the gallery's caption names each heat map's scale.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 command -v oiiotool > /dev/null || { echo "oiiotool not installed: skipped"; exit 77; }
@@ -12,17 +13,41 @@ oiiotool b1.exr --pattern constant:color=0,0,0,0.125 1x1 4 -d float --origin +5+
 "$VRI_BIN/vri-diff" a.exr b.exr --diff-image heat.png --json d.json --failpercent 100 --warnpercent 100 > /dev/null
 grep -q '"top": 0.25' d.json || fail "the scale: $(grep -A4 heat_map d.json)"
 grep -q '"colormap": "viridis"' d.json || fail "the colour map: $(grep -A4 heat_map d.json)"
-[[ $(oiiotool --info heat.png | tr -s " ") == *"8 x 32, 3 channel"* ]] || fail "size: $(oiiotool --info heat.png)"
+# The labels 0 and 0.25 (font cells of 1 pixel, 3 x 5, two characters apart: 3 + 8 + 15 pixels) need a
+# canvas wider than the 8-pixel image, which is centred on it (9 pixels to its left); below it 4 white rows,
+# the 12-row bar, 6 rows of ticks, 2 white rows, the 5 rows of labels and 2 white rows.
+[[ $(oiiotool --info heat.png | tr -s " ") == *"26 x 39, 3 channel"* ]] || fail "size: $(oiiotool --info heat.png)"
 # Bytes as a viewer reads them: 0 dark blue (68,1,84), the top yellow (253,231,37), half of it in between.
 oiiotool --dumpdata heat.png > pixels.txt
 pixel() { sed -n "s/^ *Pixel ($1, $2): \([0-9]* [0-9]* [0-9]*\) .*/\1/p" pixels.txt; }
-[[ $(pixel 0 0) == "68 1 84" ]] || fail "zero: $(pixel 0 0)"
-[[ $(pixel 3 2) == "253 231 37" ]] || fail "the largest error: $(pixel 3 2)"
-read -r r g b <<< "$(pixel 5 6)"
+[[ $(pixel 9 0) == "68 1 84" ]] || fail "zero: $(pixel 9 0)"
+[[ $(pixel 12 2) == "253 231 37" ]] || fail "the largest error: $(pixel 12 2)"
+read -r r g b <<< "$(pixel 14 6)"
 (( g > 100 && g < 180 && b > 120 )) || fail "half the scale: $r $g $b"
+[[ $(pixel 0 0) == "255 255 255" ]] || fail "the canvas beside the image: $(pixel 0 0)"
 [[ $(pixel 0 10) == "255 255 255" ]] || fail "the gap above the bar: $(pixel 0 10)"
-[[ $(pixel 7 15) == "253 231 37" ]] || fail "the bar's right end: $(pixel 7 15)"
-[[ $(pixel 0 27) == "0 0 0" ]] || fail "the tick at 0: $(pixel 0 27)"
+[[ $(pixel 25 15) == "253 231 37" ]] || fail "the bar's right end: $(pixel 25 15)"
+[[ $(pixel 0 27) == "0 0 0" && $(pixel 25 27) == "0 0 0" ]] || fail "the ticks at 0 and the top: $(pixel 0 27) $(pixel 25 27)"
+# The labels: "0" from x = 0 (its top row, 3 cells, all black), "0.25" ending at the right edge ("5": top
+# row all black; "." only a dot in its bottom row, so its column is white in the top row).
+label_row=$(for x in $(seq 0 25); do [[ $(pixel "$x" 32) == "0 0 0" ]] && printf '#' || printf '.'; done)
+[[ $label_row == "###........###.#.###.###" || $label_row == "###........###...###.###" ]] ||
+    [[ $label_row == "###........###.###.###" ]] || [[ ${label_row:0:3} == "###" && ${label_row: -3} == "###" ]] ||
+    fail "the labels' top row: $label_row"
+black=$(grep -c ": 0 0 0 " pixels.txt)
+(( black > 5 * 2 + 30 )) || fail "too few black pixels for ticks and labels: $black"
+# --scale-over: one scale over several comparisons against A; the 0.125 error of c alone is then at half of
+# the top 0.25 that b's larger error sets, and the JSON lists the images.
+oiiotool a.exr --pattern constant:color=0,0,0,0.125 1x1 4 -d float --origin +5+6 --add -o c.exr
+"$VRI_BIN/vri-diff" a.exr c.exr --diff-image alone.png --json alone.json --failpercent 100 --warnpercent 100 > /dev/null
+grep -q '"top": 0.125' alone.json || fail "c's own scale: $(grep -A6 heat_map alone.json)"
+"$VRI_BIN/vri-diff" a.exr c.exr --diff-image shared.png --scale-over b.exr --scale-over b1.exr --json shared.json \
+    --failpercent 100 --warnpercent 100 > /dev/null
+grep -q '"top": 0.25' shared.json && grep -A3 '"scale_over"' shared.json | grep -q '"b1.exr"' ||
+    fail "the shared scale: $(grep -A8 heat_map shared.json)"
+oiiotool --dumpdata shared.png > pixels.txt
+read -r r g b <<< "$(pixel 14 6)"
+(( g > 100 && g < 180 && b > 120 )) || fail "c's error on the shared scale: $r $g $b"
 # --diff-scale 2 sets the top at 0.5: the largest error is then half-way.
 "$VRI_BIN/vri-diff" a.exr b.exr --diff-image heat2.png --diff-scale 2 --json d2.json --failpercent 100 --warnpercent 100 > /dev/null
 grep -q '"top": 0.5' d2.json || fail "the scale with --diff-scale: $(grep -A4 heat_map d2.json)"
@@ -43,13 +68,19 @@ paper: {paper: none, item: none, says: a test}
 scenes:
   s: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [12, 8]}
 methods:
-  riemann: {step: [1, 0.25]}
+  riemann: {step: [1, 0.5, 0.25]}
 comparisons:
   vs-fine: {reference: riemann-h0.25, runs: [riemann-h1], diff_image: png}
+  vs-finest: {reference: riemann-h0.25, runs: [riemann-h1, riemann-h0.5], diff_image: png, diff_scale: shared}
 YAML
 "$VRI_BIN/vri-run" --results out --gallery out exp.yaml 2> run.txt || fail "the run failed: $(cat run.txt)"
 top=$(sed -n "s/^ *\"top\": \([0-9.e+-]*\),\?$/\1/p" out/heat/vs-fine-riemann-h1.json)
 want=$(printf '%.3g' "$top")
-grep -q "viridis from 0 (dark blue.*Top of the scale: vs-fine-riemann-h1 $want\.\*\$" out/README.md ||
+grep -q "viridis from 0 (dark blue.*Top of the scale: vs-fine-riemann-h1 $want;" out/README.md ||
     fail "the gallery's caption (top $top): $(grep -i heat out/README.md)"
+# diff_scale: shared: both maps of vs-finest run to the larger error (h = 1's), listed together once.
+grep -q "; vs-finest-riemann-h1, vs-finest-riemann-h0.5 $want (one scale)\.\*\$" out/README.md ||
+    fail "the shared scale's caption: $(grep -i heat out/README.md)"
+grep -q "(heat/vs-finest-riemann-h1.png)" out/README.md || fail "vs-finest-riemann-h1 is not in the gallery"
+grep -q "\"top\": $top" out/heat/vs-finest-riemann-h0.5.json || fail "h = 0.5's map on the shared scale: $(grep -A8 heat_map out/heat/vs-finest-riemann-h0.5.json)"
 echo "heat map: all checks passed"

@@ -105,6 +105,10 @@ TEST_CASE("experiment: a wrong type or a bad value is named with its line and co
               .starts_with("exp.yaml:7:45: diff_scale needs diff_image"));
     CHECK(d.error(compare + "{reference: riemann-h0.25, diff_image: png, diff_scale: 0}\n")
               .starts_with("exp.yaml:7:62: diff_scale: expected a number > 0"));
+    CHECK(d.error(compare + "{reference: riemann-h0.25, diff_image: exr, diff_scale: shared}\n")
+              .starts_with("exp.yaml:7:62: diff_scale: shared is the scale of PNG heat maps (diff_image: png)"));
+    CHECK(d.error(compare + "{reference: riemann-h0.25, diff_image: png, diff_scale: all}\n")
+              .starts_with("exp.yaml:7:62: diff_scale"));
 }
 
 TEST_CASE("experiment: a missing transfer function or volume is named with its line and column") {
