@@ -477,7 +477,10 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     run.parameters.emplace_back(row.key, v);
                     if (row.kind != OptionValueKind::Flag) run.options.emplace_back(row.flag(), v);
                     else if (v == "true") run.options.emplace_back(row.flag(), "");  // a flag has no value
-                    if (axes[a].swept) run.id.append("-").append(row.idPrefix).append(v);
+                    // The exact method's eps is a quadrature tolerance per TF piece, no bound on the error:
+                    // its id says "tol" (exact-quadrature-tol1e-7), not eps, which reads as an error level.
+                    const std::string_view idPrefix = exact && row.key == "eps" ? "tol" : row.idPrefix;
+                    if (axes[a].swept) run.id.append("-").append(idPrefix).append(v);
                 }
                 if (peer) {
                     // A peer renders a volume with an explicit camera; zoom, previews' looks and fields are vri's.

@@ -60,11 +60,12 @@ TEST_CASE("experiment files: adaptive parameters reach vri-render and swept ones
     CHECK(exact.tool == "vri-reference");
     CHECK(hasOption(exact.arguments, "--method", "exact"));
 
-    // The exact method as a timed method run: vri-reference at a tolerance, after a warm-up frame.
+    // The exact method as a timed method run: vri-reference at a tolerance, after a warm-up frame. Its eps is
+    // a quadrature tolerance, no error level: the id says tol.
     const vri::Experiment timed = d.parse("references:\n  exact: {method: exact}\nmethods:\n"
                                           "  timed: {method: exact, eps: [1e-6, 1e-7], warm_up: 1, repeat: 5}\n");
     const vri::Plan timedPlan = vri::planExperiment(timed, d.dir / "results/b", d.dir.path);
-    const vri::Step& loose = timedPlan.step("timed-eps1e-6");
+    const vri::Step& loose = timedPlan.step("timed-tol1e-6");
     CHECK(loose.tool == "vri-reference");
     CHECK(hasOption(loose.arguments, "--tolerance", "1e-6"));
     CHECK(hasOption(loose.arguments, "--warm-up", "1"));
