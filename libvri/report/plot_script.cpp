@@ -73,7 +73,7 @@ std::string zeroBandCommands() {
     const auto graph = [](double x, double y) { return "graph " + exactNumber(x) + ", graph " + exactNumber(y); };
     const double band = plot::kZeroBand, top = plot::kZeroBand + plot::kZeroGap;
     std::string out = "    set object rect from " + graph(0, 0) + " to " + graph(1, band) +
-                      " fc rgb 'gray88' fs solid 1 noborder behind\n";
+                      " fc rgb '#e0e0e0' fs solid 1 noborder behind\n";
     for (double side : {0.0, 1.0}) {
         out += "    set object rect from " + graph(side - 0.012, band) + " to " + graph(side + 0.012, top) +
                " fc rgb 'white' fs solid 1 noborder front\n";
@@ -110,11 +110,26 @@ std::string axisCommands(const char* name, const PlotAxis& axis, bool fit, const
     return out + "    set " + n + "range [" + exactNumber(log->min) + ":" + exactNumber(log->max) + "] noextend\n";
 }
 
-std::string keyCommand(const std::string& key) {
-    if (key == "off") return "    unset key\n";
-    if (key == "outside") return "    set key outside right top\n";
-    if (key == "below") return "    set key below\n";  // gnuplot shrinks the plot to make room, in columns
-    return "    set key " + key + "\n";
+// A key below the plot is one column of entries, under the x axis's tics and label: `belowRows` lines of
+// margin hold the longest such key of the figure, so that every panel's plot is as high as its neighbours'
+// (gnuplot would shrink each panel by its own key). Other keys leave the margin to gnuplot.
+std::string keyCommand(const std::string& key, int belowRows) {
+    if (key == "below")
+        return "    set key below vertical maxcols 1\n    set bmargin " + std::to_string(belowRows) + "\n";
+    std::string out = "    set bmargin\n";
+    if (key == "off") return out + "    unset key\n";
+    if (key == "outside") return out + "    set key outside right top\n";
+    return out + "    set key " + key + "\n";
+}
+
+// The lines of bottom margin that the figure's longest key below a panel needs: its entries, and four
+// for the x tic labels, the x label and the space around them.
+int belowRows(const PlotSpec& spec) {
+    const auto keyed = [](const PlotSeries& s) { return s.style != "heatmap" && !s.label.empty(); };
+    std::ptrdiff_t most = 0;
+    for (const PlotPanel& panel : spec.panels)
+        if (panel.key == "below") most = std::max(most, panel.pareto + std::ranges::count_if(panel.series, keyed));
+    return static_cast<int>(most) + 4;
 }
 
 // Colours from the lowest value to the highest, at evenly spaced stops.
@@ -127,12 +142,12 @@ std::string paletteCommand(const std::string& palette) {
 
 // Everything a panel sets before it plots; what one panel sets, the next resets, so that no
 // setting leaks into a later panel (or from the PNG's last panel into the SVG's first).
-std::string panelCommands(const PlotPanel& panel, const PanelFit& fit) {
+std::string panelCommands(const PlotPanel& panel, const PanelFit& fit, int keyRows) {
     const bool heatmap = panel.hasStyle("heatmap");
     std::string out = "    set title " + quoted(panel.title) + "\n    unset arrow\n";
     out += "    unset object\n";
     out += axisCommands("x", panel.x, heatmap, fit.x, fit.xTics) +
-           axisCommands("y", panel.y, heatmap, fit.y, fit.yTics) + keyCommand(panel.key);
+           axisCommands("y", panel.y, heatmap, fit.y, fit.yTics) + keyCommand(panel.key, keyRows);
     out += panel.equalAspect ? "    set size ratio -1\n" : "    set size noratio\n";
     out += "    unset label\n";
     for (const PlotLabel& label : panel.labels)
@@ -144,7 +159,7 @@ std::string panelCommands(const PlotPanel& panel, const PanelFit& fit) {
         out += "    set arrow from " + from + " to " + exactNumber(line.x2) + ", " + exactNumber(line.y2) +
                " nohead dt 2 lw 1 lc rgb 'gray50' back\n";
         out += "    set label " + quoted("order " + exactNumber(line.order)) + " at " + from +
-               " left offset char 0.5, char 0.6 tc rgb 'gray25' front\n";
+               " left offset char 0.5, char 0.6 tc rgb '#404040' front\n";
     }
     if (heatmap) {
         const PlotColorbar& bar = panel.colorbar;
@@ -380,7 +395,7 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
     for (std::size_t p = 0; p < spec.panels.size(); ++p) {
         const PlotPanel& panel = spec.panels[p];
         out += "    # panel " + std::to_string(p + 1) + "\n";
-        out += panelCommands(panel, fits[p]) + "    plot ";
+        out += panelCommands(panel, fits[p], belowRows(spec)) + "    plot ";
         for (std::size_t s = 0; s < panel.series.size(); ++s) {
             const PlotSeries& series = panel.series[s];
             // A heatmap is keyed by its colour bar, not in the legend.

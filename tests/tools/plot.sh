@@ -138,7 +138,7 @@ YAML
 "$plot" figs/counts.yaml -o out/counts.png --script-only
 grep -q "^    set ylabel 'rays (0 on the grey band below the break)'$" out/counts.gp || fail "the axis does not say where 0 is"
 grep -q "^    set ytics ('0' [0-9.e+-]*, 1, 10, 100, 1000, 10000)$" out/counts.gp || fail "tics: $(grep ytics out/counts.gp)"
-grep -q "^    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb 'gray88'" out/counts.gp || fail "no band"
+grep -q "^    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0'" out/counts.gp || fail "no band"
 ! grep -q "tics add" out/counts.gp || fail "a tic added by hand"
 [[ $(check_tic_spacing counts.yaml out/counts.gp) == "1 1" ]] || fail "counts.yaml's tics"
 # Every committed figure spec with its committed data (experiments/E.yaml's figures, from results/E/):
@@ -169,7 +169,7 @@ series:
 YAML
 "$plot" figs/orders.yaml -o out/orders.png --script-only
 grep -q "^    set xtics (0.0125, 0.025, 0.05, 0.1, 0.2)$" out/orders.gp || fail "not every step ticked"
-grep -q "^    set key below$" out/orders.gp || fail "key not below"
+grep -q "^    set key below vertical maxcols 1$" out/orders.gp || fail "key not below"
 for order in 1 2 4; do
     grep -q "^    set label 'order $order' at " out/orders.gp || fail "no order $order line"
 done

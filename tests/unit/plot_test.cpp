@@ -85,7 +85,8 @@ TEST_CASE("plot: the gnuplot script") {
     has("set multiplot layout 1,2 title 'It''s a test'\n");
     has("    set xlabel 'seconds'\n    set logscale x\n    set format x '%g'\n    set xtics autofreq\n"
         "    set xrange [0.5:4] extend\n");
-    has("    unset logscale y\n    set format y '% h'\n    set ytics autofreq\n    set yrange [*:*] extend\n    unset key\n"
+    has("    unset logscale y\n    set format y '% h'\n    set ytics autofreq\n    set yrange [*:*] extend\n"
+        "    set bmargin\n    unset key\n"
         "    set size noratio\n    unset label\n");
     has("plot '../data/speed.csv' skip 1 using 2:3 with points pt 7 ps 0.8 title 'all', \\\n"
         "         $pareto1 using 1:2 with linespoints");
@@ -378,7 +379,7 @@ TEST_CASE("plot: a family's line joins its runs in file order, keyed by its ends
     const double low = 10 / 1.15 / std::pow(10, 0.11 * length), floor = low * std::pow(10, 0.025 * length);
     has("    set ylabel 'worst (0 on the grey band below the break)'\n");
     has("    set ytics ('0' " + exactNumber(floor) + ", 9, 10, 20)\n");
-    has("    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb 'gray88' fs solid 1 noborder behind\n");
+    has("    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind\n");
     has("    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder "
         "front\n");
     has("    set yrange [" + exactNumber(low) + ":" + exactNumber(20 * 1.15) + "] noextend\n");
@@ -456,7 +457,8 @@ TEST_CASE("plot: reference slopes, data tics and a key below the panel") {
         CHECK(script.find(text) != std::string::npos);
     };
     has("    set xtics (0.0125, 0.05, 0.1, 0.2)\n");  // every step, the smallest too
-    has("    set key below\n");
+    // One column, in a margin of its one entry and four lines for the x axis's tics and label.
+    has("    set key below vertical maxcols 1\n    set bmargin 5\n");
     for (const char* order : {"order 1", "order 2", "order 4"})
         has("    set label '" + std::string(order) + "' at ");
     has(" nohead dt 2 lw 1 lc rgb 'gray50' back\n");
