@@ -153,7 +153,8 @@ std::string panelCommands(const PlotPanel& panel, const PanelFit& fit, int keyRo
     for (const PlotLabel& label : panel.labels)
         out += "    set label " + quoted(label.text) + " at " + exactNumber(label.x) + "," + exactNumber(label.y) +
                " front\n";
-    // Each reference line labelled at its left end, above it, where the series' lines are furthest apart.
+    // Each reference line labelled at its left end, above it: the lines fan out leftwards from one point, so
+    // their labels lie furthest apart there.
     for (const plot::ReferenceLine& line : fit.references) {
         const std::string from = exactNumber(line.x1) + ", " + exactNumber(line.y1);
         out += "    set arrow from " + from + " to " + exactNumber(line.x2) + ", " + exactNumber(line.y2) +
@@ -276,8 +277,9 @@ std::vector<double> dataTics(std::vector<double> values, bool log) {
     return values;
 }
 
-// Reference lines through the rightmost point on both log axes (the highest at that x), spanning the
-// panel's box above any break: they start where the data end, so that a series' slope reads off at once.
+// Reference lines through the rightmost point on both log axes (the highest at that x), where a convergence
+// study's largest step is, across the panel's box above any break: a series that runs parallel to one has
+// its order.
 std::vector<plot::ReferenceLine> referenceLines(const PlotPanel& panel, const PanelFit& fit,
                                                 const std::vector<std::pair<double, double>>& points) {
     std::optional<std::pair<double, double>> anchor;
