@@ -14,6 +14,7 @@ struct PlotAxis {
     std::string label;
     bool log = false;
     std::optional<double> min, max;  // unset: gnuplot chooses
+    bool dataTics = false;  // `ticks: data`: a tic at every distinct value drawn, none elsewhere
 };
 
 // Styles: line, dashed, dotted, points, linespoints;
@@ -61,9 +62,12 @@ struct PlotLabel {
 struct PlotPanel {
     std::string title;
     PlotAxis x, y;
-    std::string key = "top right";  // legend: top/bottom left/right, outside, or off
+    std::string key = "top right";  // legend: top/bottom left/right, outside (right), below, or off
     bool pareto = false;  // draw the front of the points drawn (all series, `where` applied), both minimised
     bool equalAspect = false;  // one unit as long on x as on y, so that squares look square
+    // Orders k of thin grey dashed lines y = c x^k through the rightmost point drawn (log x and y only),
+    // to read a series' order of convergence against.
+    std::vector<double> referenceSlopes;
     PlotColorbar colorbar;     // drawn when the panel has a heatmap
     std::vector<PlotLabel> labels;
     std::vector<PlotSeries> series;
@@ -92,8 +96,9 @@ struct PlotSpec {
 //   panels:                           # or, for one panel, its keys at the top level
 //     - title: sampling rate 1
 //       x: {label: ray, log: false, range: [0, 120]}
-//       y: {label: intensity}
-//       key: top left
+//       y: {label: intensity, ticks: data}  # ticks: auto (default), or data: a tic at every value drawn
+//       key: top left                 # top/bottom left/right, outside (right of the plot), below, off
+//       reference_slopes: [1, 2, 4]   # optional, log x and y: y ~ x^k, dashed grey, "order k"
 //       pareto: false
 //       aspect: equal                 # optional: one unit as long on x as on y (default: auto)
 //       labels:                       # optional free text, starting at (x, y)
@@ -123,7 +128,11 @@ struct PlotSpec {
 // table. A panel's `pareto: true` draws the Pareto front of its points, joined in order of x.
 // A log axis without a range is fitted to the points drawn (plot_axes.h): a margin beyond them, labels at
 // 1, 2 and 5 times the powers of ten when it spans under three decades (every digit under one), and a y axis
-// draws its values <= 0 on a dotted floor line below the rest, labelled 0.
+// draws its values <= 0 on a grey band labelled 0 below a break in the axis, its label saying so; no two tic
+// labels come closer than plot::kMinTicSpacing of the axis. `reference_slopes: [k, ...]` draws y = c x^k
+// through the panel's rightmost point (the highest of those at its x), each line labelled "order k" where
+// it enters the panel on the left, clipped to the panel; `ticks: data` labels every distinct value drawn on
+// that axis (every step h of a convergence study), points and lines only.
 // Palettes: viridis (default), gray, diverging (blue, white, red).
 PlotSpec loadPlotSpec(const std::filesystem::path& spec, const std::filesystem::path& dataDir = {});
 PlotSpec parsePlotSpec(const std::string& yamlText, const std::string& source, const std::filesystem::path& specDir,

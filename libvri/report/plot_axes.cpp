@@ -1,4 +1,4 @@
-// Log axes fitted to a panel's data, with a floor for the values a log axis cannot show.
+// Log axes fitted to a panel's data, with a band below a break for the values a log axis cannot show.
 #include "libvri/report/plot_axes.h"
 
 #include <algorithm>
@@ -22,6 +22,10 @@ std::vector<std::pair<double, double>> keptPoints(const PlotSeries& series) {
     return points;
 }
 
+double axisFraction(const LogAxisFit& fit, double value) {
+    return std::log(value / fit.min) / std::log(fit.max / fit.min);
+}
+
 std::optional<LogAxisFit> fitLogAxis(const PlotAxis& axis, const std::vector<double>& values) {
     if (!axis.log || axis.min || axis.max) return std::nullopt;
     double lo = INFINITY, hi = -INFINITY;
@@ -34,25 +38,33 @@ std::optional<LogAxisFit> fitLogAxis(const PlotAxis& axis, const std::vector<dou
     if (!(lo <= hi)) return std::nullopt;
     // A margin of 6 % of the span at each end (at least a factor 1.15), so no marker sits on the frame.
     const double margin = std::max(1.15, std::pow(hi / lo, 0.06));
-    LogAxisFit fit{lo / margin, hi * margin, std::nullopt, {}};
+    const double bottom = lo / margin;  // of the positive values' range: the tics start here
+    LogAxisFit fit{bottom, hi * margin, bottom, std::nullopt, {}};
     if (zero) {
-        // Two margins below the smallest value, so the floor does not read as one more step down.
-        fit.floor = lo / (margin * margin * margin);
-        fit.min = *fit.floor / margin;
+        // The band and the break below the positive range, as fractions of the whole axis.
+        const double below = kZeroBand + kZeroGap;
+        const double length = std::log10(fit.max / bottom) / (1 - below);
+        fit.min = bottom / std::pow(10.0, below * length);
+        fit.zero = fit.min * std::pow(10.0, kZeroBand / 2 * length);
     }
-    if (fit.max / fit.min < 1000) {
-        const std::vector<int> steps = fit.max / fit.min < 10 ? std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9}
-                                                              : std::vector<int>{1, 2, 5};
-        const int first = static_cast<int>(std::floor(std::log10(fit.min)));
-        for (int power = first; power <= first + 3; ++power)
-            for (int step : steps) {
-                // Read from its decimal form, so that the tic is the double gnuplot would read for "2e-3".
-                char text[16];
-                std::snprintf(text, sizeof text, "%de%d", step, power);
-                const double tic = std::strtod(text, nullptr);
-                if (tic >= lo / margin && tic <= fit.max) fit.tics.push_back(tic);  // none between the floor and the data
-            }
-    }
+    const double decades = std::log10(fit.max / bottom);
+    if (decades >= 3 && !zero) return fit;  // gnuplot's decades: none falls in a band
+    const std::vector<int> steps = decades >= 3  ? std::vector<int>{1}
+                                   : decades < 1 ? std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9}
+                                                 : std::vector<int>{1, 2, 5};
+    double last = fit.zero ? axisFraction(fit, *fit.zero) : -INFINITY;  // where the label below is
+    const int first = static_cast<int>(std::floor(std::log10(bottom)));
+    for (int power = first; power <= static_cast<int>(std::ceil(std::log10(fit.max))); ++power)
+        for (int step : steps) {
+            // Read from its decimal form, so that the tic is the double gnuplot would read for "2e-3".
+            char text[16];
+            std::snprintf(text, sizeof text, "%de%d", step, power);
+            const double tic = std::strtod(text, nullptr);
+            if (tic < bottom || tic > fit.max) continue;  // none in the break or the band
+            if (axisFraction(fit, tic) - last < kMinTicSpacing) continue;
+            fit.tics.push_back(tic);
+            last = axisFraction(fit, tic);
+        }
     return fit;
 }
 

@@ -8,6 +8,7 @@
 #include "libvri/report/plot_axes.h"
 #include "libvri/report/plot.h"
 #include "libvri/report/plot_csv.h"
+#include "libvri/report/plot_slopes.h"
 #include "libvri/util/csv.h"
 #include "libvri/util/format.h"
 
@@ -50,45 +51,85 @@ std::string quoted(const std::string& text) {
     return joined + ")";
 }
 
-// What fitLogAxis made of a panel's log axes (nullopt: the spec's range, or gnuplot's).
+// What fitLogAxis made of a panel's log axes (nullopt: the spec's range, or gnuplot's), the tics of
+// an axis with `ticks: data` (every distinct value drawn on it), and the panel's reference slopes.
 struct PanelFit {
     std::optional<plot::LogAxisFit> x, y;
+    std::vector<double> xTics, yTics;
+    std::vector<plot::ReferenceLine> references;
 };
 
+// A list of tics for `set xtics (...)`, the band's 0 first where there is one.
+std::string ticList(const std::vector<double>& tics, std::optional<double> zero) {
+    std::string out = zero ? "'0' " + exactNumber(*zero) : "";
+    for (double tic : tics) out += (out.empty() ? "" : ", ") + exactNumber(tic);
+    return "(" + out + ")";
+}
+
+// The band of values <= 0 at the bottom of a y axis, and the break above it: the border is cut there
+// (a white patch over each side, in front of everything) and marked with slanted strokes at both ends
+// of the cut. In graph units, since the band and the break are fractions of the axis.
+std::string zeroBandCommands() {
+    const auto graph = [](double x, double y) { return "graph " + exactNumber(x) + ", graph " + exactNumber(y); };
+    const double band = plot::kZeroBand, top = plot::kZeroBand + plot::kZeroGap;
+    std::string out = "    set object rect from " + graph(0, 0) + " to " + graph(1, band) +
+                      " fc rgb '#e0e0e0' fs solid 1 noborder behind\n";
+    for (double side : {0.0, 1.0}) {
+        out += "    set object rect from " + graph(side - 0.012, band) + " to " + graph(side + 0.012, top) +
+               " fc rgb 'white' fs solid 1 noborder front\n";
+        for (double at : {band, top})
+            out += "    set arrow from " + graph(side - 0.012, at - 0.01) + " to " + graph(side + 0.012, at + 0.01) +
+                   " nohead lw 1 lc rgb 'black' front\n";
+    }
+    return out;
+}
+
 // A heatmap's axes end where its image does (fit), other axes at a tic mark beyond the data, and a log
-// axis the spec leaves open where plot::fitLogAxis says, with its floor (values <= 0) drawn as a dotted
-// line labelled 0.
-std::string axisCommands(const char* name, const PlotAxis& axis, bool fit, const std::optional<plot::LogAxisFit>& log) {
+// axis the spec leaves open where plot::fitLogAxis says, with its values <= 0 on a band below a break;
+// its label says so. An axis with `ticks: data` is labelled at dataTics alone.
+std::string axisCommands(const char* name, const PlotAxis& axis, bool fit, const std::optional<plot::LogAxisFit>& log,
+                         const std::vector<double>& dataTics) {
     const std::string n = name;
-    std::string out = "    set " + n + "label " + quoted(axis.label) + "\n";
+    const bool band = log && log->zero;
+    const std::string note = "0 on the grey band below the break";
+    const std::string label = !band ? axis.label : axis.label.empty() ? note : axis.label + " (" + note + ")";
+    std::string out = "    set " + n + "label " + quoted(label) + "\n";
     // A log axis labels its decades 1e-06 ... 0.01 ... 1, not 0.0000010 with gnuplot's fixed decimals.
     out += axis.log ? "    set logscale " + n + "\n    set format " + n + " '%g'\n"
                     : "    unset logscale " + n + "\n    set format " + n + " '% h'\n";
-    if (!log) {
+    std::vector<double> tics = log ? log->tics : std::vector<double>{};
+    if (axis.dataTics) tics = dataTics;
+    if (tics.empty() && !band)
         out += "    set " + n + "tics autofreq\n";
+    else
+        out += "    set " + n + "tics " + ticList(tics, band ? log->zero : std::nullopt) + "\n";
+    if (!log)
         return out + "    set " + n + "range [" + (axis.min ? exactNumber(*axis.min) : "*") + ":" +
                (axis.max ? exactNumber(*axis.max) : "*") + "]" + (fit ? " noextend" : " extend") + "\n";
-    }
-    if (log->tics.empty()) {
-        out += "    set " + n + "tics autofreq\n";
-    } else {
-        out += "    set " + n + "tics (";
-        for (std::size_t i = 0; i < log->tics.size(); ++i) out += (i == 0 ? "" : ", ") + exactNumber(log->tics[i]);
-        out += ")\n";
-    }
-    if (log->floor) {
-        const std::string at = exactNumber(*log->floor);
-        out += "    set " + n + "tics add ('0' " + at + ")\n";
-        // Only y has a floor (fitPanel gives x its positive values alone): a horizontal line.
-        out += "    set arrow from graph 0, first " + at + " to graph 1, first " + at + " nohead dt 3 lw 1 lc rgb 'gray50' back\n";
-    }
+    if (band) out += zeroBandCommands();  // only y has one (fitPanel gives x its positive values alone)
     return out + "    set " + n + "range [" + exactNumber(log->min) + ":" + exactNumber(log->max) + "] noextend\n";
 }
 
-std::string keyCommand(const std::string& key) {
-    if (key == "off") return "    unset key\n";
-    if (key == "outside") return "    set key outside right top\n";
-    return "    set key " + key + "\n";
+// A key below the plot is one column of entries, under the x axis's tics and label: `belowRows` lines of
+// margin hold the longest such key of the figure, so that every panel's plot is as high as its neighbours'
+// (gnuplot would shrink each panel by its own key). Other keys leave the margin to gnuplot.
+std::string keyCommand(const std::string& key, int belowRows) {
+    if (key == "below")
+        return "    set key below vertical maxcols 1\n    set bmargin " + std::to_string(belowRows) + "\n";
+    std::string out = "    set bmargin\n";
+    if (key == "off") return out + "    unset key\n";
+    if (key == "outside") return out + "    set key outside right top\n";
+    return out + "    set key " + key + "\n";
+}
+
+// The lines of bottom margin that the figure's longest key below a panel needs: its entries, and four
+// for the x tic labels, the x label and the space around them.
+int belowRows(const PlotSpec& spec) {
+    const auto keyed = [](const PlotSeries& s) { return s.style != "heatmap" && !s.label.empty(); };
+    std::ptrdiff_t most = 0;
+    for (const PlotPanel& panel : spec.panels)
+        if (panel.key == "below") most = std::max(most, panel.pareto + std::ranges::count_if(panel.series, keyed));
+    return static_cast<int>(most) + 4;
 }
 
 // Colours from the lowest value to the highest, at evenly spaced stops.
@@ -101,16 +142,26 @@ std::string paletteCommand(const std::string& palette) {
 
 // Everything a panel sets before it plots; what one panel sets, the next resets, so that no
 // setting leaks into a later panel (or from the PNG's last panel into the SVG's first).
-std::string panelCommands(const PlotPanel& panel, const PanelFit& fit) {
+std::string panelCommands(const PlotPanel& panel, const PanelFit& fit, int keyRows) {
     const bool heatmap = panel.hasStyle("heatmap");
     std::string out = "    set title " + quoted(panel.title) + "\n    unset arrow\n";
-    out += axisCommands("x", panel.x, heatmap, fit.x) + axisCommands("y", panel.y, heatmap, fit.y) +
-           keyCommand(panel.key);
+    out += "    unset object\n";
+    out += axisCommands("x", panel.x, heatmap, fit.x, fit.xTics) +
+           axisCommands("y", panel.y, heatmap, fit.y, fit.yTics) + keyCommand(panel.key, keyRows);
     out += panel.equalAspect ? "    set size ratio -1\n" : "    set size noratio\n";
     out += "    unset label\n";
     for (const PlotLabel& label : panel.labels)
         out += "    set label " + quoted(label.text) + " at " + exactNumber(label.x) + "," + exactNumber(label.y) +
                " front\n";
+    // Each reference line labelled at its left end, above it: the lines fan out leftwards from one point, so
+    // their labels lie furthest apart there.
+    for (const plot::ReferenceLine& line : fit.references) {
+        const std::string from = exactNumber(line.x1) + ", " + exactNumber(line.y1);
+        out += "    set arrow from " + from + " to " + exactNumber(line.x2) + ", " + exactNumber(line.y2) +
+               " nohead dt 2 lw 1 lc rgb 'gray50' back\n";
+        out += "    set label " + quoted("order " + exactNumber(line.order)) + " at " + from +
+               " left offset char 0.5, char 0.6 tc rgb '#404040' front\n";
+    }
     if (heatmap) {
         const PlotColorbar& bar = panel.colorbar;
         out += paletteCommand(bar.palette);
@@ -218,25 +269,56 @@ std::vector<std::pair<double, double>> panelPoints(const PlotPanel& panel) {
     return points;
 }
 
-// The panel's log axes fitted to its points; a panel with histograms, heatmaps or segments keeps gnuplot's.
+// The distinct values drawn on an axis, in increasing order, for its `ticks: data`; a log axis's positive ones.
+std::vector<double> dataTics(std::vector<double> values, bool log) {
+    std::erase_if(values, [&](double v) { return log && v <= 0; });
+    std::ranges::sort(values);
+    values.erase(std::unique(values.begin(), values.end()), values.end());
+    return values;
+}
+
+// Reference lines through the rightmost point on both log axes (the highest at that x), where a convergence
+// study's largest step is, across the panel's box above any break: a series that runs parallel to one has
+// its order.
+std::vector<plot::ReferenceLine> referenceLines(const PlotPanel& panel, const PanelFit& fit,
+                                                const std::vector<std::pair<double, double>>& points) {
+    std::optional<std::pair<double, double>> anchor;
+    for (const auto& point : points)
+        if (point.first > 0 && point.second > 0 && (!anchor || point > *anchor)) anchor = point;
+    const auto xmin = fit.x ? std::optional(fit.x->min) : panel.x.min,
+               xmax = fit.x ? std::optional(fit.x->max) : panel.x.max;
+    const auto ymin = fit.y ? std::optional(fit.y->bottom) : panel.y.min,
+               ymax = fit.y ? std::optional(fit.y->max) : panel.y.max;
+    if (!anchor || !xmin || !xmax || !ymin || !ymax) return {};
+    return plot::referenceLines(panel.referenceSlopes, *anchor, *xmin, *xmax, *ymin, *ymax);
+}
+
+// The panel's log axes fitted to its points, its data tics and its reference lines; a panel with
+// histograms, heatmaps or segments keeps gnuplot's axes (and takes neither `ticks: data` nor slopes).
 PanelFit fitPanel(const PlotPanel& panel) {
     if (!std::ranges::all_of(panel.series, drawsPoints)) return {};
+    const auto points = panelPoints(panel);
     std::vector<double> xs, ys;
-    for (const auto& [x, y] : panelPoints(panel)) {
-        if (x > 0) xs.push_back(x);  // only y has a floor; a log x axis leaves out x <= 0 as gnuplot does
-        ys.push_back(y);
-    }
-    return {plot::fitLogAxis(panel.x, xs), plot::fitLogAxis(panel.y, ys)};
+    for (const auto& [x, y] : points) xs.push_back(x), ys.push_back(y);
+    PanelFit fit;
+    std::vector<double> positiveXs;  // only y has a band: a log x axis leaves out x <= 0, as gnuplot does
+    std::ranges::copy_if(xs, std::back_inserter(positiveXs), [](double x) { return x > 0; });
+    fit.x = plot::fitLogAxis(panel.x, positiveXs);
+    fit.y = plot::fitLogAxis(panel.y, ys);
+    if (panel.x.dataTics) fit.xTics = dataTics(xs, panel.x.log);
+    if (panel.y.dataTics) fit.yTics = dataTics(ys, panel.y.log);
+    fit.references = referenceLines(panel, fit, points);
+    return fit;
 }
 
 // A series is drawn from a datablock of the points it keeps when its line joins the rows that `where`
 // keeps (gnuplot would break the line at every row left out, and one family's runs need not follow each
-// other in a file), and on a panel whose y axis has a floor (its values <= 0 are drawn there).
+// other in a file), and on a panel whose y axis has a band for its values <= 0 (they are drawn there).
 bool drawnFromBlock(const PlotSeries& series, const PanelFit& fit) {
     if (!drawsPoints(series)) return false;
     const bool joins = series.style == "line" || series.style == "dashed" || series.style == "dotted" ||
                        series.style == "linespoints";
-    return (joins && !series.where.empty()) || (fit.y && fit.y->floor);
+    return (joins && !series.where.empty()) || (fit.y && fit.y->zero);
 }
 
 // A datablock of x,y rows.
@@ -283,15 +365,15 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
             if (!drawnFromBlock(series, fit)) continue;
             std::vector<std::pair<double, double>> drawn;
             for (auto [x, y] : plot::keptPoints(series)) {
-                if (fit.y && fit.y->floor && y <= 0) y = *fit.y->floor;
+                if (fit.y && fit.y->zero && y <= 0) y = *fit.y->zero;
                 if (onLogAxes(panel, {x, y})) drawn.emplace_back(x, y);
             }
             out += pointsBlock(blockName("series", p, s), drawn);
         }
         if (!panel.pareto) continue;
         auto points = panelPoints(panel);
-        if (fit.y && fit.y->floor)  // a front through a value of 0 runs to the floor
-            for (auto& point : points) point.second = point.second <= 0 ? *fit.y->floor : point.second;
+        if (fit.y && fit.y->zero)  // a front through a value of 0 runs down to the band
+            for (auto& point : points) point.second = point.second <= 0 ? *fit.y->zero : point.second;
         const auto front = paretoFront(points);
         out += "$pareto" + std::to_string(p + 1) + " << EOD\n";
         for (std::size_t k = 0; k < front.size(); ++k) {
@@ -315,7 +397,7 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
     for (std::size_t p = 0; p < spec.panels.size(); ++p) {
         const PlotPanel& panel = spec.panels[p];
         out += "    # panel " + std::to_string(p + 1) + "\n";
-        out += panelCommands(panel, fits[p]) + "    plot ";
+        out += panelCommands(panel, fits[p], belowRows(spec)) + "    plot ";
         for (std::size_t s = 0; s < panel.series.size(); ++s) {
             const PlotSeries& series = panel.series[s];
             // A heatmap is keyed by its colour bar, not in the legend.

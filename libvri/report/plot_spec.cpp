@@ -23,8 +23,10 @@ struct SpecSource {
     std::string at(const YAML::Node& node) const { return yaml::where(name, node); }
 };
 
-constexpr const char* kKeyPlacements[] = {"top left", "top right", "bottom left", "bottom right", "outside", "off"};
+constexpr const char* kKeyPlacements[] = {"top left", "top right", "bottom left", "bottom right",
+                                          "outside", "below", "off"};
 constexpr const char* kAspects[] = {"auto", "equal"};
+constexpr const char* kTics[] = {"auto", "data"};
 
 // Series keys that only some styles take, with those styles. A heatmap's colours and its entry in
 // the legend are its panel's colour bar, so it takes no color or label.
@@ -86,9 +88,10 @@ PlotAxis parseAxis(const YAML::Node& node, const SpecSource& src, const std::str
         return axis;
     }
     yaml::requireMap(node, src.name, what);
-    yaml::requireKeys(node, src.name, {"label", "log", "range"});
+    yaml::requireKeys(node, src.name, {"label", "log", "range", "ticks"});
     if (node["label"]) axis.label = yaml::toString(node["label"], src.name, what + ".label");
     if (node["log"]) axis.log = yaml::toBool(node["log"], src.name, what + ".log");
+    if (node["ticks"]) axis.dataTics = toChoice(node["ticks"], src, what + ".ticks", kTics) == "data";
     if (node["range"]) {
         const auto [lo, hi] = pairOf(node["range"], src, what + ".range");
         axis.min = yaml::toDouble(lo, src.name, what + ".range");
@@ -239,6 +242,16 @@ PlotColorbar parseColorbar(const YAML::Node& node, const SpecSource& src, const 
     return colorbar;
 }
 
+// Orders of reference lines, each positive: y = c x^k rises to the right, as an error does with the step.
+std::vector<double> parseSlopes(const YAML::Node& list, const SpecSource& src, const std::string& what) {
+    if (!list.IsSequence() || list.size() == 0)
+        throw Error(src.at(list) + ": " + what + " must be a non-empty list of orders, such as [1, 2, 4]");
+    std::vector<double> orders;
+    for (std::size_t i = 0; i < list.size(); ++i)
+        orders.push_back(toPositiveNumber(list[i], src, what + "[" + std::to_string(i) + "]"));
+    return orders;
+}
+
 std::vector<PlotLabel> parseLabels(const YAML::Node& list, const SpecSource& src, const std::string& what) {
     if (!list.IsSequence()) throw Error(src.at(list) + ": " + what + " must be a list of {x, y, text}");
     std::vector<PlotLabel> labels;
@@ -265,6 +278,8 @@ PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::s
     if (node["key"]) panel.key = toChoice(node["key"], src, field("key"), kKeyPlacements);
     if (node["pareto"]) panel.pareto = yaml::toBool(node["pareto"], src.name, field("pareto"));
     if (node["aspect"]) panel.equalAspect = toChoice(node["aspect"], src, field("aspect"), kAspects) == "equal";
+    if (node["reference_slopes"])
+        panel.referenceSlopes = parseSlopes(node["reference_slopes"], src, field("reference_slopes"));
     if (node["labels"]) panel.labels = parseLabels(node["labels"], src, field("labels"));
     if (node["colorbar"]) panel.colorbar = parseColorbar(node["colorbar"], src, field("colorbar"));
     const YAML::Node list = node["series"];
@@ -276,6 +291,19 @@ PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::s
         throw Error(src.at(node["y"]) + ": " + field("y") + ": histogram boxes start at 0, so y cannot be logarithmic");
     if (node["colorbar"] && !panel.hasStyle("heatmap"))
         throw Error(src.at(node["colorbar"]) + ": " + field("colorbar") + " is for panels with a heatmap series");
+    if (node["reference_slopes"] && !(panel.x.log && panel.y.log))
+        throw Error(src.at(node["reference_slopes"]) + ": " + field("reference_slopes") +
+                    " needs log x and y axes (x: {log: true}, y: {log: true})");
+    // Both come from the points that points and lines draw; histogram bins, images and segments have none.
+    const bool onlyPoints = !panel.hasStyle("histogram") && !panel.hasStyle("heatmap") && !panel.hasStyle("segments");
+    const auto requirePoints = [&](const YAML::Node& at, const std::string& key) {
+        if (!onlyPoints)
+            throw Error(src.at(at) + ": " + field(key) +
+                        " is for panels of points and lines only (no histogram, heatmap or segments)");
+    };
+    if (node["reference_slopes"]) requirePoints(node["reference_slopes"], "reference_slopes");
+    if (panel.x.dataTics) requirePoints(node["x"]["ticks"], "x.ticks");
+    if (panel.y.dataTics) requirePoints(node["y"]["ticks"], "y.ticks");
     return panel;
 }
 
@@ -287,7 +315,8 @@ PlotSpec specFromYaml(const YAML::Node& root, const SpecSource& src) {
     if (multi) yaml::requireKeys(root, src.name, {"title", "size", "grid", "panels"});
     else
         yaml::requireKeys(root, src.name,
-                          {"title", "size", "grid", "x", "y", "key", "pareto", "aspect", "labels", "colorbar", "series"});
+                          {"title", "size", "grid", "x", "y", "key", "pareto", "aspect", "reference_slopes", "labels",
+                           "colorbar", "series"});
     if (root["title"]) spec.title = yaml::toString(root["title"], src.name, "title");
     if (root["size"]) {
         const auto [w, h] = pairOf(root["size"], src, "size");
@@ -301,7 +330,8 @@ PlotSpec specFromYaml(const YAML::Node& root, const SpecSource& src) {
             const std::string what = "panels[" + std::to_string(i) + "]";
             yaml::requireMap(list[i], src.name, what);
             yaml::requireKeys(list[i], src.name,
-                              {"title", "x", "y", "key", "pareto", "aspect", "labels", "colorbar", "series"});
+                              {"title", "x", "y", "key", "pareto", "aspect", "reference_slopes", "labels", "colorbar",
+                               "series"});
             spec.panels.push_back(parsePanel(list[i], src, what, true));
         }
     } else {

@@ -32,6 +32,10 @@ printf 'panels:\n  - title: x\n    series:\n      - {file: missing.csv, x: a, y:
 printf 'panels:\n  - title: x\n    series:\n      - {file: data.csv, x: a, y: c, style: line}\n' > no_column_spec.yaml
 printf 'panels:\n  - title: x\n    series:\n      - {file: data.csv, x: a, y: b, style: wiggly}\n' > bad_style_spec.yaml
 printf 'panels:\n  - title: x\n    series:\n      - {file: data.csv, x: a, y: b, style: line}\n' > spec.yaml
+printf 'panels:\n  - x: {log: true}\n    reference_slopes: [1, 2]\n    series:\n      - {file: data.csv, x: a, y: b}\n' > linear_slopes_spec.yaml
+printf 'panels:\n  - x: {log: true}\n    y: {log: true}\n    reference_slopes: [2, zero]\n    series:\n      - {file: data.csv, x: a, y: b}\n' > word_slope_spec.yaml
+printf 'panels:\n  - x: {ticks: every}\n    series:\n      - {file: data.csv, x: a, y: b}\n' > bad_ticks_spec.yaml
+printf 'panels:\n  - key: under\n    series:\n      - {file: data.csv, x: a, y: b}\n' > bad_key_spec.yaml
 printf 'datasets: [\n' > unclosed_catalog.yaml
 printf 'bogus: 1\n' > unknown_key_catalog.yaml
 mkdir -p exp/tf
@@ -261,6 +265,14 @@ bad 1 "${E}no_column_spec.yaml:4:35: column 'c' is not in data.csv \(it has: a, 
 bad 1 "${E}bad_style_spec.yaml:4:[0-9]+: panels\[0\].series\[0\].style 'wiggly' is unknown" -- \
     "$bin/vri-plot" bad_style_spec.yaml -o fig.png --script-only
 bad 1 "${E}fig.jpg: the figure's name must end in .png" -- "$bin/vri-plot" spec.yaml -o fig.jpg --script-only
+bad 1 "${E}linear_slopes_spec.yaml:3:23: panels\[0\].reference_slopes needs log x and y axes" -- \
+    "$bin/vri-plot" linear_slopes_spec.yaml -o fig.png --script-only
+bad 1 "${E}word_slope_spec.yaml:4:27: panels\[0\].reference_slopes\[1\] must be a number" -- \
+    "$bin/vri-plot" word_slope_spec.yaml -o fig.png --script-only
+bad 1 "${E}bad_ticks_spec.yaml:2:16: panels\[0\].x.ticks 'every' is unknown \(expected auto or data\)$" -- \
+    "$bin/vri-plot" bad_ticks_spec.yaml -o fig.png --script-only
+bad 1 "${E}bad_key_spec.yaml:2:10: panels\[0\].key 'under' is unknown \(expected top left, .*, below or off\)$" -- \
+    "$bin/vri-plot" bad_key_spec.yaml -o fig.png --script-only
 bad 64 "${E}--data-dir: Directory does not exist: missingdir" -- \
     "$bin/vri-plot" spec.yaml -o fig.png --data-dir missingdir --script-only
 

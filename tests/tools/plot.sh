@@ -97,6 +97,89 @@ rc=0
 "$plot" figs/heat.yaml --data-dir results/none -o heat/heat.png 2>err.txt || rc=$?
 [[ $rc -ne 0 && ! -e heat ]] || fail "a missing --data-dir passed"
 
+# No two tic labels of a log axis closer than 4 % of its length (libvri's kMinTicSpacing), read from the
+# script: every explicit tic list against the axis's range, in log space. Prints how many lists held a 0
+# (a band for values <= 0) and how many were checked.
+check_tic_spacing() {
+    awk -v file="$1" '
+        /^    # panel/ { delete tics; delete logscale }
+        /^    set logscale [xy]$/ { logscale[$3] = 1 }
+        /^    set [xy]tics \(/ {
+            axis = substr($2, 1, 1); list = $0
+            sub(/^[^(]*\(/, "", list); sub(/\)$/, "", list)
+            tics[axis] = list
+        }
+        /^    set [xy]range \[/ {
+            axis = substr($2, 1, 1)
+            if (!logscale[axis] || !(axis in tics)) next
+            range = $3; gsub(/[\[\]]/, "", range); split(range, ends, ":")
+            lo = log(ends[1]); len = log(ends[2]) - lo
+            n = split(tics[axis], entries, ", ")
+            for (i = 1; i <= n; i++) { k = split(entries[i], words, " "); at[i] = (log(words[k]) - lo) / len }
+            for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) {
+                d = at[j] - at[i]; if (d < 0) d = -d
+                if (d < 0.04 - 1e-9) { printf "%s: %s tics %s and %s only %.3f of the axis apart\n", file, axis, entries[i], entries[j], d; bad = 1 }
+            }
+            checked++; if (tics[axis] ~ /^.0. /) zeros++
+            delete tics[axis]
+        }
+        END { print zeros + 0, checked + 0; exit bad }' "$2"
+}
+
+# A histogram of counts with empty bins on a log axis (as paper B Fig. 4): the empty bins on a band
+# labelled 0 below a break, never a 0 tic beside the real 1 or 0.1.
+printf 'bin_hi,R\n1e-6,800\n1e-5,3000\n1e-4,20000\n1e-3,12000\n1e-2,3\n0.03,1\n0.1,0\n1,0\n' > data/counts.csv
+cat > figs/counts.yaml <<'YAML'
+x: {label: "|error|", log: true, range: [1e-6, 1]}
+y: {label: rays, log: true}
+series:
+  - {file: ../data/counts.csv, x: bin_hi, y: R, style: linespoints}
+YAML
+"$plot" figs/counts.yaml -o out/counts.png --script-only
+grep -q "^    set ylabel 'rays (0 on the grey band below the break)'$" out/counts.gp || fail "the axis does not say where 0 is"
+grep -q "^    set ytics ('0' [0-9.e+-]*, 1, 10, 100, 1000, 10000)$" out/counts.gp || fail "tics: $(grep ytics out/counts.gp)"
+grep -q "^    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0'" out/counts.gp || fail "no band"
+! grep -q "tics add" out/counts.gp || fail "a tic added by hand"
+[[ $(check_tic_spacing counts.yaml out/counts.gp) == "1 1" ]] || fail "counts.yaml's tics"
+# Every committed figure spec with its committed data (experiments/E.yaml's figures, from results/E/):
+# the tic labels of its log axes keep apart, Paper B's Figs. 4 and 5 among them, whose empty bins are 0.
+zeros=0
+for experiment in "$VRI_SOURCE"/experiments/*.yaml; do
+    name=$(basename "$experiment" .yaml)
+    [ -d "$VRI_SOURCE/results/$name" ] || continue
+    for spec in $(grep -oE 'spec: plots/[A-Za-z0-9_.-]+\.yaml' "$experiment" | sed 's/^spec: //'); do
+        "$plot" "$VRI_SOURCE/experiments/$spec" --data-dir "$VRI_SOURCE/results/$name" -o "committed/$name/$(basename "$spec" .yaml).png" \
+            --script-only 2>/dev/null || continue  # data not (yet) in results/
+        counts=$(check_tic_spacing "$spec" "committed/$name/$(basename "$spec" .yaml).gp") || fail "$counts"
+        zeros=$((zeros + ${counts%% *}))
+    done
+done
+[[ $zeros -ge 8 ]] || fail "the committed specs have $zeros axes with a band for 0, Figs. 4 and 5 alone 8"
+
+# A convergence study's chart: reference slopes, a tic at every step h, the key below the panel.
+printf 'h,error\n0.2,0.1\n0.1,0.03\n0.05,0.01\n0.025,3e-3\n0.0125,1e-3\n' > data/orders.csv
+cat > figs/orders.yaml <<'YAML'
+size: [600, 600]
+x: {label: h, log: true, ticks: data}
+y: {label: error, log: true}
+key: below
+reference_slopes: [1, 2, 4]
+series:
+  - {file: ../data/orders.csv, x: h, y: error, style: linespoints, label: riemann}
+YAML
+"$plot" figs/orders.yaml -o out/orders.png --script-only
+grep -q "^    set xtics (0.0125, 0.025, 0.05, 0.1, 0.2)$" out/orders.gp || fail "not every step ticked"
+grep -q "^    set key below vertical maxcols 1$" out/orders.gp || fail "key not below"
+for order in 1 2 4; do
+    grep -q "^    set label 'order $order' at " out/orders.gp || fail "no order $order line"
+done
+[[ $(grep -c " nohead dt 2 lw 1 lc rgb 'gray50' back$" out/orders.gp) -eq 3 ]] || fail "not three reference lines"
+rc=0
+sed 's/reference_slopes: \[1, 2, 4\]/reference_slopes: [1, 0]/' figs/orders.yaml > figs/bad-slopes.yaml
+"$plot" figs/bad-slopes.yaml -o bad/orders.png 2>err.txt || rc=$?
+[[ $rc -ne 0 && $(wc -l <err.txt) -eq 1 ]] && grep -q "figs/bad-slopes.yaml:5:23: reference_slopes\[1\] must be a positive number" err.txt ||
+    fail "a reference slope of 0: $(cat err.txt)"
+
 if ! command -v gnuplot >/dev/null; then
     echo "gnuplot not installed: skipping the drawing"
     exit 77
@@ -114,4 +197,9 @@ rm out/fig.png out/fig.svg
 [[ ! -s err.txt ]] || fail "gnuplot warned: $(cat err.txt)"
 [[ $(head -c 8 results/a/heat.png | od -An -tx1 | tr -d ' ') == 89504e470d0a1a0a ]] || fail "heat.png is not a PNG"
 grep -q "<image" results/a/heat.svg || fail "heat.svg has no image"
+for figure in counts orders; do
+    "$plot" figs/$figure.yaml -o out/$figure.png 2>err.txt
+    [[ ! -s err.txt ]] || fail "gnuplot warned on $figure: $(cat err.txt)"
+    [[ $(head -c 8 out/$figure.png | od -An -tx1 | tr -d ' ') == 89504e470d0a1a0a ]] || fail "$figure.png is not a PNG"
+done
 echo "plot: all checks passed"

@@ -7,6 +7,8 @@
 
 #include "temp_dir.h"
 #include "libvri/report/plot.h"
+#include "libvri/report/plot_axes.h"
+#include "libvri/report/plot_slopes.h"
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
 #include "libvri/util/process.h"
@@ -38,8 +40,8 @@ TEST_CASE("plot: spec errors point at file, line and column") {
     CHECK(errorOf("series:\n  - {file: e.csv, x: h, y: err}\n", dir.path) ==
           "fig.yaml:2:12: data file " + (dir / "e.csv").string() + " does not exist");
     CHECK(errorOf("title: t\ncolour: red\n" + series, dir.path) ==
-          "fig.yaml:2:1: unknown key 'colour' (expected one of: title, size, grid, x, y, key, pareto, aspect, labels, "
-          "colorbar, series)");
+          "fig.yaml:2:1: unknown key 'colour' (expected one of: title, size, grid, x, y, key, pareto, aspect, "
+          "reference_slopes, labels, colorbar, series)");
     CHECK(errorOf("series:\n  - {file: d.csv, x: h, y: err, style: bars}\n", dir.path) ==
           "fig.yaml:2:40: series[0].style 'bars' is unknown (expected line, dashed, dotted, points, linespoints, "
           "histogram, heatmap or segments)");
@@ -83,7 +85,8 @@ TEST_CASE("plot: the gnuplot script") {
     has("set multiplot layout 1,2 title 'It''s a test'\n");
     has("    set xlabel 'seconds'\n    set logscale x\n    set format x '%g'\n    set xtics autofreq\n"
         "    set xrange [0.5:4] extend\n");
-    has("    unset logscale y\n    set format y '% h'\n    set ytics autofreq\n    set yrange [*:*] extend\n    unset key\n"
+    has("    unset logscale y\n    set format y '% h'\n    set ytics autofreq\n    set yrange [*:*] extend\n"
+        "    set bmargin\n    unset key\n"
         "    set size noratio\n    unset label\n");
     has("plot '../data/speed.csv' skip 1 using 2:3 with points pt 7 ps 0.8 title 'all', \\\n"
         "         $pareto1 using 1:2 with linespoints");
@@ -342,7 +345,7 @@ TEST_CASE("plot: no character of a title, label, series or file name is read as 
     }
 }
 
-TEST_CASE("plot: a family's line joins its runs in file order, keyed by its ends; log axes fit the data, 0 on a floor") {
+TEST_CASE("plot: a family's line joins its runs in file order, keyed by its ends; log axes fit the data, 0 on a band") {
     test::TempDir dir("plot");
     // The exact rows lie between Riemann's: its line must still join h0.5 to h0.1.
     writeFile(dir / "speed.csv", "run,method,seconds,worst,max\n"
@@ -370,19 +373,24 @@ TEST_CASE("plot: a family's line joins its runs in file order, keyed by its ends
     // x: 0.2 to 0.8 with a margin of 1.15 each side, under one decade: a tic at every digit.
     has("    set xtics (0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9)\n    set xrange [" + exactNumber(0.2 / 1.15) + ":" +
         exactNumber(0.8 * 1.15) + "] noextend\n");
-    // y: 10 to 20, and the exact runs' 0 on a floor three margins below 10, the axis one margin below that.
-    const double floor = 10 / (1.15 * 1.15 * 1.15);
-    has("    set ytics (9, 10, 20)\n    set ytics add ('0' " + exactNumber(floor) + ")\n");
-    has("    set arrow from graph 0, first " + exactNumber(floor) + " to graph 1, first " + exactNumber(floor));
-    has("    set yrange [" + exactNumber(floor / 1.15) + ":" + exactNumber(20 * 1.15) + "] noextend\n");
+    // y: 10 to 20 with a margin, and below a break the exact runs' 0 on a band at the bottom of the axis:
+    // the band and the break are 5 % and 6 % of the axis, the positive range the rest.
+    const double length = std::log10(20 * 1.15 / (10 / 1.15)) / 0.89;
+    const double low = 10 / 1.15 / std::pow(10, 0.11 * length), floor = low * std::pow(10, 0.025 * length);
+    has("    set ylabel 'worst (0 on the grey band below the break)'\n");
+    has("    set ytics ('0' " + exactNumber(floor) + ", 9, 10, 20)\n");
+    has("    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind\n");
+    has("    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder "
+        "front\n");
+    has("    set yrange [" + exactNumber(low) + ":" + exactNumber(20 * 1.15) + "] noextend\n");
     has("$series1_1 << EOD\n0.2,20\n0.5,10\nEOD\n");
     has("$series1_2 << EOD\n0.7," + exactNumber(floor) + "\n0.8," + exactNumber(floor) + "\nEOD\n");
     has("plot $series1_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 title 'riemann, h0.5 to h0.1', \\\n"
         "         $series1_2 using 1:2 with points pt 7 ps 0.8 title 'exact, eps1e-6 to eps1e-7'");
-    // The front runs from the fastest run down to the floor, where the exact run is as good as it gets.
+    // The front runs from the fastest run down to the band, where the exact run is as good as it gets.
     has("$pareto1 << EOD\n0.2,20\n0.5,10\n0.7," + exactNumber(floor) + "\nEOD\n");
     // Every panel resets what the last one set.
-    has("    unset arrow\n");
+    has("    unset arrow\n    unset object\n");
     if (vri::commandAvailable("gnuplot")) drawPlot(spec, dir / "fig.png");
 
     CHECK(errorOf("series:\n  - {file: speed.csv, x: seconds, y: max, label_ends: name}\n", dir.path) ==
@@ -408,4 +416,79 @@ TEST_CASE("plot: a log axis given a range, or spanning decades, keeps gnuplot's 
     CHECK(script.find("    set ytics autofreq\n    set yrange [" + exactNumber(1e-6 / margin) + ":" +
                       exactNumber(1e-2 * margin) + "] noextend\n") != std::string::npos);
     CHECK(script.find("    set arrow from") == std::string::npos);
+}
+
+TEST_CASE("plot: a log axis with zeros keeps its tic labels apart, the band's 0 below a break") {
+    PlotAxis axis;
+    axis.log = true;
+    // Counts from one ray to many (paper B's histograms), narrow ranges, and many decades.
+    for (const auto& [lo, hi] : {std::pair{1.0, 3e4}, {4.0, 2e4}, {1.0, 2.0}, {0.3, 0.9}, {1e-30, 1.0}, {7.0, 700.0}}) {
+        INFO(lo, " to ", hi);
+        const auto fit = plot::fitLogAxis(axis, {0, lo, hi, -1});
+        REQUIRE(fit);
+        REQUIRE(fit->zero);
+        CHECK(plot::axisFraction(*fit, *fit->zero) == doctest::Approx(plot::kZeroBand / 2));
+        CHECK(plot::axisFraction(*fit, fit->bottom) == doctest::Approx(plot::kZeroBand + plot::kZeroGap));
+        CHECK(fit->bottom < lo);
+        REQUIRE(!fit->tics.empty());
+        double below = plot::axisFraction(*fit, *fit->zero);
+        for (double tic : fit->tics) {
+            INFO(tic);
+            CHECK(tic >= fit->bottom);  // none in the break or the band
+            CHECK(plot::axisFraction(*fit, tic) - below >= plot::kMinTicSpacing);
+            below = plot::axisFraction(*fit, tic);
+        }
+    }
+}
+
+TEST_CASE("plot: reference slopes, data tics and a key below the panel") {
+    test::TempDir dir("plot");
+    writeFile(dir / "o.csv", "h,error\n0.2,0.1\n0.1,0.03\n0.05,0.01\n0.0125,1e-3\n");
+    const PlotSpec spec = parsePlotSpec("x: {label: h, log: true, ticks: data}\n"
+                                        "y: {label: error, log: true}\n"
+                                        "key: below\n"
+                                        "reference_slopes: [1, 2, 4]\n"
+                                        "series:\n  - {file: o.csv, x: h, y: error}\n",
+                                        "fig.yaml", dir.path);
+    CHECK(spec.panels[0].referenceSlopes == std::vector<double>{1, 2, 4});
+    const std::string script = gnuplotScript(spec, dir / "fig.gp", "fig.png", "fig.svg");
+    auto has = [&](const std::string& text) {
+        INFO(text);
+        CHECK(script.find(text) != std::string::npos);
+    };
+    has("    set xtics (0.0125, 0.05, 0.1, 0.2)\n");  // every step, the smallest too
+    // One column, in a margin of its one entry and four lines for the x axis's tics and label.
+    has("    set key below vertical maxcols 1\n    set bmargin 5\n");
+    for (const char* order : {"order 1", "order 2", "order 4"})
+        has("    set label '" + std::string(order) + "' at ");
+    has(" nohead dt 2 lw 1 lc rgb 'gray50' back\n");
+    if (vri::commandAvailable("gnuplot")) drawPlot(spec, dir / "fig.png");
+
+    // Through the rightmost point (0.2, 0.1), cut to the box: order 1 runs across, order 4 enters at the bottom.
+    const auto lines = plot::referenceLines({1, 4}, {0.2, 0.1}, 0.01, 0.25, 1e-4, 0.2);
+    REQUIRE(lines.size() == 2);
+    CHECK(lines[0].x1 == doctest::Approx(0.01));
+    CHECK(lines[0].y1 == doctest::Approx(0.005));
+    CHECK(lines[0].x2 == doctest::Approx(0.25));
+    CHECK(lines[0].y2 == doctest::Approx(0.125));
+    CHECK(lines[1].y1 == doctest::Approx(1e-4));
+    CHECK(lines[1].x1 == doctest::Approx(0.2 * std::pow(1e-3, 0.25)));
+    CHECK(lines[1].y2 == doctest::Approx(0.2));
+    CHECK(lines[1].x2 == doctest::Approx(0.2 * std::pow(2.0, 0.25)));
+
+    const std::string series = "series:\n  - {file: o.csv, x: h, y: error}\n";
+    CHECK(errorOf("x: {log: true}\nreference_slopes: [1, 2]\n" + series, dir.path) ==
+          "fig.yaml:2:19: reference_slopes needs log x and y axes (x: {log: true}, y: {log: true})");
+    CHECK(errorOf("x: {log: true}\ny: {log: true}\nreference_slopes: [1, -2]\n" + series, dir.path) ==
+          "fig.yaml:3:23: reference_slopes[1] must be a positive number");
+    CHECK(errorOf("x: {log: true}\ny: {log: true}\nreference_slopes: 2\n" + series, dir.path) ==
+          "fig.yaml:3:19: reference_slopes must be a non-empty list of orders, such as [1, 2, 4]");
+    CHECK(errorOf("x: {ticks: every}\n" + series, dir.path) ==
+          "fig.yaml:1:12: x.ticks 'every' is unknown (expected auto or data)");
+    CHECK(errorOf("key: under\n" + series, dir.path) ==
+          "fig.yaml:1:6: key 'under' is unknown (expected top left, top right, bottom left, bottom right, outside, "
+          "below or off)");
+    writeFile(dir / "hist.csv", "bin_lo,bin_hi,R\n0,1e-3,1\n1e-3,1e-2,3\n");
+    CHECK(errorOf("x: {log: true, ticks: data}\nseries:\n  - {file: hist.csv, y: R, style: histogram}\n", dir.path) ==
+          "fig.yaml:1:23: x.ticks is for panels of points and lines only (no histogram, heatmap or segments)");
 }
