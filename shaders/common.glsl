@@ -40,7 +40,7 @@ layout(std140, binding = 0) uniform Params {
     dvec4 right;    // w: tan of half the vertical field of view
     dvec4 up;       // w: the zoom centre's x, in pixels of the full frame
     dvec4 boxLo;    // w: the zoom centre's y
-    dvec4 boxHi;
+    dvec4 boxHi;    // w: the jitter's seed (march.comp; jitter.h), or -1 for no jitter
 } P;
 
 layout(std430, binding = 1) readonly buffer Volume { uint words[]; };

@@ -1,6 +1,6 @@
 #version 450
 // Paper A's fixed-step methods, one invocation per pixel: Riemann (or opacity-corrected composite)
-// over the samples of one of the four placements, as render.cpp's marchSamples, placement.h's
+// over the samples of one of the four placements (or jittered, when P.boxHi.w holds a seed), as render.cpp's marchSamples, placement.h's
 // placeSamples and integrator.h's RayAccumulator compute them in float, skipping empty bricks as
 // marchSamples does (which changes no bit of the image).
 #extension GL_GOOGLE_include_directive : require
@@ -17,6 +17,29 @@ precise float expm1(float x) {
     precise float um1 = u - 1.0;
     if (um1 == -1.0) return -1.0;
     return um1 * x / log(u);
+}
+
+// placement.h's countBelowEnd: as many samples as have t < tEnd, counted on the positions evaluated.
+int countBelowEnd(precise float tStart, precise float tIncr, precise float tEnd) {
+    int n = tStart < tEnd ? int(ceil((tEnd - tStart) / tIncr)) : 0;
+    while (n > 0 && !(tStart + float(n - 1) * tIncr < tEnd)) --n;
+    while (tStart + float(n) * tIncr < tEnd) ++n;
+    return n;
+}
+
+// jitter.h's mixBits ("lowbias32") and jitterFraction, in the same 32-bit integer arithmetic: a multiple
+// of 2^-24 in [0, 1), exact in float, so the CPU and the device start every ray at the same t.
+uint mixBits(uint x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+float jitterFraction(ivec2 pixel, uint seed) {
+    uint h = mixBits(uint(pixel.x) ^ mixBits(uint(pixel.y) ^ mixBits(seed)));
+    return float(h >> 8) * (1.0 / 16777216.0);
 }
 
 // The ray of one pixel; its samples placed and evaluated go to the counters.
@@ -44,15 +67,11 @@ void trace(ivec2 pixel, int id) {
     } else {
         tStart = 0.5 * tIncr;
     }
-    int count;
-    if (PLACEMENT >= 2) {
-        count = int(samples);
-    } else {
-        // As many samples as have t < tEnd, counted on the positions evaluated.
-        int n = tStart < tEnd ? int(ceil((tEnd - tStart) / tIncr)) : 0;
-        while (n > 0 && !(tStart + float(n - 1) * tIncr < tEnd)) --n;
-        while (tStart + float(n) * tIncr < tEnd) ++n;
-        count = n;
+    int count = PLACEMENT >= 2 ? int(samples) : countBelowEnd(tStart, tIncr, tEnd);
+    // jitterSchedule: the first sample at the pixel's fraction of the step past the entry.
+    if (P.boxHi.w >= 0.0) {
+        tStart = jitterFraction(pixel, uint(P.boxHi.w)) * tIncr;
+        count = countBelowEnd(tStart, tIncr, tEnd);
     }
 
     // marchSamples

@@ -145,7 +145,7 @@ const RenderOptionRow kRows[] = {
     {"--jitter", "jitter", "jitter-", OptionValueKind::Flag,
      "riemann, composite, preintegrated: put each ray's first sample at a fraction in [0, 1) of the step past the "
      "entry, hashed from the pixel and --seed",
-     "", "", kRenderOnly, kCpu,
+     "", "", kRenderOnly, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) { r.options.jitter = flagValue(text, where); },
      noDefault,
      [](const RenderRequest& r, std::vector<Setting>& s) {
@@ -154,13 +154,13 @@ const RenderOptionRow kRows[] = {
          s.push_back({"seed", static_cast<long long>(r.options.seed)});
          s.push_back({"frames", static_cast<long long>(r.options.frames)});
      }},
-    {"--seed", "seed", "seed", OptionValueKind::Count, "--jitter's seed, from 0 to 2^31 - 1", "", "", kRenderOnly, kCpu,
+    {"--seed", "seed", "seed", OptionValueKind::Count, "--jitter's seed, from 0 to 2^31 - 1", "", "", kRenderOnly, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) {
          r.options.seed = static_cast<std::uint32_t>(parseCount(text, where, 0, std::numeric_limits<int>::max()));
      },
      [](const RenderRequest& r) { return std::to_string(r.options.seed); }, noSetting},  // recorded with --jitter
     {"--frames", "frames", "f", OptionValueKind::Count,
-     "--jitter: the mean of N frames (at most 1000), frame f jittered with seed + f", "", "", kRenderOnly, kCpu,
+     "--jitter: the mean of N frames (at most 1000), frame f jittered with seed + f", "", "", kRenderOnly, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) {
          r.options.frames = parseCount(text, where, 1, kMaxFrames);
      },

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "libvri/core/frame_average.h"
 #include "libvri/core/grid_sampler.h"
 #include "libvri/core/occupancy_cache.h"
 #include "libvri/core/occupancy_grid.h"
@@ -206,13 +207,16 @@ void VulkanRenderer::validateOptions(const RenderOptions& options) {
         throw Error("early termination 'auto': the Vulkan backend takes a transparency threshold only");
     if (options.integrator == Integrator::Preintegrated)
         throw Error("the Vulkan backend has no preintegrated method yet (--backend cpu renders it)");
-    if (options.jitter) throw Error("the Vulkan backend does not jitter yet (--backend cpu does)");
 }
 
 Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
     if (scene.sparse) throw Error("the Vulkan backend renders dense volumes only, not a sparse one");
     validateRender(scene, camera, options);
     validateOptions(options);
+    if (options.frames > 1)
+        return averageFrames(options, stats, [&](const RenderOptions& frame, RenderStats* frameStats) {
+            return render(scene, camera, frame, frameStats);
+        });
     Impl& m = *impl_;
     const bool simpson = isSimpson(options.integrator);
     const PixelRegion area = renderedRegion(options.region, camera);  // the image holds these pixels
@@ -320,6 +324,7 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     p.right[3] = basis.tanHalfY;
     p.up[3] = basis.centre.x;
     p.boxLo[3] = basis.centre.y;
+    p.boxHi[3] = options.jitter ? double(options.seed) : -1.0;  // march.comp: no jitter below 0
     if (grid) {
         for (int a = 0; a < 3; ++a) {
             p.bricks[a] = grid->bricks()[a];

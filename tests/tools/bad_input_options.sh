@@ -28,7 +28,6 @@ bad 1 "${E}--early-termination: not available for --method preintegrated " -- "$
 bad 1 "${E}--seed: needs --jitter$" -- "${render[@]}" --seed 3
 bad 1 "${E}--frames: expected a whole number from 1 to 1000, got '0'$" -- "${render[@]}" --jitter --frames 0
 bad 1 "${E}--jitter: applies to --method riemann, composite and preintegrated only$" -- "${render[@]}" --method simpson --jitter
-bad 1 "${E}--jitter: needs --backend cpu$" -- "${render[@]}" --backend vulkan --jitter
 bad 1 "^vri-reference: error: --method: unknown method 'coupled' \(expected exact or riemann\)$" -- \
     "${reference[@]}" --method coupled
 bad 1 "^vri-reference: error: --tolerance applies to --method exact only$" -- "${reference[@]}" --method riemann --tolerance 1e-6

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # vri-render's Vulkan backend end to end: --list-devices, a render of a tiny volume compared with the
 # CPU in float, the stats naming the device, a repeat that reuses the uploaded volume, the hardware
-# sampler's interpolation, and bad --device/--backend/--precision/--interpolation giving one error line. Skipped (77) when there is no Vulkan device or the build has no Vulkan backend.
+# sampler's interpolation, jittered sampling, and bad --device/--backend/--precision/--interpolation giving one error line. Skipped (77) when there is no Vulkan device or the build has no Vulkan backend.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 built_with_vulkan || { echo "built without the Vulkan backend: skipping"; exit 77; }
@@ -19,6 +19,24 @@ for placement in eye entry entry-exit entry-exit-corner; do
   render --placement $placement --step 0.3 --backend vulkan --device 0 -o vk-$placement.exr --stats vk-$placement.json
   "$VRI_BIN/vri-diff" cpu-$placement.exr vk-$placement.exr --fail 2e-5 --warn 2e-5 > diff.txt \
     || fail "$placement: Vulkan differs from the CPU: $(cat diff.txt)"
+done
+# Jittered Riemann at each placement (the same hash of pixel and seed as the CPU's: the same first sample on
+# every ray) and the mean of 4 jittered frames: within float rounding of the CPU; a jittered image differs
+# from the unjittered one and from another seed's.
+for placement in eye entry entry-exit entry-exit-corner; do
+  render --placement $placement --step 0.3 --precision float --jitter --seed 11 -o cpu-jitter-$placement.exr
+  render --placement $placement --step 0.3 --backend vulkan --jitter --seed 11 -o vk-jitter-$placement.exr
+  "$VRI_BIN/vri-diff" cpu-jitter-$placement.exr vk-jitter-$placement.exr --fail 2e-5 --warn 2e-5 > diff.txt \
+    || fail "$placement, jittered: Vulkan differs from the CPU: $(cat diff.txt)"
+done
+render --step 0.3 --precision float --jitter --seed 11 --frames 4 -o cpu-frames.exr
+render --step 0.3 --backend vulkan --jitter --seed 11 --frames 4 -o vk-frames.exr --stats vk-frames.json
+"$VRI_BIN/vri-diff" cpu-frames.exr vk-frames.exr --fail 2e-5 --warn 2e-5 > diff.txt ||
+  fail "4 jittered frames: Vulkan differs from the CPU: $(cat diff.txt)"
+grep -q '"frames": 4' vk-frames.json || fail "the stats do not record 4 frames: $(grep -A3 '"jitter"' vk-frames.json)"
+render --step 0.3 --backend vulkan --jitter --seed 12 -o vk-jitter-seed12.exr
+for other in vk-entry.exr vk-jitter-seed12.exr; do
+  ! "$VRI_BIN/vri-diff" vk-jitter-entry.exr $other --fail 1e-3 > /dev/null || fail "vk-jitter-entry.exr equals $other"
 done
 grep -q '"backend": "vulkan"' vk-entry.json || fail "stats do not name the backend"
 grep -qF "\"device\": \"$device\"" vk-entry.json || fail "stats do not name the device $device"
