@@ -23,8 +23,8 @@ layout(std140, binding = 0) uniform Params {
     vec4 offset;
     vec4 maxCoord;  // dims - 1
     ivec4 maxBase;  // max(dims - 2, 0)
-    ivec4 stride;   // voxels; 0 along an axis of a single layer
-    vec4 dims;      // the grid resolution paper A's placements use
+    ivec4 stride;   // voxels; 0 along an axis of a single layer. w: the pre-integration table's size (march.comp)
+    vec4 dims;      // the grid resolution paper A's placements use. w: the table's segment length (march.comp)
     vec4 eyeU;      // the eye in texture coordinates
     float lo, invRange;  // normalisation: s = (value - lo) * invRange
     float samplingRate, earlyTermination;

@@ -1,6 +1,7 @@
 #version 450
 // Paper A's fixed-step methods, one invocation per pixel: Riemann (or opacity-corrected composite)
-// over the samples of one of the four placements (or jittered, when P.boxHi.w holds a seed), as render.cpp's marchSamples, placement.h's
+// over the samples of one of the four placements (or jittered, when P.boxHi.w holds a seed), or
+// pre-integrated classification over the segments the samples stand for, as render.cpp's marchSamples, placement.h's
 // placeSamples and integrator.h's RayAccumulator compute them in float, skipping empty bricks as
 // marchSamples does (which changes no bit of the image).
 #extension GL_GOOGLE_include_directive : require
@@ -8,6 +9,12 @@
 
 layout(constant_id = 2) const int PLACEMENT = 1;   // 0 eye, 1 entry, 2 entry-exit, 3 entry-exit-corner
 layout(constant_id = 3) const int COMPOSITE = 0;   // 0 Riemann, 1 opacity-corrected compositing
+layout(constant_id = 5) const int PREINTEGRATED = 0;  // 0 samples; 1 or 2: pre-integration of that order
+
+// preintegration_table.h's table in float: N x N entries (front i, back j at (i N + j) 4) of R, G, B and
+// depth, then for order 2 as many derivatives in the midpoint's deviation. N is P.stride.w, the segment
+// length it was integrated for P.dims.w (world units).
+layout(std430, binding = 7) readonly buffer Preintegration { float preint[]; };
 
 // exp(x) - 1 without the cancellation of the plain difference near 0 (Kahan's trick), for
 // composite's alpha = -expm1(-tau dx).
@@ -40,6 +47,40 @@ uint mixBits(uint x) {
 float jitterFraction(ivec2 pixel, uint seed) {
     uint h = mixBits(uint(pixel.x) ^ mixBits(uint(pixel.y) ^ mixBits(seed)));
     return float(h >> 8) * (1.0 / 16777216.0);
+}
+
+// PreintegrationTable::operator() in float: the table's entries around (front, back) interpolated
+// bilinearly, plus delta times the derivatives' for order 2.
+precise float tableCoordinate(float s, out int i) {
+    int n = P.stride.w;
+    precise float x = (s > 0.0 ? (s < 1.0 ? s : 1.0) : 0.0) * float(n - 1);
+    i = min(int(x), n - 2);
+    return x - float(i);
+}
+vec4 lookUpSegment(float front, float back, float delta) {
+    int i, j;
+    precise float fi = tableCoordinate(front, i), fj = tableCoordinate(back, j);
+    int n = P.stride.w;
+    int at = (i * n + j) * 4, row = n * 4;
+    precise vec4 out4;
+    for (int c = 0; c < 4; ++c) {
+        precise float near = lerp1(preint[at + c], preint[at + 4 + c], fj);
+        precise float far = lerp1(preint[at + row + c], preint[at + row + 4 + c], fj);
+        out4[c] = lerp1(near, far, fi);
+    }
+    if (PREINTEGRATED == 2) {
+        // delta within one table spacing and the values >= 0 (PreintegrationTable::operator(), deltaLimit)
+        precise float limit = float(1.0 / double(n - 1));
+        delta = delta < -limit ? -limit : (delta > limit ? limit : delta);
+        int slopes = n * n * 4;
+        for (int c = 0; c < 4; ++c) {
+            precise float near = lerp1(preint[slopes + at + c], preint[slopes + at + 4 + c], fj);
+            precise float far = lerp1(preint[slopes + at + row + c], preint[slopes + at + row + 4 + c], fj);
+            precise float value = out4[c] + delta * lerp1(near, far, fi);
+            out4[c] = value > 0.0 ? value : 0.0;
+        }
+    }
+    return out4;
 }
 
 // The ray of one pixel; its samples placed and evaluated go to the counters.
@@ -78,6 +119,35 @@ void trace(ivec2 pixel, int id) {
     precise vec3 du = ray / tEnd;
     precise float dx = tIncr * worldPerUnit(worldLength, tEnd);
     precise float r = 0.0, g = 0.0, bl = 0.0, transparency = 1.0;
+    if (PREINTEGRATED != 0) {
+        // marchSegments: sample k stands for the segment from half a step before it to half a step after,
+        // looked up from the scalars at its ends (and at the sample, for order 2); every segment is looked up.
+        if (count == 0) return;
+        precise float lengthRatio = dx / P.dims.w;
+        precise float halfStep = 0.5 * tIncr;
+        precise float front = sampleScalar(entry + (tStart - halfStep + 0.0 * tIncr) * du);
+        for (int k = 0; k < count; ++k) {
+            precise float back = sampleScalar(entry + (tStart - halfStep + float(k + 1) * tIncr) * du);
+            precise float delta = PREINTEGRATED == 2 ? sampleScalar(entry + (tStart + float(k) * tIncr) * du) - 0.5 * (front + back) : 0.0;
+            precise vec4 v = lookUpSegment(front, back, delta);
+            front = back;
+            // RayAccumulator::addSegment
+            if (v.w == 0.0 && v.x == 0.0 && v.y == 0.0 && v.z == 0.0) continue;
+            precise float depth = v.w * lengthRatio;
+            precise float scale = lengthRatio;  // no extinction: the colour grows with the length
+            if (lengthRatio == 1.0) scale = 1.0;
+            else if (v.w > 0.0) scale = expm1(-depth) / expm1(-v.w);
+            precise float w = transparency * scale;
+            r += w * v.x;
+            g += w * v.y;
+            bl += w * v.z;
+            transparency *= exp(-depth);
+        }
+        pixels[id] = vec4(r, g, bl, 1.0 - transparency);
+        addTotal(0, uint(count));
+        addTotal(1, uint(count));
+        return;
+    }
     precise vec3 x0 = entry * P.scale.xyz - P.offset.xyz;  // the ray in voxel index space, as the bricks
     precise vec3 dxdt = du * P.scale.xyz;
     float knownOccupiedUntil = -1.0 / 0.0;

@@ -25,11 +25,6 @@ SegmentIntegral<double> integrateSegment(ExactRay& ray, double length, double fr
     return {value[0], value[1], value[2], ray.opticalDepth()};
 }
 
-// The second-order table's derivative in delta, as the centred difference over +-kSlopeStep of the table's
-// spacing: the differences of exact integrals (each within kEntryTolerance), so the slope's rounding is
-// about kEntryTolerance / step, and a jump in the transfer function is crossed, not differentiated.
-constexpr double kSlopeStep = 0.25;
-
 }  // namespace
 
 PreintegrationTable::PreintegrationTable(const TransferFunction& tf, double segmentLength, int size, int order)

@@ -48,11 +48,27 @@ public:
     PreintegrationTable(const TransferFunction& tf, double segmentLength, int size, int order);
 
     int size() const { return size_; }
+    // The second-order table's derivative in delta is the centred difference over +-kSlopeStep of the
+    // table's spacing: the differences of exact integrals (each within kEntryTolerance), so the slope's
+    // rounding is about kEntryTolerance / step, and a jump in the transfer function is crossed, not
+    // differentiated.
+    static constexpr double kSlopeStep = 0.25;
+    // The largest |delta| the second-order expansion takes: one table spacing, 4 times the measured
+    // half-width (a smooth TF's expansion holds well past it; in float: the double rounded once).
+    template <class Real>
+    Real deltaLimit() const {
+        return static_cast<Real>(1.0 / (size_ - 1));
+    }
     int order() const { return order_; }
     double segmentLength() const { return length_; }
 
     // The integral over a segment of segmentLength() from scalar `front` to `back` (each clamped to
-    // [0, 1], the table's domain), `delta` the midpoint's deviation (order 2; ignored by order 1).
+    // [0, 1], the table's domain), `delta` the midpoint's deviation (order 2; ignored by order 1), clamped
+    // to +-deltaLimit(), and each second-order value kept >= 0 (an integral of non-negative colour and
+    // extinction). Unclamped, the linear expansion extrapolates a slope that is steep beside a
+    // transfer-function jump without bound: on paper-b-failures' spiky TF at h = 2 it gave colours of
+    // 1.5e6. Clamped, the correction is at most deltaLimit / (2 kSlopeStep spacing) = 2 times the
+    // integral's change over the measured +-kSlopeStep.
     template <class Real>
     SegmentIntegral<Real> operator()(Real front, Real back, Real delta) const {
         const Real* v = values<Real>();
@@ -72,10 +88,13 @@ public:
             out[c] = lerp(near, far, fi);
         }
         if (order_ == 2) {
+            const Real limit = deltaLimit<Real>();
+            delta = delta < -limit ? -limit : (delta > limit ? limit : delta);
             const Real* d = slopes<Real>();
             for (int c = 0; c < 4; ++c) {
                 const Real near = lerp(d[at + c], d[at + 4 + c], fj), far = lerp(d[at + row + c], d[at + row + 4 + c], fj);
-                out[c] = out[c] + delta * lerp(near, far, fi);
+                const Real value = out[c] + delta * lerp(near, far, fi);
+                out[c] = value > Real(0) ? value : Real(0);
             }
         }
         return {out[0], out[1], out[2], out[3]};

@@ -122,7 +122,7 @@ const RenderOptionRow kRows[] = {
     {"--preint-size", "preint_size", "n", OptionValueKind::Count,
      "preintegrated: entries of the table per scalar axis, from 2 to 1024 (its error against direct evaluation is in "
      "the stats)",
-     "", "", kRenderOnly, kCpu,
+     "", "", kRenderOnly, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) {
          r.options.preintegrationSize =
              parseCount(text, where, PreintegrationTable::kMinSize, PreintegrationTable::kMaxSize);
@@ -134,7 +134,7 @@ const RenderOptionRow kRows[] = {
     {"--preint-order", "preint_order", "o", OptionValueKind::Count,
      "preintegrated: 1 (the scalar linear along a segment) or 2 (quadratic through the sample at its midpoint: "
      "a second table of the derivative in the midpoint's deviation)",
-     "", "", kRenderOnly, kCpu,
+     "", "", kRenderOnly, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) {
          r.options.preintegrationOrder = parseCount(text, where, 1, 2);
      },

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "libvri/core/frame_average.h"
@@ -43,7 +44,7 @@ struct Params {
 };
 static_assert(sizeof(Params) == 416 && offsetof(Params, eye) == 224);
 
-enum Binding { kParams, kVolume, kTransferFunction, kTotals, kOutput, kOccupancy, kVolumeTexture, kBindings };
+enum Binding { kParams, kVolume, kTransferFunction, kTotals, kOutput, kOccupancy, kVolumeTexture, kPreintegration, kBindings };
 
 // The frame's counters that the shaders sum (common.glsl's Totals): each a 64-bit count in two 32-bit
 // words. Simpson's eight are AdaptiveCounts in the order of simpson.comp; marching uses the first two.
@@ -100,6 +101,7 @@ struct VulkanRenderer::Impl {
     VulkanBuffer volumeBuffer;
     VulkanTexture3D volumeTexture;
     VulkanBuffer params, transferFunction, totals, output, occupancy;
+    VulkanBuffer preintegration;  // the pre-integration table in float (march.comp), a placeholder otherwise
     // The empty-space bricks, built as the CPU builds them and kept while volume, convention and transfer
     // function stay (occupancy_cache.h); `occupancy` holds the uploaded copy of `uploadedGrid`.
     OccupancyCache grids;
@@ -179,6 +181,7 @@ struct VulkanRenderer::Impl {
         const VulkanBuffer* buffers[] = {&params, &volumeBuffer, &transferFunction, &totals, &output, &occupancy};
         for (std::uint32_t b = 0; b < kVolumeTexture; ++b) kernels.bind(b, *buffers[b]);
         kernels.bind(kVolumeTexture, volumeTexture);
+        kernels.bind(kPreintegration, preintegration);
     }
 };
 
@@ -205,8 +208,6 @@ void VulkanRenderer::validateOptions(const RenderOptions& options) {
     if (options.logPixel) throw Error("the Vulkan backend does not log a ray (the per-ray log is CPU only)");
     if (options.terminationBound > 0.0)
         throw Error("early termination 'auto': the Vulkan backend takes a transparency threshold only");
-    if (options.integrator == Integrator::Preintegrated)
-        throw Error("the Vulkan backend has no preintegrated method yet (--backend cpu renders it)");
 }
 
 Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const RenderOptions& options, RenderStats* stats) {
@@ -219,6 +220,7 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
         });
     Impl& m = *impl_;
     const bool simpson = isSimpson(options.integrator);
+    const bool preintegrated = options.integrator == Integrator::Preintegrated;
     const PixelRegion area = renderedRegion(options.region, camera);  // the image holds these pixels
     const int width = area.width, height = area.height;
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
@@ -240,7 +242,29 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
         simpson ? m.kernels.pipeline(m.simpson, {voxelTypeConstant(scene), emission,
                                                  adaptive.coupling == Coupling::Coupled ? 1 : 0, 0, sampler})
                 : m.kernels.pipeline(m.march, {voxelTypeConstant(scene), emission, int(options.placement),
-                                               options.integrator == Integrator::Composite ? 1 : 0, sampler});
+                                               options.integrator == Integrator::Composite ? 1 : 0, sampler,
+                                               preintegrated ? options.preintegrationOrder : 0});
+    // Pre-integration: the CPU's table, built for this render (as the CPU renderer builds it, in the
+    // setup), its float entries uploaded; its measured error goes to the stats as the CPU's does.
+    std::optional<PreintegrationTable> table;
+    if (preintegrated) {
+        table.emplace(scene.transferFunction, preintegrationSegmentLength(scene, options), options.preintegrationSize,
+                      options.preintegrationOrder);
+        local.preintegration = {table->size(), table->order(), table->segmentLength(), table->check(scene.transferFunction)};
+    }
+    {
+        const std::size_t entries = table ? std::size_t(table->size()) * table->size() * 4 : 1;
+        const std::size_t floats = table && table->order() == 2 ? 2 * entries : entries;
+        m.ensure(m.preintegration, floats * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the pre-integration table");
+        auto* to = static_cast<float*>(m.preintegration.mapped());
+        if (table) {
+            std::memcpy(to, table->values<float>(), entries * sizeof(float));
+            if (table->order() == 2) std::memcpy(to + entries, table->slopes<float>(), entries * sizeof(float));
+        } else {
+            to[0] = 0.0f;
+        }
+        m.preintegration.flush();
+    }
     const std::vector<float> tf = transferFunctionTable(scene.transferFunction);
     m.ensure(m.transferFunction, tf.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the transfer function");
     // Host-visible buffers: one vec4 of colour per pixel, and the frame's counters.
@@ -325,6 +349,10 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     p.up[3] = basis.centre.x;
     p.boxLo[3] = basis.centre.y;
     p.boxHi[3] = options.jitter ? double(options.seed) : -1.0;  // march.comp: no jitter below 0
+    if (table) {
+        p.stride[3] = table->size();
+        p.dims[3] = static_cast<float>(table->segmentLength());  // as the CPU's float path rounds it
+    }
     if (grid) {
         for (int a = 0; a < 3; ++a) {
             p.bricks[a] = grid->bricks()[a];

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # vri-render's Vulkan backend end to end: --list-devices, a render of a tiny volume compared with the
 # CPU in float, the stats naming the device, a repeat that reuses the uploaded volume, the hardware
-# sampler's interpolation, jittered sampling, and bad --device/--backend/--precision/--interpolation giving one error line. Skipped (77) when there is no Vulkan device or the build has no Vulkan backend.
+# sampler's interpolation, jittered sampling, pre-integrated classification, and bad --device/--backend/--precision/--interpolation giving one error line. Skipped (77) when there is no Vulkan device or the build has no Vulkan backend.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 
 built_with_vulkan || { echo "built without the Vulkan backend: skipping"; exit 77; }
@@ -38,6 +38,25 @@ render --step 0.3 --backend vulkan --jitter --seed 12 -o vk-jitter-seed12.exr
 for other in vk-entry.exr vk-jitter-seed12.exr; do
   ! "$VRI_BIN/vri-diff" vk-jitter-entry.exr $other --fail 1e-3 > /dev/null || fail "vk-jitter-entry.exr equals $other"
 done
+# Pre-integrated classification, orders 1 and 2, at two placements and jittered, with the TF's colour as
+# emission too: the CPU's table looked up as the CPU's float path does, within float rounding of the CPU.
+printf 'emission: color\npoints:\n  - [0.0, 0, 0, 0, 0]\n  - [0.3, 1, 0.5, 0.2, 0]\n  - [0.3, 1, 0.5, 0.2, 4]\n  - [0.6, 0.2, 0.4, 1, 1]\n  - [1.0, 1, 1, 1, 2]\n' > colour.yaml
+render_tf() { local tf=$1; shift; "$VRI_BIN/vri-render" --volume blob_8x8x8_uint8.raw --tf "$tf" --size 40x30 --eye 20,14,-9 -q "$@"; }
+for order in 1 2; do
+  for variant in "--placement eye" "--placement entry-exit-corner" "--jitter --seed 5" "colour"; do
+    name=preint-o$order-$(tr -dc 'a-z0-9' <<< "$variant")
+    tf=tf.yaml
+    if [ "$variant" = colour ]; then tf=colour.yaml variant=; fi
+    render_tf $tf --method preintegrated --preint-order $order --preint-size 64 --step 0.7 $variant --precision float -o cpu-$name.exr
+    render_tf $tf --method preintegrated --preint-order $order --preint-size 64 --step 0.7 $variant --backend vulkan \
+      -o vk-$name.exr --stats vk-$name.json
+    "$VRI_BIN/vri-diff" cpu-$name.exr vk-$name.exr --fail 2e-5 --warn 2e-5 > diff.txt \
+      || fail "pre-integration, order $order, $variant: Vulkan differs from the CPU: $(cat diff.txt)"
+    grep -q "\"order\": $order" vk-$name.json && grep -q '"table_error_colour"' vk-$name.json ||
+      fail "the Vulkan stats lack the table of order $order: $(grep -A7 '"preintegration"' vk-$name.json)"
+  done
+done
+! "$VRI_BIN/vri-diff" vk-preint-o1-placementeye.exr vk-entry.exr --fail 1e-3 > /dev/null || fail "pre-integration equals Riemann"
 grep -q '"backend": "vulkan"' vk-entry.json || fail "stats do not name the backend"
 grep -qF "\"device\": \"$device\"" vk-entry.json || fail "stats do not name the device $device"
 grep -q '"precision": "float"' vk-entry.json || fail "the Vulkan render is not recorded as float"
