@@ -66,6 +66,9 @@ class RenderEqualsTools(unittest.TestCase):
             "composite_scalar": dict(method="composite", step=0.5, simd="off", early_termination=0.01),
             "coupled": dict(method="coupled", tolerance=1e-3, h_max="none"),
             "exact": dict(method="exact", tolerance=1e-9, clamp=True),
+            # Issue 32's methods: pre-integration of order 2 and jittered frames, as vri-render makes them.
+            "preintegrated": dict(method="preintegrated", preint_order=2, preint_size=64, step=0.7, precision="float"),
+            "jittered": dict(method="riemann", step=0.7, jitter=True, seed=9, frames=3),
         }
         for name, options in cases.items():
             with self.subTest(name):
