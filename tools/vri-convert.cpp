@@ -16,6 +16,7 @@
 #include "common/raw_input_options.h"
 #include "libvri/core/volume_stats.h"
 #include "libvri/io/volume_io.h"
+#include "libvri/util/heartbeat.h"
 
 namespace fs = std::filesystem;
 
@@ -139,7 +140,8 @@ or summarised sparse (--storage auto, the default, or sparse: its stored 8^3 bri
     app.add_option("--grid", grid, ".vdb input: the grid to read (default: the first scalar grid)");
     app.add_flag("--info", info, "print a summary of the input: dims, type, spacing, range, mean, histogram");
     app.add_flag("--json", json, "print the summary as JSON on stdout (implies --info)");
-    app.add_flag("-q,--quiet", quiet, "no timing line on stderr after a conversion");
+    app.add_flag("-q,--quiet", quiet, "no progress on stderr: a line every 5 s of a long read, summary or write "
+                                      "(\"vri-convert: writing out.vdb: 10 s\"), and the timing line after a conversion");
     if (auto exitCode = vri::parseArguments(app, "vri-convert", argc, argv)) return *exitCode;
 
     return vri::guardedMain("vri-convert", [&] {
@@ -159,12 +161,18 @@ or summarised sparse (--storage auto, the default, or sparse: its stored 8^3 bri
 
         const vri::VolumeStorage storage = raw.storage();
         const auto start = std::chrono::steady_clock::now();
-        const vri::LoadedVolume loaded = vri::readVolume(input, readOptions, storage);
+        const vri::LoadedVolume loaded = [&] {
+            const vri::Heartbeat heartbeat("vri-convert: reading " + input, !quiet);
+            return vri::readVolume(input, readOptions, storage);
+        }();
         const auto read = std::chrono::steady_clock::now();
 
         if (info) {
             const auto summarise = [&](const auto& volume) {
-                const vri::VolumeStats stats = vri::computeVolumeStats(volume);
+                const vri::VolumeStats stats = [&] {
+                    const vri::Heartbeat heartbeat("vri-convert: summarising " + input, !quiet);
+                    return vri::computeVolumeStats(volume);
+                }();
                 if (json) std::cout << infoJson(input, volume, stats).dump(2) << "\n";
                 else printInfo(input, volume, stats);
             };
@@ -177,7 +185,10 @@ or summarised sparse (--storage auto, the default, or sparse: its stored 8^3 bri
                                  "), which only --info reads: convert with --storage dense");
             const vri::Volume& volume = *loaded.dense;
             const auto write = std::chrono::steady_clock::now();
-            vri::writeVolume(output, volume);
+            {
+                const vri::Heartbeat heartbeat("vri-convert: writing " + output, !quiet);
+                vri::writeVolume(output, volume);
+            }
             const auto done = std::chrono::steady_clock::now();
             const auto seconds = [](auto d) { return text(std::chrono::duration<double>(d).count(), 3); };
             // Sizes only of regular files: a device or FIFO output has none.
