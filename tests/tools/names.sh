@@ -142,6 +142,9 @@ for share in 10 25 15 35 20 45; do
   sleep "$delay"
   if kill -9 -- "-$victim" 2> /dev/null || kill -9 "$victim" 2> /dev/null; then kills=$((kills + 1)); fi
   wait "$victim" 2> /dev/null || true
+  # Its steps too must be gone (reaped by init, not zombies) before anything looks at their files: a
+  # temporary file of a process that still exists is a live one, which the rerun rightly keeps.
+  for _ in $(seq 100); do pgrep -s "$victim" > /dev/null || break; sleep 0.1; done
   if [ -d killed/small ]; then
     complete_like killed/small whole/small
     made=$(ls killed/small | wc -l)
