@@ -13,7 +13,7 @@ layout(constant_id = 5) const int PREINTEGRATED = 0;  // 0 samples; 1 or 2: pre-
 
 // preintegration_table.h's table in float: N x N entries (front i, back j at (i N + j) 4) of R, G, B and
 // depth, then for order 2 as many derivatives in the midpoint's deviation. N is P.stride.w, the segment
-// length it was integrated for P.dims.w (world units).
+// length it was integrated for P.dims.w (world units); order 2 ends with the 4 upper bounds of R, G, B, depth.
 layout(std430, binding = 7) readonly buffer Preintegration { float preint[]; };
 
 // exp(x) - 1 without the cancellation of the plain difference near 0 (Kahan's trick), for
@@ -69,15 +69,14 @@ vec4 lookUpSegment(float front, float back, float delta) {
         out4[c] = lerp1(near, far, fi);
     }
     if (PREINTEGRATED == 2) {
-        // delta within one table spacing and the values >= 0 (PreintegrationTable::operator(), deltaLimit)
-        precise float limit = float(1.0 / double(n - 1));
-        delta = delta < -limit ? -limit : (delta > limit ? limit : delta);
-        int slopes = n * n * 4;
+        // Each value within [0, the segment's physical upper bound] (PreintegrationTable::upperBound), the
+        // bounds stored after the slopes.
+        int slopes = n * n * 4, upper = 2 * n * n * 4;
         for (int c = 0; c < 4; ++c) {
             precise float near = lerp1(preint[slopes + at + c], preint[slopes + at + 4 + c], fj);
             precise float far = lerp1(preint[slopes + at + row + c], preint[slopes + at + row + 4 + c], fj);
             precise float value = out4[c] + delta * lerp1(near, far, fi);
-            out4[c] = value > 0.0 ? value : 0.0;
+            out4[c] = value > 0.0 ? (value < preint[upper + c] ? value : preint[upper + c]) : 0.0;
         }
     }
     return out4;

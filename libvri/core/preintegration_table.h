@@ -53,22 +53,22 @@ public:
     // rounding is about kEntryTolerance / step, and a jump in the transfer function is crossed, not
     // differentiated.
     static constexpr double kSlopeStep = 0.25;
-    // The largest |delta| the second-order expansion takes: one table spacing, 4 times the measured
-    // half-width (a smooth TF's expansion holds well past it; in float: the double rounded once).
+    // The largest value of R, G, B and depth any segment of segmentLength() can have under the TF: depth
+    // <= L tau_max; colour <= C_max (1 - exp(-L tau_max)) when colour is weighted by extinction (the
+    // integral of C tau T is at most C_max times that of tau T), C_max L when colour is emitted alone.
+    // Every entry lies within it (a convex combination of exact integrals), so only the second-order
+    // correction meets it.
     template <class Real>
-    Real deltaLimit() const {
-        return static_cast<Real>(1.0 / (size_ - 1));
-    }
+    const Real* upperBound() const;
     int order() const { return order_; }
     double segmentLength() const { return length_; }
 
     // The integral over a segment of segmentLength() from scalar `front` to `back` (each clamped to
-    // [0, 1], the table's domain), `delta` the midpoint's deviation (order 2; ignored by order 1), clamped
-    // to +-deltaLimit(), and each second-order value kept >= 0 (an integral of non-negative colour and
-    // extinction). Unclamped, the linear expansion extrapolates a slope that is steep beside a
-    // transfer-function jump without bound: on paper-b-failures' spiky TF at h = 2 it gave colours of
-    // 1.5e6. Clamped, the correction is at most deltaLimit / (2 kSlopeStep spacing) = 2 times the
-    // integral's change over the measured +-kSlopeStep.
+    // [0, 1], the table's domain), `delta` the midpoint's deviation (order 2; ignored by order 1). Each
+    // second-order value is kept within [0, upperBound()], what a segment's integral can physically be:
+    // beside a transfer-function jump the linear expansion in delta extrapolates a steep slope without
+    // bound (on paper-b-failures' spiky TF at h = 2 it gave colours of 1.5e6), while on smooth data it
+    // stays inside and the clamp changes nothing.
     template <class Real>
     SegmentIntegral<Real> operator()(Real front, Real back, Real delta) const {
         const Real* v = values<Real>();
@@ -88,13 +88,12 @@ public:
             out[c] = lerp(near, far, fi);
         }
         if (order_ == 2) {
-            const Real limit = deltaLimit<Real>();
-            delta = delta < -limit ? -limit : (delta > limit ? limit : delta);
             const Real* d = slopes<Real>();
+            const Real* top = upperBound<Real>();
             for (int c = 0; c < 4; ++c) {
                 const Real near = lerp(d[at + c], d[at + 4 + c], fj), far = lerp(d[at + row + c], d[at + row + 4 + c], fj);
                 const Real value = out[c] + delta * lerp(near, far, fi);
-                out[c] = value > Real(0) ? value : Real(0);
+                out[c] = value > Real(0) ? (value < top[c] ? value : top[c]) : Real(0);
             }
         }
         return {out[0], out[1], out[2], out[3]};
@@ -125,7 +124,14 @@ private:
     // Entry (i, j), front scalar i / (size - 1) and back j / (size - 1): R, G, B, depth at ((i size) + j) 4.
     std::vector<double> values_, slopes_;
     std::vector<float> valuesFloat_, slopesFloat_;  // the same, rounded once
+    double upper_[4];
+    float upperFloat_[4];
 };
+
+template <>
+inline const double* PreintegrationTable::upperBound<double>() const { return upper_; }
+template <>
+inline const float* PreintegrationTable::upperBound<float>() const { return upperFloat_; }
 
 template <>
 inline const double* PreintegrationTable::values<double>() const { return values_.data(); }

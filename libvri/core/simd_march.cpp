@@ -814,14 +814,12 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
             interpolateTable(values, l, table.size(), v);
             if (secondOrder) {
                 const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, hn::Set(di, k)), step));
-                const VF limit = hn::Set(df, table.deltaLimit<float>());  // PreintegrationTable::operator()'s clamp
-                const VF delta = hn::Min(hn::Max(hn::Sub(scalarAt(t, active, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back))),
-                                                 hn::Neg(limit)),
-                                         limit);
+                const VF delta = hn::Sub(scalarAt(t, active, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
                 VF slope[4];
                 interpolateTable(slopes, l, table.size(), slope);
-                for (int c = 0; c < 4; ++c)  // kept >= 0 as PreintegrationTable::operator() keeps it
-                    v[c] = hn::Max(hn::Add(v[c], hn::Mul(delta, slope[c])), zero);
+                for (int c = 0; c < 4; ++c)  // kept within [0, upperBound] as PreintegrationTable::operator() keeps it
+                    v[c] = hn::Max(hn::Min(hn::Add(v[c], hn::Mul(delta, slope[c])), hn::Set(df, table.upperBound<float>()[c])),
+                                   zero);
             }
             // RayAccumulator::addSegment.
             const MF adds = hn::AndNot(hn::And(hn::And(hn::Eq(v[3], zero), hn::Eq(v[0], zero)),

@@ -254,12 +254,15 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     }
     {
         const std::size_t entries = table ? std::size_t(table->size()) * table->size() * 4 : 1;
-        const std::size_t floats = table && table->order() == 2 ? 2 * entries : entries;
+        const std::size_t floats = table && table->order() == 2 ? 2 * entries + 4 : entries;
         m.ensure(m.preintegration, floats * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "the pre-integration table");
         auto* to = static_cast<float*>(m.preintegration.mapped());
         if (table) {
             std::memcpy(to, table->values<float>(), entries * sizeof(float));
-            if (table->order() == 2) std::memcpy(to + entries, table->slopes<float>(), entries * sizeof(float));
+            if (table->order() == 2) {
+                std::memcpy(to + entries, table->slopes<float>(), entries * sizeof(float));
+                std::memcpy(to + 2 * entries, table->upperBound<float>(), 4 * sizeof(float));
+            }
         } else {
             to[0] = 0.0f;
         }
