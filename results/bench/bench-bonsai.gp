@@ -12,97 +12,102 @@ cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
 1,27
-4.048,16.4
+3.6,16.4
 EOD
 $series1_2 << EOD
-1.25,27
-5.059,16.4
+1.128,27
+3.891,16.4
 EOD
 $series1_3 << EOD
-0.1985,27
-0.744,16.4
+0.1506,27
+0.5203,16.4
 EOD
 $series1_4 << EOD
-1.249,11.3
-4.655,1.36
+1.161,11.3
+3.827,1.36
 EOD
 $series1_5 << EOD
-1.416,11.3
-5.486,1.36
+1.2,11.3
+4.165,1.36
 EOD
 $series1_6 << EOD
-0.1956,11.3
-0.7302,1.36
+0.1437,11.3
+0.5373,1.36
 EOD
 $series1_7 << EOD
-2.934,14.2
+2.553,14.2
 EOD
 $series1_8 << EOD
-2.867,14.2
+2.011,14.2
 EOD
 $series1_9 << EOD
-2.891,12.3
+2.407,12.3
 EOD
 $series1_10 << EOD
-2.497,12.3
+2.121,12.3
 EOD
 $series1_11 << EOD
-1.081,0.7942010087194614
-1.144,0.7942010087194614
-1.194,0.7942010087194614
+0.8514,0.825744908165631
+0.8564,0.825744908165631
+0.8453,0.825744908165631
+0.717,0.825744908165631
+0.8406,0.825744908165631
 EOD
 $pareto1 << EOD
-0.1956,11.3
-0.7302,1.36
-1.081,0.7942010087194614
+0.1437,11.3
+0.5373,1.36
+0.717,0.825744908165631
 EOD
 $series2_1 << EOD
 1,0.1074
-4.048,0.01856
+3.6,0.01856
 EOD
 $series2_2 << EOD
-1.25,0.1074
-5.059,0.01856
+1.128,0.1074
+3.891,0.01856
 EOD
 $series2_3 << EOD
-0.1985,0.1074
-0.744,0.01856
+0.1506,0.1074
+0.5203,0.01856
 EOD
 $series2_4 << EOD
-1.249,0.05138
-4.655,0.009661
+1.161,0.05138
+3.827,0.009661
 EOD
 $series2_5 << EOD
-1.416,0.05138
-5.486,0.009658
+1.2,0.05138
+4.165,0.009658
 EOD
 $series2_6 << EOD
-0.1956,0.05138
-0.7302,0.009658
+0.1437,0.05138
+0.5373,0.009658
 EOD
 $series2_7 << EOD
-2.934,0.04005
+2.553,0.04005
 EOD
 $series2_8 << EOD
-2.867,0.04005
+2.011,0.04005
 EOD
 $series2_9 << EOD
-2.891,0.03609
+2.407,0.03609
 EOD
 $series2_10 << EOD
-2.497,0.03609
+2.121,0.03609
 EOD
 $series2_11 << EOD
-1.081,7.898e-07
-1.144,3.278e-07
-1.194,1.639e-07
+0.8514,7.898e-07
+0.8564,3.278e-07
+0.8453,1.639e-07
+0.717,0.0005937
+0.8406,2.384e-07
 EOD
 $pareto2 << EOD
-0.1956,0.05138
-0.7302,0.009658
-1.081,7.898e-07
-1.144,3.278e-07
-1.194,1.639e-07
+0.1437,0.05138
+0.5203,0.01856
+0.5373,0.009658
+0.717,0.0005937
+0.8406,2.384e-07
+0.8453,1.639e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -116,18 +121,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.16013845467606033:6.7008364865932215] noextend
-    set ylabel '% of rays'
+    set xrange [0.11741599801392291:5.097350532497539] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (2, 5, 10, 20)
-    set ytics add ('0' 0.7942010087194614)
-    set arrow from graph 0, first 0.7942010087194614 to graph 1, first 0.7942010087194614 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [0.6638362176124402:32.30228581463828] noextend
+    set ytics ('0' 0.825744908165631, 2, 5, 10, 20)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [0.7516496498014412:32.30228581463828] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -141,21 +153,23 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-7 to eps2e-8', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.16013845467606033:6.7008364865932215] noextend
+    set xrange [0.11741599801392291:5.097350532497539] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [7.338265725277253e-08:0.23987765855037815] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -169,7 +183,7 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-7 to eps2e-8', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

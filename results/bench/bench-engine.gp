@@ -12,95 +12,103 @@ cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
 1,23.1
-4.272,9.26
+3.49,9.26
 EOD
 $series1_2 << EOD
-1.4,23.1
-5.641,9.26
+0.9431,23.1
+3.702,9.26
 EOD
 $series1_3 << EOD
-0.2009,23.1
-0.934,9.26
+0.1509,23.1
+0.5367,9.26
 EOD
 $series1_4 << EOD
-1.295,7.55
-5.112,0.00708
+0.9614,7.55
+3.758,0.00708
 EOD
 $series1_5 << EOD
-1.422,7.55
-5.595,0.00708
+1.094,7.55
+4.478,0.00708
 EOD
 $series1_6 << EOD
-0.1675,7.55
-0.7539,0.00708
+0.168,7.55
+0.5598,0.00708
 EOD
 $series1_7 << EOD
-2.748,7.08
+2.334,7.08
 EOD
 $series1_8 << EOD
-2.365,7.08
+1.805,7.08
 EOD
 $series1_9 << EOD
-3.813,6.69
+2.276,6.69
 EOD
 $series1_10 << EOD
-2.492,6.69
+1.716,6.69
 EOD
 $series1_11 << EOD
-2.549,0.0016503995163436786
-2.695,0.0016503995163436786
-2.505,0.0016503995163436786
+1.824,0.0018339354534217783
+1.845,0.0018339354534217783
+1.763,0.0018339354534217783
+1.948,0.0018339354534217783
+2.022,0.0018339354534217783
 EOD
 $pareto1 << EOD
-0.1675,7.55
-0.7539,0.00708
-2.505,0.0016503995163436786
+0.1509,23.1
+0.168,7.55
+0.5598,0.00708
+1.763,0.0018339354534217783
 EOD
 $series2_1 << EOD
 1,0.06248
-4.272,0.01212
+3.49,0.01212
 EOD
 $series2_2 << EOD
-1.4,0.06248
-5.641,0.01212
+0.9431,0.06248
+3.702,0.01212
 EOD
 $series2_3 << EOD
-0.2009,0.06248
-0.934,0.01212
+0.1509,0.06248
+0.5367,0.01212
 EOD
 $series2_4 << EOD
-1.295,0.0149
-5.112,0.003355
+0.9614,0.0149
+3.758,0.003355
 EOD
 $series2_5 << EOD
-1.422,0.0149
-5.595,0.003356
+1.094,0.0149
+4.478,0.003356
 EOD
 $series2_6 << EOD
-0.1675,0.0149
-0.7539,0.003356
+0.168,0.0149
+0.5598,0.003356
 EOD
 $series2_7 << EOD
-2.748,0.02124
+2.334,0.02124
 EOD
 $series2_8 << EOD
-2.365,0.02124
+1.805,0.02124
 EOD
 $series2_9 << EOD
-3.813,0.02103
+2.276,0.02103
 EOD
 $series2_10 << EOD
-2.492,0.02103
+1.716,0.02103
 EOD
 $series2_11 << EOD
-2.549,1.431e-06
-2.695,5.96e-07
-2.505,2.98e-07
+1.824,1.431e-06
+1.845,5.96e-07
+1.763,2.98e-07
+1.948,0.0004174
+2.022,1.788e-07
 EOD
 $pareto2 << EOD
-0.1675,0.0149
-0.7539,0.003356
-2.505,2.98e-07
+0.1509,0.06248
+0.168,0.0149
+0.5367,0.01212
+0.5598,0.003356
+1.763,2.98e-07
+2.022,1.788e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -114,18 +122,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.13563580025172742:6.9662102353981314] noextend
-    set ylabel '% of rays'
+    set xrange [0.12312480304921748:5.488172839796429] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics autofreq
-    set ytics add ('0' 0.0016503995163436786)
-    set arrow from graph 0, first 0.0016503995163436786 to graph 1, first 0.0016503995163436786 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [0.0010157208428138794:37.534160194963] noextend
+    set ytics ('0' 0.0018339354534217783, 0.01, 0.1, 1, 10)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [0.0014218195812257639:37.534160194963] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -139,21 +154,23 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-7 to eps2e-8', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.13563580025172742:6.9662102353981314] noextend
+    set xrange [0.12312480304921748:5.488172839796429] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [1.4286464904850224e-07:0.13032643221402432] noextend
+    set yrange [8.313140184556567e-08:0.13438272123394848] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -167,7 +184,7 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-7 to eps2e-8', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -239,29 +239,37 @@ $series3_14 << EOD
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1800,800 noenhanced font "sans,10"
+        set terminal pngcairo size 1800,1150 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1800,800 noenhanced font "sans,10" background "white"
+        set terminal svg size 1800,1150 noenhanced font "sans,10" background "white"
         set output svg_out
     }
-    set multiplot layout 1,3 title 'Observed orders: max |error| against the step h'
+    set multiplot layout 1,3 title 'Observed orders: max |error| against the step h (64 x 64 images)'
     # panel 1
     set title 'analytic ramp, smooth TF'
     unset arrow
+    unset object
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xtics (0.02, 0.05, 0.1, 0.2)
+    set xtics (0.0125, 0.025, 0.05, 0.1, 0.2)
     set xrange [0.01058431640453159:0.23619853228590607] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [2.012906187536828e-06:0.24592879616461905] noextend
-    set key top left
+    set key below vertical maxcols 1
+    set bmargin 18
     set size noratio
     unset label
+    set arrow from 0.01058431640453159, 0.006949044666726987 to 0.23619853228590607, 0.1550741765776565 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 1' at 0.01058431640453159, 0.006949044666726987 left offset char 0.5, char 0.6 tc rgb '#404040' front
+    set arrow from 0.01058431640453159, 0.000367754437309306 to 0.23619853228590607, 0.18314146451543944 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 2' at 0.01058431640453159, 0.000367754437309306 left offset char 0.5, char 0.6 tc rgb '#404040' front
+    set arrow from 0.012514479988333918, 2.012906187536829e-06 to 0.23396951264226581, 0.24592879616461902 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 4' at 0.012514479988333918, 2.012906187536829e-06 left offset char 0.5, char 0.6 tc rgb '#404040' front
     plot $series1_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-eye: max order 1.02', \
          $series1_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry: max order 1.01', \
          $series1_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-riemann-entry-exit: max order 1.15', \
@@ -273,19 +281,27 @@ do for [format in "png svg"] {
     # panel 2
     set title 'analytic ramp, TF with a jump'
     unset arrow
+    unset object
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xtics (0.02, 0.05, 0.1, 0.2)
+    set xtics (0.0125, 0.025, 0.05, 0.1, 0.2)
     set xrange [0.01058431640453159:0.23619853228590607] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics (0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2)
     set yrange [0.0008309854329825856:0.2332344834598603] noextend
-    set key top left
+    set key below vertical maxcols 1
+    set bmargin 18
     set size noratio
     unset label
+    set arrow from 0.01058431640453159, 0.009125823029677252 to 0.23619853228590607, 0.20365094193403224 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 1' at 0.01058431640453159, 0.009125823029677252 left offset char 0.5, char 0.6 tc rgb '#404040' front
+    set arrow from 0.01388375972074796, 0.0008309854329825859 to 0.2325984219558993, 0.23323448345986028 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 2' at 0.01388375972074796, 0.0008309854329825859 left offset char 0.5, char 0.6 tc rgb '#404040' front
+    set arrow from 0.0526948948585116, 0.0008309854329825859 to 0.21568422378834262, 0.23323448345986025 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 4' at 0.0526948948585116, 0.0008309854329825859 left offset char 0.5, char 0.6 tc rgb '#404040' front
     plot $series2_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-eye: max order 0.98', \
          $series2_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry: max order 0.94', \
          $series2_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'ramp-jump-riemann-entry-exit: max order 1.31', \
@@ -300,19 +316,27 @@ do for [format in "png svg"] {
     # panel 3
     set title 'Neghip 64^3 (trilinear)'
     unset arrow
+    unset object
     set xlabel 'step h (voxels)'
     set logscale x
     set format x '%g'
-    set xtics (0.02, 0.05, 0.1, 0.2)
+    set xtics (0.0125, 0.025, 0.05, 0.1, 0.2)
     set xrange [0.01058431640453159:0.23619853228590607] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [9.050490589326488e-07:0.009974733418498392] noextend
-    set key top left
+    set key below vertical maxcols 1
+    set bmargin 18
     set size noratio
     unset label
+    set arrow from 0.01058431640453159, 0.0003206166887251734 to 0.23619853228590607, 0.0071548495348108 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 1' at 0.01058431640453159, 0.0003206166887251734 left offset char 0.5, char 0.6 tc rgb '#404040' front
+    set arrow from 0.01058431640453159, 1.6967542390202252e-05 to 0.23619853228590607, 0.008449824794244044 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 2' at 0.01058431640453159, 1.6967542390202252e-05 left offset char 0.5, char 0.6 tc rgb '#404040' front
+    set arrow from 0.022111066941969067, 9.050490589326488e-07 to 0.2265515269022728, 0.009974733418498388 nohead dt 2 lw 1 lc rgb 'gray50' back
+    set label 'order 4' at 0.022111066941969067, 9.050490589326488e-07 left offset char 0.5, char 0.6 tc rgb '#404040' front
     plot $series3_1 using 1:2 with linespoints lw 2 pt 7 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-eye: max order 0.98', \
          $series3_2 using 1:2 with linespoints lw 2 pt 5 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry: max order 0.98', \
          $series3_3 using 1:2 with linespoints lw 2 pt 9 ps 0.8 lc rgb '#1f4e9c' title 'neghip-riemann-entry-exit: max order 1.00', \

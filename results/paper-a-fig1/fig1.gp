@@ -22,6 +22,7 @@ do for [format in "png svg"] {
     # panel 1
     set title '(a) setup: eye at (-9, 0), 120 rays, square rotated by pi/7'
     unset arrow
+    unset object
     set xlabel 'x'
     unset logscale x
     set format x '% h'
@@ -32,6 +33,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [-4:4] extend
+    set bmargin
     unset key
     set size ratio -1
     unset label
@@ -40,6 +42,7 @@ do for [format in "png svg"] {
     # panel 2
     set title '(b) Eye Align'
     unset arrow
+    unset object
     set xlabel 'x'
     unset logscale x
     set format x '% h'
@@ -50,6 +53,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [-2.3:2.3] extend
+    set bmargin
     set key bottom right
     set size ratio -1
     unset label
@@ -63,6 +67,7 @@ do for [format in "png svg"] {
     # panel 3
     set title '(c) Entry Align'
     unset arrow
+    unset object
     set xlabel 'x'
     unset logscale x
     set format x '% h'
@@ -73,6 +78,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [-2.3:2.3] extend
+    set bmargin
     set key bottom right
     set size ratio -1
     unset label
@@ -86,6 +92,7 @@ do for [format in "png svg"] {
     # panel 4
     set title '(d) Entry Exit Align'
     unset arrow
+    unset object
     set xlabel 'x'
     unset logscale x
     set format x '% h'
@@ -96,6 +103,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [-2.3:2.3] extend
+    set bmargin
     set key bottom right
     set size ratio -1
     unset label
@@ -109,6 +117,7 @@ do for [format in "png svg"] {
     # panel 5
     set title '(e) Entry Exit Align Corner'
     unset arrow
+    unset object
     set xlabel 'x'
     unset logscale x
     set format x '% h'
@@ -119,6 +128,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [-2.3:2.3] extend
+    set bmargin
     set key bottom right
     set size ratio -1
     unset label

@@ -22,6 +22,7 @@ do for [format in "png svg"] {
     # panel 1
     set title 'max |error|'
     unset arrow
+    unset object
     set xlabel 'sampling rate (samples per voxel)'
     set logscale x
     set format x '%g'
@@ -32,6 +33,7 @@ do for [format in "png svg"] {
     set format y '%g'
     set ytics autofreq
     set yrange [0.00027087803627211997:0.6739458129394931] noextend
+    set bmargin
     set key bottom left
     set size noratio
     unset label
@@ -42,6 +44,7 @@ do for [format in "png svg"] {
     # panel 2
     set title 'mean |error|'
     unset arrow
+    unset object
     set xlabel 'sampling rate (samples per voxel)'
     set logscale x
     set format x '%g'
@@ -52,6 +55,7 @@ do for [format in "png svg"] {
     set format y '%g'
     set ytics (2e-04, 5e-04, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1)
     set yrange [0.00019179993292088853:0.13821460249205844] noextend
+    set bmargin
     set key bottom left
     set size noratio
     unset label

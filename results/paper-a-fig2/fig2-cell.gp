@@ -22,6 +22,7 @@ do for [format in "png svg"] {
     # panel 1
     set title '(a) Eye Align'
     unset arrow
+    unset object
     set xlabel 'ray'
     unset logscale x
     set format x '% h'
@@ -32,6 +33,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [0:1.45] extend
+    set bmargin
     set key top left
     set size noratio
     unset label
@@ -42,6 +44,7 @@ do for [format in "png svg"] {
     # panel 2
     set title '(b) Entry Align'
     unset arrow
+    unset object
     set xlabel 'ray'
     unset logscale x
     set format x '% h'
@@ -52,6 +55,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [0:1.45] extend
+    set bmargin
     set key top left
     set size noratio
     unset label
@@ -62,6 +66,7 @@ do for [format in "png svg"] {
     # panel 3
     set title '(c) Entry Exit Align'
     unset arrow
+    unset object
     set xlabel 'ray'
     unset logscale x
     set format x '% h'
@@ -72,6 +77,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [0:1.45] extend
+    set bmargin
     set key top left
     set size noratio
     unset label
@@ -82,6 +88,7 @@ do for [format in "png svg"] {
     # panel 4
     set title '(d) Entry Exit Align Corner'
     unset arrow
+    unset object
     set xlabel 'ray'
     unset logscale x
     set format x '% h'
@@ -92,6 +99,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [0:1.45] extend
+    set bmargin
     set key top left
     set size noratio
     unset label

@@ -29310,6 +29310,7 @@ do for [format in "png svg"] {
     # panel 1
     set title 'f, analytic (= node-centred reconstruction)'
     unset arrow
+    unset object
     set xlabel 'x'
     unset logscale x
     set format x '% h'
@@ -29320,6 +29321,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [-1.5:1.5] noextend
+    set bmargin
     unset key
     set size ratio -1
     unset label
@@ -29331,6 +29333,7 @@ do for [format in "png svg"] {
     # panel 2
     set title 'cell-centred reconstruction from 5x5 voxels'
     unset arrow
+    unset object
     set xlabel 'x'
     unset logscale x
     set format x '% h'
@@ -29341,6 +29344,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [-1.5:1.5] noextend
+    set bmargin
     unset key
     set size ratio -1
     unset label

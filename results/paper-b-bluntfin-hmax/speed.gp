@@ -11,61 +11,60 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.2878,14.2
-1.366,2.9
+0.3372,14.2
+1.47,2.9
 EOD
 $series1_2 << EOD
-1.013,0.518
-0.4852,1.61
-0.2898,6.19
-0.1755,18.1
-0.1043,25.9
+1.078,0.518
+0.6097,1.61
+0.3457,6.19
+0.1897,18.1
+0.1275,25.9
 EOD
 $series1_3 << EOD
-0.9704,0.518
-0.5316,1.58
-0.3306,5.19
-0.2504,14.4
-0.1568,25.6
+1.151,0.518
+0.6062,1.58
+0.3606,5.19
+0.2354,14.4
+0.1598,25.6
 EOD
 $pareto1 << EOD
-0.1043,25.9
-0.1568,25.6
-0.1755,18.1
-0.2504,14.4
-0.2878,14.2
-0.2898,6.19
-0.3306,5.19
-0.4852,1.61
-0.5316,1.58
-0.9704,0.518
+0.1275,25.9
+0.1598,25.6
+0.1897,18.1
+0.2354,14.4
+0.3372,14.2
+0.3457,6.19
+0.3606,5.19
+0.6062,1.58
+1.078,0.518
 EOD
 $series2_1 << EOD
-0.2878,0.04754
-1.366,0.008352
+0.3372,0.04754
+1.47,0.008352
 EOD
 $series2_2 << EOD
-1.013,0.01018
-0.4852,0.03639
-0.2898,0.1157
-0.1755,0.2807
-0.1043,0.6652
+1.078,0.01018
+0.6097,0.03639
+0.3457,0.1157
+0.1897,0.2807
+0.1275,0.6652
 EOD
 $series2_3 << EOD
-0.9704,0.0102
-0.5316,0.0364
-0.3306,0.1157
-0.2504,0.2807
-0.1568,0.6652
+1.151,0.0102
+0.6062,0.0364
+0.3606,0.1157
+0.2354,0.2807
+0.1598,0.6652
 EOD
 $pareto2 << EOD
-0.1043,0.6652
-0.1755,0.2807
-0.2878,0.04754
-0.4852,0.03639
-0.9704,0.0102
-1.013,0.01018
-1.366,0.008352
+0.1275,0.6652
+0.1897,0.2807
+0.3372,0.04754
+0.6062,0.0364
+0.6097,0.03639
+1.078,0.01018
+1.47,0.008352
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -79,16 +78,18 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.1, 0.2, 0.5, 1)
-    set xrange [0.08938287609928665:1.5939719800662924] noextend
+    set xtics (0.2, 0.5, 1)
+    set xrange [0.11010366000056113:1.7022594889129463] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
     set ytics (0.5, 1, 2, 5, 10, 20)
     set yrange [0.40962981513528207:32.75201048431799] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -99,16 +100,18 @@ do for [format in "png svg"] {
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.1, 0.2, 0.5, 1)
-    set xrange [0.08938287609928665:1.5939719800662924] noextend
+    set xtics (0.2, 0.5, 1)
+    set xrange [0.11010366000056113:1.7022594889129463] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics (0.01, 0.02, 0.05, 0.1, 0.2, 0.5)
     set yrange [0.006422746488511732:0.8650116285824897] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label

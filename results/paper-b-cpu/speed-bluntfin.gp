@@ -11,161 +11,164 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3201,14.2
-0.3453,10
-0.4488,6.21
-0.6148,5.14
-1.278,2.9
+0.2638,14.2
+0.3382,10
+0.4484,6.21
+0.649,5.14
+1.217,2.9
 EOD
 $series1_2 << EOD
-0.05496,14.2
-0.07021,10
-0.08572,6.21
-0.1181,5.14
-0.2426,2.9
+0.05874,14.2
+0.06899,10
+0.09099,6.21
+0.1326,5.14
+0.2444,2.9
 EOD
 $series1_3 << EOD
-0.0234,15
-0.03401,2.85
-0.05697,1.26
+0.01805,15
+0.03189,2.85
+0.0559,1.26
 EOD
 $series1_4 << EOD
-0.5382,1.61
-0.5315,1.61
-0.4986,1.61
+0.5161,1.61
+0.4961,1.61
+0.4918,1.61
 EOD
 $series1_5 << EOD
-0.5541,1.58
-0.5777,1.58
-0.6098,1.58
+0.509,1.58
+0.5655,1.58
+0.599,1.58
 EOD
 $series1_6 << EOD
-0.1514,18.9
-0.2752,4.13
-0.5288,1.69
+0.1555,18.9
+0.2795,4.13
+0.4752,1.69
 EOD
 $series1_7 << EOD
-0.1849,6.99
-0.3621,1.88
-0.6578,0.14
+0.1976,6.75
+0.3773,1.88
+0.6764,0.14
 EOD
 $series1_8 << EOD
-0.3235,14.1
-0.3542,10.1
-0.4224,6.22
-0.6896,5.14
-1.198,2.9
+0.3406,14.1
+0.345,10.1
+0.4897,6.22
+0.6761,5.14
+1.54,2.9
 EOD
 $series1_9 << EOD
-1.151,14.1
-1.362,9.99
-1.742,6.16
-2.891,5.13
-5.595,2.9
+1.571,14.1
+1.605,9.99
+1.998,6.16
+2.708,5.13
+5.765,2.9
 EOD
 $series1_10 << EOD
-0.923,0.05411917869835199
-0.9186,0.05411917869835199
+0.8793,0.05797491983658468
+0.861,0.05797491983658468
+0.8696,0.05797491983658468
+0.8546,0.05797491983658468
 EOD
 $series1_11 << EOD
-0.08037,25.2
-0.1047,26
-0.1703,26.8
-0.3145,26.9
-0.711,27.4
-1.266,27.5
+0.06048,25.2
+0.143,26
+0.1719,26.8
+0.2933,26.9
+0.6488,27.4
+1.12,27.5
 EOD
 $series1_12 << EOD
-0.1041,17.8
-0.203,16.9
-0.3289,17
+0.0821,17.8
+0.1632,16.9
+0.2963,17
 EOD
 $pareto1 << EOD
-0.0234,15
-0.03401,2.85
-0.05697,1.26
-0.6578,0.14
-0.9186,0.05411917869835199
+0.01805,15
+0.03189,2.85
+0.0559,1.26
+0.6764,0.14
+0.8546,0.05797491983658468
 EOD
 $series2_1 << EOD
-0.3201,0.04754
-0.3453,0.03703
-0.4488,0.02677
-0.6148,0.01692
-1.278,0.008352
+0.2638,0.04754
+0.3382,0.03703
+0.4484,0.02677
+0.649,0.01692
+1.217,0.008352
 EOD
 $series2_2 << EOD
-0.05496,0.04754
-0.07021,0.03703
-0.08572,0.02677
-0.1181,0.01692
-0.2426,0.008352
+0.05874,0.04754
+0.06899,0.03703
+0.09099,0.02677
+0.1326,0.01692
+0.2444,0.008352
 EOD
 $series2_3 << EOD
-0.0234,0.223
-0.03401,0.05481
-0.05697,0.02029
+0.01805,0.223
+0.03189,0.05481
+0.0559,0.02029
 EOD
 $series2_4 << EOD
-0.5382,0.03639
-0.5315,0.03639
-0.4986,0.03639
+0.5161,0.03639
+0.4961,0.03639
+0.4918,0.03639
 EOD
 $series2_5 << EOD
-0.5541,0.0364
-0.5777,0.0364
-0.6098,0.0364
+0.509,0.0364
+0.5655,0.0364
+0.599,0.0364
 EOD
 $series2_6 << EOD
-0.1514,0.2196
-0.2752,0.06813
-0.5288,0.01726
+0.1555,0.2196
+0.2795,0.06813
+0.4752,0.01726
 EOD
 $series2_7 << EOD
-0.1849,0.3709
-0.3621,0.03801
-0.6578,0.007797
+0.1976,0.2016
+0.3773,0.03801
+0.6764,0.007789
 EOD
 $series2_8 << EOD
-0.3235,0.04855
-0.3542,0.03697
-0.4224,0.02721
-0.6896,0.0167
-1.198,0.008275
+0.3406,0.04855
+0.345,0.03697
+0.4897,0.02721
+0.6761,0.0167
+1.54,0.008275
 EOD
 $series2_9 << EOD
-1.151,0.04535
-1.362,0.03444
-1.742,0.02558
-2.891,0.0168
-5.595,0.008052
+1.571,0.04535
+1.605,0.03444
+1.998,0.02558
+2.708,0.0168
+5.765,0.008052
 EOD
 $series2_10 << EOD
-0.923,1.076e-05
-0.9186,2.325e-06
+0.8793,1.076e-05
+0.861,2.325e-06
+0.8696,0.0002756
+0.8546,7.153e-07
 EOD
 $series2_11 << EOD
-0.08037,0.1418
-0.1047,0.04936
-0.1703,0.05017
-0.3145,0.05409
-0.711,0.05721
-1.266,0.08155
+0.06048,0.1418
+0.143,0.04936
+0.1719,0.05017
+0.2933,0.05409
+0.6488,0.05721
+1.12,0.08155
 EOD
 $series2_12 << EOD
-0.1041,0.1497
-0.203,0.0476
-0.3289,0.01615
+0.0821,0.1497
+0.1632,0.0476
+0.2963,0.01615
 EOD
 $pareto2 << EOD
-0.0234,0.223
-0.03401,0.05481
-0.05496,0.04754
-0.05697,0.02029
-0.1181,0.01692
-0.2426,0.008352
-0.6578,0.007797
-0.9186,2.325e-06
+0.01805,0.223
+0.03189,0.05481
+0.0559,0.02029
+0.1326,0.01692
+0.2444,0.008352
+0.6764,0.007789
+0.8546,7.153e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -179,18 +182,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.016846155431473855:7.771684200146648] noextend
-    set ylabel '% of rays'
+    set xrange [0.012770793422946621:8.14814291906309] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (0.2, 0.5, 1, 2, 5, 10, 20)
-    set ytics add ('0' 0.05411917869835199)
-    set arrow from graph 0, first 0.05411917869835199 to graph 1, first 0.05411917869835199 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [0.039423839467666116:37.750696895600605] noextend
+    set ytics ('0' 0.05797491983658468, 0.2, 0.5, 1, 2, 5, 10, 20)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [0.04910145847312393:37.750696895600605] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -203,23 +213,25 @@ do for [format in "png svg"] {
          $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
          $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.016846155431473855:7.771684200146648] noextend
+    set xrange [0.012770793422946621:8.14814291906309] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [1.1330600432571975e-06:0.7610739652605097] noextend
+    set yrange [3.348568802670109e-07:0.4763584366933333] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -232,7 +244,7 @@ do for [format in "png svg"] {
          $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
          $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'

@@ -11,160 +11,165 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.4426,27
-0.5493,26.5
-0.6805,25.7
-1.059,23.4
-1.555,16.4
+0.4775,27
+0.514,26.5
+0.6148,25.7
+0.841,23.4
+1.471,16.4
 EOD
 $series1_2 << EOD
-0.07552,27
-0.08905,26.5
-0.1126,25.7
-0.153,23.4
-0.2673,16.4
+0.07662,27
+0.0963,26.5
+0.1163,25.7
+0.1624,23.4
+0.296,16.4
 EOD
 $series1_3 << EOD
-0.03075,27.4
-0.04908,21.8
-0.08277,11.3
+0.03005,27.4
+0.04389,21.8
+0.07781,11.3
 EOD
 $series1_4 << EOD
-1.174,14.7
-1.205,14.7
-1.312,14.2
+1.495,14.7
+1.48,14.7
+1.221,14.2
 EOD
 $series1_5 << EOD
-1.266,12.5
-1.443,12.5
-1.311,12.3
+1.25,12.5
+1.327,12.5
+1.238,12.3
 EOD
 $series1_6 << EOD
-0.5044,28.2
-0.7939,24
-1.475,11.8
+0.5271,28.2
+0.9168,24
+1.385,11.8
 EOD
 $series1_7 << EOD
-0.6626,22.5
-1.219,11.4
-2.244,7.35
+0.7457,22.5
+1.404,11.4
+2.436,7.35
 EOD
 $series1_8 << EOD
-0.5221,27.1
-0.5222,26.6
-0.6834,25.7
-0.9231,23.4
-1.548,16.4
+0.4819,27.1
+0.597,26.6
+0.6425,25.7
+0.9071,23.4
+1.654,16.4
 EOD
 $series1_9 << EOD
-1.858,26.9
-2.1,26.4
-2.801,25.6
-3.68,23.2
-6.816,16.1
+2.077,26.9
+2.244,26.4
+2.658,25.6
+3.645,23.2
+7.504,16.1
 EOD
 $series1_10 << EOD
-0.4637,4.832744308375114
-0.4665,4.832744308375114
+0.4281,5.442468800928215
+0.4489,5.442468800928215
+0.4996,5.442468800928215
+0.4922,5.442468800928215
 EOD
 $series1_11 << EOD
-0.1141,29.9
-0.144,29.9
-0.2079,29.9
-0.3413,29.9
-0.8219,29.8
-1.551,29.9
+0.1256,29.9
+0.1255,29.9
+0.2176,29.9
+0.3221,29.9
+0.7149,29.8
+1.425,29.9
 EOD
 $series1_12 << EOD
-0.3231,28.3
-0.5728,27.4
-1.095,27.1
+0.2728,28.3
+0.487,27.4
+0.9577,27.1
 EOD
 $pareto1 << EOD
-0.03075,27.4
-0.04908,21.8
-0.08277,11.3
-0.4637,4.832744308375114
+0.03005,27.4
+0.04389,21.8
+0.07781,11.3
+0.4281,5.442468800928215
 EOD
 $series2_1 << EOD
-0.4426,0.1074
-0.5493,0.09284
-0.6805,0.05965
-1.059,0.03929
-1.555,0.01856
+0.4775,0.1074
+0.514,0.09284
+0.6148,0.05965
+0.841,0.03929
+1.471,0.01856
 EOD
 $series2_2 << EOD
-0.07552,0.1074
-0.08905,0.09284
-0.1126,0.05965
-0.153,0.03929
-0.2673,0.01856
+0.07662,0.1074
+0.0963,0.09284
+0.1163,0.05965
+0.1624,0.03929
+0.296,0.01856
 EOD
 $series2_3 << EOD
-0.03075,0.2766
-0.04908,0.1414
-0.08277,0.05138
+0.03005,0.2766
+0.04389,0.1414
+0.07781,0.05138
 EOD
 $series2_4 << EOD
-1.174,0.04547
-1.205,0.04547
-1.312,0.04005
+1.495,0.04547
+1.48,0.04547
+1.221,0.04005
 EOD
 $series2_5 << EOD
-1.266,0.03886
-1.443,0.03886
-1.311,0.03609
+1.25,0.03886
+1.327,0.03886
+1.238,0.03609
 EOD
 $series2_6 << EOD
-0.5044,0.2483
-0.7939,0.1241
-1.475,0.04762
+0.5271,0.2483
+0.9168,0.1241
+1.385,0.04762
 EOD
 $series2_7 << EOD
-0.6626,0.2226
-1.219,0.1105
-2.244,0.04851
+0.7457,0.2206
+1.404,0.1108
+2.436,0.04851
 EOD
 $series2_8 << EOD
-0.5221,0.1169
-0.5222,0.08383
-0.6834,0.05987
-0.9231,0.0394
-1.548,0.01886
+0.4819,0.1169
+0.597,0.08383
+0.6425,0.05987
+0.9071,0.0394
+1.654,0.01886
 EOD
 $series2_9 << EOD
-1.858,0.1069
-2.1,0.07774
-2.801,0.05721
-3.68,0.03938
-6.816,0.01874
+2.077,0.1069
+2.244,0.07774
+2.658,0.05721
+3.645,0.03938
+7.504,0.01874
 EOD
 $series2_10 << EOD
-0.4637,7.778e-06
-0.4665,7.898e-07
+0.4281,7.778e-06
+0.4489,7.898e-07
+0.4996,0.0005937
+0.4922,2.384e-07
 EOD
 $series2_11 << EOD
-0.1141,0.4228
-0.144,0.402
-0.2079,0.3922
-0.3413,0.9932
-0.8219,0.9938
-1.551,0.9938
+0.1256,0.4228
+0.1255,0.402
+0.2176,0.3922
+0.3221,0.9932
+0.7149,0.9938
+1.425,0.9938
 EOD
 $series2_12 << EOD
-0.3231,0.4893
-0.5728,0.3752
-1.095,0.3207
+0.2728,0.4893
+0.487,0.3752
+0.9577,0.3207
 EOD
 $pareto2 << EOD
-0.03075,0.2766
-0.04908,0.1414
-0.07552,0.1074
-0.08277,0.05138
-0.153,0.03929
-0.2673,0.01856
-0.4637,7.778e-06
-0.4665,7.898e-07
+0.03005,0.2766
+0.04389,0.1414
+0.07662,0.1074
+0.07781,0.05138
+0.1624,0.03929
+0.296,0.01856
+0.4281,7.778e-06
+0.4489,7.898e-07
+0.4922,2.384e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -178,18 +183,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.022238426362499612:9.424767588476152] noextend
-    set ylabel '% of rays'
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
+    set xrange [0.02157732362811847:10.450563929353413] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (7, 8, 9, 10, 20, 30)
-    set ytics add ('0' 4.832744308375114)
-    set arrow from graph 0, first 4.832744308375114 to graph 1, first 4.832744308375114 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [4.2023863551087945:34.385] noextend
+    set ytics ('0' 5.442468800928215, 7, 8, 9, 10, 20, 30)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [5.191208033508357:34.385] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -202,23 +214,25 @@ do for [format in "png svg"] {
          $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
          $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.022238426362499612:9.424767588476152] noextend
+    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
+    set xrange [0.02157732362811847:10.450563929353413] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [3.4004016451363414e-07:2.3082662635534894] noextend
+    set yrange [9.552272134915883e-08:2.480267696038439] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -231,7 +245,7 @@ do for [format in "png svg"] {
          $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
          $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'

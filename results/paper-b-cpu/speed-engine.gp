@@ -11,159 +11,163 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3616,23.1
-0.4181,20.9
-0.5222,17.1
-0.7171,10.7
-1.294,9.26
+0.3874,23.1
+0.4471,20.9
+0.5383,17.1
+0.8305,10.7
+1.503,9.26
 EOD
 $series1_2 << EOD
-0.07064,23.1
-0.08673,20.9
-0.1386,17.1
-0.1493,10.7
-0.281,9.26
+0.06757,23.1
+0.07706,20.9
+0.1009,17.1
+0.1408,10.7
+0.2459,9.26
 EOD
 $series1_3 << EOD
-0.02552,22.8
-0.03889,13.3
-0.07079,7.55
+0.02426,22.8
+0.03735,13.3
+0.0686,7.55
 EOD
 $series1_4 << EOD
-0.98,7.09
-0.9387,7.09
-0.9888,7.08
+0.9116,7.09
+0.947,7.09
+0.93,7.08
 EOD
 $series1_5 << EOD
-0.9787,6.69
-1.09,6.69
-0.9815,6.69
+1.057,6.69
+1.236,6.69
+1.062,6.69
 EOD
 $series1_6 << EOD
-0.3164,27.3
-0.5229,22.9
-1.028,7.79
+0.3909,27.3
+0.6718,22.9
+1.109,7.79
 EOD
 $series1_7 << EOD
-0.4563,14.3
-0.8106,6.09
-1.862,1.61
+0.6068,14.3
+0.9758,6.09
+1.937,1.61
 EOD
 $series1_8 << EOD
-0.4449,23.1
-0.4873,20.8
-0.6474,17.1
-0.8137,10.7
-1.41,9.26
+0.4187,23.1
+0.4459,20.8
+0.5422,17.1
+0.7424,10.7
+1.503,9.26
 EOD
 $series1_9 << EOD
-1.578,23.2
-2.014,20.8
-2.153,16.9
-2.938,10.3
-5.257,9.26
+1.563,23.2
+1.663,20.8
+2.087,16.9
+4.599,10.3
+5.087,9.26
 EOD
 $series1_10 << EOD
-0.8573,0.9591988463477427
-0.8631,0.9591988463477427
+0.8612,0.9958519752751349
+0.898,0.9958519752751349
+0.9351,0.9958519752751349
+0.9455,0.9958519752751349
 EOD
 $series1_11 << EOD
-0.085,25.2
-0.1396,25.4
-0.2695,26.7
-0.3904,27.8
-0.8253,28.4
-1.498,28.6
+0.08053,25.2
+0.1324,25.4
+0.2047,26.7
+0.4629,27.8
+0.7317,28.4
+1.393,28.6
 EOD
 $series1_12 << EOD
-0.2444,24.5
-0.4378,23.6
-0.7534,24.1
+0.1813,24.5
+0.3982,23.6
+0.8246,24.1
 EOD
 $pareto1 << EOD
-0.02552,22.8
-0.03889,13.3
-0.07079,7.55
-0.8106,6.09
-0.8573,0.9591988463477427
+0.02426,22.8
+0.03735,13.3
+0.0686,7.55
+0.8612,0.9958519752751349
 EOD
 $series2_1 << EOD
-0.3616,0.06248
-0.4181,0.04992
-0.5222,0.03695
-0.7171,0.02473
-1.294,0.01212
+0.3874,0.06248
+0.4471,0.04992
+0.5383,0.03695
+0.8305,0.02473
+1.503,0.01212
 EOD
 $series2_2 << EOD
-0.07064,0.06248
-0.08673,0.04992
-0.1386,0.03695
-0.1493,0.02473
-0.281,0.01212
+0.06757,0.06248
+0.07706,0.04992
+0.1009,0.03695
+0.1408,0.02473
+0.2459,0.01212
 EOD
 $series2_3 << EOD
-0.02552,0.1125
-0.03889,0.04035
-0.07079,0.0149
+0.02426,0.1125
+0.03735,0.04035
+0.0686,0.0149
 EOD
 $series2_4 << EOD
-0.98,0.02604
-0.9387,0.02604
-0.9888,0.02124
+0.9116,0.02604
+0.947,0.02604
+0.93,0.02124
 EOD
 $series2_5 << EOD
-0.9787,0.02591
-1.09,0.02591
-0.9815,0.02103
+1.057,0.02591
+1.236,0.02591
+1.062,0.02103
 EOD
 $series2_6 << EOD
-0.3164,0.1469
-0.5229,0.04854
-1.028,0.01691
+0.3909,0.1469
+0.6718,0.04854
+1.109,0.01691
 EOD
 $series2_7 << EOD
-0.4563,0.1722
-0.8106,0.05081
-1.862,0.01408
+0.6068,0.1116
+0.9758,0.03518
+1.937,0.01408
 EOD
 $series2_8 << EOD
-0.4449,0.06325
-0.4873,0.0497
-0.6474,0.03759
-0.8137,0.02473
-1.41,0.01216
+0.4187,0.06325
+0.4459,0.0497
+0.5422,0.03759
+0.7424,0.02473
+1.503,0.01216
 EOD
 $series2_9 << EOD
-1.578,0.06274
-2.014,0.04945
-2.153,0.03726
-2.938,0.02451
-5.257,0.01216
+1.563,0.06274
+1.663,0.04945
+2.087,0.03726
+4.599,0.02451
+5.087,0.01216
 EOD
 $series2_10 << EOD
-0.8573,1.296e-05
-0.8631,1.431e-06
+0.8612,1.296e-05
+0.898,1.431e-06
+0.9351,0.0004174
+0.9455,1.788e-07
 EOD
 $series2_11 << EOD
-0.085,0.1676
-0.1396,0.1323
-0.2695,0.131
-0.3904,0.1349
-0.8253,0.131
-1.498,0.1252
+0.08053,0.1676
+0.1324,0.1323
+0.2047,0.131
+0.4629,0.1349
+0.7317,0.131
+1.393,0.1252
 EOD
 $series2_12 << EOD
-0.2444,0.1495
-0.4378,0.1113
-0.7534,0.09071
+0.1813,0.1495
+0.3982,0.1113
+0.8246,0.09071
 EOD
 $pareto2 << EOD
-0.02552,0.1125
-0.03889,0.04035
-0.07079,0.0149
-0.281,0.01212
-0.8573,1.296e-05
-0.8631,1.431e-06
+0.02426,0.1125
+0.03735,0.04035
+0.0686,0.0149
+0.2459,0.01212
+0.8612,1.296e-05
+0.898,1.431e-06
+0.9455,1.788e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -177,18 +181,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.018537417517057595:7.237180684771818] noextend
-    set ylabel '% of rays'
+    set xrange [0.017603399292913845:7.010613004141665] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (2, 5, 10, 20)
-    set ytics add ('0' 0.9591988463477427)
-    set arrow from graph 0, first 0.9591988463477427 to graph 1, first 0.9591988463477427 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [0.8071165233859663:33.989004326735646] noextend
+    set ytics ('0' 0.9958519752751349, 2, 5, 10, 20)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [0.9096690386795501:33.989004326735646] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -201,23 +212,25 @@ do for [format in "png svg"] {
          $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
          $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.018537417517057595:7.237180684771818] noextend
+    set xrange [0.017603399292913845:7.010613004141665] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [7.092772383071053e-07:0.347421553507269] noextend
+    set yrange [7.835254805716079e-08:0.3824620991028673] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -230,7 +243,7 @@ do for [format in "png svg"] {
          $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
          $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'

@@ -11,160 +11,163 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3531,25.1
-0.4143,25
-0.4803,24.8
-0.6441,23.2
-1.105,6.98
+0.3439,25.1
+0.4279,25
+0.482,24.8
+0.6501,23.2
+1.11,6.98
 EOD
 $series1_2 << EOD
-0.05009,25.1
-0.06394,25
-0.07769,24.8
-0.09931,23.2
-0.1807,6.98
+0.05096,25.1
+0.06124,25
+0.07736,24.8
+0.1077,23.2
+0.1725,6.98
 EOD
 $series1_3 << EOD
-0.02229,21.7
-0.03088,14.8
-0.0508,3.01
+0.02046,21.7
+0.03121,14.8
+0.04991,3.01
 EOD
 $series1_4 << EOD
-1.058,7.88
-1.093,7.88
-1.081,7.82
+1.062,7.88
+1.152,7.88
+1.105,7.82
 EOD
 $series1_5 << EOD
-1.308,6.08
-1.181,6.08
-1.24,6.02
+1.218,6.08
+1.219,6.08
+1.255,6.02
 EOD
 $series1_6 << EOD
-0.4346,25.2
-0.748,20.9
-1.359,7.48
+0.4031,25.2
+0.7293,20.9
+1.442,7.48
 EOD
 $series1_7 << EOD
-0.5937,10.5
-1.228,1.58
-2.415,0.291
+0.7909,10.5
+1.325,1.58
+2.669,0.291
 EOD
 $series1_8 << EOD
-0.358,25
-0.4742,25
-0.6146,24.8
-0.8154,23.2
-1.323,6.99
+0.4422,25
+0.4877,25
+0.5671,24.8
+0.6602,23.2
+1.108,6.99
 EOD
 $series1_9 << EOD
-1.465,25.1
-1.843,25
-1.858,24.8
-2.489,23.7
-5.265,7
+1.43,25.1
+1.605,25
+2.105,24.8
+2.688,23.7
+4.589,7
 EOD
 $series1_10 << EOD
-0.4364,0.12927216437568614
-0.5661,0.12927216437568614
+0.4251,0.13709488532160133
+0.4173,0.13709488532160133
+0.4656,0.13709488532160133
+0.4278,0.13709488532160133
 EOD
 $series1_11 << EOD
-0.1098,23.7
-0.1458,23.2
-0.2184,24.8
-0.3852,25.7
-0.8614,26.3
-1.826,26.4
+0.09257,23.7
+0.1697,23.2
+0.204,24.8
+0.3454,25.7
+0.8077,26.3
+1.563,26.4
 EOD
 $series1_12 << EOD
-0.3117,22.9
-0.5743,21
-1.186,21.1
+0.2751,22.9
+0.5559,21
+1.088,21.1
 EOD
 $pareto1 << EOD
-0.02229,21.7
-0.03088,14.8
-0.0508,3.01
-0.4364,0.12927216437568614
+0.02046,21.7
+0.03121,14.8
+0.04991,3.01
+0.4173,0.13709488532160133
 EOD
 $series2_1 << EOD
-0.3531,0.157
-0.4143,0.12
-0.4803,0.09271
-0.6441,0.05941
-1.105,0.02978
+0.3439,0.157
+0.4279,0.12
+0.482,0.09271
+0.6501,0.05941
+1.11,0.02978
 EOD
 $series2_2 << EOD
-0.05009,0.157
-0.06394,0.12
-0.07769,0.09271
-0.09931,0.05941
-0.1807,0.02978
+0.05096,0.157
+0.06124,0.12
+0.07736,0.09271
+0.1077,0.05941
+0.1725,0.02978
 EOD
 $series2_3 << EOD
-0.02229,0.368
-0.03088,0.2132
-0.0508,0.08404
+0.02046,0.368
+0.03121,0.2132
+0.04991,0.08404
 EOD
 $series2_4 << EOD
-1.058,0.1037
-1.093,0.09117
-1.081,0.1109
+1.062,0.1037
+1.152,0.09117
+1.105,0.1109
 EOD
 $series2_5 << EOD
-1.308,0.1033
-1.181,0.09043
-1.24,0.1111
+1.218,0.1033
+1.219,0.09043
+1.255,0.1111
 EOD
 $series2_6 << EOD
-0.4346,0.4111
-0.748,0.219
-1.359,0.1099
+0.4031,0.4111
+0.7293,0.219
+1.442,0.1099
 EOD
 $series2_7 << EOD
-0.5937,0.9554
-1.228,0.322
-2.415,0.171
+0.7909,0.4697
+1.325,0.1776
+2.669,0.1013
 EOD
 $series2_8 << EOD
-0.358,0.1648
-0.4742,0.1217
-0.6146,0.09084
-0.8154,0.06025
-1.323,0.02988
+0.4422,0.1648
+0.4877,0.1217
+0.5671,0.09084
+0.6602,0.06025
+1.108,0.02988
 EOD
 $series2_9 << EOD
-1.465,0.1546
-1.843,0.1197
-1.858,0.08799
-2.489,0.05886
-5.265,0.02946
+1.43,0.1546
+1.605,0.1197
+2.105,0.08799
+2.688,0.05886
+4.589,0.02946
 EOD
 $series2_10 << EOD
-0.4364,1.377e-05
-0.5661,8.941e-07
+0.4251,1.377e-05
+0.4173,8.941e-07
+0.4656,0.000526
+0.4278,2.384e-07
 EOD
 $series2_11 << EOD
-0.1098,0.3875
-0.1458,0.1806
-0.2184,0.1303
-0.3852,0.1326
-0.8614,0.1342
-1.826,0.2229
+0.09257,0.3875
+0.1697,0.1806
+0.204,0.1303
+0.3454,0.1326
+0.8077,0.1342
+1.563,0.2229
 EOD
 $series2_12 << EOD
-0.3117,0.354
-0.5743,0.2112
-1.186,0.08796
+0.2751,0.354
+0.5559,0.2112
+1.088,0.08796
 EOD
 $pareto2 << EOD
-0.02229,0.368
-0.03088,0.2132
-0.05009,0.157
-0.0508,0.08404
-0.09931,0.05941
-0.1807,0.02978
-0.4364,1.377e-05
-0.5661,8.941e-07
+0.02046,0.368
+0.03121,0.2132
+0.04991,0.08404
+0.1077,0.05941
+0.1725,0.02978
+0.4173,8.941e-07
+0.4278,2.384e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -178,18 +181,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.016058788194238685:7.307951794401486] noextend
-    set ylabel '% of rays'
+    set xrange [0.014786210467732827:6.349898792857932] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (0.5, 1, 2, 5, 10, 20)
-    set ytics add ('0' 0.12927216437568614)
-    set arrow from graph 0, first 0.12927216437568614 to graph 1, first 0.12927216437568614 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [0.09863756984062615:34.59924190176551] noextend
+    set ytics ('0' 0.13709488532160133, 0.5, 1, 2, 5, 10, 20)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [0.11896805097580683:34.59924190176551] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -202,23 +212,25 @@ do for [format in "png svg"] {
          $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
          $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.016058788194238685:7.307951794401486] noextend
+    set xrange [0.014786210467732827:6.349898792857932] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [3.887390297297362e-07:2.197420569254091] noextend
+    set yrange [9.991608125696326e-08:1.120705281785621] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -231,7 +243,7 @@ do for [format in "png svg"] {
          $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
          $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'

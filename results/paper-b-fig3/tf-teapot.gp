@@ -22,6 +22,7 @@ do for [format in "png svg"] {
     # panel 1
     set title 'colour'
     unset arrow
+    unset object
     set xlabel 's'
     unset logscale x
     set format x '% h'
@@ -32,6 +33,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [0:1.05] extend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -41,6 +43,7 @@ do for [format in "png svg"] {
     # panel 2
     set title 'extinction'
     unset arrow
+    unset object
     set xlabel 's'
     unset logscale x
     set format x '% h'
@@ -51,6 +54,7 @@ do for [format in "png svg"] {
     set format y '%g'
     set ytics autofreq
     set yrange [0.001:2] extend
+    set bmargin
     set key outside right top
     set size noratio
     unset label

@@ -33,6 +33,7 @@ do for [format in "png svg"] {
     # panel 1
     set title 'alpha accumulated along the ray (each point: the end of an accepted outer step)'
     unset arrow
+    unset object
     set xlabel 't (voxels from the ray''s entry)'
     unset logscale x
     set format x '% h'
@@ -43,6 +44,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [*:*] extend
+    set bmargin
     set key bottom right
     set size noratio
     unset label
@@ -51,6 +53,7 @@ do for [format in "png svg"] {
     # panel 2
     set title 'step size of every try (failed tries are halved)'
     unset arrow
+    unset object
     set xlabel 't (voxels from the ray''s entry)'
     unset logscale x
     set format x '% h'
@@ -61,6 +64,7 @@ do for [format in "png svg"] {
     set format y '%g'
     set ytics (0.5, 1, 2)
     set yrange [0.4347826086956522:4.6] noextend
+    set bmargin
     set key bottom right
     set size noratio
     unset label

@@ -11,112 +11,110 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.06436,14.2
-0.08477,10
-0.1089,6.22
-0.2424,5.14
-0.3881,2.89
+0.09311,14.2
+0.1206,10
+0.1553,6.22
+0.2031,5.14
+0.4829,2.89
 EOD
 $series1_2 << EOD
-0.1261,1.61
-0.1307,1.61
-0.1192,1.61
+0.1419,1.61
+0.134,1.61
+0.1347,1.61
 EOD
 $series1_3 << EOD
-0.1303,1.58
-0.1266,1.58
-0.131,1.58
+0.1817,1.58
+0.1562,1.58
+0.152,1.58
 EOD
 $series1_4 << EOD
-0.01337,14.2
-0.01588,10
-0.02039,6.22
-0.03195,5.14
-0.05578,2.89
+0.0147,14.2
+0.02483,10
+0.02123,6.22
+0.03058,5.14
+0.06543,2.89
 EOD
 $series1_5 << EOD
-0.2137,1.0388756472425416
-0.2104,1.0388756472425416
+0.2142,1.0846462885783414
+0.2025,1.0846462885783414
 EOD
 $series1_6 << EOD
-0.1743,14.2
-0.22,10
-0.2331,6.22
-0.3006,5.14
-0.5922,2.88
+0.1837,14.2
+0.227,10
+0.3095,6.22
+0.3438,5.14
+0.7606,2.88
 EOD
 $series1_7 << EOD
-0.6106,1.61
-0.5286,1.61
-0.5827,1.61
+0.7643,1.61
+0.8897,1.61
+0.7737,1.61
 EOD
 $series1_8 << EOD
-0.6854,1.58
-0.7203,1.58
-0.7927,1.58
+0.8268,1.58
+0.6993,1.58
+0.7043,1.58
 EOD
 $pareto1 << EOD
-0.01337,14.2
-0.01588,10
-0.02039,6.22
-0.03195,5.14
-0.05578,2.89
-0.1192,1.61
-0.1266,1.58
-0.2104,1.0388756472425416
+0.0147,14.2
+0.02123,6.22
+0.03058,5.14
+0.06543,2.89
+0.134,1.61
+0.152,1.58
+0.2025,1.0846462885783414
 EOD
 $series2_1 << EOD
-0.06436,0.0472
-0.08477,0.03378
-0.1089,0.02585
-0.2424,0.01698
-0.3881,0.008248
+0.09311,0.0472
+0.1206,0.03378
+0.1553,0.02585
+0.2031,0.01698
+0.4829,0.008248
 EOD
 $series2_2 << EOD
-0.1261,0.02667
-0.1307,0.02667
-0.1192,0.02667
+0.1419,0.02667
+0.134,0.02667
+0.1347,0.02667
 EOD
 $series2_3 << EOD
-0.1303,0.02667
-0.1266,0.02667
-0.131,0.02667
+0.1817,0.02667
+0.1562,0.02667
+0.152,0.02667
 EOD
 $series2_4 << EOD
-0.01337,0.0472
-0.01588,0.03378
-0.02039,0.02585
-0.03195,0.01698
-0.05578,0.008248
+0.0147,0.0472
+0.02483,0.03378
+0.02123,0.02585
+0.03058,0.01698
+0.06543,0.008248
 EOD
 $series2_5 << EOD
-0.2137,9.626e-06
-0.2104,2.265e-06
+0.2142,9.626e-06
+0.2025,2.265e-06
 EOD
 $series2_6 << EOD
-0.1743,0.0472
-0.22,0.03378
-0.2331,0.02585
-0.3006,0.01698
-0.5922,0.008244
+0.1837,0.0472
+0.227,0.03378
+0.3095,0.02585
+0.3438,0.01698
+0.7606,0.008244
 EOD
 $series2_7 << EOD
-0.6106,0.02667
-0.5286,0.02667
-0.5827,0.02667
+0.7643,0.02667
+0.8897,0.02667
+0.7737,0.02667
 EOD
 $series2_8 << EOD
-0.6854,0.02667
-0.7203,0.02667
-0.7927,0.02667
+0.8268,0.02667
+0.6993,0.02667
+0.7043,0.02667
 EOD
 $pareto2 << EOD
-0.01337,0.0472
-0.01588,0.03378
-0.02039,0.02585
-0.03195,0.01698
-0.05578,0.008248
-0.2104,2.265e-06
+0.0147,0.0472
+0.02123,0.02585
+0.03058,0.01698
+0.06543,0.008248
+0.2025,2.265e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -130,18 +128,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1)
-    set xrange [0.010465325971953883:1.0127156123376129] noextend
-    set ylabel '% of rays'
+    set xrange [0.011492162528594398:1.1380442947494267] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (2, 5, 10)
-    set ytics add ('0' 1.0388756472425416)
-    set arrow from graph 0, first 1.0388756472425416 to graph 1, first 1.0388756472425416 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [0.9033701280369927:16.33] noextend
+    set ytics ('0' 1.0846462885783414, 2, 5, 10)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [1.0117908523874326:16.33] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -149,7 +154,7 @@ do for [format in "png svg"] {
          $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
          $series1_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
-         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-6 to tol1e-7', \
          $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
          $series1_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
@@ -157,16 +162,18 @@ do for [format in "png svg"] {
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1)
-    set xrange [0.010465325971953883:1.0127156123376129] noextend
+    set xrange [0.011492162528594398:1.1380442947494267] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [1.2471990713542438e-06:0.08571847306133437] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -174,7 +181,7 @@ do for [format in "png svg"] {
          $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
          $series2_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
-         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-6 to tol1e-7', \
          $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
          $series2_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \

@@ -11,111 +11,108 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.1042,27
-0.129,26.6
-0.1522,25.6
-0.2072,23.3
-0.3636,16.4
+0.1204,27
+0.1535,26.6
+0.2068,25.6
+0.2765,23.3
+0.5395,16.4
 EOD
 $series1_2 << EOD
-0.3552,14.6
-0.3009,14.6
-0.3045,14.2
+0.4179,14.6
+0.4216,14.6
+0.3627,14.2
 EOD
 $series1_3 << EOD
-0.3903,12.4
-0.2943,12.4
-0.2986,12.2
+0.3567,12.4
+0.3352,12.4
+0.3666,12.2
 EOD
 $series1_4 << EOD
-0.0209,27
-0.02361,26.6
-0.03353,25.6
-0.04525,23.4
-0.07268,16.4
+0.02433,27
+0.03266,26.6
+0.03552,25.6
+0.0493,23.4
+0.1158,16.4
 EOD
 $series1_5 << EOD
-0.1148,8.021698035670257
-0.1198,8.021698035670257
+0.1198,9.574546373155659
+0.1087,9.574546373155659
 EOD
 $series1_6 << EOD
-0.2117,27
-0.256,26.6
-0.332,25.6
-0.5177,23.4
-0.9319,16.4
+0.2703,27
+0.3496,26.6
+0.4157,25.6
+0.6028,23.4
+0.7282,16.4
 EOD
 $series1_7 << EOD
-2.457,14.6
-1.733,14.6
-1.725,14.2
+2.32,14.6
+2.06,14.6
+2.038,14.2
 EOD
 $series1_8 << EOD
-2.715,12.4
-2.149,12.4
-2.057,12.2
+2.036,12.4
+2.25,12.4
+1.979,12.2
 EOD
 $pareto1 << EOD
-0.0209,27
-0.02361,26.6
-0.03353,25.6
-0.04525,23.4
-0.07268,16.4
-0.1148,8.021698035670257
+0.02433,27
+0.03266,26.6
+0.03552,25.6
+0.0493,23.4
+0.1087,9.574546373155659
 EOD
 $series2_1 << EOD
-0.1042,0.1012
-0.129,0.08359
-0.1522,0.05733
-0.2072,0.03853
-0.3636,0.01794
+0.1204,0.1012
+0.1535,0.08359
+0.2068,0.05733
+0.2765,0.03853
+0.5395,0.01794
 EOD
 $series2_2 << EOD
-0.3552,0.04251
-0.3009,0.04251
-0.3045,0.03548
+0.4179,0.04251
+0.4216,0.04251
+0.3627,0.03548
 EOD
 $series2_3 << EOD
-0.3903,0.03577
-0.2943,0.03577
-0.2986,0.03289
+0.3567,0.03577
+0.3352,0.03577
+0.3666,0.03289
 EOD
 $series2_4 << EOD
-0.0209,0.1012
-0.02361,0.08359
-0.03353,0.05733
-0.04525,0.03853
-0.07268,0.01794
+0.02433,0.1012
+0.03266,0.08359
+0.03552,0.05733
+0.0493,0.03853
+0.1158,0.01794
 EOD
 $series2_5 << EOD
-0.1148,7.182e-06
-0.1198,7.451e-07
+0.1198,7.182e-06
+0.1087,7.451e-07
 EOD
 $series2_6 << EOD
-0.2117,0.1012
-0.256,0.08359
-0.332,0.05733
-0.5177,0.03853
-0.9319,0.01794
+0.2703,0.1012
+0.3496,0.08359
+0.4157,0.05733
+0.6028,0.03853
+0.7282,0.01794
 EOD
 $series2_7 << EOD
-2.457,0.04251
-1.733,0.04251
-1.725,0.03548
+2.32,0.04251
+2.06,0.04251
+2.038,0.03548
 EOD
 $series2_8 << EOD
-2.715,0.03578
-2.149,0.03578
-2.057,0.03289
+2.036,0.03578
+2.25,0.03578
+1.979,0.03289
 EOD
 $pareto2 << EOD
-0.0209,0.1012
-0.02361,0.08359
-0.03353,0.05733
-0.04525,0.03853
-0.07268,0.01794
-0.1148,7.182e-06
-0.1198,7.451e-07
+0.02433,0.1012
+0.03266,0.08359
+0.03552,0.05733
+0.0493,0.03853
+0.1087,7.451e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -129,18 +126,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.015607339346791836:3.635693358052338] noextend
-    set ylabel '% of rays'
+    set xrange [0.01850893185089359:3.0496411383823245] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (20, 30)
-    set ytics add ('0' 8.021698035670257)
-    set arrow from graph 0, first 8.021698035670257 to graph 1, first 8.021698035670257 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [6.975389596235006:31.049999999999997] noextend
+    set ytics ('0' 9.574546373155659, 20, 30)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [9.29002952374409:31.049999999999997] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -148,7 +152,7 @@ do for [format in "png svg"] {
          $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
          $series1_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
-         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-6 to tol1e-7', \
          $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
          $series1_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
@@ -156,16 +160,18 @@ do for [format in "png svg"] {
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.015607339346791836:3.635693358052338] noextend
+    set xrange [0.01850893185089359:3.0496411383823245] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [3.6663726660755295e-07:0.2056640905538723] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -173,7 +179,7 @@ do for [format in "png svg"] {
          $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
          $series2_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
-         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-6 to tol1e-7', \
          $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
          $series2_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \

@@ -11,111 +11,109 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.1023,23.1
-0.112,20.8
-0.1446,17.1
-0.1916,10.7
-0.3317,9.26
+0.1146,23.1
+0.1261,20.8
+0.1655,17.1
+0.1951,10.7
+0.4157,9.26
 EOD
 $series1_2 << EOD
-0.2181,7.06
-0.2781,7.06
-0.2543,7.05
+0.3453,7.06
+0.3379,7.06
+0.3028,7.05
 EOD
 $series1_3 << EOD
-0.2364,6.73
-0.2401,6.73
-0.2347,6.73
+0.2768,6.73
+0.298,6.73
+0.2871,6.73
 EOD
 $series1_4 << EOD
-0.01562,23.1
-0.01959,20.8
-0.02413,17.1
-0.03391,10.7
-0.06462,9.26
+0.02558,23.1
+0.0227,20.8
+0.02791,17.1
+0.04173,10.7
+0.06956,9.26
 EOD
 $series1_5 << EOD
-0.2383,4.425084244267282
-0.2289,4.425084244267282
+0.2205,5.064898422751554
+0.2291,5.064898422751554
 EOD
 $series1_6 << EOD
-0.1759,23.1
-0.2197,20.8
-0.2247,17.1
-0.3297,10.7
-0.6161,9.26
+0.2327,23.1
+0.2827,20.8
+0.365,17.1
+0.5263,10.7
+0.7874,9.26
 EOD
 $series1_7 << EOD
-1.45,7.06
-1.406,7.06
-1.51,7.05
+1.549,7.06
+1.535,7.06
+1.738,7.05
 EOD
 $series1_8 << EOD
-1.53,6.73
-1.378,6.73
-1.325,6.73
+1.458,6.73
+1.469,6.73
+1.725,6.73
 EOD
 $pareto1 << EOD
-0.01562,23.1
-0.01959,20.8
-0.02413,17.1
-0.03391,10.7
-0.06462,9.26
-0.2181,7.06
-0.2289,4.425084244267282
+0.0227,20.8
+0.02791,17.1
+0.04173,10.7
+0.06956,9.26
+0.2205,5.064898422751554
 EOD
 $series2_1 << EOD
-0.1023,0.06241
-0.112,0.04954
-0.1446,0.03648
-0.1916,0.02426
-0.3317,0.01205
+0.1146,0.06241
+0.1261,0.04954
+0.1655,0.03648
+0.1951,0.02426
+0.4157,0.01205
 EOD
 $series2_2 << EOD
-0.2181,0.02233
-0.2781,0.02233
-0.2543,0.01744
+0.3453,0.02233
+0.3379,0.02233
+0.3028,0.01744
 EOD
 $series2_3 << EOD
-0.2364,0.02262
-0.2401,0.02262
-0.2347,0.0175
+0.2768,0.02262
+0.298,0.02262
+0.2871,0.0175
 EOD
 $series2_4 << EOD
-0.01562,0.06241
-0.01959,0.04954
-0.02413,0.03648
-0.03391,0.02426
-0.06462,0.01205
+0.02558,0.06241
+0.0227,0.04954
+0.02791,0.03648
+0.04173,0.02426
+0.06956,0.01205
 EOD
 $series2_5 << EOD
-0.2383,1.246e-05
-0.2289,1.311e-06
+0.2205,1.246e-05
+0.2291,1.311e-06
 EOD
 $series2_6 << EOD
-0.1759,0.06241
-0.2197,0.04954
-0.2247,0.03648
-0.3297,0.02426
-0.6161,0.01205
+0.2327,0.06241
+0.2827,0.04954
+0.365,0.03648
+0.5263,0.02426
+0.7874,0.01205
 EOD
 $series2_7 << EOD
-1.45,0.02233
-1.406,0.02233
-1.51,0.01744
+1.549,0.02233
+1.535,0.02233
+1.738,0.01744
 EOD
 $series2_8 << EOD
-1.53,0.02262
-1.378,0.02262
-1.325,0.0175
+1.458,0.02262
+1.469,0.02262
+1.725,0.0175
 EOD
 $pareto2 << EOD
-0.01562,0.06241
-0.01959,0.04954
-0.02413,0.03648
-0.03391,0.02426
-0.06462,0.01205
-0.2289,1.311e-06
+0.0227,0.04954
+0.02791,0.03648
+0.04173,0.02426
+0.06956,0.01205
+0.2205,1.246e-05
+0.2291,1.311e-06
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -129,18 +127,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.011863706813068345:2.014429417092029] noextend
-    set ylabel '% of rays'
+    set xrange [0.017497839245265184:2.2547126789198075] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (6, 7, 8, 9, 10, 20)
-    set ytics add ('0' 4.425084244267282)
-    set arrow from graph 0, first 4.425084244267282 to graph 1, first 4.425084244267282 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [3.847899342841115:26.565] noextend
+    set ytics ('0' 5.064898422751554, 6, 7, 8, 9, 10, 20)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [4.854180169595627:26.565] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -148,7 +153,7 @@ do for [format in "png svg"] {
          $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
          $series1_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
-         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-6 to tol1e-7', \
          $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
          $series1_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
@@ -156,16 +161,18 @@ do for [format in "png svg"] {
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.011863706813068345:2.014429417092029] noextend
+    set xrange [0.017497839245265184:2.2547126789198075] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [6.869792226536051e-07:0.11910041425118292] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -173,7 +180,7 @@ do for [format in "png svg"] {
          $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
          $series2_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
-         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-6 to tol1e-7', \
          $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
          $series2_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \

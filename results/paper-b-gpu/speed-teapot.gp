@@ -11,110 +11,110 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.09807,25.1
-0.1047,25
-0.1273,24.8
-0.179,23.2
-0.3388,6.97
+0.1311,25.1
+0.1437,25
+0.1741,24.8
+0.1886,23.2
+0.3446,6.97
 EOD
 $series1_2 << EOD
-0.2792,7.87
-0.2723,7.87
-0.2936,7.83
+0.3032,7.87
+0.2968,7.87
+0.357,7.83
 EOD
 $series1_3 << EOD
-0.2975,6.1
-0.2711,6.1
-0.2728,6.05
+0.2984,6.1
+0.3304,6.1
+0.3267,6.05
 EOD
 $series1_4 << EOD
-0.01411,25.1
-0.01529,25
-0.01838,24.8
-0.02604,23.2
-0.04546,6.97
+0.01551,25.1
+0.01927,25
+0.02247,24.8
+0.03179,23.2
+0.06305,6.97
 EOD
 $series1_5 << EOD
-0.1089,3.97139804388921
-0.1055,3.97139804388921
+0.1127,4.463359213658315
+0.1104,4.463359213658315
 EOD
 $series1_6 << EOD
-0.1449,25.1
-0.1907,25
-0.2223,24.8
-0.375,23.2
-0.6517,6.96
+0.238,25.1
+0.2808,25
+0.3615,24.8
+0.4735,23.2
+0.6642,6.96
 EOD
 $series1_7 << EOD
-1.767,7.88
-2.254,7.87
-1.672,7.83
+1.685,7.88
+1.802,7.87
+1.863,7.83
 EOD
 $series1_8 << EOD
-2.086,6.1
-2.151,6.1
-1.955,6.04
+1.981,6.1
+2.17,6.1
+2.053,6.04
 EOD
 $pareto1 << EOD
-0.01411,25.1
-0.01529,25
-0.01838,24.8
-0.02604,23.2
-0.04546,6.97
-0.1055,3.97139804388921
+0.01551,25.1
+0.01927,25
+0.02247,24.8
+0.03179,23.2
+0.06305,6.97
+0.1104,4.463359213658315
 EOD
 $series2_1 << EOD
-0.09807,0.1381
-0.1047,0.1142
-0.1273,0.08014
-0.179,0.05249
-0.3388,0.02629
+0.1311,0.1381
+0.1437,0.1142
+0.1741,0.08014
+0.1886,0.05249
+0.3446,0.02629
 EOD
 $series2_2 << EOD
-0.2792,0.0768
-0.2723,0.0768
-0.2936,0.08906
+0.3032,0.0768
+0.2968,0.0768
+0.357,0.08906
 EOD
 $series2_3 << EOD
-0.2975,0.07733
-0.2711,0.07733
-0.2728,0.08931
+0.2984,0.07733
+0.3304,0.07733
+0.3267,0.08931
 EOD
 $series2_4 << EOD
-0.01411,0.1381
-0.01529,0.1142
-0.01838,0.08014
-0.02604,0.05249
-0.04546,0.02629
+0.01551,0.1381
+0.01927,0.1142
+0.02247,0.08014
+0.03179,0.05249
+0.06305,0.02629
 EOD
 $series2_5 << EOD
-0.1089,1.204e-05
-0.1055,8.345e-07
+0.1127,1.204e-05
+0.1104,8.345e-07
 EOD
 $series2_6 << EOD
-0.1449,0.1381
-0.1907,0.1142
-0.2223,0.08014
-0.375,0.05249
-0.6517,0.02629
+0.238,0.1381
+0.2808,0.1142
+0.3615,0.08014
+0.4735,0.05249
+0.6642,0.02629
 EOD
 $series2_7 << EOD
-1.767,0.0768
-2.254,0.0768
-1.672,0.08906
+1.685,0.0768
+1.802,0.0768
+1.863,0.08906
 EOD
 $series2_8 << EOD
-2.086,0.07733
-2.151,0.07733
-1.955,0.08931
+1.981,0.07733
+2.17,0.07733
+2.053,0.08931
 EOD
 $pareto2 << EOD
-0.01411,0.1381
-0.01529,0.1142
-0.01838,0.08014
-0.02604,0.05249
-0.04546,0.02629
-0.1055,8.345e-07
+0.01551,0.1381
+0.01927,0.1142
+0.02247,0.08014
+0.03179,0.05249
+0.06305,0.02629
+0.1104,8.345e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -128,18 +128,25 @@ do for [format in "png svg"] {
     # panel 1
     set title '% of rays above 0.001 (worst channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.010406900441753571:3.056043456743304] noextend
-    set ylabel '% of rays'
+    set xrange [0.01153083935397955:2.9188421559601663] noextend
+    set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics (6, 7, 8, 9, 10, 20)
-    set ytics add ('0' 3.97139804388921)
-    set arrow from graph 0, first 3.97139804388921 to graph 1, first 3.97139804388921 nohead dt 3 lw 1 lc rgb 'gray50' back
-    set yrange [3.453389603381922:28.865] noextend
+    set ytics ('0' 4.463359213658315, 6, 7, 8, 9, 10, 20)
+    set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
+    set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph -0.012, graph 0.1 to graph 0.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
+    set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
+    set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
+    set yrange [4.254753573946987:28.865] noextend
+    set bmargin
     unset key
     set size noratio
     unset label
@@ -147,7 +154,7 @@ do for [format in "png svg"] {
          $series1_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series1_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
          $series1_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
-         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series1_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-6 to tol1e-7', \
          $series1_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
          $series1_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \
@@ -155,16 +162,18 @@ do for [format in "png svg"] {
     # panel 2
     set title 'max |error| (any channel)'
     unset arrow
+    unset object
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2)
-    set xrange [0.010406900441753571:3.056043456743304] noextend
+    set xrange [0.01153083935397955:2.9188421559601663] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [4.0578902861224574e-07:0.28400090163630953] noextend
+    set bmargin
     set key outside right top
     set size noratio
     unset label
@@ -172,7 +181,7 @@ do for [format in "png svg"] {
          $series2_2 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#e07b00' title 'coupled double, eps0.01 to eps0.001', \
          $series2_3 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double, eps0.01 to eps0.001', \
          $series2_4 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#1f4e9c' title 'riemann float SIMD, h0.5 to h0.1', \
-         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, eps1e-6 to eps1e-7', \
+         $series2_5 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-6 to tol1e-7', \
          $series2_6 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#1f4e9c' title 'riemann float vulkan, h0.5 to h0.1', \
          $series2_7 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#e07b00' title 'coupled float vulkan, eps0.01 to eps0.001', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float vulkan, eps0.01 to eps0.001', \

@@ -12319,6 +12319,7 @@ do for [format in "png svg"] {
     # panel 1
     set title 'between two neighbouring texels (0 and full scale)'
     unset arrow
+    unset object
     set xlabel 'exact weight of the second texel'
     unset logscale x
     set format x '% h'
@@ -12329,6 +12330,7 @@ do for [format in "png svg"] {
     set format y '% h'
     set ytics autofreq
     set yrange [*:*] extend
+    set bmargin
     set key top right
     set size noratio
     unset label
