@@ -324,12 +324,15 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
 
     if (const YAML::Node size = node["size"]) {
         if (!size.IsSequence() || size.size() != 2) throw Error(at(size) + ": size must be [width, height]");
-        for (const YAML::Node& v : size)
-            if (double x = yaml::toDouble(v, source_, "size"); x != std::floor(x) || x < 1 || x > 65536)
-                throw Error(at(v) + ": size must be whole numbers in 1..65536");
-        scene.options.emplace_back("--size", size[0].Scalar() + "x" + size[1].Scalar());
-        scene.width = size[0].as<int>();
-        scene.height = size[1].as<int>();
+        int wh[2];
+        for (std::size_t i = 0; i < 2; ++i) {
+            const double x = yaml::toDouble(size[i], source_, "size");
+            if (x != std::floor(x) || x < 1 || x > 65536) throw Error(at(size[i]) + ": size must be whole numbers in 1..65536");
+            wh[i] = static_cast<int>(x);  // not as<int>(): YAML's int reads neither 099 nor 1e2, which toDouble takes
+        }
+        scene.options.emplace_back("--size", std::to_string(wh[0]) + "x" + std::to_string(wh[1]));
+        scene.width = wh[0];
+        scene.height = wh[1];
     }
     if (const YAML::Node camera = node["camera"]) {
         yaml::requireMap(camera, source_, "camera");
@@ -384,10 +387,11 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             if (key == "tiles") {  // how the run is computed, not what: one value, never in the id
                 tilesAt = at(kv.second);
                 const std::string n = number(kv.second, "tiles");
-                if (double x = kv.second.as<double>(); x != std::floor(x) || x < 1 || x > kMaxTiles)
+                const double x = kv.second.as<double>();
+                if (x != std::floor(x) || x < 1 || x > kMaxTiles)
                     throw Error(at(kv.second) + ": tiles must be a whole number in 1.." + std::to_string(kMaxTiles) +
                                 ", got " + n);
-                tiles = kv.second.as<int>();
+                tiles = static_cast<int>(x);  // 099 and 1e1 are numbers to as<double>, not to as<int>
                 continue;
             }
             if (key == "scenes") {

@@ -111,6 +111,19 @@ TEST_CASE("experiment: a wrong type or a bad value is named with its line and co
               .starts_with("exp.yaml:7:62: diff_scale"));
 }
 
+TEST_CASE("experiment: whole numbers written as YAML's int does not read them (099, 1e2) are taken") {
+    // make fuzz found it: toDouble accepted size [099, 100], then as<int>() threw past every check.
+    ExperimentDir d;
+    const vri::Experiment e =
+        d.parse(kHead + "scenes: {s: {field: linear, convention: node, tf: a.yaml, size: [099, 1e2]}}\n"
+                        "methods: {riemann: {tiles: 02}}\n");
+    CHECK(e.scenes[0].width == 99);
+    CHECK(e.scenes[0].height == 100);
+    CHECK(std::ranges::find(e.scenes[0].options, std::pair<std::string, std::string>("--size", "99x100")) !=
+          e.scenes[0].options.end());
+    CHECK(e.runs[0].tiles == 2);
+}
+
 TEST_CASE("experiment: a missing transfer function or volume is named with its line and column") {
     ExperimentDir d;
     CHECK(d.error(kHead + "scenes: {s: {field: linear, convention: node, tf: nope.yaml}}\nmethods: {riemann: {}}\n")
