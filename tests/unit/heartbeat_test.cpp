@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <regex>
 #include <string>
@@ -32,10 +33,12 @@ std::string heartbeatOutput(bool enabled, std::chrono::milliseconds interval, Wo
 }  // namespace
 
 TEST_CASE("heartbeat: a line per interval while the call runs, none when it is short or disabled") {
+    const auto start = std::chrono::steady_clock::now();
     const std::string beats = heartbeatOutput(true, 40ms, [] { std::this_thread::sleep_for(300ms); });
+    const auto elapsed = std::chrono::steady_clock::now() - start;  // a loaded machine oversleeps
     const auto lines = std::count(beats.begin(), beats.end(), '\n');
-    CHECK(lines >= 3);  // at least 3 of the 7 intervals, however loaded the machine
-    CHECK(lines <= 7);
+    CHECK(lines >= 3);  // a beat per interval that passed: at least 3 of the 7, however loaded the machine
+    CHECK(lines <= elapsed / 40ms);
     CHECK(std::regex_match(beats, std::regex("(beat: [0-9]+ s\n)+")));
     CHECK(heartbeatOutput(true, 10s, [] { std::this_thread::sleep_for(20ms); }).empty());
     CHECK(heartbeatOutput(false, 10ms, [] { std::this_thread::sleep_for(100ms); }).empty());
