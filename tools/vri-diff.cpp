@@ -224,7 +224,10 @@ int run(int argc, char** argv) {
     std::optional<double> heatTop;  // the top of a PNG heat map's scale
     if (!options.diffImage.empty() && isPng(options.diffImage)) {
         double largest = 0;
-        for (const vri::ChannelDiff& channel : diff.channels) largest = std::max(largest, channel.maxAbs);
+        const auto takeLargest = [&](const vri::ImageDiff& d) {
+            for (const vri::ChannelDiff& channel : d.channels) largest = std::max(largest, channel.maxAbs);
+        };
+        takeLargest(diff);
         for (const std::string& path : options.scaleOver) {
             const vri::Image x = vri::readImage(path);
             try {
@@ -232,7 +235,7 @@ int run(int argc, char** argv) {
             } catch (const vri::Error& e) {
                 return exitWith(vri::kDiffDifferentShape, vri::Error("--scale-over " + path + ": " + e.what()));
             }
-            for (float e : vri::differenceImage(a, x).pixels) largest = std::max(largest, double(e));
+            takeLargest(vri::compareImages(a, x, {}));
         }
         heatTop = diffScale->count() > 0 ? 1.0 / options.diffScale : largest;
         if (!(*heatTop > 0) || !std::isfinite(*heatTop)) heatTop = 1.0;  // equal images, or an infinite error

@@ -749,6 +749,9 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
     const float* values = table.values<float>();
     const float* slopes = table.slopes<float>();
     const bool secondOrder = table.order() == 2;
+    // PreintegrationTable::operator()'s clamp of a second-order value, once per call, not per sample.
+    const VF upper[4] = {hn::Set(df, table.upperBound<float>()[0]), hn::Set(df, table.upperBound<float>()[1]),
+                         hn::Set(df, table.upperBound<float>()[2]), hn::Set(df, table.upperBound<float>()[3])};
     const float segmentLength = static_cast<float>(table.segmentLength());
     const int width = x1 - x0;
     const PixelRegion area = renderedRegion(sc.options.region, sc.camera);
@@ -818,7 +821,7 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
                 VF slope[4];
                 interpolateTable(slopes, l, table.size(), slope);
                 for (int c = 0; c < 4; ++c)  // kept within [0, upperBound] as PreintegrationTable::operator() keeps it
-                    v[c] = hn::Max(hn::Min(hn::Add(v[c], hn::Mul(delta, slope[c])), hn::Set(df, table.upperBound<float>()[c])),
+                    v[c] = hn::Max(hn::Min(hn::Add(v[c], hn::Mul(delta, slope[c])), upper[c]),
                                    zero);
             }
             // RayAccumulator::addSegment.
