@@ -14,10 +14,11 @@
 //
 // Ops supplies the few operations that differ between a number and a vector: the type Scalar (float or
 // double, which picks the constants), Real set(Scalar), Int setInt(int), Real select(Cond, Real, Real),
-// Int toInt(Real) (exact on integral values), Real pow2(Int k) (2^k for a normal power of two, from the
-// exponent bits), Int halve(Int) (arithmetic shift right by 1), Int clampInt(Int, int lo, int hi),
-// Cond less(Real, Real), Cond greater(Real, Real), Cond intGreater(Int, int), Cond isNaN(Real), and the
-// Real and Int operators + - *. (expm1 is float only; exp needs neither setInt, clampInt nor intGreater.)
+// Int toInt(Real) (exact on integral values within exp's range of k), Real pow2(Int k) (2^k for a normal
+// power of two, from the exponent bits), Int halve(Int) (arithmetic shift right by 1), Int clampInt(Int,
+// int lo, int hi), Real clamp(Real x, Real lo, Real hi) (x < lo ? lo : x > hi ? hi : x for any x but NaN:
+// a vector's min and max), Cond intGreater(Int, int), Cond isNaN(Real), and the Real and Int operators
+// + - *. (expm1 is float only; exp needs neither setInt, clampInt nor intGreater.)
 //
 // Highway compiles a function for a target only where it is defined inside that target's region, so
 // simd_march.cpp and exact_gauss_batch.cpp include this header there once per target (the guard toggles
@@ -70,9 +71,7 @@ template <class Ops, class Real>
     using C = Constants<typename Ops::Scalar>;
     // NaN compares false and becomes C::lowest here; the callers put it back.
     const Real lowest = o.set(C::lowest), highest = o.set(C::highest);
-    Real xc = o.select(o.less(x, lowest), lowest, x);
-    xc = o.select(o.greater(xc, highest), highest, xc);
-    xc = o.select(o.isNaN(x), lowest, xc);
+    const Real xc = o.select(o.isNaN(x), lowest, o.clamp(x, lowest, highest));
     const Real k = (xc * o.set(C::log2E) + o.set(C::roundToInteger)) - o.set(C::roundToInteger);
     const Real r = (xc - k * o.set(C::ln2Head)) - k * o.set(C::ln2Tail);
     return {k, r};

@@ -20,8 +20,7 @@ struct ScalarExpOps {
     static float pow2(std::int32_t k) { return std::bit_cast<float>(static_cast<std::uint32_t>(k + 127) << 23); }
     static std::int32_t halve(std::int32_t k) { return k >> 1; }  // arithmetic in C++20
     static std::int32_t clampInt(std::int32_t k, int lo, int hi) { return std::clamp(k, lo, hi); }
-    static bool less(float a, float b) { return a < b; }
-    static bool greater(float a, float b) { return a > b; }
+    static float clamp(float x, float lo, float hi) { return x < lo ? lo : x > hi ? hi : x; }
     static bool intGreater(std::int32_t a, int b) { return a > b; }
     static bool isNaN(float x) { return x != x; }
 };

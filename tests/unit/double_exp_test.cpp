@@ -20,8 +20,7 @@ struct ScalarOps {
     using Scalar = double;
     static double set(double c) { return c; }
     static double select(bool c, double a, double b) { return c ? a : b; }
-    static bool less(double a, double b) { return a < b; }
-    static bool greater(double a, double b) { return a > b; }
+    static double clamp(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
     static bool isNaN(double x) { return x != x; }
     static std::int64_t toInt(double k) { return static_cast<std::int64_t>(k); }
     static std::int64_t halve(std::int64_t k) { return k >> 1; }  // arithmetic in C++20
