@@ -45,11 +45,7 @@ constexpr int kMaxDepth = 40;  // bisections of one sub-piece; reached only by p
 // interval to kMaxDepth (2^40 of them). Past it every interval is accepted with its own error.
 constexpr int kMaxIntervals = 4096;
 constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
-// From this tolerance up a sub-piece first tries the cheapest Gauss rule with a derivative bound
-// (exact_gauss_batch.h; up to 64 panels), and only where none reaches the tolerance the adaptive
-// Gauss-Kronrod quadrature. Below it (vri-reference's 1e-13) only the adaptive quadrature runs: the
-// references, and every result compared against them, keep their bits.
-constexpr double kGaussTolerance = 1e-10;
+constexpr double kGaussTolerance = ExactRay::kGaussTolerance;
 
 // How many of the sorted values are <= x (upper_bound's index), and with it how many are < y
 // (lower_bound's): counts without branches over the few points of a transfer function, where a binary

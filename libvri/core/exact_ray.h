@@ -15,6 +15,12 @@ namespace vri {
 
 class ExactRay {
 public:
+    // From this tolerance up a sub-piece first tries the cheapest Gauss rule with a derivative bound
+    // (exact_gauss_batch.h; up to 64 panels, batched over SIMD lanes), and only where none reaches the
+    // tolerance the adaptive Gauss-Kronrod quadrature. Below it (vri-reference's 1e-13) only the adaptive
+    // quadrature runs: the references, and every result compared against them, keep their bits.
+    static constexpr double kGaussTolerance = 1e-10;
+
     // Allocates all the scratch space a ray needs: the per-ray calls allocate nothing. `tolerance`
     // is the error allowed per transfer-function sub-piece (in the pixel's units); it also chooses
     // the quadrature rule and where a ray may end early (see done()).

@@ -17,6 +17,7 @@
 #include "libvri/core/exact_empty_space.h"
 #include "libvri/core/exact_ray.h"
 #include "libvri/core/occupancy_cache.h"
+#include "libvri/core/simd_target.h"
 #include "libvri/util/checked_size.h"
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
@@ -358,6 +359,10 @@ void renderExactReference(const Scene& scene, const Camera& camera, const ExactR
                     exactNumber(diagonal) + " long: the optical depth overflows double");
 
     out.stats = {};
+    if (options.tolerance >= ExactRay::kGaussTolerance) {
+        useSimdTarget(options.simdTarget);  // before the threads start (simd_target.h)
+        out.stats.simdTarget = gaussBatchTarget();
+    }
     const PixelRegion area = renderedRegion(options.region, camera);  // checked before anything is allocated
     out.width = area.width;
     out.height = area.height;

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "libvri/core/camera.h"
@@ -34,6 +35,9 @@ struct ExactReferenceOptions {
     // (exact_empty_space.h: the image and the bounds do not change by a bit; off only to test that).
     bool skipEmptySpace = true;
     int tileSize = 16;
+    // The Highway target the Gauss batches run on (simd_target.h; `--simd`): empty for VRI_SIMD_TARGET's,
+    // else the best. Every target gives the same image and bounds bit for bit; only the time differs.
+    std::string simdTarget;
     std::optional<PixelRegion> region;  // only these pixels of the camera's image (RenderOptions::region)
     bool progress = false;  // report progress on stderr
 };
@@ -51,6 +55,7 @@ struct ExactReferenceStats {
     double setupSeconds = 0.0;  // building the empty space (exact_empty_space.h), this frame or an earlier one
     bool setupReused = false;   // the empty space came from an earlier frame (occupancy_cache.h)
     int threads = 0;
+    std::string simdTarget;  // the Gauss batches' Highway target ("AVX2", ...); empty below kGaussTolerance
     // Per channel R, G, B, A over all pixels: the largest and the mean error bound. These bound the
     // values in double (ExactReference::values), before any rounding to float32.
     std::array<double, 4> maxBound{}, meanBound{};

@@ -87,16 +87,20 @@ const RenderOptionRow kRows[] = {
          s.push_back({"precision", std::string(r.exact ? "double" : precisionName(r.options.precision))});
      }},
     {"--simd", "simd", "simd-", OptionValueKind::Text,
-     "on: float riemann and composite on packets of rays, one per SIMD lane (bitwise equal to off), on the best "
-     "target this CPU has or VRI_SIMD_TARGET's; a target's name (AVX3, AVX2, SSE4, ...) to run on that one; off: the "
-     "scalar path (experiment files: `lower` is a run per target below the best)",
-     "", "", kRenderOnly, kCpu,
+     "on: float riemann, composite and preintegrated on packets of rays, one per SIMD lane (bitwise equal to off), on "
+     "the best target this CPU has or VRI_SIMD_TARGET's; a target's name (AVX3, AVX2, SSE4, ...) to run on that one; "
+     "off: the scalar path. --method exact: the target of its batched Gauss rules (tolerance 1e-10 up; every target "
+     "gives the same bits), off refused (experiment files: `lower` is a run per target below the best)",
+     "", "", kBothTools, kCpu,
      [](const std::string& text, const std::string& where, RenderRequest& r) { parseSimd(text, where, r.options); },
      [](const RenderRequest& r) {
          return r.options.simd ? (r.options.simdTarget.empty() ? std::string("on") : r.options.simdTarget) : "off";
      },
      [](const RenderRequest& r, std::vector<Setting>& s) {
-         if (r.exact) return;
+         if (r.exact) {  // the Gauss batches' target, when one was asked for
+             if (!r.options.simdTarget.empty()) s.push_back({"simd_target", r.options.simdTarget});
+             return;
+         }
          s.push_back({"simd", r.options.simd});
          if (r.options.simd && !r.options.simdTarget.empty()) s.push_back({"simd_target", r.options.simdTarget});
      },
@@ -316,6 +320,7 @@ ExactReferenceOptions RenderRequest::exactOptions() const {
     o.skipEmptySpace = options.skipEmptySpace;
     o.region = options.region;
     o.progress = options.progress;
+    o.simdTarget = options.simdTarget;
     return o;
 }
 
@@ -337,9 +342,13 @@ void finishRenderRequest(RenderRequest& r) {
         if (!given.excludes.empty() && r.wasGiven(given.excludes))
             throw Error(std::string(flag) + ": cannot be given with " + std::string(given.excludes));
     }
+    if (r.exact && r.wasGiven("--simd") && !r.options.simd)
+        throw Error("--simd off: the exact method's Gauss rules have no scalar twin; name a target (SCALAR is "
+                    "Highway's one-lane fallback)");
     if (r.tool == RenderTool::Reference) {
         if (r.exact && r.wasGiven("--step")) throw Error("--step applies to --method riemann only");
         if (!r.exact && r.wasGiven("--tolerance")) throw Error("--tolerance applies to --method exact only");
+        if (!r.exact && r.wasGiven("--simd")) throw Error("--simd applies to --method exact only (the reference Riemann sum is double)");
     } else if (r.exact) {
         if (r.backend != Backend::Cpu) throw Error("--method exact: runs on --backend cpu only");
         if (r.wasGiven("--precision") && r.options.precision != Precision::Double)

@@ -82,13 +82,17 @@ std::string medianNote(std::size_t fewest, std::size_t most) {
 }
 
 // A run's method family from its stats, what one series of a chart draws: "riemann float SIMD",
-// "riemann float SIMD AVX2" (a forced target),
+// "riemann float SIMD AVX2" (a forced target), "exact AVX2" (its Gauss batches on a forced target),
 // "coupled double", "riemann float vulkan", "exact" (vri-reference's stats name no backend), "vtk-gpu",
 // "preintegrated double order 2", "riemann double jitter 4 frames".
 std::string methodFamily(const json& stats, const fs::path& file) {
     return readingJsonOf(file, [&] {
         const std::string method = stats.at("options").at("method").get<std::string>();
-        if (method == "exact") return method;
+        // The exact method's Gauss batches on a target forced below the best: "exact AVX2".
+        if (method == "exact")
+            return stats.at("options").contains("simd_target")
+                       ? method + " " + stats.at("options").at("simd_target").get<std::string>()
+                       : method;
         // A peer renderer (vri-peer-vtk) has no precision option: its family is its method.
         const json& options = stats.at("options");
         if (!options.contains("precision")) return method;

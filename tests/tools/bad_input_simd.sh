@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Bad input to vri-render --simd: one line naming the option, exit 1, nothing written.
+# Bad input to --simd (vri-render, and vri-reference's exact method): one line naming the option, exit 1, nothing
+# written.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/bad_input.sh"
 bin=${VRI_BIN:?}
@@ -10,6 +11,11 @@ bad 1 "^vri-render: error: --simd: unknown value 'yes' \(expected on, off or a S
 bad 1 "^vri-render: error: --simd: unknown value '' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-render" "${scene[@]}" --simd ''
 bad 1 "^vri-render: error: VRI_SIMD_TARGET: 'AVX9000' is not a SIMD target this CPU and build have \([A-Z0-9, ]+\)$" -- env VRI_SIMD_TARGET=AVX9000 "$bin/vri-render" "${scene[@]}" --precision float
 bad 1 "^vri-render: error: --simd: unknown value 'avx2;x' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-render" "${scene[@]}" --simd 'avx2;x'
+# The exact method's Gauss rules have no scalar twin; the reference Riemann sum is double, never packets.
+bad 1 "^vri-reference: error: --simd off: the exact method's Gauss rules have no scalar twin; name a target \(SCALAR is Highway's one-lane fallback\)$" -- "$bin/vri-reference" "${scene[@]}" --simd off
+bad 1 "^vri-render: error: --simd off: the exact method's Gauss rules have no scalar twin; name a target \(SCALAR is Highway's one-lane fallback\)$" -- "$bin/vri-render" "${scene[@]}" --method exact --simd off
+bad 1 "^vri-reference: error: --simd applies to --method exact only \(the reference Riemann sum is double\)$" -- "$bin/vri-reference" "${scene[@]}" --method riemann --simd on
+bad 1 "^vri-reference: error: --simd: unknown value 'avx9' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-reference" "${scene[@]}" --simd avx9
 if built_with_vulkan; then
   bad 1 "^vri-render: error: --simd: needs --backend cpu$" -- "$bin/vri-render" "${scene[@]}" --backend vulkan --simd on
 fi

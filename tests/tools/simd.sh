@@ -41,7 +41,29 @@ assert isinstance(forced["machine"]["cpu_simd_flags"], list), "machine.cpu_simd_
 PY
 done
 
-python3 - <<'PY' || fail "stats JSON"
+# The exact method's batched Gauss rules (tolerance 1e-10 up) on every target: the same values and bounds
+# bit for bit (exact_gauss_batch.h), and the stats name the target; below 1e-10 no batch runs.
+exact() { "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 41x29 --tolerance 1e-7 -q "$@"; }
+exact -o exact.exr --error-image exact-bound.exr --stats exact.json
+for target in $targets; do
+  exact --simd "$target" -o exact-forced.exr --error-image exact-forced-bound.exr --stats exact-forced.json
+  "$bin/vri-diff" exact-forced.exr exact.exr --fail 0 > /dev/null || fail "exact --simd $target: the image differs"
+  "$bin/vri-diff" exact-forced-bound.exr exact-bound.exr --fail 0 > /dev/null || fail "exact --simd $target: the bounds differ"
+  /usr/bin/python3 - "$target" <<'PY' || fail "exact stats of --simd $target"
+import json, sys
+forced = json.load(open("exact-forced.json"))
+assert forced["stats"]["simd_target"] == sys.argv[1] and forced["options"]["simd_target"] == sys.argv[1], forced["stats"]
+PY
+done
+"$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 41x29 --tolerance 1e-13 -q -o fine.exr --stats fine.json
+/usr/bin/python3 - "${targets%% *}" <<'PY' || fail "exact stats"
+import json, sys
+best, fine = json.load(open("exact.json")), json.load(open("fine.json"))
+assert best["stats"]["simd_target"] == sys.argv[1] and "simd_target" not in best["options"], best["stats"]
+assert fine["stats"]["simd_target"] is None, "no Gauss batch below 1e-10"
+PY
+
+/usr/bin/python3 - <<'PY' || fail "stats JSON"
 import json
 on, off, double = (json.load(open(f)) for f in ("on.json", "off.json", "double.json"))
 assert on["options"]["simd"] is True and off["options"]["simd"] is False, "options.simd"
@@ -53,4 +75,4 @@ once, warm = json.load(open("once.json")), json.load(open("warm.json"))
 assert once["stats"]["setup_reused"] is False and on["stats"]["setup_seconds"] > 0, "the first frame builds the grid"
 assert warm["stats"]["setup_reused"] is True and warm["stats"]["setup_seconds"] > 0, "a later frame reuses it"
 PY
-echo "simd: on, off and every target ($targets) bitwise equal; stats name the target; later frames reuse the grid"
+echo "simd: on, off and every target ($targets) bitwise equal, the exact method's too; stats name the target; later frames reuse the grid"

@@ -7,6 +7,8 @@ nlohmann::json toJson(const ExactReferenceStats& s) {
             {"setup_seconds", s.setupSeconds},
             {"setup_reused", s.setupReused},
             {"threads", s.threads},
+            // The batched Gauss rules' Highway target; null where the tolerance keeps them scalar.
+            {"simd_target", s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget)},
             {"rays", s.rays},
             {"rays_hit", s.raysHit},
             {"rays_opaque", s.raysOpaque},
