@@ -12,102 +12,105 @@ cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
 1,27
-3.6,16.4
+3.883,16.4
 EOD
 $series1_2 << EOD
-1.128,27
-3.891,16.4
+1.302,27
+4.646,16.4
 EOD
 $series1_3 << EOD
-0.1506,27
-0.5203,16.4
+0.1604,27
+0.6231,16.4
 EOD
 $series1_4 << EOD
-1.161,11.3
-3.827,1.36
+1.291,11.3
+4.577,1.36
 EOD
 $series1_5 << EOD
-1.2,11.3
-4.165,1.36
+1.612,11.3
+6.223,1.36
 EOD
 $series1_6 << EOD
-0.1437,11.3
-0.5373,1.36
+0.1967,11.3
+0.7293,1.36
 EOD
 $series1_7 << EOD
-2.553,14.2
+3.416,14.2
 EOD
 $series1_8 << EOD
-2.011,14.2
+2.447,14.2
 EOD
 $series1_9 << EOD
-2.407,12.3
+3.04,12.3
 EOD
 $series1_10 << EOD
-2.121,12.3
+2.555,12.3
 EOD
 $series1_11 << EOD
-0.8514,0.825744908165631
-0.8564,0.825744908165631
-0.8453,0.825744908165631
-0.717,0.825744908165631
-0.8406,0.825744908165631
+1.122,0.825744908165631
+1.174,0.825744908165631
+1.159,0.825744908165631
+1.008,0.825744908165631
+1.132,0.825744908165631
 EOD
 $pareto1 << EOD
-0.1437,11.3
-0.5373,1.36
-0.717,0.825744908165631
+0.1604,27
+0.1967,11.3
+0.7293,1.36
+1.008,0.825744908165631
 EOD
 $series2_1 << EOD
 1,0.1074
-3.6,0.01856
+3.883,0.01856
 EOD
 $series2_2 << EOD
-1.128,0.1074
-3.891,0.01856
+1.302,0.1074
+4.646,0.01856
 EOD
 $series2_3 << EOD
-0.1506,0.1074
-0.5203,0.01856
+0.1604,0.1074
+0.6231,0.01856
 EOD
 $series2_4 << EOD
-1.161,0.05138
-3.827,0.009661
+1.291,0.05138
+4.577,0.009661
 EOD
 $series2_5 << EOD
-1.2,0.05138
-4.165,0.009658
+1.612,0.05138
+6.223,0.009658
 EOD
 $series2_6 << EOD
-0.1437,0.05138
-0.5373,0.009658
+0.1967,0.05138
+0.7293,0.009658
 EOD
 $series2_7 << EOD
-2.553,0.04005
+3.416,0.04005
 EOD
 $series2_8 << EOD
-2.011,0.04005
+2.447,0.04005
 EOD
 $series2_9 << EOD
-2.407,0.03609
+3.04,0.03609
 EOD
 $series2_10 << EOD
-2.121,0.03609
+2.555,0.03609
 EOD
 $series2_11 << EOD
-0.8514,7.898e-07
-0.8564,3.278e-07
-0.8453,1.639e-07
-0.717,0.0005937
-0.8406,2.384e-07
+1.122,7.898e-07
+1.174,3.278e-07
+1.159,1.639e-07
+1.008,0.0005937
+1.132,2.384e-07
 EOD
 $pareto2 << EOD
-0.1437,0.05138
-0.5203,0.01856
-0.5373,0.009658
-0.717,0.0005937
-0.8406,2.384e-07
-0.8453,1.639e-07
+0.1604,0.1074
+0.1967,0.05138
+0.6231,0.01856
+0.7293,0.009658
+1.008,0.0005937
+1.122,7.898e-07
+1.132,2.384e-07
+1.159,1.639e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -126,7 +129,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.11741599801392291:5.097350532497539] noextend
+    set xrange [0.1287883673626525:7.750460856369705] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -153,7 +156,7 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -163,7 +166,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.11741599801392291:5.097350532497539] noextend
+    set xrange [0.1287883673626525:7.750460856369705] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -183,7 +186,7 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -12,103 +12,99 @@ cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
 1,23.1
-3.49,9.26
+3.328,9.26
 EOD
 $series1_2 << EOD
-0.9431,23.1
-3.702,9.26
+1.145,23.1
+4.248,9.26
 EOD
 $series1_3 << EOD
-0.1509,23.1
-0.5367,9.26
+0.1537,23.1
+0.5876,9.26
 EOD
 $series1_4 << EOD
-0.9614,7.55
-3.758,0.00708
+1.355,7.55
+4.261,0.00708
 EOD
 $series1_5 << EOD
-1.094,7.55
-4.478,0.00708
+1.388,7.55
+5.028,0.00708
 EOD
 $series1_6 << EOD
-0.168,7.55
-0.5598,0.00708
+0.1462,7.55
+0.5852,0.00708
 EOD
 $series1_7 << EOD
-2.334,7.08
+2.38,7.08
 EOD
 $series1_8 << EOD
-1.805,7.08
+1.986,7.08
 EOD
 $series1_9 << EOD
-2.276,6.69
+2.535,6.69
 EOD
 $series1_10 << EOD
-1.716,6.69
+2.134,6.69
 EOD
 $series1_11 << EOD
-1.824,0.0018339354534217783
-1.845,0.0018339354534217783
-1.763,0.0018339354534217783
-1.948,0.0018339354534217783
-2.022,0.0018339354534217783
+2.219,0.0018339354534217783
+2.179,0.0018339354534217783
+2.109,0.0018339354534217783
+2.327,0.0018339354534217783
+2.109,0.0018339354534217783
 EOD
 $pareto1 << EOD
-0.1509,23.1
-0.168,7.55
-0.5598,0.00708
-1.763,0.0018339354534217783
+0.1462,7.55
+0.5852,0.00708
+2.109,0.0018339354534217783
 EOD
 $series2_1 << EOD
 1,0.06248
-3.49,0.01212
+3.328,0.01212
 EOD
 $series2_2 << EOD
-0.9431,0.06248
-3.702,0.01212
+1.145,0.06248
+4.248,0.01212
 EOD
 $series2_3 << EOD
-0.1509,0.06248
-0.5367,0.01212
+0.1537,0.06248
+0.5876,0.01212
 EOD
 $series2_4 << EOD
-0.9614,0.0149
-3.758,0.003355
+1.355,0.0149
+4.261,0.003355
 EOD
 $series2_5 << EOD
-1.094,0.0149
-4.478,0.003356
+1.388,0.0149
+5.028,0.003356
 EOD
 $series2_6 << EOD
-0.168,0.0149
-0.5598,0.003356
+0.1462,0.0149
+0.5852,0.003356
 EOD
 $series2_7 << EOD
-2.334,0.02124
+2.38,0.02124
 EOD
 $series2_8 << EOD
-1.805,0.02124
+1.986,0.02124
 EOD
 $series2_9 << EOD
-2.276,0.02103
+2.535,0.02103
 EOD
 $series2_10 << EOD
-1.716,0.02103
+2.134,0.02103
 EOD
 $series2_11 << EOD
-1.824,1.431e-06
-1.845,5.96e-07
-1.763,2.98e-07
-1.948,0.0004174
-2.022,1.788e-07
+2.219,1.431e-06
+2.179,5.96e-07
+2.109,2.98e-07
+2.327,0.0004174
+2.109,1.788e-07
 EOD
 $pareto2 << EOD
-0.1509,0.06248
-0.168,0.0149
-0.5367,0.01212
-0.5598,0.003356
-1.763,2.98e-07
-2.022,1.788e-07
+0.1462,0.0149
+0.5852,0.003356
+2.109,1.788e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -127,7 +123,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.12312480304921748:5.488172839796429] noextend
+    set xrange [0.11823893215243732:6.217018258015848] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -154,7 +150,7 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -164,7 +160,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.12312480304921748:5.488172839796429] noextend
+    set xrange [0.11823893215243732:6.217018258015848] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -184,7 +180,7 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output
