@@ -43,6 +43,10 @@ struct PlotSeries {
     // Only the rows whose columns hold these texts (1-based column, text), for several series
     // drawn from one file: `where: {panel: eye, kind: covered}`. Not for histograms and heatmaps.
     std::vector<std::pair<int, std::string>> where;
+    // `optional: true`: a series whose `where` may keep no row on some hosts (a SIMD target one machine has
+    // and another has not) is left out of its panel and its key when it keeps none; without it gnuplot
+    // draws nothing and warns.
+    bool optional = false;
     int labelColumn = 0;  // 1-based: the column whose text is written beside each point (`labels:`); 0 for none
 };
 
@@ -119,7 +123,8 @@ struct PlotSpec {
 // `color` nor `label`. Without `label` a series is keyed by its y column; `label: ""` leaves it
 // out of the key. `where: {column: text, ...}` keeps only the rows whose columns hold those
 // texts, or with a trailing '*' start with the rest (`{run: "leaves-coupled-eps0.01-*"}`; not for histograms
-// and heatmaps), so one CSV can feed several series; `label_from: column`
+// and heatmaps), so one CSV can feed several series; `optional: true` drops a series whose `where` keeps no
+// row (a forced SIMD target another host lacks) from its panel and key; `label_from: column`
 // keys the series with that column's text in the first row it keeps (a fitted slope, say); a line joins the
 // rows kept, in file order, whatever rows lie between them. `label_ends: column` adds to the key the first
 // and last kept row's text in that column past the words they share ("riemann double, h0.5 to h0.1"): the

@@ -42,6 +42,7 @@ constexpr std::pair<const char*, const char*> kStyleOnlyKeys[] = {
     {"label_from", "line, dashed, dotted, points, linespoints, segments"},
     {"label_ends", "line, dashed, dotted, points, linespoints"},
     {"where", "line, dashed, dotted, points, linespoints, segments"},
+    {"optional", "line, dashed, dotted, points, linespoints, segments"},
     {"labels", "line, dashed, dotted, points, linespoints"},
 };
 
@@ -202,7 +203,7 @@ PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std:
     yaml::requireMap(node, src.name, what);
     yaml::requireKeys(node, src.name,
                       {"file", "x", "y", "z", "x2", "y2", "style", "label", "label_from", "color", "width", "size", "point",
-                       "where", "labels", "label_ends"});
+                       "where", "optional", "labels", "label_ends"});
     PlotSeries series;
     if (node["style"]) series.style = toChoice(node["style"], src, what + ".style", kPlotStyles);
     requireStyleKeys(node, src, what, series.style);
@@ -226,6 +227,7 @@ PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std:
     if (node["width"]) series.width = toPositiveNumber(node["width"], src, what + ".width");
     if (node["size"]) series.pointSize = toPositiveNumber(node["size"], src, what + ".size");
     if (node["point"]) series.point = toChoice(node["point"], src, what + ".point", kPlotPoints);
+    if (node["optional"]) series.optional = yaml::toBool(node["optional"], src.name, what + ".optional");
     return series;
 }
 
@@ -285,8 +287,13 @@ PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::s
     const YAML::Node list = node["series"];
     if (!list || !list.IsSequence() || list.size() == 0)
         throw Error(src.at(list ? list : node) + ": " + field("series") + " must be a non-empty list");
-    for (std::size_t i = 0; i < list.size(); ++i)
-        panel.series.push_back(parseSeries(list[i], src, field("series[" + std::to_string(i) + "]")));
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        PlotSeries series = parseSeries(list[i], src, field("series[" + std::to_string(i) + "]"));
+        if (series.optional && plot::keptRows(series).empty()) continue;  // nothing of it on this host
+        panel.series.push_back(std::move(series));
+    }
+    if (panel.series.empty())
+        throw Error(src.at(list) + ": " + field("series") + ": every series is optional and keeps no row");
     if (panel.y.log && panel.hasStyle("histogram"))
         throw Error(src.at(node["y"]) + ": " + field("y") + ": histogram boxes start at 0, so y cannot be logarithmic");
     if (node["colorbar"] && !panel.hasStyle("heatmap"))

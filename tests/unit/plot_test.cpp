@@ -257,6 +257,31 @@ TEST_CASE("plot: where picks the rows of one file for each series") {
                          doctest::Contains("where is not for style histogram"), Error);
 }
 
+TEST_CASE("plot: an optional series that keeps no row on this host is left out of its panel and key") {
+    test::TempDir dir("plot");
+    writeFile(dir / "t.csv", "method,seconds,max\nexact,1,0.1\nexact AVX2,2,0.1\nriemann float SIMD,0.5,0.2\n");
+    const std::string series = "  - {file: t.csv, x: seconds, y: max, style: linespoints, where: {method: exact}}\n"
+                               "  - {file: t.csv, x: seconds, y: max, style: linespoints, label: lower, optional: true, "
+                               "where: {method: \"exact ";
+    // On a host with the forced target its series is drawn; on one without, it is dropped, not drawn empty.
+    const PlotSpec here = parsePlotSpec("series:\n" + series + "AVX2\"}}\n", "fig.yaml", dir.path);
+    REQUIRE(here.panels[0].series.size() == 2);
+    CHECK(gnuplotScript(here, dir / "fig.gp", "fig.png", "fig.svg").find("title 'lower'") != std::string::npos);
+    const PlotSpec elsewhere = parsePlotSpec("series:\n" + series + "SSE4\"}}\n", "fig.yaml", dir.path);
+    REQUIRE(elsewhere.panels[0].series.size() == 1);
+    CHECK(gnuplotScript(elsewhere, dir / "fig.gp", "fig.png", "fig.svg").find("lower") == std::string::npos);
+    // Without optional an empty series stays (a spec's typo should show), and a panel of only empty optional
+    // series has nothing to draw.
+    CHECK(parsePlotSpec("series:\n  - {file: t.csv, x: seconds, y: max, style: points, where: {method: none}}\n",
+                        "fig.yaml", dir.path)
+              .panels[0].series.size() == 1);
+    CHECK(errorOf("series:\n  - {file: t.csv, x: seconds, y: max, style: points, optional: true, where: {method: none}}\n",
+                  dir.path)
+              .find("fig.yaml:2:3: series: every series is optional and keeps no row") != std::string::npos);
+    CHECK(errorOf("series:\n  - {file: t.csv, x: seconds, y: max, style: points, optional: maybe}\n", dir.path)
+              .find("fig.yaml:2:") != std::string::npos);
+}
+
 TEST_CASE("plot: segments and point spec errors") {
     test::TempDir dir("plot");
     writeFile(dir / "s.csv", "t0,t1,row\n0,0.5,1\n");
