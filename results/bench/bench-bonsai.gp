@@ -12,105 +12,125 @@ cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
 1,27
-3.883,16.4
+3.543,16.4
 EOD
 $series1_2 << EOD
-1.302,27
-4.646,16.4
+1.209,27
+4.289,16.4
 EOD
 $series1_3 << EOD
-0.1604,27
-0.6231,16.4
+0.1622,27
+0.6202,16.4
 EOD
 $series1_4 << EOD
-1.291,11.3
-4.577,1.36
+1.166,11.3
+4.038,1.36
 EOD
 $series1_5 << EOD
-1.612,11.3
-6.223,1.36
+1.352,11.3
+5.231,1.36
 EOD
 $series1_6 << EOD
-0.1967,11.3
-0.7293,1.36
+0.1588,11.3
+0.5987,1.36
 EOD
 $series1_7 << EOD
-3.416,14.2
+2.887,14.2
 EOD
 $series1_8 << EOD
-2.447,14.2
+2.368,14.2
 EOD
 $series1_9 << EOD
-3.04,12.3
+2.948,12.3
 EOD
 $series1_10 << EOD
-2.555,12.3
+2.659,12.3
 EOD
 $series1_11 << EOD
-1.122,0.825744908165631
-1.174,0.825744908165631
-1.159,0.825744908165631
-1.008,0.825744908165631
-1.132,0.825744908165631
+1.157,0.825744908165631
+1.265,0.825744908165631
+1.325,0.825744908165631
+1.241,0.825744908165631
+1.45,0.825744908165631
+EOD
+$series1_12 << EOD
+0.2503,27
+0.937,16.4
+EOD
+$series1_13 << EOD
+0.2556,11.3
+0.9669,1.36
+EOD
+$series1_14 << EOD
+1.379,0.825744908165631
+1.551,0.825744908165631
 EOD
 $pareto1 << EOD
-0.1604,27
-0.1967,11.3
-0.7293,1.36
-1.008,0.825744908165631
+0.1588,11.3
+0.5987,1.36
+1.157,0.825744908165631
 EOD
 $series2_1 << EOD
 1,0.1074
-3.883,0.01856
+3.543,0.01856
 EOD
 $series2_2 << EOD
-1.302,0.1074
-4.646,0.01856
+1.209,0.1074
+4.289,0.01856
 EOD
 $series2_3 << EOD
-0.1604,0.1074
-0.6231,0.01856
+0.1622,0.1074
+0.6202,0.01856
 EOD
 $series2_4 << EOD
-1.291,0.05138
-4.577,0.009661
+1.166,0.05138
+4.038,0.009661
 EOD
 $series2_5 << EOD
-1.612,0.05138
-6.223,0.009658
+1.352,0.05138
+5.231,0.009658
 EOD
 $series2_6 << EOD
-0.1967,0.05138
-0.7293,0.009658
+0.1588,0.05138
+0.5987,0.009658
 EOD
 $series2_7 << EOD
-3.416,0.04005
+2.887,0.04005
 EOD
 $series2_8 << EOD
-2.447,0.04005
+2.368,0.04005
 EOD
 $series2_9 << EOD
-3.04,0.03609
+2.948,0.03609
 EOD
 $series2_10 << EOD
-2.555,0.03609
+2.659,0.03609
 EOD
 $series2_11 << EOD
-1.122,7.898e-07
-1.174,3.278e-07
-1.159,1.639e-07
-1.008,0.0005937
-1.132,2.384e-07
+1.157,7.898e-07
+1.265,3.278e-07
+1.325,1.639e-07
+1.241,0.0005937
+1.45,2.384e-07
+EOD
+$series2_12 << EOD
+0.2503,0.1074
+0.937,0.01856
+EOD
+$series2_13 << EOD
+0.2556,0.05138
+0.9669,0.009658
+EOD
+$series2_14 << EOD
+1.379,0.0005937
+1.551,2.384e-07
 EOD
 $pareto2 << EOD
-0.1604,0.1074
-0.1967,0.05138
-0.6231,0.01856
-0.7293,0.009658
-1.008,0.0005937
-1.122,7.898e-07
-1.132,2.384e-07
-1.159,1.639e-07
+0.1588,0.05138
+0.5987,0.009658
+1.157,7.898e-07
+1.265,3.278e-07
+1.325,1.639e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -129,7 +149,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.1287883673626525:7.750460856369705] noextend
+    set xrange [0.12876162376512582:6.451322806516088] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -157,6 +177,9 @@ do for [format in "png svg"] {
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
          $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#8fb0e6' title 'riemann float SIMD AVX2, h0.5 to h0.1', \
+         $series1_13 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#93d39e' title 'composite float SIMD AVX2, h0.5 to h0.1', \
+         $series1_14 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -166,7 +189,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.1287883673626525:7.750460856369705] noextend
+    set xrange [0.12876162376512582:6.451322806516088] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -187,6 +210,9 @@ do for [format in "png svg"] {
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
          $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#8fb0e6' title 'riemann float SIMD AVX2, h0.5 to h0.1', \
+         $series2_13 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#93d39e' title 'composite float SIMD AVX2, h0.5 to h0.1', \
+         $series2_14 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

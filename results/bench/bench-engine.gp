@@ -12,99 +12,126 @@ cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
 1,23.1
-3.328,9.26
+3.478,9.26
 EOD
 $series1_2 << EOD
-1.145,23.1
-4.248,9.26
+1.161,23.1
+4.384,9.26
 EOD
 $series1_3 << EOD
-0.1537,23.1
-0.5876,9.26
+0.1503,23.1
+0.6457,9.26
 EOD
 $series1_4 << EOD
-1.355,7.55
-4.261,0.00708
+1.093,7.55
+3.915,0.00708
 EOD
 $series1_5 << EOD
-1.388,7.55
-5.028,0.00708
+1.431,7.55
+5.806,0.00708
 EOD
 $series1_6 << EOD
-0.1462,7.55
-0.5852,0.00708
+0.1732,7.55
+0.6897,0.00708
 EOD
 $series1_7 << EOD
-2.38,7.08
+2.525,7.08
 EOD
 $series1_8 << EOD
-1.986,7.08
+2.292,7.08
 EOD
 $series1_9 << EOD
-2.535,6.69
+2.79,6.69
 EOD
 $series1_10 << EOD
-2.134,6.69
+2.575,6.69
 EOD
 $series1_11 << EOD
-2.219,0.0018339354534217783
-2.179,0.0018339354534217783
-2.109,0.0018339354534217783
-2.327,0.0018339354534217783
-2.109,0.0018339354534217783
+2.854,0.0018339354534217783
+2.982,0.0018339354534217783
+2.916,0.0018339354534217783
+2.972,0.0018339354534217783
+2.494,0.0018339354534217783
+EOD
+$series1_12 << EOD
+0.2662,23.1
+1.032,9.26
+EOD
+$series1_13 << EOD
+0.3221,7.55
+1.052,0.00708
+EOD
+$series1_14 << EOD
+3.529,0.0018339354534217783
+2.809,0.0018339354534217783
 EOD
 $pareto1 << EOD
-0.1462,7.55
-0.5852,0.00708
-2.109,0.0018339354534217783
+0.1503,23.1
+0.1732,7.55
+0.6897,0.00708
+2.494,0.0018339354534217783
 EOD
 $series2_1 << EOD
 1,0.06248
-3.328,0.01212
+3.478,0.01212
 EOD
 $series2_2 << EOD
-1.145,0.06248
-4.248,0.01212
+1.161,0.06248
+4.384,0.01212
 EOD
 $series2_3 << EOD
-0.1537,0.06248
-0.5876,0.01212
+0.1503,0.06248
+0.6457,0.01212
 EOD
 $series2_4 << EOD
-1.355,0.0149
-4.261,0.003355
+1.093,0.0149
+3.915,0.003355
 EOD
 $series2_5 << EOD
-1.388,0.0149
-5.028,0.003356
+1.431,0.0149
+5.806,0.003356
 EOD
 $series2_6 << EOD
-0.1462,0.0149
-0.5852,0.003356
+0.1732,0.0149
+0.6897,0.003356
 EOD
 $series2_7 << EOD
-2.38,0.02124
+2.525,0.02124
 EOD
 $series2_8 << EOD
-1.986,0.02124
+2.292,0.02124
 EOD
 $series2_9 << EOD
-2.535,0.02103
+2.79,0.02103
 EOD
 $series2_10 << EOD
-2.134,0.02103
+2.575,0.02103
 EOD
 $series2_11 << EOD
-2.219,1.431e-06
-2.179,5.96e-07
-2.109,2.98e-07
-2.327,0.0004174
-2.109,1.788e-07
+2.854,1.431e-06
+2.982,5.96e-07
+2.916,2.98e-07
+2.972,0.0004174
+2.494,1.788e-07
+EOD
+$series2_12 << EOD
+0.2662,0.06248
+1.032,0.01212
+EOD
+$series2_13 << EOD
+0.3221,0.0149
+1.052,0.003356
+EOD
+$series2_14 << EOD
+3.529,0.0004174
+2.809,1.788e-07
 EOD
 $pareto2 << EOD
-0.1462,0.0149
-0.5852,0.003356
-2.109,1.788e-07
+0.1503,0.06248
+0.1732,0.0149
+0.6457,0.01212
+0.6897,0.003356
+2.494,1.788e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -123,7 +150,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.11823893215243732:6.217018258015848] noextend
+    set xrange [0.12071018000003193:7.229231204855871] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -151,6 +178,9 @@ do for [format in "png svg"] {
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
          $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#8fb0e6' title 'riemann float SIMD AVX2, h0.5 to h0.1', \
+         $series1_13 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#93d39e' title 'composite float SIMD AVX2, h0.5 to h0.1', \
+         $series1_14 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -160,7 +190,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1, 2, 5)
-    set xrange [0.11823893215243732:6.217018258015848] noextend
+    set xrange [0.12071018000003193:7.229231204855871] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -181,6 +211,9 @@ do for [format in "png svg"] {
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
          $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#8fb0e6' title 'riemann float SIMD AVX2, h0.5 to h0.1', \
+         $series2_13 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#93d39e' title 'composite float SIMD AVX2, h0.5 to h0.1', \
+         $series2_14 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output
