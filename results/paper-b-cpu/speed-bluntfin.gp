@@ -11,65 +11,69 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.2638,14.2
-0.3382,10
-0.4484,6.21
-0.649,5.14
-1.217,2.9
+0.3046,14.2
+0.4274,10
+0.5905,6.21
+0.7991,5.14
+1.556,2.9
 EOD
 $series1_2 << EOD
-0.05874,14.2
-0.06899,10
-0.09099,6.21
-0.1326,5.14
-0.2444,2.9
+0.04665,14.2
+0.05419,10
+0.07028,6.21
+0.1135,5.14
+0.202,2.9
 EOD
 $series1_3 << EOD
-0.01805,15
-0.03189,2.85
-0.0559,1.26
+0.01756,15
+0.02938,2.85
+0.05546,1.26
 EOD
 $series1_4 << EOD
-0.5161,1.61
-0.4961,1.61
-0.4918,1.61
+0.6532,1.61
+0.5832,1.61
+0.6317,1.61
 EOD
 $series1_5 << EOD
-0.509,1.58
-0.5655,1.58
-0.599,1.58
+0.6503,1.58
+0.5775,1.58
+0.4978,1.58
 EOD
 $series1_6 << EOD
-0.1555,18.9
-0.2795,4.13
-0.4752,1.69
+0.1741,18.9
+0.2672,4.13
+0.4666,1.69
 EOD
 $series1_7 << EOD
-0.1976,6.75
-0.3773,1.88
-0.6764,0.14
+0.1792,6.75
+0.378,1.88
+0.747,0.14
 EOD
 $series1_8 << EOD
-0.3406,14.1
-0.345,10.1
-0.4897,6.22
-0.6761,5.14
-1.54,2.9
+0.3528,14.1
+0.431,10.1
+0.4399,6.22
+0.6781,5.14
+1.235,2.9
 EOD
 $series1_9 << EOD
-1.571,14.1
-1.605,9.99
-1.998,6.16
-2.708,5.13
-5.765,2.9
+1.314,14.1
+1.716,9.99
+1.95,6.16
+2.786,5.13
+4.908,2.9
 EOD
 $series1_10 << EOD
-0.8793,0.05797491983658468
-0.861,0.05797491983658468
-0.8696,0.05797491983658468
-0.8546,0.05797491983658468
+0.8019,0.05797491983658468
+0.8192,0.05797491983658468
+0.8344,0.05797491983658468
+0.7731,0.05797491983658468
 EOD
 $series1_11 << EOD
+0.9104,0.05797491983658468
+1.166,0.05797491983658468
+EOD
+$series1_12 << EOD
 0.06048,25.2
 0.143,26
 0.1719,26.8
@@ -77,78 +81,82 @@ $series1_11 << EOD
 0.6488,27.4
 1.12,27.5
 EOD
-$series1_12 << EOD
+$series1_13 << EOD
 0.0821,17.8
 0.1632,16.9
 0.2963,17
 EOD
 $pareto1 << EOD
-0.01805,15
-0.03189,2.85
-0.0559,1.26
-0.6764,0.14
-0.8546,0.05797491983658468
+0.01756,15
+0.02938,2.85
+0.05546,1.26
+0.747,0.14
+0.7731,0.05797491983658468
 EOD
 $series2_1 << EOD
-0.2638,0.04754
-0.3382,0.03703
-0.4484,0.02677
-0.649,0.01692
-1.217,0.008352
+0.3046,0.04754
+0.4274,0.03703
+0.5905,0.02677
+0.7991,0.01692
+1.556,0.008352
 EOD
 $series2_2 << EOD
-0.05874,0.04754
-0.06899,0.03703
-0.09099,0.02677
-0.1326,0.01692
-0.2444,0.008352
+0.04665,0.04754
+0.05419,0.03703
+0.07028,0.02677
+0.1135,0.01692
+0.202,0.008352
 EOD
 $series2_3 << EOD
-0.01805,0.223
-0.03189,0.05481
-0.0559,0.02029
+0.01756,0.223
+0.02938,0.05481
+0.05546,0.02029
 EOD
 $series2_4 << EOD
-0.5161,0.03639
-0.4961,0.03639
-0.4918,0.03639
+0.6532,0.03639
+0.5832,0.03639
+0.6317,0.03639
 EOD
 $series2_5 << EOD
-0.509,0.0364
-0.5655,0.0364
-0.599,0.0364
+0.6503,0.0364
+0.5775,0.0364
+0.4978,0.0364
 EOD
 $series2_6 << EOD
-0.1555,0.2196
-0.2795,0.06813
-0.4752,0.01726
+0.1741,0.2196
+0.2672,0.06813
+0.4666,0.01726
 EOD
 $series2_7 << EOD
-0.1976,0.2016
-0.3773,0.03801
-0.6764,0.007789
+0.1792,0.2016
+0.378,0.03801
+0.747,0.007789
 EOD
 $series2_8 << EOD
-0.3406,0.04855
-0.345,0.03697
-0.4897,0.02721
-0.6761,0.0167
-1.54,0.008275
+0.3528,0.04855
+0.431,0.03697
+0.4399,0.02721
+0.6781,0.0167
+1.235,0.008275
 EOD
 $series2_9 << EOD
-1.571,0.04535
-1.605,0.03444
-1.998,0.02558
-2.708,0.0168
-5.765,0.008052
+1.314,0.04535
+1.716,0.03444
+1.95,0.02558
+2.786,0.0168
+4.908,0.008052
 EOD
 $series2_10 << EOD
-0.8793,1.076e-05
-0.861,2.325e-06
-0.8696,0.0002756
-0.8546,7.153e-07
+0.8019,1.076e-05
+0.8192,2.325e-06
+0.8344,0.0002756
+0.7731,7.153e-07
 EOD
 $series2_11 << EOD
+0.9104,0.0002756
+1.166,7.153e-07
+EOD
+$series2_12 << EOD
 0.06048,0.1418
 0.143,0.04936
 0.1719,0.05017
@@ -156,19 +164,21 @@ $series2_11 << EOD
 0.6488,0.05721
 1.12,0.08155
 EOD
-$series2_12 << EOD
+$series2_13 << EOD
 0.0821,0.1497
 0.1632,0.0476
 0.2963,0.01615
 EOD
 $pareto2 << EOD
-0.01805,0.223
-0.03189,0.05481
-0.0559,0.02029
-0.1326,0.01692
-0.2444,0.008352
-0.6764,0.007789
-0.8546,7.153e-07
+0.01756,0.223
+0.02938,0.05481
+0.04665,0.04754
+0.05419,0.03703
+0.05546,0.02029
+0.1135,0.01692
+0.202,0.008352
+0.747,0.007789
+0.7731,7.153e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -187,7 +197,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.012770793422946621:8.14814291906309] noextend
+    set xrange [0.012523961071528217:6.881567222045307] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -213,9 +223,10 @@ do for [format in "png svg"] {
          $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -225,7 +236,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.012770793422946621:8.14814291906309] noextend
+    set xrange [0.012523961071528217:6.881567222045307] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -244,9 +255,10 @@ do for [format in "png svg"] {
          $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -11,65 +11,69 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.4775,27
-0.514,26.5
-0.6148,25.7
-0.841,23.4
-1.471,16.4
+0.5514,27
+0.6979,26.5
+0.7273,25.7
+1.136,23.4
+1.866,16.4
 EOD
 $series1_2 << EOD
-0.07662,27
-0.0963,26.5
-0.1163,25.7
-0.1624,23.4
-0.296,16.4
+0.06935,27
+0.08707,26.5
+0.09899,25.7
+0.1378,23.4
+0.2392,16.4
 EOD
 $series1_3 << EOD
-0.03005,27.4
-0.04389,21.8
-0.07781,11.3
+0.02795,27.4
+0.04166,21.8
+0.06674,11.3
 EOD
 $series1_4 << EOD
-1.495,14.7
-1.48,14.7
-1.221,14.2
+1.149,14.7
+1.321,14.7
+1.344,14.2
 EOD
 $series1_5 << EOD
-1.25,12.5
-1.327,12.5
-1.238,12.3
+1.225,12.5
+1.252,12.5
+1.359,12.3
 EOD
 $series1_6 << EOD
-0.5271,28.2
-0.9168,24
-1.385,11.8
+0.4388,28.2
+0.8584,24
+1.459,11.8
 EOD
 $series1_7 << EOD
-0.7457,22.5
-1.404,11.4
-2.436,7.35
+0.7452,22.5
+1.48,11.4
+2.678,7.35
 EOD
 $series1_8 << EOD
-0.4819,27.1
-0.597,26.6
-0.6425,25.7
-0.9071,23.4
-1.654,16.4
+0.4242,27.1
+0.5639,26.6
+0.7066,25.7
+0.8575,23.4
+1.672,16.4
 EOD
 $series1_9 << EOD
-2.077,26.9
-2.244,26.4
-2.658,25.6
-3.645,23.2
-7.504,16.1
+2.017,26.9
+2.392,26.4
+3.183,25.6
+3.957,23.2
+7.46,16.1
 EOD
 $series1_10 << EOD
-0.4281,5.442468800928215
-0.4489,5.442468800928215
-0.4996,5.442468800928215
-0.4922,5.442468800928215
+0.4893,5.442468800928215
+0.4752,5.442468800928215
+0.4125,5.442468800928215
+0.4608,5.442468800928215
 EOD
 $series1_11 << EOD
+0.4367,5.442468800928215
+0.4984,5.442468800928215
+EOD
+$series1_12 << EOD
 0.1256,29.9
 0.1255,29.9
 0.2176,29.9
@@ -77,77 +81,81 @@ $series1_11 << EOD
 0.7149,29.8
 1.425,29.9
 EOD
-$series1_12 << EOD
+$series1_13 << EOD
 0.2728,28.3
 0.487,27.4
 0.9577,27.1
 EOD
 $pareto1 << EOD
-0.03005,27.4
-0.04389,21.8
-0.07781,11.3
-0.4281,5.442468800928215
+0.02795,27.4
+0.04166,21.8
+0.06674,11.3
+0.4125,5.442468800928215
 EOD
 $series2_1 << EOD
-0.4775,0.1074
-0.514,0.09284
-0.6148,0.05965
-0.841,0.03929
-1.471,0.01856
+0.5514,0.1074
+0.6979,0.09284
+0.7273,0.05965
+1.136,0.03929
+1.866,0.01856
 EOD
 $series2_2 << EOD
-0.07662,0.1074
-0.0963,0.09284
-0.1163,0.05965
-0.1624,0.03929
-0.296,0.01856
+0.06935,0.1074
+0.08707,0.09284
+0.09899,0.05965
+0.1378,0.03929
+0.2392,0.01856
 EOD
 $series2_3 << EOD
-0.03005,0.2766
-0.04389,0.1414
-0.07781,0.05138
+0.02795,0.2766
+0.04166,0.1414
+0.06674,0.05138
 EOD
 $series2_4 << EOD
-1.495,0.04547
-1.48,0.04547
-1.221,0.04005
+1.149,0.04547
+1.321,0.04547
+1.344,0.04005
 EOD
 $series2_5 << EOD
-1.25,0.03886
-1.327,0.03886
-1.238,0.03609
+1.225,0.03886
+1.252,0.03886
+1.359,0.03609
 EOD
 $series2_6 << EOD
-0.5271,0.2483
-0.9168,0.1241
-1.385,0.04762
+0.4388,0.2483
+0.8584,0.1241
+1.459,0.04762
 EOD
 $series2_7 << EOD
-0.7457,0.2206
-1.404,0.1108
-2.436,0.04851
+0.7452,0.2206
+1.48,0.1108
+2.678,0.04851
 EOD
 $series2_8 << EOD
-0.4819,0.1169
-0.597,0.08383
-0.6425,0.05987
-0.9071,0.0394
-1.654,0.01886
+0.4242,0.1169
+0.5639,0.08383
+0.7066,0.05987
+0.8575,0.0394
+1.672,0.01886
 EOD
 $series2_9 << EOD
-2.077,0.1069
-2.244,0.07774
-2.658,0.05721
-3.645,0.03938
-7.504,0.01874
+2.017,0.1069
+2.392,0.07774
+3.183,0.05721
+3.957,0.03938
+7.46,0.01874
 EOD
 $series2_10 << EOD
-0.4281,7.778e-06
-0.4489,7.898e-07
-0.4996,0.0005937
-0.4922,2.384e-07
+0.4893,7.778e-06
+0.4752,7.898e-07
+0.4125,0.0005937
+0.4608,2.384e-07
 EOD
 $series2_11 << EOD
+0.4367,0.0005937
+0.4984,2.384e-07
+EOD
+$series2_12 << EOD
 0.1256,0.4228
 0.1255,0.402
 0.2176,0.3922
@@ -155,21 +163,19 @@ $series2_11 << EOD
 0.7149,0.9938
 1.425,0.9938
 EOD
-$series2_12 << EOD
+$series2_13 << EOD
 0.2728,0.4893
 0.487,0.3752
 0.9577,0.3207
 EOD
 $pareto2 << EOD
-0.03005,0.2766
-0.04389,0.1414
-0.07662,0.1074
-0.07781,0.05138
-0.1624,0.03929
-0.296,0.01856
-0.4281,7.778e-06
-0.4489,7.898e-07
-0.4922,2.384e-07
+0.02795,0.2766
+0.04166,0.1414
+0.06674,0.05138
+0.1378,0.03929
+0.2392,0.01856
+0.4125,0.0005937
+0.4608,2.384e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -187,8 +193,8 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
-    set xrange [0.02157732362811847:10.450563929353413] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
+    set xrange [0.01998942912319696:10.430863168475167] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -214,9 +220,10 @@ do for [format in "png svg"] {
          $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -225,8 +232,8 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
-    set xrange [0.02157732362811847:10.450563929353413] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
+    set xrange [0.01998942912319696:10.430863168475167] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -245,9 +252,10 @@ do for [format in "png svg"] {
          $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -11,65 +11,69 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3874,23.1
-0.4471,20.9
-0.5383,17.1
-0.8305,10.7
-1.503,9.26
+0.3884,23.1
+0.4459,20.9
+0.5285,17.1
+0.7325,10.7
+1.239,9.26
 EOD
 $series1_2 << EOD
-0.06757,23.1
-0.07706,20.9
-0.1009,17.1
-0.1408,10.7
-0.2459,9.26
+0.06602,23.1
+0.0739,20.9
+0.0905,17.1
+0.1281,10.7
+0.2301,9.26
 EOD
 $series1_3 << EOD
-0.02426,22.8
-0.03735,13.3
-0.0686,7.55
+0.02566,22.8
+0.03652,13.3
+0.06317,7.55
 EOD
 $series1_4 << EOD
-0.9116,7.09
-0.947,7.09
-0.93,7.08
+0.9393,7.09
+0.9327,7.09
+0.8978,7.08
 EOD
 $series1_5 << EOD
-1.057,6.69
-1.236,6.69
-1.062,6.69
+0.9581,6.69
+0.9154,6.69
+0.9002,6.69
 EOD
 $series1_6 << EOD
-0.3909,27.3
-0.6718,22.9
-1.109,7.79
+0.363,27.3
+0.5692,22.9
+1.009,7.79
 EOD
 $series1_7 << EOD
-0.6068,14.3
-0.9758,6.09
-1.937,1.61
+0.532,14.3
+0.9689,6.09
+1.784,1.61
 EOD
 $series1_8 << EOD
-0.4187,23.1
-0.4459,20.8
-0.5422,17.1
-0.7424,10.7
-1.503,9.26
+0.391,23.1
+0.441,20.8
+0.553,17.1
+0.7798,10.7
+1.502,9.26
 EOD
 $series1_9 << EOD
-1.563,23.2
-1.663,20.8
-2.087,16.9
-4.599,10.3
-5.087,9.26
+1.64,23.2
+1.997,20.8
+2.096,16.9
+2.95,10.3
+5.276,9.26
 EOD
 $series1_10 << EOD
-0.8612,0.9958519752751349
-0.898,0.9958519752751349
-0.9351,0.9958519752751349
-0.9455,0.9958519752751349
+0.8337,0.9958519752751349
+0.794,0.9958519752751349
+0.925,0.9958519752751349
+0.9586,0.9958519752751349
 EOD
 $series1_11 << EOD
+0.962,0.9958519752751349
+1.092,0.9958519752751349
+EOD
+$series1_12 << EOD
 0.08053,25.2
 0.1324,25.4
 0.2047,26.7
@@ -77,77 +81,81 @@ $series1_11 << EOD
 0.7317,28.4
 1.393,28.6
 EOD
-$series1_12 << EOD
+$series1_13 << EOD
 0.1813,24.5
 0.3982,23.6
 0.8246,24.1
 EOD
 $pareto1 << EOD
-0.02426,22.8
-0.03735,13.3
-0.0686,7.55
-0.8612,0.9958519752751349
+0.02566,22.8
+0.03652,13.3
+0.06317,7.55
+0.794,0.9958519752751349
 EOD
 $series2_1 << EOD
-0.3874,0.06248
-0.4471,0.04992
-0.5383,0.03695
-0.8305,0.02473
-1.503,0.01212
+0.3884,0.06248
+0.4459,0.04992
+0.5285,0.03695
+0.7325,0.02473
+1.239,0.01212
 EOD
 $series2_2 << EOD
-0.06757,0.06248
-0.07706,0.04992
-0.1009,0.03695
-0.1408,0.02473
-0.2459,0.01212
+0.06602,0.06248
+0.0739,0.04992
+0.0905,0.03695
+0.1281,0.02473
+0.2301,0.01212
 EOD
 $series2_3 << EOD
-0.02426,0.1125
-0.03735,0.04035
-0.0686,0.0149
+0.02566,0.1125
+0.03652,0.04035
+0.06317,0.0149
 EOD
 $series2_4 << EOD
-0.9116,0.02604
-0.947,0.02604
-0.93,0.02124
+0.9393,0.02604
+0.9327,0.02604
+0.8978,0.02124
 EOD
 $series2_5 << EOD
-1.057,0.02591
-1.236,0.02591
-1.062,0.02103
+0.9581,0.02591
+0.9154,0.02591
+0.9002,0.02103
 EOD
 $series2_6 << EOD
-0.3909,0.1469
-0.6718,0.04854
-1.109,0.01691
+0.363,0.1469
+0.5692,0.04854
+1.009,0.01691
 EOD
 $series2_7 << EOD
-0.6068,0.1116
-0.9758,0.03518
-1.937,0.01408
+0.532,0.1116
+0.9689,0.03518
+1.784,0.01408
 EOD
 $series2_8 << EOD
-0.4187,0.06325
-0.4459,0.0497
-0.5422,0.03759
-0.7424,0.02473
-1.503,0.01216
+0.391,0.06325
+0.441,0.0497
+0.553,0.03759
+0.7798,0.02473
+1.502,0.01216
 EOD
 $series2_9 << EOD
-1.563,0.06274
-1.663,0.04945
-2.087,0.03726
-4.599,0.02451
-5.087,0.01216
+1.64,0.06274
+1.997,0.04945
+2.096,0.03726
+2.95,0.02451
+5.276,0.01216
 EOD
 $series2_10 << EOD
-0.8612,1.296e-05
-0.898,1.431e-06
-0.9351,0.0004174
-0.9455,1.788e-07
+0.8337,1.296e-05
+0.794,1.431e-06
+0.925,0.0004174
+0.9586,1.788e-07
 EOD
 $series2_11 << EOD
+0.962,0.0004174
+1.092,1.788e-07
+EOD
+$series2_12 << EOD
 0.08053,0.1676
 0.1324,0.1323
 0.2047,0.131
@@ -155,19 +163,18 @@ $series2_11 << EOD
 0.7317,0.131
 1.393,0.1252
 EOD
-$series2_12 << EOD
+$series2_13 << EOD
 0.1813,0.1495
 0.3982,0.1113
 0.8246,0.09071
 EOD
 $pareto2 << EOD
-0.02426,0.1125
-0.03735,0.04035
-0.0686,0.0149
-0.2459,0.01212
-0.8612,1.296e-05
-0.898,1.431e-06
-0.9455,1.788e-07
+0.02566,0.1125
+0.03652,0.04035
+0.06317,0.0149
+0.2301,0.01212
+0.794,1.431e-06
+0.9586,1.788e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -186,7 +193,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.017603399292913845:7.010613004141665] noextend
+    set xrange [0.018641195620079317:7.262525578250648] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -212,9 +219,10 @@ do for [format in "png svg"] {
          $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -224,7 +232,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.017603399292913845:7.010613004141665] noextend
+    set xrange [0.018641195620079317:7.262525578250648] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -243,9 +251,10 @@ do for [format in "png svg"] {
          $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -11,65 +11,69 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3439,25.1
-0.4279,25
-0.482,24.8
-0.6501,23.2
-1.11,6.98
+0.4188,25.1
+0.464,25
+0.5507,24.8
+0.7146,23.2
+1.389,6.98
 EOD
 $series1_2 << EOD
-0.05096,25.1
-0.06124,25
-0.07736,24.8
-0.1077,23.2
-0.1725,6.98
+0.04804,25.1
+0.06237,25
+0.07201,24.8
+0.09322,23.2
+0.1752,6.98
 EOD
 $series1_3 << EOD
-0.02046,21.7
-0.03121,14.8
-0.04991,3.01
+0.02037,21.7
+0.03391,14.8
+0.04524,3.01
 EOD
 $series1_4 << EOD
-1.062,7.88
-1.152,7.88
-1.105,7.82
+1.109,7.88
+1.07,7.88
+1.128,7.82
 EOD
 $series1_5 << EOD
-1.218,6.08
-1.219,6.08
-1.255,6.02
+1.123,6.08
+1.131,6.08
+1.235,6.02
 EOD
 $series1_6 << EOD
-0.4031,25.2
-0.7293,20.9
-1.442,7.48
+0.4467,25.2
+0.7929,20.9
+1.616,7.48
 EOD
 $series1_7 << EOD
-0.7909,10.5
-1.325,1.58
-2.669,0.291
+0.9069,10.5
+1.563,1.58
+2.806,0.291
 EOD
 $series1_8 << EOD
-0.4422,25
-0.4877,25
-0.5671,24.8
-0.6602,23.2
-1.108,6.99
+0.3479,25
+0.3999,25
+0.5178,24.8
+0.6519,23.2
+1.176,6.99
 EOD
 $series1_9 << EOD
-1.43,25.1
-1.605,25
-2.105,24.8
-2.688,23.7
-4.589,7
+1.465,25.1
+1.609,25
+1.918,24.8
+2.537,23.7
+4.811,7
 EOD
 $series1_10 << EOD
-0.4251,0.13709488532160133
-0.4173,0.13709488532160133
-0.4656,0.13709488532160133
-0.4278,0.13709488532160133
+0.387,0.13709488532160133
+0.3745,0.13709488532160133
+0.3849,0.13709488532160133
+0.4204,0.13709488532160133
 EOD
 $series1_11 << EOD
+0.4926,0.13709488532160133
+0.4427,0.13709488532160133
+EOD
+$series1_12 << EOD
 0.09257,23.7
 0.1697,23.2
 0.204,24.8
@@ -77,77 +81,81 @@ $series1_11 << EOD
 0.8077,26.3
 1.563,26.4
 EOD
-$series1_12 << EOD
+$series1_13 << EOD
 0.2751,22.9
 0.5559,21
 1.088,21.1
 EOD
 $pareto1 << EOD
-0.02046,21.7
-0.03121,14.8
-0.04991,3.01
-0.4173,0.13709488532160133
+0.02037,21.7
+0.03391,14.8
+0.04524,3.01
+0.3745,0.13709488532160133
 EOD
 $series2_1 << EOD
-0.3439,0.157
-0.4279,0.12
-0.482,0.09271
-0.6501,0.05941
-1.11,0.02978
+0.4188,0.157
+0.464,0.12
+0.5507,0.09271
+0.7146,0.05941
+1.389,0.02978
 EOD
 $series2_2 << EOD
-0.05096,0.157
-0.06124,0.12
-0.07736,0.09271
-0.1077,0.05941
-0.1725,0.02978
+0.04804,0.157
+0.06237,0.12
+0.07201,0.09271
+0.09322,0.05941
+0.1752,0.02978
 EOD
 $series2_3 << EOD
-0.02046,0.368
-0.03121,0.2132
-0.04991,0.08404
+0.02037,0.368
+0.03391,0.2132
+0.04524,0.08404
 EOD
 $series2_4 << EOD
-1.062,0.1037
-1.152,0.09117
-1.105,0.1109
+1.109,0.1037
+1.07,0.09117
+1.128,0.1109
 EOD
 $series2_5 << EOD
-1.218,0.1033
-1.219,0.09043
-1.255,0.1111
+1.123,0.1033
+1.131,0.09043
+1.235,0.1111
 EOD
 $series2_6 << EOD
-0.4031,0.4111
-0.7293,0.219
-1.442,0.1099
+0.4467,0.4111
+0.7929,0.219
+1.616,0.1099
 EOD
 $series2_7 << EOD
-0.7909,0.4697
-1.325,0.1776
-2.669,0.1013
+0.9069,0.4697
+1.563,0.1776
+2.806,0.1013
 EOD
 $series2_8 << EOD
-0.4422,0.1648
-0.4877,0.1217
-0.5671,0.09084
-0.6602,0.06025
-1.108,0.02988
+0.3479,0.1648
+0.3999,0.1217
+0.5178,0.09084
+0.6519,0.06025
+1.176,0.02988
 EOD
 $series2_9 << EOD
-1.43,0.1546
-1.605,0.1197
-2.105,0.08799
-2.688,0.05886
-4.589,0.02946
+1.465,0.1546
+1.609,0.1197
+1.918,0.08799
+2.537,0.05886
+4.811,0.02946
 EOD
 $series2_10 << EOD
-0.4251,1.377e-05
-0.4173,8.941e-07
-0.4656,0.000526
-0.4278,2.384e-07
+0.387,1.377e-05
+0.3745,8.941e-07
+0.3849,0.000526
+0.4204,2.384e-07
 EOD
 $series2_11 << EOD
+0.4926,0.000526
+0.4427,2.384e-07
+EOD
+$series2_12 << EOD
 0.09257,0.3875
 0.1697,0.1806
 0.204,0.1303
@@ -155,19 +163,19 @@ $series2_11 << EOD
 0.8077,0.1342
 1.563,0.2229
 EOD
-$series2_12 << EOD
+$series2_13 << EOD
 0.2751,0.354
 0.5559,0.2112
 1.088,0.08796
 EOD
 $pareto2 << EOD
-0.02046,0.368
-0.03121,0.2132
-0.04991,0.08404
-0.1077,0.05941
-0.1725,0.02978
-0.4173,8.941e-07
-0.4278,2.384e-07
+0.02037,0.368
+0.03391,0.2132
+0.04524,0.08404
+0.09322,0.05941
+0.1752,0.02978
+0.3745,8.941e-07
+0.4204,2.384e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -186,7 +194,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.014786210467732827:6.349898792857932] noextend
+    set xrange [0.014675617006277217:6.6777478560582715] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -212,9 +220,10 @@ do for [format in "png svg"] {
          $series1_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -224,7 +233,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.014786210467732827:6.349898792857932] noextend
+    set xrange [0.014675617006277217:6.6777478560582715] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -243,9 +252,10 @@ do for [format in "png svg"] {
          $series2_7 using 1:2 with linespoints lw 1.5 pt 13 ps 1.2 lc rgb '#6a0572' title 'pre-integrated double, order 2, h2 to h0.5', \
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
-         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output
