@@ -45,7 +45,6 @@ constexpr int kMaxDepth = 40;  // bisections of one sub-piece; reached only by p
 // interval to kMaxDepth (2^40 of them). Past it every interval is accepted with its own error.
 constexpr int kMaxIntervals = 4096;
 constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
-constexpr double kGaussTolerance = ExactRay::kGaussTolerance;
 
 // How many of the sorted values are <= x (upper_bound's index), and with it how many are < y
 // (lower_bound's): counts without branches over the few points of a transfer function, where a binary

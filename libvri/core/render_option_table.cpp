@@ -97,11 +97,8 @@ const RenderOptionRow kRows[] = {
          return r.options.simd ? (r.options.simdTarget.empty() ? std::string("on") : r.options.simdTarget) : "off";
      },
      [](const RenderRequest& r, std::vector<Setting>& s) {
-         if (r.exact) {  // the Gauss batches' target, when one was asked for
-             if (!r.options.simdTarget.empty()) s.push_back({"simd_target", r.options.simdTarget});
-             return;
-         }
-         s.push_back({"simd", r.options.simd});
+         if (!r.exact) s.push_back({"simd", r.options.simd});  // the exact method has no scalar twin to record
+         // A forced target: the packets', or the exact method's Gauss batches'.
          if (r.options.simd && !r.options.simdTarget.empty()) s.push_back({"simd_target", r.options.simdTarget});
      },
      [](std::string_view text) -> std::optional<std::vector<std::string>> {

@@ -87,14 +87,12 @@ std::string medianNote(std::size_t fewest, std::size_t most) {
 // "preintegrated double order 2", "riemann double jitter 4 frames".
 std::string methodFamily(const json& stats, const fs::path& file) {
     return readingJsonOf(file, [&] {
-        const std::string method = stats.at("options").at("method").get<std::string>();
+        const json& options = stats.at("options");
+        const std::string method = options.at("method").get<std::string>();
         // The exact method's Gauss batches on a target forced below the best: "exact AVX2".
         if (method == "exact")
-            return stats.at("options").contains("simd_target")
-                       ? method + " " + stats.at("options").at("simd_target").get<std::string>()
-                       : method;
+            return options.contains("simd_target") ? method + " " + options.at("simd_target").get<std::string>() : method;
         // A peer renderer (vri-peer-vtk) has no precision option: its family is its method.
-        const json& options = stats.at("options");
         if (!options.contains("precision")) return method;
         std::string family = method + " " + options.at("precision").get<std::string>();
         const json& run = stats.at("stats");
