@@ -131,7 +131,6 @@ ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
       fastSplits_(tolerance >= kGaussTolerance),
       rootStart_(fastSplits_ ? RootStart::Chord : RootStart::Midpoint) {
     for (const auto& p : tf.points()) {
-        pointS_.push_back(p.s);
         if (levels_.empty() || levels_.back() != p.s) levels_.push_back(p.s);
         maxColour_ = {std::max(maxColour_[0], p.r), std::max(maxColour_[1], p.g), std::max(maxColour_[2], p.b)};
     }
@@ -193,6 +192,16 @@ ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
         steps_.push_back(step);
         first = last + 1;
     }
+    // Per gap: s in [level g - 1, level g) lies on segment i, from the last point at level g - 1 (its
+    // value right-continuous at a jump) to the next point; below the first level and from the last
+    // one on, the constants.
+    for (std::size_t g = 0, atMost = 0; g <= levels_.size(); ++g) {
+        while (g > 0 && atMost < points.size() && points[atMost].s <= levels_[g - 1]) ++atMost;
+        const std::size_t iA = g == 0 ? 0 : atMost - 1, iB = g == 0 || g == levels_.size() ? iA : iA + 1;
+        const TransferFunctionPoint& A = points[iA];
+        const TransferFunctionPoint& B = points[iB];
+        gaps_.push_back({iA != iB ? iA : iA == 0 ? points.size() - 1 : points.size(), zero(A) && zero(B)});
+    }
     if (tolerance >= kGaussTolerance) batch_ = std::make_unique<GaussBatch>();
 }
 
@@ -234,6 +243,20 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     }
     if (invisible(lo, hi)) return;  // neither extinction nor emission anywhere on the piece
 
+    // Most pieces lie inside one TF segment, farther from its levels than rounding can reach: with no
+    // critical point and both ends clear of the levels around the middle (wrongSide's test) no level
+    // splits the piece and s is nowhere on a wrong side. The general path below gives these the same
+    // sub-piece, segment and zero wrong side, but after three more evaluations and two more searches.
+    if (parts == 1) {
+        const double sMid = s(0.5);
+        const std::size_t below = countAtMost(levels_, sMid);
+        const double margin = 2.0 * wrongSideEps(sScale);
+        if ((below == 0 || (lo - levels_[below - 1] > margin)) && (below == levels_.size() || levels_[below] - hi > margin)) {
+            integrateSubPiece(length, s, 0.0, 1.0, sScale, WrongSide{}, below);
+            return;
+        }
+    }
+
     // Split where s crosses a transfer-function point: within a monotone part at most once per level,
     // in the order of the levels when s rises and in reverse when it falls.
     splits_.clear();
@@ -254,8 +277,9 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     splits_.push_back(1.0);
     for (std::size_t i = 0; i + 1 < splits_.size(); ++i)
         if (splits_[i + 1] > splits_[i]) {
-            const WrongSide wrong = wrongSide(length, s, splits_[i], splits_[i + 1], sScale, parts, ends);
-            integrateSubPiece(length, s, splits_[i], splits_[i + 1], sScale, wrong);
+            const double a = splits_[i], b = splits_[i + 1];
+            const std::size_t below = countAtMost(levels_, s(0.5 * (a + b)));  // levels <= s at the middle
+            integrateSubPiece(length, s, a, b, sScale, wrongSide(length, s, a, b, sScale, parts, ends, below), below);
         }
 }
 
@@ -277,10 +301,9 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
 // dC (tau_high + dtau) + (C_high + dC) dtau); a misplaced jump is the jump's height over w, a misplaced
 // kink only the slopes over 8 eps, which on ordinary scenes adds nothing visible to the bound.
 ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a, double b, double sScale, int parts,
-                                        const double* ends) const {
+                                        const double* ends, std::size_t below) const {
     WrongSide r;
-    const double eps = 48.0 * kUnit * sScale;
-    const std::size_t below = countAtMost(levels_, s(0.5 * (a + b)));  // levels <= s at the middle
+    const double eps = wrongSideEps(sScale);
     const double sa = s(a), sb = s(b);
     for (int side = 0; side < 2; ++side) {
         // Side 0: the level under the segment (s must stay above it); side 1: the level over it.
@@ -357,30 +380,16 @@ double ExactRay::wrongSideWidth(const Cubic& s, double at, double sAt, double in
 //  - the quadrature sums and the running colour sum: 32 u of each term, u of the sum per add.
 // Every bound is a sum of non-negative terms evaluated in double; its own rounding is irrelevant.
 void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale,
-                                 const WrongSide& wrong) {
+                                 const WrongSide& wrong, std::size_t below) {
     // Where s may be beyond the segment: the depth from here on is uncertain by wrong.depth more, and the
     // colour by wrong.colour plus what the true emission there, at most C_high tau_high, may see of the
     // depth's uncertainty (the sum of the sub-piece covers the used emission's).
     depthError_ += wrong.depth;
     std::array<double, 3> wrongColour = wrong.colour;
     for (int c = 0; c < 3; ++c) wrongColour[c] += wrong.seen[c] * depthError_;
-    // The TF segment [A, B] the sub-piece lies in (constant beyond the ends; right-continuous at jumps).
-    const auto& points = tf_.points();
-    const double sMid = s(0.5 * (a + b));
-    std::size_t iA = 0, iB = 0;
-    if (!(sMid < pointS_.front())) {
-        if (!(sMid < pointS_.back())) {
-            iA = iB = points.size() - 1;
-        } else {
-            iA = countAtMost(pointS_, sMid) - 1;  // upper_bound - 1
-            iB = iA + 1;
-        }
-    }
-    const TransferFunctionPoint& A = points[iA];
-    const TransferFunctionPoint& B = points[iB];
-    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
-    if (A.tau == 0.0 && B.tau == 0.0 &&
-        (colourTimesExtinction || (A.r == 0.0 && A.g == 0.0 && A.b == 0.0 && B.r == 0.0 && B.g == 0.0 && B.b == 0.0))) {
+    // The TF segment the sub-piece lies in: that of the `below` levels <= s at its middle.
+    const Gap& gap = gaps_[below];
+    if (gap.zero) {
         // Adds exactly nothing and multiplies the transparency by exactly 1, but where s may be beyond
         // the segment the TF may not be zero.
         if (wrong.depth > 0.0 || wrongColour[0] > 0.0 || wrongColour[1] > 0.0 || wrongColour[2] > 0.0) {
@@ -394,7 +403,7 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     // Everything as polynomials in lambda in [0, 1] over the sub-piece.
     const Cubic local = a == 0.0 && b == 1.0 ? s : s.reparameterised(a, b - a);  // the same bits for a whole piece
     const double ell = length * (b - a);
-    const std::size_t segment = iA != iB ? iA : iA == 0 ? points.size() - 1 : points.size();
+    const std::size_t segment = gap.segment;
     const SubPiece piece = setUp(local, ell, sScale, segments_[segment], !batch_);
     const double depthErrorInFront = depthError_;
     if (batch_) {

@@ -93,12 +93,22 @@ private:
         std::array<double, 3> seen{};  // the width times the TF's largest emission there
     };
 
+    // A TF segment between two neighbouring levels (a gap): segment g - 1's level <= s < level g.
+    struct Gap {
+        std::size_t segment;  // into segments_
+        bool zero;            // the TF is zero on it: a sub-piece there adds nothing
+    };
+
     bool doneAtDepth(double depth, double remainingLength) const;  // done() past terminationDepth_
+    // How far the computed s may be from the exact one (exact_ray.cpp, "wrong side").
+    static double wrongSideEps(double sScale) { return 48.0 * 0x1p-53 * sScale; }
+    // `below`: the levels <= s at the sub-piece's middle.
     WrongSide wrongSide(double length, const Cubic& s, double a, double b, double sScale, int parts,
-                        const double* ends) const;
+                        const double* ends, std::size_t below) const;
     double wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above, double eps) const;
     static Linear alongSegment(const Cubic& local, double sA, double v, double m, double ds);
-    void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale, const WrongSide& wrong);
+    void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale, const WrongSide& wrong,
+                           std::size_t below);
     SubPiece setUp(const Cubic& local, double ell, double sScale, const Segment& segment, bool withColour) const;
     void adaptiveQuadrature(const SubPiece& piece, double front, double sum[3], double error[3], double rounding[3]);
     void accumulate(double front, double depthErrorInFront, const double sum[3], const double error[3],
@@ -113,9 +123,9 @@ private:
     RootStart rootStart_;          // Chord with fastSplits_: the same roots to an ulp, fewer Newton steps
     double terminationDepth_;      // g = C tau: done() once the optical depth reaches this
     double largestColour_;         // max(1, C_max over channels): what bounds a tail per unit T
-    std::vector<double> pointS_;   // the TF points' s, sorted (duplicates at jumps)
     std::vector<double> levels_;   // the distinct s of the TF points: where a piece is split
     std::vector<LevelStep> steps_;  // per level
+    std::vector<Gap> gaps_;         // per gap: levels_.size() + 1
     std::array<double, 4> channelMax_{};  // the largest tau, R, G, B of the TF
     std::vector<double> splits_;   // scratch: a piece's split points in sigma
     std::vector<std::pair<double, double>> invisibleSpans_;  // closed spans of s where the TF is zero
