@@ -243,15 +243,14 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
     }
     if (invisible(lo, hi)) return;  // neither extinction nor emission anywhere on the piece
 
-    // Most pieces lie inside one TF segment, farther from its levels than rounding can reach: with no
-    // critical point and both ends clear of the levels around the middle (wrongSide's test) no level
+    // Most pieces lie inside one TF segment, farther from its levels than rounding can reach: with their
+    // ends and critical points all clear of the levels around the middle (wrongSide's test) no level
     // splits the piece and s is nowhere on a wrong side. The general path below gives these the same
-    // sub-piece, segment and zero wrong side, but after three more evaluations and two more searches.
-    if (parts == 1) {
-        const double sMid = s(0.5);
-        const std::size_t below = countAtMost(levels_, sMid);
+    // sub-piece, segment and zero wrong side, but after more evaluations and two more searches.
+    {
+        const std::size_t below = countAtMost(levels_, s(0.5));
         const double margin = 2.0 * wrongSideEps(sScale);
-        if ((below == 0 || (lo - levels_[below - 1] > margin)) && (below == levels_.size() || levels_[below] - hi > margin)) {
+        if ((below == 0 || lo - levels_[below - 1] > margin) && (below == levels_.size() || levels_[below] - hi > margin)) {
             integrateSubPiece(length, s, 0.0, 1.0, sScale, WrongSide{}, below);
             return;
         }
