@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "libvri/core/exact_ray.h"
 #include "libvri/core/simd_target.h"
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
@@ -370,6 +371,11 @@ void finishRenderRequest(RenderRequest& r) {
         throw Error("--max-error applies to --method exact only (the only method with a per-pixel error bound)");
     if (r.exact && !(r.exactTolerance > 0.0))
         throw Error("--tolerance: must be > 0 for --method exact, got " + exactNumber(r.exactTolerance));
+    // A forced target with nothing to run on would be recorded in options.simd_target as if it had run.
+    if (r.exact && r.wasGiven("--simd") && !r.options.simdTarget.empty() && !r.maxError &&
+        r.exactTolerance < ExactRay::kGaussTolerance)
+        throw Error("--simd " + r.options.simdTarget + ": the exact method's SIMD Gauss batches run from --tolerance " +
+                    exactNumber(ExactRay::kGaussTolerance) + " up; at " + exactNumber(r.exactTolerance) + " none runs");
     for (const std::string_view flag : r.given)
         if ((row(flag).backends & (1u << unsigned(r.backend))) == 0)
             throw Error(std::string(flag) + ": needs --backend " + (r.backend == Backend::Cpu ? "vulkan" : "cpu"));

@@ -15,6 +15,9 @@ bad 1 "^vri-render: error: --simd: unknown value 'avx2;x' \(expected on, off or 
 bad 1 "^vri-reference: error: --simd off: the exact method's Gauss rules have no scalar twin; name a target \(SCALAR is Highway's one-lane fallback\)$" -- "$bin/vri-reference" "${scene[@]}" --simd off
 bad 1 "^vri-render: error: --simd off: the exact method's Gauss rules have no scalar twin; name a target \(SCALAR is Highway's one-lane fallback\)$" -- "$bin/vri-render" "${scene[@]}" --method exact --simd off
 bad 1 "^vri-reference: error: --simd applies to --method exact only \(the reference Riemann sum is double\)$" -- "$bin/vri-reference" "${scene[@]}" --method riemann --simd on
+# Below 1e-10 no Gauss batch runs: a named target would be recorded but never run.
+bad 1 "^vri-reference: error: --simd SCALAR: the exact method's SIMD Gauss batches run from --tolerance 1e-10 up; at 1e-13 none runs$" -- "$bin/vri-reference" "${scene[@]}" --simd SCALAR
+bad 1 "^vri-render: error: --simd SCALAR: the exact method's SIMD Gauss batches run from --tolerance 1e-10 up; at 1e-11 none runs$" -- "$bin/vri-render" "${scene[@]}" --method exact --tolerance 1e-11 --simd SCALAR
 bad 1 "^vri-reference: error: --simd: unknown value 'avx9' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-reference" "${scene[@]}" --simd avx9
 if built_with_vulkan; then
   bad 1 "^vri-render: error: --simd: needs --backend cpu$" -- "$bin/vri-render" "${scene[@]}" --backend vulkan --simd on
