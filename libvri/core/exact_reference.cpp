@@ -15,6 +15,7 @@
 #include <tbb/task_arena.h>
 
 #include "libvri/core/exact_empty_space.h"
+#include "libvri/core/exact_piece_batch.h"
 #include "libvri/core/exact_ray.h"
 #include "libvri/core/occupancy_cache.h"
 #include "libvri/core/simd_target.h"
@@ -29,6 +30,17 @@ namespace {
 
 struct PieceCounts {
     std::uint64_t pieces = 0, visible = 0;
+};
+
+// One thread's walk in progress: the pieces walked but not yet given to the ray, in walk order. Each
+// visible one waits in `batch` for its cubic (exact_piece_batch.h); an invisible one only for the ray's
+// done() test, which its end may answer (g = C: the length left shrinks).
+struct WalkQueue {
+    static constexpr int kCapacity = 4 * PieceBatch::kCapacity;
+    PieceBatch batch;
+    int visible = 0, entries = 0;
+    double phiB[kCapacity];
+    int lane[kCapacity];  // into batch, -1 for an invisible piece
 };
 
 // The pieces of a ray through a volume on which the trilinear interpolant is one cubic: the ray's
@@ -63,7 +75,7 @@ public:
     // Integrates the segment from texture coordinate uEntry to uExit, `length` world units long,
     // into `ray` until it is done(); returns the length left out.
     double walk(const glm::dvec3& uEntry, const glm::dvec3& uExit, double length, ExactRay& ray,
-                PieceCounts& counts) const {
+                PieceCounts& counts, WalkQueue& queue) const {
         constexpr double inf = std::numeric_limits<double>::infinity();
         const glm::dvec3 entry = uEntry * scale_ - offset_;
         const glm::dvec3 delta = (uExit * scale_ - offset_) - entry;
@@ -81,6 +93,32 @@ public:
         // cellOf; an axis the ray does not move along keeps the entry's).
         auto cellBetween = [&](int a) {
             return std::clamp(step[a] > 0 ? next[a] - 1 : next[a], 0, maxBase_[a]);
+        };
+        PieceFrame frame;
+        for (int a = 0; a < 3; ++a) {
+            frame.entry[a] = entry[a];
+            frame.delta[a] = delta[a];
+            frame.maxCoord[a] = maxCoord_[a];
+            frame.varies[a] = n_[a] > 1;
+        }
+        frame.lo = lo_;
+        frame.invRange = invRange_;
+        queue.visible = queue.entries = 0;
+        // The queued pieces to the ray, in order, while it is not done: the length it left out, or -1.
+        auto drain = [&]() -> double {
+            formPieceCubics(queue.batch, queue.visible, frame);
+            const PieceBatch& b = queue.batch;
+            for (int e = 0; e < queue.entries; ++e) {
+                ++counts.pieces;
+                if (const int j = queue.lane[e]; j >= 0) {
+                    ++counts.visible;
+                    ray.addPiece((b.phiB[j] - b.phiA[j]) * length, Cubic{{b.c[0][j], b.c[1][j], b.c[2][j], b.c[3][j]}},
+                                 b.sScale[j]);
+                }
+                if (ray.done((1.0 - queue.phiB[e]) * length)) return (1.0 - queue.phiB[e]) * length;
+            }
+            queue.visible = queue.entries = 0;
+            return -1.0;
         };
         for (int a = 0; a < 3; ++a) {
             step[a] = delta[a] > 0 ? 1 : delta[a] < 0 ? -1 : 0;
@@ -115,17 +153,18 @@ public:
                     // The piece's block is empty: every piece up to the end of the run of empty blocks
                     // lies in cells whose corners the blocks' emptiness covers, each invisible.
                     const double until = emptyFrom(entry, delta, 0.5 * (phiA + phiB));
-                    if (until >= 1.0) return 0.0;
+                    if (until >= 1.0) return std::max(drain(), 0.0);
                     if (until > phiA) {  // (a rounding error cannot stop the walk)
                         jumpTo(until);
                         phiA = until;
                         continue;
                     }
                 }
-                addPiece(entry, delta, cell, phiA, phiB, length, ray, counts);
-                if (ray.done((1.0 - phiB) * length)) return (1.0 - phiB) * length;
+                queuePiece(cell, phiA, phiB, queue);
+                if (queue.visible == PieceBatch::kCapacity || queue.entries == WalkQueue::kCapacity)
+                    if (const double left = drain(); left >= 0.0) return left;
             }
-            if (phiB >= 1.0) return 0.0;
+            if (phiB >= 1.0) return std::max(drain(), 0.0);
             for (int a = 0; a < 3; ++a)
                 if (phi[a] == phiB) {
                     next[a] += step[a];
@@ -210,43 +249,36 @@ private:
             cell[a] = std::min(static_cast<int>(std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a])), maxBase_[a]);
     }
 
-    // The piece between phiA and phiB, in the cell from its middle: the weights at its ends (clamped
-    // where the axis is), its cubic, into `ray`.
-    void addPiece(const glm::dvec3& entry, const glm::dvec3& delta, const int cell[3], double phiA, double phiB,
-                  double length, ExactRay& ray, PieceCounts& counts) const {
-        ++counts.pieces;
+    // The piece between phiA and phiB, in the cell from its middle, onto the queue: with its corners
+    // when it is visible, for formPieceCubics (the weights at its ends, clamped where the axis is, and
+    // its cubic); an invisible piece adds nothing to the ray and needs neither.
+    void queuePiece(const int cell[3], double phiA, double phiB, WalkQueue& queue) const {
         const T* p = data_ + cell[0] * stride_[0] + cell[1] * stride_[1] + cell[2] * stride_[2];
         T corner[8];
         for (int k = 0; k < 8; ++k) corner[k] = p[corner_[k]];
         // The interpolant is a convex combination of the corners: their range bounds it. (A tree of
         // min and max, without the branches of std::minmax_element, which mispredict on noisy data;
-        // the weights only once the cell is visible, as 4 in 10 of the cells walked are not.)
+        // the rest only once the cell is visible, as 4 in 10 of the cells walked are not.)
         const double vMin = static_cast<double>(
             std::min(std::min(std::min(corner[0], corner[1]), std::min(corner[2], corner[3])),
                      std::min(std::min(corner[4], corner[5]), std::min(corner[6], corner[7]))));
         const double vMax = static_cast<double>(
             std::max(std::max(std::max(corner[0], corner[1]), std::max(corner[2], corner[3])),
                      std::max(std::max(corner[4], corner[5]), std::max(corner[6], corner[7]))));
-        if (empty_.invisible(vMin, vMax)) return;
-        std::array<double, 8> v;
-        for (int k = 0; k < 8; ++k) v[k] = static_cast<double>(corner[k]);
-        glm::dvec3 w0(0.0), w1(0.0);
-        for (int a = 0; a < 3; ++a) {
-            const int i = cell[a];
-            auto weight = [&](double phi) {
-                return std::clamp(std::clamp(entry[a] + phi * delta[a], 0.0, maxCoord_[a]) - i, 0.0, 1.0);
-            };
-            if (n_[a] > 1) w0[a] = weight(phiA), w1[a] = weight(phiB);
+        const int e = queue.entries++;
+        queue.phiB[e] = phiB;
+        if (empty_.invisible(vMin, vMax)) {
+            queue.lane[e] = -1;
+            return;
         }
-        ++counts.visible;
-        const Cubic raw = trilinearAlongSegment(v, w0, w1);
-        Cubic s;
-        s.c[0] = (raw.c[0] - lo_) * invRange_;
-        for (int k = 1; k < 4; ++k) s.c[k] = raw.c[k] * invRange_;
-        const double magnitude = std::max(std::abs(vMin), std::abs(vMax));
-        const double sScale = std::abs(s.c[0]) + std::abs(s.c[1]) + std::abs(s.c[2]) + std::abs(s.c[3]) +
-                              (magnitude + std::abs(lo_)) * invRange_;
-        ray.addPiece((phiB - phiA) * length, s, sScale);
+        const int j = queue.visible++;
+        queue.lane[e] = j;
+        PieceBatch& b = queue.batch;
+        for (int k = 0; k < 8; ++k) b.corner[k][j] = static_cast<double>(corner[k]);
+        for (int a = 0; a < 3; ++a) b.cell[a][j] = cell[a];
+        b.phiA[j] = phiA;
+        b.phiB[j] = phiB;
+        b.magnitude[j] = std::max(std::abs(vMin), std::abs(vMax));
     }
 
     const T* data_;
@@ -266,7 +298,7 @@ struct Counters {
     std::atomic<std::uint64_t> raysHit{0}, pieces{0}, visible{0}, subPieces{0}, intervals{0}, nodes{0}, opaque{0};
 };
 
-// Calls walk(uEntry, uExit, length, ray, counts) -> length left out, for every pixel's ray that
+// Calls walk(uEntry, uExit, length, ray, counts, queue) -> length left out, for every pixel's ray that
 // crosses the box, in parallel over tiles, and stores its result.
 template <class Walk>
 void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOptions& opt, const Walk& walk,
@@ -279,6 +311,7 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tilesY, 1, 0, tilesX, 1), [&](const auto& tiles) {
         ExactRay ray(scene.transferFunction, opt.tolerance);
         PieceCounts counts;
+        WalkQueue queue;
         std::uint64_t hit = 0, opaque = 0;
         for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
             for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
@@ -291,7 +324,7 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
                         const glm::dvec3 entry = box.toTexture(camera.eye() + segment->tNear * dir);
                         const glm::dvec3 exit = box.toTexture(camera.eye() + segment->tFar * dir);
                         ray.begin();
-                        const double left = walk(entry, exit, segment->tFar - segment->tNear, ray, counts);
+                        const double left = walk(entry, exit, segment->tFar - segment->tNear, ray, counts, queue);
                         if (left > 0.0) ++opaque;
                         const std::size_t at = (static_cast<std::size_t>(iy) * out.width + ix) * 4;
                         ray.finish(left, &out.values[at], &out.bounds[at]);
@@ -384,13 +417,15 @@ void renderExactReference(const Scene& scene, const Camera& camera, const ExactR
         dispatchVoxelType(volume.type, [&](auto voxel) {
             const GridWalker<decltype(voxel)> walker(volume, scene.convention, empty.structure, options.skipEmptySpace);
             traceRays(scene, camera, options, [&](const glm::dvec3& a, const glm::dvec3& b, double length, ExactRay& ray,
-                                                  PieceCounts& counts) { return walker.walk(a, b, length, ray, counts); },
+                                                  PieceCounts& counts, WalkQueue& queue) {
+                return walker.walk(a, b, length, ray, counts, queue);
+            },
                       out, counters);
         });
     } else {
         // The analytic field s = u.x is linear along the ray: one piece, split only at TF points.
         traceRays(scene, camera, options, [](const glm::dvec3& a, const glm::dvec3& b, double length, ExactRay& ray,
-                                             PieceCounts& counts) {
+                                             PieceCounts& counts, WalkQueue&) {
             ++counts.pieces;
             ++counts.visible;
             const Cubic s{{a.x, b.x - a.x, 0.0, 0.0}};
