@@ -66,7 +66,8 @@ void createParentDirectories(const fs::path& userPath, const fs::path& file) {
     if (ec) throw Error(userPath.string() + ": cannot create directory " + dir.string() + ": " + ec.message());
 }
 
-Target resolveTarget(const fs::path& userPath) {
+// With createParents false nothing is created: outputTarget's check before any work.
+Target resolveTarget(const fs::path& userPath, bool createParents = true) {
     if (userPath == "-") return {userPath, TargetKind::Stdout, std::nullopt};
     // A device or FIFO is opened through its links: /dev/stdout's /proc/self/fd/1 names no path to walk.
     struct stat followed {};
@@ -77,7 +78,7 @@ Target resolveTarget(const fs::path& userPath) {
         struct stat st {};
         if (::lstat(path.c_str(), &st) != 0) {
             if (errno != ENOENT) fail(userPath, "cannot write", errno);
-            createParentDirectories(userPath, path);
+            if (createParents) createParentDirectories(userPath, path);
             return {path, TargetKind::File, std::nullopt};
         }
         if (S_ISREG(st.st_mode)) return {path, TargetKind::File, st.st_mode & 07777};
@@ -364,5 +365,7 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
     written.close(path);
     moveIntoPlace(tmp, target, path);
 }
+
+fs::path outputTarget(const fs::path& path) { return resolveTarget(path, false).path; }
 
 }  // namespace vri

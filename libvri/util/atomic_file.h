@@ -48,4 +48,10 @@ void writeTogether(std::span<const OutputBytes> outputs);
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 
+// Where a write of `path` would put its bytes: a symbolic link's final target (a dangling one's too),
+// else the path itself; throws the error that write would (a directory, a socket, a loop of links),
+// creating nothing. Tools check every output with it before any work, so that a bad one is refused
+// before another is replaced, and two links to one target count as one output.
+std::filesystem::path outputTarget(const std::filesystem::path& path);
+
 }  // namespace vri

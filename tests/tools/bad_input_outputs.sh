@@ -62,7 +62,16 @@ bad 1 "^vri-tabulate: error: out\.md: $efbig" -- "${limited[@]}" 1 "$bin/vri-tab
 rm d.json
 
 # Outputs that are neither a file, a device, a FIFO nor '-': refused, and left as they are.
-bad 1 "^vri-render: error: taken\.exr: cannot write: it is a directory; expected a regular file" -- "${render[@]}" -o taken.exr
+bad 1 "^vri-render: error: -o: taken\.exr: cannot write: it is a directory; expected a regular file" -- "${render[@]}" -o taken.exr
+# Every output is checked before the render: a bad one leaves the others unwritten (a.exr as it was).
+bad 1 "^vri-render: error: --stats: taken\.exr: cannot write: it is a directory" -- "${render[@]}" -o a.exr --stats taken.exr
+bad 1 "^vri-reference: error: --png: taken\.exr: cannot write: it is a directory" -- "$bin/vri-reference" \
+    --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x8 -q -o a.exr --png taken.exr
+# Two dangling links to one target are one output: the second write would replace the first.
+ln -s target.exr link1.exr && ln -s target.exr link2.exr
+bad 64 "^vri-reference: error: --error-image: 'link2\.exr' is also -o's output" -- "$bin/vri-reference" \
+    --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x8 -q -o link1.exr --error-image link2.exr
+rm link1.exr link2.exr
 bad 1 "^vri-tf: error: taken\.exr: cannot write: it is a directory" -- "$bin/vri-tf" tf.yaml -o taken.exr
 mkdir taken.nhdr   # the header cannot be written: its raw file is not written either
 bad 1 "^vri-convert: error: taken\.nhdr: cannot write: it is a directory" -- "$bin/vri-convert" noise_32x32x32_uint8.raw \

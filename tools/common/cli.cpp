@@ -10,6 +10,7 @@
 
 #include "libvri/io/provenance.h"
 #include "libvri/io/volume_io.h"
+#include "libvri/util/atomic_file.h"
 #include "libvri/util/json_file.h"
 #include "libvri/util/same_file.h"
 #include "libvri/util/utf8.h"
@@ -20,11 +21,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The file a path names: absolute, '.' and '..' resolved, and every symbolic link in the part that
-// exists followed, so that two spellings of one file compare equal.
+// The file a write of the path replaces: a symbolic link's final target (dangling or not), absolute,
+// '.' and '..' resolved, and every symbolic link in the part that exists followed, so that two
+// spellings of one file compare equal.
 fs::path fileIdentity(const std::string& path) {
     std::error_code ec;
-    const fs::path absolute = fs::absolute(path, ec);
+    const fs::path absolute = fs::absolute(outputTarget(path), ec);
     if (ec) return fs::path(path).lexically_normal();
     const fs::path resolved = fs::weakly_canonical(absolute, ec);
     return ec ? absolute.lexically_normal() : resolved;
@@ -97,6 +99,14 @@ void requireExrOutput(const OutputArgument& output) {
 }
 
 void requireDistinctOutputs(const std::vector<OutputArgument>& outputs) {
+    for (const OutputArgument& output : outputs) {
+        if (output.path.empty() || output.path == "-") continue;
+        try {
+            outputTarget(output.path);
+        } catch (const Error& e) {
+            throw Error(output.option + ": " + e.what());
+        }
+    }
     for (std::size_t i = 0; i < outputs.size(); ++i) {
         if (outputs[i].path.empty() || outputs[i].path == "-") continue;
         for (std::size_t j = 0; j < i; ++j) {

@@ -45,9 +45,11 @@ struct OutputArgument {
 // Throws UsageError "<option>: '<path>' is not an .exr file (...)" unless the path ends in .exr
 // (any case): the float RGBA image is written as OpenEXR whatever the name says.
 void requireExrOutput(const OutputArgument& output);
-// Throws UsageError "<option>: '<path>' is also <other option>'s output" when two outputs name one
-// file, however spelled (./x, a/../x, a symbolic link or a hard link to it): the later write would
-// replace the earlier one.
+// Throws Error "<option>: <path>: cannot write: ..." for an output that no write could replace (a
+// directory, a socket, ...), and UsageError "<option>: '<path>' is also <other option>'s output" when two
+// outputs name one file, however spelled (./x, a/../x, a symbolic link, dangling or not, or a hard link
+// to it): the later write would replace the earlier one. Called before any work, so that nothing is
+// written when one output is wrong.
 void requireDistinctOutputs(const std::vector<OutputArgument>& outputs);
 
 // The files a tool reads, each with the option (or positional name) that named it.
