@@ -55,7 +55,9 @@ int run(int argc, char** argv) {
         "  width (line width): optional, for line, dashed, dotted, linespoints, segments\n"
         "  size, point (circle, square, cross, triangle): optional, for points and linespoints\n"
         "  label: \"\" leaves a series out of the key (default: its y column)\n"
-        "  where: {COLUMN: TEXT, ...}: optional, only the rows whose columns hold these texts\n"
+        "  where: {COLUMN: TEXT, ...}: optional, only the rows whose columns hold these texts (TEXT* a prefix);\n"
+        "         a series that keeps no row is drawn in the key alone, with a warning; optional: true drops\n"
+        "         it instead (a series only some hosts or runs have; a panel with none left is an error)\n"
         "  palette: viridis (default), gray, diverging (blue, white, red)\n"
         "  a log y axis without a range draws its values <= 0 on a grey band labelled 0 below a break\n"
         "\n"
@@ -67,6 +69,7 @@ int run(int argc, char** argv) {
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     const vri::PlotSpec spec = vri::loadPlotSpec(specPath, dataDir);
+    for (const std::string& warning : spec.warnings) std::cerr << kTool << ": warning: " << vri::printable(warning) << '\n';
     std::vector<vri::InputArgument> inputs{{"SPEC", specPath}};
     for (const vri::PlotPanel& panel : spec.panels)
         for (const vri::PlotSeries& series : panel.series) inputs.push_back({"SPEC's data file", series.file.string()});

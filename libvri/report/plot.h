@@ -87,6 +87,8 @@ struct PlotSpec {
     int width = 800, height = 600;  // pixels, of the whole figure
     int rows = 1, columns = 1;      // the panel grid, filled row by row
     std::vector<PlotPanel> panels;
+    // What a valid spec may still draw wrongly, each "spec:line:col: what": a series that keeps no row.
+    std::vector<std::string> warnings;
 };
 
 // Reads and validates a spec: unknown keys, wrong types, missing CSV files, columns that are not

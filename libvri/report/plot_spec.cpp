@@ -270,7 +270,8 @@ std::vector<PlotLabel> parseLabels(const YAML::Node& list, const SpecSource& src
     return labels;
 }
 
-PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::string& what, bool titled) {
+PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::string& what, bool titled,
+                     std::vector<std::string>& warnings) {
     // Fields of a panel in a list are named "panels[i].x"; those of the only panel just "x".
     auto field = [&](const std::string& name) { return what.empty() ? name : what + "." + name; };
     PlotPanel panel;
@@ -288,8 +289,15 @@ PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::s
     if (!list || !list.IsSequence() || list.size() == 0)
         throw Error(src.at(list ? list : node) + ": " + field("series") + " must be a non-empty list");
     for (std::size_t i = 0; i < list.size(); ++i) {
-        PlotSeries series = parseSeries(list[i], src, field("series[" + std::to_string(i) + "]"));
-        if (series.optional && plot::keptRows(series).empty()) continue;  // nothing of it on this host
+        const std::string name = field("series[" + std::to_string(i) + "]");
+        PlotSeries series = parseSeries(list[i], src, name);
+        if (plot::keptRows(series).empty()) {
+            if (series.optional) continue;  // nothing of it on this host
+            // Drawn as a key entry alone, which a reader may not notice: a typo in where, or a run missing.
+            warnings.push_back(src.at(list[i]) + ": " + name + ": " + (series.where.empty() ? "" : "its where keeps ") +
+                               "no row of " + series.file.string() +
+                               ": drawn in the key alone (optional: true drops a series only some hosts or runs have)");
+        }
         panel.series.push_back(std::move(series));
     }
     if (panel.series.empty())
@@ -339,10 +347,10 @@ PlotSpec specFromYaml(const YAML::Node& root, const SpecSource& src) {
             yaml::requireKeys(list[i], src.name,
                               {"title", "x", "y", "key", "pareto", "aspect", "reference_slopes", "labels", "colorbar",
                                "series"});
-            spec.panels.push_back(parsePanel(list[i], src, what, true));
+            spec.panels.push_back(parsePanel(list[i], src, what, true, spec.warnings));
         }
     } else {
-        spec.panels.push_back(parsePanel(root, src, "", false));
+        spec.panels.push_back(parsePanel(root, src, "", false, spec.warnings));
     }
     const int count = static_cast<int>(spec.panels.size());
     spec.columns = static_cast<int>(std::ceil(std::sqrt(count)));

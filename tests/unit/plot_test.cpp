@@ -270,11 +270,16 @@ TEST_CASE("plot: an optional series that keeps no row on this host is left out o
     const PlotSpec elsewhere = parsePlotSpec("series:\n" + series + "SSE4\"}}\n", "fig.yaml", dir.path);
     REQUIRE(elsewhere.panels[0].series.size() == 1);
     CHECK(gnuplotScript(elsewhere, dir / "fig.gp", "fig.png", "fig.svg").find("lower") == std::string::npos);
-    // Without optional an empty series stays (a spec's typo should show), and a panel of only empty optional
-    // series has nothing to draw.
-    CHECK(parsePlotSpec("series:\n  - {file: t.csv, x: seconds, y: max, style: points, where: {method: none}}\n",
-                        "fig.yaml", dir.path)
-              .panels[0].series.size() == 1);
+    // Without optional an empty series stays, in the key alone, with a warning that names it (a spec's typo
+    // shows); a panel of only empty optional series has nothing to draw.
+    const PlotSpec typo = parsePlotSpec(
+        "series:\n  - {file: t.csv, x: seconds, y: max, style: points, where: {method: none}}\n", "fig.yaml", dir.path);
+    CHECK(typo.panels[0].series.size() == 1);
+    REQUIRE(typo.warnings.size() == 1);
+    CHECK(typo.warnings[0] == "fig.yaml:2:5: series[0]: its where keeps no row of " + (dir / "t.csv").string() +
+                                  ": drawn in the key alone (optional: true drops a series only some hosts or runs have)");
+    CHECK(here.warnings.empty());
+    CHECK(elsewhere.warnings.empty());
     CHECK(errorOf("series:\n  - {file: t.csv, x: seconds, y: max, style: points, optional: true, where: {method: none}}\n",
                   dir.path)
               .find("fig.yaml:2:3: series: every series is optional and keeps no row") != std::string::npos);
