@@ -136,7 +136,6 @@ do for [format in "png svg"] {
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'entry-exit-corner' && strcol(2) eq 'ray' ? $4 : NaN):($5 - $3):($6 - $4) with vectors nohead lw 1 lc rgb '#bbbbbb' notitle, \
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'entry-exit-corner' && strcol(2) eq 'covered' ? $4 : NaN):($5 - $3):($6 - $4) with vectors nohead lw 3 lc rgb '#2ca02c' title 'covered', \
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'entry-exit-corner' && strcol(2) eq 'overshot' ? $4 : NaN):($5 - $3):($6 - $4) with vectors nohead lw 3 lc rgb '#d62ad6' title 'overshot', \
-         'fig1.csv' skip 1 using 3:(strcol(1) eq 'entry-exit-corner' && strcol(2) eq 'missed' ? $4 : NaN):($5 - $3):($6 - $4) with vectors nohead lw 3 lc rgb '#ff4500' title 'missed', \
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'entry-exit-corner' && strcol(2) eq 'tick' ? $4 : NaN):($5 - $3):($6 - $4) with vectors nohead lw 1 lc rgb '#000000' notitle, \
          'fig1.csv' skip 1 using 3:(strcol(1) eq 'entry-exit-corner' && strcol(2) eq 'sample' ? $4 : NaN) with points pt 7 ps 0.6 lc rgb '#000000' title 'samples'
     unset multiplot
