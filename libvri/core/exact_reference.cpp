@@ -376,7 +376,7 @@ ExactReference renderExactReference(const Scene& scene, const Camera& camera, co
 void renderExactReference(const Scene& scene, const Camera& camera, const ExactReferenceOptions& options,
                           OccupancyCache* cache, ExactReference& out) {
     if (!scene.volume && !scene.field) throw Error("scene has neither a volume nor an analytic field");
-    if (!(options.tolerance > 0.0)) throw Error("reference tolerance must be positive, got " + std::to_string(options.tolerance));
+    if (!(options.tolerance > 0.0)) throw Error("exact method: the tolerance must be positive, got " + exactNumber(options.tolerance));
     if (options.tileSize < 1) throw Error("tile size must be at least 1");
     if (scene.volume && scene.convention == GridConvention::NodeCentred &&
         glm::any(glm::lessThan(scene.volume->dims, glm::ivec3(2))))

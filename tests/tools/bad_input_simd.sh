@@ -15,6 +15,9 @@ bad 1 "^vri-render: error: --simd: unknown value 'avx2;x' \(expected on, off or 
 bad 1 "^vri-reference: error: --simd off: the exact method's Gauss rules have no scalar twin; name a target \(SCALAR is Highway's one-lane fallback\)$" -- "$bin/vri-reference" "${scene[@]}" --simd off
 bad 1 "^vri-render: error: --simd off: the exact method's Gauss rules have no scalar twin; name a target \(SCALAR is Highway's one-lane fallback\)$" -- "$bin/vri-render" "${scene[@]}" --method exact --simd off
 bad 1 "^vri-reference: error: --simd applies to --method exact only \(the reference Riemann sum is double\)$" -- "$bin/vri-reference" "${scene[@]}" --method riemann --simd on
+# A named target where no packet runs (double, or a method without packets) would be recorded as if it ran.
+bad 1 "^vri-render: error: --simd SCALAR: the SIMD packets run float riemann, composite and preintegrated only, not riemann in double$" -- "$bin/vri-render" "${scene[@]}" --simd SCALAR
+bad 1 "^vri-render: error: --simd SCALAR: the SIMD packets run float riemann, composite and preintegrated only, not coupled in float$" -- "$bin/vri-render" "${scene[@]}" --method coupled --precision float --simd SCALAR
 # Below 1e-10 no Gauss batch runs: a named target would be recorded but never run.
 bad 1 "^vri-reference: error: --simd SCALAR: the exact method's SIMD Gauss batches run from --tolerance 1e-10 up; at 1e-13 none runs$" -- "$bin/vri-reference" "${scene[@]}" --simd SCALAR
 bad 1 "^vri-render: error: --simd SCALAR: the exact method's SIMD Gauss batches run from --tolerance 1e-10 up; at 1e-11 none runs$" -- "$bin/vri-render" "${scene[@]}" --method exact --tolerance 1e-11 --simd SCALAR

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <limits>
 #include <map>
 
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include "common/exact_reference_json.h"
 #include "common/render_backend.h"
 #include "common/render_json.h"
+#include "libvri/core/exact_ray.h"
 #include "libvri/core/exact_reference.h"
 #include "libvri/io/adaptive_log_csv.h"
 #include "libvri/io/image_io.h"
@@ -124,11 +126,17 @@ double toleranceForMaxError(RenderBackend& backend, const Scene& scene, const Ca
         const ExactReference& ref = backend.renderExact(scene, camera, options);
         bound = *std::max_element(ref.stats.maxBound.begin(), ref.stats.maxBound.end());
         if (bound <= wanted) return options.tolerance;
+        const double previous = options.tolerance;
         options.tolerance *= 0.5 * wanted / bound;
+        if (!(options.tolerance >= std::numeric_limits<double>::min()))  // 0 or subnormal: no tolerance left to ask
+            throw Error("--max-error " + exactNumber(wanted) + ": out of reach: at tolerance " + exactNumber(previous) +
+                        " the largest per-pixel bound is " + exactNumber(bound) +
+                        ", and the next tolerance would underflow double; ask for a larger error");
     }
     throw Error("--max-error " + exactNumber(wanted) + ": the largest per-pixel bound is still " + exactNumber(bound) +
                 " after " + std::to_string(kTries) + " renders (last tolerance " + exactNumber(options.tolerance) +
-                "); ask for a larger error");
+                (request.wasGiven("--tolerance") ? "); ask for a larger error or start from a smaller --tolerance"
+                                                 : "); ask for a larger error"));
 }
 
 }  // namespace
@@ -184,7 +192,13 @@ int RenderCommand::run() {
                         ".vdb too large to unpack): use --storage dense");
         const Camera camera(setup.camera);
         RenderBackend backend(request);
-        if (request.maxError) request.exactTolerance = toleranceForMaxError(backend, scene, camera, request);
+        if (request.maxError) {
+            request.exactTolerance = toleranceForMaxError(backend, scene, camera, request);
+            if (!request.options.simdTarget.empty() && request.exactTolerance < ExactRay::kGaussTolerance)
+                std::cerr << name_ << ": warning: --simd " << request.options.simdTarget << ": the tolerance found, "
+                          << exactNumber(request.exactTolerance) << ", is below " << exactNumber(ExactRay::kGaussTolerance)
+                          << ", where no SIMD Gauss batch runs (stats: simd_target null)\n";
+        }
         auto [frame, wallSeconds] = timing_.run([&] {
             if (request.exact) {
                 const ExactReference& ref = backend.renderExact(scene, camera, request.exactOptions());  // at the tolerance --max-error found
