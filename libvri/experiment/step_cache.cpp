@@ -1,6 +1,7 @@
 // Step keys and the records of successful runs that let a later run skip a step.
 #include "libvri/experiment/step_cache.h"
 
+#include <cstdlib>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -73,6 +74,9 @@ std::vector<std::string> stepKeys(const Plan& plan, const fs::path& toolDir, Fil
         addField(hash, hasher.digest(toolDir / step.tool));
         addField(hash, std::to_string(step.arguments.size()));
         for (const std::string& argument : step.arguments) addField(hash, argument);
+        // What the environment changes in a step's outputs: VRI_SIMD_TARGET moves the packets and the Gauss
+        // batches to another target (other times and stats.simd_target), so a run with it is another run.
+        if (const char* target = std::getenv("VRI_SIMD_TARGET")) addField(hash, std::string("VRI_SIMD_TARGET=") + target);
         for (const fs::path& input : step.inputs) {
             std::string producer;
             for (std::size_t d : plan.dependencies[i])

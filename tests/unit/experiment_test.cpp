@@ -195,6 +195,16 @@ TEST_CASE("experiment: a changed transfer function changes the keys of its rende
     const std::vector<std::string> keys = vri::stepKeys(plan, d.dir / "bin", before);
     vri::FileHasher again;
     CHECK(vri::stepKeys(plan, d.dir / "bin", again) == keys);  // stable
+    // A forced SIMD target makes every step another run (its times and stats differ), and only while set.
+    if (!std::getenv("VRI_SIMD_TARGET")) {
+        vri::FileHasher forced;
+        ::setenv("VRI_SIMD_TARGET", "SCALAR", 1);
+        const std::vector<std::string> withTarget = vri::stepKeys(plan, d.dir / "bin", forced);
+        ::unsetenv("VRI_SIMD_TARGET");
+        for (std::size_t i = 0; i < keys.size(); ++i) CHECK(withTarget[i] != keys[i]);
+        vri::FileHasher unset;
+        CHECK(vri::stepKeys(plan, d.dir / "bin", unset) == keys);
+    }
 
     d.write("a.yaml", "points:\n  - [0, 0, 0, 0, 0]\n  - [1, 1, 1, 1, 0.6]\n");
     vri::FileHasher after;
