@@ -356,6 +356,11 @@ void finishRenderRequest(RenderRequest& r) {
             throw Error("--early-termination: --method exact ends rays by its --tolerance");
         if (r.options.logPixel) throw Error("--log-ray: applies to coupled and decoupled only");
     }
+    if (!adaptive(r))
+        for (const std::string_view flag : {"--h0", "--h-min", "--h-max", "--accepted-value"})
+            if (r.wasGiven(flag)) throw Error(std::string(flag) + ": applies to --method coupled and decoupled only");
+    if (r.exact && r.wasGiven("--placement"))
+        throw Error("--placement: --method exact takes no samples to place");
     if (!preintegrated(r))
         for (const std::string_view flag : {"--preint-size", "--preint-order"})
             if (r.wasGiven(flag)) throw Error(std::string(flag) + ": applies to --method preintegrated only");

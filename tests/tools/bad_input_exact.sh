@@ -21,6 +21,10 @@ bad 1 '^vri-render: error: transfer function: extinction 1e\+307 per unit length
     "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf huge.yaml --size 8x6 -q -o out.exr --method exact
 bad 1 '^vri-reference: error: transfer function: extinction 1e\+307 per unit length over a box .* overflows double$' -- \
     "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf huge.yaml --size 8x6 -q -o out.exr
+# Options of other methods are refused, not silently ignored.
+bad 1 '^vri-render: error: --h0: applies to --method coupled and decoupled only$' -- "$bin/vri-render" "${blob[@]}" --method exact --h0 0.1
+bad 1 '^vri-render: error: --h-min: applies to --method coupled and decoupled only$' -- "$bin/vri-render" "${blob[@]}" --h-min 0.1
+bad 1 '^vri-render: error: --placement: --method exact takes no samples to place$' -- "$bin/vri-render" "${blob[@]}" --method exact --placement eye
 # --max-error out of reach: the search stops before its tolerance underflows, and names the option; a search
 # that cannot get down to the bound from a huge --tolerance says to start lower.
 bad 1 '^vri-reference: error: --max-error 5e-324: out of reach: at tolerance 5e-324 the largest per-pixel bound is .*, and the next tolerance would underflow double; ask for a larger error$' -- \
