@@ -57,6 +57,10 @@ for tool in vri-render vri-reference; do
     grep -q '"warnings": \[' miss.json || { echo "$tool: the stats lack the warning"; exit 1; }
     "$bin/$tool" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o hit.exr --stats hit.json 2> hit.txt
     [ ! -s hit.txt ] && ! grep -q '"warnings"' hit.json || { echo "$tool: a warning for a camera that sees it"; exit 1; }
+    # A tile of background: its own warning, not the camera's.
+    "$bin/$tool" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 64x48 --region 0,0,2,2 -q -o tile.exr 2> tile.txt
+    grep -q "^$tool: warning: no ray of --region 0,0,2,2 enters the volume's box: the region is background" tile.txt ||
+        { echo "$tool: no region warning for a background tile: $(cat tile.txt)"; exit 1; }
 done
 
 help=$("$bin/vri-render" --help)  # captured whole: grep -q on a pipe would cut the writer off (SIGPIPE)

@@ -241,10 +241,13 @@ int RenderCommand::run() {
         record["timing"] = timing_.toJson(wallSeconds);
         if (record["stats"]["rays_hit"] == 0) {
             // A black image with exit 0 looks like a render; said on stderr and kept in the stats.
-            const std::string warning = "no ray enters the volume's box: the camera (eye " +
-                                        record["camera"]["eye"].dump() + ", target " +
-                                        record["camera"]["target"].dump() +
-                                        ") misses the volume, and the image is empty (stats: rays_hit 0)";
+            // A tile (--region) of background is no mistake of the camera's: said so.
+            const std::string warning =
+                region ? "no ray of --region " + region->text() +
+                             " enters the volume's box: the region is background, and its image is empty (stats: rays_hit 0)"
+                       : "no ray enters the volume's box: the camera (eye " + record["camera"]["eye"].dump() +
+                             ", target " + record["camera"]["target"].dump() +
+                             ") misses the volume, and the image is empty (stats: rays_hit 0)";
             std::cerr << name_ << ": warning: " << warning << '\n';
             record["warnings"] = {warning};
         }
