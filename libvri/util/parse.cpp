@@ -75,6 +75,12 @@ glm::ivec2 parseSize(const std::string& text, const std::string& what) {
     const auto parts = split(text, 'x');
     glm::ivec2 v;
     bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
+    if (!ok) {  // a whole number past int's range is too large, not malformed
+        std::int64_t wide[2];
+        if (parts.size() == 2 && parseNumber(parts[0], wide[0]) && parseNumber(parts[1], wide[1]) && wide[0] > 0 &&
+            wide[1] > 0)
+            throw Error(what + ": an image side is at most 2147483647 pixels, got '" + text + "'");
+    }
     if (!ok || v.x <= 0 || v.y <= 0)
         throw Error(what + ": expected a positive image size WIDTHxHEIGHT, got '" + text + "'");
     return v;

@@ -103,6 +103,8 @@ bad 1 "${E}--size: expected a positive image size WIDTHxHEIGHT, got '8by8'" -- \
     "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml -o out.exr --size 8by8
 bad 1 "${E}--size: expected a positive image size WIDTHxHEIGHT, got '0x8'" -- \
     "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml -o out.exr --size 0x8
+bad 1 "${E}--size: an image side is at most 2147483647 pixels, got '2147483648x1'" -- \
+    "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml -o out.exr --size 2147483648x1
 bad 1 "${E}--eye: expected three numbers x,y,z, got '1,2'" -- "${render[@]}" --eye 1,2
 bad 1 "${E}--eye: expected three numbers x,y,z, got '1,2,nan'" -- "${render[@]}" --eye 1,2,nan
 bad 1 "${E}--background: expected three numbers" -- "${render[@]}" --background 1,2
