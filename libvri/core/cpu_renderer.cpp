@@ -39,6 +39,12 @@ Precision parsePrecision(std::string_view name, const std::string& what) {
     throw Error(what + ": unknown precision '" + std::string(name) + "' (expected double or float)");
 }
 
+bool packetMethod(const RenderOptions& options) {
+    return options.precision == Precision::Float &&
+           (options.integrator == Integrator::Riemann || options.integrator == Integrator::Composite ||
+            options.integrator == Integrator::Preintegrated);
+}
+
 void parseSimd(std::string_view name, const std::string& what, RenderOptions& options) {
     options.simd = name != "off";
     options.simdTarget.clear();

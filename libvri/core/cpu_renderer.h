@@ -33,6 +33,8 @@ struct RenderOptions;
 // --simd: "on" (the best SIMD target, or VRI_SIMD_TARGET's), "off" (the scalar path) or a target's name
 // (simd_target.h); sets options.simd and options.simdTarget.
 void parseSimd(std::string_view name, const std::string& what, RenderOptions& options);
+// Whether the packet engine (simd_march.h) runs this method: float Riemann, composite or pre-integration.
+bool packetMethod(const RenderOptions& options);
 // --early-termination: a transparency in [0, 1) below which rays stop (0: off), `auto` (rays stop once
 // what is left can change no channel by more than kAutoTerminationBound) or `auto:BOUND` with a bound in
 // (0, 1); sets options.earlyTermination or options.terminationBound.

@@ -377,10 +377,7 @@ void finishRenderRequest(RenderRequest& r) {
     if (r.exact && !(r.exactTolerance > 0.0))
         throw Error("--tolerance: must be > 0 for --method exact, got " + exactNumber(r.exactTolerance));
     // A forced target with nothing to run on would be recorded in options.simd_target as if it had run.
-    if (!r.exact && r.wasGiven("--simd") && !r.options.simdTarget.empty() &&
-        (r.options.precision != Precision::Float ||
-         (r.options.integrator != Integrator::Riemann && r.options.integrator != Integrator::Composite &&
-          r.options.integrator != Integrator::Preintegrated)))
+    if (!r.exact && r.wasGiven("--simd") && !r.options.simdTarget.empty() && !packetMethod(r.options))
         throw Error("--simd " + r.options.simdTarget + ": the SIMD packets run float riemann, composite and "
                     "preintegrated only, not " + std::string(integratorName(r.options.integrator)) + " in " +
                     std::string(precisionName(r.options.precision)));

@@ -921,10 +921,7 @@ void marchPackets(const PacketScene& scene, int x0, int y0, int x1, int y1, Imag
 std::string packetTargetName() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 
 bool PacketScene::supports(const Scene& scene, const RenderOptions& options) {
-    if (!scene.volume || options.precision != Precision::Float) return false;
-    if (options.integrator != Integrator::Riemann && options.integrator != Integrator::Composite &&
-        options.integrator != Integrator::Preintegrated)
-        return false;
+    if (!scene.volume || !packetMethod(options)) return false;
     const Volume& v = *scene.volume;
     // The offsets gathered: voxels, and the eight octants of stencil-brick distances (StencilBricks),
     // which a thin volume (a few voxels across two axes) makes almost an eighth as many as its voxels.
