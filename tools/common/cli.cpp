@@ -32,11 +32,6 @@ fs::path fileIdentity(const std::string& path) {
     return ec ? absolute.lexically_normal() : resolved;
 }
 
-bool sameFile(const std::string& a, const std::string& b) {
-    if (fileIdentity(a) == fileIdentity(b)) return true;
-    return sameExistingFile(a, b);  // hard links: two names, one inode
-}
-
 }  // namespace
 
 std::string versionText(std::string_view tool) {
@@ -99,22 +94,19 @@ void requireExrOutput(const OutputArgument& output) {
 }
 
 void requireDistinctOutputs(const std::vector<OutputArgument>& outputs) {
-    for (const OutputArgument& output : outputs) {
-        if (output.path.empty() || output.path == "-") continue;
-        try {
-            outputTarget(output.path);
-        } catch (const Error& e) {
-            throw Error(output.option + ": " + e.what());
-        }
-    }
+    std::vector<fs::path> identities(outputs.size());  // empty: not asked for, or standard output
     for (std::size_t i = 0; i < outputs.size(); ++i) {
         if (outputs[i].path.empty() || outputs[i].path == "-") continue;
-        for (std::size_t j = 0; j < i; ++j) {
-            if (outputs[j].path.empty() || outputs[j].path == "-") continue;
-            if (sameFile(outputs[i].path, outputs[j].path))
+        try {
+            identities[i] = fileIdentity(outputs[i].path);  // refuses what no write could replace
+        } catch (const Error& e) {
+            throw Error(outputs[i].option + ": " + e.what());
+        }
+        for (std::size_t j = 0; j < i; ++j)
+            if (!identities[j].empty() &&  // the same path, or hard links: two names, one inode
+                (identities[i] == identities[j] || sameExistingFile(outputs[i].path, outputs[j].path)))
                 throw UsageError(outputs[i].option + ": '" + outputs[i].path + "' is also " + outputs[j].option +
                                  "'s output");
-        }
     }
 }
 
