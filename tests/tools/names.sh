@@ -131,15 +131,21 @@ start=$(date +%s%N)
 "$bin/vri-run" --jobs 2 --results whole slow.yaml 2> /dev/null || fail "the uninterrupted run failed"
 whole_ms=$(( ($(date +%s%N) - start) / 1000000 ))
 outputs=$(ls whole/small | wc -l)
-# Killed after a share of the whole run's time (the machine may be slow or busy); each rerun skips
-# what the runs before it finished, so later kills land further on.
+# kill_run WHEN: a run into killed/ in its own session, so that kill -9 of the group takes its steps too,
+# as a power cut would; killed after WHEN seconds, or once its first output is written (WHEN `output`).
+# Every file it left must be whole; counts the kill, and the run stopped mid-way.
 kills=0 partial=0
-for share in 10 25 15 35 20 45; do
-  delay=$(awk -v ms="$whole_ms" -v share="$share" 'BEGIN { printf "%.3f", ms * share / 100000 }')
-  # Its own session, so that kill -9 of the group takes its steps too, as a power cut would.
+kill_run() {
   setsid "$bin/vri-run" --jobs 2 --results killed slow.yaml 2> /dev/null &
-  victim=$!
-  sleep "$delay"
+  local victim=$! made
+  if [ "$1" = output ]; then
+    for _ in $(seq 3000); do
+      [ -n "$(ls killed/small 2> /dev/null)" ] || ! kill -0 "$victim" 2> /dev/null && break
+      sleep 0.01
+    done
+  else
+    sleep "$1"
+  fi
   if kill -9 -- "-$victim" 2> /dev/null || kill -9 "$victim" 2> /dev/null; then kills=$((kills + 1)); fi
   wait "$victim" 2> /dev/null || true
   # Its steps too must be gone (reaped by init, not zombies) before anything looks at their files: a
@@ -150,27 +156,19 @@ for share in 10 25 15 35 20 45; do
     made=$(ls killed/small | wc -l)
     [ "$made" -gt 0 ] && [ "$made" -lt "$outputs" ] && partial=$((partial + 1))
   fi
+  return 0
+}
+# Killed after a share of the whole run's time (the machine may be slow or busy); each rerun skips
+# what the runs before it finished, so later kills land further on.
+for share in 10 25 15 35 20 45; do
+  kill_run "$(awk -v ms="$whole_ms" -v share="$share" 'BEGIN { printf "%.3f", ms * share / 100000 }')"
 done
 [ "$kills" -ge 3 ] || fail "only $kills of the runs were still running when killed"
 # On a slow machine (a sanitizer build starts each step slowly) every kill timed by the clock may land
-# before the first output or after the last: then one more, timed by what the run has written, as soon
-# as a first output appears in an emptied folder.
+# before the first output or after the last: then one more, in an emptied folder, at its first output.
 if [ "$partial" -eq 0 ]; then
   rm -rf killed
-  setsid "$bin/vri-run" --jobs 2 --results killed slow.yaml 2> /dev/null &
-  victim=$!
-  for _ in $(seq 3000); do
-    [ -n "$(ls killed/small 2> /dev/null)" ] || ! kill -0 "$victim" 2> /dev/null && break
-    sleep 0.01
-  done
-  if kill -9 -- "-$victim" 2> /dev/null || kill -9 "$victim" 2> /dev/null; then kills=$((kills + 1)); fi
-  wait "$victim" 2> /dev/null || true
-  for _ in $(seq 100); do pgrep -s "$victim" > /dev/null || break; sleep 0.1; done
-  if [ -d killed/small ]; then
-    complete_like killed/small whole/small
-    made=$(ls killed/small | wc -l)
-    [ "$made" -gt 0 ] && [ "$made" -lt "$outputs" ] && partial=$((partial + 1))
-  fi
+  kill_run output
 fi
 [ "$partial" -ge 1 ] || fail "no kill landed mid-way (whole run $whole_ms ms)"
 "$bin/vri-run" --jobs 2 --results killed slow.yaml 2> rerun.txt || fail "the rerun after kill -9 failed: $(cat rerun.txt)"
