@@ -339,6 +339,9 @@ ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a,
     return r;
 }
 
+// eps = 48 u sScale: see above.
+double ExactRay::wrongSideEps(double sScale) { return 48.0 * kUnit * sScale; }
+
 // The window around `at`, where s is sAt, (towards `into`) in which s may be on the wrong side of `level`
 // (above: s must exceed it), or the whole distance to `into` where no window can be shown (see wrongSide).
 double ExactRay::wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above,

@@ -93,7 +93,8 @@ private:
         std::array<double, 3> seen{};  // the width times the TF's largest emission there
     };
 
-    // A TF segment between two neighbouring levels (a gap): segment g - 1's level <= s < level g.
+    // Gap g of the levels, level g - 1 <= s < level g (gap 0 below the first, the last from the last on):
+    // the TF segment there.
     struct Gap {
         std::size_t segment;  // into segments_
         bool zero;            // the TF is zero on it: a sub-piece there adds nothing
@@ -101,7 +102,7 @@ private:
 
     bool doneAtDepth(double depth, double remainingLength) const;  // done() past terminationDepth_
     // How far the computed s may be from the exact one (exact_ray.cpp, "wrong side").
-    static double wrongSideEps(double sScale) { return 48.0 * 0x1p-53 * sScale; }
+    static double wrongSideEps(double sScale);
     // `below`: the levels <= s at the sub-piece's middle.
     WrongSide wrongSide(double length, const Cubic& s, double a, double b, double sScale, int parts,
                         const double* ends, std::size_t below) const;

@@ -44,8 +44,8 @@ struct PlotSeries {
     // drawn from one file: `where: {panel: eye, kind: covered}`. Not for histograms and heatmaps.
     std::vector<std::pair<int, std::string>> where;
     // `optional: true`: a series whose `where` may keep no row on some hosts (a SIMD target one machine has
-    // and another has not) is left out of its panel and its key when it keeps none; without it gnuplot
-    // draws nothing and warns.
+    // and another has not) is left out of its panel and its key when it keeps none; without it the series
+    // stays in the key alone and the spec records a warning (PlotSpec::warnings).
     bool optional = false;
     int labelColumn = 0;  // 1-based: the column whose text is written beside each point (`labels:`); 0 for none
 };
