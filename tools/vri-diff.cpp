@@ -222,6 +222,7 @@ int run(int argc, char** argv) {
     const vri::DiffVerdict verdict = vri::diffVerdict(a, b, options.limits);
 
     std::optional<double> heatTop;  // the top of a PNG heat map's scale
+    vri::OutputSet files;
     if (!options.diffImage.empty() && isPng(options.diffImage)) {
         double largest = 0;
         const auto takeLargest = [&](const vri::ImageDiff& d) {
@@ -239,12 +240,12 @@ int run(int argc, char** argv) {
         }
         heatTop = diffScale->count() > 0 ? 1.0 / options.diffScale : largest;
         if (!(*heatTop > 0) || !std::isfinite(*heatTop)) heatTop = 1.0;  // equal images, or an infinite error
-        vri::writePng(options.diffImage, vri::heatMapImage(a, b, *heatTop));
+        files.add(options.diffImage, vri::encodePng(options.diffImage, vri::heatMapImage(a, b, *heatTop)));
     } else if (!options.diffImage.empty()) {
-        vri::writeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale));
+        files.add(options.diffImage, vri::encodeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale)));
     }
     if (!options.histogram.empty())
-        vri::writeTextFile(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges)));
+        files.add(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges)));
     if (!options.json.empty()) {
         nlohmann::json json = vri::toJson(diff);
         json["a"] = options.a;
@@ -257,8 +258,9 @@ int run(int argc, char** argv) {
                                 {"colormap", "viridis"},
                                 {"top", *heatTop}};
         if (heatTop && !options.scaleOver.empty()) json["heat_map"]["scale_over"] = options.scaleOver;
-        vri::writeTextFile(options.json, json.dump(2) + "\n");
+        files.add(options.json, json.dump(2) + "\n");
     }
+    files.write();
     if (options.json != "-") printSummary(options, diff, verdict.text);
     return verdict.code;
 }

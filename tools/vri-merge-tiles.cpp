@@ -68,9 +68,11 @@ Outputs are written atomically, only once every check has passed.)");
     record["time_utc"] = vri::utcTimestamp();
     record["merged_by"] = {{"tool", kTool}, {"build", vri::buildInfo()}, {"machine", vri::machineInfo()}};
     merged.metadata.insert(merged.metadata.begin(), {"vri:command", record["command"]["shell"].get<std::string>()});
-    vri::writeExr(output, merged.image, merged.metadata);
-    if (!pngPath.empty()) vri::writePng(pngPath, merged.image, png);
-    if (!statsPath.empty()) vri::writeTextFile(statsPath, record.dump(2) + "\n");
+    vri::OutputSet files;
+    files.add(output, vri::encodeExr(output, merged.image, merged.metadata));
+    if (!pngPath.empty()) files.add(pngPath, vri::encodePng(pngPath, merged.image, png));
+    if (!statsPath.empty()) files.add(statsPath, record.dump(2) + "\n");
+    files.write();
     return vri::kExitOk;
 }
 

@@ -83,21 +83,23 @@ int run(int argc, char** argv) {
     const std::vector<int> drawn =
         diagram.empty() ? std::vector<int>{} : vri::parseIndexList(diagramRays, "--diagram-rays", study.rays);
 
+    vri::OutputSet outputs;
     if (fanWanted) {
         const vri::Fan fan = vri::castFan(rays2d, chosen, sampleRates);
-        if (!output.empty()) vri::writeTextFile(output, vri::fanCsv(fan));
+        if (!output.empty()) outputs.add(output, vri::fanCsv(fan));
         vri::Table table = vri::fanErrorTable(fan);
         // Two such tables often sit one under the other (node and cell): the title starts with its grid.
         table.title = (study.convention == vri::GridConvention::NodeCentred
                            ? "Node-centred grid (voxel i at i / (n - 1), paper A's). "
                            : "Cell-centred grid (voxel i at (i + 1/2) / n, clamped at the border). ") +
                       table.title;
-        if (!errors.empty()) vri::writeTextFile(errors, vri::toMarkdown(table));
-        if (!errorsCsv.empty()) vri::writeTextFile(errorsCsv, vri::toCsv(table));
-        if (!convergence.empty()) vri::writeTextFile(convergence, vri::convergenceCsv(fan));
+        if (!errors.empty()) outputs.add(errors, vri::toMarkdown(table));
+        if (!errorsCsv.empty()) outputs.add(errorsCsv, vri::toCsv(table));
+        if (!convergence.empty()) outputs.add(convergence, vri::convergenceCsv(fan));
     }
-    if (!diagram.empty()) vri::writeTextFile(diagram, vri::diagramCsv(rays2d, drawn, chosen, diagramRate));
-    if (!fieldImage.empty()) vri::writeTextFile(fieldImage, vri::fieldCsv(rays2d, fieldResolution));
+    if (!diagram.empty()) outputs.add(diagram, vri::diagramCsv(rays2d, drawn, chosen, diagramRate));
+    if (!fieldImage.empty()) outputs.add(fieldImage, vri::fieldCsv(rays2d, fieldResolution));
+    outputs.write();
     return vri::kExitOk;
 }
 

@@ -85,8 +85,10 @@ int run(int argc, char** argv) {
                           "exact weight, in units of the difference between the texels. Effective bits = "
                           "-log2(max error). Distinct readings: 2^k + 1 when the filter's weights lie on a grid of 1/2^k (257 for "
                           "8 sub-texel bits), more when they are exact.");
-    if (!output.empty()) vri::writeTextFile(output, csv);
-    if (!summary.empty()) vri::writeTextFile(summary, vri::toMarkdown(table));
+    vri::OutputSet files;
+    if (!output.empty()) files.add(output, csv);
+    if (!summary.empty()) files.add(summary, vri::toMarkdown(table));
+    files.write();
     return vri::kExitOk;
 }
 

@@ -223,9 +223,11 @@ int run(int argc, char** argv) {
     const std::string csv = options.csv.empty() ? std::string() : vri::toCsv(table);
     const std::string points =
         options.pointsCsv.empty() ? std::string() : vri::convergencePointsCsv(convergencePoints(options));
-    if (!options.csv.empty()) vri::writeTextFile(options.csv, csv);
-    if (!options.pointsCsv.empty()) vri::writeTextFile(options.pointsCsv, points);
-    vri::writeTextFile(options.markdown, markdown);
+    vri::OutputSet files;
+    if (!options.csv.empty()) files.add(options.csv, csv);
+    if (!options.pointsCsv.empty()) files.add(options.pointsCsv, points);
+    files.add(options.markdown, markdown);
+    files.write();
     return vri::kExitOk;
 }
 

@@ -359,7 +359,8 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
             ledger_.abandoned(i, "an earlier step of its " + where + " failed");
         } else if (status && status->exited && status->code == 0) {
             failed = !ledger_.succeeded(i, status->wallSeconds,
-                                        {.executor = "slurm", .node = status->node, .jobId = job.id, .jobState = state.state});
+                                        {.executor = "slurm", .node = status->node, .jobId = job.id, .jobState = state.state,
+                                         .loadBefore = std::nullopt, .loadAfter = std::nullopt});
         } else if (status) {
             const ExitStatus exit{status->exited, status->code, status->signal};
             ledger_.failed(i, "failed (" + exit.describe() + ") in " + where, status->wallSeconds);

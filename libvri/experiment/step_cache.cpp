@@ -101,7 +101,7 @@ std::optional<StepRecord> readRecord(const fs::path& path) {
                           j.at("wall_seconds").get<double>(),     j.at("ran_utc").get<std::string>(),
                           // A record written before records said where steps ran: every step ran locally then.
                           j.contains("execution") ? executionFromJson(j.at("execution"))
-                                                  : StepExecution{"local", "unknown", "", ""}};
+                                                  : StepExecution{"local", "unknown", "", "", std::nullopt, std::nullopt}};
     } catch (const nlohmann::json::exception&) {
         return std::nullopt;  // a damaged record is no record: the step runs again
     }

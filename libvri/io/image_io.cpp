@@ -70,18 +70,15 @@ std::string lowercaseExtension(const fs::path& path) {
     return ext;
 }
 
-// Encodes the image in memory (a library's failure becomes "PATH: cannot write image: <why>"), then writes
-// every byte through writeTextFile's checked, atomic write.
+// Encodes the image in memory; a library's failure becomes "PATH: cannot write image: <why>".
 template <typename Encode>
-void writeEncoded(const fs::path& path, const Image& image, Encode&& encode) {
+std::string encoded(const fs::path& path, const Image& image, Encode&& encode) {
     requireConsistent(image, path);
-    std::string bytes;
     try {
-        bytes = encode();
+        return encode();
     } catch (const std::exception& e) {
         throw Error(path.string() + ": cannot write image: " + oneLine(e.what()));
     }
-    writeTextFile(path, bytes);
 }
 
 }  // namespace
@@ -103,23 +100,33 @@ ImageMetadata readImageMetadata(const fs::path& path) {
     return metadata;
 }
 
-void writeExr(const fs::path& path, const Image& image, const ImageMetadata& metadata) {
-    writeEncoded(path, image, [&] { return detail::encodeExr(image, metadata); });
+std::string encodeExr(const fs::path& path, const Image& image, const ImageMetadata& metadata) {
+    return encoded(path, image, [&] { return detail::encodeExr(image, metadata); });
 }
 
-void writePng(const fs::path& path, const Image& image, const PngOptions& options) {
-    writeEncoded(path, image,
-                 [&] { return detail::encodePngRgb8(image.width, image.height, previewRgb8(image, options)); });
+std::string encodePng(const fs::path& path, const Image& image, const PngOptions& options) {
+    return encoded(path, image,
+                   [&] { return detail::encodePngRgb8(image.width, image.height, previewRgb8(image, options)); });
 }
 
-void writeImage(const fs::path& path, const Image& image) {
+std::string encodeImage(const fs::path& path, const Image& image) {
     const std::string ext = lowercaseExtension(path);
-    if (ext == ".exr") return writeExr(path, image);
-    if (ext == ".png") return writePng(path, image);
+    if (ext == ".exr") return encodeExr(path, image);
+    if (ext == ".png") return encodePng(path, image);
     requireConsistent(image, path);
     std::string bytes;
     detail::requireModuleSuccess(detail::oiioModule(path, "write image").encodeImage(path, image, bytes));
-    writeTextFile(path, bytes);
+    return bytes;
 }
+
+void writeExr(const fs::path& path, const Image& image, const ImageMetadata& metadata) {
+    writeTextFile(path, encodeExr(path, image, metadata));
+}
+
+void writePng(const fs::path& path, const Image& image, const PngOptions& options) {
+    writeTextFile(path, encodePng(path, image, options));
+}
+
+void writeImage(const fs::path& path, const Image& image) { writeTextFile(path, encodeImage(path, image)); }
 
 }  // namespace vri

@@ -46,4 +46,10 @@ void writePng(const std::filesystem::path& path, const Image& image, const PngOp
 // formats it cannot (SGI, FITS, ...) are an error, since their writes could not be checked.
 void writeImage(const std::filesystem::path& path, const Image& image);
 
+// The bytes each of the three writes above would put at `path` (named in their errors), for outputs
+// that go out together (atomic_file.h's OutputSet): a tool whose later output fails replaces none.
+std::string encodeExr(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata = {});
+std::string encodePng(const std::filesystem::path& path, const Image& image, const PngOptions& options = {});
+std::string encodeImage(const std::filesystem::path& path, const Image& image);
+
 }  // namespace vri

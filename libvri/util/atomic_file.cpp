@@ -331,6 +331,12 @@ void writeTogether(std::span<const OutputBytes> outputs) {
         if (staged[i]) moveIntoPlace(*staged[i], targets[i], outputs[i].path);
 }
 
+void OutputSet::write() const {
+    std::vector<OutputBytes> views;
+    for (const auto& [path, bytes] : outputs_) views.push_back({path, bytes});
+    writeTogether(views);
+}
+
 void writeTextFile(const fs::path& path, std::string_view text) {
     const OutputBytes output{path, text};
     writeTogether({&output, 1});

@@ -24,7 +24,10 @@
 #include <filesystem>
 #include <functional>
 #include <span>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace vri {
 
@@ -39,6 +42,17 @@ struct OutputBytes {
 // of them: every file is written and synced beside its target first, then the streams are written,
 // and only then is each renamed into place.
 void writeTogether(std::span<const OutputBytes> outputs);
+
+// The outputs of one command, kept as they are made and written together at its end (writeTogether):
+// a later output that fails (a full disk, a file size limit) leaves every earlier one as it was.
+class OutputSet {
+public:
+    void add(std::filesystem::path path, std::string bytes) { outputs_.push_back({std::move(path), std::move(bytes)}); }
+    void write() const;
+
+private:
+    std::vector<std::pair<std::filesystem::path, std::string>> outputs_;
+};
 
 // For writers that need a file of their own (a library or program that opens, seeks and closes a
 // path): calls write(tmp), then puts tmp's bytes at `path` as described above. tmp keeps the target's

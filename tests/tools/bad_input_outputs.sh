@@ -59,7 +59,14 @@ rows=()
 for i in $(seq 30); do rows+=(--row "row $i" d.json); done
 bad 1 "^vri-tabulate: error: out\.md: $efbig" -- "${limited[@]}" 1 "$bin/vri-tabulate" --layout thresholds "${rows[@]}" \
     -o out.md
-rm d.json
+# A command's outputs go out together: one that fails leaves every other as it was (a.exr and old.csv are
+# not replaced by this run's, and no .png appears).
+bad 1 "^vri-render: error: out\.json: $efbig" -- "${limited[@]}" 2 "$bin/vri-render" --volume blob_8x8x8_uint8.raw \
+    --tf tf.yaml --size 8x8 -q -o a.exr --png new.png --stats out.json
+echo "an earlier table" > old.csv
+bad 1 "^vri-tabulate: error: out\.md: $efbig" -- "${limited[@]}" 2 "$bin/vri-tabulate" --layout thresholds "${rows[@]}" \
+    --csv old.csv -o out.md
+rm d.json old.csv
 
 # Outputs that are neither a file, a device, a FIFO nor '-': refused, and left as they are.
 bad 1 "^vri-render: error: -o: taken\.exr: cannot write: it is a directory; expected a regular file" -- "${render[@]}" -o taken.exr

@@ -260,11 +260,13 @@ int RenderCommand::run() {
             record["region"] = toJson(*region);
             metadata.emplace_back("vri:region", region->text());
         }
-        writeExr(output_, image, metadata);
-        if (!pngPath_.empty()) writePng(pngPath_, image, png);
-        if (frame.bounds) writeExr(errorImagePath_, *frame.bounds, metadata);
-        if (!statsPath_.empty()) writeTextFile(statsPath_, record.dump(2) + "\n");
-        if (!logPath_.empty()) writeTextFile(logPath_, adaptiveLogCsv(stats.rayLog));
+        OutputSet files;
+        files.add(output_, encodeExr(output_, image, metadata));
+        if (!pngPath_.empty()) files.add(pngPath_, encodePng(pngPath_, image, png));
+        if (frame.bounds) files.add(errorImagePath_, encodeExr(errorImagePath_, *frame.bounds, metadata));
+        if (!statsPath_.empty()) files.add(statsPath_, record.dump(2) + "\n");
+        if (!logPath_.empty()) files.add(logPath_, adaptiveLogCsv(stats.rayLog));
+        files.write();
         if (!quiet_) {
             std::cerr << name_ << ": " << record["options"]["method"].get<std::string>() << ", " << image.width << "x"
                       << image.height << (region ? " at " + std::to_string(region->x) + "," + std::to_string(region->y) : "")
