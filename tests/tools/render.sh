@@ -63,6 +63,18 @@ for tool in vri-render vri-reference; do
         { echo "$tool: no region warning for a background tile: $(cat tile.txt)"; exit 1; }
 done
 
+# More threads than the machine has: the frames run on its cores, said on stderr; the stats hold the count
+# that ran. No warning for a count within them.
+for tool in vri-render vri-reference; do
+    "$bin/$tool" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q --threads 100000 -o t.exr --stats t.json 2> t.txt
+    cores=$(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["stats"]["threads"])' t.json)
+    [ "$cores" -ge 1 ] && [ "$cores" -lt 100000 ] || { echo "$tool: stats threads $cores"; exit 1; }
+    grep -qx "$tool: warning: --threads 100000: this machine runs [0-9]* threads at once; the frames run on [0-9]* (stats: threads)" \
+        t.txt || { echo "$tool: no warning for --threads 100000: $(cat t.txt)"; exit 1; }
+    "$bin/$tool" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q --threads 1 -o t.exr 2> t.txt
+    [ ! -s t.txt ] || { echo "$tool: a warning for --threads 1: $(cat t.txt)"; exit 1; }
+done
+
 help=$("$bin/vri-render" --help)  # captured whole: grep -q on a pipe would cut the writer off (SIGPIPE)
 grep -q "Example" <<<"$help"
 echo "render: all checks passed"

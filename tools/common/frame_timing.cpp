@@ -1,6 +1,7 @@
 #include "common/frame_timing.h"
 
 #include <cstdio>
+#include <iostream>
 #include <sstream>
 
 #include "libvri/util/statistics.h"
@@ -8,12 +9,18 @@
 namespace vri {
 
 void FrameTiming::addTo(CLI::App& app) {
-    app.add_option("--threads", threads_, "worker threads (default: all cores)");
+    app.add_option("--threads", threads_,
+                   "worker threads (default, and 0: all cores; more than the cores run on all of them, with a warning)");
 }
 
-void FrameTiming::limitThreads(std::optional<tbb::global_control>& control) const {
+void FrameTiming::limitThreads(std::optional<tbb::global_control>& control, std::string_view tool) const {
     if (threads_ < 0) throw Error("--threads: expected a positive count, got " + std::to_string(threads_));
-    if (threads_ > 0) control.emplace(tbb::global_control::max_allowed_parallelism, threads_);
+    if (threads_ == 0) return;
+    control.emplace(tbb::global_control::max_allowed_parallelism, threads_);
+    // oneTBB runs no more workers than the machine has cores: a larger count is not what the stats record.
+    if (const int cores = tbb::info::default_concurrency(); threads_ > cores)
+        std::cerr << tool << ": warning: --threads " << threads_ << ": this machine runs " << cores
+                  << " threads at once; the frames run on " << cores << " (stats: threads)\n";
 }
 
 void FrameTiming::setFrames(int warmUp, int repeat, std::string tool, bool quiet) {

@@ -3,12 +3,14 @@
 // (render_option_table.h; every timed frame must equal the first, bit for bit), and the stats' timing record.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
+#include <tbb/info.h>
 
 #include "libvri/util/error.h"
 
@@ -18,7 +20,8 @@ class FrameTiming {
 public:
     void addTo(CLI::App& app);  // --threads
     // Checks the count and, with --threads, limits oneTBB for as long as `control` lives.
-    void limitThreads(std::optional<tbb::global_control>& control) const;
+    // A count above the machine's cores is said on stderr, as "<tool>: warning: ...".
+    void limitThreads(std::optional<tbb::global_control>& control, std::string_view tool) const;
     // The untimed frames, then the timed ones (>= 1). Unless `quiet`, when there is more than one frame,
     // a line per frame on stderr ("<tool>: frame 2 of 5: 0.41 s"): progress, and each frame's time in a log.
     void setFrames(int warmUp, int repeat, std::string tool, bool quiet);

@@ -158,7 +158,7 @@ int RenderCommand::run() {
     if (exitCode_) return *exitCode_;
     return guardedMain(name_, [&] {
         std::optional<tbb::global_control> threadLimit;
-        timing_.limitThreads(threadLimit);
+        timing_.limitThreads(threadLimit, name_);
         requireUtf8Arguments(argc_, argv_);
         requireExrOutput({"-o", output_});
         if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
