@@ -29,6 +29,6 @@ bad 1 '^vri-render: error: --placement: --method exact takes no samples to place
 # that cannot get down to the bound from a huge --tolerance says to start lower.
 bad 1 '^vri-reference: error: --max-error 5e-324: out of reach: at tolerance 5e-324 the largest per-pixel bound is .*, and the next tolerance would underflow double; ask for a larger error$' -- \
     "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --max-error 5e-324
-bad 1 '^vri-reference: error: --max-error 0\.001: the largest per-pixel bound is still .* after 8 renders \(last tolerance .*\); ask for a larger error or start from a smaller --tolerance$' -- \
+bad 1 '^vri-reference: error: --max-error 0\.001: the largest per-pixel bound is still .* after 8 renders of the image \(last tolerance .*\); ask for a larger error or start from a smaller --tolerance$' -- \
     "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --max-error 1e-3 --tolerance 1e300
 bad_done

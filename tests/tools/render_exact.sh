@@ -61,6 +61,26 @@ for tool in vri-render vri-reference; do
     "$bin/$tool" "${blob[@]}" "${method[@]}" --tolerance "${found#* }" -o direct.exr
     "$bin/vri-diff" direct.exr max-error.exr --fail 0 > /dev/null || fail "$tool: --max-error's image is not its tolerance's"
 done
+# From 128 pixels a side a pilot at a quarter of each side finds the tolerance first; the image's accepted
+# render is the output, not rendered again (the stats list every render; a second timed frame is rendered and
+# must equal it bit for bit), and it is the image that tolerance gives when asked for directly.
+big=(--volume blob_8x8x8_uint8.raw --spacing 1,0.75,1 --tf tf.yaml --size 160x128 -q --method exact)
+"$bin/vri-render" "${big[@]}" --max-error 1e-9 --repeat 2 -o pilot.exr --error-image pilot-bound.exr --stats pilot.json
+check=$(python3 - pilot.json <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+renders = d["stats"]["max_error_search"]["renders"]
+ok = (renders[0]["what"] == "pilot" and renders[0]["size"] == "40x32" and renders[-1]["what"] == "image"
+      and renders[-1]["size"] == "160x128" and renders[-1]["bound"] <= 1e-9
+      and renders[-1]["tolerance"] == d["options"]["tolerance"] and max(d["stats"]["error_bound"]["max"]) <= 1e-9
+      and all(r["what"] == "pilot" for r in renders[:-1]) and d["stats"]["max_error_search"]["max_error"] == 1e-9)
+print(("ok " + repr(d["options"]["tolerance"])) if ok else "bad " + json.dumps(renders))
+PY
+)
+[ "${check%% *}" = ok ] || fail "--max-error's search record: $check"
+"$bin/vri-render" "${big[@]}" --tolerance "${check#* }" -o pilot-direct.exr --error-image pilot-direct-bound.exr
+"$bin/vri-diff" pilot-direct.exr pilot.exr --fail 0 > /dev/null || fail "--max-error's image (from the pilot) is not its tolerance's"
+"$bin/vri-diff" pilot-direct-bound.exr pilot-bound.exr --fail 0 > /dev/null || fail "--max-error's bounds are not its tolerance's"
 if "$bin/vri-render" "${blob[@]}" --method riemann --max-error 1e-3 -o bad.exr 2> bad.txt; then fail "--max-error with riemann"; fi
 grep -q "^vri-render: error: --max-error applies to --method exact only" bad.txt || fail "$(cat bad.txt)"
 echo "render_exact: all checks passed"

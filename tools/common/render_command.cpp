@@ -4,6 +4,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
@@ -113,28 +114,71 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
 namespace {
 
 // --max-error E: the exact method's tolerance bounds the quadrature per piece of a ray, not a pixel's error;
-// the stats' per-pixel bound is what E asks for. Untimed renders from --tolerance (else E), each further one
-// at the tolerance times E / bound / 2, until the largest bound is at most E; at most kTries renders.
-double toleranceForMaxError(RenderBackend& backend, const Scene& scene, const Camera& camera,
-                            const RenderRequest& request) {
+// the stats' per-pixel bound is what E asks for. A pixel's bound sums its pieces' errors, so it grows
+// about in proportion to the tolerance, by a factor that depends on the scene and view. The search:
+//  - from --tolerance (else E), each further render at the tolerance times E / bound / 2;
+//  - first a pilot, the same view at a quarter of each side (1/16 of the work; not for a --region, nor an
+//    image under 128 pixels a side), until its largest bound is at most 0.6 E (the factor is not constant
+//    over decades of tolerance: rays end sooner at a loose one), at most kTries renders;
+//  - then the image, until its largest bound is at most E, at most kTries renders; from the pilot's
+//    tolerance, one is the rule.
+// The last, accepted render is a frame at the tolerance found: the caller uses it as its first frame.
+struct MaxErrorSearch {
+    double tolerance;
+    const ExactReference* accepted;  // the backend's last frame, at `tolerance`
+    nlohmann::json record;           // the stats' "max_error_search"
+};
+
+MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scene, const CameraSpec& view,
+                                       const RenderRequest& request) {
     constexpr int kTries = 8;
+    constexpr int kPilotDivisor = 4, kPilotFrom = 128;
+    constexpr double kPilotGoal = 0.6;  // of E: the image's bound, over 16 times the pixels, comes out larger
     const double wanted = *request.maxError;
     ExactReferenceOptions options = request.exactOptions();
     if (!request.wasGiven("--tolerance")) options.tolerance = wanted;
-    double bound = 0;
-    for (int k = 0; k < kTries; ++k) {
-        const ExactReference& ref = backend.renderExact(scene, camera, options);
-        bound = *std::max_element(ref.stats.maxBound.begin(), ref.stats.maxBound.end());
-        if (bound <= wanted) return options.tolerance;
+    nlohmann::json renders = nlohmann::json::array();
+    auto largestBound = [&](const ExactReference& ref, const std::string& what) {
+        const double bound = *std::max_element(ref.stats.maxBound.begin(), ref.stats.maxBound.end());
+        renders.push_back({{"what", what},
+                           {"size", std::to_string(ref.width) + "x" + std::to_string(ref.height)},
+                           {"tolerance", options.tolerance},
+                           {"bound", bound},
+                           {"seconds", ref.stats.seconds}});
+        return bound;
+    };
+    // The next tolerance after a bound over E; 0 or subnormal: no tolerance left to ask.
+    auto tighten = [&](double bound) {
         const double previous = options.tolerance;
         options.tolerance *= 0.5 * wanted / bound;
-        if (!(options.tolerance >= std::numeric_limits<double>::min()))  // 0 or subnormal: no tolerance left to ask
+        if (!(options.tolerance >= std::numeric_limits<double>::min()))
             throw Error("--max-error " + exactNumber(wanted) + ": out of reach: at tolerance " + exactNumber(previous) +
                         " the largest per-pixel bound is " + exactNumber(bound) +
                         ", and the next tolerance would underflow double; ask for a larger error");
+    };
+    if (!options.region && view.width >= kPilotFrom && view.height >= kPilotFrom) {
+        CameraSpec pilot = view;
+        pilot.width = (view.width + kPilotDivisor - 1) / kPilotDivisor;
+        pilot.height = (view.height + kPilotDivisor - 1) / kPilotDivisor;
+        if (pilot.zoomCentre)
+            *pilot.zoomCentre *= glm::dvec2(double(pilot.width) / view.width, double(pilot.height) / view.height);
+        const Camera pilotCamera(pilot);
+        for (int k = 0; k < kTries; ++k) {
+            const double bound = largestBound(backend.renderExact(scene, pilotCamera, options), "pilot");
+            if (bound <= kPilotGoal * wanted) break;
+            tighten(bound);
+        }
+    }
+    const Camera camera(view);
+    double bound = 0;
+    for (int k = 0; k < kTries; ++k) {
+        const ExactReference& ref = backend.renderExact(scene, camera, options);
+        bound = largestBound(ref, "image");
+        if (bound <= wanted) return {options.tolerance, &ref, {{"max_error", wanted}, {"renders", renders}}};
+        tighten(bound);
     }
     throw Error("--max-error " + exactNumber(wanted) + ": the largest per-pixel bound is still " + exactNumber(bound) +
-                " after " + std::to_string(kTries) + " renders (last tolerance " + exactNumber(options.tolerance) +
+                " after " + std::to_string(kTries) + " renders of the image (last tolerance " + exactNumber(options.tolerance) +
                 (request.wasGiven("--tolerance") ? "); ask for a larger error or start from a smaller --tolerance"
                                                  : "); ask for a larger error"));
 }
@@ -192,8 +236,10 @@ int RenderCommand::run() {
                         ".vdb too large to unpack): use --storage dense");
         const Camera camera(setup.camera);
         RenderBackend backend(request);
+        std::optional<MaxErrorSearch> search;
         if (request.maxError) {
-            request.exactTolerance = toleranceForMaxError(backend, scene, camera, request);
+            search = searchMaxErrorTolerance(backend, scene, setup.camera, request);
+            request.exactTolerance = search->tolerance;
             if (!request.options.simdTarget.empty() && request.exactTolerance < ExactRay::kGaussTolerance)
                 std::cerr << name_ << ": warning: --simd " << request.options.simdTarget << ": the tolerance found, "
                           << exactNumber(request.exactTolerance) << ", is below " << exactNumber(ExactRay::kGaussTolerance)
@@ -201,7 +247,11 @@ int RenderCommand::run() {
         }
         auto [frame, wallSeconds] = timing_.run([&] {
             if (request.exact) {
-                const ExactReference& ref = backend.renderExact(scene, camera, request.exactOptions());  // at the tolerance --max-error found
+                // The search's accepted render is the first frame at the tolerance it found (a warm-up, or
+                // the first timed frame): not rendered again.
+                const ExactReference& ref = search && search->accepted
+                                                ? *std::exchange(search->accepted, nullptr)
+                                                : backend.renderExact(scene, camera, request.exactOptions());
                 Frame f{ref.image(), std::nullopt, {}, ref.stats, ref.stats.seconds};
                 if (!errorImagePath_.empty()) f.bounds = ref.boundImage();
                 f.stats.nonfinite = findNonFinitePixels(f.image);
@@ -237,6 +287,7 @@ int RenderCommand::run() {
                                  {"options", toJson(request)},
                                  {"stats", frame.exactStats ? toJson(*frame.exactStats) : toJson(stats)}};
         if (frame.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
+        if (search) record["stats"]["max_error_search"] = search->record;
         record["stats"]["out_of_range_pixels"] = toJson(outOfRange);
         record["timing"] = timing_.toJson(wallSeconds);
         if (record["stats"]["rays_hit"] == 0) {
