@@ -46,6 +46,7 @@ int run(int argc, char** argv) {
                "when at least one type was measured, 1 when none could be (no Vulkan device, no filterable "
                "format), non-zero on a bad argument. Outputs are written atomically.");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
+    vri::requireDistinctOutputs({{"-o", output}, {"--summary", summary}});
     std::vector<vri::VoxelType> voxelTypes;
     for (const std::string& name : types) voxelTypes.push_back(vri::parseVoxelType(name, "--types"));
 

@@ -192,8 +192,9 @@ const RenderOptionRow kRows[] = {
      }},
     {"--max-error", "max_error", "maxerr", OptionValueKind::Number,
      "exact: the largest per-pixel error bound wanted; the tolerance is tightened (from --tolerance, else from E) "
-     "by renders of a quarter-size pilot, then of the image, until every pixel's bound is at most E; the accepted "
-     "render is the output's first frame, and the stats record the tolerance found and every render of the search",
+     "by renders of a quarter-size pilot (from 128 pixels a side, without --region), then of the image, until "
+     "every pixel's bound is at most E; the accepted render is the output's first frame, and the stats record the "
+     "tolerance found and every render of the search",
      "", "", kBothTools, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) { r.maxError = parsePositive(text, where); },
      noDefault,

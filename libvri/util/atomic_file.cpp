@@ -319,8 +319,17 @@ std::unique_ptr<TemporaryFile> stageBeside(const Target& target, const OutputByt
 void writeTogether(std::span<const OutputBytes> outputs) {
     ignoreFileSizeSignal();
     std::vector<Target> targets;
-    for (const OutputBytes& output : outputs)
+    for (const OutputBytes& output : outputs) {
         targets.push_back(resolveTarget(output.path));
+        // Two outputs staged at one target would share its temporary file: the tools refuse this with the
+        // options' names (cli.h's requireDistinctOutputs); this is the last guard.
+        const fs::path written = fs::absolute(targets.back().path).lexically_normal();
+        for (std::size_t j = 0; j + 1 < targets.size(); ++j)
+            if (targets[j].kind == TargetKind::File && targets.back().kind == TargetKind::File &&
+                fs::absolute(targets[j].path).lexically_normal() == written)
+                throw Error(output.path.string() + ": cannot write: it is also " + outputs[j].path.string() +
+                            ", written by the same command");
+    }
     std::vector<std::unique_ptr<TemporaryFile>> staged(outputs.size());
     for (std::size_t i = 0; i < outputs.size(); ++i)
         if (targets[i].kind == TargetKind::File) staged[i] = stageBeside(targets[i], outputs[i]);

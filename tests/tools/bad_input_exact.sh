@@ -31,4 +31,9 @@ bad 1 '^vri-reference: error: --max-error 5e-324: out of reach: at tolerance 5e-
     "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --max-error 5e-324
 bad 1 '^vri-reference: error: --max-error 0\.001: the largest per-pixel bound is still .* after 8 renders of the image \(last tolerance .*\); ask for a larger error or start from a smaller --tolerance$' -- \
     "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o out.exr --max-error 1e-3 --tolerance 1e300
+# Below rounding's floor: the search stops at the second render whose bound does not fall (each costs seconds).
+bad 1 '^vri-reference: error: --max-error 1e-15: out of reach: the largest per-pixel bound of the pilot \(the view at a quarter of each side\) stopped following the tolerance: .* at tolerance 1e-15, .* at .* \(rounding sets a floor near it\); ask for a larger error$' -- \
+    "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 128x128 -q -o out.exr --max-error 1e-15
+bad 1 '^vri-reference: error: --max-error 1e-15: out of reach: the largest per-pixel bound stopped following the tolerance: .*; ask for a larger error$' -- \
+    "$bin/vri-reference" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 16x12 -q -o out.exr --max-error 1e-15
 bad_done

@@ -24,6 +24,8 @@ bad 64 "^vri-reference: error: --error-image: 'e\.png' is not an \.exr file" -- 
 bad 64 "^vri-reference: error: --error-image: 'r\.exr' is also -o's output" -- "${reference[@]}" -o r.exr --error-image r.exr
 bad 64 "^vri-reference: error: --png: 'r\.exr' is also -o's output" -- \
   "${reference[@]}" --method riemann --step 0.1 -o r.exr --png r.exr
+bad 64 "^vri-sampler-probe: error: --summary: '\./s\.csv' is also -o's output" -- \
+  "$VRI_BIN/vri-sampler-probe" -q -o s.csv --summary ./s.csv
 
 # Overflowing renders: refused up front in float, found after the render otherwise.
 printf 'points:\n  - [0.0, 0, 0, 0, 0]\n  - [0.3, 0, 0, 0, 0]\n  - [0.7, 1, 0.5, 0.2, 1e300]\n  - [1.0, 1, 1, 1, 1e300]\n' > huge.yaml

@@ -81,6 +81,9 @@ PY
 "$bin/vri-render" "${big[@]}" --tolerance "${check#* }" -o pilot-direct.exr --error-image pilot-direct-bound.exr
 "$bin/vri-diff" pilot-direct.exr pilot.exr --fail 0 > /dev/null || fail "--max-error's image (from the pilot) is not its tolerance's"
 "$bin/vri-diff" pilot-direct-bound.exr pilot-bound.exr --fail 0 > /dev/null || fail "--max-error's bounds are not its tolerance's"
+# A zoom centre on the frame's right edge is on the pilot's too (scaled without rounding past it).
+"$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 169x128 -q --method exact --zoom 2 --zoom-centre 169,64 --max-error 1e-6 -o zoom-edge.exr ||
+    fail "--max-error with a zoom centre on the frame's edge"
 if "$bin/vri-render" "${blob[@]}" --method riemann --max-error 1e-3 -o bad.exr 2> bad.txt; then fail "--max-error with riemann"; fi
 grep -q "^vri-render: error: --max-error applies to --method exact only" bad.txt || fail "$(cat bad.txt)"
 echo "render_exact: all checks passed"

@@ -314,6 +314,16 @@ TEST_CASE("output: outputs written together: when one fails, none is replaced") 
                              vri::Error);
         REQUIRE(::setrlimit(RLIMIT_FSIZE, &saved) == 0);
     }
+    SUBCASE("the second is the first again, through a link (they would share one temporary file)") {
+        std::filesystem::create_symlink("v.raw", dir / "link.raw");
+        const vri::OutputBytes files[] = {{dir / "v.raw", "new raw"}, {dir / "link.raw", "new link"}};
+        CHECK_THROWS_WITH_AS(vri::writeTogether(files),
+                             doctest::Contains(((dir / "link.raw").string() + ": cannot write: it is also " +
+                                                (dir / "v.raw").string() + ", written by the same command")
+                                                   .c_str()),
+                             vri::Error);
+        std::filesystem::remove(dir / "link.raw");
+    }
     SUBCASE("the second has no place to go (a file where its folder should be)") {
         const vri::OutputBytes files[] = {{dir / "v.raw", "new raw"}, {dir / "v.nhdr" / "inner", "new header"}};
         CHECK_THROWS_WITH_AS(

@@ -1,5 +1,6 @@
 #include "common/frame_timing.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -16,11 +17,13 @@ void FrameTiming::addTo(CLI::App& app) {
 void FrameTiming::limitThreads(std::optional<tbb::global_control>& control, std::string_view tool) const {
     if (threads_ < 0) throw Error("--threads: expected a positive count, got " + std::to_string(threads_));
     if (threads_ == 0) return;
-    control.emplace(tbb::global_control::max_allowed_parallelism, threads_);
-    // oneTBB runs no more workers than the machine has cores: a larger count is not what the stats record.
-    if (const int cores = tbb::info::default_concurrency(); threads_ > cores)
-        std::cerr << tool << ": warning: --threads " << threads_ << ": this machine runs " << cores
-                  << " threads at once; the frames run on " << cores << " (stats: threads)\n";
+    // The cores this process may use (its CPU affinity included): oneTBB runs no more workers, and a larger
+    // limit would only cost memory (2^31 - 1 of them ran out of it).
+    const int cores = tbb::info::default_concurrency();
+    control.emplace(tbb::global_control::max_allowed_parallelism, std::min(threads_, cores));
+    if (threads_ > cores)
+        std::cerr << tool << ": warning: --threads " << threads_ << ": more than the " << cores
+                  << (cores == 1 ? " core" : " cores") << " this process may use; at most " << cores << " run\n";
 }
 
 void FrameTiming::setFrames(int warmUp, int repeat, std::string tool, bool quiet) {

@@ -20,7 +20,7 @@ class FrameTiming {
 public:
     void addTo(CLI::App& app);  // --threads
     // Checks the count and, with --threads, limits oneTBB for as long as `control` lives.
-    // A count above the machine's cores is said on stderr, as "<tool>: warning: ...".
+    // A count above the cores this process may use runs on those, said on stderr ("<tool>: warning: ...").
     void limitThreads(std::optional<tbb::global_control>& control, std::string_view tool) const;
     // The untimed frames, then the timed ones (>= 1). Unless `quiet`, when there is more than one frame,
     // a line per frame on stderr ("<tool>: frame 2 of 5: 0.41 s"): progress, and each frame's time in a log.

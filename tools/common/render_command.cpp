@@ -1,6 +1,7 @@
 #include "common/render_command.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -121,7 +122,8 @@ namespace {
 //    image under 128 pixels a side), until its largest bound is at most 0.6 E (the factor is not constant
 //    over decades of tolerance: rays end sooner at a loose one), at most kTries renders;
 //  - then the image, until its largest bound is at most E, at most kTries renders; from the pilot's
-//    tolerance, one is the rule.
+//    tolerance, one is the rule;
+//  - either ends with an error where the bound stops following the tolerance (below).
 // The last, accepted render is a frame at the tolerance found: the caller uses it as its first frame.
 struct MaxErrorSearch {
     double tolerance;
@@ -138,8 +140,21 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
     ExactReferenceOptions options = request.exactOptions();
     if (!request.wasGiven("--tolerance")) options.tolerance = wanted;
     nlohmann::json renders = nlohmann::json::array();
+    // The largest bound of a render, recorded. Below kGaussTolerance, where rounding sets the bound (about
+    // 1e-13 on 8-bit data), it stops following the tolerance, while each render costs a thousand times more
+    // than one above: the search ends there once a tighter tolerance cut the bound by less than a quarter of
+    // its own factor's decades.
     auto largestBound = [&](const ExactReference& ref, const std::string& what) {
         const double bound = *std::max_element(ref.stats.maxBound.begin(), ref.stats.maxBound.end());
+        if (options.tolerance < ExactRay::kGaussTolerance && !renders.empty() && renders.back()["what"] == what) {
+            const double before = renders.back()["bound"], tolerance = renders.back()["tolerance"];
+            if (bound > before * std::pow(options.tolerance / tolerance, 0.25))
+                throw Error("--max-error " + exactNumber(wanted) + ": out of reach: the largest per-pixel bound " +
+                            (what == "pilot" ? "of the pilot (the view at a quarter of each side) " : "") +
+                            "stopped following the tolerance: " + exactNumber(before) + " at tolerance " +
+                            exactNumber(tolerance) + ", " + exactNumber(bound) + " at " + exactNumber(options.tolerance) +
+                            " (rounding sets a floor near it); ask for a larger error");
+        }
         renders.push_back({{"what", what},
                            {"size", std::to_string(ref.width) + "x" + std::to_string(ref.height)},
                            {"tolerance", options.tolerance},
@@ -160,10 +175,10 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
         CameraSpec pilot = view;
         pilot.width = (view.width + kPilotDivisor - 1) / kPilotDivisor;
         pilot.height = (view.height + kPilotDivisor - 1) / kPilotDivisor;
-        if (pilot.zoomCentre)
-            *pilot.zoomCentre *= glm::dvec2(double(pilot.width) / view.width, double(pilot.height) / view.height);
+        if (const auto c = view.zoomCentre)  // c x pilot / view: exact where c is the frame's edge (x pilot / view is not)
+            pilot.zoomCentre = glm::dvec2(c->x * pilot.width / view.width, c->y * pilot.height / view.height);
         const Camera pilotCamera(pilot);
-        for (int k = 0; k < kTries; ++k) {
+        for (int k = 0; k < kTries; ++k) {  // (a pilot that stays above its goal hands the image its last tolerance)
             const double bound = largestBound(backend.renderExact(scene, pilotCamera, options), "pilot");
             if (bound <= kPilotGoal * wanted) break;
             tighten(bound);
@@ -201,8 +216,7 @@ RenderRequest RenderCommand::request() const {
 int RenderCommand::run() {
     if (exitCode_) return *exitCode_;
     return guardedMain(name_, [&] {
-        std::optional<tbb::global_control> threadLimit;
-        timing_.limitThreads(threadLimit, name_);
+        std::optional<tbb::global_control> threadLimit;  // set once every option is checked
         requireUtf8Arguments(argc_, argv_);
         requireExrOutput({"-o", output_});
         if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
@@ -228,6 +242,7 @@ int RenderCommand::run() {
                                  std::to_string(size.x) + " and Y + HEIGHT <= " + std::to_string(size.y) + ")");
         }
 
+        timing_.limitThreads(threadLimit, name_);
         const SceneSetup setup = scene_.load();
         const Scene& scene = setup.scene;
         if (scene.sparse && (request.exact || request.backend == Backend::Vulkan))
