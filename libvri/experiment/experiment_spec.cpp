@@ -511,6 +511,12 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     const std::string tiled = tilesAt + ": tiles: " + std::to_string(tiles) + ": ";
                     if (peer) throw Error(tiled + "method " + methodName + " (" + run.tool + ") renders whole images only");
                     if (request.options.logPixel) throw Error(tiled + "log_ray logs one pixel: render it untiled");
+                    // Each tile's --max-error search would see its own pixels only and find its own tolerance:
+                    // the bands would not join into the untiled image (vri-merge-tiles refuses them).
+                    if (request.maxError)
+                        throw Error(tiled + "max_error searches a tolerance over the whole image; each tile would find "
+                                            "its own: give the tolerance (eps) that an untiled max_error run records, "
+                                            "or render untiled");
                     if (const int rows = experiment.scene(scene).height; tiles > rows)
                         throw Error(tiled + "more tiles than the " + std::to_string(rows) + " rows of scene '" + scene +
                                     "' (a tile is a band of whole rows)");

@@ -55,4 +55,9 @@ bad 1 "${M}t2.exr: its vri:region is '0,3,8,3', but t1.json says 0,0,8,3 \(an im
 bad 1 "${M}t3.exr: a 8x4 image of 4 channels, but t2.json says a RGBA region 0,3,8,3$" \
   -- "${merge[@]}" --tile t1.exr t1.json --tile t3.exr t2.json -o out.exr
 bad 1 "${M}tf.yaml: " -- "${merge[@]}" --tile t1.exr tf.yaml -o out.exr
+# Tiles of a --max-error render each searched their own pixels: the message says so.
+"$bin/vri-reference" "${scene[@]}" --region 0,0,8,3 --max-error 1e-9 -o m1.exr --stats m1.json
+"$bin/vri-reference" "${scene[@]}" --region 0,3,8,3 --max-error 1e-9 -o m2.exr --stats m2.json
+bad 1 "${M}m2.json: found tolerance .* for --max-error 1e-09 where m1.json found .* \(each tile searched its own pixels\): render the tiles with one --tolerance" \
+  -- "${merge[@]}" --tile m1.exr m1.json --tile m2.exr m2.json -o out.exr
 bad_done

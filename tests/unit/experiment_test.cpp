@@ -461,6 +461,9 @@ TEST_CASE("experiment: tiles: N plans N bands with --region and a merge writing 
           "exp.yaml:6:20: tiles: 6: more tiles than the 5 rows of scene 's' (a tile is a band of whole rows)");
     CHECK(d.error(methods + "coupled: {log_ray: '1,1', tiles: 2}\n") ==
           "exp.yaml:6:36: tiles: 2: log_ray logs one pixel: render it untiled");
+    CHECK(d.error(methods + "exact: {max_error: 1e-6, tiles: 2}\n") ==
+          "exp.yaml:6:35: tiles: 2: max_error searches a tolerance over the whole image; each tile would find its own: "
+          "give the tolerance (eps) that an untiled max_error run records, or render untiled");
 }
 
 TEST_CASE("experiment: a comparison's id writes the run's scene once and the run's id whole") {

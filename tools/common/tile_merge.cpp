@@ -148,10 +148,18 @@ void requireShared(const std::vector<json>& records, const std::vector<std::stri
     for (std::size_t i = 0; i < records.size(); ++i) {
         if (!records[i].contains(key))
             throw Error(names[i] + ": has no \"" + key + "\" (expected the stats file of vri-render or vri-reference)");
-        if (records[i][key] != records[0][key])
-            throw Error(names[i] + ": its \"" + key + "\" differs from " + names[0] +
-                        "'s (the tiles of one image share tool, build, inputs, scene, transfer function, camera and "
-                        "options)");
+        if (records[i][key] == records[0][key]) continue;
+        // Tiles rendered with --max-error each searched their own pixels: say so rather than "options differ".
+        const json& a = records[0][key];
+        const json& b = records[i][key];
+        if (std::string_view(key) == "options" && a.is_object() && b.is_object() && a.contains("max_error") &&
+            a.value("max_error", json()) == b.value("max_error", json()) && a.value("tolerance", json()) != b.value("tolerance", json()))
+            throw Error(names[i] + ": found tolerance " + b["tolerance"].dump() + " for --max-error " +
+                        a["max_error"].dump() + " where " + names[0] + " found " + a["tolerance"].dump() +
+                        " (each tile searched its own pixels): render the tiles with one --tolerance, e.g. the one "
+                        "an untiled --max-error run records");
+        throw Error(names[i] + ": its \"" + key + "\" differs from " + names[0] +
+                    "'s (the tiles of one image share tool, build, inputs, scene, transfer function, camera and options)");
     }
 }
 
