@@ -116,6 +116,11 @@ bad 64 "${E}Could not convert: --threads = two" -- "${render[@]}" --threads two
 bad 1 "${E}--threads: expected a positive count, got -1" -- "${render[@]}" --threads -1
 bad 1 "${E}--repeat: expected a whole number from 1 to 1000, got '0'$" -- "${render[@]}" --repeat 0
 bad 1 "${E}--step: expected a number > 0, got '0'$" -- "${render[@]}" --step 0
+# An empty value is not a number, as 'abc' is not: a usage error whichever parser sees it first.
+bad 64 "${E}--step: expected a number, got ''$" -- "${render[@]}" --step ''
+bad 64 "${E}--repeat: expected a number, got ''$" -- "${render[@]}" --repeat ''
+bad 64 "^vri-reference: error: --tolerance: expected a number, got ''$" -- "$bin/vri-reference" --volume blob_8x8x8_uint8.raw \
+    --tf tf.yaml --size 8x6 -q -o out.exr --tolerance ''
 bad 64 "${E}--step excludes --rate" -- "${render[@]}" --step 0.5 --rate 2
 bad 1 "${E}--early-termination: expected a transparency in \[0, 1\), .auto. or .auto:BOUND." -- "${render[@]}" --early-termination 2
 bad 1 "${E}zoom must be a finite factor >= 1" -- "${render[@]}" --zoom 0
