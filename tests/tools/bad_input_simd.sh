@@ -21,6 +21,9 @@ bad 1 "^vri-render: error: --simd SCALAR: the SIMD packets run float riemann, co
 # Below 1e-10 no Gauss batch runs: a named target would be recorded but never run.
 bad 1 "^vri-reference: error: --simd SCALAR: the exact method's SIMD Gauss batches run from --tolerance 1e-10 up; at 1e-13 none runs$" -- "$bin/vri-reference" "${scene[@]}" --simd SCALAR
 bad 1 "^vri-render: error: --simd SCALAR: the exact method's SIMD Gauss batches run from --tolerance 1e-10 up; at 1e-11 none runs$" -- "$bin/vri-render" "${scene[@]}" --method exact --tolerance 1e-11 --simd SCALAR
+# --max-error with a forced target: the search stops where it would go below the batches' range.
+bad 1 "^vri-reference: error: --max-error 1e-11: with --simd SCALAR the tolerance must stay at or above 1e-10, where the SIMD Gauss batches run; the search needs 1e-11: ask for a larger error, or leave --simd out$" -- "$bin/vri-reference" "${scene[@]}" --max-error 1e-11 --simd SCALAR
+bad 1 "^vri-render: error: --max-error 1e-09: with --simd SCALAR the tolerance must stay at or above 1e-10, where the SIMD Gauss batches run; the search needs .* after a largest per-pixel bound of .*: ask for a larger error, or leave --simd out$" -- "$bin/vri-render" "${scene[@]}" --method exact --max-error 1e-9 --simd SCALAR
 bad 1 "^vri-reference: error: --simd: unknown value 'avx9' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-reference" "${scene[@]}" --simd avx9
 if built_with_vulkan; then
   bad 1 "^vri-render: error: --simd: needs --backend cpu$" -- "$bin/vri-render" "${scene[@]}" --backend vulkan --simd on

@@ -171,6 +171,18 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
                         " the largest per-pixel bound is " + exactNumber(bound) +
                         ", and the next tolerance would underflow double; ask for a larger error");
     };
+    // A forced --simd target names the Gauss batches, which run from kGaussTolerance up: a search that would
+    // render below it stops, rather than record a target that did not run (and options that cannot be given).
+    auto render = [&](const Camera& camera) -> const ExactReference& {
+        if (!options.simdTarget.empty() && options.tolerance < ExactRay::kGaussTolerance)
+            throw Error("--max-error " + exactNumber(wanted) + ": with --simd " + options.simdTarget +
+                        " the tolerance must stay at or above " + exactNumber(ExactRay::kGaussTolerance) +
+                        ", where the SIMD Gauss batches run; the search needs " + exactNumber(options.tolerance) +
+                        (renders.empty() ? std::string()
+                                         : " after a largest per-pixel bound of " + renders.back()["bound"].dump()) +
+                        ": ask for a larger error, or leave --simd out");
+        return backend.renderExact(scene, camera, options);
+    };
     if (!options.region && view.width >= kPilotFrom && view.height >= kPilotFrom) {
         CameraSpec pilot = view;
         pilot.width = (view.width + kPilotDivisor - 1) / kPilotDivisor;
@@ -179,7 +191,7 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
             pilot.zoomCentre = glm::dvec2(c->x * pilot.width / view.width, c->y * pilot.height / view.height);
         const Camera pilotCamera(pilot);
         for (int k = 0; k < kTries; ++k) {  // (a pilot that stays above its goal hands the image its last tolerance)
-            const double bound = largestBound(backend.renderExact(scene, pilotCamera, options), "pilot");
+            const double bound = largestBound(render(pilotCamera), "pilot");
             if (bound <= kPilotGoal * wanted) break;
             tighten(bound);
         }
@@ -187,7 +199,7 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
     const Camera camera(view);
     double bound = 0;
     for (int k = 0; k < kTries; ++k) {
-        const ExactReference& ref = backend.renderExact(scene, camera, options);
+        const ExactReference& ref = render(camera);
         bound = largestBound(ref, "image");
         if (bound <= wanted) return {options.tolerance, &ref, {{"max_error", wanted}, {"renders", renders}}};
         tighten(bound);
@@ -258,10 +270,6 @@ int RenderCommand::run() {
         if (request.maxError) {
             search = searchMaxErrorTolerance(backend, scene, setup.camera, request);
             request.exactTolerance = search->tolerance;
-            if (!request.options.simdTarget.empty() && request.exactTolerance < ExactRay::kGaussTolerance)
-                std::cerr << name_ << ": warning: --simd " << request.options.simdTarget << ": the tolerance found, "
-                          << exactNumber(request.exactTolerance) << ", is below " << exactNumber(ExactRay::kGaussTolerance)
-                          << ", where no SIMD Gauss batch runs (stats: simd_target null)\n";
         }
         auto [frame, wallSeconds] = timing_.run([&] {
             if (request.exact) {
