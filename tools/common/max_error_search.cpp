@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "libvri/core/exact_ray.h"
 #include "libvri/util/error.h"
@@ -11,35 +13,54 @@
 
 namespace vri {
 
+namespace {
+
+// One render of the search, as the stats record it.
+struct SearchRender {
+    const char* what;  // "pilot" or "image"
+    int width, height;
+    double tolerance, bound, seconds;
+};
+
+nlohmann::json toJson(double wanted, const std::vector<SearchRender>& renders) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const SearchRender& r : renders)
+        list.push_back({{"what", r.what},
+                        {"size", std::to_string(r.width) + "x" + std::to_string(r.height)},
+                        {"tolerance", r.tolerance},
+                        {"bound", r.bound},
+                        {"seconds", r.seconds}});
+    return {{"max_error", wanted}, {"renders", list}};
+}
+
+}  // namespace
+
 MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scene, const CameraSpec& view,
-                                       const RenderRequest& request) {
+                                       const Camera& camera, const RenderRequest& request) {
     constexpr int kTries = 8;
     constexpr int kPilotDivisor = 4, kPilotFrom = 128;
     constexpr double kPilotGoal = 0.6;  // of E: the image's bound, over 16 times the pixels, comes out larger
     const double wanted = *request.maxError;
     ExactReferenceOptions options = request.exactOptions();
     if (!request.wasGiven("--tolerance")) options.tolerance = wanted;
-    nlohmann::json renders = nlohmann::json::array();
+    std::vector<SearchRender> renders;
     // The largest bound of a render, recorded. Below kGaussTolerance, where rounding sets the bound (about
     // 1e-13 on 8-bit data), it stops following the tolerance, while each render costs a thousand times more
     // than one above: the search ends there once a tighter tolerance cut the bound by less than a quarter of
     // its own factor's decades.
-    auto largestBound = [&](const ExactReference& ref, const std::string& what) {
+    auto largestBound = [&](const ExactReference& ref, const char* what) {
         const double bound = *std::max_element(ref.stats.maxBound.begin(), ref.stats.maxBound.end());
-        if (options.tolerance < ExactRay::kGaussTolerance && !renders.empty() && renders.back()["what"] == what) {
-            const double before = renders.back()["bound"], tolerance = renders.back()["tolerance"];
-            if (bound > before * std::pow(options.tolerance / tolerance, 0.25))
+        if (options.tolerance < ExactRay::kGaussTolerance && !renders.empty() &&
+            std::string_view(renders.back().what) == what) {
+            const SearchRender& before = renders.back();
+            if (bound > before.bound * std::pow(options.tolerance / before.tolerance, 0.25))
                 throw Error("--max-error " + exactNumber(wanted) + ": out of reach: the largest per-pixel bound " +
-                            (what == "pilot" ? "of the pilot (the view at a quarter of each side) " : "") +
-                            "stopped following the tolerance: " + exactNumber(before) + " at tolerance " +
-                            exactNumber(tolerance) + ", " + exactNumber(bound) + " at " + exactNumber(options.tolerance) +
-                            " (rounding sets a floor near it); ask for a larger error");
+                            (std::string_view(what) == "pilot" ? "of the pilot (the view at a quarter of each side) " : "") +
+                            "stopped following the tolerance: " + exactNumber(before.bound) + " at tolerance " +
+                            exactNumber(before.tolerance) + ", " + exactNumber(bound) + " at " +
+                            exactNumber(options.tolerance) + " (rounding sets a floor near it); ask for a larger error");
         }
-        renders.push_back({{"what", what},
-                           {"size", std::to_string(ref.width) + "x" + std::to_string(ref.height)},
-                           {"tolerance", options.tolerance},
-                           {"bound", bound},
-                           {"seconds", ref.stats.seconds}});
+        renders.push_back({what, ref.width, ref.height, options.tolerance, bound, ref.stats.seconds});
         return bound;
     };
     // The next tolerance after a bound over E; 0 or subnormal: no tolerance left to ask.
@@ -59,7 +80,7 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
                         " the tolerance must stay at or above " + exactNumber(ExactRay::kGaussTolerance) +
                         ", where the SIMD Gauss batches run; the search needs " + exactNumber(options.tolerance) +
                         (renders.empty() ? std::string()
-                                         : " after a largest per-pixel bound of " + renders.back()["bound"].dump()) +
+                                         : " after a largest per-pixel bound of " + exactNumber(renders.back().bound)) +
                         ": ask for a larger error, or leave --simd out");
         return backend.renderExact(scene, camera, options);
     };
@@ -76,12 +97,11 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
             tighten(bound);
         }
     }
-    const Camera camera(view);
     double bound = 0;
     for (int k = 0; k < kTries; ++k) {
         const ExactReference& ref = render(camera);
         bound = largestBound(ref, "image");
-        if (bound <= wanted) return {options.tolerance, &ref, {{"max_error", wanted}, {"renders", renders}}};
+        if (bound <= wanted) return {options.tolerance, &ref, toJson(wanted, renders)};
         tighten(bound);
     }
     throw Error("--max-error " + exactNumber(wanted) + ": the largest per-pixel bound is still " + exactNumber(bound) +

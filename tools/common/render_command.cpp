@@ -109,10 +109,6 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
     exitCode_ = parseArguments(app_, name_, argc, argv);
 }
 
-namespace {
-
-}  // namespace
-
 RenderRequest RenderCommand::request() const {
     RenderRequest request(tool_);
     for (const TableOption& t : tableOptions_) {
@@ -169,7 +165,7 @@ int RenderCommand::run() {
         RenderBackend backend(request);
         std::optional<MaxErrorSearch> search;
         if (request.maxError) {
-            search = searchMaxErrorTolerance(backend, scene, setup.camera, request);
+            search = searchMaxErrorTolerance(backend, scene, setup.camera, camera, request);
             request.exactTolerance = search->tolerance;
         }
         auto [frame, wallSeconds] = timing_.run([&] {
