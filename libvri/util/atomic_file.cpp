@@ -319,14 +319,14 @@ std::unique_ptr<TemporaryFile> stageBeside(const Target& target, const OutputByt
 void writeTogether(std::span<const OutputBytes> outputs) {
     ignoreFileSizeSignal();
     std::vector<Target> targets;
+    std::vector<fs::path> files;  // per output, the file it is staged beside; empty for a stream
     for (const OutputBytes& output : outputs) {
-        targets.push_back(resolveTarget(output.path));
+        const Target& target = targets.emplace_back(resolveTarget(output.path));
+        files.push_back(target.kind == TargetKind::File ? fs::absolute(target.path).lexically_normal() : fs::path());
         // Two outputs staged at one target would share its temporary file: the tools refuse this with the
         // options' names (cli.h's requireDistinctOutputs); this is the last guard.
-        const fs::path written = fs::absolute(targets.back().path).lexically_normal();
-        for (std::size_t j = 0; j + 1 < targets.size(); ++j)
-            if (targets[j].kind == TargetKind::File && targets.back().kind == TargetKind::File &&
-                fs::absolute(targets[j].path).lexically_normal() == written)
+        for (std::size_t j = 0; j + 1 < files.size(); ++j)
+            if (!files.back().empty() && files[j] == files.back())
                 throw Error(output.path.string() + ": cannot write: it is also " + outputs[j].path.string() +
                             ", written by the same command");
     }
