@@ -674,7 +674,6 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                 g = hn::IfThenElse(contributes, hn::Add(g, hn::Mul(w, v[1])), g);
                 b = hn::IfThenElse(contributes, hn::Add(b, hn::Mul(w, v[2])), b);
                 transparency = hn::IfThenElse(contributes, hn::Mul(transparency, attenuation), transparency);
-                evaluated += hn::CountTrue(df, pending);
                 const MF ends = hn::And(pending, hn::Lt(transparency, rays.terminateBelow));
                 kEnded = hn::IfThenElse(hn::RebindMask(di, ends), pendingNext, kEnded);
                 ended = hn::Or(ended, ends);
@@ -720,7 +719,15 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                 k = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, evaluating), hn::Set(di, 1)));
                 pendingNext = k;
             }
-            pending = hn::AndNot(ended, evaluating);
+            // The samples of lanes early termination has not ended are evaluated. Those whose value
+            // makes the transfer function invisible add exactly nothing and leave the transparency as it
+            // was (exp(-0) is 1), so they are not integrated: nor can they end a ray, whose threshold is
+            // below 1 (early_termination.h) and so was crossed, if at all, at a sample before. On
+            // Bonsai (Engine) at h = 0.5 and 0.1 that is 43 % (31 %) of the samples outside empty
+            // bricks, and 35 % (26 %) of the integrations left out for every lane.
+            const MF marched = hn::AndNot(ended, evaluating);
+            evaluated += hn::CountTrue(df, marched);
+            pending = hn::AndNot(hn::Lt(pendingValue, hn::Set(df, sc.invisibleBelow)), marched);
             if (!hn::AllFalse(df, empty)) {
                 const VI jump = hn::Add(
                     samplesInEmptyCube(stencil, lastDistance, rays.du, rays.samplesPerVoxel, sc.jumpMargin),
@@ -993,6 +1000,12 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Stencil
     for (int c = 0; c < 4; ++c) {
         first[c] = static_cast<float>(channels(p.front())[c]);
         last[c] = static_cast<float>(channels(p.back())[c]);
+    }
+    const TransferFunction& tf = scene.transferFunction;
+    invisibleBelow = -std::numeric_limits<float>::infinity();
+    for (const auto& q : p) {
+        if (!tf.isInvisible(p.front().s, q.s)) break;
+        invisibleBelow = &q == &p.back() ? std::numeric_limits<float>::infinity() : static_cast<float>(q.s);
     }
     // A single point has no segment; the selects in VectorTransferFunction then always pick `first`.
     segments = std::max<std::size_t>(p.size(), 2) - 1;

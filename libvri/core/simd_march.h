@@ -84,6 +84,10 @@ struct PacketScene {
     std::size_t segments = 1;  // before the padding
     std::vector<float> segmentStart, segmentWidth, value[4], slope[4];
     float first[4], last[4];  // the channels at the first and the last point
+    // Below this s (compared in float, as the bracket is) a sample adds exactly nothing: the transfer
+    // function is invisible from below its first point up to there (TransferFunction::isInvisible). -inf
+    // when its first point is visible, +inf when all are.
+    float invisibleBelow;
 };
 
 // Renders the pixels x0 <= x < x1, y0 <= y < y1 of the camera's image into `image`, which holds the

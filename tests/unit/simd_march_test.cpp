@@ -324,6 +324,55 @@ TEST_CASE("the packet engine's jumps across empty space skip no visible sample")
             }
 }
 
+TEST_CASE("the packet engine leaves invisible samples out of its sums without changing a bit") {
+    // Transfer functions whose invisible stretch (where a sample adds exactly nothing) starts below the
+    // first point or nowhere, ends at a point, at a jump, or covers everything, or holds only under
+    // colour x extinction (colour without extinction); and a dim one under --early-termination
+    // auto:0.9, whose rays end after few samples.
+    using P = TransferFunctionPoint;
+    const std::vector<std::pair<const char*, std::vector<P>>> functions{
+        {"visible from the first point", {{0.0, 0.1, 0.2, 0.3, 0.4}, {1.0, 0.9, 0.5, 0.1, 0.8}}},
+        {"invisible below 0.2", {{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}, {0.6, 0.7, 0.3, 0.2, 0.9}, {1.0, 0.1, 0.9, 0.4, 0.3}}},
+        {"a jump at 0.3", {{0.0, 0, 0, 0, 0}, {0.3, 0, 0, 0, 0}, {0.3, 0.5, 0.5, 0.5, 0.8}, {1.0, 0.9, 0.2, 0.1, 0.4}}},
+        {"invisible throughout", {{0.0, 0, 0, 0, 0}, {1.0, 0, 0, 0, 0}}},
+        {"colour without extinction below 0.2",
+         {{0.0, 0.9, 0.8, 0.7, 0}, {0.2, 0.9, 0.8, 0.7, 0}, {1.0, 0.5, 0.5, 0.5, 1.0}}},
+        {"dim", {{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}, {1.0, 0.02, 0.01, 0.03, 0.05}}}};
+    const Camera camera = testCamera(37, 23);
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    for (const auto& [name, points] : functions)
+        for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour})
+            for (Integrator integrator : {Integrator::Riemann, Integrator::Composite})
+                for (bool skip : {true, false}) {
+                    const Scene scene{testVolume(VoxelType::UInt8), std::nullopt, GridConvention::CellCentred,
+                                      TransferFunction(points, emission)};
+                    RenderOptions opt;
+                    opt.precision = Precision::Float;
+                    opt.integrator = integrator;
+                    opt.samplingRate = 3.1;
+                    opt.skipEmptySpace = skip;
+                    const bool dim = std::string(name) == "dim";
+                    if (dim) opt.terminationBound = 0.9;
+                    opt.simd = false;
+                    RenderStats scalarStats;
+                    const Image scalar = render(scene, camera, opt, &scalarStats);
+                    if (dim) CHECK(scalarStats.raysTerminated > 0);
+                    opt.simd = true;
+                    for (std::int64_t target : targets) {
+                        hwy::SetSupportedTargetsForTest(target);
+                        RenderStats stats;
+                        const Image packets = render(scene, camera, opt, &stats);
+                        INFO(name, " ", hwy::TargetName(target), " ", integratorName(integrator), " skip ", skip,
+                             " emission ", static_cast<int>(emission));
+                        CHECK(test::sameBits(packets, scalar));
+                        CHECK(stats.samplesPlaced == scalarStats.samplesPlaced);
+                        CHECK(stats.raysTerminated == scalarStats.raysTerminated);
+                        if (!skip) CHECK(stats.samplesEvaluated == scalarStats.samplesEvaluated);
+                    }
+                    hwy::SetSupportedTargetsForTest(0);
+                }
+}
+
 TEST_CASE("--simd leaves double precision, the Simpson methods and analytic fields on the scalar path") {
     const Scene scene{testVolume(VoxelType::UInt8), std::nullopt, GridConvention::CellCentred,
                       testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
