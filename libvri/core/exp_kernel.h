@@ -66,12 +66,14 @@ struct Reduction {
     Real r;  // x - k ln 2
 };
 
-template <class Ops, class Real>
+// MayBeNaN false: the caller knows x is not NaN, and the select that NaN needs is left out.
+template <bool MayBeNaN = true, class Ops, class Real>
 [[gnu::always_inline]] inline Reduction<Ops, Real> reduce(const Ops& o, Real x) {
     using C = Constants<typename Ops::Scalar>;
     // NaN compares false and becomes C::lowest here; the callers put it back.
     const Real lowest = o.set(C::lowest), highest = o.set(C::highest);
-    const Real xc = o.select(o.isNaN(x), lowest, o.clamp(x, lowest, highest));
+    Real xc = o.clamp(x, lowest, highest);
+    if constexpr (MayBeNaN) xc = o.select(o.isNaN(x), lowest, xc);
     const Real k = (xc * o.set(C::log2E) + o.set(C::roundToInteger)) - o.set(C::roundToInteger);
     const Real r = (xc - k * o.set(C::ln2Head)) - k * o.set(C::ln2Tail);
     return {k, r};
@@ -102,15 +104,20 @@ template <class Ops, class Real>
     return r + (r * r) * p;
 }
 
+// exp(x) for an x known not to be NaN: exp()'s result, without the two selects NaN needs.
 template <class Ops, class Real>
-[[gnu::always_inline]] inline Real exp(const Ops& o, Real x) {
-    const Reduction<Ops, Real> red = reduce(o, x);
+[[gnu::always_inline]] inline Real expOfNumber(const Ops& o, Real x) {
+    const Reduction<Ops, Real> red = reduce<false>(o, x);
     const auto k = o.toInt(red.k);
     // 2^k in two factors, each a normal power of two for k between C::lowest and C::highest over ln 2;
     // the first product is exact, so a subnormal result is rounded once.
     const auto k1 = o.halve(k);
-    const Real y = ((o.set(1) + expm1Reduced(o, red.r)) * o.pow2(k1)) * o.pow2(k - k1);
-    return o.select(o.isNaN(x), x, y);
+    return ((o.set(1) + expm1Reduced(o, red.r)) * o.pow2(k1)) * o.pow2(k - k1);
+}
+
+template <class Ops, class Real>
+[[gnu::always_inline]] inline Real exp(const Ops& o, Real x) {
+    return o.select(o.isNaN(x), x, expOfNumber(o, o.select(o.isNaN(x), o.set(0), x)));
 }
 
 template <class Ops, class Float>

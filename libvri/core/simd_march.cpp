@@ -66,31 +66,33 @@ struct VectorOps {
 
 HWY_INLINE VF lerp(VF a, VF b, VF t) { return hn::Add(a, hn::Mul(t, hn::Sub(b, a))); }
 
-// Voxels o and o + 1 of each lane (the x neighbours: the x stride is 1).
+// Voxels o and o + 1 of each lane (the x neighbours: the x stride is 1). `nearEnd`: whether voxel o + 3
+// may lie past the volume's end.
 struct VoxelPair {
     VF first, second;
 };
 
 template <class T>
-VoxelPair gatherPair(const PacketScene& sc, VI o);
+VoxelPair gatherPair(const PacketScene& sc, VI o, bool nearEnd);
 
 template <>
-HWY_INLINE VoxelPair gatherPair<std::uint8_t>(const PacketScene& sc, VI o) {
+HWY_INLINE VoxelPair gatherPair<std::uint8_t>(const PacketScene& sc, VI o, bool nearEnd) {
     const DF df;
     const DI di;
     const DU du;
-    // One 32-bit word holds both bytes. The last word of the volume starts 4 bytes before its end:
-    // a lane past it reads that word and shifts its bytes down.
-    const VI start = hn::Min(o, hn::Set(di, sc.voxelBytes - 4));
-    const auto word = hn::BitCast(du, hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(sc.voxels), start));
-    const auto bytes = word >> hn::BitCast(du, hn::ShiftLeft<3>(hn::Sub(o, start)));
+    const auto* words = reinterpret_cast<const std::int32_t*>(sc.voxels);
+    // One 32-bit word holds both bytes. Near the end the volume's last word starts 4 bytes before it:
+    // a lane past that reads it and shifts its bytes down.
+    const VI start = nearEnd ? hn::Min(o, hn::Set(di, sc.voxelBytes - 4)) : o;
+    auto bytes = hn::BitCast(du, hn::GatherOffset(di, words, start));
+    if (nearEnd) bytes = bytes >> hn::BitCast(du, hn::ShiftLeft<3>(hn::Sub(o, start)));
     const auto mask = hn::Set(du, 0xFFu);
     return {hn::ConvertTo(df, hn::BitCast(di, hn::And(bytes, mask))),
             hn::ConvertTo(df, hn::BitCast(di, hn::And(hn::ShiftRight<8>(bytes), mask)))};
 }
 
 template <>
-HWY_INLINE VoxelPair gatherPair<std::uint16_t>(const PacketScene& sc, VI o) {
+HWY_INLINE VoxelPair gatherPair<std::uint16_t>(const PacketScene& sc, VI o, bool) {
     const DF df;
     const DI di;
     const DU du;
@@ -102,7 +104,7 @@ HWY_INLINE VoxelPair gatherPair<std::uint16_t>(const PacketScene& sc, VI o) {
 }
 
 template <>
-HWY_INLINE VoxelPair gatherPair<float>(const PacketScene& sc, VI o) {
+HWY_INLINE VoxelPair gatherPair<float>(const PacketScene& sc, VI o, bool) {
     const DF df;
     const DI di;
     const float* data = reinterpret_cast<const float*>(sc.voxels);
@@ -148,10 +150,13 @@ HWY_INLINE VF interpolate(const PacketScene& sc, const Stencil& st) {
     const GridSamplerLayout<float>& g = sc.layout;
     const VI sy = hn::Set(di, static_cast<std::int32_t>(g.stride[1]));
     const VI sz = hn::Set(di, static_cast<std::int32_t>(g.stride[2]));
-    const VoxelPair p00 = gatherPair<T>(sc, st.base);
-    const VoxelPair p10 = gatherPair<T>(sc, hn::Add(st.base, sy));
-    const VoxelPair p01 = gatherPair<T>(sc, hn::Add(st.base, sz));
-    const VoxelPair p11 = gatherPair<T>(sc, hn::Add(hn::Add(st.base, sz), sy));
+    // The stencil's last voxel, base + sy + sz + 1, lies in the volume, so the words of its first three
+    // pairs end within it where the strides along y and z are 2 or more (not a single layer).
+    const bool thin = g.stride[1] < 2 || g.stride[2] < 2;
+    const VoxelPair p00 = gatherPair<T>(sc, st.base, thin);
+    const VoxelPair p10 = gatherPair<T>(sc, hn::Add(st.base, sy), thin);
+    const VoxelPair p01 = gatherPair<T>(sc, hn::Add(st.base, sz), thin);
+    const VoxelPair p11 = gatherPair<T>(sc, hn::Add(hn::Add(st.base, sz), sy), true);
     const VF c00 = lerp(p00.first, p00.second, st.w[0]);
     const VF c10 = lerp(p10.first, p10.second, st.w[0]);
     const VF c01 = lerp(p01.first, p01.second, st.w[0]);
@@ -658,8 +663,9 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                 const MF contributes = Emission == EmissionModel::ColourTimesExtinction
                                            ? hn::And(pending, hn::Ne(tau, hn::Zero(df)))
                                            : pending;
+                // tau is a lerp of non-negative finite values, dx positive and finite: never NaN.
                 const VF exponent = hn::Mul(hn::Neg(tau), rays.dx);
-                const VF attenuation = exp_kernel::exp(ops, exponent);
+                const VF attenuation = exp_kernel::expOfNumber(ops, exponent);
                 VF weight;
                 if constexpr (Method == Integrator::Riemann) {
                     weight = Emission == EmissionModel::ColourTimesExtinction ? hn::Mul(tau, rays.dx) : rays.dx;
