@@ -66,14 +66,16 @@ struct Reduction {
     Real r;  // x - k ln 2
 };
 
-// MayBeNaN false: the caller knows x is not NaN, and the select that NaN needs is left out.
-template <bool MayBeNaN = true, class Ops, class Real>
+// Clamp false: the caller knows x lies in [C::lowest, C::highest], where the clamp is the identity.
+template <bool Clamp = true, class Ops, class Real>
 [[gnu::always_inline]] inline Reduction<Ops, Real> reduce(const Ops& o, Real x) {
     using C = Constants<typename Ops::Scalar>;
-    // NaN compares false and becomes C::lowest here; the callers put it back.
-    const Real lowest = o.set(C::lowest), highest = o.set(C::highest);
-    Real xc = o.clamp(x, lowest, highest);
-    if constexpr (MayBeNaN) xc = o.select(o.isNaN(x), lowest, xc);
+    Real xc = x;
+    if constexpr (Clamp) {
+        // NaN compares false and becomes C::lowest here; the callers put it back.
+        const Real lowest = o.set(C::lowest), highest = o.set(C::highest);
+        xc = o.select(o.isNaN(x), lowest, o.clamp(x, lowest, highest));
+    }
     const Real k = (xc * o.set(C::log2E) + o.set(C::roundToInteger)) - o.set(C::roundToInteger);
     const Real r = (xc - k * o.set(C::ln2Head)) - k * o.set(C::ln2Tail);
     return {k, r};
@@ -104,20 +106,51 @@ template <class Ops, class Real>
     return r + (r * r) * p;
 }
 
-// exp(x) for an x known not to be NaN: exp()'s result, without the two selects NaN needs.
 template <class Ops, class Real>
-[[gnu::always_inline]] inline Real expOfNumber(const Ops& o, Real x) {
-    const Reduction<Ops, Real> red = reduce<false>(o, x);
+[[gnu::always_inline]] inline Real exp(const Ops& o, Real x) {
+    const Reduction<Ops, Real> red = reduce(o, x);
     const auto k = o.toInt(red.k);
     // 2^k in two factors, each a normal power of two for k between C::lowest and C::highest over ln 2;
     // the first product is exact, so a subnormal result is rounded once.
     const auto k1 = o.halve(k);
-    return ((o.set(1) + expm1Reduced(o, red.r)) * o.pow2(k1)) * o.pow2(k - k1);
+    const Real y = ((o.set(1) + expm1Reduced(o, red.r)) * o.pow2(k1)) * o.pow2(k - k1);
+    return o.select(o.isNaN(x), x, y);
+}
+
+// Where exp(x) is a normal float, x in [-kNormalRange, 0], exp()'s result without its clamp, NaN's
+// selects and the split of 2^k: k >= -125, so 2^k is a normal power of two and 1 + expm1(r) >= 0.7 times
+// it is normal too; a product by a power of two is then exact, in one factor as in two.
+inline constexpr double kNormalRange = 86.0;  // x log2 e >= -124.1
+
+template <class Ops, class Real>
+[[gnu::always_inline]] inline Real expInNormalRange(const Ops& o, Real x) {
+    const Reduction<Ops, Real> red = reduce<false>(o, x);
+    return (o.set(1) + expm1Reduced(o, red.r)) * o.pow2(o.toInt(red.k));
+}
+
+// Within kNearZero of 0 the reduction is the identity: x log2 e rounds to k = 0 (|x log2 e| <= 0.4905),
+// so r = (x - 0) - 0 = x (but for -0, which both polynomials take to +0), 2^k = 1 and (scale - 1) = 0.
+// There exp(x) = 1 + expm1Reduced(x) and expm1(x) = expm1Reduced(x), bit for bit, without the reduction,
+// the clamps or the powers of two: a step of a fixed-step ray rarely dims it by more than e^-0.34.
+inline constexpr double kNearZero = 0.34;
+
+template <class Ops, class Real>
+[[gnu::always_inline]] inline Real expNearZero(const Ops& o, Real x) {
+    return o.set(1) + expm1Reduced(o, x);
 }
 
 template <class Ops, class Real>
-[[gnu::always_inline]] inline Real exp(const Ops& o, Real x) {
-    return o.select(o.isNaN(x), x, expOfNumber(o, o.select(o.isNaN(x), o.set(0), x)));
+[[gnu::always_inline]] inline Real expm1NearZero(const Ops& o, Real x) {
+    return expm1Reduced(o, x);
+}
+
+// expm1(x) for x in [-kNormalRange, 0]: expm1()'s result without its clamp, NaN's selects and exp()
+// for k above 127.
+template <class Ops, class Float>
+[[gnu::always_inline]] inline Float expm1InNormalRange(const Ops& o, Float x) {
+    const Reduction<Ops, Float> red = reduce<false>(o, x);
+    const Float scale = o.pow2(o.clampInt(o.toInt(red.k), -64, 127));
+    return scale * expm1Reduced(o, red.r) + (scale - o.set(1.f));
 }
 
 template <class Ops, class Float>

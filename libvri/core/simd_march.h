@@ -88,6 +88,7 @@ struct PacketScene {
     // function is invisible from below its first point up to there (TransferFunction::isInvisible). -inf
     // when its first point is visible, +inf when all are.
     float invisibleBelow;
+    float maxTau;  // the largest extinction of a point: a sample's, a lerp between two, is at most an ulp more
 };
 
 // Renders the pixels x0 <= x < x1, y0 <= y < y1 of the camera's image into `image`, which holds the

@@ -1,6 +1,7 @@
 // The float exp and expm1 shared by the scalar float path and the packet engine (float_exp.h) against
 // the C library's double functions: the error in float ulps of the exact value over the whole range
-// where the result is a normal float, the subnormal range, and the edges.
+// where the result is a normal float, the subnormal range, and the edges; and exp_kernel.h's short forms
+// against its full ones.
 #include <doctest/doctest.h>
 
 #include <bit>
@@ -9,7 +10,9 @@
 #include <initializer_list>
 #include <limits>
 
+#include "libvri/core/exp_kernel.h"
 #include "libvri/core/float_exp.h"
+#include "libvri/core/scalar_exp_ops.h"
 
 using namespace vri;
 
@@ -90,4 +93,28 @@ TEST_CASE("expm1Float is within 2 ulp of expm1 and keeps tiny arguments exact") 
     CHECK(expm1Float(88.73f) == std::numeric_limits<float>::infinity());
     CHECK(expm1Float(std::numeric_limits<float>::infinity()) == std::numeric_limits<float>::infinity());
     CHECK(std::isnan(expm1Float(std::numeric_limits<float>::quiet_NaN())));
+}
+
+TEST_CASE("exp_kernel's short forms give exp's and expm1's bits where they hold") {
+    // The packet engine picks a short form per packet from the deepest step it can take; each must
+    // round exactly as the full function over its whole range, or images would change.
+    const ScalarExpOps o;
+    const auto same = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); };
+    long checked = 0, differ = 0;
+    const float nearZero = static_cast<float>(exp_kernel::kNearZero);
+    manyFloats(-nearZero, nearZero, [&](float x) {
+        ++checked;
+        differ += !same(exp_kernel::expNearZero(o, x), exp_kernel::exp(o, x));
+        differ += !same(exp_kernel::expm1NearZero(o, x), exp_kernel::expm1(o, x));
+    });
+    manyFloats(-static_cast<float>(exp_kernel::kNormalRange), 0.f, [&](float x) {
+        ++checked;
+        differ += !same(exp_kernel::expInNormalRange(o, x), exp_kernel::exp(o, x));
+        differ += !same(exp_kernel::expm1InNormalRange(o, x), exp_kernel::expm1(o, x));
+    });
+    MESSAGE(checked, " arguments");
+    CHECK(differ == 0);
+    // Not a blank test: past its range a short form rounds differently (here no longer exp at all).
+    CHECK(!same(exp_kernel::expNearZero(o, -1.f), exp_kernel::exp(o, -1.f)));
+    CHECK(!same(exp_kernel::expInNormalRange(o, -100.f), exp_kernel::exp(o, -100.f)));
 }
