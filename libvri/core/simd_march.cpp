@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "libvri/core/simd_march.cpp"
@@ -143,9 +145,41 @@ HWY_INLINE Stencil locate(const PacketScene& sc, const VF (&u)[3], MF valid) {
     return st;
 }
 
-template <class T>
-HWY_INLINE VF interpolate(const PacketScene& sc, const Stencil& st) {
+#if HWY_TARGET == HWY_AVX2
+// gatherStencil<std::uint8_t>'s pairs, lane by lane with scalar loads (voxel_loads.h). A pair's two bytes
+// lie in the volume, so no guard is needed at its end.
+HWY_INLINE void loadStencilBytes(const PacketScene& sc, VI base, VoxelPair (&p)[4]) {
     const DF df;
+    const DI di;
+    const DU du;
+    const GridSamplerLayout<float>& g = sc.layout;
+    HWY_ALIGN std::int32_t at[PacketScene::kMaxLanes];
+    hn::Store(base, di, at);
+    const std::ptrdiff_t offset[4] = {0, g.stride[1], g.stride[2], g.stride[1] + g.stride[2]};
+    HWY_ALIGN std::uint32_t words[4][PacketScene::kMaxLanes];
+    const auto* voxels = reinterpret_cast<const unsigned char*>(sc.voxels);
+    for (std::size_t lane = 0; lane < hn::Lanes(di); ++lane)
+        for (int q = 0; q < 4; ++q) {
+            std::uint16_t pair;
+            std::memcpy(&pair, voxels + at[lane] + offset[q], sizeof pair);
+            words[q][lane] = pair;
+        }
+    const auto mask = hn::Set(du, 0xFFu);
+    for (int q = 0; q < 4; ++q) {
+        const auto word = hn::Load(du, words[q]);
+        p[q] = {hn::ConvertTo(df, hn::BitCast(di, hn::And(word, mask))),
+                hn::ConvertTo(df, hn::BitCast(di, hn::ShiftRight<8>(word)))};
+    }
+}
+#endif
+
+// The four x pairs of the lanes' stencils at `base`: (y, z) = (0, 0), (1, 0), (0, 1), (1, 1).
+template <class T>
+HWY_INLINE void gatherStencil(const PacketScene& sc, VI base, VoxelPair (&p)[4]) {
+#if HWY_TARGET == HWY_AVX2
+    if constexpr (std::is_same_v<T, std::uint8_t>)
+        if (sc.voxelLoads == VoxelLoads::Scalar) return loadStencilBytes(sc, base, p);
+#endif
     const DI di;
     const GridSamplerLayout<float>& g = sc.layout;
     const VI sy = hn::Set(di, static_cast<std::int32_t>(g.stride[1]));
@@ -153,10 +187,19 @@ HWY_INLINE VF interpolate(const PacketScene& sc, const Stencil& st) {
     // The stencil's last voxel, base + sy + sz + 1, lies in the volume, so the words of its first three
     // pairs end within it where the strides along y and z are 2 or more (not a single layer).
     const bool thin = g.stride[1] < 2 || g.stride[2] < 2;
-    const VoxelPair p00 = gatherPair<T>(sc, st.base, thin);
-    const VoxelPair p10 = gatherPair<T>(sc, hn::Add(st.base, sy), thin);
-    const VoxelPair p01 = gatherPair<T>(sc, hn::Add(st.base, sz), thin);
-    const VoxelPair p11 = gatherPair<T>(sc, hn::Add(hn::Add(st.base, sz), sy), true);
+    p[0] = gatherPair<T>(sc, base, thin);
+    p[1] = gatherPair<T>(sc, hn::Add(base, sy), thin);
+    p[2] = gatherPair<T>(sc, hn::Add(base, sz), thin);
+    p[3] = gatherPair<T>(sc, hn::Add(hn::Add(base, sz), sy), true);
+}
+
+template <class T>
+HWY_INLINE VF interpolate(const PacketScene& sc, const Stencil& st) {
+    const DF df;
+    const GridSamplerLayout<float>& g = sc.layout;
+    VoxelPair p[4];
+    gatherStencil<T>(sc, st.base, p);
+    const VoxelPair &p00 = p[0], &p10 = p[1], &p01 = p[2], &p11 = p[3];
     const VF c00 = lerp(p00.first, p00.second, st.w[0]);
     const VF c10 = lerp(p10.first, p10.second, st.w[0]);
     const VF c01 = lerp(p01.first, p01.second, st.w[0]);
@@ -1009,7 +1052,8 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Stencil
       layout(*scene.volume, scene.convention),
       prefetchSamples(static_cast<float>(std::ceil(kPrefetchVoxels * options.samplingRate))),
       prefetchEvery(std::max(1, static_cast<int>(kPrefetchEveryVoxels * options.samplingRate))),
-      preintegration(preintegration) {
+      preintegration(preintegration),
+      voxelLoads(vri::voxelLoads()) {
     if (stencils) {
         emptyDistance = stencils->distances().data();
         const glm::ivec3 b = stencils->bricks();

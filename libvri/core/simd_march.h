@@ -24,6 +24,7 @@
 #include "libvri/core/image.h"
 #include "libvri/core/occupancy_grid.h"
 #include "libvri/core/preintegration_table.h"
+#include "libvri/core/voxel_loads.h"
 
 namespace vri {
 
@@ -70,6 +71,7 @@ struct PacketScene {
     float prefetchSamples;
     int prefetchEvery;
     const PreintegrationTable* preintegration;  // null unless the method is preintegrated
+    VoxelLoads voxelLoads;                      // how AVX2 reads an 8-bit volume's stencils
     // Per octant of ray directions and stencil brick, its distance to the nearest stencil brick ahead
     // that is not empty (StencilBricks::distances(), 0 when not empty), a byte each, padded for
     // 32-bit loads; null when skipping is off.

@@ -441,3 +441,48 @@ TEST_CASE("--simd TARGET and VRI_SIMD_TARGET run the packets on that target, bit
                          Error);
     ::unsetenv("VRI_SIMD_TARGET");
 }
+
+TEST_CASE("VRI_VOXEL_LOADS: gathers and scalar loads read the same voxels, bit for bit, to the volume's last") {
+    // 8-bit volumes whose stencils reach their last voxel: the test volume, single layers along y and
+    // along z (strides of 0, where a gathered word may pass the end), and the smallest volume.
+    std::vector<std::shared_ptr<Volume>> volumes{testVolume(VoxelType::UInt8)};
+    std::mt19937 rng(5);
+    for (const glm::ivec3 dims : {glm::ivec3(37, 1, 19), glm::ivec3(37, 21, 1), glm::ivec3(2, 2, 1)}) {
+        auto v = std::make_shared<Volume>(dims, VoxelType::UInt8);
+        for (auto& voxel : v->bytes)
+            voxel = static_cast<std::byte>(std::uniform_int_distribution<int>(0, 255)(rng));
+        volumes.push_back(v);
+    }
+    const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+    for (const auto& volume : volumes) {
+        const glm::dvec3 centre = glm::dvec3(volume->dims) / 2.0;
+        const Camera camera(test::cameraSpec(centre + glm::dvec3(-30.0, 45.0, -50.0), centre, 40.0, 37, 23));
+        const Scene scene{volume, std::nullopt, GridConvention::CellCentred,
+                          testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
+        RenderOptions opt;
+        opt.precision = Precision::Float;
+        opt.samplingRate = 3.3;
+        opt.simd = false;
+        const Image scalar = render(scene, camera, opt);
+        CHECK(*std::max_element(scalar.pixels.begin(), scalar.pixels.end()) > 0.05f);
+        opt.simd = true;
+        for (const char* loads : {"gather", "scalar"}) {
+            ::setenv("VRI_VOXEL_LOADS", loads, 1);
+            for (std::int64_t target : targets) {
+                hwy::SetSupportedTargetsForTest(target);
+                INFO(loads, " ", hwy::TargetName(target), " dims ", volume->dims.x, "x", volume->dims.y, "x",
+                     volume->dims.z);
+                CHECK(test::sameBits(render(scene, camera, opt), scalar));
+            }
+            hwy::SetSupportedTargetsForTest(0);
+        }
+    }
+    ::setenv("VRI_VOXEL_LOADS", "vector", 1);
+    const Camera camera = testCamera(37, 23);
+    RenderOptions opt;
+    opt.precision = Precision::Float;
+    const Scene scene{volumes.front(), std::nullopt, GridConvention::CellCentred,
+                      testTransferFunction(EmissionModel::ColourTimesExtinction, 9)};
+    CHECK_THROWS_WITH_AS(render(scene, camera, opt), "VRI_VOXEL_LOADS: expected gather or scalar, got 'vector'", Error);
+    ::unsetenv("VRI_VOXEL_LOADS");
+}

@@ -1,0 +1,26 @@
+#include "libvri/core/voxel_loads.h"
+
+#include <cstdlib>
+#include <string>
+
+#include "libvri/util/error.h"
+#include "libvri/util/printable.h"
+
+namespace vri {
+
+VoxelLoads voxelLoads() {
+    const char* value = std::getenv("VRI_VOXEL_LOADS");
+    if (value != nullptr && *value != '\0') {
+        const std::string v = value;
+        if (v == "gather") return VoxelLoads::Gather;
+        if (v == "scalar") return VoxelLoads::Scalar;
+        throw Error("VRI_VOXEL_LOADS: expected gather or scalar, got '" + printable(v) + "'");
+    }
+#if defined(__x86_64__) || defined(__i386__)
+    return __builtin_cpu_is("amd") ? VoxelLoads::Scalar : VoxelLoads::Gather;
+#else
+    return VoxelLoads::Gather;
+#endif
+}
+
+}  // namespace vri
