@@ -173,6 +173,23 @@ HWY_INLINE void loadStencilBytes(const PacketScene& sc, VI base, VoxelPair (&p)[
 }
 #endif
 
+// The distances of the lanes' stencil bricks (PacketScene::emptyDistance, a byte each at `brick`).
+HWY_INLINE VI brickDistances(const PacketScene& sc, VI brick) {
+    const DI di;
+#if HWY_TARGET == HWY_AVX2
+    if (sc.voxelLoads == VoxelLoads::Scalar) {
+        HWY_ALIGN std::int32_t at[PacketScene::kMaxLanes], distance[PacketScene::kMaxLanes];
+        hn::Store(brick, di, at);
+        for (std::size_t lane = 0; lane < hn::Lanes(di); ++lane)
+            distance[lane] = sc.emptyDistance[at[lane]];
+        return hn::Load(di, distance);
+    }
+#endif
+    // The word at each brick's byte; its low byte is the distance.
+    const VI word = hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(sc.emptyDistance), brick);
+    return hn::And(word, hn::Set(di, 0xFF));
+}
+
 // The four x pairs of the lanes' stencils at `base`: (y, z) = (0, 0), (1, 0), (0, 1), (1, 1).
 template <class T>
 HWY_INLINE void gatherStencil(const PacketScene& sc, VI base, VoxelPair (&p)[4]) {
@@ -775,10 +792,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                 const VI brick = hn::Add(stencil.brick, rays.octant);
                 if (!hn::AllTrue(di, hn::Eq(brick, lastBrick))) {
                     lastBrick = brick;
-                    // The word at each brick's byte; its low byte is the distance.
-                    const VI word =
-                        hn::GatherOffset(di, reinterpret_cast<const std::int32_t*>(sc.emptyDistance), brick);
-                    lastDistance = hn::And(word, hn::Set(di, 0xFF));
+                    lastDistance = brickDistances(sc, brick);
                 }
                 empty = hn::And(marching, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
             }
