@@ -281,8 +281,8 @@ public:
         }
     }
 
-    // r, g, b, tau of the lanes' s.
-    HWY_INLINE void operator()(VF s, VF (&out)[4]) const {
+    // r, g, b, tau of the lanes' s; only those of `lanes` need be right.
+    HWY_INLINE void operator()(VF s, MF lanes, VF (&out)[4]) const {
         const DF df;
         const DI di;
         // Four inner points a turn (NaN pads the last four: s >= NaN is false), each a compare and a
@@ -304,7 +304,7 @@ public:
         if (tables_ == 1) {
             const auto idx = hn::IndicesFromVec(df, segment);
             const auto lookup = [&](const VF(&table)[2]) { return hn::TableLookupLanes(table[0], idx); };
-            evaluate(s, lookup, above, below, out);
+            evaluate(s, lookup, out);
         } else if (tables_ == 2) {
             // Segments n .. 2n - 1 lie in the second vector, at their index less n.
             const VI lanes = hn::Set(di, static_cast<std::int32_t>(hn::Lanes(df)));
@@ -314,31 +314,30 @@ public:
             const auto lookup = [&](const VF(&table)[2]) {
                 return hn::IfThenElse(inSecond, hn::TableLookupLanes(table[1], idx), hn::TableLookupLanes(table[0], idx));
             };
-            evaluate(s, lookup, above, below, out);
+            evaluate(s, lookup, out);
         } else {
             const auto gather = [&](const std::vector<float>& table) { return hn::GatherIndex(df, table.data(), segment); };
             const VF w = hn::Div(hn::Sub(s, gather(sc_.segmentStart)), gather(sc_.segmentWidth));
             for (int c = 0; c < 4; ++c)
-                out[c] = select(above, below, hn::Add(gather(sc_.value[c]), hn::Mul(w, gather(sc_.slope[c]))), c);
+                out[c] = hn::Add(gather(sc_.value[c]), hn::Mul(w, gather(sc_.slope[c])));
         }
+        // Below the first point (or NaN): the first point's value; at or past the last: the last's. Rare
+        // enough (at s = 1 on 8-bit data whose last point is at 1) that they are picked only when needed.
+        if (!hn::AllFalse(df, hn::AndNot(hn::And(above, below), lanes)))
+            for (int c = 0; c < 4; ++c)
+                out[c] = hn::IfThenElse(above, hn::IfThenElse(below, out[c], hn::Set(df, sc_.last[c])),
+                                        hn::Set(df, sc_.first[c]));
     }
 
 private:
     // The lerp within the lanes' segments, its constants from `lookup` (one or two vectors per constant).
     template <class Lookup>
-    HWY_INLINE void evaluate(VF s, const Lookup& lookup, MF above, MF below, VF (&out)[4]) const {
+    HWY_INLINE void evaluate(VF s, const Lookup& lookup, VF (&out)[4]) const {
         const VF w = hn::Div(hn::Sub(s, lookup(start_)), lookup(width_));
         for (int c = 0; c < 4; ++c) {
             const VF value[2] = {value_[0][c], value_[1][c]}, slope[2] = {slope_[0][c], slope_[1][c]};
-            out[c] = select(above, below, hn::Add(lookup(value), hn::Mul(w, lookup(slope))), c);
+            out[c] = hn::Add(lookup(value), hn::Mul(w, lookup(slope)));
         }
-    }
-
-    // Below the first point (or NaN): the first point's value; at or past the last: the last's.
-    HWY_INLINE VF select(MF above, MF below, VF inside, int c) const {
-        const DF df;
-        return hn::IfThenElse(above, hn::IfThenElse(below, inside, hn::Set(df, sc_.last[c])),
-                              hn::Set(df, sc_.first[c]));
     }
 
     const PacketScene& sc_;
@@ -718,6 +717,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             : hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNormalRange))))
                 ? StepDepth::NormalRange
                 : StepDepth::Any;
+        const bool mayEnd = !hn::AllFalse(df, hn::Gt(rays.terminateBelow, hn::Zero(df)));  // early termination
         MF ended = none;            // lanes early termination ended, after sample kEnded - 1
         VI kEnded = hn::Zero(di);
         MF pending = none;          // lanes whose sample the march interpolated last step, not yet integrated
@@ -730,7 +730,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             // The integration of the samples the march interpolated last step.
             if (!hn::AllFalse(df, pending)) {
                 VF v[4];  // r, g, b, tau
-                tf(pendingValue, v);
+                tf(pendingValue, pending, v);
                 const VF tau = v[3];
                 // RayAccumulator::add: a sample without extinction adds nothing under colour x extinction.
                 const MF contributes = Emission == EmissionModel::ColourTimesExtinction
@@ -764,9 +764,11 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                 g = hn::IfThenElse(contributes, hn::Add(g, hn::Mul(w, v[1])), g);
                 b = hn::IfThenElse(contributes, hn::Add(b, hn::Mul(w, v[2])), b);
                 transparency = hn::IfThenElse(contributes, hn::Mul(transparency, attenuation), transparency);
-                const MF ends = hn::And(pending, hn::Lt(transparency, rays.terminateBelow));
-                kEnded = hn::IfThenElse(hn::RebindMask(di, ends), pendingNext, kEnded);
-                ended = hn::Or(ended, ends);
+                if (mayEnd) {
+                    const MF ends = hn::And(pending, hn::Lt(transparency, rays.terminateBelow));
+                    kEnded = hn::IfThenElse(hn::RebindMask(di, ends), pendingNext, kEnded);
+                    ended = hn::Or(ended, ends);
+                }
             }
 
             // The march: the next sample of every lane with samples left.
