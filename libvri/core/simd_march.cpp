@@ -13,7 +13,6 @@
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "libvri/core/simd_march.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
-#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 #include "libvri/core/fixed_step_ray.h"
@@ -586,38 +585,6 @@ struct PacketRays {
     VI octant;              // where the distances of the ray's octant start (StencilBricks::distances())
 };
 
-// The gathers wait on memory more than on arithmetic: a packet entering the next z slice of the volume
-// reads cache lines that no hardware prefetcher foresees (slices lie dims.x * dims.y voxels apart). So
-// every `prefetchEvery` steps the packet asks for the stencil's lines `prefetchSamples` samples ahead,
-// for its first and last lane (the neighbouring pixels' stencils lie between them). A hint only: it
-// changes no value. Measured on Bonsai (AVX3, CPU time in marchTile): -20 % at h = 0.5, -5 to -15 % at
-// h = 0.25 and 0.1.
-template <class T>
-HWY_INLINE void prefetchAhead(const PacketScene& sc, VF t, const PacketRays& rays) {
-    const DF df;
-    const DI di;
-    const GridSamplerLayout<float>& g = sc.layout;
-    const VF ahead = hn::Add(t, hn::Mul(hn::Set(df, sc.prefetchSamples), rays.tIncr));
-    VI base = hn::Zero(di);
-    for (int a = 0; a < 3; ++a) {
-        const VF u = hn::Add(rays.entry[a], hn::Mul(ahead, rays.du[a]));
-        const VF x = hn::Sub(hn::Mul(u, hn::Set(df, g.scale[a])), hn::Set(df, g.offset[a]));
-        const VF c = hn::Min(hn::Max(x, hn::Zero(df)), hn::Set(df, g.maxCoord[a]));
-        const VI i = hn::Max(hn::Min(hn::ConvertTo(di, c), hn::Set(di, g.maxBase[a])), hn::Zero(di));
-        base = hn::Add(base, hn::Mul(i, hn::Set(di, static_cast<std::int32_t>(g.stride[a]))));
-    }
-    HWY_ALIGN std::int32_t first[kMaxLanes];
-    hn::Store(base, di, first);
-    const T* voxels = reinterpret_cast<const T*>(sc.voxels);
-    for (const std::size_t lane : {std::size_t(0), hn::Lanes(df) - 1}) {
-        const T* p = voxels + first[lane];
-        hwy::Prefetch(p);
-        hwy::Prefetch(p + g.stride[1]);
-        hwy::Prefetch(p + g.stride[2]);
-        hwy::Prefetch(p + g.stride[1] + g.stride[2]);
-    }
-}
-
 template <class T, Integrator Method, EmissionModel Emission>
 void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
     const DF df;
@@ -680,9 +647,10 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     // to no effect until the packet ends, and the sample it marched to meanwhile is dropped. Each lane's
     // samples are integrated in their order with the same operations, so the bits are the scalar path's.
     // Measured on Bonsai 800x600, 1 thread, AMD EPYC (Zen 4): -7 % (h = 0.5) and -5 % (h = 0.1) of the
-    // time on AVX2, -9 % and -12 % on AVX-512.
+    // time on AVX2, -9 % and -12 % on AVX-512. (A software prefetch of the stencils' cache lines a few
+    // samples ahead had saved 20 % at h = 0.5 before; once the stages overlapped it cost 2 to 11 % on
+    // Bonsai and Engine, both steps and both targets, and was removed.)
     VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);  // the distances last gathered, and where
-    int sincePrefetch = sc.prefetchEvery;  // steps since prefetchAhead() last ran
     std::uint64_t evaluated = 0;
     const MF none = hn::FirstN(df, 0);
     for (;;) {
@@ -800,10 +768,6 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
             }
             const MF evaluating = hn::AndNot(empty, marching);
             if (!hn::AllFalse(df, evaluating)) {
-                if (++sincePrefetch >= sc.prefetchEvery) {
-                    prefetchAhead<T>(sc, t, rays);
-                    sincePrefetch = 0;
-                }
                 pendingValue = interpolate<T>(sc, stencil);
                 k = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, evaluating), hn::Set(di, 1)));
                 pendingNext = k;
@@ -1066,8 +1030,6 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Stencil
       type(scene.volume->type),
       voxelBytes(static_cast<std::int32_t>(scene.volume->byteCount())),
       layout(*scene.volume, scene.convention),
-      prefetchSamples(static_cast<float>(std::ceil(kPrefetchVoxels * options.samplingRate))),
-      prefetchEvery(std::max(1, static_cast<int>(kPrefetchEveryVoxels * options.samplingRate))),
       preintegration(preintegration),
       voxelLoads(vri::voxelLoads()) {
     if (stencils) {

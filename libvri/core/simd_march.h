@@ -65,11 +65,6 @@ struct PacketScene {
     VoxelType type;
     std::int32_t voxelBytes;
     GridSamplerLayout<float> layout;
-    // How far ahead of a packet's samples its voxels are prefetched, and how often (simd_march.cpp,
-    // prefetchAhead), in voxels along the ray and then in samples.
-    static constexpr double kPrefetchVoxels = 2.0, kPrefetchEveryVoxels = 0.5;
-    float prefetchSamples;
-    int prefetchEvery;
     const PreintegrationTable* preintegration;  // null unless the method is preintegrated
     VoxelLoads voxelLoads;                      // how AVX2 reads an 8-bit volume's stencils
     // Per octant of ray directions and stencil brick, its distance to the nearest stencil brick ahead
