@@ -51,11 +51,8 @@ std::string tabulate(const vri::TransferFunction& tf, int samples) {
 // function that shows nothing, or whose points leave part of s in [0, 1] to the end points' values.
 int check(const std::string& path, const vri::TransferFunction& tf) {
     const auto& points = tf.points();
-    double tauMax = 0, colourMax = 0;
-    for (const vri::TransferFunctionPoint& p : points) {
-        tauMax = std::max(tauMax, p.tau);
-        colourMax = std::max({colourMax, p.r, p.g, p.b});
-    }
+    const vri::TransferFunctionSample<double> top = tf.largest();
+    const double tauMax = top.tau, colourMax = std::max({top.r, top.g, top.b});
     std::cout << path << ": " << points.size() << " points, s from " << vri::exactNumber(points.front().s) << " to "
               << vri::exactNumber(points.back().s) << ", emission " << vri::emissionModelName(tf.emission())
               << ", largest tau " << vri::exactNumber(tauMax) << ", largest colour " << vri::exactNumber(colourMax)

@@ -51,10 +51,9 @@ public:
     TerminationRule(const TransferFunction& tf, const RenderOptions& opt, const Box& box, const glm::dvec3& dims)
         : integrator_(opt.integrator), emission_(tf.emission()), transparency_(opt.earlyTermination),
           bound_(opt.terminationBound), longestRay_(glm::length(box.size())) {
-        for (const TransferFunctionPoint& p : tf.points()) {
-            maxColour_ = std::max({maxColour_, p.r, p.g, p.b});
-            maxTau_ = std::max(maxTau_, p.tau);
-        }
+        const TransferFunctionSample<double> top = tf.largest();
+        maxColour_ = std::max({top.r, top.g, top.b});
+        maxTau_ = top.tau;
         if (isSimpson(integrator_)) {
             const glm::dvec3 worldPerVoxel = box.size() / dims;
             const double kappaMax = maxTau_ * std::max({worldPerVoxel.x, worldPerVoxel.y, worldPerVoxel.z});

@@ -383,8 +383,7 @@ void renderExactReference(const Scene& scene, const Camera& camera, const ExactR
         throw Error("the node-centred convention needs at least 2 voxels along every axis (the box would be flat)");
 
     // Each piece's optical depth must be a finite double: refuse extinctions near the top of its range.
-    double largestTau = 0.0;
-    for (const TransferFunctionPoint& p : scene.transferFunction.points()) largestTau = std::max(largestTau, p.tau);
+    const double largestTau = scene.transferFunction.largest().tau;
     const Box box = scene.box();
     const double diagonal = glm::length(box.size());
     if (!std::isfinite(64.0 * largestTau * diagonal))

@@ -59,13 +59,9 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, double segm
     });
     valuesFloat_.assign(values_.begin(), values_.end());
     slopesFloat_.assign(slopes_.begin(), slopes_.end());
-    double tauMax = 0.0, colourMax[3] = {0.0, 0.0, 0.0};
-    for (const TransferFunctionPoint& p : tf.points()) {
-        tauMax = std::max(tauMax, p.tau);
-        colourMax[0] = std::max(colourMax[0], p.r), colourMax[1] = std::max(colourMax[1], p.g);
-        colourMax[2] = std::max(colourMax[2], p.b);
-    }
-    const double depthMax = segmentLength * tauMax;
+    const TransferFunctionSample<double> top = tf.largest();
+    const double colourMax[3] = {top.r, top.g, top.b};
+    const double depthMax = segmentLength * top.tau;
     const double weight = tf.emission() == EmissionModel::ColourTimesExtinction ? -std::expm1(-depthMax) : segmentLength;
     for (int c = 0; c < 3; ++c) upper_[c] = colourMax[c] * weight;
     upper_[3] = depthMax;

@@ -1055,10 +1055,8 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Stencil
         first[c] = static_cast<float>(channels(p.front())[c]);
         last[c] = static_cast<float>(channels(p.back())[c]);
     }
-    maxTau = 0.f;
-    for (const auto& q : p)
-        maxTau = std::max(maxTau, static_cast<float>(q.tau));
     const TransferFunction& tf = scene.transferFunction;
+    maxTau = static_cast<float>(tf.largest().tau);
     invisibleBelow = -std::numeric_limits<float>::infinity();
     for (const auto& q : p) {
         if (!tf.isInvisible(p.front().s, q.s)) break;

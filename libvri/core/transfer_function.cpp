@@ -1,5 +1,6 @@
 #include "libvri/core/transfer_function.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -60,6 +61,17 @@ TransferFunction::TransferFunction(std::vector<TransferFunctionPoint> points, Em
         while (i + 2 < points_.size() && s >= points_[i + 1].s) ++i;
         binStart_[bin] = static_cast<std::uint32_t>(i);
     }
+}
+
+TransferFunctionSample<double> TransferFunction::largest() const {
+    TransferFunctionSample<double> top{0.0, 0.0, 0.0, 0.0};
+    for (const TransferFunctionPoint& p : points_) {
+        top.r = std::max(top.r, p.r);
+        top.g = std::max(top.g, p.g);
+        top.b = std::max(top.b, p.b);
+        top.tau = std::max(top.tau, p.tau);
+    }
+    return top;
 }
 
 bool TransferFunction::isInvisible(double s0, double s1) const {

@@ -78,6 +78,10 @@ public:
         return {lerp(a.r, b.r), lerp(a.g, b.g), lerp(a.b, b.b), lerp(a.tau, b.tau)};
     }
 
+    // Each channel's largest value over the points, which bounds it everywhere: the function
+    // interpolates linearly between them and is constant beyond.
+    TransferFunctionSample<double> largest() const;
+
     // True when neither extinction nor emission is non-zero anywhere in [s0, s1]: samples there
     // contribute exactly nothing, so a renderer may skip them without changing a single bit.
     bool isInvisible(double s0, double s1) const;
