@@ -144,24 +144,28 @@ template <class Ops, class Real>
     return expm1Reduced(o, x);
 }
 
+// expm1 from its reduction: 2^k expm1(r) + (2^k - 1). Below k = -64 that rounds to -1 whatever r is, so
+// k may be clamped there; above k = 127 (x > 88.38) 2^k is not a float, and expm1() takes exp() instead.
+template <class Ops, class Int, class Float>
+[[gnu::always_inline]] inline Float expm1FromReduction(const Ops& o, Int k, Float r) {
+    static_assert(sizeof(typename Ops::Scalar) == sizeof(float), "the clamps are float's");
+    const Float scale = o.pow2(o.clampInt(k, -64, 127));
+    return scale * expm1Reduced(o, r) + (scale - o.set(1.f));
+}
+
 // expm1(x) for x in [-kNormalRange, 0]: expm1()'s result without its clamp, NaN's selects and exp()
 // for k above 127.
 template <class Ops, class Float>
 [[gnu::always_inline]] inline Float expm1InNormalRange(const Ops& o, Float x) {
     const Reduction<Ops, Float> red = reduce<false>(o, x);
-    const Float scale = o.pow2(o.clampInt(o.toInt(red.k), -64, 127));
-    return scale * expm1Reduced(o, red.r) + (scale - o.set(1.f));
+    return expm1FromReduction(o, o.toInt(red.k), red.r);
 }
 
 template <class Ops, class Float>
 [[gnu::always_inline]] inline Float expm1(const Ops& o, Float x) {
-    static_assert(sizeof(typename Ops::Scalar) == sizeof(float), "the clamps below are float's");
     const Reduction<Ops, Float> red = reduce(o, x);
     const auto k = o.toInt(red.k);
-    // Below k = -64, 2^k expm1(r) + (2^k - 1) rounds to -1 whatever r is, so k may be clamped there;
-    // above k = 127 (x > 88.38) 2^k is not a float and expm1(x) = exp(x) to float precision.
-    const Float scale = o.pow2(o.clampInt(k, -64, 127));
-    const Float y = scale * expm1Reduced(o, red.r) + (scale - o.set(1.f));
+    const Float y = expm1FromReduction(o, k, red.r);
     const Float big = exp(o, x);
     return o.select(o.isNaN(x), x, o.select(o.intGreater(k, 127), big, y));
 }
