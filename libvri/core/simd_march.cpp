@@ -350,6 +350,22 @@ private:
 // kNormalRange, or any.
 enum class StepDepth { NearZero, NormalRange, Any };
 
+// A step's attenuation exp(x), and for composite expm1(x), in the shortest form of exp_kernel.h that
+// `depth` allows: the same bits as exp() and expm1().
+template <Integrator Method>
+HWY_INLINE void stepExponentials(const VectorOps& ops, StepDepth depth, VF x, VF& exp, VF& expm1) {
+    if (depth == StepDepth::NearZero) {
+        exp = exp_kernel::expNearZero(ops, x);
+        if constexpr (Method != Integrator::Riemann) expm1 = exp_kernel::expm1NearZero(ops, x);
+    } else if (depth == StepDepth::NormalRange) {
+        exp = exp_kernel::expInNormalRange(ops, x);
+        if constexpr (Method != Integrator::Riemann) expm1 = exp_kernel::expm1InNormalRange(ops, x);
+    } else {
+        exp = exp_kernel::exp(ops, x);
+        if constexpr (Method != Integrator::Riemann) expm1 = exp_kernel::expm1(ops, x);
+    }
+}
+
 constexpr std::size_t kMaxLanes = PacketScene::kMaxLanes;
 static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxLanes);
 
@@ -682,12 +698,11 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         // form that gives exp()'s bits (with a margin for the rounding of tau and of the product): at h =
         // 0.1 on Bonsai and at h = 0.5 and 0.1 on Engine, the one without a reduction.
         const VF deepest = hn::Mul(hn::Set(df, sc.maxTau), rays.dx);
-        const StepDepth steps =
+        const StepDepth depth =
             hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNearZero)))) ? StepDepth::NearZero
             : hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNormalRange))))
                 ? StepDepth::NormalRange
                 : StepDepth::Any;
-        const bool mayEnd = !hn::AllFalse(df, hn::Gt(rays.terminateBelow, hn::Zero(df)));  // early termination
         MF ended = none;            // lanes early termination ended, after sample kEnded - 1
         VI kEnded = hn::Zero(di);
         MF pending = none;          // lanes whose sample the march interpolated last step, not yet integrated
@@ -709,17 +724,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                 // tau is a lerp of non-negative finite values, dx positive and finite: never NaN.
                 const VF exponent = hn::Mul(hn::Neg(tau), rays.dx);
                 VF attenuation, expm1Value;
-                if (steps == StepDepth::NearZero) {
-                    attenuation = exp_kernel::expNearZero(ops, exponent);
-                    if constexpr (Method != Integrator::Riemann) expm1Value = exp_kernel::expm1NearZero(ops, exponent);
-                } else if (steps == StepDepth::NormalRange) {
-                    attenuation = exp_kernel::expInNormalRange(ops, exponent);
-                    if constexpr (Method != Integrator::Riemann)
-                        expm1Value = exp_kernel::expm1InNormalRange(ops, exponent);
-                } else {
-                    attenuation = exp_kernel::exp(ops, exponent);
-                    if constexpr (Method != Integrator::Riemann) expm1Value = exp_kernel::expm1(ops, exponent);
-                }
+                stepExponentials<Method>(ops, depth, exponent, attenuation, expm1Value);
                 VF weight;
                 if constexpr (Method == Integrator::Riemann) {
                     weight = Emission == EmissionModel::ColourTimesExtinction ? hn::Mul(tau, rays.dx) : rays.dx;
@@ -734,7 +739,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                 g = hn::IfThenElse(contributes, hn::Add(g, hn::Mul(w, v[1])), g);
                 b = hn::IfThenElse(contributes, hn::Add(b, hn::Mul(w, v[2])), b);
                 transparency = hn::IfThenElse(contributes, hn::Mul(transparency, attenuation), transparency);
-                if (mayEnd) {
+                if (sc.termination.enabled()) {
                     const MF ends = hn::And(pending, hn::Lt(transparency, rays.terminateBelow));
                     kEnded = hn::IfThenElse(hn::RebindMask(di, ends), pendingNext, kEnded);
                     ended = hn::Or(ended, ends);
