@@ -17,7 +17,7 @@ namespace {
 
 // One render of the search, as the stats record it.
 struct SearchRender {
-    const char* what;  // "pilot" or "image"
+    std::string_view what;  // "pilot" or "image"
     int width, height;
     double tolerance, bound, seconds;
 };
@@ -35,8 +35,8 @@ nlohmann::json toJson(double wanted, const std::vector<SearchRender>& renders) {
 
 }  // namespace
 
-MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scene, const CameraSpec& view,
-                                       const Camera& camera, const RenderRequest& request) {
+MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scene, const Camera& camera,
+                                       const RenderRequest& request) {
     constexpr int kTries = 8;
     constexpr int kPilotDivisor = 4, kPilotFrom = 128;
     constexpr double kPilotGoal = 0.6;  // of E: the image's bound, over 16 times the pixels, comes out larger
@@ -48,14 +48,13 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
     // 1e-13 on 8-bit data), it stops following the tolerance, while each render costs a thousand times more
     // than one above: the search ends there once a tighter tolerance cut the bound by less than a quarter of
     // its own factor's decades.
-    auto largestBound = [&](const ExactReference& ref, const char* what) {
+    auto largestBound = [&](const ExactReference& ref, std::string_view what) {
         const double bound = *std::max_element(ref.stats.maxBound.begin(), ref.stats.maxBound.end());
-        if (options.tolerance < ExactRay::kGaussTolerance && !renders.empty() &&
-            std::string_view(renders.back().what) == what) {
+        if (options.tolerance < ExactRay::kGaussTolerance && !renders.empty() && renders.back().what == what) {
             const SearchRender& before = renders.back();
             if (bound > before.bound * std::pow(options.tolerance / before.tolerance, 0.25))
                 throw Error("--max-error " + exactNumber(wanted) + ": out of reach: the largest per-pixel bound " +
-                            (std::string_view(what) == "pilot" ? "of the pilot (the view at a quarter of each side) " : "") +
+                            (what == "pilot" ? "of the pilot (the view at a quarter of each side) " : "") +
                             "stopped following the tolerance: " + exactNumber(before.bound) + " at tolerance " +
                             exactNumber(before.tolerance) + ", " + exactNumber(bound) + " at " +
                             exactNumber(options.tolerance) + " (rounding sets a floor near it); ask for a larger error");
@@ -84,6 +83,7 @@ MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scen
                         ": ask for a larger error, or leave --simd out");
         return backend.renderExact(scene, camera, options);
     };
+    const CameraSpec& view = camera.spec();
     if (!options.region && view.width >= kPilotFrom && view.height >= kPilotFrom) {
         CameraSpec pilot = view;
         pilot.width = (view.width + kPilotDivisor - 1) / kPilotDivisor;

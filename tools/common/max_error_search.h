@@ -29,9 +29,9 @@ struct MaxErrorSearch {
 };
 
 // Runs the search above with `backend` (whose last frame `accepted` is), for `request` (its --max-error,
-// --tolerance, --simd and --region) and the frames' camera, made from `view` (the pilot's comes from it
-// too); throws vri::Error when E is out of reach.
-MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scene, const CameraSpec& view,
-                                       const Camera& camera, const RenderRequest& request);
+// --tolerance, --simd and --region) and the frames' camera (the pilot's is made from its spec); throws
+// vri::Error when E is out of reach.
+MaxErrorSearch searchMaxErrorTolerance(RenderBackend& backend, const Scene& scene, const Camera& camera,
+                                       const RenderRequest& request);
 
 }  // namespace vri

@@ -165,7 +165,7 @@ int RenderCommand::run() {
         RenderBackend backend(request);
         std::optional<MaxErrorSearch> search;
         if (request.maxError) {
-            search = searchMaxErrorTolerance(backend, scene, setup.camera, camera, request);
+            search = searchMaxErrorTolerance(backend, scene, camera, request);
             request.exactTolerance = search->tolerance;
         }
         auto [frame, wallSeconds] = timing_.run([&] {
