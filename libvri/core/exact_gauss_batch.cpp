@@ -17,6 +17,7 @@
 HWY_BEFORE_NAMESPACE();
 #include "libvri/core/exp_kernel.h"          // once per target, see there
 #include "libvri/core/gauss_bound_kernel.h"  // once per target, see there
+#include "libvri/core/segment_kernel.h"      // once per target, see there
 
 namespace vri {
 namespace HWY_NAMESPACE {
@@ -52,20 +53,6 @@ struct VectorOps {
     VI halve(VI k) const { return hn::ShiftRight<1>(k); }
     V pow2(VI k) const { return hn::BitCast(d, hn::ShiftLeft<52>(hn::Add(k, hn::Set(di, 1023)))); }
 };
-
-// A transfer-function channel along the sub-piece, v + m (s - sA) with s the cubic: its coefficients,
-// the sum of their magnitudes and the bound on its error (exact_ray.cpp's alongSegment).
-struct Linear {
-    std::array<V, 4> p;
-    V sum, error;
-};
-
-HWY_INLINE Linear alongSegment(const VectorOps& o, const V (&c)[4], V sA, V v, V m, V ds) {
-    const V p0 = v + m * (c[0] - sA), p1 = m * c[1], p2 = m * c[2], p3 = m * c[3];
-    const V sum = hn::Abs(p0) + hn::Abs(p1) + hn::Abs(p2) + hn::Abs(p3);
-    const V error = o.set(16.0 * kUnit) * (sum + hn::Abs(v) + hn::Abs(m * sA)) + hn::Abs(m) * ds;
-    return {{p0, p1, p2, p3}, sum, error};
-}
 
 // The fewest panels of the 2- or 3-point rule whose bound reaches `allowed`, for a sub-piece that none
 // of the few cheapest rules reached (the cheapest n k wins). Returns n = 0 for none.
@@ -121,21 +108,21 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
         laneAllowed[kMaxLanes], laneEll[kMaxLanes];
     static_assert(GaussBatch::kCapacity % kMaxLanes == 0, "whole vectors of sub-pieces");
     for (int j = 0; j < padded; j += lanes) {
-        const V c[4] = {hn::Load(d, b.c[0] + j), hn::Load(d, b.c[1] + j), hn::Load(d, b.c[2] + j),
-                        hn::Load(d, b.c[3] + j)};
+        const std::array<V, 4> c = {hn::Load(d, b.c[0] + j), hn::Load(d, b.c[1] + j), hn::Load(d, b.c[2] + j),
+                                    hn::Load(d, b.c[3] + j)};
         const V ell = hn::Load(d, b.ell + j), sA = hn::Load(d, b.segmentS + j);
         const V ds = o.set(32.0 * kUnit) * hn::Load(d, b.sScale + j);
         // tau along the sub-piece and the depth quartic are the ray's own (ExactRay::setUp computed them
         // when it queued the sub-piece, for done()): the lanes form them again, bit for bit, from the
         // fields the colours need anyway, rather than the batch carrying eleven more doubles per sub-piece.
         const V tauV = hn::Load(d, b.value[0] + j), tauM = hn::Load(d, b.slope[0] + j);
-        const Linear tau = alongSegment(o, c, sA, tauV, tauM, ds);
+        const segment_kernel::Linear<V> tau = segment_kernel::alongSegment(o, c, sA, tauV, tauM, ds);
         V colourV[3], colourM[3], gMax[3], gError[3];
         std::array<V, 4> colours[3];
         for (int ch = 0; ch < 3; ++ch) {
             colourV[ch] = hn::Load(d, b.value[ch + 1] + j);
             colourM[ch] = hn::Load(d, b.slope[ch + 1] + j);
-            const Linear colour = alongSegment(o, c, sA, colourV[ch], colourM[ch], ds);
+            const segment_kernel::Linear<V> colour = segment_kernel::alongSegment(o, c, sA, colourV[ch], colourM[ch], ds);
             colours[ch] = colour.p;
             if (colourTimesExtinction) {
                 gMax[ch] = colour.sum * tau.sum;

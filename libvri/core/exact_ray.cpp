@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "libvri/core/gauss_error_bound.h"
+#include "libvri/core/scalar_double_ops.h"
+#include "libvri/core/segment_kernel.h"
 
 namespace vri {
 
@@ -114,13 +116,10 @@ void applyRule(const KronrodRule<N>& rule, double x0, double x1, const std::arra
 
 }  // namespace
 
-// ds bounds the error of s's coefficients. The coefficients and their sum from registers: written to
-// memory and read back as pairs (as a loop over r.p compiles), each read waited for the stores it spans
-// (a failed store forwarding). exact_gauss_batch.cpp's alongSegment is this, lane by lane.
+// ds bounds the error of s's coefficients (segment_kernel.h: the Gauss batch's lanes run the same).
 ExactRay::Linear ExactRay::alongSegment(const Cubic& local, double sA, double v, double m, double ds) {
-    const double p0 = v + m * (local.c[0] - sA), p1 = m * local.c[1], p2 = m * local.c[2], p3 = m * local.c[3];
-    const double sum = std::abs(p0) + std::abs(p1) + std::abs(p2) + std::abs(p3);
-    return {{p0, p1, p2, p3}, sum, 16.0 * kUnit * (sum + std::abs(v) + std::abs(m * sA)) + std::abs(m) * ds};
+    const segment_kernel::Linear<double> r = segment_kernel::alongSegment(ScalarDoubleOps{}, local.c, sA, v, m, ds);
+    return {r.p, r.sum, r.error};
 }
 
 ExactRay::ExactRay(const TransferFunction& tf, double tolerance)

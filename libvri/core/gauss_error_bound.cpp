@@ -4,23 +4,13 @@
 #include <cmath>
 
 #include "libvri/core/gauss_bound_kernel.h"
+#include "libvri/core/scalar_double_ops.h"
 
 namespace vri {
 
-namespace {
-
-// gauss_bound_kernel.h's operations on one double.
-struct ScalarBoundOps {
-    static double set(double c) { return c; }
-    static double abs(double x) { return std::abs(x); }
-    static double max(double a, double b) { return std::max(a, b); }
-};
-
-}  // namespace
-
 std::array<double, 3> gaussErrorBounds(const std::array<double, 4> (&colour)[3], const std::array<double, 4>& tau,
                                        bool colourTimesExtinction, double ell, double transparencyMax) {
-    return gauss_bound_kernel::bounds(ScalarBoundOps{}, colour, tau, colourTimesExtinction, ell, transparencyMax);
+    return gauss_bound_kernel::bounds(ScalarDoubleOps{}, colour, tau, colourTimesExtinction, ell, transparencyMax);
 }
 
 const GaussRule& gaussRule(int n) {
