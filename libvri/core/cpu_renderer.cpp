@@ -315,6 +315,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         const PacketScene packets(scene, camera, stencils, opt, lookup);
         useSimdTarget(opt.simdTarget);
         stats.simdTarget = packetTargetName();
+        if (stats.simdTarget == "AVX2") stats.voxelLoads = packets.voxelLoads == VoxelLoads::Scalar ? "scalar" : "gather";
         forEachTile(opt, renderedRegion(opt.region, camera), counters,
                     [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&, SimpsonRange&) {
             marchPackets(packets, x0, y0, x1, y1, image, counts);

@@ -75,8 +75,10 @@ std::vector<std::string> stepKeys(const Plan& plan, const fs::path& toolDir, Fil
         addField(hash, std::to_string(step.arguments.size()));
         for (const std::string& argument : step.arguments) addField(hash, argument);
         // What the environment changes in a step's outputs: VRI_SIMD_TARGET moves the packets and the Gauss
-        // batches to another target (other times and stats.simd_target), so a run with it is another run.
-        if (const char* target = std::getenv("VRI_SIMD_TARGET")) addField(hash, std::string("VRI_SIMD_TARGET=") + target);
+        // batches to another target (other times and stats.simd_target), VRI_VOXEL_LOADS changes how the
+        // AVX2 packets read voxels (other times and stats.voxel_loads), so a run with either is another run.
+        for (const char* variable : {"VRI_SIMD_TARGET", "VRI_VOXEL_LOADS"})
+            if (const char* value = std::getenv(variable)) addField(hash, std::string(variable) + "=" + value);
         for (const fs::path& input : step.inputs) {
             std::string producer;
             for (std::size_t d : plan.dependencies[i])

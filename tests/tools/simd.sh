@@ -38,7 +38,17 @@ forced, env = json.load(open("forced.json")), json.load(open("env.json"))
 assert forced["stats"]["simd_target"] == target and forced["options"]["simd_target"] == target, forced["stats"]
 assert env["stats"]["simd_target"] == target and "simd_target" not in env["options"], env["stats"]
 assert isinstance(forced["machine"]["cpu_simd_flags"], list), "machine.cpu_simd_flags"
+# How the packets read voxels is named where it applies, AVX2, and only there.
+assert ("voxel_loads" in forced["stats"]) == (target == "AVX2"), forced["stats"]
 PY
+  if [[ $target == AVX2 ]]; then  # either way of loading, forced, gives the same image and is named
+    for loads in gather scalar; do
+      VRI_VOXEL_LOADS=$loads render --step 0.3 --simd AVX2 -o loads.exr --stats loads.json
+      "$bin/vri-diff" loads.exr scalar.exr --fail 0 > /dev/null || fail "VRI_VOXEL_LOADS=$loads differs from the scalar path"
+      /usr/bin/python3 -c 'import json,sys; assert json.load(open("loads.json"))["stats"]["voxel_loads"] == sys.argv[1]' "$loads" ||
+        fail "stats.voxel_loads of VRI_VOXEL_LOADS=$loads"
+    done
+  fi
 done
 
 # The exact method's batched Gauss rules (tolerance 1e-10 up) on every target: the same values and bounds
@@ -75,4 +85,4 @@ once, warm = json.load(open("once.json")), json.load(open("warm.json"))
 assert once["stats"]["setup_reused"] is False and on["stats"]["setup_seconds"] > 0, "the first frame builds the grid"
 assert warm["stats"]["setup_reused"] is True and warm["stats"]["setup_seconds"] > 0, "a later frame reuses it"
 PY
-echo "simd: on, off and every target ($targets) bitwise equal, the exact method's too; stats name the target; later frames reuse the grid"
+echo "simd: on, off and every target ($targets) bitwise equal, the exact method's too; stats name the target and AVX2's voxel loads; later frames reuse the grid"

@@ -195,13 +195,16 @@ TEST_CASE("experiment: a changed transfer function changes the keys of its rende
     const std::vector<std::string> keys = vri::stepKeys(plan, d.dir / "bin", before);
     vri::FileHasher again;
     CHECK(vri::stepKeys(plan, d.dir / "bin", again) == keys);  // stable
-    // A forced SIMD target makes every step another run (its times and stats differ), and only while set.
-    if (!std::getenv("VRI_SIMD_TARGET")) {
+    // A forced SIMD target or way of loading voxels makes every step another run (its times and stats
+    // differ), and only while set.
+    for (const auto& [variable, value] : {std::pair{"VRI_SIMD_TARGET", "SCALAR"}, std::pair{"VRI_VOXEL_LOADS", "gather"}}) {
+        if (std::getenv(variable)) continue;
+        CAPTURE(variable);
         vri::FileHasher forced;
-        ::setenv("VRI_SIMD_TARGET", "SCALAR", 1);
-        const std::vector<std::string> withTarget = vri::stepKeys(plan, d.dir / "bin", forced);
-        ::unsetenv("VRI_SIMD_TARGET");
-        for (std::size_t i = 0; i < keys.size(); ++i) CHECK(withTarget[i] != keys[i]);
+        ::setenv(variable, value, 1);
+        const std::vector<std::string> withVariable = vri::stepKeys(plan, d.dir / "bin", forced);
+        ::unsetenv(variable);
+        for (std::size_t i = 0; i < keys.size(); ++i) CHECK(withVariable[i] != keys[i]);
         vri::FileHasher unset;
         CHECK(vri::stepKeys(plan, d.dir / "bin", unset) == keys);
     }

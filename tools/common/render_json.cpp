@@ -42,6 +42,7 @@ nlohmann::json toJson(const RenderStats& s) {
     if (!s.device.empty()) j["device"] = s.device;
     if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;
     if (s.backend == "cpu") j["simd_target"] = s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget);
+    if (!s.voxelLoads.empty()) j["voxel_loads"] = s.voxelLoads;
     if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
     if (s.simpsonRange)  // and on the CPU, their steps against the range where they mean something
         j["simpson_range"] = {{"tau_h_limit", s.simpsonRange->limit},

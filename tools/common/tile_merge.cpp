@@ -185,6 +185,7 @@ const std::vector<TileStatsRule>& tileStatsRules() {
         {"/stats/device", Same},
         {"/stats/interpolation", Same},
         {"/stats/simd_target", Same},
+        {"/stats/voxel_loads", Same},
         {"/stats/adaptive", Sum},
         {"/stats/simpson_range/tau_h_limit", Same},
         {"/stats/simpson_range/largest_tau_h", Max},
