@@ -1062,9 +1062,13 @@ PacketScene::PacketScene(const Scene& scene, const Camera& camera, const Stencil
     }
     const TransferFunction& tf = scene.transferFunction;
     maxTau = static_cast<float>(tf.largest().tau);
+    // Below the last point of the leading run of invisible points, the float path's bracket is a segment
+    // between two of them (or the constant below the first): a lerp of zeros. That holds up to a jump out
+    // of zero too, whose left point ends the run (TransferFunction::isInvisible(s0, s1) evaluates the
+    // right-continuous value at the jump and would stop one point early).
     invisibleBelow = -std::numeric_limits<float>::infinity();
     for (const auto& q : p) {
-        if (!tf.isInvisible(p.front().s, q.s)) break;
+        if (!tf.isInvisible(TransferFunctionSample<double>{q.r, q.g, q.b, q.tau})) break;
         invisibleBelow = &q == &p.back() ? std::numeric_limits<float>::infinity() : static_cast<float>(q.s);
     }
     // A single point has no segment; the selects in VectorTransferFunction then always pick `first`.

@@ -66,7 +66,7 @@ struct PacketScene {
     std::int32_t voxelBytes;
     GridSamplerLayout<float> layout;
     const PreintegrationTable* preintegration;  // null unless the method is preintegrated
-    VoxelLoads voxelLoads;                      // how AVX2 reads an 8-bit volume's stencils
+    VoxelLoads voxelLoads;                      // how AVX2 reads an 8-bit volume's stencils and the distances
     // Per octant of ray directions and stencil brick, its distance to the nearest stencil brick ahead
     // that is not empty (StencilBricks::distances(), 0 when not empty), a byte each, padded for
     // 32-bit loads; null when skipping is off.

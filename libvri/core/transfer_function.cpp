@@ -75,13 +75,10 @@ TransferFunctionSample<double> TransferFunction::largest() const {
 }
 
 bool TransferFunction::isInvisible(double s0, double s1) const {
-    auto invisible = [this](const TransferFunctionSample<double>& v) {
-        return v.tau == 0.0 && (emission_ == EmissionModel::ColourTimesExtinction || (v.r == 0 && v.g == 0 && v.b == 0));
-    };
     // Piecewise linear and non-negative: zero on [s0, s1] iff zero at both ends and every point between.
-    if (!invisible((*this)(s0)) || !invisible((*this)(s1))) return false;
+    if (!isInvisible((*this)(s0)) || !isInvisible((*this)(s1))) return false;
     for (const auto& p : points_)
-        if (p.s > s0 && p.s < s1 && !invisible({p.r, p.g, p.b, p.tau})) return false;
+        if (p.s > s0 && p.s < s1 && !isInvisible({p.r, p.g, p.b, p.tau})) return false;
     return true;
 }
 

@@ -12,8 +12,8 @@ VoxelLoads voxelLoads() {
     const char* value = std::getenv("VRI_VOXEL_LOADS");
     if (value != nullptr && *value != '\0') {
         const std::string v = value;
-        if (v == "gather") return VoxelLoads::Gather;
-        if (v == "scalar") return VoxelLoads::Scalar;
+        for (VoxelLoads loads : {VoxelLoads::Gather, VoxelLoads::Scalar})
+            if (v == voxelLoadsName(loads)) return loads;
         throw Error("VRI_VOXEL_LOADS: expected gather or scalar, got '" + printable(v) + "'");
     }
 #if defined(__x86_64__) || defined(__i386__)
@@ -22,5 +22,7 @@ VoxelLoads voxelLoads() {
     return VoxelLoads::Gather;
 #endif
 }
+
+const char* voxelLoadsName(VoxelLoads loads) { return loads == VoxelLoads::Scalar ? "scalar" : "gather"; }
 
 }  // namespace vri

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -18,6 +19,7 @@
 #include "same_bits.h"
 #include "test_camera.h"
 #include "libvri/core/cpu_renderer.h"
+#include "libvri/core/simd_march.h"
 #include "libvri/core/simd_target.h"
 #include "libvri/util/error.h"
 
@@ -327,20 +329,33 @@ TEST_CASE("the packet engine's jumps across empty space skip no visible sample")
 TEST_CASE("the packet engine leaves invisible samples out of its sums without changing a bit") {
     // Transfer functions whose invisible stretch (where a sample adds exactly nothing) starts below the
     // first point or nowhere, ends at a point, at a jump, or covers everything, or holds only under
-    // colour x extinction (colour without extinction); and a dim one under --early-termination
-    // auto:0.9, whose rays end after few samples.
+    // colour x extinction (colour without extinction); a dim one under --early-termination auto:0.9,
+    // whose rays end after few samples; and dense ones whose steps' exponents -tau dx pass exp_kernel's
+    // near-zero range (tau up to 60) and its normal range (up to 1000), so the packets take each form.
+    // Each with the s below which PacketScene skips samples, under colour x extinction and under colour.
     using P = TransferFunctionPoint;
-    const std::vector<std::pair<const char*, std::vector<P>>> functions{
-        {"visible from the first point", {{0.0, 0.1, 0.2, 0.3, 0.4}, {1.0, 0.9, 0.5, 0.1, 0.8}}},
-        {"invisible below 0.2", {{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}, {0.6, 0.7, 0.3, 0.2, 0.9}, {1.0, 0.1, 0.9, 0.4, 0.3}}},
-        {"a jump at 0.3", {{0.0, 0, 0, 0, 0}, {0.3, 0, 0, 0, 0}, {0.3, 0.5, 0.5, 0.5, 0.8}, {1.0, 0.9, 0.2, 0.1, 0.4}}},
-        {"invisible throughout", {{0.0, 0, 0, 0, 0}, {1.0, 0, 0, 0, 0}}},
-        {"colour without extinction below 0.2",
-         {{0.0, 0.9, 0.8, 0.7, 0}, {0.2, 0.9, 0.8, 0.7, 0}, {1.0, 0.5, 0.5, 0.5, 1.0}}},
-        {"dim", {{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}, {1.0, 0.02, 0.01, 0.03, 0.05}}}};
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    struct Function {
+        const char* name;
+        std::vector<P> points;
+        float invisibleBelow[2];
+    };
+    const std::vector<Function> functions{
+        {"visible from the first point", {{0.0, 0.1, 0.2, 0.3, 0.4}, {1.0, 0.9, 0.5, 0.1, 0.8}}, {-inf, -inf}},
+        {"invisible below 0.2", {{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}, {0.6, 0.7, 0.3, 0.2, 0.9}, {1.0, 0.1, 0.9, 0.4, 0.3}},
+         {0.2f, 0.2f}},
+        {"a jump at 0.3", {{0.0, 0, 0, 0, 0}, {0.3, 0, 0, 0, 0}, {0.3, 0.5, 0.5, 0.5, 0.8}, {1.0, 0.9, 0.2, 0.1, 0.4}},
+         {0.3f, 0.3f}},
+        {"invisible throughout", {{0.0, 0, 0, 0, 0}, {1.0, 0, 0, 0, 0}}, {inf, inf}},
+        {"colour without extinction below 0.2", {{0.0, 0.9, 0.8, 0.7, 0}, {0.2, 0.9, 0.8, 0.7, 0}, {1.0, 0.5, 0.5, 0.5, 1.0}},
+         {0.2f, -inf}},
+        {"dim", {{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}, {1.0, 0.02, 0.01, 0.03, 0.05}}, {0.2f, 0.2f}},
+        {"dense", {{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}, {0.5, 0.6, 0.3, 0.2, 20.0}, {1.0, 0.1, 0.9, 0.4, 60.0}}, {0.2f, 0.2f}},
+        {"opaque", {{0.0, 0, 0, 0, 0}, {0.2, 0, 0, 0, 0}, {0.5, 0.6, 0.3, 0.2, 300.0}, {1.0, 0.1, 0.9, 0.4, 1000.0}},
+         {0.2f, 0.2f}}};
     const Camera camera = testCamera(37, 23);
     const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
-    for (const auto& [name, points] : functions)
+    for (const auto& [name, points, invisibleBelow] : functions)
         for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour})
             for (Integrator integrator : {Integrator::Riemann, Integrator::Composite})
                 for (bool skip : {true, false}) {
@@ -353,6 +368,8 @@ TEST_CASE("the packet engine leaves invisible samples out of its sums without ch
                     opt.skipEmptySpace = skip;
                     const bool dim = std::string(name) == "dim";
                     if (dim) opt.terminationBound = 0.9;
+                    CHECK(PacketScene(scene, camera, nullptr, opt).invisibleBelow ==
+                          invisibleBelow[emission == EmissionModel::ColourTimesExtinction ? 0 : 1]);
                     opt.simd = false;
                     RenderStats scalarStats;
                     const Image scalar = render(scene, camera, opt, &scalarStats);
