@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <string_view>
+#include <type_traits>
 
 #include "libvri/util/error.h"
 
@@ -23,8 +24,26 @@ std::vector<std::string_view> split(std::string_view text, char sep) {
     return parts;
 }
 
+// The whole text as one number: decimal as std::from_chars reads it, or hexadecimal after "0x" or "0X"
+// (a float such as 0x1p-3, exact in binary, or an integer such as 0x10), with an optional minus before
+// it. CLI11 reads hexadecimal in the options it converts itself (--fov 0x10), so every option does.
 template <class T>
 bool parseNumber(std::string_view s, T& value) {
+    const bool negative = !s.empty() && s.front() == '-';
+    std::string_view digits = s.substr(negative ? 1 : 0);
+    if (digits.size() > 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) {
+        digits.remove_prefix(2);
+        if (digits.front() == '-' || digits.front() == '+' || (negative && std::is_unsigned_v<T>)) return false;
+        const char* end = digits.data() + digits.size();
+        std::from_chars_result r;
+        if constexpr (std::is_floating_point_v<T>)
+            r = std::from_chars(digits.data(), end, value, std::chars_format::hex);
+        else
+            r = std::from_chars(digits.data(), end, value, 16);
+        if (r.ec != std::errc() || r.ptr != end) return false;
+        if (negative) value = -value;
+        return true;
+    }
     const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
     return ec == std::errc() && end == s.data() + s.size();
 }

@@ -19,6 +19,10 @@ bad 64 "^vri-render: error: --stats: '\./a\.exr' is also -o's output" -- "${rend
 bad 64 "^vri-render: error: --png: 'a\.exr' is also -o's output" -- "${render[@]}" -o sub/../a.exr --png a.exr
 bad 64 "^vri-render: error: --stats: '$PWD/p\.png' is also --png's output" -- \
   "${render[@]}" -o a.exr --png p.png --stats "$PWD/p.png"
+bad 64 "^vri-render: error: --stats: '-' \(standard output\) is also --png's output" -- \
+  "${render[@]}" -o a.exr --png - --stats -
+bad 64 "^vri-reference: error: --stats: '-' \(standard output\) is also --png's output" -- \
+  "${reference[@]}" -o r.exr --png - --stats -
 bad 64 "^vri-reference: error: -o: 'r\.tif' is not an \.exr file" -- "${reference[@]}" -o r.tif
 bad 64 "^vri-reference: error: --error-image: 'e\.png' is not an \.exr file" -- "${reference[@]}" -o r.exr --error-image e.png
 bad 64 "^vri-reference: error: --error-image: 'r\.exr' is also -o's output" -- "${reference[@]}" -o r.exr --error-image r.exr
@@ -113,5 +117,12 @@ methods:
 YAML
 bad 1 "^vri-run: error: experiment\.yaml:8:1: duplicate key 'methods' \(first at line 6\)$" -- \
   "$VRI_BIN/vri-run" --dry-run experiment.yaml --results results
+
+# Hexadecimal numbers are numbers to every option, as CLI11 reads them in the options it converts itself:
+# --step 0x1p-1 is --step 0.5, bit for bit; a hexadecimal that is not a number is refused like any other.
+"${render[@]}" --step 0x1p-1 --repeat 0x2 -o hex.exr || fail "--step 0x1p-1 --repeat 0x2 refused"
+"${render[@]}" --step 0.5 -o dec.exr
+"$VRI_BIN/vri-diff" hex.exr dec.exr --fail 0 > /dev/null || fail "--step 0x1p-1 differs from --step 0.5"
+bad 64 "^vri-render: error: Could not convert: --step = 0x1q" -- "${render[@]}" --step 0x1q -o q.exr
 
 bad_done

@@ -96,7 +96,14 @@ void requireExrOutput(const OutputArgument& output) {
 void requireDistinctOutputs(const std::vector<OutputArgument>& outputs) {
     std::vector<fs::path> identities(outputs.size());  // empty: not asked for, or standard output
     for (std::size_t i = 0; i < outputs.size(); ++i) {
-        if (outputs[i].path.empty() || outputs[i].path == "-") continue;
+        if (outputs[i].path == "-") {  // two outputs on standard output would run into each other
+            for (std::size_t j = 0; j < i; ++j)
+                if (outputs[j].path == "-")
+                    throw UsageError(outputs[i].option + ": '-' (standard output) is also " + outputs[j].option +
+                                     "'s output");
+            continue;
+        }
+        if (outputs[i].path.empty()) continue;
         try {
             identities[i] = fileIdentity(outputs[i].path);  // refuses what no write could replace
         } catch (const Error& e) {

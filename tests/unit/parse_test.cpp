@@ -1,0 +1,27 @@
+// Text to values (parse.h): decimal and hexadecimal numbers, as every option and field reads them.
+#include <doctest/doctest.h>
+
+#include <limits>
+
+#include "libvri/util/error.h"
+#include "libvri/util/parse.h"
+
+using namespace vri;
+
+TEST_CASE("parse: numbers in decimal or hexadecimal, the whole text and nothing else") {
+    CHECK(parsePositive("0.125", "--step") == 0.125);
+    CHECK(parsePositive("0x1p-3", "--step") == 0.125);  // exact in binary
+    CHECK(parsePositive("0X1.8P1", "--step") == 3.0);
+    CHECK(parseNonNegative("0x0p0", "--tolerance") == 0.0);
+    CHECK(parseCount("0x10", "--repeat", 1) == 16);
+    CHECK(parseCount("16", "--repeat", 1) == 16);
+    CHECK(parseVec3("-0x1p1,0x10,1.5", "--eye") == glm::dvec3(-2.0, 16.0, 1.5));
+    CHECK_THROWS_AS(parseSize("0x10x8", "--size"), Error);  // x separates WIDTHxHEIGHT: no hexadecimal there
+    for (const char* text : {"0x", "0x-1", "0x+1", "-0x-1", "0xg", "0x1p", "0x1p-3 ", " 0x1", "--0x1", "0x1q", "1e999"}) {
+        CAPTURE(text);
+        CHECK_THROWS_AS(parsePositive(text, "--step"), Error);
+    }
+    CHECK_THROWS_WITH_AS(parsePositive("-0x1p-3", "--step"), "--step: expected a number > 0, got '-0x1p-3'", Error);
+    CHECK_THROWS_AS(parseCount("0x1.8p1", "--repeat", 1), Error);  // not a whole number
+    CHECK_THROWS_AS(parseCount("0x100000000", "--repeat", 1), Error);  // past int
+}
