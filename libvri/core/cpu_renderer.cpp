@@ -358,6 +358,12 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
                     std::to_string(options.samplingRate));
     if (options.tileSize < 1) throw Error("tile size must be at least 1");
     if (!scene.volume && !scene.sparse && !scene.field) throw Error("scene has neither a volume nor an analytic field");
+    // A named target where the packets cannot run would be recorded as asked for and never run (with "on"
+    // the scalar path runs, and the stats say so).
+    if (options.simd && !options.simdTarget.empty() && packetMethod(options) && !PacketScene::supports(scene, options))
+        throw Error("--simd " + options.simdTarget + ": the SIMD packets run dense volumes only (at least 2 voxels "
+                    "along x, at most 2^31 bytes) with at most " + std::to_string(PacketScene::kMaxPoints) +
+                    " transfer-function points; this scene is not one: leave --simd on");
     if (!(options.earlyTermination >= 0.0 && options.earlyTermination < 1.0))
         throw Error("early termination threshold must be in [0, 1), got " + std::to_string(options.earlyTermination));
     if (!(options.terminationBound >= 0.0 && options.terminationBound < 1.0))

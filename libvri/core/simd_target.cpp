@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <mutex>
 
+#include "libvri/core/engine_environment.h"
 #include "libvri/util/error.h"
 #include "libvri/util/printable.h"
 
@@ -58,11 +59,11 @@ std::string simdTargetNamed(std::string_view name) {
 }
 
 std::string simdTargetFromEnvironment() {
-    const char* value = std::getenv("VRI_SIMD_TARGET");
+    const char* value = std::getenv(kSimdTargetVariable);
     if (value == nullptr || *value == '\0') return {};
     std::string target = simdTargetNamed(value);
     if (target.empty())
-        throw Error("VRI_SIMD_TARGET: '" + printable(value) + "' is not a SIMD target this CPU and build have (" +
+        throw Error(std::string(kSimdTargetVariable) + ": '" + printable(value) + "' is not a SIMD target this CPU and build have (" +
                     simdTargetList() + ")");
     return target;
 }

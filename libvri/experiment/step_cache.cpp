@@ -1,11 +1,11 @@
 // Step keys and the records of successful runs that let a later run skip a step.
 #include "libvri/experiment/step_cache.h"
 
-#include <cstdlib>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
+#include "libvri/core/engine_environment.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/sha512.h"
 
@@ -74,11 +74,9 @@ std::vector<std::string> stepKeys(const Plan& plan, const fs::path& toolDir, Fil
         addField(hash, hasher.digest(toolDir / step.tool));
         addField(hash, std::to_string(step.arguments.size()));
         for (const std::string& argument : step.arguments) addField(hash, argument);
-        // What the environment changes in a step's outputs: VRI_SIMD_TARGET moves the packets and the Gauss
-        // batches to another target (other times and stats.simd_target), VRI_VOXEL_LOADS changes how the
-        // AVX2 packets read voxels (other times and stats.voxel_loads), so a run with either is another run.
-        for (const char* variable : {"VRI_SIMD_TARGET", "VRI_VOXEL_LOADS"})
-            if (const char* value = std::getenv(variable)) addField(hash, std::string(variable) + "=" + value);
+        // What the environment changes in a step's outputs (engine_environment.h): another target or way of
+        // loading voxels gives other times and stats, so a run with either is another run.
+        for (const auto& [variable, value] : engineEnvironment()) addField(hash, variable + "=" + value);
         for (const fs::path& input : step.inputs) {
             std::string producer;
             for (std::size_t d : plan.dependencies[i])

@@ -1,6 +1,6 @@
 #pragma once
 // When a step may be skipped. A step's key is the SHA-512 of its tool's name and binary, its
-// arguments, VRI_SIMD_TARGET and VRI_VOXEL_LOADS where they are set, and for each input either the file's SHA-512 (a source:
+// arguments, the engine_environment.h variables that are set, and for each input either the file's SHA-512 (a source:
 // volume, transfer function, plot spec) or the key of the step that writes it (so a change upstream changes every key below it
 // without running anything). A step is skipped when the record of its last successful run, kept
 // in <results>/.steps/<id>.json, has the same key, the same input digests as the files now, and

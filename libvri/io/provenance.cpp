@@ -21,6 +21,7 @@
 #include <openvdb/version.h>  // macros only: cheap, unlike openvdb/openvdb.h
 #include <png.h>
 
+#include "libvri/core/engine_environment.h"
 #include "libvri/core/simd_target.h"
 #include "vri_git_commit.h"  // generated at every build: VRI_GIT_COMMIT
 
@@ -137,14 +138,20 @@ std::string shellQuote(std::string_view word) {
 }
 
 nlohmann::json commandLine(int argc, char** argv) {
-    nlohmann::json args = nlohmann::json::array();
+    nlohmann::json args = nlohmann::json::array(), environment = nlohmann::json::object();
     std::string shell;
+    for (const auto& [name, value] : engineEnvironment()) {  // assignments before the command: its environment
+        environment[name] = value;
+        shell += name + "=" + shellQuote(value) + " ";
+    }
     for (int i = 0; i < argc; ++i) {
         args.push_back(argv[i]);
         if (i > 0) shell += ' ';
         shell += shellQuote(argv[i]);
     }
-    return {{"argv", std::move(args)}, {"shell", shell}};
+    nlohmann::json command = {{"argv", std::move(args)}, {"shell", shell}};
+    if (!environment.empty()) command["environment"] = std::move(environment);
+    return command;
 }
 
 std::string utcTimestamp() {

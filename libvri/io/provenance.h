@@ -17,7 +17,8 @@ nlohmann::json machineInfo();
 //  "openexr", "libpng", "openimageio", "openvdb", "tbb"}.
 nlohmann::json buildInfo();
 
-// {"argv": [...], "shell": a command line that a POSIX shell reads back into the same argv}.
+// {"argv": [...], "shell": a command line that a POSIX shell reads back into the same argv and engine
+// environment, "environment": the engine_environment.h variables set, when any is}.
 nlohmann::json commandLine(int argc, char** argv);
 
 // `word` as one POSIX shell word, for a command line printed for a person to read or paste (vri

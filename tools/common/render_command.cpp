@@ -12,6 +12,7 @@
 #include "common/max_error_search.h"
 #include "common/render_backend.h"
 #include "common/render_json.h"
+#include "libvri/core/engine_environment.h"
 #include "libvri/core/exact_reference.h"
 #include "libvri/io/adaptive_log_csv.h"
 #include "libvri/io/image_io.h"
@@ -130,6 +131,7 @@ int RenderCommand::run() {
     return guardedMain(name_, [&] {
         std::optional<tbb::global_control> threadLimit;  // set once every option is checked
         requireUtf8Arguments(argc_, argv_);
+        checkEngineEnvironment();  // refused whether or not this render would read it
         requireExrOutput({"-o", output_});
         if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
         const std::vector<OutputArgument> outputs{{"-o", output_},
