@@ -29,7 +29,6 @@ using V = hn::Vec<D>;
 using VI = hn::Vec<DI>;
 using M = hn::Mask<D>;
 
-constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
 constexpr int kMaxGaussPanels = 64;
 
 // exp_kernel.h's and gauss_bound_kernel.h's operations, lane by lane.
@@ -111,7 +110,7 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
         const std::array<V, 4> c = {hn::Load(d, b.c[0] + j), hn::Load(d, b.c[1] + j), hn::Load(d, b.c[2] + j),
                                     hn::Load(d, b.c[3] + j)};
         const V ell = hn::Load(d, b.ell + j), sA = hn::Load(d, b.segmentS + j);
-        const V ds = o.set(32.0 * kUnit) * hn::Load(d, b.sScale + j);
+        const V ds = segment_kernel::coefficientError(o, hn::Load(d, b.sScale + j));
         // tau along the sub-piece and the depth quartic are the ray's own (ExactRay::setUp computed them
         // when it queued the sub-piece, for done()): the lanes form them again, bit for bit, from the
         // fields the colours need anyway, rather than the batch carrying eleven more doubles per sub-piece.
@@ -124,19 +123,12 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
             colourM[ch] = hn::Load(d, b.slope[ch + 1] + j);
             const segment_kernel::Linear<V> colour = segment_kernel::alongSegment(o, c, sA, colourV[ch], colourM[ch], ds);
             colours[ch] = colour.p;
-            if (colourTimesExtinction) {
-                gMax[ch] = colour.sum * tau.sum;
-                gError[ch] = colour.error * tau.sum + colour.sum * tau.error + o.set(16.0 * kUnit) * gMax[ch];
-            } else {
-                gMax[ch] = colour.sum;
-                gError[ch] = colour.error;
-            }
+            segment_kernel::emissionBounds(o, colour, tau, colourTimesExtinction, gMax[ch], gError[ch]);
             hn::Store(gMax[ch], d, b.gMax[ch] + j);
         }
-        // The optical depth from the sub-piece's start, ell times the integral of tau, and its error at 1.
-        V depth[5] = {hn::Zero(d)};
-        for (int k = 0; k < 4; ++k) depth[k + 1] = ell * tau.p[k] / o.set(k + 1.0);
-        const V depthError = ell * (tau.error + o.set(8.0 * kUnit) * tau.sum);
+        const segment_kernel::Depth<V> depthAlong = segment_kernel::depthAlong(o, tau, ell);
+        const std::array<V, 5>& depth = depthAlong.p;
+        const V depthError = depthAlong.error;
         const V transparencyMax = o.set(1.0) + o.set(2.0) * depthError;
         const std::array<V, 3> bounds =
             gauss_bound_kernel::bounds(o, colours, tau.p, colourTimesExtinction, ell, transparencyMax);
@@ -192,7 +184,7 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
         const V width = o.set(1.0) / k;
         const V chosenBound = hn::IfThenElse(isOne, bounds[0], hn::IfThenElse(isTwo, bounds[1], bounds[2]));
         const V e = ell * chosenBound * shrink / k;
-        const V roundingFactor = depthError + o.set(32.0 * kUnit);
+        const V roundingFactor = depthError + o.set(32.0 * segment_kernel::kUnit);
         V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)}, error[3] = {sum[0], sum[0], sum[0]},
           rounding[3] = {sum[0], sum[0], sum[0]};
         const int most = static_cast<int>(hn::GetLane(hn::MaxOfLanes(d, k)));

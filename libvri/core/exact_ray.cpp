@@ -118,8 +118,7 @@ void applyRule(const KronrodRule<N>& rule, double x0, double x1, const std::arra
 
 // ds bounds the error of s's coefficients (segment_kernel.h: the Gauss batch's lanes run the same).
 ExactRay::Linear ExactRay::alongSegment(const Cubic& local, double sA, double v, double m, double ds) {
-    const segment_kernel::Linear<double> r = segment_kernel::alongSegment(ScalarDoubleOps{}, local.c, sA, v, m, ds);
-    return {r.p, r.sum, r.error};
+    return segment_kernel::alongSegment(ScalarDoubleOps{}, local.c, sA, v, m, ds);
 }
 
 ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
@@ -440,26 +439,17 @@ ExactRay::SubPiece ExactRay::setUp(const Cubic& local, double ell, double sScale
     SubPiece r;
     r.local = local;
     r.ell = ell;
-    const double ds = 32.0 * kUnit * sScale;
+    const ScalarDoubleOps o;
+    const double ds = segment_kernel::coefficientError(o, sScale);
     r.tau = alongSegment(local, segment.s, segment.value[0], segment.slope[0], ds);
-    // The optical depth from the sub-piece's start, ell * integral of tau; its error at lambda = 1 (lambda
-    // times it at lambda).
-    r.depth[0] = 0.0;
-    for (int k = 0; k < 4; ++k) r.depth[k + 1] = ell * r.tau.p[k] / (k + 1);
-    r.depthError = ell * (r.tau.error + 8.0 * kUnit * r.tau.sum);
+    const segment_kernel::Depth<double> depth = segment_kernel::depthAlong(o, r.tau, ell);
+    r.depth = depth.p;
+    r.depthError = depth.error;
     if (!withColour) return r;
-    // Bounds on the emission g of each channel and on its error where a rule evaluates it.
     const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
     for (int c = 0; c < 3; ++c) {
         r.colour[c] = alongSegment(local, segment.s, segment.value[c + 1], segment.slope[c + 1], ds);
-        const double colourSum = r.colour[c].sum;
-        if (colourTimesExtinction) {
-            r.gMax[c] = colourSum * r.tau.sum;
-            r.gError[c] = r.colour[c].error * r.tau.sum + colourSum * r.tau.error + 16.0 * kUnit * r.gMax[c];
-        } else {
-            r.gMax[c] = colourSum;
-            r.gError[c] = r.colour[c].error;
-        }
+        segment_kernel::emissionBounds(o, r.colour[c], r.tau, colourTimesExtinction, r.gMax[c], r.gError[c]);
     }
     return r;
 }

@@ -9,6 +9,7 @@
 
 #include "libvri/core/cubic.h"
 #include "libvri/core/exact_gauss_batch.h"
+#include "libvri/core/segment_kernel.h"  // outside any Highway target region: included once
 #include "libvri/core/transfer_function.h"
 
 namespace vri {
@@ -62,12 +63,8 @@ private:
         double s;
         std::array<double, 4> value, slope;
     };
-    // A channel along a sub-piece: v + m (s - segment.s) as a cubic in lambda (exact_ray.cpp).
-    struct Linear {
-        std::array<double, 4> p;
-        double sum;    // sum |p[k]|: bounds |p| on [0, 1]
-        double error;  // bound on |computed - exact| anywhere on [0, 1]
-    };
+    // A channel along a sub-piece: v + m (s - segment.s) as a cubic in lambda (segment_kernel.h).
+    using Linear = segment_kernel::Linear<double>;
     // What the quadrature of one sub-piece needs, as polynomials in lambda in [0, 1].
     struct SubPiece {
         Cubic local;

@@ -1,6 +1,5 @@
 #include "libvri/core/gauss_error_bound.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include "libvri/core/gauss_bound_kernel.h"
