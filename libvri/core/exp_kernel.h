@@ -118,7 +118,7 @@ template <class Ops, class Real>
 }
 
 // Where exp(x) is a normal float, x in [-kNormalRange, 0], exp()'s result without its clamp, NaN's
-// selects and the split of 2^k: k >= -125, so 2^k is a normal power of two and 1 + expm1(r) >= 0.7 times
+// selects and the split of 2^k: k >= -124, so 2^k is a normal power of two and 1 + expm1(r) >= 0.7 times
 // it is normal too; a product by a power of two is then exact, in one factor as in two.
 inline constexpr double kNormalRange = 86.0;  // x log2 e >= -124.1
 

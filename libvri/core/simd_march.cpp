@@ -69,12 +69,13 @@ struct VectorOps {
 
 HWY_INLINE VF lerp(VF a, VF b, VF t) { return hn::Add(a, hn::Mul(t, hn::Sub(b, a))); }
 
-// Voxels o and o + 1 of each lane (the x neighbours: the x stride is 1). `nearEnd`: whether voxel o + 3
-// may lie past the volume's end.
+// Voxels o and o + 1 of each lane (the x neighbours: the x stride is 1).
 struct VoxelPair {
     VF first, second;
 };
 
+// The pairs at the lanes' offsets o. `nearEnd`: whether voxel o + 3 may lie past the volume's end (a
+// gathered word of 8-bit voxels would then read past it).
 template <class T>
 VoxelPair gatherPair(const PacketScene& sc, VI o, bool nearEnd);
 
@@ -662,7 +663,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
     // a core's reorder window, and each stage is a long chain of dependent ones: in sequence the core ran
     // little of one step beside the next; side by side, the two chains of a step are independent. The
     // march never waits on the sums: a lane that early termination ends (only the sums know) marches on
-    // to no effect until the packet ends, and the sample it marched to meanwhile is dropped. Each lane's
+    // to no effect until the packet ends, and every sample it marches to after its end is dropped. Each lane's
     // samples are integrated in their order with the same operations, so the bits are the scalar path's.
     // Measured on Bonsai 800x600, 1 thread, AMD EPYC (Zen 4): -7 % (h = 0.5) and -5 % (h = 0.1) of the
     // time on AVX2, -9 % and -12 % on AVX-512. (A software prefetch of the stencils' cache lines a few
@@ -697,7 +698,8 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         // How deep a step's exponent -tau dx can reach in this packet, which picks exp_kernel's shortest
         // form that gives exp()'s bits (with a margin for the rounding of tau and of the product): at h =
         // 0.1 on Bonsai and at h = 0.5 and 0.1 on Engine, the one without a reduction.
-        const VF deepest = hn::Mul(hn::Set(df, sc.maxTau), rays.dx);
+        const VF deepest =
+            hn::Mul(hn::Set(df, sc.maxTau), hn::IfThenElseZero(hn::RebindMask(df, hn::Gt(count, hn::Zero(di))), rays.dx));
         const StepDepth depth =
             hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNearZero)))) ? StepDepth::NearZero
             : hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNormalRange))))
@@ -721,7 +723,8 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
                 const MF contributes = Emission == EmissionModel::ColourTimesExtinction
                                            ? hn::And(pending, hn::Ne(tau, hn::Zero(df)))
                                            : pending;
-                // tau is a lerp of non-negative finite values, dx positive and finite: never NaN.
+                // On the pending lanes, whose clamps tf() applied, tau is a lerp of non-negative finite values
+                // and dx positive and finite: never NaN there.
                 const VF exponent = hn::Mul(hn::Neg(tau), rays.dx);
                 VF attenuation, expm1Value;
                 stepExponentials<Method>(ops, depth, exponent, attenuation, expm1Value);

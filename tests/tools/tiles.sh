@@ -40,6 +40,8 @@ per_pixel = ["rays", "rays_hit", "samples_placed", "samples_evaluated", "rays_te
              "termination_left_out_max", "adaptive", "out_of_range_pixels"]
 for key in per_pixel:
     assert s.get(key) == w.get(key), (key, s.get(key), w.get(key))
+for key in ["simd_target", "voxel_loads"]:  # what ran, kept where the tiles agree
+    assert s.get(key) == w.get(key), (key, s.get(key), w.get(key))
 if "error_bound" in w:
     assert s["error_bound"]["max"] == w["error_bound"]["max"], "error_bound.max"
     for m, x in zip(s["error_bound"]["mean"], w["error_bound"]["mean"]):
@@ -59,6 +61,13 @@ tiled vri-render "0,0,17,11 17,0,24,11 0,11,5,18 5,11,36,18" --step 0.3 --placem
 tiled vri-render "0,0,$W,7 0,7,$W,22" --precision float --step 0.3
 tiled vri-render "0,0,21,29 21,0,20,29" --precision float --method composite --step 0.3 --early-termination auto
 tiled vri-render "0,0,$W,10 0,10,$W,10 0,20,$W,9" --precision float --simd off --step 0.3
+# AVX2's packets, where the host has it: the merge keeps the target and the way voxels were loaded.
+if "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o probe.exr --stats - |
+  python3 -c 'import json, sys; sys.exit("AVX2" not in json.load(sys.stdin)["machine"]["simd_targets"])'; then
+  tiled vri-render "0,0,$W,7 0,7,$W,22" --precision float --step 0.3 --simd AVX2
+  python3 -c 'import json; assert json.load(open("merged.json"))["stats"]["voxel_loads"] in ("gather", "scalar")' ||
+    fail "merged AVX2 tiles: stats.voxel_loads"
+fi
 # Paper B's adaptive Simpson (each ray's steps its own) and uniform Simpson.
 tiled vri-render "0,0,$W,13 0,13,$W,16" --method coupled --tolerance 0.001
 tiled vri-render "0,0,$W,5 0,5,$W,24" --method decoupled --tolerance 0.001 --h-max 2 --precision float

@@ -97,7 +97,8 @@ TEST_CASE("expm1Float is within 2 ulp of expm1 and keeps tiny arguments exact") 
 
 TEST_CASE("exp_kernel's short forms give exp's and expm1's bits where they hold") {
     // The packet engine picks a short form per packet from the deepest step it can take; each must
-    // round exactly as the full function over its whole range, or images would change.
+    // round exactly as the full function over its range (sampled densely here, with its ends), or images
+    // would change. The commonest argument of all, -0 (tau = 0), and +0 too, by name.
     const ScalarExpOps o;
     const auto same = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); };
     long checked = 0, differ = 0;
@@ -112,6 +113,12 @@ TEST_CASE("exp_kernel's short forms give exp's and expm1's bits where they hold"
         differ += !same(exp_kernel::expInNormalRange(o, x), exp_kernel::exp(o, x));
         differ += !same(exp_kernel::expm1InNormalRange(o, x), exp_kernel::expm1(o, x));
     });
+    for (float zero : {-0.f, 0.f}) {
+        CHECK(same(exp_kernel::expNearZero(o, zero), exp_kernel::exp(o, zero)));
+        CHECK(same(exp_kernel::expm1NearZero(o, zero), exp_kernel::expm1(o, zero)));
+        CHECK(same(exp_kernel::expInNormalRange(o, zero), exp_kernel::exp(o, zero)));
+        CHECK(same(exp_kernel::expm1InNormalRange(o, zero), exp_kernel::expm1(o, zero)));
+    }
     MESSAGE(checked, " arguments");
     CHECK(differ == 0);
     // Not a blank test: past its range a short form rounds differently (here no longer exp at all).
