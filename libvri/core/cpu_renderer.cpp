@@ -409,8 +409,9 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
     const glm::dvec3 dims = scene.dims();
     // The longest ray crosses |dims| voxels; keep its sample count well inside an int64 and a float.
     if (options.samplingRate * glm::length(dims) > 1e9)
-        throw Error("sampling rate " + std::to_string(options.samplingRate) +
-                    " per voxel would put more than 1e9 samples on a ray through this volume");
+        throw Error("sampling rate " + exactNumber(options.samplingRate) + " per voxel (step " +
+                    exactNumber(1.0 / options.samplingRate) +
+                    " voxels) would put more than 1e9 samples on a ray through this volume");
     if (options.integrator == Integrator::Coupled || options.integrator == Integrator::Decoupled)
         validate(options.adaptive);
     // The Simpson methods' sample budget, refused up front as the rate above is: a ray takes at most

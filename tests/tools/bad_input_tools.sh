@@ -110,7 +110,7 @@ bad 1 "${E}--eye: expected three numbers x,y,z, got '1,2,nan'" -- "${render[@]}"
 bad 1 "${E}--background: expected three numbers" -- "${render[@]}" --background 1,2
 bad 1 "${E}camera up vector 0,0,0 is zero or shorter than" -- "${render[@]}" --up 0,0,0
 bad 1 "${E}camera eye and target coincide" -- "${render[@]}" --eye 4,4,4 --target 4,4,4
-bad 1 "${E}field of view must be in \(0, 180\) degrees" -- "${render[@]}" --fov 180
+bad 1 "${E}--fov: expected degrees in \(0, 180\), got 180$" -- "${render[@]}" --fov 180
 bad 64 "${E}Could not convert: --fov = abc" -- "${render[@]}" --fov abc
 bad 64 "${E}Could not convert: --threads = two" -- "${render[@]}" --threads two
 bad 1 "${E}--threads: expected a positive count, got -1" -- "${render[@]}" --threads -1
@@ -123,7 +123,9 @@ bad 64 "^vri-reference: error: --tolerance: expected a number, got ''$" -- "$bin
     --tf tf.yaml --size 8x6 -q -o out.exr --tolerance ''
 bad 64 "${E}--step excludes --rate" -- "${render[@]}" --step 0.5 --rate 2
 bad 1 "${E}--early-termination: expected a transparency in \[0, 1\), .auto. or .auto:BOUND." -- "${render[@]}" --early-termination 2
-bad 1 "${E}zoom must be a finite factor >= 1" -- "${render[@]}" --zoom 0
+bad 1 "${E}--zoom: expected a finite factor >= 1, got 0$" -- "${render[@]}" --zoom 0
+bad 1 "${E}sampling rate [0-9.]+e\+(299|300) per voxel \(step 1e-300 voxels\) would put more than 1e9 samples on a ray through this volume$" -- \
+  "${render[@]}" --step 1e-300
 bad 1 "${E}zoom centre -1,0 is outside the frame \[0, 8\] x \[0, 8\] pixels" -- "${render[@]}" --zoom 2 --zoom-centre -1,0
 bad 1 "${E}zoom centre 8.5,4 is outside the frame" -- "${render[@]}" --zoom 2 --zoom-centre 8.5,4
 bad 64 "${E}--field-dims excludes --volume" -- "${render[@]}" --field-dims 5,5,5

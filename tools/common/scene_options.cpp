@@ -1,11 +1,14 @@
 #include "common/scene_options.h"
 
+#include <cmath>
 #include <memory>
 #include <optional>
 
 #include "common/cli.h"
 #include "libvri/core/analytic_field.h"
 #include "libvri/io/transfer_function_yaml.h"
+#include "libvri/util/error.h"
+#include "libvri/util/format.h"
 #include "libvri/util/sha512.h"
 
 namespace vri {
@@ -77,6 +80,10 @@ SceneSetup SceneOptions::load() const {
     Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse};
     inputs.push_back({{"path", tfPath_}, {"sha512", sha512File(tfPath_)}});
 
+    // The camera checks these too (camera.h); here the message can name the option.
+    if (!(fov_ > 0.0 && fov_ < 180.0)) throw Error("--fov: expected degrees in (0, 180), got " + exactNumber(fov_));
+    if (!(zoom_ >= 1.0) || !std::isfinite(zoom_))
+        throw Error("--zoom: expected a finite factor >= 1, got " + exactNumber(zoom_));
     CameraSpec cam = framingCamera(scene.box(), imageSize.x, imageSize.y, fov_);
     if (!target_.empty()) cam.target = parseVec3(target_, "--target");
     if (!eye_.empty()) cam.eye = parseVec3(eye_, "--eye");
