@@ -47,7 +47,9 @@ TEST_CASE("output arguments: one file named twice, however spelled, is an error"
     const std::string x = (dir / "x.png").string();
     CHECK(distinctError({{"-o", "a.exr"}, {"--png", "a.png"}, {"--stats", "a.json"}}) == "no error");
     CHECK(distinctError({{"-o", "a.exr"}, {"--png", ""}, {"--stats", ""}}) == "no error");  // not asked for
-    CHECK(distinctError({{"--stats", "-"}, {"--log", "-"}}) == "no error");                 // standard output
+    CHECK(distinctError({{"-o", "a.exr"}, {"--stats", "-"}}) == "no error");                // standard output, once
+    // Twice, the two would run into each other on it.
+    CHECK(distinctError({{"--stats", "-"}, {"--log", "-"}}) == "--log: '-' (standard output) is also --stats's output");
     CHECK(distinctError({{"-o", x}, {"--png", x}}) == "--png: '" + x + "' is also -o's output");
     CHECK(distinctError({{"-o", x}, {"--stats", (dir / "sub" / ".." / "." / "x.png").string()}})
               .starts_with("--stats: "));
