@@ -261,7 +261,8 @@ int run(int argc, char** argv) {
         files.add(options.json, json.dump(2) + "\n");
     }
     files.write();
-    if (options.json != "-") printSummary(options, diff, verdict.text);
+    // The summary goes to standard output unless an output does (it would run into that output).
+    if (options.json != "-" && options.histogram != "-" && options.diffImage != "-") printSummary(options, diff, verdict.text);
     return verdict.code;
 }
 

@@ -41,6 +41,10 @@ double robustLength(const glm::dvec3& v) {
 
 }  // namespace
 
+bool validFieldOfView(double degrees) { return degrees > 0.0 && degrees < 180.0; }
+
+bool validZoom(double zoom) { return zoom >= 1.0 && std::isfinite(zoom); }
+
 CameraSpec framingCamera(const Box& box, int width, int height, double fovYDegrees) {
     CameraSpec c;
     c.width = width;
@@ -57,7 +61,7 @@ CameraSpec framingCamera(const Box& box, int width, int height, double fovYDegre
 
 Camera::Camera(const CameraSpec& spec) : spec_(spec) {
     imageBytes(spec.width, spec.height);  // before anything sizes a buffer per pixel (rays, bounds)
-    if (!(spec.zoom >= 1.0) || !std::isfinite(spec.zoom))
+    if (!validZoom(spec.zoom))
         throw Error("zoom must be a finite factor >= 1, got " + std::to_string(spec.zoom));
     // A close-up magnifies a part of the frame: a centre outside it (or not finite) would show what the frame
     // does not, and a huge one would move the rays' directions beyond what a pixel resolves.
@@ -67,7 +71,7 @@ Camera::Camera(const CameraSpec& spec) : spec_(spec) {
             throw Error("zoom centre " + exactNumber(c.x) + "," + exactNumber(c.y) + " is outside the frame [0, " +
                         std::to_string(spec.width) + "] x [0, " + std::to_string(spec.height) + "] pixels");
     }
-    if (!(spec.fovYDegrees > 0.0 && spec.fovYDegrees < 180.0))
+    if (!validFieldOfView(spec.fovYDegrees))
         throw Error("field of view must be in (0, 180) degrees, got " + std::to_string(spec.fovYDegrees));
     requireCoordinates(spec.eye, "eye");
     requireCoordinates(spec.target, "target");

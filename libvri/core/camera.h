@@ -26,6 +26,11 @@ struct CameraSpec {
 // Looks at the box centre along -z (+y up) from just far enough for the whole box to fit the view.
 CameraSpec framingCamera(const Box& box, int width, int height, double fovYDegrees);
 
+// The ranges a camera takes (its constructor checks them; a tool checks them first to name its option):
+// a vertical field of view in (0, 180) degrees, a finite zoom >= 1.
+bool validFieldOfView(double degrees);
+bool validZoom(double zoom);
+
 // What Camera::direction computes from: the orthonormal view basis, the tangents of half the fields of
 // view and the zoom centre in pixels. A port of direction() (the Vulkan shaders make their rays from it)
 // reproduces it from these and the spec's zoom.

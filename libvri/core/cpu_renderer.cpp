@@ -361,9 +361,9 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
     // A named target where the packets cannot run would be recorded as asked for and never run (with "on"
     // the scalar path runs, and the stats say so).
     if (options.simd && !options.simdTarget.empty() && packetMethod(options) && !PacketScene::supports(scene, options))
-        throw Error("--simd " + options.simdTarget + ": the SIMD packets run dense volumes only (at least 2 voxels "
-                    "along x, at most 2^31 bytes) with at most " + std::to_string(PacketScene::kMaxPoints) +
-                    " transfer-function points; this scene is not one: leave --simd on");
+        throw Error("--simd " + options.simdTarget + ": the SIMD packets need a dense volume (not --storage sparse) of 4 "
+                    "to 2^31 - 1 bytes with at least 2 voxels along x, and a transfer function of at most " +
+                    std::to_string(PacketScene::kMaxPoints) + " points; this scene is not one: leave --simd on");
     if (!(options.earlyTermination >= 0.0 && options.earlyTermination < 1.0))
         throw Error("early termination threshold must be in [0, 1), got " + std::to_string(options.earlyTermination));
     if (!(options.terminationBound >= 0.0 && options.terminationBound < 1.0))

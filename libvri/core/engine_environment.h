@@ -16,7 +16,7 @@ inline constexpr const char* kVoxelLoadsVariable = "VRI_VOXEL_LOADS";
 inline constexpr std::array<const char*, 2> kEngineVariables = {kSimdTargetVariable, kVoxelLoadsVariable};
 
 // The ones set to something (an empty value counts as unset, as their readers take it): name and value,
-// in kEngineVariables' order.
+// in kEngineVariables' order; a SIMD target as simdTargetNamed spells it (avx2 is AVX2).
 std::vector<std::pair<std::string, std::string>> engineEnvironment();
 
 // Throws vri::Error naming the variable when either holds a value its reader refuses, so that a command

@@ -126,9 +126,9 @@ void IntegrateGaussBatch(GaussBatch& b, int count, double tolerance, bool colour
             segment_kernel::emissionBounds(o, colour, tau, colourTimesExtinction, gMax[ch], gError[ch]);
             hn::Store(gMax[ch], d, b.gMax[ch] + j);
         }
-        const segment_kernel::Depth<V> depthAlong = segment_kernel::depthAlong(o, tau, ell);
-        const std::array<V, 5>& depth = depthAlong.p;
-        const V depthError = depthAlong.error;
+        const segment_kernel::Depth<V> depthQuartic = segment_kernel::depthAlong(o, tau, ell);
+        const std::array<V, 5>& depth = depthQuartic.p;
+        const V depthError = depthQuartic.error;
         const V transparencyMax = o.set(1.0) + o.set(2.0) * depthError;
         const std::array<V, 3> bounds =
             gauss_bound_kernel::bounds(o, colours, tau.p, colourTimesExtinction, ell, transparencyMax);

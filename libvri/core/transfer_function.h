@@ -85,8 +85,8 @@ public:
     // True when neither extinction nor emission is non-zero anywhere in [s0, s1]: samples there
     // contribute exactly nothing, so a renderer may skip them without changing a single bit.
     bool isInvisible(double s0, double s1) const;
-    // The same for one value: no extinction, and no emission that could show (colour x extinction
-    // shows no colour without extinction).
+    // The same for one sample of the function (its r, g, b and tau at one s): no extinction, and no
+    // emission that could show (colour x extinction shows no colour without extinction).
     bool isInvisible(const TransferFunctionSample<double>& v) const {
         return v.tau == 0.0 && (emission_ == EmissionModel::ColourTimesExtinction || (v.r == 0 && v.g == 0 && v.b == 0));
     }

@@ -33,7 +33,7 @@ bool parseNumber(std::string_view s, T& value) {
     std::string_view digits = s.substr(negative ? 1 : 0);
     if (digits.size() > 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) {
         digits.remove_prefix(2);
-        if (digits.front() == '-' || digits.front() == '+' || (negative && std::is_unsigned_v<T>)) return false;
+        if (digits.front() == '-') return false;  // from_chars would read a second sign
         const char* end = digits.data() + digits.size();
         std::from_chars_result r;
         if constexpr (std::is_floating_point_v<T>)

@@ -33,7 +33,7 @@ printf 'points: [[0, 0, 0, 0, 0], [1, 1, 1, 1, 1]]\n---\n}\n' > tf-brace.yaml
 printf 'points:\n  - [-1e308, 0, 0, 0, 0]\n  - [1e308, 1, 1, 1, 1]\n' > tf-wide.yaml
 printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: raw\ndata file: blob_8x8x8_uint8.raw\nvri_range:=-1e308 1e308\n' > wide.nhdr
 # Item 2: transfer functions past 10,000 points, and YAML past 200,000 nodes, block and flow.
-python3 - <<'PY'
+/usr/bin/python3 - <<'PY'
 with open("tf-points.yaml", "w") as f:
     f.write("points:\n" + "".join(f"  - [{i / 10000:.6f}, 0.5, 0.5, 0.5, {i % 7 / 10}]\n" for i in range(10001)))
 with open("tf-nodes.yaml", "w") as f:
@@ -42,7 +42,7 @@ with open("exp-nodes.yaml", "w") as f:
     f.write("name: big\nmethods:\n" + "".join(f"  m{i}: {{step: [0.5, 0.25, 0.125]}}\n" for i in range(60000)))
 PY
 mkfifo fifo
-python3 -c 'import socket, sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' sock
+/usr/bin/python3 -c 'import socket, sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' sock
 # 64 MiB + 1 byte, sparse, outside the work directory (the harness hashes every file in it).
 big=$VRI_SCRATCH/big.yaml
 truncate -s $((64 * 1024 * 1024 + 1)) "$big"

@@ -88,7 +88,7 @@ ln -s loop.csv loop.csv
 bad 1 "^vri-tf: error: loop\.csv: cannot write: Too many levels of symbolic links$" -- "$bin/vri-tf" tf.yaml -o loop.csv
 rm loop.csv
 if command -v python3 > /dev/null; then
-  python3 -c 'import socket, sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' out.sock
+  /usr/bin/python3 -c 'import socket, sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' out.sock
   bad 1 "^vri-tf: error: out\.sock: cannot write: it is a socket" -- "$bin/vri-tf" tf.yaml -o out.sock
   rm out.sock
 else

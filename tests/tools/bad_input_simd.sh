@@ -14,7 +14,7 @@ bad 1 "^vri-render: error: VRI_SIMD_TARGET: 'AVX9000' is not a SIMD target this 
 bad 1 "^vri-render: error: VRI_VOXEL_LOADS: expected gather or scalar, got 'bogus'$" -- env VRI_VOXEL_LOADS=bogus "$bin/vri-render" "${scene[@]}" --simd off
 bad 1 "^vri-reference: error: VRI_SIMD_TARGET: 'AVX9000' is not a SIMD target this CPU and build have \([A-Z0-9, ]+\)$" -- env VRI_SIMD_TARGET=AVX9000 "$bin/vri-reference" "${scene[@]}"
 # A named target where the packets cannot run: a sparse volume, a transfer function past 64 points.
-bad 1 "^vri-render: error: --simd SCALAR: the SIMD packets run dense volumes only .*: leave --simd on$" -- "$bin/vri-render" "${scene[@]}" --precision float --storage sparse --simd SCALAR
+bad 1 "^vri-render: error: --simd SCALAR: the SIMD packets need a dense volume \(not --storage sparse\) .*: leave --simd on$" -- "$bin/vri-render" "${scene[@]}" --precision float --storage sparse --simd SCALAR
 bad 1 "^vri-render: error: --simd: unknown value 'avx2;x' \(expected on, off or a SIMD target this CPU and build have: [A-Z0-9, ]+\)$" -- "$bin/vri-render" "${scene[@]}" --simd 'avx2;x'
 # The exact method's Gauss rules have no scalar twin; the reference Riemann sum is double, never packets.
 bad 1 "^vri-reference: error: --simd off: the exact method's Gauss rules have no scalar twin; name a target \(SCALAR is Highway's one-lane fallback\)$" -- "$bin/vri-reference" "${scene[@]}" --simd off

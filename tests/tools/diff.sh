@@ -30,7 +30,7 @@ expect_rc() {
 }
 
 json_value() {  # json_value FILE PYTHON-EXPRESSION-ON-j
-    python3 -c "import json, sys; j = json.load(open(sys.argv[1])); print($2)" "$1"
+    /usr/bin/python3 -c "import json, sys; j = json.load(open(sys.argv[1])); print($2)" "$1"
 }
 
 # An image against itself: pass, and every statistic zero.
@@ -57,12 +57,12 @@ total=$(tail -n +2 hist.csv | awk -F, '{ s += $3 } END { print s }')
 [[ $total -eq 64 ]] || fail "histogram R counts sum to $total, not 64"
 # The difference image holds the error where it is.
 run_diff err.exr a.exr --json - --threshold 0.3
-[[ $(python3 -c 'import json, sys; print(json.load(sys.stdin)["channels"][0]["max_abs"])' <out.txt) != 0.0 ]] ||
+[[ $(/usr/bin/python3 -c 'import json, sys; print(json.load(sys.stdin)["channels"][0]["max_abs"])' <out.txt) != 0.0 ]] ||
     fail "difference image is empty"
 # --diff-scale multiplies it: twice the scale, twice the largest value.
 run_diff a.exr changed.exr --diff-image err2.exr --diff-scale 2
 run_diff err.exr err2.exr --json - --threshold 0.3
-[[ $(python3 -c 'import json, sys; c = json.load(sys.stdin)["channels"][0]; print(c["max_abs"] > 0)' <out.txt) == True ]] ||
+[[ $(/usr/bin/python3 -c 'import json, sys; c = json.load(sys.stdin)["channels"][0]; print(c["max_abs"] > 0)' <out.txt) == True ]] ||
     fail "--diff-scale 2 gives the same image"
 run_diff a.exr changed.exr --diff-scale 2
 expect_rc 64 "--diff-scale without --diff-image"
@@ -83,6 +83,11 @@ expect_rc 0 "an error equal to --fail is not above it"
 run_diff a.exr changed.exr --json -
 expect_rc 3 "--json -"
 json_value out.txt 'j["verdict"]' | grep -qx fail || fail "--json - did not print the JSON verdict"
+# --histogram - prints the CSV only: the summary would run into it.
+run_diff a.exr changed.exr --histogram -
+expect_rc 3 "--histogram -"
+[[ $(head -1 out.txt) == "bin_lo,bin_hi,R,G,B,A" ]] && ! grep -q "FAIL" out.txt ||
+  fail "--histogram - did not print the CSV alone: $(tail -1 out.txt)"
 
 # Different sizes or channel counts: 4, one line on stderr.
 run_diff a.exr small.exr

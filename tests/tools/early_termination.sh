@@ -19,7 +19,7 @@ render -o off.exr --stats off.json
 render --early-termination auto:1e-3 -o auto.exr --stats auto.json
 render --early-termination auto -o default.exr --stats default.json
 "$bin/vri-diff" off.exr auto.exr --json diff.json > /dev/null || true
-python3 - <<'PY' || fail "stats JSON"
+/usr/bin/python3 - <<'PY' || fail "stats JSON"
 import json
 off, auto, default, diff = (json.load(open(f)) for f in ("off.json", "auto.json", "default.json", "diff.json"))
 assert off["stats"]["rays_terminated"] == 0 and off["stats"]["termination_left_out_max"] == 0, "off"
@@ -32,7 +32,7 @@ largest = max(c["max_abs"] for c in diff["channels"])
 assert 0 < largest <= left + 1e-6, (largest, left)  # + the EXR's float rounding
 assert default["stats"]["termination_left_out_max"] < 1e-4, "default bound"
 PY
-echo "early termination: auto ends $(python3 -c 'import json;print(json.load(open("auto.json"))["stats"]["rays_terminated"])') rays within its bound"
+echo "early termination: auto ends $(/usr/bin/python3 -c 'import json;print(json.load(open("auto.json"))["stats"]["rays_terminated"])') rays within its bound"
 
 # Every method that takes `auto`, with and without it: each pixel-channel within the stats' largest
 # left-out amount, which stays below B, plus the EXR's float32 rounding of the two values (half an ulp
@@ -59,7 +59,7 @@ within_bound() {  # within_bound NAME SCENE-ARGS...: every method at B = 1e-2 an
       "$bin/vri-render" "$@" --method $method --early-termination "auto:$bound" -q -o "$tag-$bound.exr" \
         --stats "$tag-$bound.json"
       "$bin/vri-diff" "$tag.exr" "$tag-$bound.exr" --json "$tag-$bound-diff.json" > /dev/null || true
-      python3 - "$tag-$bound" "$bound" <<'PY' || fail "$name, $method, auto:$bound"
+      /usr/bin/python3 - "$tag-$bound" "$bound" <<'PY' || fail "$name, $method, auto:$bound"
 import json, sys
 tag, bound = sys.argv[1], float(sys.argv[2])
 stats = json.load(open(tag + ".json"))["stats"]

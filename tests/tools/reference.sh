@@ -7,8 +7,8 @@ command -v python3 >/dev/null || { echo "python3 not installed: skipping"; exit 
 bin=$VRI_BIN src=$VRI_SOURCE
 
 # The largest error bound of a stats file, over the four channels.
-max_bound() { python3 -c 'import json, sys; print(max(json.load(open(sys.argv[1]))["stats"]["error_bound"]["max"]))' "$1"; }
-below() { python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) < float(sys.argv[2]) else 1)' "$1" "$2"; }
+max_bound() { /usr/bin/python3 -c 'import json, sys; print(max(json.load(open(sys.argv[1]))["stats"]["error_bound"]["max"]))' "$1"; }
+below() { /usr/bin/python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) < float(sys.argv[2]) else 1)' "$1" "$2"; }
 
 # Paper A's linear field: exact to the bound, and Riemann at a small step within its O(h) error.
 field=(--field linear --convention node --tf "$src/experiments/tf/paper-a-linear.yaml" --size 24x18

@@ -6,7 +6,7 @@ command -v python3 >/dev/null || { echo "python3 not installed: skipping"; exit 
 bin=$VRI_BIN
 source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
 
-stat() { python3 -c 'import json, sys; s = json.load(open(sys.argv[1]))["stats"]; print(eval(sys.argv[2]))' "$@"; }
+stat() { /usr/bin/python3 -c 'import json, sys; s = json.load(open(sys.argv[1]))["stats"]; print(eval(sys.argv[2]))' "$@"; }
 blob=(--volume blob_8x8x8_uint8.raw --spacing 1,0.75,1 --tf tf.yaml --size 40x30 -q)
 
 "$bin/vri-render" "${blob[@]}" --method exact --tolerance 1e-12 -o render.exr --stats render.json
@@ -22,7 +22,7 @@ grep -q '"method": "exact"' render.json || fail "stats do not name the exact met
 grep -q '"tolerance": 1e-07' loose.json || fail "default tolerance not 1e-7: $(cat loose.json)"
 [ "$(stat loose.json 's["quadrature_nodes"]')" -lt "$(stat render.json 's["quadrature_nodes"]')" ] ||
     fail "a looser tolerance did not evaluate fewer nodes"
-limit=$(python3 -c 'import json, sys; a, b = (json.load(open(f))["stats"]["error_bound"]["stored_max"] for f in sys.argv[1:]);
+limit=$(/usr/bin/python3 -c 'import json, sys; a, b = (json.load(open(f))["stats"]["error_bound"]["stored_max"] for f in sys.argv[1:]);
 print(max(x + y for x, y in zip(a, b)))' loose.json render.json)  # the bounds of the stored float32 values
 "$bin/vri-diff" loose.exr render.exr --fail "$limit" --warn "$limit" > /dev/null || fail "1e-7 image beyond $limit"
 
@@ -37,7 +37,7 @@ print(max(x + y for x, y in zip(a, b)))' loose.json render.json)  # the bounds o
 printf 'points:\n  - [0.0, 0.0, 0.0, 0.0, 0.0]\n' > zero.yaml  # an image of zeros, to read the bounds through vri-diff
 "$bin/vri-render" --volume blob_8x8x8_uint8.raw --spacing 1,0.75,1 --tf zero.yaml --size 40x30 -q --method exact -o zero.exr
 "$bin/vri-diff" bound.exr zero.exr --json diff.json > /dev/null || true
-python3 - render.json diff.json <<'PY' || fail "the error image's largest values are not stored_max"
+/usr/bin/python3 - render.json diff.json <<'PY' || fail "the error image's largest values are not stored_max"
 import json, sys
 stored = json.load(open(sys.argv[1]))["stats"]["error_bound"]["stored_max"]
 image = [c["max_abs"] for c in json.load(open(sys.argv[2]))["channels"]]
@@ -56,7 +56,7 @@ for tool in vri-render vri-reference; do
     "$bin/$tool" "${blob[@]}" "${method[@]}" --max-error 1e-9 -o max-error.exr --stats max-error.json
     [ "$(stat max-error.json 'max(s["error_bound"]["max"]) <= 1e-9')" = True ] ||
         fail "$tool --max-error 1e-9: bound $(stat max-error.json 's["error_bound"]["max"]')"
-    found=$(python3 -c 'import json, sys; o = json.load(open(sys.argv[1]))["options"]; print(o["max_error"], repr(o["tolerance"]))' max-error.json)
+    found=$(/usr/bin/python3 -c 'import json, sys; o = json.load(open(sys.argv[1]))["options"]; print(o["max_error"], repr(o["tolerance"]))' max-error.json)
     [ "${found%% *}" = 1e-09 ] || fail "$tool: the stats do not record max_error: $found"
     "$bin/$tool" "${blob[@]}" "${method[@]}" --tolerance "${found#* }" -o direct.exr
     "$bin/vri-diff" direct.exr max-error.exr --fail 0 > /dev/null || fail "$tool: --max-error's image is not its tolerance's"
@@ -66,7 +66,7 @@ done
 # must equal it bit for bit), and it is the image that tolerance gives when asked for directly.
 big=(--volume blob_8x8x8_uint8.raw --spacing 1,0.75,1 --tf tf.yaml --size 160x128 -q --method exact)
 "$bin/vri-render" "${big[@]}" --max-error 1e-9 --repeat 2 -o pilot.exr --error-image pilot-bound.exr --stats pilot.json
-check=$(python3 - pilot.json <<'PY'
+check=$(/usr/bin/python3 - pilot.json <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
 renders = d["stats"]["max_error_search"]["renders"]

@@ -9,7 +9,7 @@ write_tf() {  # write_tf TAU
   printf 'points:\n  - [0.0, 0, 0, 0, 0]\n  - [0.3, 0, 0, 0, 0]\n  - [0.7, 1, 0.5, 0.2, %s]\n  - [1.0, 1, 1, 1, %s]\n' "$1" "$1" > tf.yaml
 }
 render() { "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 16x12 --eye 4,4,-20 --target 4,4,4 -q "$@"; }
-range() { python3 -c "import json, sys; r = json.load(open(sys.argv[1]))['stats']['simpson_range']; print(r['$2'])" "$1"; }
+range() { /usr/bin/python3 -c "import json, sys; r = json.load(open(sys.argv[1]))['stats']['simpson_range']; print(r['$2'])" "$1"; }
 
 write_tf 50
 for method in "simpson --step 1" "coupled --h-max 4" "decoupled --h-max none"; do
@@ -20,7 +20,7 @@ for method in "simpson --step 1" "coupled --h-max 4" "decoupled --h-max none"; d
   [ "$beyond" -gt 0 ] || fail "$method: tau 50 at steps of a voxel and more, yet no pixel beyond the range"
   grep -Eq "^vri-render: warning: $beyond of 192 pixels took Simpson steps of tau h up to [0-9.e+]+, beyond 3.93, " err.txt ||
     fail "$method: the warning does not give the stats' count $beyond: $(cat err.txt)"
-  python3 -c "import sys; sys.exit(not float(sys.argv[1]) > 3.93)" "$(range beyond.json largest_tau_h)" ||
+  /usr/bin/python3 -c "import sys; sys.exit(not float(sys.argv[1]) > 3.93)" "$(range beyond.json largest_tau_h)" ||
     fail "$method: largest tau h $(range beyond.json largest_tau_h) not beyond the limit"
 done
 render --method decoupled --h-max none --accepted-value paper -o paper.exr --stats paper.json 2> /dev/null

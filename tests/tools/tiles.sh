@@ -25,7 +25,7 @@ tiled() {
   done
   "$bin/vri-merge-tiles" "${merge[@]}" -o merged.exr --stats merged.json --png merged.png
   "$bin/vri-diff" merged.exr whole.exr --fail 0 > /dev/null || fail "$tool $* as $regions: the merged image differs"
-  python3 - "$k" <<'PY' || fail "$tool $* as $regions: the merged stats"
+  /usr/bin/python3 - "$k" <<'PY' || fail "$tool $* as $regions: the merged stats"
 import json, sys
 whole, merged = json.load(open("whole.json")), json.load(open("merged.json"))
 tiles = [json.load(open(f"tile{k}.json")) for k in range(1, int(sys.argv[1]) + 1)]
@@ -63,9 +63,9 @@ tiled vri-render "0,0,21,29 21,0,20,29" --precision float --method composite --s
 tiled vri-render "0,0,$W,10 0,10,$W,10 0,20,$W,9" --precision float --simd off --step 0.3
 # AVX2's packets, where the host has it: the merge keeps the target and the way voxels were loaded.
 if "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o probe.exr --stats - |
-  python3 -c 'import json, sys; sys.exit("AVX2" not in json.load(sys.stdin)["machine"]["simd_targets"])'; then
+  /usr/bin/python3 -c 'import json, sys; sys.exit("AVX2" not in json.load(sys.stdin)["machine"]["simd_targets"])'; then
   tiled vri-render "0,0,$W,7 0,7,$W,22" --precision float --step 0.3 --simd AVX2
-  python3 -c 'import json; assert json.load(open("merged.json"))["stats"]["voxel_loads"] in ("gather", "scalar")' ||
+  /usr/bin/python3 -c 'import json; assert json.load(open("merged.json"))["stats"]["voxel_loads"] in ("gather", "scalar")' ||
     fail "merged AVX2 tiles: stats.voxel_loads"
 fi
 # Paper B's adaptive Simpson (each ray's steps its own) and uniform Simpson.
@@ -89,7 +89,7 @@ tiled vri-reference "0,0,$W,20 0,20,$W,9" --method riemann --step 0.05
   --log tile-ray.csv --region 10,15,20,10 -o b.exr
 cmp whole-ray.csv tile-ray.csv || fail "--log-ray in a region: another log"
 # The region says where it lies, in the stats and in the image's attributes.
-python3 -c 'import json; r = json.load(open("tile2.json"))["region"]; assert r == {"x": 0, "y": 20, "width": 41, "height": 9}, r' ||
+/usr/bin/python3 -c 'import json; r = json.load(open("tile2.json"))["region"]; assert r == {"x": 0, "y": 20, "width": 41, "height": 9}, r' ||
   fail "the stats' region"
 
 # Vulkan (lavapipe here): the shaders' rays are the whole image's.
@@ -130,7 +130,7 @@ for run in riemann exact; do
   "$bin/vri-diff" "out/tiled/$run.exr" "out/plain/$run.exr" --fail 0 > /dev/null || fail "tiled experiment: $run.exr"
   cmp "out/tiled/$run.png" "out/plain/$run.png" || fail "tiled experiment: $run.png"
 done
-python3 - <<'PY' || fail "tiled experiment: the comparison"
+/usr/bin/python3 - <<'PY' || fail "tiled experiment: the comparison"
 import json
 a, b = (json.load(open(f"out/{e}/vs-exact-riemann.json")) for e in ("plain", "tiled"))
 assert a["channels"] == b["channels"], "the diff against the reference"

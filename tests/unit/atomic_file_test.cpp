@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "file_bytes.h"
+#include "scoped_environment.h"
 #include "temp_dir.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/error.h"
@@ -88,25 +89,6 @@ bool isCharDevice(const fs::path& path) {
     return ::lstat(path.c_str(), &st) == 0 && S_ISCHR(st.st_mode);
 }
 
-// Sets TMPDIR while it lives, so that a test sees the temporary files writeAtomically makes there.
-class TmpDirIs {
-public:
-    explicit TmpDirIs(const fs::path& dir) {
-        if (const char* old = std::getenv("TMPDIR")) saved_ = old;
-        ::setenv("TMPDIR", dir.c_str(), 1);
-    }
-    ~TmpDirIs() {
-        if (saved_)
-            ::setenv("TMPDIR", saved_->c_str(), 1);
-        else
-            ::unsetenv("TMPDIR");
-    }
-    TmpDirIs(const TmpDirIs&) = delete;
-    TmpDirIs& operator=(const TmpDirIs&) = delete;
-
-private:
-    std::optional<std::string> saved_;
-};
 
 }  // namespace
 
@@ -168,7 +150,7 @@ TEST_CASE("output: a dangling symlink gets its target created and stays a link")
 TEST_CASE("output: a FIFO with a reader receives the bytes and stays a FIFO; nothing is left beside it or in TMPDIR") {
     vri::test::TempDir dir("atomic-file");
     vri::test::TempDir tmp("atomic-file-tmpdir");
-    const TmpDirIs tmpDirIs(tmp.path);
+    const test::ScopedEnvironment tmpDir("TMPDIR", tmp.path.string());  // the temporary files go there
     const fs::path fifo = dir / "pipe.png";
     REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
     const std::string big(3 << 20, 'v');  // more than a pipe holds, and more than one copy chunk

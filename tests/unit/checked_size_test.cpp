@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "scoped_environment.h"
 #include "libvri/core/camera.h"
 #include "libvri/core/image.h"
 #include "libvri/core/volume.h"
@@ -17,20 +18,9 @@ using namespace vri;
 
 namespace {
 
-// Sets VRI_MAX_BYTES for one test and restores what was there.
-class ByteLimitOverride {
-public:
-    explicit ByteLimitOverride(const char* value) {
-        if (const char* old = std::getenv("VRI_MAX_BYTES")) old_ = old;
-        ::setenv("VRI_MAX_BYTES", value, 1);
-    }
-    ~ByteLimitOverride() {
-        if (old_) ::setenv("VRI_MAX_BYTES", old_->c_str(), 1);
-        else ::unsetenv("VRI_MAX_BYTES");
-    }
-
-private:
-    std::optional<std::string> old_;
+// VRI_MAX_BYTES for one test, what was there restored after.
+struct ByteLimitOverride : vri::test::ScopedEnvironment {
+    explicit ByteLimitOverride(const char* value) : ScopedEnvironment("VRI_MAX_BYTES", std::string(value)) {}
 };
 
 constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "experiment_file_test.h"
+#include "scoped_environment.h"
 #include "temp_dir.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_spec.h"
@@ -30,19 +31,6 @@ struct StudyDir {
     std::string error(const std::string& text) const { return vri::test::errorOf([&] { parse(text); }); }
 };
 
-// Sets an environment variable for a scope, then restores it.
-struct ScopedEnvironment {
-    std::string name;
-    std::optional<std::string> old;
-    ScopedEnvironment(std::string n, const std::string& value) : name(std::move(n)) {
-        if (const char* v = std::getenv(name.c_str())) old = v;
-        ::setenv(name.c_str(), value.c_str(), 1);
-    }
-    ~ScopedEnvironment() {
-        if (old) ::setenv(name.c_str(), old->c_str(), 1);
-        else ::unsetenv(name.c_str());
-    }
-};
 
 }  // namespace
 
@@ -79,7 +67,7 @@ TEST_CASE("experiment files: an own study needs no paper, title or convention, a
 TEST_CASE("experiment files: a volume is found beside the file, else in $VRI_DATA_DIR; a dataset says how") {
     StudyDir d;
     const std::string tail = ", tf: tf.yaml}}\nmethods: {r: {method: riemann}}\n";
-    const ScopedEnvironment data("VRI_DATA_DIR", (d.dir / "data").string());
+    const vri::test::ScopedEnvironment data("VRI_DATA_DIR", (d.dir / "data").string());
     const vri::Experiment e = d.parse("name: s\nscenes: {h: {volume: blob_4x4x4_uint8.raw" + tail);
     CHECK(e.scenes[0].files[0] == d.dir / "data" / "blob_4x4x4_uint8.raw");
     const std::string missing = d.error("name: s\nscenes: {h: {volume: nope.raw" + tail);

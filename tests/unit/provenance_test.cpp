@@ -1,14 +1,14 @@
 #include <doctest/doctest.h>
 
 #include <nlohmann/json.hpp>
-#include <cstdlib>
-#include <optional>
+#include <cctype>
 #include <regex>
 #include <string>
-#include <utility>
 #include <vector>
 
+#include "scoped_environment.h"
 #include "libvri/core/engine_environment.h"
+#include "libvri/core/simd_target.h"
 #include "libvri/io/provenance.h"
 
 TEST_CASE("provenance: shell quoting leaves plain words alone and quotes the rest") {
@@ -32,26 +32,22 @@ TEST_CASE("provenance: command line as argv and as a pasteable line") {
     std::vector<char*> argv;
     for (std::string& word : words) argv.push_back(word.data());
     // The engine's variables (engine_environment.h) as assignments before the command, and on their own;
-    // an empty one is unset to its readers and left out. (The process's own values come back at the end.)
-    std::vector<std::pair<std::string, std::optional<std::string>>> saved;
-    for (const char* name : vri::kEngineVariables) {
-        const char* value = std::getenv(name);
-        saved.emplace_back(name, value ? std::optional<std::string>(value) : std::nullopt);
-        ::unsetenv(name);
-    }
-    ::setenv(vri::kVoxelLoadsVariable, "", 1);
+    // an empty one is unset to its readers and left out; a target's name as its reader spells it.
+    const vri::test::ScopedEnvironment target(vri::kSimdTargetVariable, std::nullopt);
+    const vri::test::ScopedEnvironment loads(vri::kVoxelLoadsVariable, std::string());
     const nlohmann::json command = vri::commandLine(static_cast<int>(argv.size()), argv.data());
     CHECK(command["argv"] == nlohmann::json(words));
     CHECK(command["shell"] == "vri-diff 'a b.exr' 'it'\\''s.exr' --json -");
     CHECK(!command.contains("environment"));
-    ::setenv(vri::kSimdTargetVariable, "AVX2", 1);
-    ::setenv(vri::kVoxelLoadsVariable, "gather;x", 1);
+    std::string best = vri::availableSimdTargets().front(), lower = best;  // "AVX3" here, "NEON" on Arm
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    target.set(lower);
+    loads.set("gather;x");
     const nlohmann::json withEnvironment = vri::commandLine(static_cast<int>(argv.size()), argv.data());
-    for (const auto& [name, value] : saved)
-        value ? ::setenv(name.c_str(), value->c_str(), 1) : ::unsetenv(name.c_str());
     CHECK(withEnvironment["argv"] == nlohmann::json(words));
-    CHECK(withEnvironment["shell"] == "VRI_SIMD_TARGET=AVX2 VRI_VOXEL_LOADS='gather;x' vri-diff 'a b.exr' 'it'\\''s.exr' --json -");
-    CHECK(withEnvironment["environment"] == nlohmann::json{{"VRI_SIMD_TARGET", "AVX2"}, {"VRI_VOXEL_LOADS", "gather;x"}});
+    CHECK(withEnvironment["shell"] ==
+          "VRI_SIMD_TARGET=" + best + " VRI_VOXEL_LOADS='gather;x' vri-diff 'a b.exr' 'it'\\''s.exr' --json -");
+    CHECK(withEnvironment["environment"] == nlohmann::json{{"VRI_SIMD_TARGET", best}, {"VRI_VOXEL_LOADS", "gather;x"}});
 }
 
 TEST_CASE("provenance: timestamp, machine and build") {

@@ -131,7 +131,6 @@ int RenderCommand::run() {
     return guardedMain(name_, [&] {
         std::optional<tbb::global_control> threadLimit;  // set once every option is checked
         requireUtf8Arguments(argc_, argv_);
-        checkEngineEnvironment();  // refused whether or not this render would read it
         requireExrOutput({"-o", output_});
         if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
         const std::vector<OutputArgument> outputs{{"-o", output_},
@@ -143,6 +142,7 @@ int RenderCommand::run() {
         requireOutputsApartFromInputs(outputs, scene_.inputs());
         // Every option is checked before the render, so that a mistake never leaves some outputs written.
         RenderRequest request = this->request();
+        checkEngineEnvironment();  // after the usage errors (exit 64), whether or not this render reads it
         if (!errorImagePath_.empty() && !request.exact)
             throw Error("--error-image needs --method exact (no other method has an error bound)");
         timing_.setFrames(request.warmUp, request.repeat, name_, quiet_);

@@ -1,6 +1,5 @@
 #include "common/scene_options.h"
 
-#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -51,6 +50,9 @@ std::vector<InputArgument> SceneOptions::inputs() const {
 
 SceneSetup SceneOptions::load() const {
     const glm::ivec2 imageSize = this->imageSize();
+    // The camera checks these too; here, before the volume is read, with the option's name.
+    if (!validFieldOfView(fov_)) throw Error("--fov: expected degrees in (0, 180), got " + exactNumber(fov_));
+    if (!validZoom(zoom_)) throw Error("--zoom: expected a finite factor >= 1, got " + exactNumber(zoom_));
     const GridConvention conv = parseGridConvention(convention_, "--convention");
 
     nlohmann::json inputs = nlohmann::json::array();
@@ -80,10 +82,6 @@ SceneSetup SceneOptions::load() const {
     Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse};
     inputs.push_back({{"path", tfPath_}, {"sha512", sha512File(tfPath_)}});
 
-    // The camera checks these too (camera.h); here the message can name the option.
-    if (!(fov_ > 0.0 && fov_ < 180.0)) throw Error("--fov: expected degrees in (0, 180), got " + exactNumber(fov_));
-    if (!(zoom_ >= 1.0) || !std::isfinite(zoom_))
-        throw Error("--zoom: expected a finite factor >= 1, got " + exactNumber(zoom_));
     CameraSpec cam = framingCamera(scene.box(), imageSize.x, imageSize.y, fov_);
     if (!target_.empty()) cam.target = parseVec3(target_, "--target");
     if (!eye_.empty()) cam.eye = parseVec3(eye_, "--eye");
