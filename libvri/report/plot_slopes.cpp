@@ -9,7 +9,7 @@ namespace vri::plot {
 std::vector<ReferenceLine> referenceLines(const std::vector<double>& orders, std::pair<double, double> anchor,
                                           double xmin, double xmax, double ymin, double ymax) {
     std::vector<ReferenceLine> lines;
-    const auto [xa, ya] = anchor;
+    const double xa = anchor.first, ya = anchor.second;  // named values: clang 14 cannot capture structured bindings
     for (double k : orders) {
         // y = ya (x / xa)^k rises with x: it enters the box on the left or the bottom edge and leaves it on
         // the right or the top edge. In logarithms, so that a steep order does not overflow.
