@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/cli.h"
+#include "libvri/core/voxel_loads.h"
 #include "libvri/experiment/datasets.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_reproduce.h"
@@ -398,6 +399,9 @@ SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
         if (options.experiments.empty() && options.gallery.empty())
             throw vri::Error("nothing to do: name experiment files or --gallery DIR (see --help)");
         vri::requireUtf8Arguments(argc, argv);  // the steps' commands and the manifest name these files
+        // Every render step would refuse a bad VRI_VOXEL_LOADS: once here instead, before any step. Not
+        // VRI_SIMD_TARGET: a cluster's nodes may have targets this host lacks.
+        vri::voxelLoads();
         return run(options);
     });
 }

@@ -288,6 +288,7 @@ bad 64 "${E}--data-dir: Directory does not exist: missingdir" -- \
 E='^vri-run: error: '
 run=("$bin/vri-run" --dry-run --results results)
 bad 1 "${E}nothing to do: name experiment files or --gallery DIR" -- "$bin/vri-run"
+bad 1 "${E}VRI_VOXEL_LOADS: expected gather or scalar, got 'bogus'$" -- env VRI_VOXEL_LOADS=bogus "${run[@]}" exp/good.yaml
 bad 64 "${E}The following argument was not expected: --bogus" -- "${run[@]}" --bogus exp/good.yaml
 bad 1 "${E}--record and --check apply to quick runs \(add --quick\)" -- "${run[@]}" --record exp/good.yaml
 bad 64 "${E}--record excludes --check" -- "${run[@]}" --record --check exp/good.yaml
