@@ -46,7 +46,7 @@ constexpr int kMaxDepth = 40;  // bisections of one sub-piece; reached only by p
 // Intervals of one sub-piece: a tolerance below what rounding allows would otherwise bisect every
 // interval to kMaxDepth (2^40 of them). Past it every interval is accepted with its own error.
 constexpr int kMaxIntervals = 4096;
-constexpr double kUnit = 0x1p-53;  // unit roundoff u of double
+using segment_kernel::kUnit;  // unit roundoff u of double
 
 // How many of the sorted values are <= x (upper_bound's index), and with it how many are < y
 // (lower_bound's): counts without branches over the few points of a transfer function, where a binary
@@ -115,11 +115,6 @@ void applyRule(const KronrodRule<N>& rule, double x0, double x1, const std::arra
 }
 
 }  // namespace
-
-// ds bounds the error of s's coefficients (segment_kernel.h: the Gauss batch's lanes run the same).
-ExactRay::Linear ExactRay::alongSegment(const Cubic& local, double sA, double v, double m, double ds) {
-    return segment_kernel::alongSegment(ScalarDoubleOps{}, local.c, sA, v, m, ds);
-}
 
 ExactRay::ExactRay(const TransferFunction& tf, double tolerance)
     : tf_(tf),
@@ -441,14 +436,15 @@ ExactRay::SubPiece ExactRay::setUp(const Cubic& local, double ell, double sScale
     r.ell = ell;
     const ScalarDoubleOps o;
     const double ds = segment_kernel::coefficientError(o, sScale);
-    r.tau = alongSegment(local, segment.s, segment.value[0], segment.slope[0], ds);
+    // The channels along the sub-piece (segment_kernel.h: the Gauss batch's lanes run the same).
+    r.tau = segment_kernel::alongSegment(o, local.c, segment.s, segment.value[0], segment.slope[0], ds);
     const segment_kernel::Depth<double> depth = segment_kernel::depthAlong(o, r.tau, ell);
     r.depth = depth.p;
     r.depthError = depth.error;
     if (!withColour) return r;
     const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
     for (int c = 0; c < 3; ++c) {
-        r.colour[c] = alongSegment(local, segment.s, segment.value[c + 1], segment.slope[c + 1], ds);
+        r.colour[c] = segment_kernel::alongSegment(o, local.c, segment.s, segment.value[c + 1], segment.slope[c + 1], ds);
         segment_kernel::emissionBounds(o, r.colour[c], r.tau, colourTimesExtinction, r.gMax[c], r.gError[c]);
     }
     return r;

@@ -104,7 +104,6 @@ private:
     WrongSide wrongSide(double length, const Cubic& s, double a, double b, double sScale, int parts,
                         const double* ends, std::size_t below) const;
     double wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above, double eps) const;
-    static Linear alongSegment(const Cubic& local, double sA, double v, double m, double ds);
     void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale, const WrongSide& wrong,
                            std::size_t below);
     SubPiece setUp(const Cubic& local, double ell, double sScale, const Segment& segment, bool withColour) const;
