@@ -262,7 +262,8 @@ int run(int argc, char** argv) {
     }
     files.write();
     // The summary goes to standard output unless an output does (it would run into that output).
-    if (options.json != "-" && options.histogram != "-" && options.diffImage != "-") printSummary(options, diff, verdict.text);
+    if (std::none_of(outputs.begin(), outputs.end(), [](const vri::OutputArgument& o) { return o.path == "-"; }))
+        printSummary(options, diff, verdict.text);
     return verdict.code;
 }
 

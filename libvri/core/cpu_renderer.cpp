@@ -315,10 +315,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         const PacketScene packets(scene, camera, stencils, opt, lookup);
         useSimdTarget(opt.simdTarget);
         stats.simdTarget = packetTargetName();
-        // Where the choice of loads applies: AVX2 reading an 8-bit volume's stencils or any volume's
-        // brick distances.
-        if (stats.simdTarget == "AVX2" && (scene.volume->type == VoxelType::UInt8 || stencils))
-            stats.voxelLoads = voxelLoadsName(packets.voxelLoads);
+        if (stats.simdTarget == "AVX2" && packets.readsByVoxelLoads()) stats.voxelLoads = voxelLoadsName(packets.voxelLoads);
         forEachTile(opt, renderedRegion(opt.region, camera), counters,
                     [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&, SimpsonRange&) {
             marchPackets(packets, x0, y0, x1, y1, image, counts);

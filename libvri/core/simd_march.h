@@ -73,6 +73,8 @@ struct PacketScene {
     const std::uint8_t* emptyDistance = nullptr;
     std::int32_t brickStride[3] = {0, 0, 0}, octantStride = 0;
     float jumpMargin = 0;  // voxels: far more than the rounding of a sample's position (see samplesInEmptyCube)
+    // Whether voxelLoads decides any read on AVX2: an 8-bit volume's stencils, or the bricks' distances.
+    bool readsByVoxelLoads() const { return type == VoxelType::UInt8 || emptyDistance != nullptr; }
     // The transfer function as TransferFunction::operator()<float> reads it: the points' s, and per
     // segment [s_i, s_i+1) its start, width and each channel's value at the start and slope (r, g, b,
     // tau), padded with copies of the last segment to a whole number of the widest vectors.

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "experiment_file_test.h"
+#include "scoped_environment.h"
 #include "libvri/core/simd_target.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_run.h"
@@ -200,10 +201,12 @@ TEST_CASE("experiment: a changed transfer function changes the keys of its rende
     for (const auto& [variable, value] : {std::pair{"VRI_SIMD_TARGET", "SCALAR"}, std::pair{"VRI_VOXEL_LOADS", "gather"}}) {
         if (std::getenv(variable)) continue;
         CAPTURE(variable);
-        vri::FileHasher forced;
-        ::setenv(variable, value, 1);
-        const std::vector<std::string> withVariable = vri::stepKeys(plan, d.dir / "bin", forced);
-        ::unsetenv(variable);
+        std::vector<std::string> withVariable;
+        {
+            const vri::test::ScopedEnvironment set(variable, std::string(value));
+            vri::FileHasher forced;
+            withVariable = vri::stepKeys(plan, d.dir / "bin", forced);
+        }
         for (std::size_t i = 0; i < keys.size(); ++i) CHECK(withVariable[i] != keys[i]);
         vri::FileHasher unset;
         CHECK(vri::stepKeys(plan, d.dir / "bin", unset) == keys);
