@@ -74,7 +74,7 @@ bad 1 "^vri-render: error: --repeat: expected a whole number from 1 to 1000, got
   "$bin/vri-render" --field linear --tf tf.yaml -q -o out.exr --repeat 1001
 bad 1 "^vri-render: error: --warm-up: expected a whole number from 0 to 1000, got '1001'$" -- \
   "$bin/vri-render" --field linear --tf tf.yaml -q -o out.exr --warm-up 1001
-bad 64 "^vri-render: error: Could not convert: --warm-up = 2147483648" -- \
+bad 64 "^vri-render: error: --warm-up: 2147483648 is outside the range of this integer option" -- \
   "$bin/vri-render" --field linear --tf tf.yaml -q -o out.exr --warm-up 2147483648
 bad 1 "^vri-reference: error: --repeat: expected a whole number from 1 to 1000" -- \
   "$bin/vri-reference" --field linear --tf tf.yaml -q -o out.exr --repeat 100000

@@ -123,6 +123,14 @@ bad 1 "^vri-run: error: experiment\.yaml:8:1: duplicate key 'methods' \(first at
 "${render[@]}" --step 0x1p-1 --repeat 0x2 -o hex.exr || fail "--step 0x1p-1 --repeat 0x2 refused"
 "${render[@]}" --step 0.5 -o dec.exr
 "$VRI_BIN/vri-diff" hex.exr dec.exr --fail 0 > /dev/null || fail "--step 0x1p-1 differs from --step 0.5"
-bad 64 "^vri-render: error: Could not convert: --step = 0x1q" -- "${render[@]}" --step 0x1q -o q.exr
+bad 64 "^vri-render: error: --step: expected a number, got '0x1q' \(see --help\)$" -- "${render[@]}" --step 0x1q -o q.exr
+
+# Integers are decimal in every option, those CLI11 converts itself too: a leading 0 is not octal (strtoll's
+# base 0 would read 010 as 8 and refuse 08).
+bad 1 "after a 10-byte header$" -- "${render[@]}" --header-bytes 010 -o z.exr
+bad 1 "after a 8-byte header$" -- "${render[@]}" --header-bytes 08 -o z.exr
+bad 1 "after a 16-byte header$" -- "${render[@]}" --header-bytes 0x10 -o z.exr
+bad 64 "^vri-render: error: --header-bytes: expected an integer \(decimal, or hexadecimal after 0x\), got '1e3' \(see --help\)$" -- \
+  "${render[@]}" --header-bytes 1e3 -o z.exr
 
 bad_done

@@ -111,8 +111,8 @@ bad 1 "${E}--background: expected three numbers" -- "${render[@]}" --background 
 bad 1 "${E}camera up vector 0,0,0 is zero or shorter than" -- "${render[@]}" --up 0,0,0
 bad 1 "${E}camera eye and target coincide" -- "${render[@]}" --eye 4,4,4 --target 4,4,4
 bad 1 "${E}--fov: expected degrees in \(0, 180\), got 180$" -- "${render[@]}" --fov 180
-bad 64 "${E}Could not convert: --fov = abc" -- "${render[@]}" --fov abc
-bad 64 "${E}Could not convert: --threads = two" -- "${render[@]}" --threads two
+bad 64 "${E}--fov: expected a number, got 'abc'" -- "${render[@]}" --fov abc
+bad 64 "${E}--threads: expected an integer \(decimal, or hexadecimal after 0x\), got 'two'" -- "${render[@]}" --threads two
 bad 1 "${E}--threads: expected a positive count, got -1" -- "${render[@]}" --threads -1
 bad 1 "${E}--repeat: expected a whole number from 1 to 1000, got '0'$" -- "${render[@]}" --repeat 0
 bad 1 "${E}--step: expected a number > 0, got '0'$" -- "${render[@]}" --step 0

@@ -32,6 +32,55 @@ fs::path fileIdentity(const std::string& path) {
     return ec ? absolute.lexically_normal() : resolved;
 }
 
+// The length of a decimal integer's sign ("-12": 1, "12": 0), or npos for a value that is not one.
+std::size_t decimalSign(const std::string& value) {
+    const std::size_t sign = !value.empty() && (value[0] == '+' || value[0] == '-') ? 1 : 0;
+    const bool digits = value.size() > sign &&
+                        std::all_of(value.begin() + sign, value.end(), [](unsigned char c) { return std::isdigit(c); });
+    return digits ? sign : std::string::npos;
+}
+
+// A decimal integer with leading zeros ("010", "-007") without them, anything else as it is. CLI11 reads an
+// integer option with strtoll in base 0, where a leading 0 means octal ("010" is 8, "08" an error); every other
+// number a tool reads is decimal or hexadecimal after 0x (parse.h), and so are these once the zeros are gone.
+std::string withoutLeadingZeros(const std::string& value) {
+    const std::size_t sign = decimalSign(value);
+    if (sign == std::string::npos || value[sign] != '0') return value;
+    const std::size_t first = std::min(value.find_first_not_of('0', sign), value.size() - 1);
+    return value.substr(0, sign) + value.substr(first);
+}
+
+bool isIntegerType(const std::string& type) { return type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0; }
+
+// Gives every integer option of the app and its option groups the transform above, ahead of its validators.
+void readIntegersAsDecimal(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        if (isIntegerType(option->get_type_name())) option->transform(withoutLeadingZeros);
+    }
+    for (CLI::App* group : app.get_subcommands({}))
+        if (group->get_name().empty()) readIntegersAsDecimal(*group);
+}
+
+// CLI11's "Could not convert: --fov = abc" as "--fov: expected a number, got 'abc'": the option and what it
+// takes, from the option's type; a message of another form as it is.
+std::string conversionMessage(const CLI::App& app, const std::string& what) {
+    constexpr std::string_view prefix = "Could not convert: ";
+    const std::size_t equals = what.find(" = ");
+    if (what.rfind(prefix, 0) != 0 || equals == std::string::npos) return what;
+    const std::string name = what.substr(prefix.size(), equals - prefix.size());
+    const CLI::Option* option = app.get_option_no_throw(name);
+    if (!option) return what;
+    const std::string type = option->get_type_name();
+    const std::string value = what.substr(equals + 3);
+    if (isIntegerType(type)) {
+        // Decimal digits that did not convert lie outside the option's integer type.
+        if (decimalSign(value) != std::string::npos) return name + ": " + value + " is outside the range of this integer option";
+        return name + ": expected an integer (decimal, or hexadecimal after 0x), got '" + value + "'";
+    }
+    if (type.rfind("FLOAT", 0) != 0) return what;
+    return name + ": expected a number, got '" + value + "'";
+}
+
 }  // namespace
 
 std::string versionText(std::string_view tool) {
@@ -49,10 +98,14 @@ std::string versionText(std::string_view tool) {
 std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv) {
     app.set_version_flag("--version", [tool] { return versionText(tool); },
                          "print the version, git commit, build type and compiler, and exit");
+    readIntegersAsDecimal(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {  // --help, --help-all, --version
         return app.exit(e);
+    } catch (const CLI::ConversionError& e) {
+        std::cerr << tool << ": error: " << printable(conversionMessage(app, e.what())) << " (see --help)\n";
+        return kExitUsage;
     } catch (const CLI::ParseError& e) {
         std::cerr << tool << ": error: " << printable(e.what()) << " (see --help)\n";
         return kExitUsage;
