@@ -1,5 +1,7 @@
 #include "libvri/util/parse.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -60,6 +62,24 @@ glm::vec<N, double> finiteVector(const std::string& text, const std::string& mes
 }
 
 }  // namespace
+
+std::optional<std::int64_t> integerFromText(std::string_view text, bool* outOfRange) {
+    std::int64_t value;
+    const bool ok = parseNumber(text, value);
+    if (outOfRange) {
+        std::string_view digits = text.substr(!text.empty() && text.front() == '-' ? 1 : 0);
+        const bool hex = digits.size() > 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X');
+        if (hex) digits.remove_prefix(2);
+        const auto digit = [hex](unsigned char c) { return hex ? std::isxdigit(c) != 0 : std::isdigit(c) != 0; };
+        *outOfRange = !ok && !digits.empty() && std::all_of(digits.begin(), digits.end(), digit);
+    }
+    return ok ? std::optional<std::int64_t>(value) : std::nullopt;
+}
+
+std::optional<double> numberFromText(std::string_view text) {
+    double value;
+    return parseNumber(text, value) ? std::optional<double>(value) : std::nullopt;
+}
 
 glm::dvec2 parseVec2(const std::string& text, const std::string& what) {
     return finiteVector<2>(text, what + ": expected two numbers x,y, got '" + text + "'");

@@ -1,7 +1,10 @@
 #pragma once
 // Text to values, as command-line options and experiment files spell them: every function throws
 // vri::Error naming `what` (an option or a field) and quoting the text when it is not what is expected.
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -36,6 +39,14 @@ int parseCount(const std::string& text, const std::string& what, int least);
 int parseCount(const std::string& text, const std::string& what, int least, int most);
 // A positive finite number, or "none" -> +infinity (no limit); throws vri::Error naming `what` otherwise.
 double parseLimit(const std::string& text, const std::string& what);
+
+// The whole text as one integer: decimal, or hexadecimal after 0x or 0X, with an optional minus (no plus, no
+// spaces, a leading 0 not octal), as every function here reads integers; nullopt for any other text. Where
+// `outOfRange` is given it tells text of that form whose value does not fit in 64 bits.
+std::optional<std::int64_t> integerFromText(std::string_view text, bool* outOfRange = nullptr);
+// The whole text as one number: decimal as std::from_chars reads it (inf and nan included: the reader of the
+// value says what range it takes), or a hexadecimal float after 0x (0x1p-3); nullopt otherwise.
+std::optional<double> numberFromText(std::string_view text);
 
 // "a,b,c" -> the words between the commas (empty words are an error naming `what`).
 std::vector<std::string> parseWordList(const std::string& text, const std::string& what);

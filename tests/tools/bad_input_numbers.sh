@@ -125,12 +125,22 @@ bad 1 "^vri-run: error: experiment\.yaml:8:1: duplicate key 'methods' \(first at
 "$VRI_BIN/vri-diff" hex.exr dec.exr --fail 0 > /dev/null || fail "--step 0x1p-1 differs from --step 0.5"
 bad 64 "^vri-render: error: --step: expected a number, got '0x1q' \(see --help\)$" -- "${render[@]}" --step 0x1q -o q.exr
 
-# Integers are decimal in every option, those CLI11 converts itself too: a leading 0 is not octal (strtoll's
-# base 0 would read 010 as 8 and refuse 08).
+# The options CLI11 converts itself read numbers as the others do: a leading 0 is not octal (strtoll's base 0
+# would read 010 as 8 and refuse 08), and spaces, an empty value, a plus or an integer beyond 64 bits are
+# refused, where CLI11 would skip the spaces, read 0, or clamp (inf is a number: the option says its range).
+I="expected an integer \(decimal, or hexadecimal after 0x\)"
 bad 1 "after a 10-byte header$" -- "${render[@]}" --header-bytes 010 -o z.exr
 bad 1 "after a 8-byte header$" -- "${render[@]}" --header-bytes 08 -o z.exr
 bad 1 "after a 16-byte header$" -- "${render[@]}" --header-bytes 0x10 -o z.exr
-bad 64 "^vri-render: error: --header-bytes: expected an integer \(decimal, or hexadecimal after 0x\), got '1e3' \(see --help\)$" -- \
-  "${render[@]}" --header-bytes 1e3 -o z.exr
+bad 64 "^vri-render: error: --header-bytes: $I, got '1e3' \(see --help\)$" -- "${render[@]}" --header-bytes 1e3 -o z.exr
+bad 64 "^vri-render: error: --header-bytes: $I, got ' 010' \(see --help\)$" -- "${render[@]}" --header-bytes ' 010' -o z.exr
+bad 64 "^vri-render: error: --header-bytes: $I, got '' \(see --help\)$" -- "${render[@]}" --header-bytes '' -o z.exr
+bad 64 "^vri-render: error: --header-bytes: $I, got '\+8' \(see --help\)$" -- "${render[@]}" --header-bytes +8 -o z.exr
+bad 64 "^vri-render: error: --header-bytes: 99999999999999999999 is outside the range of this integer option" -- \
+  "${render[@]}" --header-bytes 99999999999999999999 -o z.exr
+bad 64 "^vri-render: error: --threads: 4294967296 is outside the range of this integer option" -- \
+  "${render[@]}" --threads 0x100000000 -o z.exr
+bad 1 "^vri-render: error: --fov: expected degrees in \(0, 180\), got inf$" -- "${render[@]}" --fov inf -o z.exr
+bad 64 "^vri-render: error: --fov: expected a number, got ' 30' \(see --help\)$" -- "${render[@]}" --fov ' 30' -o z.exr
 
 bad_done

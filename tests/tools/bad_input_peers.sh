@@ -27,6 +27,19 @@ bad 64 "^vri-peer-vtk: error: --target 'nan,0,0': expected 3 finite numbers" -- 
 bad 64 '^vri-peer-vtk: error: --step 0: expected a number > 0$' -- "$peer" "${scene[@]}" --step 0 -o out.exr
 bad 64 '^vri-peer-vtk: error: --fov 180: expected degrees in \(0, 180\)$' -- "$peer" "${scene[@]}" --fov 180 -o out.exr
 bad 64 '^vri-peer-vtk: error: --repeat 0: expected a whole number in 1..1000$' -- "$peer" "${scene[@]}" --repeat 0 -o out.exr
+# Numbers as vri's tools read them (parse.h): hexadecimal after 0x is a number, a leading 0 is not octal, and
+# spaces, underscores, a plus and digits other than ASCII's are not numbers.
+bad 64 '^vri-peer-vtk: error: --repeat 4096: expected a whole number in 1..1000$' -- "$peer" "${scene[@]}" --repeat 0x1000 -o out.exr
+bad 64 '^vri-peer-vtk: error: --repeat 1010: expected a whole number in 1..1000$' -- "$peer" "${scene[@]}" --repeat 01010 -o out.exr
+bad 64 '^vri-peer-vtk: error: --fov 256: expected degrees in \(0, 180\)$' -- "$peer" "${scene[@]}" --fov 0x1p8 -o out.exr
+literal() { printf '%s' "$1" | sed 's/[].+*?^$()[{}|\\]/\\&/g'; }  # text as a regex that matches it alone
+for text in ' 3' 1_0 +3 '٣' '' 3.0; do
+    bad 64 "^vri-peer-vtk: error: argument --warm-up: expected an integer \(decimal, or hexadecimal after 0x\), got '$(literal "$text")'" -- \
+        "$peer" "${scene[@]}" --warm-up "$text" -o out.exr
+done
+for text in ' 30' 1_0 +30 '' 0x1q 1e999; do
+    bad 64 "^vri-peer-vtk: error: argument --fov: expected a number, got '$(literal "$text")'" -- "$peer" "${scene[@]}" --fov "$text" -o out.exr
+done
 bad 64 '^vri-peer-vtk: error: --image raycast: only vtk-fixed-point' -- \
     "$peer" "${scene[@]}" --method vtk-gpu --image raycast -o out.exr
 bad 64 '^vri-peer-vtk: error: -o out.png: expected an .exr file$' -- "$peer" "${scene[@]}" -o out.png

@@ -113,13 +113,13 @@ bad 1 "${E}camera eye and target coincide" -- "${render[@]}" --eye 4,4,4 --targe
 bad 1 "${E}--fov: expected degrees in \(0, 180\), got 180$" -- "${render[@]}" --fov 180
 bad 64 "${E}--fov: expected a number, got 'abc'" -- "${render[@]}" --fov abc
 bad 64 "${E}--threads: expected an integer \(decimal, or hexadecimal after 0x\), got 'two'" -- "${render[@]}" --threads two
-bad 1 "${E}--threads: expected a positive count, got -1" -- "${render[@]}" --threads -1
+bad 1 "${E}--threads: expected 0 \(all cores\) or a positive count, got -1" -- "${render[@]}" --threads -1
 bad 1 "${E}--repeat: expected a whole number from 1 to 1000, got '0'$" -- "${render[@]}" --repeat 0
 bad 1 "${E}--step: expected a number > 0, got '0'$" -- "${render[@]}" --step 0
 # An empty value is not a number, as 'abc' is not: a usage error whichever parser sees it first.
-bad 64 "${E}--step: expected a number, got ''$" -- "${render[@]}" --step ''
-bad 64 "${E}--repeat: expected a number, got ''$" -- "${render[@]}" --repeat ''
-bad 64 "^vri-reference: error: --tolerance: expected a number, got ''$" -- "$bin/vri-reference" --volume blob_8x8x8_uint8.raw \
+bad 64 "${E}--step: expected a number, got '' \(see --help\)$" -- "${render[@]}" --step ''
+bad 64 "${E}--repeat: expected an integer \(decimal, or hexadecimal after 0x\), got '' \(see --help\)$" -- "${render[@]}" --repeat ''
+bad 64 "^vri-reference: error: --tolerance: expected a number, got '' \(see --help\)$" -- "$bin/vri-reference" --volume blob_8x8x8_uint8.raw \
     --tf tf.yaml --size 8x6 -q -o out.exr --tolerance ''
 bad 64 "${E}--step excludes --rate" -- "${render[@]}" --step 0.5 --rate 2
 bad 1 "${E}--early-termination: expected a transparency in \[0, 1\), .auto. or .auto:BOUND." -- "${render[@]}" --early-termination 2
@@ -168,7 +168,7 @@ bad 1 "${E}\.: is a directory, expected a YAML file$" -- "$bin/vri-tf" . -o out.
 bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- "$bin/vri-tf" negative_tau.yaml -o out.csv
 bad 1 "${E}unclosed_tf.yaml:2:1: malformed YAML" -- "$bin/vri-tf" unclosed_tf.yaml -o out.csv
 bad 64 "${E}--samples: Value 1 not in range 2 to 1000000" -- "$bin/vri-tf" tf.yaml --samples 1 -o out.csv
-bad 64 "${E}--samples: Value many not in range" -- "$bin/vri-tf" tf.yaml --samples many -o out.csv
+bad 64 "${E}--samples: expected an integer \(decimal, or hexadecimal after 0x\), got 'many'" -- "$bin/vri-tf" tf.yaml --samples many -o out.csv
 
 if built_with_vulkan; then
   E='^vri-sampler-probe: error: '
@@ -183,7 +183,7 @@ bad 1 "${E}junk.exr: cannot read image" -- "$bin/vri-diff" a.exr junk.exr
 bad 1 "${E}\.: cannot read image" -- "$bin/vri-diff" . a.exr
 bad 4 "${E}images differ in shape: 8x8 with 4 channels vs 4x4 with 4 channels" -- "$bin/vri-diff" a.exr small.exr
 bad 64 "${E}--threshold: must be a number >= 0, got '-1'" -- "$bin/vri-diff" a.exr a.exr --threshold -1
-bad 64 "${E}--threshold: must be a number >= 0, got 'x'" -- "$bin/vri-diff" a.exr a.exr --threshold 0.1,x
+bad 64 "${E}--threshold: expected a number, got 'x'" -- "$bin/vri-diff" a.exr a.exr --threshold 0.1,x
 bad 64 "${E}--failpercent: Value 101 not in range" -- "$bin/vri-diff" a.exr a.exr --failpercent 101
 bad 64 "${E}--warnpercent: Value -1 not in range" -- "$bin/vri-diff" a.exr a.exr --warnpercent -1
 bad 64 "${E}--diff-scale: must be a number > 0, got '0'" -- "$bin/vri-diff" a.exr a.exr --diff-scale 0 --diff-image d.exr

@@ -32,53 +32,57 @@ fs::path fileIdentity(const std::string& path) {
     return ec ? absolute.lexically_normal() : resolved;
 }
 
-// The length of a decimal integer's sign ("-12": 1, "12": 0), or npos for a value that is not one.
-std::size_t decimalSign(const std::string& value) {
-    const std::size_t sign = !value.empty() && (value[0] == '+' || value[0] == '-') ? 1 : 0;
-    const bool digits = value.size() > sign &&
-                        std::all_of(value.begin() + sign, value.end(), [](unsigned char c) { return std::isdigit(c); });
-    return digits ? sign : std::string::npos;
+// What a number option holds, from CLI11's name for its type ("INT", "UINT" or "FLOAT", before any ":" and the
+// validators' descriptions); nullopt for any other option.
+enum class NumberKind { Integer, NonNegativeInteger, Real };
+std::optional<NumberKind> numberKind(const CLI::Option& option) {
+    std::string type = option.get_type_name();
+    type = type.substr(0, type.find(':'));
+    if (type == "INT") return NumberKind::Integer;
+    if (type == "UINT") return NumberKind::NonNegativeInteger;
+    if (type == "FLOAT") return NumberKind::Real;
+    return std::nullopt;
 }
 
-// A decimal integer with leading zeros ("010", "-007") without them, anything else as it is. CLI11 reads an
-// integer option with strtoll in base 0, where a leading 0 means octal ("010" is 8, "08" an error); every other
-// number a tool reads is decimal or hexadecimal after 0x (parse.h), and so are these once the zeros are gone.
-std::string withoutLeadingZeros(const std::string& value) {
-    const std::size_t sign = decimalSign(value);
-    if (sign == std::string::npos || value[sign] != '0') return value;
-    const std::size_t first = std::min(value.find_first_not_of('0', sign), value.size() - 1);
-    return value.substr(0, sign) + value.substr(first);
+// A number option's text checked before CLI11 converts it, in parse.h's forms, so that these options read numbers
+// as every other one does: CLI11 alone skips leading spaces, reads an empty value as 0, a leading 0 as octal
+// (010 is 8) and clamps what overflows 64 bits. An integer goes on to CLI11 as its decimal digits; what fits in
+// 64 bits but not in the option's type is a ConversionError (conversionMessage).
+CLI::Validator numberText(NumberKind kind) {
+    return CLI::Validator(
+        [kind](std::string& value) -> std::string {
+            if (kind == NumberKind::Real)
+                return numberFromText(value) ? "" : "expected a number, got '" + value + "'";
+            bool outOfRange = false;
+            const auto integer = integerFromText(value, &outOfRange);
+            if (!integer)
+                return outOfRange ? value + " is outside the range of this integer option"
+                                  : "expected an integer (decimal, or hexadecimal after 0x), got '" + value + "'";
+            if (kind == NumberKind::NonNegativeInteger && *integer < 0)
+                return "expected an integer >= 0, got '" + value + "'";
+            value = std::to_string(*integer);
+            return "";
+        },
+        "", "number text");
 }
 
-bool isIntegerType(const std::string& type) { return type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0; }
-
-// Gives every integer option of the app and its option groups the transform above, ahead of its validators.
-void readIntegersAsDecimal(CLI::App& app) {
-    for (CLI::Option* option : app.get_options()) {
-        if (isIntegerType(option->get_type_name())) option->transform(withoutLeadingZeros);
-    }
-    for (CLI::App* group : app.get_subcommands({}))
-        if (group->get_name().empty()) readIntegersAsDecimal(*group);
+// Gives every number option of the app and of its option groups numberText, ahead of its other validators.
+void checkNumberText(CLI::App& app) {
+    for (CLI::Option* option : app.get_options())
+        if (const auto kind = numberKind(*option)) option->transform(numberText(*kind));
+    for (CLI::App* group : app.get_subcommands({})) checkNumberText(*group);
 }
 
-// CLI11's "Could not convert: --fov = abc" as "--fov: expected a number, got 'abc'": the option and what it
-// takes, from the option's type; a message of another form as it is.
+// CLI11's "Could not convert: --warm-up = 2147483648", once numberText has passed the text, is an integer
+// outside the option's type: said so. A message of another form stays as it is.
 std::string conversionMessage(const CLI::App& app, const std::string& what) {
     constexpr std::string_view prefix = "Could not convert: ";
     const std::size_t equals = what.find(" = ");
     if (what.rfind(prefix, 0) != 0 || equals == std::string::npos) return what;
     const std::string name = what.substr(prefix.size(), equals - prefix.size());
     const CLI::Option* option = app.get_option_no_throw(name);
-    if (!option) return what;
-    const std::string type = option->get_type_name();
-    const std::string value = what.substr(equals + 3);
-    if (isIntegerType(type)) {
-        // Decimal digits that did not convert lie outside the option's integer type.
-        if (decimalSign(value) != std::string::npos) return name + ": " + value + " is outside the range of this integer option";
-        return name + ": expected an integer (decimal, or hexadecimal after 0x), got '" + value + "'";
-    }
-    if (type.rfind("FLOAT", 0) != 0) return what;
-    return name + ": expected a number, got '" + value + "'";
+    if (!option || numberKind(*option) == NumberKind::Real || !numberKind(*option)) return what;
+    return name + ": " + what.substr(equals + 3) + " is outside the range of this integer option";
 }
 
 }  // namespace
@@ -98,7 +102,7 @@ std::string versionText(std::string_view tool) {
 std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv) {
     app.set_version_flag("--version", [tool] { return versionText(tool); },
                          "print the version, git commit, build type and compiler, and exit");
-    readIntegersAsDecimal(app);
+    checkNumberText(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {  // --help, --help-all, --version

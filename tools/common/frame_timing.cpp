@@ -15,7 +15,7 @@ void FrameTiming::addTo(CLI::App& app) {
 }
 
 void FrameTiming::limitThreads(std::optional<tbb::global_control>& control, std::string_view tool) const {
-    if (threads_ < 0) throw Error("--threads: expected a positive count, got " + std::to_string(threads_));
+    if (threads_ < 0) throw Error("--threads: expected 0 (all cores) or a positive count, got " + std::to_string(threads_));
     if (threads_ == 0) return;
     // The cores this process may use (its CPU affinity included): oneTBB runs no more workers, and a larger
     // limit would only cost memory (2^31 - 1 of them ran out of it).

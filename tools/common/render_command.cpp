@@ -115,9 +115,6 @@ RenderRequest RenderCommand::request() const {
     for (const TableOption& t : tableOptions_) {
         if (t.option->count() == 0) continue;
         const std::string text = t.row->kind == OptionValueKind::Flag ? "true" : t.option->as<std::string>();
-        // CLI11 lets an empty value through where it converts a number: not a number, as 'abc' (exit 64).
-        if (text.empty() && (t.row->kind == OptionValueKind::Number || t.row->kind == OptionValueKind::Count))
-            throw UsageError(std::string(t.row->flag()) + ": expected a number, got ''");
         t.row->apply(text, std::string(t.row->flag()), request);
         request.given.push_back(t.row->flag());
     }

@@ -29,8 +29,10 @@ import argparse
 import ctypes
 import hashlib
 import json
+import math
 import os
 import platform
+import re
 import shlex
 import socket
 import statistics
@@ -65,19 +67,66 @@ class ArgumentParser(argparse.ArgumentParser):
         raise UsageError(message + " (see --help)")
 
 
-def parse_vector(text, what, count=3):
+# Numbers as vri's tools read them (libvri/util/parse.h): the whole text, ASCII digits only, no plus and no
+# spaces; an integer decimal (a leading 0 is not octal) or hexadecimal after 0x, a number decimal or a
+# hexadecimal float after 0x (0x1p-3), inf and nan being numbers whose range the option checks.
+INTEGER_TEXT = re.compile(r"-?(?:0[xX][0-9a-fA-F]+|[0-9]+)")
+DECIMAL_TEXT = re.compile(r"-?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
+HEX_FLOAT_TEXT = re.compile(r"-?0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][-+]?[0-9]+)?")
+SPECIAL_TEXT = re.compile(r"-?(?:inf|infinity|nan)", re.IGNORECASE)
+
+
+def integer_from_text(text):
+    """The whole text as one integer, or None."""
+    if not INTEGER_TEXT.fullmatch(text):
+        return None
+    digits = text.lstrip("-")
+    value = int(digits[2:], 16) if digits[:2] in ("0x", "0X") else int(digits, 10)
+    return -value if text.startswith("-") else value
+
+
+def number_from_text(text):
+    """The whole text as one number, or None (also for a decimal beyond double's range, as parse.h)."""
     try:
-        values = [float(v) for v in text.split(",")]
-    except ValueError:
-        values = []
-    if len(values) != count or not all(abs(v) < float("inf") for v in values):
+        if HEX_FLOAT_TEXT.fullmatch(text):
+            return float.fromhex(text)
+    except OverflowError:
+        return None
+    if SPECIAL_TEXT.fullmatch(text):
+        return float(text)
+    if DECIMAL_TEXT.fullmatch(text):
+        value = float(text)
+        return value if math.isfinite(value) else None
+    return None
+
+
+def integer_option(text):
+    """argparse's type for an integer option."""
+    value = integer_from_text(text)
+    if value is None:
+        raise argparse.ArgumentTypeError("expected an integer (decimal, or hexadecimal after 0x), got '%s'"
+                                         % printable(text))
+    return value
+
+
+def number_option(text):
+    """argparse's type for a number option."""
+    value = number_from_text(text)
+    if value is None:
+        raise argparse.ArgumentTypeError("expected a number, got '%s'" % printable(text))
+    return value
+
+
+def parse_vector(text, what, count=3):
+    values = [number_from_text(v) for v in text.split(",")]
+    if len(values) != count or not all(v is not None and math.isfinite(v) for v in values):
         raise UsageError("%s '%s': expected %d finite numbers separated by commas" % (what, text, count))
     return values
 
 
 def parse_size(text):
     parts = text.split("x")
-    if len(parts) != 2 or not all(p.isdigit() and 0 < int(p) <= 65536 for p in parts):
+    if len(parts) != 2 or not all(re.fullmatch("[0-9]+", p) and 0 < int(p) <= 65536 for p in parts):
         raise UsageError("--size '%s': expected WIDTHxHEIGHT, each a whole number in 1..65536" % text)
     width, height = int(parts[0]), int(parts[1])
     if width * height > MAX_PIXELS:
@@ -111,16 +160,16 @@ def arguments(argv):
     p.add_argument("--eye", required=True, help="camera position X,Y,Z")
     p.add_argument("--target", required=True, help="point looked at X,Y,Z")
     p.add_argument("--up", default="0,1,0", help="up vector X,Y,Z (default 0,1,0)")
-    p.add_argument("--fov", type=float, default=30.0, help="vertical field of view, degrees (default 30)")
+    p.add_argument("--fov", type=number_option, default=30.0, help="vertical field of view, degrees (default 30)")
     p.add_argument("--method", default="vtk-fixed-point", choices=sorted(MAPPERS),
                    help="vtk-fixed-point (CPU, 15-bit fixed point) or vtk-gpu (OpenGL)")
-    p.add_argument("--step", type=float, default=0.5, help="sample distance in voxels (default 0.5)")
+    p.add_argument("--step", type=number_option, default=0.5, help="sample distance in voxels (default 0.5)")
     p.add_argument("--image", default="display", choices=["display", "raycast"],
                    help="display: the 8-bit frame VTK shows (default); raycast: vtk-fixed-point's 15-bit ray-cast "
                         "image, before it is drawn (no display resampling, no 8-bit rounding)")
-    p.add_argument("--threads", type=int, help="vtk-fixed-point's threads (default: all usable cores)")
-    p.add_argument("--warm-up", type=int, default=1, help="untimed frames first (default 1)")
-    p.add_argument("--repeat", type=int, default=3, help="timed frames; the stats give their median (default 3)")
+    p.add_argument("--threads", type=integer_option, help="vtk-fixed-point's threads (default: all usable cores)")
+    p.add_argument("--warm-up", type=integer_option, default=1, help="untimed frames first (default 1)")
+    p.add_argument("--repeat", type=integer_option, default=3, help="timed frames; the stats give their median (default 3)")
     p.add_argument("-o", "--output", required=True, help="output image (.exr: float RGBA)")
     p.add_argument("--png", help="8-bit preview PNG")
     p.add_argument("--stats", help="statistics and provenance as JSON")
