@@ -12,125 +12,131 @@ cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
 1,23.1
-3.623,9.26
+3.729,9.26
 EOD
 $series1_2 << EOD
-1.114,23.1
-4.128,9.26
+1.179,23.1
+4.785,9.26
 EOD
 $series1_3 << EOD
-0.1196,23.1
-0.4546,9.26
+0.147,23.1
+0.5425,9.26
 EOD
 $series1_4 << EOD
-1.076,7.55
-3.94,0.00708
+1.204,7.55
+4.705,0.00708
 EOD
 $series1_5 << EOD
-1.396,7.55
-5.353,0.00708
+1.316,7.55
+5.33,0.00708
 EOD
 $series1_6 << EOD
-0.1103,7.55
-0.4396,0.00708
+0.1257,7.55
+0.5142,0.00708
 EOD
 $series1_7 << EOD
-2.478,7.08
+2.36,7.08
 EOD
 $series1_8 << EOD
-2.08,7.08
+2.246,7.08
 EOD
 $series1_9 << EOD
-2.473,6.69
+2.704,6.69
 EOD
 $series1_10 << EOD
-2.186,6.69
+2.457,6.69
 EOD
 $series1_11 << EOD
-2.032,0.0018339354534217783
-1.981,0.0018339354534217783
-2.027,0.0018339354534217783
-2.066,0.0018339354534217783
-2.297,0.0018339354534217783
+2.16,1.51
+2.153,0.0018339354534217783
+2.283,0.0018339354534217783
+2.345,0.0018339354534217783
+2.334,0.0018339354534217783
+2.149,0.0018339354534217783
+2.357,0.0018339354534217783
 EOD
 $series1_12 << EOD
-0.1734,23.1
-0.6495,9.26
+0.1564,23.1
+0.6055,9.26
 EOD
 $series1_13 << EOD
-0.1613,7.55
-0.6247,0.00708
+0.1524,7.55
+0.603,0.00708
 EOD
 $series1_14 << EOD
-2.288,0.0018339354534217783
-2.709,0.0018339354534217783
+2.394,0.0018339354534217783
+2.5,0.0018339354534217783
 EOD
 $pareto1 << EOD
-0.1103,7.55
-0.4396,0.00708
-1.981,0.0018339354534217783
+0.1257,7.55
+0.5142,0.00708
+2.149,0.0018339354534217783
 EOD
 $series2_1 << EOD
 1,0.06248
-3.623,0.01212
+3.729,0.01212
 EOD
 $series2_2 << EOD
-1.114,0.06248
-4.128,0.01212
+1.179,0.06248
+4.785,0.01212
 EOD
 $series2_3 << EOD
-0.1196,0.06248
-0.4546,0.01212
+0.147,0.06248
+0.5425,0.01212
 EOD
 $series2_4 << EOD
-1.076,0.0149
-3.94,0.003355
+1.204,0.0149
+4.705,0.003355
 EOD
 $series2_5 << EOD
-1.396,0.0149
-5.353,0.003356
+1.316,0.0149
+5.33,0.003356
 EOD
 $series2_6 << EOD
-0.1103,0.0149
-0.4396,0.003356
+0.1257,0.0149
+0.5142,0.003356
 EOD
 $series2_7 << EOD
-2.478,0.02124
+2.36,0.02124
 EOD
 $series2_8 << EOD
-2.08,0.02124
+2.246,0.02124
 EOD
 $series2_9 << EOD
-2.473,0.02103
+2.704,0.02103
 EOD
 $series2_10 << EOD
-2.186,0.02103
+2.457,0.02103
 EOD
 $series2_11 << EOD
-2.032,1.431e-06
-1.981,5.96e-07
-2.027,2.98e-07
-2.066,0.000348
-2.297,1.788e-07
+2.16,0.00262
+2.153,0.0001383
+2.283,1.431e-06
+2.345,5.96e-07
+2.334,2.98e-07
+2.149,0.000348
+2.357,1.788e-07
 EOD
 $series2_12 << EOD
-0.1734,0.06248
-0.6495,0.01212
+0.1564,0.06248
+0.6055,0.01212
 EOD
 $series2_13 << EOD
-0.1613,0.0149
-0.6247,0.003356
+0.1524,0.0149
+0.603,0.003356
 EOD
 $series2_14 << EOD
-2.288,0.000348
-2.709,1.788e-07
+2.394,0.000348
+2.5,1.788e-07
 EOD
 $pareto2 << EOD
-0.1103,0.0149
-0.4396,0.003356
-1.981,5.96e-07
-2.027,2.98e-07
-2.297,1.788e-07
+0.1257,0.0149
+0.5142,0.003356
+2.149,0.000348
+2.153,0.0001383
+2.283,1.431e-06
+2.334,2.98e-07
+2.357,1.788e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
@@ -148,8 +154,8 @@ do for [format in "png svg"] {
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
-    set xtics (0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.0873804362447019:6.757072010335718] noextend
+    set xtics (0.2, 0.5, 1, 2, 5)
+    set xrange [0.10039030225456112:6.673762155841703] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -176,7 +182,7 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-3 to bound-maxerr1e-6-simd-on', \
          $series1_12 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#8fb0e6' title 'riemann float SIMD AVX2, h0.5 to h0.1', \
          $series1_13 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#93d39e' title 'composite float SIMD AVX2, h0.5 to h0.1', \
          $series1_14 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
@@ -188,8 +194,8 @@ do for [format in "png svg"] {
     set xlabel 'time over scalar double Riemann h = 0.5'
     set logscale x
     set format x '%g'
-    set xtics (0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.0873804362447019:6.757072010335718] noextend
+    set xtics (0.2, 0.5, 1, 2, 5)
+    set xrange [0.10039030225456112:6.673762155841703] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
@@ -209,7 +215,7 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#e07b00' title 'coupled float', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8e3fb0' title 'decoupled double', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#8e3fb0' title 'decoupled float', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-7 to bound-maxerr1e-6-simd-on', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, tol1e-3 to bound-maxerr1e-6-simd-on', \
          $series2_12 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#8fb0e6' title 'riemann float SIMD AVX2, h0.5 to h0.1', \
          $series2_13 using 1:2 with linespoints lw 1.5 pt 5 ps 1.2 lc rgb '#93d39e' title 'composite float SIMD AVX2, h0.5 to h0.1', \
          $series2_14 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
