@@ -95,22 +95,8 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const std:
     std::cout << pixelChannels.str() << '\n' << pixels.str() << '\n' << verdict << '\n';
 }
 
-// CLI11's own PositiveNumber and NonNegativeNumber print the largest double in full when they reject a value.
-CLI::Validator numberCheck(bool zeroAllowed) {
-    return CLI::Validator(
-        [zeroAllowed](std::string& text) -> std::string {
-            try {
-                std::size_t used = 0;
-                const double value = std::stod(text, &used);
-                if (used == text.size() && (value > 0 || (zeroAllowed && value == 0))) return {};
-            } catch (const std::exception&) {
-            }
-            return std::string("must be a number ") + (zeroAllowed ? ">= 0" : "> 0") + ", got '" + text + "'";
-        },
-        zeroAllowed ? "NONNEGATIVE" : "POSITIVE");
-}
-const CLI::Validator kNonNegative = numberCheck(true);
-const CLI::Validator kPositive = numberCheck(false);
+const CLI::Validator kNonNegative = vri::numberAbove(0.0, true);
+const CLI::Validator kPositive = vri::numberAbove(0.0, false);
 
 // The one-line message of vri::guardedMain, with the exit code that names this kind of failure.
 int exitWith(int code, const std::exception& error) {
@@ -166,13 +152,13 @@ int run(int argc, char** argv) {
                  "--failpercent and --warnpercent count pixels with any channel above the limit, as OpenImageIO's "
                  "idiff does, instead of pixel-channels (pixels x channels)");
     app.add_option("--failpercent", options.limits.failPercent, "fail when more than this % of pixel-channels is above --fail")
-        ->check(CLI::Range(0.0, 100.0))
+        ->check(vri::numberRange(0.0, 100.0))
         ->capture_default_str();
     app.add_option("--warn", options.limits.warn, "warning threshold on the absolute error")
         ->check(kNonNegative)
         ->capture_default_str();
     app.add_option("--warnpercent", options.limits.warnPercent, "warn when more than this % of pixel-channels is above --warn")
-        ->check(CLI::Range(0.0, 100.0))
+        ->check(vri::numberRange(0.0, 100.0))
         ->capture_default_str();
     app.footer(
         "Exit codes (idiff's, one up): 0 pass, 2 warning, 3 failure, 4 images differ in size or channel count;\n"

@@ -330,7 +330,7 @@ int main(int argc, char** argv) {
     app.add_option("--results", options.results, "results root (default: results, with --quick build/experiments-quick)");
     app.add_flag("--allow-dirty", options.allowDirty,
                  "write into the work tree's results/ even when its tracked files differ from the commit");
-    app.add_option("--jobs", options.jobs, "steps run at once (1 to 64)")->check(CLI::Range(1, 64))->capture_default_str();
+    app.add_option("--jobs", options.jobs, "steps run at once (1 to 64)")->check(vri::integerRange(1, 64))->capture_default_str();
     app.add_option("--executor", options.executor,
                    "where steps run: local (child processes, up to --jobs at once) or slurm (a batch job per step or "
                    "bundle of small steps, ordered by the cluster; README \"On a cluster\")")
@@ -344,13 +344,13 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false);
     app.add_option("--slurm-bundle", options.slurmBundle,
                    "steps whose last run took less than SECONDS share jobs of about SECONDS; 0: a job per step")
-        ->check(CLI::Range(0.0, 86400.0))
+        ->check(vri::numberRange(0.0, 86400.0))
         ->capture_default_str();
     app.add_option("--slurm-cpus", options.slurmCpus, "CPUs a render or command asks for when it sets no --threads (1 to 1024)")
-        ->check(CLI::Range(1, 1024))
+        ->check(vri::integerRange(1, 1024))
         ->capture_default_str();
     app.add_option("--slurm-poll", options.slurmPoll, "seconds between two looks at the jobs (squeue), 0.1 to 600")
-        ->check(CLI::Range(0.1, 600.0))
+        ->check(vri::numberRange(0.1, 600.0))
         ->capture_default_str();
     app.add_option("--new", options.newStudy,
                    "write NAME.yaml, NAME-tf.yaml and NAME-plot.yaml: a commented study to start an own one from, "

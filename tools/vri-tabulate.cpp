@@ -154,7 +154,7 @@ int run(int argc, char** argv) {
                    "heading of the label column (default: Method; run for tradeoff)");
     app.add_option("--precision", options.precision,
                    "decimals (default: 2 for matrix; thresholds and tradeoff's % columns have 3 significant digits)")
-        ->check(CLI::Range(0, 17));
+        ->check(vri::integerRange(0, 17));
     app.add_option("--row", options.rows, "thresholds: LABEL FILE [FILE...]; one vri-diff JSON for all thresholds, "
                                           "or one per threshold in threshold order")
         ->expected(2, 1 << 20);

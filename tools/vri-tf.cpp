@@ -77,7 +77,7 @@ int run(int argc, char** argv) {
                  kTool};
     app.add_option("TF,--tf", tfPath, "transfer function YAML (positional, or --tf as in experiment commands)")->required();
     app.add_option("--samples", samples, "evenly spaced s over [0, 1], ends included (breakpoints come on top)")
-        ->check(CLI::Range(2, 1000000))
+        ->check(vri::integerRange(2, 1000000))
         ->capture_default_str();
     app.add_option("-o,--output", output, "CSV file; '-' writes to stdout");
     app.add_flag("--check", checkOnly,

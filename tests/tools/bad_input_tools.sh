@@ -167,7 +167,7 @@ bad 1 "${E}missing.yaml: no such file$" -- "$bin/vri-tf" missing.yaml -o out.csv
 bad 1 "${E}\.: is a directory, expected a YAML file$" -- "$bin/vri-tf" . -o out.csv
 bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- "$bin/vri-tf" negative_tau.yaml -o out.csv
 bad 1 "${E}unclosed_tf.yaml:2:1: malformed YAML" -- "$bin/vri-tf" unclosed_tf.yaml -o out.csv
-bad 64 "${E}--samples: Value 1 not in range 2 to 1000000" -- "$bin/vri-tf" tf.yaml --samples 1 -o out.csv
+bad 64 "${E}--samples: expected an integer from 2 to 1000000, got '1'" -- "$bin/vri-tf" tf.yaml --samples 1 -o out.csv
 bad 64 "${E}--samples: expected an integer \(decimal, or hexadecimal after 0x\), got 'many'" -- "$bin/vri-tf" tf.yaml --samples many -o out.csv
 
 if built_with_vulkan; then
@@ -182,12 +182,12 @@ bad 1 "${E}missing.exr: no such file$" -- "$bin/vri-diff" a.exr missing.exr
 bad 1 "${E}junk.exr: cannot read image" -- "$bin/vri-diff" a.exr junk.exr
 bad 1 "${E}\.: cannot read image" -- "$bin/vri-diff" . a.exr
 bad 4 "${E}images differ in shape: 8x8 with 4 channels vs 4x4 with 4 channels" -- "$bin/vri-diff" a.exr small.exr
-bad 64 "${E}--threshold: must be a number >= 0, got '-1'" -- "$bin/vri-diff" a.exr a.exr --threshold -1
+bad 64 "${E}--threshold: expected a number >= 0, got '-1'" -- "$bin/vri-diff" a.exr a.exr --threshold -1
 bad 64 "${E}--threshold: expected a number, got 'x'" -- "$bin/vri-diff" a.exr a.exr --threshold 0.1,x
-bad 64 "${E}--failpercent: Value 101 not in range" -- "$bin/vri-diff" a.exr a.exr --failpercent 101
-bad 64 "${E}--warnpercent: Value -1 not in range" -- "$bin/vri-diff" a.exr a.exr --warnpercent -1
-bad 64 "${E}--diff-scale: must be a number > 0, got '0'" -- "$bin/vri-diff" a.exr a.exr --diff-scale 0 --diff-image d.exr
-bad 64 "${E}--bins-per-decade: must be a number > 0, got '0'" -- \
+bad 64 "${E}--failpercent: expected a number from 0 to 100, got '101'" -- "$bin/vri-diff" a.exr a.exr --failpercent 101
+bad 64 "${E}--warnpercent: expected a number from 0 to 100, got '-1'" -- "$bin/vri-diff" a.exr a.exr --warnpercent -1
+bad 64 "${E}--diff-scale: expected a number > 0, got '0'" -- "$bin/vri-diff" a.exr a.exr --diff-scale 0 --diff-image d.exr
+bad 64 "${E}--bins-per-decade: expected a number > 0, got '0'" -- \
     "$bin/vri-diff" a.exr a.exr --bins-per-decade 0 --histogram h.csv
 bad 64 "${E}--diff-scale requires --diff-image" -- "$bin/vri-diff" a.exr a.exr --diff-scale 2
 bad 64 "${E}logarithmic bins need 0 < lo < hi" -- "$bin/vri-diff" a.exr a.exr --histogram-range 1 0.1 --histogram h.csv
@@ -249,7 +249,7 @@ bad 1 "${E}broken.json: not valid JSON" -- "$bin/vri-tabulate" --layout threshol
 bad 1 "${E}stats.json: has no 'thresholds'" -- "$bin/vri-tabulate" --layout thresholds --row A stats.json -o table.md
 bad 1 "${E}diff.json: no count above 0.5" -- \
     "$bin/vri-tabulate" --layout thresholds --row A diff.json --thresholds 0.5 -o table.md
-bad 64 "${E}--precision: Value 18 not in range 0 to 17" -- \
+bad 64 "${E}--precision: expected an integer from 0 to 17, got '18'" -- \
     "$bin/vri-tabulate" --layout thresholds --row A diff.json --precision 18 -o table.md
 bad 1 "${E}--layout matrix needs --value EXPR" -- "$bin/vri-tabulate" --layout matrix --cell A B stats.json -o table.md
 bad 1 "${E}stats.json: has no 'stats.nothing'" -- \

@@ -11,6 +11,7 @@
 #include "libvri/io/provenance.h"
 #include "libvri/io/volume_io.h"
 #include "libvri/util/atomic_file.h"
+#include "libvri/util/format.h"
 #include "libvri/util/json_file.h"
 #include "libvri/util/same_file.h"
 #include "libvri/util/utf8.h"
@@ -86,6 +87,36 @@ std::string conversionMessage(const CLI::App& app, const std::string& what) {
 }
 
 }  // namespace
+
+CLI::Validator integerRange(std::int64_t lo, std::int64_t hi) {
+    const std::string range = std::to_string(lo) + " to " + std::to_string(hi);
+    return CLI::Validator(
+        [lo, hi, range](std::string& value) -> std::string {
+            const auto v = integerFromText(value);
+            return v && *v >= lo && *v <= hi ? "" : "expected an integer from " + range + ", got '" + value + "'";
+        },
+        "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", "integer range");
+}
+
+CLI::Validator numberRange(double lo, double hi) {
+    const std::string range = exactNumber(lo) + " to " + exactNumber(hi);
+    return CLI::Validator(
+        [lo, hi, range](std::string& value) -> std::string {
+            const auto v = numberFromText(value);
+            return v && *v >= lo && *v <= hi ? "" : "expected a number from " + range + ", got '" + value + "'";
+        },
+        "in [" + exactNumber(lo) + ", " + exactNumber(hi) + "]", "number range");
+}
+
+CLI::Validator numberAbove(double lo, bool orEqual) {
+    const std::string bound = (orEqual ? ">= " : "> ") + exactNumber(lo);
+    return CLI::Validator(
+        [lo, orEqual, bound](std::string& value) -> std::string {
+            const auto v = numberFromText(value);
+            return v && (*v > lo || (orEqual && *v == lo)) ? "" : "expected a number " + bound + ", got '" + value + "'";
+        },
+        bound, "lower bound");
+}
 
 std::string versionText(std::string_view tool) {
     const nlohmann::json build = buildInfo();

@@ -1,5 +1,6 @@
 #pragma once
 // What every tool's main() shares: one-line errors and exit codes.
+#include <cstdint>
 #include <exception>
 #include <iostream>
 #include <optional>
@@ -25,6 +26,14 @@ inline constexpr int kExitUsage = 64;
 // What --version prints: "<tool> (vri) <version>" and a line with the git commit at configure time,
 // the build type, the compiler and whether the Vulkan backend is built.
 std::string versionText(std::string_view tool);
+
+// Checks on a number option's value with vri's messages, in place of CLI11's Range, PositiveNumber and
+// NonNegativeNumber (whose messages read "Value 100 not in range 1 to 64" and print doubles in full):
+// "expected an integer from 1 to 64, got '100'", "expected a number > 0, got '0'". parseArguments has
+// checked that the text is a number before these run.
+CLI::Validator integerRange(std::int64_t lo, std::int64_t hi);
+CLI::Validator numberRange(double lo, double hi);
+CLI::Validator numberAbove(double lo, bool orEqual);
 
 // Parses the command line, after adding --version; a usage error becomes the one line
 // "<tool>: error: <what> (see --help)" and exit kExitUsage, --help and --version print on stdout
