@@ -111,12 +111,8 @@ vri::Table buildTable(const Options& options) {
     requireWords(options.columnValues, 2, "--column-value needs COLUMN EXPR");
     requireWords(options.columnPrecisions, 2, "--column-precision needs COLUMN N");
     for (const auto& pair : options.columnValues) matrix.columnValue[pair[0]] = pair[1];
-    for (const auto& pair : options.columnPrecisions) {
-        const std::string& decimals = pair[1];
-        if (decimals.empty() || decimals.size() > 2 || decimals.find_first_not_of("0123456789") != std::string::npos)
-            throw vri::Error("--column-precision " + pair[0] + ": '" + decimals + "' is not a number of decimals");
-        matrix.columnPrecision[pair[0]] = std::stoi(decimals);
-    }
+    for (const auto& pair : options.columnPrecisions)
+        matrix.columnPrecision[pair[0]] = vri::parseCount(pair[1], "--column-precision " + pair[0], 0, 17);
     return vri::matrixTable(cells, matrix);
 }
 

@@ -28,7 +28,7 @@ std::vector<std::string_view> split(std::string_view text, char sep) {
 
 // The whole text as one number: decimal as std::from_chars reads it, or hexadecimal after "0x" or "0X"
 // (a float such as 0x1p-3, exact in binary, or an integer such as 0x10), with an optional minus before
-// it. CLI11 reads hexadecimal in the options it converts itself (--fov 0x10), so every option does.
+// it. Hexadecimal is how a float is written exactly, so every option and field takes it.
 template <class T>
 bool parseNumber(std::string_view s, T& value) {
     const bool negative = !s.empty() && s.front() == '-';
@@ -112,12 +112,16 @@ glm::dvec2 parseRange(const std::string& text, const std::string& what) {
 
 glm::ivec2 parseSize(const std::string& text, const std::string& what) {
     const auto parts = split(text, 'x');
+    // Decimal sides only: 'x' separates them, so a hexadecimal side (0X10x8) would read one way and not another.
+    const auto decimal = [](std::string_view side) {
+        return !side.empty() && side.find_first_not_of("0123456789") == std::string_view::npos;
+    };
+    const bool sides = parts.size() == 2 && decimal(parts[0]) && decimal(parts[1]);
     glm::ivec2 v;
-    bool ok = parts.size() == 2 && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
+    bool ok = sides && parseNumber(parts[0], v.x) && parseNumber(parts[1], v.y);
     if (!ok) {  // a whole number past int's range is too large, not malformed
         std::int64_t wide[2];
-        if (parts.size() == 2 && parseNumber(parts[0], wide[0]) && parseNumber(parts[1], wide[1]) && wide[0] > 0 &&
-            wide[1] > 0)
+        if (sides && parseNumber(parts[0], wide[0]) && parseNumber(parts[1], wide[1]) && wide[0] > 0 && wide[1] > 0)
             throw Error(what + ": an image side is at most 2147483647 pixels, got '" + text + "'");
     }
     if (!ok || v.x <= 0 || v.y <= 0)

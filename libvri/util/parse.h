@@ -1,6 +1,7 @@
 #pragma once
-// Text to values, as command-line options and experiment files spell them: every function throws
-// vri::Error naming `what` (an option or a field) and quoting the text when it is not what is expected.
+// Text to values, as command-line options and experiment files spell them: the parse* functions throw
+// vri::Error naming `what` (an option or a field) and quoting the text when it is not what is expected;
+// integerFromText and numberFromText, the forms they all read, return nullopt instead.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -21,7 +22,7 @@ glm::dvec3 parseVec3(const std::string& text, const std::string& what);
 glm::ivec3 parseDims(const std::string& text, const std::string& what);
 // "lo,hi" -> pair; throws vri::Error naming `what` unless both are finite, hi > lo and hi - lo is finite.
 glm::dvec2 parseRange(const std::string& text, const std::string& what);
-// "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive integers.
+// "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive decimal integers.
 glm::ivec2 parseSize(const std::string& text, const std::string& what);
 // "X,Y" -> a pixel; throws vri::Error naming `what` unless both are integers >= 0.
 glm::ivec2 parsePixel(const std::string& text, const std::string& what);

@@ -17,7 +17,7 @@ mkdir -p out/small
 printf '{"steps": [{"id": "riemann", "command": "x"}]}\n' > out/small/manifest.json
 
 bad 64 '^vri-run: error: --dry-run excludes --estimate' -- "$VRI_BIN/vri-run" --estimate --dry-run exp.yaml
-bad 64 "^vri-run: error: --jobs: expected an integer from 1 to 64, got '0'" -- "$VRI_BIN/vri-run" --dry-run --jobs 0 exp.yaml
+bad 64 "^vri-run: error: --jobs: expected a whole number from 1 to 64, got '0'" -- "$VRI_BIN/vri-run" --dry-run --jobs 0 exp.yaml
 bad 1 '^vri-run: error: .*out/small/manifest.json: .*wall_seconds' -- "$VRI_BIN/vri-run" --estimate --results out exp.yaml
 printf 'not json\n' > out/small/manifest.json
 bad 1 '^vri-run: error: .*out/small/manifest.json' -- "$VRI_BIN/vri-run" --estimate --results out exp.yaml

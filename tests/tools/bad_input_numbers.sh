@@ -118,8 +118,8 @@ YAML
 bad 1 "^vri-run: error: experiment\.yaml:8:1: duplicate key 'methods' \(first at line 6\)$" -- \
   "$VRI_BIN/vri-run" --dry-run experiment.yaml --results results
 
-# Hexadecimal numbers are numbers to every option, as CLI11 reads them in the options it converts itself:
-# --step 0x1p-1 is --step 0.5, bit for bit; a hexadecimal that is not a number is refused like any other.
+# Hexadecimal numbers are numbers to every option, whether vri or CLI11 converts it: --step 0x1p-1 is
+# --step 0.5, bit for bit; a hexadecimal that is not a number is refused like any other.
 "${render[@]}" --step 0x1p-1 --repeat 0x2 -o hex.exr || fail "--step 0x1p-1 --repeat 0x2 refused"
 "${render[@]}" --step 0.5 -o dec.exr
 "$VRI_BIN/vri-diff" hex.exr dec.exr --fail 0 > /dev/null || fail "--step 0x1p-1 differs from --step 0.5"
@@ -142,5 +142,12 @@ bad 64 "^vri-render: error: --threads: 4294967296 is outside the range of this i
   "${render[@]}" --threads 0x100000000 -o z.exr
 bad 1 "^vri-render: error: --fov: expected degrees in \(0, 180\), got inf$" -- "${render[@]}" --fov inf -o z.exr
 bad 64 "^vri-render: error: --fov: expected a number, got ' 30' \(see --help\)$" -- "${render[@]}" --fov ' 30' -o z.exr
+# CLI11 reads a FLOAT option through long double, which rounds this decimal (just above the midpoint between 1
+# and the next double) to the midpoint and then to 1; it is read as the nearest double, 1 + 2^-52, as parse.h reads.
+"${render[@]}" --fov 1.000000000000000111022302462515654042363166809082031250001 -o fov.exr --stats fov.json
+grep -q '"fov_y_degrees": 1.0000000000000002,' fov.json || fail "--fov's long decimal was not read as the nearest double"
+# A size's sides are decimal: 'x' separates them, so 0X10x8 is not 16x8.
+bad 1 "^vri-render: error: --size: expected a positive image size WIDTHxHEIGHT, got '0X10x8'$" -- \
+  "$VRI_BIN/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 0X10x8 -q -o z.exr
 
 bad_done

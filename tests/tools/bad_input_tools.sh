@@ -167,7 +167,7 @@ bad 1 "${E}missing.yaml: no such file$" -- "$bin/vri-tf" missing.yaml -o out.csv
 bad 1 "${E}\.: is a directory, expected a YAML file$" -- "$bin/vri-tf" . -o out.csv
 bad 1 "${E}negative_tau.yaml:2:5: points\[0\] has a negative extinction tau" -- "$bin/vri-tf" negative_tau.yaml -o out.csv
 bad 1 "${E}unclosed_tf.yaml:2:1: malformed YAML" -- "$bin/vri-tf" unclosed_tf.yaml -o out.csv
-bad 64 "${E}--samples: expected an integer from 2 to 1000000, got '1'" -- "$bin/vri-tf" tf.yaml --samples 1 -o out.csv
+bad 64 "${E}--samples: expected a whole number from 2 to 1000000, got '1'" -- "$bin/vri-tf" tf.yaml --samples 1 -o out.csv
 bad 64 "${E}--samples: expected an integer \(decimal, or hexadecimal after 0x\), got 'many'" -- "$bin/vri-tf" tf.yaml --samples many -o out.csv
 
 if built_with_vulkan; then
@@ -249,8 +249,19 @@ bad 1 "${E}broken.json: not valid JSON" -- "$bin/vri-tabulate" --layout threshol
 bad 1 "${E}stats.json: has no 'thresholds'" -- "$bin/vri-tabulate" --layout thresholds --row A stats.json -o table.md
 bad 1 "${E}diff.json: no count above 0.5" -- \
     "$bin/vri-tabulate" --layout thresholds --row A diff.json --thresholds 0.5 -o table.md
-bad 64 "${E}--precision: expected an integer from 0 to 17, got '18'" -- \
+bad 64 "${E}--precision: expected a whole number from 0 to 17, got '18'" -- \
     "$bin/vri-tabulate" --layout thresholds --row A diff.json --precision 18 -o table.md
+for decimals in 18 99 -1 two 1.0; do  # the same range as --precision, read as every number is
+    bad 1 "${E}--column-precision B: expected a whole number from 0 to 17, got '$decimals'$" -- \
+        "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.wall_seconds \
+        --column-precision B "$decimals" -o table.md
+done
+# CLI11 takes an empty word for its break between two uses of an option of several words.
+bad 64 "${E}--column-precision: an empty word cannot be one of its values \(see --help\)$" -- \
+    "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.wall_seconds \
+    --column-precision B '' -o table.md
+bad 64 "${E}--row: an empty word cannot be one of its values \(see --help\)$" -- \
+    "$bin/vri-tabulate" --layout thresholds --row '' diff.json -o table.md
 bad 1 "${E}--layout matrix needs --value EXPR" -- "$bin/vri-tabulate" --layout matrix --cell A B stats.json -o table.md
 bad 1 "${E}stats.json: has no 'stats.nothing'" -- \
     "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.nothing -o table.md

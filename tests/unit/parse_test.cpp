@@ -17,7 +17,11 @@ TEST_CASE("parse: numbers in decimal or hexadecimal, the whole text and nothing 
     CHECK(parseCount("0x10", "--repeat", 1) == 16);
     CHECK(parseCount("16", "--repeat", 1) == 16);
     CHECK(parseVec3("-0x1p1,0x10,1.5", "--eye") == glm::dvec3(-2.0, 16.0, 1.5));
-    CHECK_THROWS_AS(parseSize("0x10x8", "--size"), Error);  // x separates WIDTHxHEIGHT: no hexadecimal there
+    for (const char* text : {"0x10x8", "0X10x8", "8x0X10", "-8x8", "8x-8", "08x8 ", "8x"}) {  // x separates the sides
+        CAPTURE(text);
+        CHECK_THROWS_AS(parseSize(text, "--size"), Error);
+    }
+    CHECK(parseSize("0800x600", "--size") == glm::ivec2(800, 600));  // decimal, a leading 0 not octal
     for (const char* text : {"0x", "0x-1", "0x+1", "-0x-1", "0xg", "0x1p", "0x1p-3 ", " 0x1", "--0x1", "0x1q", "1e999"}) {
         CAPTURE(text);
         CHECK_THROWS_AS(parsePositive(text, "--step"), Error);

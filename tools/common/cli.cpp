@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <new>
 #include <vector>
@@ -45,6 +48,13 @@ std::optional<NumberKind> numberKind(const CLI::Option& option) {
     return std::nullopt;
 }
 
+// The double in C's hexadecimal form ("-0x1.8p+1"), which reads back exactly.
+std::string hexadecimalText(double value) {
+    char digits[40];
+    const auto end = std::to_chars(digits, digits + sizeof digits, std::fabs(value), std::chars_format::hex).ptr;
+    return (std::signbit(value) ? "-0x" : "0x") + std::string(digits, end);
+}
+
 // A number option's text checked before CLI11 converts it, in parse.h's forms, so that these options read numbers
 // as every other one does: CLI11 alone skips leading spaces, reads an empty value as 0, a leading 0 as octal
 // (010 is 8) and clamps what overflows 64 bits. An integer goes on to CLI11 as its decimal digits; what fits in
@@ -52,8 +62,15 @@ std::optional<NumberKind> numberKind(const CLI::Option& option) {
 CLI::Validator numberText(NumberKind kind) {
     return CLI::Validator(
         [kind](std::string& value) -> std::string {
-            if (kind == NumberKind::Real)
-                return numberFromText(value) ? "" : "expected a number, got '" + value + "'";
+            if (kind == NumberKind::Real) {
+                const auto number = numberFromText(value);
+                if (!number) return "expected a number, got '" + value + "'";
+                // CLI11 reads through long double (strtold), which can round a long decimal twice; where that
+                // misses the nearest double, CLI11 gets the value in hexadecimal, which both read exactly.
+                if (!std::isnan(*number) && static_cast<double>(std::strtold(value.c_str(), nullptr)) != *number)
+                    value = hexadecimalText(*number);
+                return "";
+            }
             bool outOfRange = false;
             const auto integer = integerFromText(value, &outOfRange);
             if (!integer)
@@ -75,14 +92,19 @@ void checkNumberText(CLI::App& app) {
 }
 
 // CLI11's "Could not convert: --warm-up = 2147483648", once numberText has passed the text, is an integer
-// outside the option's type: said so. A message of another form stays as it is.
+// outside the option's type: said so. For an option of several words a use ("--row LABEL FILE"), CLI11 takes an
+// empty word for its separator between uses and cannot convert what is left ("--row = ,f.json,"): said so.
+// A message of another form stays as it is.
 std::string conversionMessage(const CLI::App& app, const std::string& what) {
     constexpr std::string_view prefix = "Could not convert: ";
     const std::size_t equals = what.find(" = ");
     if (what.rfind(prefix, 0) != 0 || equals == std::string::npos) return what;
     const std::string name = what.substr(prefix.size(), equals - prefix.size());
     const CLI::Option* option = app.get_option_no_throw(name);
-    if (!option || numberKind(*option) == NumberKind::Real || !numberKind(*option)) return what;
+    if (!option) return what;
+    if (option->get_type_size_max() > 1 && !numberKind(*option))
+        return name + ": an empty word cannot be one of its values";
+    if (!numberKind(*option) || numberKind(*option) == NumberKind::Real) return what;
     return name + ": " + what.substr(equals + 3) + " is outside the range of this integer option";
 }
 
@@ -93,7 +115,7 @@ CLI::Validator integerRange(std::int64_t lo, std::int64_t hi) {
     return CLI::Validator(
         [lo, hi, range](std::string& value) -> std::string {
             const auto v = integerFromText(value);
-            return v && *v >= lo && *v <= hi ? "" : "expected an integer from " + range + ", got '" + value + "'";
+            return v && *v >= lo && *v <= hi ? "" : "expected a whole number from " + range + ", got '" + value + "'";
         },
         "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", "integer range");
 }
@@ -113,7 +135,9 @@ CLI::Validator numberAbove(double lo, bool orEqual) {
     return CLI::Validator(
         [lo, orEqual, bound](std::string& value) -> std::string {
             const auto v = numberFromText(value);
-            return v && (*v > lo || (orEqual && *v == lo)) ? "" : "expected a number " + bound + ", got '" + value + "'";
+            return v && std::isfinite(*v) && (*v > lo || (orEqual && *v == lo))
+                       ? ""
+                       : "expected a number " + bound + ", got '" + value + "'";
         },
         bound, "lower bound");
 }

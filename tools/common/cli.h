@@ -29,8 +29,8 @@ std::string versionText(std::string_view tool);
 
 // Checks on a number option's value with vri's messages, in place of CLI11's Range, PositiveNumber and
 // NonNegativeNumber (whose messages read "Value 100 not in range 1 to 64" and print doubles in full):
-// "expected an integer from 1 to 64, got '100'", "expected a number > 0, got '0'". parseArguments has
-// checked that the text is a number before these run.
+// "expected a whole number from 1 to 64, got '100'", "expected a number > 0, got '0'" (finite, as parsePositive
+// takes it). parseArguments has checked that the text is a number before these run.
 CLI::Validator integerRange(std::int64_t lo, std::int64_t hi);
 CLI::Validator numberRange(double lo, double hi);
 CLI::Validator numberAbove(double lo, bool orEqual);

@@ -73,7 +73,7 @@ class ArgumentParser(argparse.ArgumentParser):
 INTEGER_TEXT = re.compile(r"-?(?:0[xX][0-9a-fA-F]+|[0-9]+)")
 DECIMAL_TEXT = re.compile(r"-?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
 HEX_FLOAT_TEXT = re.compile(r"-?0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][-+]?[0-9]+)?")
-SPECIAL_TEXT = re.compile(r"-?(?:inf|infinity|nan)", re.IGNORECASE)
+SPECIAL_TEXT = re.compile(r"-?(?:inf|infinity|nan(?:\([0-9A-Za-z_]*\))?)", re.IGNORECASE)
 
 
 def integer_from_text(text):
@@ -86,17 +86,21 @@ def integer_from_text(text):
 
 
 def number_from_text(text):
-    """The whole text as one number, or None (also for a decimal beyond double's range, as parse.h)."""
-    try:
-        if HEX_FLOAT_TEXT.fullmatch(text):
-            return float.fromhex(text)
-    except OverflowError:
-        return None
-    if SPECIAL_TEXT.fullmatch(text):
-        return float(text)
+    """The whole text as one number, or None, as parse.h reads it: also None for a number beyond double's range
+    either way, past its largest or so small that it would read as 0 (1e-999)."""
+    def in_range(value, mantissa):
+        underflow = value == 0 and any(d not in "0." for d in mantissa)
+        return value if math.isfinite(value) and not underflow else None
+    if HEX_FLOAT_TEXT.fullmatch(text):
+        try:
+            value = float.fromhex(text)
+        except OverflowError:
+            return None
+        return in_range(value, re.split("[pP]", text.lstrip("-")[2:])[0])
+    if SPECIAL_TEXT.fullmatch(text):  # nan(chars) is a NaN as std::from_chars reads it
+        return float(text.split("(")[0])
     if DECIMAL_TEXT.fullmatch(text):
-        value = float(text)
-        return value if math.isfinite(value) else None
+        return in_range(float(text), re.split("[eE]", text.lstrip("-"))[0])
     return None
 
 
