@@ -184,6 +184,16 @@ bad 1 "${E}\.: cannot read image" -- "$bin/vri-diff" . a.exr
 bad 4 "${E}images differ in shape: 8x8 with 4 channels vs 4x4 with 4 channels" -- "$bin/vri-diff" a.exr small.exr
 bad 64 "${E}--threshold: expected a number >= 0, got '-1'" -- "$bin/vri-diff" a.exr a.exr --threshold -1
 bad 64 "${E}--threshold: expected a number, got 'x'" -- "$bin/vri-diff" a.exr a.exr --threshold 0.1,x
+# CLI11 would drop an empty item of a comma-separated list (0.1,,0.2 would be two thresholds): refused, in each form.
+for list in 0.1,,0.2 0.1, ,0.1 '' '[0.1,,0.2]' '[0.1,]'; do
+    bad 64 "${E}--threshold: an empty item in '$(printf '%s' "$list" | sed 's/[][]/\\&/g')'; expected items separated by single ','" -- \
+        "$bin/vri-diff" a.exr a.exr --threshold "$list"
+done
+bad 64 "${E}--threshold: an empty item in '0\.1,'" -- "$bin/vri-diff" a.exr a.exr --threshold=0.1,
+bad 64 "${E}--threshold: an empty item in '0\.2,'" -- "$bin/vri-diff" a.exr a.exr --threshold 0.1 0.2, --json diff2.json
+bad 64 "${E}--histogram-range: an empty item in '1e-6,,1'" -- \
+    "$bin/vri-diff" a.exr a.exr --histogram-range 1e-6,,1 --histogram h.csv
+"$bin/vri-diff" a.exr a.exr --threshold -0 --json diff2.json > /dev/null || fail "--threshold -0 (a number, not an option) refused"
 bad 64 "${E}--failpercent: expected a number from 0 to 100, got '101'" -- "$bin/vri-diff" a.exr a.exr --failpercent 101
 bad 64 "${E}--warnpercent: expected a number from 0 to 100, got '-1'" -- "$bin/vri-diff" a.exr a.exr --warnpercent -1
 bad 64 "${E}--diff-scale: expected a number > 0, got '0'" -- "$bin/vri-diff" a.exr a.exr --diff-scale 0 --diff-image d.exr
@@ -330,6 +340,8 @@ bad 1 "${E}unknown_key_catalog.yaml:1:1: unknown key 'bogus' \(expected one of: 
     "$bin/vri-data" --catalog unknown_key_catalog.yaml --data-dir . --no-download
 bad 1 "${E}--only: unknown dataset 'nosuch'" -- \
     "$bin/vri-data" --catalog "$VRI_SOURCE/experiments/datasets.yaml" --data-dir . --only nosuch --no-download
+bad 64 "${E}--only: an empty item in 'bonsai,,engine'" -- \
+    "$bin/vri-data" --catalog "$VRI_SOURCE/experiments/datasets.yaml" --data-dir . --only bonsai,,engine --no-download
 
 bad 64 "^vri-render: error: --list-devices takes no other argument" -- "$bin/vri-render" --list-devices --bogus
 

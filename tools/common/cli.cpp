@@ -108,6 +108,32 @@ std::string conversionMessage(const CLI::App& app, const std::string& what) {
     return name + ": " + what.substr(equals + 3) + " is outside the range of this integer option";
 }
 
+// CLI11 splits the value of an option with a delimiter itself and drops an empty item ("0.1,,0.2" is two
+// thresholds, "a," one word), also in its "[a,b]" form: such a value is refused before CLI11 reads it. The words
+// after the option's name up to the next option (a word starting with '-' that is not a number) are its values,
+// as CLI11 takes them.
+void refuseEmptyItems(const CLI::App& app, int argc, char** argv) {
+    const CLI::Option* list = nullptr;
+    for (int i = 1; i < argc; ++i) {
+        std::string_view word = argv[i];
+        if (word == "--") return;
+        if (word.size() > 1 && word[0] == '-' && !numberFromText(word)) {
+            const std::size_t equals = word.find('=');
+            const CLI::Option* option = app.get_option_no_throw(std::string(word.substr(0, equals)));
+            list = option && option->get_delimiter() != '\0' ? option : nullptr;
+            if (!list || equals == std::string_view::npos) continue;
+            word.remove_prefix(equals + 1);
+        }
+        if (!list) continue;
+        std::string_view items = word;
+        if (items.size() >= 2 && items.front() == '[' && items.back() == ']') items = items.substr(1, items.size() - 2);
+        const std::string separator(1, list->get_delimiter()), twice(2, list->get_delimiter());
+        if (items.empty() || items.starts_with(separator) || items.ends_with(separator) ||
+            items.find(twice) != std::string_view::npos)
+            throw CLI::ValidationError(list->get_name(), "an empty item in '" + std::string(word) + "'; expected items separated by single '" + separator + "'");
+    }
+}
+
 }  // namespace
 
 CLI::Validator integerRange(std::int64_t lo, std::int64_t hi) {
@@ -159,6 +185,7 @@ std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc
                          "print the version, git commit, build type and compiler, and exit");
     checkNumberText(app);
     try {
+        refuseEmptyItems(app, argc, argv);
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {  // --help, --help-all, --version
         return app.exit(e);
