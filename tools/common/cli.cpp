@@ -111,7 +111,7 @@ std::string conversionMessage(const CLI::App& app, const std::string& what) {
 // CLI11 splits the value of an option with a delimiter itself and drops an empty item ("0.1,,0.2" is two
 // thresholds, "a," one word), also in its "[a,b]" form: such a value is refused before CLI11 reads it. The words
 // after the option's name up to the next option (a word starting with '-' that is not a number) are its values,
-// as CLI11 takes them.
+// as CLI11 takes them (only the first where the option takes one word a use).
 void refuseEmptyItems(const CLI::App& app, int argc, char** argv) {
     const CLI::Option* list = nullptr;
     for (int i = 1; i < argc; ++i) {
@@ -130,7 +130,10 @@ void refuseEmptyItems(const CLI::App& app, int argc, char** argv) {
         const std::string separator(1, list->get_delimiter()), twice(2, list->get_delimiter());
         if (items.empty() || items.starts_with(separator) || items.ends_with(separator) ||
             items.find(twice) != std::string_view::npos)
-            throw CLI::ValidationError(list->get_name(), "an empty item in '" + std::string(word) + "'; expected items separated by single '" + separator + "'");
+            throw CLI::ValidationError(
+                list->get_name(),
+                "an empty item in '" + std::string(word) + "'; expected items separated by single '" + separator + "'");
+        if (!list->get_allow_extra_args()) list = nullptr;  // one word a use: the next is not its value
     }
 }
 
