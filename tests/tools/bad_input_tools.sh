@@ -266,12 +266,14 @@ for decimals in 18 99 -1 two 1.0; do  # the same range as --precision, read as e
         "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.wall_seconds \
         --column-precision B "$decimals" -o table.md
 done
-# CLI11 takes an empty word for its break between two uses of an option of several words.
+# CLI11 takes an empty word for its break between two uses of an option of several words, and would lose it.
 bad 64 "${E}--column-precision: an empty word cannot be one of its values \(see --help\)$" -- \
     "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.wall_seconds \
     --column-precision B '' -o table.md
 bad 64 "${E}--row: an empty word cannot be one of its values \(see --help\)$" -- \
     "$bin/vri-tabulate" --layout thresholds --row '' diff.json -o table.md
+bad 64 "${E}--cell: an empty word cannot be one of its values \(see --help\)$" -- \
+    "$bin/vri-tabulate" --layout matrix --cell A '' stats.json --value stats.wall_seconds -o table.md
 bad 1 "${E}--layout matrix needs --value EXPR" -- "$bin/vri-tabulate" --layout matrix --cell A B stats.json -o table.md
 bad 1 "${E}stats.json: has no 'stats.nothing'" -- \
     "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.nothing -o table.md

@@ -92,27 +92,24 @@ void checkNumberText(CLI::App& app) {
 }
 
 // CLI11's "Could not convert: --warm-up = 2147483648", once numberText has passed the text, is an integer
-// outside the option's type: said so. For an option of several words a use ("--row LABEL FILE"), CLI11 takes an
-// empty word for its separator between uses and cannot convert what is left ("--row = ,f.json,"): said so.
-// A message of another form stays as it is.
+// outside the option's type: said so. A message of another form stays as it is.
 std::string conversionMessage(const CLI::App& app, const std::string& what) {
     constexpr std::string_view prefix = "Could not convert: ";
     const std::size_t equals = what.find(" = ");
     if (what.rfind(prefix, 0) != 0 || equals == std::string::npos) return what;
     const std::string name = what.substr(prefix.size(), equals - prefix.size());
     const CLI::Option* option = app.get_option_no_throw(name);
-    if (!option) return what;
-    if (option->get_type_size_max() > 1 && !numberKind(*option))
-        return name + ": an empty word cannot be one of its values";
-    if (!numberKind(*option) || numberKind(*option) == NumberKind::Real) return what;
+    if (!option || !numberKind(*option) || numberKind(*option) == NumberKind::Real) return what;
     return name + ": " + what.substr(equals + 3) + " is outside the range of this integer option";
 }
 
-// CLI11 splits the value of an option with a delimiter itself and drops an empty item ("0.1,,0.2" is two
-// thresholds, "a," one word), also in its "[a,b]" form: such a value is refused before CLI11 reads it. The words
-// after the option's name up to the next option (a word starting with '-' that is not a number) are its values,
-// as CLI11 takes them (only the first where the option takes one word a use).
-void refuseEmptyItems(const CLI::App& app, int argc, char** argv) {
+// Empty values CLI11 would lose, refused before it reads them. CLI11 splits the value of an option with a
+// delimiter itself and drops an empty item ("0.1,,0.2" is two thresholds, "a," one word), also in its "[a,b]"
+// form; and it takes an empty word for its break between two uses of an option of several words a use
+// ("--cell ROW COLUMN FILE", where --cell A '' f.json would lose its column). The words after the option's name up
+// to the next option (a word starting with '-' that is not a number) are its values, as CLI11 takes them (only the
+// first where the option takes one word a use).
+void refuseEmptyValues(const CLI::App& app, int argc, char** argv) {
     const CLI::Option* list = nullptr;
     for (int i = 1; i < argc; ++i) {
         std::string_view word = argv[i];
@@ -120,11 +117,16 @@ void refuseEmptyItems(const CLI::App& app, int argc, char** argv) {
         if (word.size() > 1 && word[0] == '-' && !numberFromText(word)) {
             const std::size_t equals = word.find('=');
             const CLI::Option* option = app.get_option_no_throw(std::string(word.substr(0, equals)));
-            list = option && option->get_delimiter() != '\0' ? option : nullptr;
+            const bool lossy = option && (option->get_delimiter() != '\0' || option->get_type_size_max() > 1);
+            list = lossy ? option : nullptr;
             if (!list || equals == std::string_view::npos) continue;
             word.remove_prefix(equals + 1);
         }
         if (!list) continue;
+        if (list->get_delimiter() == '\0') {
+            if (word.empty()) throw CLI::ValidationError(list->get_name(), "an empty word cannot be one of its values");
+            continue;
+        }
         std::string_view items = word;
         if (items.size() >= 2 && items.front() == '[' && items.back() == ']') items = items.substr(1, items.size() - 2);
         const std::string separator(1, list->get_delimiter()), twice(2, list->get_delimiter());
@@ -188,7 +190,7 @@ std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc
                          "print the version, git commit, build type and compiler, and exit");
     checkNumberText(app);
     try {
-        refuseEmptyItems(app, argc, argv);
+        refuseEmptyValues(app, argc, argv);
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {  // --help, --help-all, --version
         return app.exit(e);
