@@ -185,12 +185,25 @@ bad 4 "${E}images differ in shape: 8x8 with 4 channels vs 4x4 with 4 channels" -
 bad 64 "${E}--threshold: expected a number >= 0, got '-1'" -- "$bin/vri-diff" a.exr a.exr --threshold -1
 bad 64 "${E}--threshold: expected a number, got 'x'" -- "$bin/vri-diff" a.exr a.exr --threshold 0.1,x
 # CLI11 would drop an empty item of a comma-separated list (0.1,,0.2 would be two thresholds): refused, in each form.
-for list in 0.1,,0.2 0.1, ,0.1 '' '[0.1,,0.2]' '[0.1,]'; do
+for list in 0.1,,0.2 0.1, ,0.1 '' '[0.1,,0.2]'; do
     bad 64 "${E}--threshold: an empty item in '$(printf '%s' "$list" | sed 's/[][]/\\&/g')'; expected items separated by single ','" -- \
         "$bin/vri-diff" a.exr a.exr --threshold "$list"
 done
 bad 64 "${E}--threshold: an empty item in '0\.1,'" -- "$bin/vri-diff" a.exr a.exr --threshold=0.1,
-bad 64 "${E}--threshold: an empty item in '0\.2,'" -- "$bin/vri-diff" a.exr a.exr --threshold 0.1 0.2, --json diff2.json
+# A list takes one word a use, as typed: the next word is the command's (CLI11 took it for another item, so a
+# threshold before the images ate the first image), and brackets are not CLI11's list form.
+bad 64 "${E}The following argument was not expected: 0\.2," -- "$bin/vri-diff" a.exr a.exr --threshold 0.1 0.2, --json diff2.json
+"$bin/vri-diff" --threshold 0.1 a.exr a.exr --json diff2.json > /dev/null || fail "--threshold before the images refused"
+bad 64 "${E}--threshold: expected a number, got '\[0\.1'" -- "$bin/vri-diff" a.exr a.exr --threshold '[0.1,]'
+bad 64 "${E}--histogram-range: an empty item in '-1,,1'" -- \
+    "$bin/vri-diff" a.exr a.exr --histogram-range -1,,1 --histogram h.csv
+# A several-word option takes its least number of words whatever they look like, and a label in brackets as typed.
+bad 64 "^vri-tabulate: error: --row: an empty word cannot be one of its values" -- \
+    "$bin/vri-tabulate" --layout thresholds --row -O3 '' -o table.md
+"$bin/vri-tabulate" --layout thresholds --row '[draft]' diff.json -o bracket.md
+grep -q '^| \[draft\] |' bracket.md || fail "--row '[draft]' lost its brackets: $(cat bracket.md)"
+bad 64 "^vri-tabulate: error: --thresholds: an empty item in '0\.01,,0\.001'" -- \
+    "$bin/vri-tabulate" --layout thresholds --title -- --thresholds 0.01,,0.001 --row A diff.json -o table.md
 bad 64 "${E}--histogram-range: an empty item in '1e-6,,1'" -- \
     "$bin/vri-diff" a.exr a.exr --histogram-range 1e-6,,1 --histogram h.csv
 "$bin/vri-diff" a.exr a.exr --threshold -0 --json diff2.json > /dev/null || fail "--threshold -0 (a number, not an option) refused"

@@ -103,39 +103,82 @@ std::string conversionMessage(const CLI::App& app, const std::string& what) {
     return name + ": " + what.substr(equals + 3) + " is outside the range of this integer option";
 }
 
-// Empty values CLI11 would lose, refused before it reads them. CLI11 splits the value of an option with a
-// delimiter itself and drops an empty item ("0.1,,0.2" is two thresholds, "a," one word), also in its "[a,b]"
-// form; and it takes an empty word for its break between two uses of an option of several words a use
-// ("--cell ROW COLUMN FILE", where --cell A '' f.json would lose its column). The words after the option's name up
-// to the next option (a word starting with '-' that is not a number) are its values, as CLI11 takes them (only the
-// first where the option takes one word a use).
+// A list option ("--threshold 0.1,0.2", items split at its delimiter) or an option of several words a use ("--cell
+// ROW COLUMN FILE..."). CLI11 would read a word in brackets given to one ("[a,b]") as a list of its own; with
+// extra arguments off it takes each word as typed, and a list option one word a use, so that the words after it
+// are the command's other arguments (vri-diff --threshold 0.1 a.exr b.exr --json d.json).
+bool isWordList(const CLI::Option& option) {
+    return option.get_delimiter() != '\0' || option.get_type_size_max() > 1;
+}
+void takeWordsAsTyped(CLI::App& app) {
+    for (CLI::Option* option : app.get_options())
+        if (isWordList(*option)) option->allow_extra_args(false);
+    for (CLI::App* group : app.get_subcommands({})) takeWordsAsTyped(*group);
+}
+
+// What CLI11 takes a word for, once an option has its least number of words (App::_recognize): "--" ends the
+// options; '-' and a character that can begin a name starts an option, but for '-' and a digit where no option is
+// so named (-1,,1 is a value); anything else is a value.
+enum class WordKind { Value, Option, EndOfOptions };
+WordKind wordKind(const CLI::App& app, std::string_view word) {
+    if (word == "--") return WordKind::EndOfOptions;
+    if (word.size() < 2 || word[0] != '-') return WordKind::Value;
+    const bool longName = word[1] == '-';
+    const char first = longName ? (word.size() > 2 ? word[2] : ' ') : word[1];
+    if (first == '-' || first == '!' || first == ' ' || first == '\n') return WordKind::Value;
+    if (!longName && std::isdigit(static_cast<unsigned char>(first)) && !app.get_option_no_throw(std::string{'-', first}))
+        return WordKind::Value;
+    return WordKind::Option;
+}
+
+// An empty value a word list's option would lose: CLI11 drops an empty item of a list ("0.1,,0.2" is two
+// thresholds, "a," one word) and takes an empty word for its break between two uses of an option of several
+// words (--cell A '' f.json would lose its column).
+void refuseEmptyValue(const CLI::Option& option, std::string_view word) {
+    if (option.get_delimiter() == '\0') {
+        if (word.empty()) throw CLI::ValidationError(option.get_name(), "an empty word cannot be one of its values");
+        return;
+    }
+    const std::string separator(1, option.get_delimiter()), twice(2, option.get_delimiter());
+    if (word.empty() || word.starts_with(separator) || word.ends_with(separator) ||
+        word.find(twice) != std::string_view::npos)
+        throw CLI::ValidationError(
+            option.get_name(),
+            "an empty item in '" + std::string(word) + "'; expected items separated by single '" + separator + "'");
+}
+
+// Refuses, before CLI11 reads them, the empty values a word list's option would lose. The words an option takes
+// are found as CLI11 finds them (App::_parse_arg): its value after '=', then its least number of words whatever
+// they look like, then, up to its most, the words that are values; a "--" that ends such a run is CLI11's too.
 void refuseEmptyValues(const CLI::App& app, int argc, char** argv) {
-    const CLI::Option* list = nullptr;
     for (int i = 1; i < argc; ++i) {
-        std::string_view word = argv[i];
-        if (word == "--") return;
-        if (word.size() > 1 && word[0] == '-' && !numberFromText(word)) {
-            const std::size_t equals = word.find('=');
-            const CLI::Option* option = app.get_option_no_throw(std::string(word.substr(0, equals)));
-            const bool lossy = option && (option->get_delimiter() != '\0' || option->get_type_size_max() > 1);
-            list = lossy ? option : nullptr;
-            if (!list || equals == std::string_view::npos) continue;
-            word.remove_prefix(equals + 1);
+        const std::string_view word = argv[i];
+        const WordKind kind = wordKind(app, word);
+        if (kind == WordKind::EndOfOptions) return;
+        if (kind == WordKind::Value) continue;
+        const std::size_t equals = word.starts_with("--") ? word.find('=') : std::string_view::npos;
+        const CLI::Option* option = app.get_option_no_throw(std::string(word.substr(0, equals)));
+        if (!option || option->get_items_expected_max() == 0) continue;  // unknown (CLI11 says so), or a flag
+        const bool list = isWordList(*option);
+        const int least = std::min(option->get_type_size_min(), option->get_items_expected_min());
+        std::int64_t most = option->get_items_expected_max();
+        if (!option->get_allow_extra_args() && most >= CLI::detail::expected_max_vector_size / 16)
+            most = std::int64_t{option->get_type_size_max()} * option->get_expected_min();
+        int taken = 0;
+        if (equals != std::string_view::npos) {
+            if (list) refuseEmptyValue(*option, word.substr(equals + 1));
+            taken = 1;
         }
-        if (!list) continue;
-        if (list->get_delimiter() == '\0') {
-            if (word.empty()) throw CLI::ValidationError(list->get_name(), "an empty word cannot be one of its values");
-            continue;
-        }
-        std::string_view items = word;
-        if (items.size() >= 2 && items.front() == '[' && items.back() == ']') items = items.substr(1, items.size() - 2);
-        const std::string separator(1, list->get_delimiter()), twice(2, list->get_delimiter());
-        if (items.empty() || items.starts_with(separator) || items.ends_with(separator) ||
-            items.find(twice) != std::string_view::npos)
-            throw CLI::ValidationError(
-                list->get_name(),
-                "an empty item in '" + std::string(word) + "'; expected items separated by single '" + separator + "'");
-        if (!list->get_allow_extra_args()) list = nullptr;  // one word a use: the next is not its value
+        for (; taken < least && i + 1 < argc; ++taken)
+            if (list) refuseEmptyValue(*option, argv[++i]);
+            else ++i;
+        if (taken >= most && !option->get_allow_extra_args()) continue;
+        for (; (taken < most || option->get_allow_extra_args()) && i + 1 < argc &&
+               wordKind(app, argv[i + 1]) == WordKind::Value;
+             ++taken)
+            if (list) refuseEmptyValue(*option, argv[++i]);
+            else ++i;
+        if (i + 1 < argc && wordKind(app, argv[i + 1]) == WordKind::EndOfOptions) ++i;
     }
 }
 
@@ -189,6 +232,7 @@ std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc
     app.set_version_flag("--version", [tool] { return versionText(tool); },
                          "print the version, git commit, build type and compiler, and exit");
     checkNumberText(app);
+    takeWordsAsTyped(app);
     try {
         refuseEmptyValues(app, argc, argv);
         app.parse(argc, argv);

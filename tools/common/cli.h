@@ -37,7 +37,9 @@ CLI::Validator numberAbove(double lo, bool orEqual);
 
 // Parses the command line, after adding --version; a usage error becomes the one line
 // "<tool>: error: <what> (see --help)" and exit kExitUsage, --help and --version print on stdout
-// (exit 0). Returns the exit code to leave with, if any.
+// (exit 0). Returns the exit code to leave with, if any. Every number option's text is checked first in
+// parse.h's forms; a comma-separated list option takes one word a use, an option of several words takes them as
+// typed (brackets too), and an empty list item or word, which CLI11 would drop, is a usage error.
 std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv);
 
 // Throws UsageError "argument N '<arg>' is not valid UTF-8 (byte B): <why>" for the first argument that is
