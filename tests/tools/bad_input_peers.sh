@@ -32,6 +32,10 @@ bad 64 '^vri-peer-vtk: error: --repeat 0: expected a whole number in 1..1000$' -
 bad 64 '^vri-peer-vtk: error: --repeat 4096: expected a whole number in 1..1000$' -- "$peer" "${scene[@]}" --repeat 0x1000 -o out.exr
 bad 64 '^vri-peer-vtk: error: --repeat 1010: expected a whole number in 1..1000$' -- "$peer" "${scene[@]}" --repeat 01010 -o out.exr
 bad 64 '^vri-peer-vtk: error: --fov 256: expected degrees in \(0, 180\)$' -- "$peer" "${scene[@]}" --fov 0x1p8 -o out.exr
+# An option's value may start with '-', as in vri's tools: it is the value, not an unknown option.
+bad 64 '^vri-peer-vtk: error: --fov -5: expected degrees in \(0, 180\)$' -- "$peer" "${scene[@]}" --fov -5 -o out.exr
+"$peer" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 --eye -20,4,4 --target 4,4,4 -q -o negative.exr ||
+    fail "--eye -20,4,4 refused"
 literal() { printf '%s' "$1" | sed 's/[].+*?^$()[{}|\\]/\\&/g'; }  # text as a regex that matches it alone
 for text in ' 3' 1_0 +3 '٣' '' 3.0; do
     bad 64 "^vri-peer-vtk: error: argument --warm-up: expected an integer \(decimal, or hexadecimal after 0x\), got '$(literal "$text")'" -- \

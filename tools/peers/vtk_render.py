@@ -178,6 +178,19 @@ def arguments(argv):
     p.add_argument("--png", help="8-bit preview PNG")
     p.add_argument("--stats", help="statistics and provenance as JSON")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
+    # An option's value is the next word, as vri's tools read it, even where it starts with '-' (--eye -20,4,4),
+    # which argparse would take for an option: such a pair goes on as one word.
+    joined, words = [], iter(argv)
+    for word in words:
+        action = p._option_string_actions.get(word)
+        value = next(words, None) if action is not None and action.nargs is None else None
+        if value is None:
+            joined.append(word)
+        elif value.startswith("-"):
+            joined.append(word + "=" + value)
+        else:
+            joined += [word, value]
+    argv = joined
     # As vri's tools (CLI11) do: an unknown option is named before any missing required one.
     for word in argv:
         name = word.split("=", 1)[0]
