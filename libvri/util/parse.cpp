@@ -191,7 +191,8 @@ double parseLimit(const std::string& text, const std::string& what) {
 std::vector<std::string> parseWordList(const std::string& text, const std::string& what) {
     std::vector<std::string> words;
     for (std::string_view part : split(text, ',')) {
-        if (part.empty()) throw Error(what + ": expected words separated by single commas, got '" + text + "'");
+        if (part.empty())
+            throw Error(what + ": an empty item in '" + text + "'; expected items separated by single ','");
         words.emplace_back(part);
     }
     return words;

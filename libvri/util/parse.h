@@ -49,7 +49,8 @@ std::optional<std::int64_t> integerFromText(std::string_view text, bool* outOfRa
 // value says what range it takes), or a hexadecimal float after 0x (0x1p-3); nullopt otherwise.
 std::optional<double> numberFromText(std::string_view text);
 
-// "a,b,c" -> the words between the commas (empty words are an error naming `what`).
+// "a,b,c" -> the words between the commas; throws vri::Error "<what>: an empty item in '<text>'; expected items
+// separated by single ','" for an empty one (a,,b, a trailing comma, an empty text).
 std::vector<std::string> parseWordList(const std::string& text, const std::string& what);
 // "1,4,16" -> positive finite numbers; throws vri::Error naming `what` otherwise.
 std::vector<double> parsePositiveList(const std::string& text, const std::string& what);

@@ -22,6 +22,13 @@ TEST_CASE("parse: numbers in decimal or hexadecimal, the whole text and nothing 
         CHECK_THROWS_AS(parseSize(text, "--size"), Error);
     }
     CHECK(parseSize("0800x600", "--size") == glm::ivec2(800, 600));  // decimal, a leading 0 not octal
+    CHECK(parseWordList("a,b", "--only") == std::vector<std::string>{"a", "b"});
+    for (const char* text : {"", "a,", ",a", "a,,b"}) {
+        CAPTURE(text);
+        CHECK_THROWS_WITH_AS(parseWordList(text, "--only"),
+                             ("--only: an empty item in '" + std::string(text) + "'; expected items separated by single ','").c_str(),
+                             Error);
+    }
     for (const char* text : {"0x", "0x-1", "0x+1", "-0x-1", "0xg", "0x1p", "0x1p-3 ", " 0x1", "--0x1", "0x1q", "1e999"}) {
         CAPTURE(text);
         CHECK_THROWS_AS(parsePositive(text, "--step"), Error);

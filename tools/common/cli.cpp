@@ -132,19 +132,18 @@ WordKind wordKind(const CLI::App& app, std::string_view word) {
 }
 
 // An empty value a word list's option would lose: CLI11 drops an empty item of a list ("0.1,,0.2" is two
-// thresholds, "a," one word) and takes an empty word for its break between two uses of an option of several
-// words (--cell A '' f.json would lose its column).
+// thresholds, "a," one word; vri's lists are comma-separated, as parseWordList reads them) and takes an empty word
+// for its break between two uses of an option of several words (--cell A '' f.json would lose its column).
 void refuseEmptyValue(const CLI::Option& option, std::string_view word) {
     if (option.get_delimiter() == '\0') {
         if (word.empty()) throw CLI::ValidationError(option.get_name(), "an empty word cannot be one of its values");
         return;
     }
-    const std::string separator(1, option.get_delimiter()), twice(2, option.get_delimiter());
-    if (word.empty() || word.starts_with(separator) || word.ends_with(separator) ||
-        word.find(twice) != std::string_view::npos)
-        throw CLI::ValidationError(
-            option.get_name(),
-            "an empty item in '" + std::string(word) + "'; expected items separated by single '" + separator + "'");
+    try {
+        parseWordList(std::string(word), option.get_name());
+    } catch (const Error& e) {
+        throw CLI::ValidationError(e.what());
+    }
 }
 
 // Refuses, before CLI11 reads them, the empty values a word list's option would lose. The words an option takes
@@ -159,25 +158,23 @@ void refuseEmptyValues(const CLI::App& app, int argc, char** argv) {
         const std::size_t equals = word.starts_with("--") ? word.find('=') : std::string_view::npos;
         const CLI::Option* option = app.get_option_no_throw(std::string(word.substr(0, equals)));
         if (!option || option->get_items_expected_max() == 0) continue;  // unknown (CLI11 says so), or a flag
-        const bool list = isWordList(*option);
+        const auto take = [&](std::string_view value) {
+            if (isWordList(*option)) refuseEmptyValue(*option, value);
+        };
         const int least = std::min(option->get_type_size_min(), option->get_items_expected_min());
+        const bool extra = option->get_allow_extra_args();
         std::int64_t most = option->get_items_expected_max();
-        if (!option->get_allow_extra_args() && most >= CLI::detail::expected_max_vector_size / 16)
+        if (!extra && most >= CLI::detail::expected_max_vector_size / 16)
             most = std::int64_t{option->get_type_size_max()} * option->get_expected_min();
         int taken = 0;
         if (equals != std::string_view::npos) {
-            if (list) refuseEmptyValue(*option, word.substr(equals + 1));
+            take(word.substr(equals + 1));
             taken = 1;
         }
-        for (; taken < least && i + 1 < argc; ++taken)
-            if (list) refuseEmptyValue(*option, argv[++i]);
-            else ++i;
-        if (taken >= most && !option->get_allow_extra_args()) continue;
-        for (; (taken < most || option->get_allow_extra_args()) && i + 1 < argc &&
-               wordKind(app, argv[i + 1]) == WordKind::Value;
-             ++taken)
-            if (list) refuseEmptyValue(*option, argv[++i]);
-            else ++i;
+        for (; taken < least && i + 1 < argc; ++taken) take(argv[++i]);
+        if (taken >= most && !extra) continue;
+        for (; (taken < most || extra) && i + 1 < argc && wordKind(app, argv[i + 1]) == WordKind::Value; ++taken)
+            take(argv[++i]);
         if (i + 1 < argc && wordKind(app, argv[i + 1]) == WordKind::EndOfOptions) ++i;
     }
 }
