@@ -19,10 +19,12 @@
 #include <pybind11/stl.h>
 #include <tbb/global_control.h>
 
-#include "common/diff_verdict.h"
-#include "common/exact_reference_json.h"
-#include "common/image_compare_json.h"
-#include "common/render_json.h"
+#include "libvri/render/diff_verdict.h"
+#include "libvri/render/exact_reference_json.h"
+#include "libvri/render/image_compare_json.h"
+#include "libvri/render/render_job.h"
+#include "libvri/render/render_json.h"
+#include "libvri/render/scene_card.h"
 #include "numpy_image.h"
 #include "python_option_text.h"
 #include "libvri/core/analytic_field.h"
@@ -58,12 +60,10 @@ std::string keywordOf(const RenderOptionRow& row) {
     return name;
 }
 
-// The rows vri.render takes: vri-render's, less the Vulkan backend's (the module renders on the CPU), the
-// timing repeats (one call is one frame: time it from Python), the ray log (a file of its own) and
-// --max-error (a search of several renders: call reference() at tightening tolerances, or the tool).
+// The rows vri.render takes: vri-render's, less the timing repeats (one call is one frame: time it from
+// Python) and the ray log (a file of its own).
 bool takenByRender(const RenderOptionRow& row) {
-    static constexpr std::string_view kLeftOut[] = {"--backend", "--device",  "--interpolation", "--repeat",
-                                                    "--warm-up", "--log-ray", "--max-error"};
+    static constexpr std::string_view kLeftOut[] = {"--repeat", "--warm-up", "--log-ray"};
     return row.takenBy(RenderTool::Render) && std::ranges::find(kLeftOut, row.flag()) == std::end(kLeftOut);
 }
 
@@ -154,42 +154,53 @@ Scene makeScene(const Source& source, const TransferFunction& tf, const std::str
     return Scene{nullptr, std::get<LinearField>(source), conv, tf};
 }
 
+// The call as the record's "command" names it: the function and its keywords, each as the text it was read from.
+nlohmann::json pythonCall(const std::string& function, const py::kwargs& kwargs) {
+    nlohmann::json keywords = nlohmann::json::object();
+    for (const auto& [key, value] : kwargs) {
+        const std::string name = py::str(key);
+        keywords[name] = std::string(py::str(value));
+    }
+    return {{"python", "vri." + function}, {"keywords", std::move(keywords)}};
+}
+
+// vri-render's flow (RenderJob) for one frame: the same checks, backends, --max-error search and record.
 py::tuple renderImage(const Source& source, const TransferFunction& tf, const CameraOptions& cameraOptions,
                       const std::string& convention, const py::kwargs& kwargs) {
     RenderRequest request =
         requestFrom(RenderTool::Render, takenByRender, kwargs, {"threads", "allow_nonfinite"}, "render");
     const std::optional<int> threads = threadCount(kwargs);
-    const bool allowNonFinite = flagKeyword(kwargs, "allow_nonfinite");
-    const Scene scene = makeScene(source, tf, convention);
-    const Camera camera(cameraOptions.spec(scene.box()));
-
-    Image image;
-    nlohmann::json stats;
+    Scene scene = makeScene(source, tf, convention);
+    const CameraSpec camera = cameraOptions.spec(scene.box());
+    const RenderJobContext context{"python", pythonCall("render", kwargs), false, flagKeyword(kwargs, "allow_nonfinite"),
+                                   "allow_nonfinite=True"};
+    std::optional<RenderResult> result;
     {
         py::gil_scoped_release release;  // other Python threads run while this one renders
         std::optional<tbb::global_control> limit;
         if (threads) limit.emplace(tbb::global_control::max_allowed_parallelism, *threads);
-        NonFinitePixels nonfinite;
-        if (request.exact) {
-            const ExactReference ref = renderExactReference(scene, camera, request.exactOptions());
-            image = ref.image();
-            nonfinite = findNonFinitePixels(image);
-            stats = toJson(ref.stats);
-            stats["nonfinite_pixels"] = nonfinite.count;
-        } else {
-            RenderStats renderStats;
-            image = render(scene, camera, request.options, &renderStats);
-            nonfinite = renderStats.nonfinite;
-            stats = toJson(renderStats);
-        }
-        if (nonfinite.count > 0 && !allowNonFinite)
-            throw Error("the image: " + nonfinite.describe() +
-                        ": the integration overflowed (a smaller extinction or step, or allow_nonfinite=True)");
-        stats["out_of_range_pixels"] = toJson(findOutOfRangePixels(image));  // what the method returned
-        if (request.clamp) clampToUnitRange(image);
+        RenderJob job(std::move(request), SceneSetup{std::move(scene), camera}, context);
+        job.searchTolerance();
+        RenderFrame frame = job.frame();
+        const double seconds = frame.seconds;
+        result = job.finish(std::move(frame), frameTimingRecord(0, {seconds}));
     }
-    stats["options"] = toJson(request);
-    return py::make_tuple(toNumpy(image), toPython(stats));
+    for (const std::string& warning : result->warnings)
+        PyErr_WarnEx(PyExc_RuntimeWarning, warning.c_str(), 1);
+    nlohmann::json stats = result->record["stats"];
+    stats["options"] = result->record["options"];
+    stats["record"] = result->record;  // what vri-render's --stats file holds for this render
+    return py::make_tuple(toNumpy(result->image), toPython(stats));
+}
+
+// vri-render --describe: the scene card of this scene and these options, as a dict.
+py::object sceneCardOf(const Source& source, const TransferFunction& tf, const CameraOptions& cameraOptions,
+                         const std::string& convention, const py::kwargs& kwargs) {
+    const RenderRequest request = requestFrom(RenderTool::Render, takenByRender, kwargs, {}, "describe");
+    SceneSetup setup{makeScene(source, tf, convention), {}};
+    setup.camera = cameraOptions.spec(setup.scene.box());
+    if (!request.exact) validateRender(setup.scene, Camera(setup.camera), request.options);
+    return toPython(sceneCard(setup, request));
 }
 
 py::tuple exactReference(const Source& source, const TransferFunction& tf, const CameraOptions& cameraOptions,
@@ -414,12 +425,20 @@ PYBIND11_MODULE(vri, m) {
     const char* renderHelp =
         "render(source, tf, camera, convention='cell', **options) -> (image, stats)\n"
         "source: a Volume or a LinearField; image: float32 array (height, width, 4), premultiplied RGBA, row 0 at "
-        "the top, vri-render's EXR bit for bit; stats: vri-render's stats record as a dict (with 'options').\n"
+        "the top, vri-render's EXR bit for bit; stats: the 'stats' of vri-render's stats record as a dict, with "
+        "'options' and 'record' (the whole provenance record, what vri-render --stats writes for this render).\n"
         "options: vri-render's render options as keywords (method, step, rate, precision, simd, early_termination, "
-        "tolerance, h0, h_min, h_max, accepted_value, no_skip_empty, clamp), threads, allow_nonfinite. The GIL is "
-        "released while it renders.";
+        "tolerance, max_error, h0, h_min, h_max, accepted_value, no_skip_empty, clamp, backend, device, "
+        "interpolation, ...), threads, allow_nonfinite. The same flow as vri-render (RenderJob): backend='vulkan' "
+        "renders on the Vulkan device, max_error=E searches the exact method's tolerance. Warnings are Python "
+        "RuntimeWarnings. The GIL is released while it renders.";
     m.def("render", &renderImage, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraOptions{},
           py::arg("convention") = "cell", renderHelp);
+    m.def("describe", &sceneCardOf, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraOptions{},
+          py::arg("convention") = "cell",
+          "describe(source, tf, camera, convention='cell', **options) -> dict\nvri-render --describe: the scene card "
+          "(docs/scene-card.md), everything another renderer needs to reproduce this render's integral; renders "
+          "nothing. options: as render()'s.");
     m.def("reference", &exactReference, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraOptions{},
           py::arg("convention") = "cell",
           "reference(source, tf, camera, convention='cell', tolerance=1e-13, threads=None) -> (values, bounds, "

@@ -1,7 +1,7 @@
 #!/bin/bash
 # The library's layers include one way only (README "Layout"): a file in a layer may include its own
 # layer and those below it, never one above. Prints each wrong-way include as file:line and exits 1.
-#   util < core < io, vulkan < experiment, report < tools/common < tools
+#   util < core < io, vulkan < render < experiment, report < tools/common < tools
 # Usage: scripts/check-layers.sh [ROOT]   (ROOT: a source tree to check, default this repository)
 set -euo pipefail
 cd "${1:-$(dirname "$0")/..}"
@@ -12,8 +12,9 @@ allowed() {  # the layers a layer may include
         core) echo "util core" ;;
         io) echo "util core io" ;;
         vulkan) echo "util core vulkan" ;;
-        experiment) echo "util core io experiment" ;;
-        report) echo "util core io report" ;;
+        render) echo "util core io vulkan render" ;;
+        experiment) echo "util core io vulkan render experiment" ;;
+        report) echo "util core io vulkan render report" ;;
         *) return 1 ;;
     esac
 }

@@ -15,6 +15,8 @@ packages=(
   slurm-wlm munge iproute2   # vri-run --executor slurm, and the test cluster of tests/tools/slurm.sh
   time                       # GNU time: the bad-input suites' peak resident memory (tests/tools/lib/bad_input.sh)
   ccache                     # the Makefile compiles through it when it is there: a rebuild reuses objects
+  python3-jsonschema         # the scene card's schema check (tests/tools/scene_card.sh)
+  help2man                   # the tools' man pages, made from their --help at build time (docs/CMakeLists.txt)
 )
 if [ "${1:-}" = fuzz ]; then
   packages+=(clang-14 libclang-rt-14-dev)

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "common/cli.h"
-#include "common/diff_verdict.h"
-#include "common/image_compare_json.h"
+#include "libvri/render/diff_verdict.h"
+#include "libvri/render/image_compare_json.h"
 #include "libvri/core/heat_map.h"
 #include "libvri/core/image_compare.h"
 #include "libvri/io/image_io.h"

@@ -7,7 +7,7 @@
 
 #include "common/cli.h"
 #include "common/preview_options.h"
-#include "common/tile_merge.h"
+#include "libvri/render/tile_merge.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/atomic_file.h"

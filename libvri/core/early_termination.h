@@ -40,7 +40,7 @@
 #include <glm/geometric.hpp>
 
 #include "libvri/core/box.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 
 namespace vri {
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "libvri/core/camera.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 #include "libvri/core/image.h"
 
 namespace vri {

@@ -11,7 +11,7 @@
 
 #include "libvri/core/box.h"
 #include "libvri/core/camera.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 #include "libvri/core/grid_sampler.h"
 #include "libvri/core/jitter.h"
 #include "libvri/core/occupancy_grid.h"

@@ -3,7 +3,7 @@
 // seed + f (jitter.h), shared by the CPU renderer and the Vulkan backend.
 #include <functional>
 
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 
 namespace vri {
 

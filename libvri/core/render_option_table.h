@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "libvri/core/backend.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 #include "libvri/core/exact_reference.h"
 
 namespace vri {

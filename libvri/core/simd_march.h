@@ -18,7 +18,7 @@
 
 #include "libvri/core/box.h"
 #include "libvri/core/camera.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 #include "libvri/core/early_termination.h"
 #include "libvri/core/grid_sampler.h"
 #include "libvri/core/image.h"

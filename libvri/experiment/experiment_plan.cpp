@@ -43,6 +43,8 @@ public:
     Planner(const Experiment& experiment, Plan& plan) : experiment_(experiment), plan_(plan) {}
 
     void addRender(const RunSpec& run);
+    // A scene's options, its volume and transfer function as inputs (a render, or a command with a scene).
+    void sceneOptions(Step& step, const SceneSpec& scene) const;
     void addTiles(const RunSpec& run, const SceneSpec& scene, const Step& render);
     void addDiff(const ComparisonSpec& comparison);
     void addCommand(const CommandSpec& command);
@@ -67,6 +69,15 @@ private:
         step.arguments.push_back(show(path));
         step.inputs.push_back(path);
     }
+    // An outside renderer's command after --, last (vri-outside, vri-verify); its files key the step's cache.
+    static void rendererCommand(Step& step, const std::vector<std::string>& command, const std::string& name,
+                                const std::string& image, const std::vector<fs::path>& files) {
+        if (command.empty()) return;
+        step.arguments.insert(step.arguments.end(), {"--renderer-image", image, "--renderer-name", name, "--"});
+        step.arguments.insert(step.arguments.end(), command.begin(), command.end());
+        step.inputs.insert(step.inputs.end(), files.begin(), files.end());
+        step.parameters.emplace_back("renderer", name);
+    }
     bool written(const fs::path& path) const {  // by a step planned so far
         return std::any_of(plan_.steps.begin(), plan_.steps.end(), [&](const Step& s) {
             return std::find(s.outputs.begin(), s.outputs.end(), path) != s.outputs.end();
@@ -77,9 +88,8 @@ private:
     Plan& plan_;
 };
 
-void Planner::addRender(const RunSpec& run) {
-    const SceneSpec& scene = experiment_.scene(run.scene);
-    Step step{run.id, "render", run.tool, {}, {}, {}, {{"scene", scene.name}}};
+void Planner::sceneOptions(Step& step, const SceneSpec& scene) const {
+    step.parameters.emplace_back("scene", scene.name);
     if (!scene.dataset.empty()) step.parameters.emplace_back("dataset", scene.dataset);
     for (const ToolOption& o : scene.options) {
         const bool isFile = o.first == "--volume" || o.first == "--tf";
@@ -88,6 +98,12 @@ void Planner::addRender(const RunSpec& run) {
         else
             option(step, o);
     }
+}
+
+void Planner::addRender(const RunSpec& run) {
+    const SceneSpec& scene = experiment_.scene(run.scene);
+    Step step{run.id, "render", run.tool, {}, {}, {}, {}};
+    sceneOptions(step, scene);
     for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
@@ -100,6 +116,7 @@ void Planner::addRender(const RunSpec& run) {
     output(step, "--stats", result(run.id + ".json"));
     if (std::ranges::any_of(run.parameters, [](auto& kv) { return kv.first == "log_ray"; }))
         output(step, "--log", result(run.id + "-ray.csv"));
+    rendererCommand(step, run.command, run.rendererName, run.rendererImage, run.commandFiles);
     plan_.steps.push_back(std::move(step));
 }
 
@@ -148,9 +165,11 @@ void Planner::addDiff(const ComparisonSpec& c) {
 
 void Planner::addCommand(const CommandSpec& command) {
     Step step{command.name, "command", command.tool, {}, {}, {}, {{"command", command.name}}};
+    if (!command.scene.empty()) sceneOptions(step, experiment_.scene(command.scene));
     for (const ToolOption& o : command.options) option(step, o);
     for (const auto& [word, path] : command.inputs) input(step, word, path);
     for (const auto& [word, file] : command.outputs) output(step, word, result(file));
+    rendererCommand(step, command.command, command.rendererName, command.rendererImage, command.commandFiles);
     plan_.steps.push_back(std::move(step));
 }
 

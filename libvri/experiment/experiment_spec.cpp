@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -17,9 +18,12 @@
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
 #include "libvri/io/yaml_util.h"
+#include "libvri/render/outside_renderer.h"
 #include "libvri/util/checked_size.h"
 #include "libvri/util/format.h"
 #include "libvri/util/parse.h"
+#include "libvri/util/printable.h"
+#include "libvri/util/process.h"
 
 namespace vri {
 
@@ -102,6 +106,9 @@ private:
     // after their unknown keys, which are the likelier mistake there: a misspelt required key.)
     void requireAllKeys(const YAML::Node& root) const;
     SceneSpec readScene(const std::string& name, const YAML::Node& node);
+    // `renderers:`: outside renderers by name, each a command (a list of words with vri-outside's
+    // placeholders) and the image format it writes; methods name them with `renderer:`.
+    void readRenderers(const YAML::Node& node);
     void readRuns(const YAML::Node& node, bool reference, Experiment& experiment) const;
     void readComparisons(const YAML::Node& node, Experiment& experiment) const;
     void readCommands(const YAML::Node& node, Experiment& experiment) const;
@@ -113,6 +120,12 @@ private:
     fs::path baseDir_;
     std::vector<std::string> defaults_;  // Experiment::defaults
     std::optional<std::vector<DatasetInfo>> catalog_;  // experiments/datasets.yaml, read when a scene names a dataset
+    struct Renderer {
+        std::vector<std::string> command;
+        std::string image;
+        std::vector<fs::path> files;  // the executable, then every word that names an existing file
+    };
+    std::map<std::string, Renderer, std::less<>> renderers_;
 };
 
 std::string ExperimentReader::vec3(const YAML::Node& node, std::string_view what) const {
@@ -368,6 +381,45 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
     return scene;
 }
 
+void ExperimentReader::readRenderers(const YAML::Node& node) {
+    for (const auto& [name, entry] : entries(node, "renderers")) {
+        yaml::requireKeys(entry, source_, {"command", "image"});
+        const YAML::Node command = required(entry, "command", "renderer '" + name + "'");
+        if (!command.IsSequence() || command.size() == 0)
+            throw Error(at(command) + ": command must be a list of words, the program first");
+        Renderer renderer;
+        for (const YAML::Node& word : command) renderer.command.push_back(text(word, "command"));
+        renderer.image = entry["image"] ? text(entry["image"], "image") : "exr";
+        if (renderer.image != "exr" && renderer.image != "png" && renderer.image != "f32")
+            throw Error(at(entry["image"]) + ": image must be exr, png or f32, got '" + printable(renderer.image) + "'");
+        try {  // the placeholders checked now, not when the step runs
+            expandPlaceholders(renderer.command, {{"card", ""}, {"voxels", ""}, {"output", ""}, {"stats", ""},
+                                                  {"step", ""}, {"width", ""}, {"height", ""}});
+        } catch (const Error& e) {
+            throw Error(at(command) + ": " + e.what());
+        }
+        // A word that names a file beside the experiment (a script, a model) is made absolute, so that the
+        // command runs from any folder, and its digest joins the executable's in the run's cache key.
+        for (std::size_t i = 0; i < renderer.command.size(); ++i) {
+            std::string& word = renderer.command[i];
+            // The program's bare name is looked up in PATH (below), as execvp would; any other word may name a file.
+            if (word.empty() || word.find('{') != std::string::npos || (i == 0 && word.find('/') == std::string::npos))
+                continue;
+            const fs::path path = fs::path(word).is_absolute() ? fs::path(word) : baseDir_ / word;
+            if (fs::is_regular_file(path)) {
+                word = fs::absolute(path).lexically_normal().string();
+                renderer.files.push_back(word);
+            }
+        }
+        const std::optional<fs::path> program = findProgram(renderer.command[0]);
+        if (!program)
+            throw Error(at(command[0]) + ": renderer '" + name + "': no program '" + printable(renderer.command[0]) +
+                        "' (in PATH, or a path from the experiment's folder)");
+        renderer.files.insert(renderer.files.begin(), fs::absolute(*program));
+        renderers_.emplace(name, std::move(renderer));
+    }
+}
+
 void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experiment& experiment) const {
     const char* section = reference ? "references" : "methods";
     for (const auto& [prefix, entry] : entries(node, section)) {
@@ -382,8 +434,20 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         bool hasMethod = false;
         int tiles = 1;
         std::string tilesAt;  // file:line:col of `tiles:`
+        const Renderer* renderer = nullptr;  // `renderer: NAME`: an outside renderer's run (vri-outside)
+        std::string rendererName;
         for (const auto& kv : entry) {
             const std::string key = text(kv.first, "key");
+            if (key == "renderer") {
+                const std::string name = text(kv.second, "renderer");
+                const auto found = renderers_.find(name);
+                if (found == renderers_.end())
+                    throw Error(at(kv.second) + ": unknown renderer '" + printable(name) + "' (renderers: names them)");
+                if (reference) throw Error(at(kv.first) + ": a reference is vri's own: renderer: belongs under methods");
+                renderer = &found->second;
+                rendererName = name;
+                continue;
+            }
             if (key == "tiles") {  // how the run is computed, not what: one value, never in the id
                 tilesAt = at(kv.second);
                 const std::string n = number(kv.second, "tiles");
@@ -404,7 +468,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             }
             const RenderOptionRow* row = findRenderOption(key);
             if (!row) {
-                std::string list = "scenes, tiles";
+                std::string list = "scenes, tiles, renderer";
                 for (const RenderOptionRow& r : renderOptionTable())
                     if (!r.key.empty()) list += ", " + std::string(r.key);
                 throw Error(at(kv.first) + ": unknown key '" + key + "' (expected one of: " + list + ")");
@@ -434,10 +498,12 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         }
         if (!hasMethod) {  // the entry's name is the method, as in `riemann: {step: [...]}`
             static const RenderOptionRow* method = findRenderOption("method");
+            // An outside renderer's card describes vri's Riemann sum unless the entry names another method.
+            const std::string name = renderer ? "riemann" : prefix;
             RenderRequest scratch(RenderTool::Render);
-            method->apply(prefix, at(entry) + ": " + section + " entry '" + prefix + "' has no method, and its name",
+            method->apply(name, at(entry) + ": " + section + " entry '" + prefix + "' has no method, and its name",
                           scratch);
-            axes.insert(axes.begin(), Axis{method, {prefix}, false});
+            axes.insert(axes.begin(), Axis{method, {name}, false});
         }
         if (scenes.empty())
             for (const SceneSpec& s : experiment.scenes) scenes.push_back(s.name);
@@ -456,13 +522,23 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         std::vector<std::size_t> index(axes.size(), 0);
         for (const std::string& scene : scenes) {
             for (bool more = true; more;) {
-                RunSpec run{experiment.scenes.size() > 1 ? scene + "-" + prefix : prefix, "vri-render", scene, reference, {}, {}};
+                RunSpec run{experiment.scenes.size() > 1 ? scene + "-" + prefix : prefix, "vri-render", scene, reference, {}, {}, 1, {}, {}, {}, {}};
                 const auto method = std::find_if(axes.begin(), axes.end(), [](auto& a) { return a.row->key == "method"; });
                 const std::string& methodName = method->values[index[method - axes.begin()]];
                 const bool exact = methodName == kExactMethod;
                 const PeerMethod* peer = peerMethod(methodName);
                 if (exact) run.tool = "vri-reference";
                 if (peer) run.tool = std::string(peer->tool);
+                if (renderer) {
+                    if (exact || peer)
+                        throw Error(at(entry) + ": renderer: runs another renderer on a card of vri's own methods, not " +
+                                    methodName);
+                    run.tool = "vri-outside";
+                    run.command = renderer->command;
+                    run.rendererName = rendererName;
+                    run.rendererImage = renderer->image;
+                    run.commandFiles = renderer->files;
+                }
                 RenderRequest request(exact ? RenderTool::Reference : RenderTool::Render);
                 for (std::size_t a = 0; a < axes.size(); ++a) {
                     const RenderOptionRow& row = *axes[a].row;
@@ -509,7 +585,8 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                 }
                 if (tiles > 1) {
                     const std::string tiled = tilesAt + ": tiles: " + std::to_string(tiles) + ": ";
-                    if (peer) throw Error(tiled + "method " + methodName + " (" + run.tool + ") renders whole images only");
+                    if (peer || renderer)
+                        throw Error(tiled + "method " + methodName + " (" + run.tool + ") renders whole images only");
                     if (request.options.logPixel) throw Error(tiled + "log_ray logs one pixel: render it untiled");
                     // Each tile's --max-error search would see its own pixels only and find its own tolerance:
                     // the bands would not join into the untiled image (vri-merge-tiles refuses them).
@@ -593,15 +670,34 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
 
 void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "commands")) {
-        yaml::requireKeys(entry, source_, {"tool", "options", "inputs", "outputs"});
+        yaml::requireKeys(entry, source_, {"tool", "options", "inputs", "outputs", "renderer", "scene"});
         const std::string what = "command '" + name + "'";
         const YAML::Node tool = required(entry, "tool", what);
-        CommandSpec command{name, text(tool, "tool"), {}, {}, {}};
+        CommandSpec command{name, text(tool, "tool"), {}, {}, {}, {}, {}, {}, {}, {}};
         if (!command.tool.starts_with("vri-") || command.tool.size() == 4 ||
             command.tool.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-", 4) != std::string::npos)
             throw Error(at(tool) + ": tool must be a vri tool (vri-[a-z0-9-]+), got '" + command.tool + "'");
         if (command.tool == "vri-run" || command.tool == "vri-data")  // they write outside the results folder
             throw Error(at(tool) + ": " + command.tool + " cannot be a command's tool");
+        if (const YAML::Node r = entry["renderer"]) {
+            const std::string rendererName = text(r, "renderer");
+            const auto found = renderers_.find(rendererName);
+            if (found == renderers_.end())
+                throw Error(at(r) + ": unknown renderer '" + printable(rendererName) + "' (renderers: names them)");
+            if (command.tool != "vri-verify" && command.tool != "vri-outside")
+                throw Error(at(r) + ": renderer: applies to vri-verify and vri-outside, not " + command.tool);
+            command.command = found->second.command;
+            command.rendererName = rendererName;
+            const YAML::Node scene = required(entry, "scene", what + " with a renderer");
+            command.scene = text(scene, "scene");
+            if (std::none_of(experiment.scenes.begin(), experiment.scenes.end(),
+                             [&](const SceneSpec& sc) { return sc.name == command.scene; }))
+                throw Error(at(scene) + ": unknown scene '" + printable(command.scene) + "'");
+            command.rendererImage = found->second.image;
+            command.commandFiles = found->second.files;
+        }
+        if (entry["scene"] && command.scene.empty())
+            throw Error(at(entry["scene"]) + ": scene: goes with renderer: (vri-verify, vri-outside)");
         if (const YAML::Node options = entry["options"])
             for (const auto& [key, value] : optionEntries(options, "options"))
                 if (const auto v = optionValue(value, key)) {
@@ -806,7 +902,7 @@ void mergeOverrides(YAML::Node base, const YAML::Node& overrides) {
 Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     yaml::requireMap(root, source_, "an experiment");
     static const std::initializer_list<std::string_view> topLevel{
-        "name", "title", "paper", "agreement", "scenes", "methods", "references",
+        "name", "title", "paper", "agreement", "scenes", "renderers", "methods", "references",
         "comparisons", "commands", "tables", "figures", "reproduce", "quick"};
     yaml::requireKeys(root, source_, topLevel);
     if (const YAML::Node q = root["quick"]) {
@@ -832,6 +928,7 @@ Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     if (root["paper"]) experiment.paper = readPaper(root["paper"]);
     else defaults_.push_back("paper: none (an own study)");
     if (root["agreement"]) experiment.agreement = text(root["agreement"], "agreement");
+    if (root["renderers"]) readRenderers(root["renderers"]);
     // Renders need scenes and methods; an experiment of commands alone (a 2D study) has neither.
     if (root["scenes"] || root["methods"] || root["references"] || !root["commands"]) {
         for (const auto& [sceneName, entry] : entries(required(root, "scenes", "the experiment"), "scenes"))

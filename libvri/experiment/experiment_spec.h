@@ -52,6 +52,11 @@ struct RunSpec {
     // `tiles: N`: the image rendered as N bands of rows, one step each (--region), then merged by
     // vri-merge-tiles into the files the untiled run writes (experiment_plan.h). Not part of the id.
     int tiles = 1;
+    // `renderer: NAME` (tool vri-outside): the renderer's command after --, with its placeholders, what it
+    // writes at {output}, and the files the command names (its executable first), whose digests key the cache.
+    std::vector<std::string> command;
+    std::string rendererName, rendererImage;
+    std::vector<std::filesystem::path> commandFiles;
 };
 
 // One vri-diff of a run against a reference run.
@@ -83,6 +88,12 @@ struct CommandSpec {
     ToolOptions options;  // in file order; lists joined by commas, true as a flag, false left out
     std::vector<std::pair<std::string, std::filesystem::path>> inputs;  // option -> file (absolute), hashed
     std::vector<std::pair<std::string, std::string>> outputs;  // option -> file name in results/<experiment>/
+    // `renderer: NAME` (vri-verify, vri-outside): that renderer's command after --, as RunSpec's; `scene: NAME`:
+    // that scene's options (its volume, transfer function, camera and size), as a render of it takes them.
+    std::string scene;
+    std::vector<std::string> command;
+    std::string rendererName, rendererImage;
+    std::vector<std::filesystem::path> commandFiles;
 };
 
 // A table by vri-tabulate, in one of its layouts: "thresholds", the % of pixels above each threshold,

@@ -18,8 +18,10 @@ bool mayBeLong(const Step& step) { return step.kind == "render" || step.kind == 
 
 // The word after `option` in the step's arguments, or "".
 std::string argumentAfter(const Step& step, const std::string& option) {
-    const auto found = std::find(step.arguments.begin(), step.arguments.end(), option);
-    return found != step.arguments.end() && found + 1 != step.arguments.end() ? *(found + 1) : "";
+    // Up to "--": what follows is an outside renderer's own command (vri-outside), not vri's options.
+    const auto end = std::find(step.arguments.begin(), step.arguments.end(), "--");
+    const auto found = std::find(step.arguments.begin(), end, option);
+    return found != end && found + 1 != end ? *(found + 1) : "";
 }
 
 int stepCpus(const Step& step, int defaultCpus) {

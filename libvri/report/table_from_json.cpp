@@ -94,6 +94,8 @@ std::string methodFamily(const json& stats, const fs::path& file) {
             return options.contains("simd_target") ? method + " " + options.at("simd_target").get<std::string>() : method;
         // A peer renderer (vri-peer-vtk) has no precision option: its family is its method.
         if (!options.contains("precision")) return method;
+        // An outside renderer (vri-outside): its name; the card's method is what it was asked to compute.
+        if (stats.at("stats").value("backend", "") == "outside") return stats.at("renderer").at("name").get<std::string>();
         std::string family = method + " " + options.at("precision").get<std::string>();
         const json& run = stats.at("stats");
         if (run.value("backend", "cpu") == "vulkan") family += " vulkan";

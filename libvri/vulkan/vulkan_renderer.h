@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "libvri/core/backend.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 #include "libvri/core/image.h"
 #include "libvri/core/voxel_type.h"
 

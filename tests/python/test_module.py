@@ -104,6 +104,54 @@ class RenderEqualsTools(unittest.TestCase):
         self.assertTrue((bounds >= 0).all() and bounds.max() < 1e-6)
         self.assertEqual(stats["options"]["tolerance"], 1e-10)
 
+    def test_render_flow_is_vri_renders(self):
+        """vri.render runs vri-render's RenderJob: --max-error's search, the Vulkan backend and the provenance
+        record are the tool's, and vri.describe is vri-render --describe."""
+        stats_path = scratch("max_error.json")
+        code, err = run_tool("vri-render", "--volume", self.path, "--tf", TF, *self.camera_args, "-q", "--threads", "2",
+                             "--method", "exact", "--max-error", "1e-4", "-o", scratch("max_error.exr"),
+                             "--stats", stats_path)
+        self.assertEqual(code, 0, err)
+        image, stats = vri.render(self.volume, self.tf, self.camera, threads=2, method="exact", max_error=1e-4)
+        self.assertTrue(np.array_equal(bits(image), bits(vri.read_image(scratch("max_error.exr")))))
+        with open(stats_path) as f:
+            tool = json.load(f)
+        tolerances = lambda search: [r["tolerance"] for r in search["renders"]]
+        self.assertEqual(tolerances(stats["max_error_search"]), tolerances(tool["stats"]["max_error_search"]))
+        bound = stats["error_bound"]["max"]
+        self.assertLessEqual(max(bound) if isinstance(bound, list) else bound, 1e-4)
+        record = stats["record"]
+        self.assertEqual(record["tool"], "python")
+        self.assertEqual(record["command"]["python"], "vri.render")
+        self.assertEqual(record["command"]["keywords"]["max_error"], "0.0001")
+        for key in ("build", "machine", "scene", "camera", "options", "timing", "transfer_function"):
+            self.assertEqual(type(record[key]), type(tool[key]), key)
+        self.assertEqual(record["scene"], tool["scene"])
+        self.assertEqual(record["camera"], tool["camera"])
+        self.assertEqual(record["options"], tool["options"])
+
+        card_path = scratch("card.json")
+        code, err = run_tool("vri-render", "--volume", self.path, "--tf", TF, *self.camera_args, "-q",
+                             "--step", "0.7", "--describe", card_path)
+        self.assertEqual(code, 0, err)
+        with open(card_path) as f:
+            card = json.load(f)
+        mine = vri.describe(self.volume, self.tf, self.camera, step=0.7)
+        for key in ("camera", "method", "worked_rays", "transfer_function", "integration", "output"):
+            self.assertEqual(mine[key], card[key] if key != "transfer_function" else {**card[key], "source": None}, key)
+        self.assertIsNone(mine["volume"]["source"])  # built in Python: no file
+
+        if os.environ.get("VRI_VULKAN", "ON") != "ON" or run_tool("vri-render", "--list-devices")[0] != 0:
+            return  # no Vulkan backend or device here: the CPU part above still ran
+        options = dict(method="riemann", step=0.7, precision="float", backend="vulkan")
+        code, err = run_tool("vri-render", "--volume", self.path, "--tf", TF, *self.camera_args, "-q",
+                             "--method", "riemann", "--step", "0.7", "--precision", "float", "--backend", "vulkan",
+                             "-o", scratch("vulkan.exr"))
+        self.assertEqual(code, 0, err)
+        image, stats = vri.render(self.volume, self.tf, self.camera, **options)
+        self.assertEqual(stats["backend"], "vulkan")
+        self.assertTrue(np.array_equal(bits(image), bits(vri.read_image(scratch("vulkan.exr")))))
+
     def test_compare_is_vri_diff(self):
         a, _ = vri.render(self.volume, self.tf, self.camera, method="riemann", step=1.0)
         b, _ = vri.render(self.volume, self.tf, self.camera, method="coupled", tolerance=1e-4)

@@ -20,14 +20,18 @@ points:
 YAML
 # Two placements and the exact method on the linear field, a diff of each against the corner placement,
 # a table of the diffs: every kind of step and a dependency between them.
-cat > exp.yaml <<'YAML'
+# An outside renderer (the scene card's example, through vri-outside) runs on the nodes like vri's own steps.
+cat > exp.yaml <<YAML
 name: small
 title: A small study on the test cluster
 paper: {paper: A, item: Fig. 4, says: a test}
 scenes:
   cube: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [40, 30],
          camera: {eye: [-8, 4, 1], target: [0, 0, 0], up: [0, 0, 1]}}
+renderers:
+  card-example: {command: [$python, $VRI_SOURCE/examples/scene_card/render_from_card.py, "{card}", "{output}"], image: f32}
 methods:
+  card: {renderer: card-example, placement: entry, rate: 2, precision: double}
   riemann: {placement: [entry, entry-exit-corner], rate: 2}
   exact: {eps: 1e-6}
   exact-tiled: {method: exact, eps: 1e-6, tiles: 3}   # three tile jobs and a merge

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 
-#include "common/image_compare_json.h"
+#include "libvri/render/image_compare_json.h"
 #include "libvri/core/image_compare.h"
 #include "libvri/util/error.h"
 

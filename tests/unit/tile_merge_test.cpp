@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/tile_merge.h"
+#include "libvri/render/tile_merge.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/util/error.h"
 #include "libvri/util/parse.h"

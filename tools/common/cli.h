@@ -22,6 +22,8 @@ inline constexpr int kExitError = 1;   // bad input file, failed computation
 // A command line CLI11 refuses (unknown, missing or unconvertible option, options that exclude each
 // other) or a UsageError; BSD's EX_USAGE.
 inline constexpr int kExitUsage = 64;
+// vri-verify: a finding of the report failed, as vri-diff's fail verdict (3).
+inline constexpr int kExitVerifyFailed = 3;
 
 // What --version prints: "<tool> (vri) <version>" and a line with the git commit at configure time,
 // the build type, the compiler and whether the Vulkan backend is built.

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "libvri/render/render_job.h"
 #include "libvri/util/statistics.h"
 
 namespace vri {
@@ -39,10 +40,7 @@ void FrameTiming::report(const char* what, int index, int count, double seconds)
 }
 
 nlohmann::json FrameTiming::toJson(const std::vector<double>& wallSeconds) const {
-    return {{"warm_up_frames", warmUp_},
-            {"repeats", repeat_},
-            {"wall_seconds", wallSeconds},
-            {"median_wall_seconds", median(wallSeconds)}};
+    return frameTimingRecord(warmUp_, wallSeconds);
 }
 
 std::string FrameTiming::summary(const std::vector<double>& wallSeconds) const {

@@ -1,5 +1,9 @@
 #include "common/render_command.h"
 
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <utility>
@@ -8,48 +12,46 @@
 #include <tbb/global_control.h>
 
 #include "common/cli.h"
-#include "common/exact_reference_json.h"
-#include "common/max_error_search.h"
-#include "common/render_backend.h"
-#include "common/render_json.h"
 #include "libvri/core/engine_environment.h"
-#include "libvri/core/exact_reference.h"
 #include "libvri/io/adaptive_log_csv.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
+#include "libvri/render/outside_renderer.h"
+#include "libvri/render/render_job.h"
+#include "libvri/render/render_json.h"
+#include "libvri/render/scene_card.h"
+#include "libvri/render/verification.h"
+#include "libvri/util/sha512.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/format.h"
 
 namespace vri {
 
-namespace {
-
-// One computation of the image: what it gave and what the stats file says about it.
-struct Frame {
-    Image image;
-    std::optional<Image> bounds;  // the exact method's per-pixel error bounds, when --error-image asks for them
-    RenderStats stats;            // the exact method: only the non-finite count (it has stats of its own)
-    std::optional<ExactReferenceStats> exactStats;
-    double seconds;
-};
-
-}  // namespace
-
-RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int argc, char** argv)
+RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int argc, char** argv, Mode mode)
     : tool_(tool),
-      name_(tool == RenderTool::Render ? "vri-render" : "vri-reference"),
+      name_(mode == Mode::Outside  ? "vri-outside"
+            : mode == Mode::Verify ? "vri-verify"
+            : tool == RenderTool::Render ? "vri-render"
+                                         : "vri-reference"),
       argc_(argc),
       argv_(argv),
       app_(std::string(help.description)) {
     app_.footer(std::string(help.footer));
     // Before parsing: listing devices needs none of the options that a render requires.
-    for (int i = 1; tool_ == RenderTool::Render && i < argc; ++i)
+    mode_ = mode;
+    for (int i = 1; tool_ == RenderTool::Render && mode_ == Mode::Vri && i < argc; ++i)
         if (std::string_view(argv[i]) == "--list-devices") {
             if (argc != 2) {
                 std::cerr << name_ << ": error: --list-devices takes no other argument (see --help)\n";
                 exitCode_ = kExitUsage;
             } else {
-                exitCode_ = guardedMain(name_, [&] { return listVulkanDevices(name_); });
+                exitCode_ = guardedMain(name_, [&] {
+                    const std::vector<BackendDevice> devices = vulkanDevices();
+                    if (devices.empty()) throw Error("no Vulkan device found");
+                    for (const BackendDevice& d : devices)
+                        std::cout << d.index << '\t' << d.name << '\t' << d.type << '\t' << d.apiVersion << '\n';
+                    return kExitOk;
+                });
             }
             return;
         }
@@ -89,7 +91,7 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
     }
     for (const TableOption& t : tableOptions_)
         if (!t.row->excludes.empty()) t.option->excludes(byFlag.at(t.row->excludes));
-    if (tool_ == RenderTool::Render) {
+    if (tool_ == RenderTool::Render && mode_ == Mode::Vri) {
         app_.add_flag("--list-devices")->description("list the Vulkan devices (index, name, type, API version) and exit");
         CLI::Option* logRay = byFlag.at("--log-ray");
         CLI::Option* log = groups.at("adaptive")
@@ -98,14 +100,53 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
         logRay->needs(log);
     }
     timing_.addTo(app_);
-    app_.add_option("-o,--output", output_, "output image (.exr: float RGBA)")->required();
+    if (mode_ != Mode::Verify)
+        app_.add_option("-o,--output", output_, "output image (.exr: float RGBA); required unless --describe");
+    if (mode_ == Mode::Verify) {
+        app_.add_option("--steps", steps_, "the steps (voxels) of the sweep, at least 3, each one card")
+            ->capture_default_str();
+        app_.add_option("--min-order", minOrder_, "the observed order of convergence below which the check fails")
+            ->capture_default_str();
+        app_.add_option("--reference-tolerance", referenceTolerance_,
+                        "the exact reference's quadrature tolerance (its error bound is in the report)")
+            ->capture_default_str();
+        app_.add_option("--report", reportPath_, "the report as Markdown ('-' for stdout)");
+        app_.add_option("--json", jsonPath_, "every number of the report as JSON");
+        app_.add_option("--junit", junitPath_, "JUnit XML, one test case per finding, for a CI job's test view");
+        app_.add_flag("--exit-zero", exitZero_,
+                      "exit 0 when a finding fails too (the report is the result, as in make experiments)");
+    }
+    if (mode_ != Mode::Vri) {
+        app_.add_option("--renderer-image", rendererImage_,
+                        "what the renderer writes at {output}: exr (RGBA float), png (8 or 16 bit RGBA) or f32 (raw "
+                        "little-endian float32 RGBA, row 0 at the top)")
+            ->capture_default_str();
+        app_.add_flag("--keep-work", keepWork_, "keep the folder with the card, the voxels and the renderer's files");
+        app_.add_option("--renderer-name", rendererName_,
+                        "what the records and charts call the renderer when its stats name none (default: the "
+                        "program's file name)");
+        app_.add_option("command", rendererCommand_,
+                        "the renderer's command after --, with placeholders {card}, {voxels}, {output}, {stats}, "
+                        "{step}, {width}, {height}")
+            ->expected(-1);
+    }
+    CLI::Option* describe =
+        app_.add_option("--describe", describePath_,
+                        "render nothing: write the scene card, the JSON another renderer needs to reproduce this "
+                        "integral (docs/scene-card.md; '-' for stdout)");
+    app_.add_option("--describe-voxels", voxelsPath_,
+                    "with --describe: also write the volume's voxels as headerless little-endian raw (x fastest), "
+                    "which the card names and hashes")
+        ->needs(describe);
     app_.add_option("--png", pngPath_, "8-bit preview PNG");
     preview_.addTo(app_);
     app_.add_option("--error-image", errorImagePath_,
                     "exact: per-pixel error bounds as float RGBA OpenEXR, each bounding the EXR's float32 value (the "
                     "double's bound plus its float32 rounding, rounded up)");
     app_.add_option("--stats", statsPath_, "write statistics and provenance as JSON ('-' for stdout)");
-    nonfinite_.addTo(app_);
+    app_.add_flag("--allow-nonfinite", allowNonFinite_,
+                  "write an image whose pixels overflowed to NaN or infinity (with a warning; the stats count them) "
+                  "instead of failing");
     app_.add_flag("-q,--quiet", quiet_, "no progress on stderr");
     exitCode_ = parseArguments(app_, name_, argc, argv);
 }
@@ -123,11 +164,168 @@ RenderRequest RenderCommand::request() const {
     return request;
 }
 
+namespace {
+
+// The scene card of `setup` and, when `voxelsPath` is given, the voxels it names there.
+std::pair<nlohmann::json, std::string> cardWithVoxels(const SceneSetup& setup, const RenderRequest& request,
+                                                      const std::string& voxelsPath) {
+    if (!request.exact) validateRender(setup.scene, Camera(setup.camera), request.options);
+    if (voxelsPath.empty()) return {sceneCard(setup, request), std::string()};
+    std::string bytes = sceneCardVoxelBytes(setup);
+    const SceneCardVoxels voxels{voxelsPath, sha512Hex(std::as_bytes(std::span(bytes.data(), bytes.size()))), bytes.size()};
+    return {sceneCard(setup, request, voxels), std::move(bytes)};
+}
+
+// A folder of its own beside `near`, removed with everything in it unless kept.
+class WorkFolder {
+public:
+    explicit WorkFolder(const std::filesystem::path& near) {
+        std::string pattern = (std::filesystem::absolute(near).parent_path() / ".vri-outside-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw Error(pattern + ": cannot create the work folder: " + std::strerror(errno));
+        path_ = pattern;
+    }
+    ~WorkFolder() {
+        std::error_code ignored;
+        if (!keep_) std::filesystem::remove_all(path_, ignored);
+    }
+    WorkFolder(const WorkFolder&) = delete;
+    WorkFolder& operator=(const WorkFolder&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+    void keep() { keep_ = true; }
+
+private:
+    std::filesystem::path path_;
+    bool keep_ = false;
+};
+
+}  // namespace
+
+bool RenderCommand::given(const std::string& option) const {
+    const CLI::Option* o = app_.get_option_no_throw(option);
+    return o && o->count() > 0;
+}
+
+int RenderCommand::describe() {
+    const std::vector<OutputArgument> outputs{{"--describe", describePath_}, {"--describe-voxels", voxelsPath_}};
+    requireDistinctOutputs(outputs);
+    requireOutputsApartFromInputs(outputs, scene_.inputs());
+    for (const char* renderOnly : {"-o", "--png", "--error-image", "--stats", "--log"})
+        if (given(renderOnly))
+            throw UsageError(std::string(renderOnly) + ": --describe renders nothing, so it writes no " + renderOnly);
+    if (mode_ != Mode::Vri) throw UsageError("--describe: " + name_ + " runs a renderer; vri-render --describe writes the card");
+    auto [card, voxels] = cardWithVoxels(scene_.load(), this->request(), voxelsPath_);
+    OutputSet files;
+    if (!voxelsPath_.empty()) files.add(voxelsPath_, std::move(voxels));
+    files.add(describePath_, card.dump(2) + "\n");
+    files.write();
+    if (!quiet_ && describePath_ != "-") std::cerr << name_ << ": wrote the scene card " << describePath_ << '\n';
+    return kExitOk;
+}
+
+int RenderCommand::runOutside() {
+    if (rendererCommand_.empty())
+        throw UsageError("expected the renderer's command after -- (e.g. -- ./my-renderer {card} {output})");
+    if (output_.empty()) throw UsageError("--output is required");
+    requireExrOutput({"-o", output_});
+    const std::vector<OutputArgument> outputs{{"-o", output_}, {"--png", pngPath_}, {"--stats", statsPath_}};
+    requireDistinctOutputs(outputs);
+    requireOutputsApartFromInputs(outputs, scene_.inputs());
+    for (const char* vriOnly : {"--error-image", "--log"})
+        if (given(vriOnly)) throw UsageError(std::string(vriOnly) + ": vri's own renders only");
+    const RenderRequest request = this->request();
+    const PngOptions png = preview_.get();
+    const SceneSetup setup = scene_.load();
+    const bool volume = setup.scene.volume != nullptr;
+    auto [card, voxels] = cardWithVoxels(setup, request, volume ? "voxels.raw" : "");
+
+    WorkFolder work(output_);
+    if (keepWork_) work.keep();
+    OutputSet cardFiles;
+    if (volume) cardFiles.add(work.path() / "voxels.raw", std::move(voxels));
+    cardFiles.add(work.path() / "card.json", card.dump(2) + "\n");
+    cardFiles.write();
+    if (!quiet_) std::cerr << name_ << ": running " << shellQuote(rendererCommand_[0]) << " on the card\n";
+    OutsideRun run = runOutsideRenderer({rendererCommand_, rendererImage_, rendererName_}, card, work.path());
+    if (keepWork_) std::cerr << name_ << ": kept the work folder " << work.path().string() << '\n';
+
+    const NonFinitePixels nonfinite = findNonFinitePixels(run.image);
+    if (nonfinite.count > 0 && !allowNonFinite_)
+        throw Error("the renderer's image: " + nonfinite.describe() + " (--allow-nonfinite to keep it)");
+    nlohmann::json record = provenanceRecord(name_, commandLine(argc_, argv_), setup, request);
+    record["inputs"].push_back(run.renderer["executable"]);
+    record["renderer"] = run.renderer;
+    record["stats"] = {{"backend", "outside"},
+                       {"rays", static_cast<std::uint64_t>(run.image.width) * run.image.height},
+                       {"quantisation", run.quantisation},
+                       {"nonfinite_pixels", nonfinite.count},
+                       {"out_of_range_pixels", toJson(findOutOfRangePixels(run.image))}};
+    record["timing"] = frameTimingRecord(0, run.wallSeconds);
+    record["timing"]["timed"] = run.timed;
+    const ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
+                                    {"vri:options", record["options"].dump()},
+                                    {"vri:renderer", nlohmann::json(run.renderer["argv"]).dump()}};
+    OutputSet files;
+    files.add(output_, encodeExr(output_, run.image, metadata));
+    if (!pngPath_.empty()) files.add(pngPath_, encodePng(pngPath_, run.image, png));
+    if (!statsPath_.empty()) files.add(statsPath_, record.dump(2) + "\n");
+    files.write();
+    if (!quiet_)
+        std::cerr << name_ << ": " << run.renderer.value("name", rendererCommand_[0]) << ", " << run.image.width << "x"
+                  << run.image.height << " (" << run.quantisation << "), " << record["timing"]["median_wall_seconds"]
+                  << " s (" << run.timed << ")\n";
+    return kExitOk;
+}
+
+int RenderCommand::runVerify() {
+    if (rendererCommand_.empty())
+        throw UsageError("expected the renderer's command after -- (e.g. -- ./my-renderer {card} {output})");
+    const std::vector<OutputArgument> outputs{{"--report", reportPath_}, {"--json", jsonPath_}, {"--junit", junitPath_}};
+    requireDistinctOutputs(outputs);
+    requireOutputsApartFromInputs(outputs, scene_.inputs());
+    for (const char* vriOnly : {"--error-image", "--log", "--png", "--stats"})
+        if (given(vriOnly)) throw UsageError(std::string(vriOnly) + ": vri-verify writes --report, --json, --junit");
+    VerificationOptions options;
+    options.steps = parsePositiveList(steps_, "--steps");
+    options.minOrder = minOrder_;
+    options.referenceTolerance = referenceTolerance_;
+    const RenderRequest request = this->request();
+    if (request.exact || isSimpson(request.options.integrator))
+        throw UsageError("--method: vri-verify sweeps the step of a fixed-step method (riemann, composite)");
+    if (request.wasGiven("--placement")) options.placement = request.options.placement;
+    const SceneSetup setup = scene_.load();
+    WorkFolder work(reportPath_.empty() || reportPath_ == "-" ? std::filesystem::path("report") : std::filesystem::path(reportPath_));
+    if (keepWork_) work.keep();
+    const VerificationReport report =
+        verifyRenderer({rendererCommand_, rendererImage_, rendererName_}, setup, request, options, work.path(), [&](const std::string& line) {
+            if (!quiet_) std::cerr << name_ << ": " << line << '\n';
+        });
+    if (keepWork_) std::cerr << name_ << ": kept the work folder " << work.path().string() << '\n';
+    OutputSet files;
+    if (!reportPath_.empty()) files.add(reportPath_, report.markdown);
+    if (!jsonPath_.empty()) {
+        nlohmann::json record = report.record;
+        record["command"] = commandLine(argc_, argv_);
+        record["build"] = buildInfo();
+        record["inputs"] = setup.inputs;
+        files.add(jsonPath_, record.dump(2) + "\n");
+    }
+    if (!junitPath_.empty()) files.add(junitPath_, report.junit);
+    files.write();
+    for (const nlohmann::json& f : report.record["findings"])
+        std::cerr << name_ << ": " << (f["passed"].get<bool>() ? "pass" : "FAIL") << ": " << f["name"].get<std::string>()
+                  << ": " << f["message"].get<std::string>() << '\n';
+    return report.passed || exitZero_ ? kExitOk : kExitVerifyFailed;
+}
+
 int RenderCommand::run() {
     if (exitCode_) return *exitCode_;
     return guardedMain(name_, [&] {
         std::optional<tbb::global_control> threadLimit;  // set once every option is checked
         requireUtf8Arguments(argc_, argv_);
+        if (!describePath_.empty()) return describe();
+        if (mode_ == Mode::Outside) return runOutside();
+        if (mode_ == Mode::Verify) return runVerify();
+        if (output_.empty()) throw UsageError("--output is required (or --describe, which renders nothing)");
         requireExrOutput({"-o", output_});
         if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
         const std::vector<OutputArgument> outputs{{"-o", output_},
@@ -140,11 +338,9 @@ int RenderCommand::run() {
         // Every option is checked before the render, so that a mistake never leaves some outputs written.
         RenderRequest request = this->request();
         checkEngineEnvironment();  // after the usage errors (exit 64), whether or not this render reads it
-        if (!errorImagePath_.empty() && !request.exact)
-            throw Error("--error-image needs --method exact (no other method has an error bound)");
         timing_.setFrames(request.warmUp, request.repeat, name_, quiet_);
         const PngOptions png = preview_.get();
-        const std::optional<PixelRegion>& region = request.options.region;
+        const std::optional<PixelRegion> region = request.options.region;
         if (region) {  // before the volume is read: the two options disagree, whatever the scene
             const glm::ivec2 size = scene_.imageSize();
             if (!region->inside(size.x, size.y))
@@ -154,89 +350,20 @@ int RenderCommand::run() {
         }
 
         timing_.limitThreads(threadLimit, name_);
-        const SceneSetup setup = scene_.load();
-        const Scene& scene = setup.scene;
-        if (scene.sparse && (request.exact || request.backend == Backend::Vulkan))
-            throw Error(std::string(request.exact ? "--method exact" : "--backend vulkan") +
-                        " renders dense volumes only, and the volume is kept sparse (--storage sparse, or auto for a "
-                        ".vdb too large to unpack): use --storage dense");
-        const Camera camera(setup.camera);
-        RenderBackend backend(request);
-        std::optional<MaxErrorSearch> search;
-        if (request.maxError) {
-            search = searchMaxErrorTolerance(backend, scene, camera, request);
-            request.exactTolerance = search->tolerance;
-        }
-        auto [frame, wallSeconds] = timing_.run([&] {
-            if (request.exact) {
-                // The search's accepted render is the first frame at the tolerance it found (a warm-up, or
-                // the first timed frame): not rendered again.
-                const ExactReference& ref = search && search->accepted
-                                                ? *std::exchange(search->accepted, nullptr)
-                                                : backend.renderExact(scene, camera, request.exactOptions());
-                Frame f{ref.image(), std::nullopt, {}, ref.stats, ref.stats.seconds};
-                if (!errorImagePath_.empty()) f.bounds = ref.boundImage();
-                f.stats.nonfinite = findNonFinitePixels(f.image);
-                return f;
-            }
-            Frame f{{}, std::nullopt, {}, std::nullopt, 0.0};
-            f.image = backend.render(scene, camera, request.options, &f.stats);
-            f.seconds = f.stats.seconds;
-            return f;
-        });
-        if (region && frame.stats.nonfinite.count > 0) {  // in pixels of the whole image, as everything else
-            frame.stats.nonfinite.firstX += region->x;
-            frame.stats.nonfinite.firstY += region->y;
-        }
-        const RenderStats& stats = frame.stats;
-        nonfinite_.check(stats.nonfinite, name_);
-        if (stats.simpsonRange && stats.simpsonRange->pixelsBeyond > 0)
-            std::cerr << name_ << ": warning: " << stats.simpsonRange->describe(stats.rays) << '\n';
-        const OutOfRangePixels outOfRange = findOutOfRangePixels(frame.image);  // what the method returned
-        if (request.clamp) clampToUnitRange(frame.image);
-        const Image& image = frame.image;
-
-        // The provenance record: what was run, on what, with which settings, and what it measured.
-        nlohmann::json record = {{"tool", name_},
-                                 {"command", commandLine(argc_, argv_)},
-                                 {"time_utc", utcTimestamp()},
-                                 {"build", buildInfo()},
-                                 {"machine", machineInfo()},
-                                 {"inputs", setup.inputs},
-                                 {"scene", describeScene(scene)},
-                                 {"transfer_function", toJson(scene.transferFunction)},
-                                 {"camera", toJson(setup.camera)},
-                                 {"options", toJson(request)},
-                                 {"stats", frame.exactStats ? toJson(*frame.exactStats) : toJson(stats)}};
-        if (frame.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
-        if (search) record["stats"]["max_error_search"] = search->record;
-        record["stats"]["out_of_range_pixels"] = toJson(outOfRange);
-        record["timing"] = timing_.toJson(wallSeconds);
-        if (record["stats"]["rays_hit"] == 0) {
-            // A black image with exit 0 looks like a render; said on stderr and kept in the stats.
-            // A tile (--region) of background is no mistake of the camera's: said so.
-            const std::string warning =
-                region ? "no ray of --region " + region->text() +
-                             " enters the volume's box: the region is background, and its image is empty (stats: rays_hit 0)"
-                       : "no ray enters the volume's box: the camera (eye " + record["camera"]["eye"].dump() +
-                             ", target " + record["camera"]["target"].dump() +
-                             ") misses the volume, and the image is empty (stats: rays_hit 0)";
-            std::cerr << name_ << ": warning: " << warning << '\n';
-            record["warnings"] = {warning};
-        }
-        ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
-                                  {"vri:options", record["options"].dump()},
-                                  {"vri:scene", record["scene"].dump()}};
-        if (region) {
-            // The images hold the region alone, an ordinary WIDTH x HEIGHT image that every reader takes as it
-            // is; where it lies in the camera's image (the stats' camera.width x camera.height) is said here.
-            record["region"] = toJson(*region);
-            metadata.emplace_back("vri:region", region->text());
-        }
+        RenderJob job(std::move(request), scene_.load(),
+                      {name_, commandLine(argc_, argv_), !errorImagePath_.empty(), allowNonFinite_});
+        job.searchTolerance();
+        auto [frame, wallSeconds] = timing_.run([&] { return job.frame(); });
+        const RenderResult result = job.finish(std::move(frame), timing_.toJson(wallSeconds));
+        for (const std::string& warning : result.warnings) std::cerr << name_ << ": warning: " << warning << '\n';
+        const Image& image = result.image;
+        const nlohmann::json& record = result.record;
+        const RenderStats& stats = result.stats;
+        const ImageMetadata& metadata = result.metadata;
         OutputSet files;
         files.add(output_, encodeExr(output_, image, metadata));
         if (!pngPath_.empty()) files.add(pngPath_, encodePng(pngPath_, image, png));
-        if (frame.bounds) files.add(errorImagePath_, encodeExr(errorImagePath_, *frame.bounds, metadata));
+        if (result.bounds) files.add(errorImagePath_, encodeExr(errorImagePath_, *result.bounds, metadata));
         if (!statsPath_.empty()) files.add(statsPath_, record.dump(2) + "\n");
         if (!logPath_.empty()) files.add(logPath_, adaptiveLogCsv(stats.rayLog));
         files.write();
@@ -244,9 +371,9 @@ int RenderCommand::run() {
             std::cerr << name_ << ": " << record["options"]["method"].get<std::string>() << ", " << image.width << "x"
                       << image.height << (region ? " at " + std::to_string(region->x) + "," + std::to_string(region->y) : "")
                       << ", ";
-            if (frame.exactStats)
-                std::cerr << frame.exactStats->piecesVisible << " visible pieces in " << timing_.summary(wallSeconds)
-                          << " on " << frame.exactStats->threads << " threads; error bound max "
+            if (result.exactStats)
+                std::cerr << result.exactStats->piecesVisible << " visible pieces in " << timing_.summary(wallSeconds)
+                          << " on " << result.exactStats->threads << " threads; error bound max "
                           << record["stats"]["error_bound"]["max"].dump() << "\n";
             else
                 std::cerr << stats.samplesEvaluated << " samples in " << timing_.summary(wallSeconds) << " on "

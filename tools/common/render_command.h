@@ -13,7 +13,6 @@
 #include <CLI/CLI.hpp>
 
 #include "common/frame_timing.h"
-#include "common/nonfinite_option.h"
 #include "common/preview_options.h"
 #include "common/scene_options.h"
 #include "libvri/core/render_option_table.h"
@@ -31,7 +30,16 @@ public:
     // Parses the command line. --help, --list-devices and usage errors end the command here: run()
     // then returns their exit code without rendering.
     static RenderCommand fromArgs(RenderTool tool, const RenderCommandHelp& help, int argc, char** argv) {
-        return RenderCommand(tool, help, argc, argv);
+        return RenderCommand(tool, help, argc, argv, Mode::Vri);
+    }
+    // vri-outside: vri-render's scene and method options describe the scene card an outside renderer's
+    // command (after --) renders; its image and stats become the run's (outside_renderer.h).
+    static RenderCommand outsideFromArgs(const RenderCommandHelp& help, int argc, char** argv) {
+        return RenderCommand(RenderTool::Render, help, argc, argv, Mode::Outside);
+    }
+    // vri-verify: the same options describe the cards of a sweep of steps; the report (verification.h).
+    static RenderCommand verifyFromArgs(const RenderCommandHelp& help, int argc, char** argv) {
+        return RenderCommand(RenderTool::Render, help, argc, argv, Mode::Verify);
     }
     RenderCommand(const RenderCommand&) = delete;
     RenderCommand& operator=(const RenderCommand&) = delete;
@@ -40,9 +48,18 @@ public:
     int run();
 
 private:
-    RenderCommand(RenderTool tool, const RenderCommandHelp& help, int argc, char** argv);
+    enum class Mode { Vri, Outside, Verify };  // vri's own render (or card), an outside renderer's run, a report
+    RenderCommand(RenderTool tool, const RenderCommandHelp& help, int argc, char** argv, Mode mode);
     // The values of the table's options, applied in table order and checked against each other.
     RenderRequest request() const;
+    // Whether `option` is one of this tool's and was given.
+    bool given(const std::string& option) const;
+    // --describe: the scene card (and the voxels), no render.
+    int describe();
+    // vri-outside: the card, the renderer's run, the run's image and record.
+    int runOutside();
+    // vri-verify: the sweep, the report and its exit code.
+    int runVerify();
 
     struct TableOption {
         const RenderOptionRow* row;
@@ -61,9 +78,14 @@ private:
     SceneOptions scene_;
     FrameTiming timing_;
     PreviewOptions preview_;
-    NonFiniteOption nonfinite_;
-    std::string output_, pngPath_, statsPath_, logPath_, errorImagePath_;
-    bool quiet_ = false;
+    std::string output_, pngPath_, statsPath_, logPath_, errorImagePath_, describePath_, voxelsPath_;
+    bool quiet_ = false, allowNonFinite_ = false;
+    Mode mode_ = Mode::Vri;
+    bool keepWork_ = false, exitZero_ = false;
+    std::vector<std::string> rendererCommand_;  // vri-outside, vri-verify: after --
+    std::string rendererImage_ = "exr", rendererName_;
+    std::string steps_ = "2,1,0.5,0.25,0.125", reportPath_, jsonPath_, junitPath_;  // vri-verify
+    double minOrder_ = 0.75, referenceTolerance_ = 1e-9;
     std::optional<int> exitCode_;  // set when parsing ended the command
 };
 

@@ -11,16 +11,10 @@
 #include "common/raw_input_options.h"
 #include "libvri/core/camera.h"
 #include "libvri/core/grid_convention.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
+#include "libvri/render/scene_setup.h"
 
 namespace vri {
-
-// What the options describe, with the input files named and hashed for provenance.
-struct SceneSetup {
-    Scene scene;
-    CameraSpec camera;
-    nlohmann::json inputs;  // [{"path", "sha512"}, ...]: the volume file (if any), then the transfer function
-};
 
 class SceneOptions {
 public:

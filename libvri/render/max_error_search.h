@@ -3,9 +3,9 @@
 // error bound within E, searched with renders of the exact method.
 #include <nlohmann/json.hpp>
 
-#include "common/render_backend.h"
+#include "libvri/render/render_backend.h"
 #include "libvri/core/camera.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 #include "libvri/core/exact_reference.h"
 #include "libvri/core/render_option_table.h"
 

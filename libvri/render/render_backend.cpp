@@ -1,9 +1,7 @@
-#include "common/render_backend.h"
+#include "libvri/render/render_backend.h"
 
-#include <iostream>
-#include <vector>
-
-#include "common/cli.h"
+#include "libvri/util/error.h"
+#include "libvri/core/cpu_renderer.h"
 #include "libvri/core/occupancy_cache.h"
 
 #if VRI_HAVE_VULKAN
@@ -27,15 +25,11 @@ Image RenderBackend::render(const Scene& scene, const Camera& camera, const Rend
                    : vri::render(scene, camera, options, stats, occupancy_.get());
 }
 
-int listVulkanDevices(std::string_view tool) {
-    const std::vector<VulkanDeviceInfo> devices = VulkanRenderer::listDevices();
-    if (devices.empty()) {
-        std::cerr << tool << ": error: no Vulkan device found\n";
-        return kExitError;
-    }
-    for (const VulkanDeviceInfo& d : devices)
-        std::cout << d.index << '\t' << d.name << '\t' << d.type << '\t' << d.apiVersion << '\n';
-    return kExitOk;
+std::vector<BackendDevice> vulkanDevices() {
+    std::vector<BackendDevice> devices;
+    for (const VulkanDeviceInfo& d : VulkanRenderer::listDevices())
+        devices.push_back({d.index, d.name, d.type, d.apiVersion});
+    return devices;
 }
 
 }  // namespace vri
@@ -55,9 +49,8 @@ Image RenderBackend::render(const Scene& scene, const Camera& camera, const Rend
     return vri::render(scene, camera, options, stats, occupancy_.get());
 }
 
-int listVulkanDevices(std::string_view tool) {
-    std::cerr << tool << ": error: --list-devices: this build has no Vulkan backend (configured with -DVRI_VULKAN=OFF)\n";
-    return kExitError;
+std::vector<BackendDevice> vulkanDevices() {
+    throw Error("--list-devices: this build has no Vulkan backend (configured with -DVRI_VULKAN=OFF)");
 }
 
 }  // namespace vri

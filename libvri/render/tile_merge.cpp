@@ -1,4 +1,4 @@
-#include "common/tile_merge.h"
+#include "libvri/render/tile_merge.h"
 
 #include <algorithm>
 #include <cstdint>

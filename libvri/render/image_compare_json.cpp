@@ -1,4 +1,4 @@
-#include "common/image_compare_json.h"
+#include "libvri/render/image_compare_json.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-#include "common/max_error_search.h"
+#include "libvri/render/max_error_search.h"
 
 #include <algorithm>
 #include <cmath>

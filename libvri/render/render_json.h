@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "libvri/core/camera.h"
-#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/render_contract.h"
 #include "libvri/core/out_of_range_pixels.h"
 #include "libvri/core/render_option_table.h"
 

@@ -1,4 +1,4 @@
-#include "common/exact_reference_json.h"
+#include "libvri/render/exact_reference_json.h"
 
 namespace vri {
 

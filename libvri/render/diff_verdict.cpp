@@ -1,4 +1,4 @@
-#include "common/diff_verdict.h"
+#include "libvri/render/diff_verdict.h"
 
 #include <cstdio>
 

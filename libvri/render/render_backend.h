@@ -1,8 +1,9 @@
 #pragma once
 // The backends behind --backend: the CPU raycaster, and the Vulkan renderer when the build has it
-// (-DVRI_VULKAN=ON, VRI_HAVE_VULKAN). The one place the tools choose between them.
+// (-DVRI_VULKAN=ON, VRI_HAVE_VULKAN). The one place vri chooses between them, for the tools and Python.
 #include <memory>
-#include <string_view>
+#include <string>
+#include <vector>
 
 #include "libvri/core/render_option_table.h"
 
@@ -29,8 +30,12 @@ private:
     ExactReference exact_;                       // the exact method's last frame
 };
 
-// --list-devices: one line per Vulkan device on stdout, "INDEX<TAB>NAME<TAB>TYPE<TAB>API VERSION";
-// returns the exit code (an error line on stderr when there is none).
-int listVulkanDevices(std::string_view tool);
+// A Vulkan device as --list-devices shows it.
+struct BackendDevice {
+    int index = 0;
+    std::string name, type, apiVersion;
+};
+// The Vulkan devices this machine offers; throws vri::Error when the build has no Vulkan backend.
+std::vector<BackendDevice> vulkanDevices();
 
 }  // namespace vri

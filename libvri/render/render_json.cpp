@@ -1,4 +1,4 @@
-#include "common/render_json.h"
+#include "libvri/render/render_json.h"
 
 #include <algorithm>
 #include <variant>

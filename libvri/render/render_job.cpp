@@ -1,0 +1,135 @@
+#include "libvri/render/render_job.h"
+
+#include <utility>
+
+#include "libvri/core/out_of_range_pixels.h"
+#include "libvri/io/provenance.h"
+#include "libvri/render/exact_reference_json.h"
+#include "libvri/render/render_json.h"
+#include "libvri/util/error.h"
+#include "libvri/util/statistics.h"
+
+namespace vri {
+
+namespace {
+
+// Before any device is opened or any frame rendered: the backends that read dense volumes only.
+const RenderRequest& checkedAgainstScene(const RenderRequest& request, const Scene& scene) {
+    if (scene.sparse && (request.exact || request.backend == Backend::Vulkan))
+        throw Error(std::string(request.exact ? "--method exact" : "--backend vulkan") +
+                    " renders dense volumes only, and the volume is kept sparse (--storage sparse, or auto for a "
+                    ".vdb too large to unpack): use --storage dense");
+    return request;
+}
+
+}  // namespace
+
+RenderJob::RenderJob(RenderRequest request, SceneSetup setup, RenderJobContext context)
+    : request_(std::move(request)),
+      setup_(std::move(setup)),
+      context_(std::move(context)),
+      camera_(setup_.camera),
+      backend_(checkedAgainstScene(request_, setup_.scene)) {
+    if (context_.wantBounds && !request_.exact)
+        throw Error("--error-image needs --method exact (no other method has an error bound)");
+}
+
+void RenderJob::searchTolerance() {
+    if (!request_.maxError) return;
+    search_ = searchMaxErrorTolerance(backend_, setup_.scene, camera_, request_);
+    request_.exactTolerance = search_->tolerance;
+}
+
+RenderFrame RenderJob::frame() {
+    const Scene& scene = setup_.scene;
+    RenderFrame f;
+    if (request_.exact) {
+        // The search's accepted render is the first frame at the tolerance it found: not rendered again.
+        const ExactReference& ref = search_ && search_->accepted ? *std::exchange(search_->accepted, nullptr)
+                                                                 : backend_.renderExact(scene, camera_, request_.exactOptions());
+        f.image = ref.image();
+        if (context_.wantBounds) f.bounds = ref.boundImage();
+        f.exactStats = ref.stats;
+        f.seconds = ref.stats.seconds;
+        f.stats.nonfinite = findNonFinitePixels(f.image);
+    } else {
+        f.image = backend_.render(scene, camera_, request_.options, &f.stats);
+        f.seconds = f.stats.seconds;
+    }
+    return f;
+}
+
+RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
+    RenderResult result{std::move(first.image), std::move(first.bounds), std::move(first.stats),
+                        std::move(first.exactStats), {}, {}, {}};
+    const std::optional<PixelRegion>& region = request_.options.region;
+    RenderStats& stats = result.stats;
+    if (region && stats.nonfinite.count > 0) {  // in pixels of the whole image, as everything else
+        stats.nonfinite.firstX += region->x;
+        stats.nonfinite.firstY += region->y;
+    }
+    if (stats.nonfinite.count > 0) {
+        const std::string what = "the image: " + stats.nonfinite.describe() + ": the integration overflowed";
+        if (!context_.allowNonFinite)
+            throw Error(what + " (a smaller extinction or step, or " + context_.allowNonFiniteName + " to write it anyway)");
+        result.warnings.push_back(what);
+    }
+    if (stats.simpsonRange && stats.simpsonRange->pixelsBeyond > 0)
+        result.warnings.push_back(stats.simpsonRange->describe(stats.rays));
+    const OutOfRangePixels outOfRange = findOutOfRangePixels(result.image);  // what the method returned
+    if (request_.clamp) clampToUnitRange(result.image);
+
+    nlohmann::json record = provenanceRecord(context_.tool, context_.command, setup_, request_);
+    record["stats"] = result.exactStats ? toJson(*result.exactStats) : toJson(stats);
+    if (result.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
+    if (search_) record["stats"]["max_error_search"] = search_->record;
+    record["stats"]["out_of_range_pixels"] = toJson(outOfRange);
+    record["timing"] = std::move(timing);
+    if (record["stats"]["rays_hit"] == 0) {
+        // A black image with exit 0 looks like a render; said as a warning and kept in the record.
+        // A tile (--region) of background is no mistake of the camera's: said so.
+        const std::string warning =
+            region ? "no ray of --region " + region->text() +
+                         " enters the volume's box: the region is background, and its image is empty (stats: rays_hit 0)"
+                   : "no ray enters the volume's box: the camera (eye " + record["camera"]["eye"].dump() +
+                         ", target " + record["camera"]["target"].dump() +
+                         ") misses the volume, and the image is empty (stats: rays_hit 0)";
+        result.warnings.push_back(warning);
+        record["warnings"] = {warning};
+    }
+    const nlohmann::json& command = record["command"];
+    result.metadata = {{"vri:command", command.contains("shell") ? command["shell"].get<std::string>() : command.dump()},
+                       {"vri:options", record["options"].dump()},
+                       {"vri:scene", record["scene"].dump()}};
+    if (region) {
+        // The images hold the region alone, an ordinary WIDTH x HEIGHT image that every reader takes as it
+        // is; where it lies in the camera's image (the record's camera.width x camera.height) is said here.
+        record["region"] = toJson(*region);
+        result.metadata.emplace_back("vri:region", region->text());
+    }
+    result.record = std::move(record);
+    return result;
+}
+
+nlohmann::json provenanceRecord(const std::string& tool, const nlohmann::json& command, const SceneSetup& setup,
+                                const RenderRequest& request) {
+    return {{"tool", tool},
+            {"command", command},
+            {"time_utc", utcTimestamp()},
+            {"build", buildInfo()},
+            {"machine", machineInfo()},
+            {"inputs", setup.inputs},
+            {"scene", describeScene(setup.scene)},
+            {"transfer_function", toJson(setup.scene.transferFunction)},
+            {"camera", toJson(setup.camera)},
+            {"options", toJson(request)}};
+}
+
+nlohmann::json frameTimingRecord(int warmUpFrames, const std::vector<double>& wallSeconds) {
+    return {{"warm_up_frames", warmUpFrames},
+            {"repeats", wallSeconds.size()},
+            {"wall_seconds", wallSeconds},
+            {"median_wall_seconds", median(wallSeconds)}};
+}
+
+}  // namespace vri

@@ -1,0 +1,300 @@
+#include "libvri/render/verification.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "libvri/core/cpu_renderer.h"
+#include "libvri/core/exact_reference.h"
+#include "libvri/core/image_compare.h"
+#include "libvri/util/atomic_file.h"
+#include "libvri/util/error.h"
+#include "libvri/util/format.h"
+#include "libvri/util/sha512.h"
+#include "libvri/util/statistics.h"
+#include "libvri/render/scene_card.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// statistics.h's observed order over the points with a positive error (an image equal to the reference has
+// none to fit); NaN when fewer than two remain.
+double orderOf(const std::vector<double>& steps, const std::vector<double>& errors) {
+    std::vector<double> h, e;
+    for (std::size_t i = 0; i < steps.size(); ++i)
+        if (errors[i] > 0.0 && std::isfinite(errors[i])) {
+            h.push_back(steps[i]);
+            e.push_back(errors[i]);
+        }
+    return h.size() >= 2 ? observedOrder(h, e) : std::numeric_limits<double>::quiet_NaN();
+}
+
+struct Errors {
+    double mean = 0, max = 0, rmse = 0;  // the worst channel's
+};
+
+Errors errorsAgainst(const Image& reference, const Image& image) {
+    Errors e;
+    for (const ChannelDiff& c : compareImages(reference, image, {}).channels) {
+        e.mean = std::max(e.mean, c.meanAbs);
+        e.max = std::max(e.max, c.maxAbs);
+        e.rmse = std::max(e.rmse, c.rmse);
+    }
+    return e;
+}
+
+nlohmann::json toJson(const Errors& e) { return {{"mean", e.mean}, {"max", e.max}, {"rmse", e.rmse}}; }
+
+Image flippedVertically(const Image& image) {
+    Image out = image;
+    const std::size_t row = static_cast<std::size_t>(image.width) * image.channels;
+    for (int y = 0; y < image.height; ++y)
+        std::copy_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row), row,
+                    out.pixels.begin() + static_cast<std::ptrdiff_t>((image.height - 1 - y) * row));
+    return out;
+}
+
+RenderRequest atStep(const RenderRequest& base, double step, std::optional<Placement> placement = std::nullopt) {
+    RenderRequest request = base;
+    request.options.samplingRate = 1.0 / step;
+    if (placement) request.options.placement = *placement;
+    request.options.progress = false;
+    return request;
+}
+
+// One card of the sweep in its own folder, the renderer run on it.
+OutsideRun runOnCard(const OutsideRenderer& renderer, const SceneSetup& setup, const RenderRequest& request,
+                     const fs::path& dir) {
+    fs::create_directories(dir);
+    OutputSet files;
+    std::optional<SceneCardVoxels> voxels;
+    if (setup.scene.volume) {
+        std::string bytes = sceneCardVoxelBytes(setup);
+        voxels = SceneCardVoxels{"voxels.raw", sha512Hex(std::as_bytes(std::span(bytes.data(), bytes.size()))),
+                                 bytes.size()};
+        files.add(dir / "voxels.raw", std::move(bytes));
+    }
+    const nlohmann::json card = sceneCard(setup, request, voxels);
+    files.add(dir / "card.json", card.dump(2) + "\n");
+    files.write();
+    return runOutsideRenderer(renderer, card, dir);
+}
+
+struct Finding {
+    std::string name;     // the test case: "orientation", "placement", "convergence", "error floor"
+    bool passed;
+    std::string message;  // what was found, and what is wrong when it failed
+};
+
+std::string xmlEscaped(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c;
+        }
+    }
+    return out;
+}
+
+// Three significant digits: a report's numbers are measurements, not bits.
+std::string number(double x) {
+    if (!std::isfinite(x)) return "n/a";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return text;
+}
+
+}  // namespace
+
+VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSetup& setup, const RenderRequest& base,
+                                  const VerificationOptions& options, const fs::path& workDir,
+                                  const std::function<void(const std::string&)>& progress) {
+    std::vector<double> steps = options.steps;
+    std::sort(steps.begin(), steps.end(), std::greater<>());
+    if (steps.size() < 3 || std::adjacent_find(steps.begin(), steps.end()) != steps.end())
+        throw Error("--steps: expected at least 3 different steps, for an order over more than one interval");
+    const Scene& scene = setup.scene;
+    const Camera camera(setup.camera);
+
+    ExactReferenceOptions exact;
+    exact.tolerance = options.referenceTolerance;
+    const ExactReference reference = renderExactReference(scene, camera, exact);
+    const Image referenceImage = reference.image();
+    double referenceBound = 0.0;
+    for (const double b : reference.stats.maxStoredBound) referenceBound = std::max(referenceBound, b);
+    progress("the reference: exact, tolerance " + exactNumber(options.referenceTolerance) + ", error bound " +
+             number(referenceBound));
+
+    // The sweep: the renderer's images, and vri's own at every step.
+    std::vector<OutsideRun> runs;
+    std::vector<double> ours;
+    std::string quantisation, name, version;
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+        const RenderRequest request = atStep(base, steps[i]);
+        runs.push_back(runOnCard(renderer, setup, request, workDir / ("step-" + std::to_string(i + 1))));
+        ours.push_back(errorsAgainst(referenceImage, render(scene, camera, request.options)).mean);
+        quantisation = runs.back().quantisation;
+        name = runs.back().renderer.value("name", renderer.command.front());
+        version = runs.back().renderer.value("version", "");
+        progress("step " + exactNumber(steps[i]) + ": rendered in " + number(runs.back().wallSeconds.front()) + " s (" +
+                 runs.back().timed + ")");
+    }
+
+    std::vector<Finding> findings;
+    // Orientation, from the finest image, the nearest to the reference: upside down, it is nearer flipped.
+    // The other findings then read the images the right way up, so that each names its own defect.
+    const double upright = errorsAgainst(referenceImage, runs.back().image).rmse;
+    const double flipped = errorsAgainst(referenceImage, flippedVertically(runs.back().image)).rmse;
+    const bool upsideDown = flipped < 0.5 * upright;
+    findings.push_back({"orientation", !upsideDown,
+                        upsideDown ? "the image is upside down: flipped vertically it is " + number(upright / flipped) +
+                                         " times nearer the reference (RMSE " + number(flipped) + " against " +
+                                         number(upright) + "); row 0 must be the top of the image (docs/scene-card.md)"
+                                   : "row 0 at the top, as the card asks (RMSE against the reference " + number(upright) +
+                                         "; flipped " + number(flipped) + ")"});
+    if (upsideDown)
+        for (OutsideRun& run : runs) run.image = flippedVertically(run.image);
+
+    nlohmann::json rows = nlohmann::json::array();
+    std::vector<double> theirs, theirsMax;
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+        const Errors their = errorsAgainst(referenceImage, runs[i].image);
+        theirs.push_back(their.mean);
+        theirsMax.push_back(their.max);
+        rows.push_back({{"step", steps[i]}, {"renderer", toJson(their)}, {"vri", {{"mean", ours[i]}}},
+                        {"wall_seconds", runs[i].wallSeconds}, {"timed", runs[i].timed}});
+        progress("step " + exactNumber(steps[i]) + ": mean error " + number(their.mean) + " (vri " + number(ours[i]) + ")");
+    }
+
+    // Placement, from the coarsest image: placements differ most at a long step.
+    nlohmann::json placements = nlohmann::json::object();
+    Placement best = Placement::EntryAlign;
+    double bestRmse = std::numeric_limits<double>::infinity(), secondRmse = bestRmse;
+    for (const Placement p : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,
+                              Placement::EntryExitAlignCorner}) {
+        const double rmse = errorsAgainst(render(scene, camera, atStep(base, steps.front(), p).options), runs.front().image).rmse;
+        placements[std::string(placementName(p))] = rmse;
+        if (rmse < bestRmse) {
+            secondRmse = bestRmse;
+            bestRmse = rmse;
+            best = p;
+        } else {
+            secondRmse = std::min(secondRmse, rmse);
+        }
+    }
+    const bool clear = secondRmse > 1.25 * bestRmse;
+    std::string placementText = std::string(placementName(best)) + " (RMSE " + number(bestRmse) + " against vri's " +
+                                std::string(placementName(best)) + " image at step " + exactNumber(steps.front()) +
+                                "; the next placement " + number(secondRmse) + (clear ? ")" : ", too close to tell)");
+    const bool placementWrong = options.placement && clear && best != *options.placement;
+    findings.push_back({"placement", !placementWrong,
+                        placementWrong ? "uses placement " + placementText + ", but the card asks for " +
+                                             std::string(placementName(*options.placement))
+                                       : "placement " + placementText});
+
+    // Convergence: the order over the finest steps, unless the error stops falling there (a floor).
+    const std::size_t n = steps.size();
+    const std::vector<double> fineSteps(steps.end() - 3, steps.end()), fineErrors(theirs.end() - 3, theirs.end());
+    const double fineOrder = orderOf(fineSteps, fineErrors);
+    // A floor: the error fell over the coarser steps and stops over the finest, well above vri's own. Where it
+    // never fell, nothing converges, and the order over the whole sweep says so.
+    std::vector<double> fitSteps, fitErrors;
+    for (std::size_t i = 0; i < n; ++i)
+        if (theirs[i] > 3.0 * theirs.back()) {
+            fitSteps.push_back(steps[i]);
+            fitErrors.push_back(theirs[i]);
+        }
+    const bool floor = !(fineOrder >= 0.5 * options.minOrder) && theirs.back() > 4.0 * ours.back() &&
+                       fitSteps.size() >= 2 && orderOf(fitSteps, fitErrors) >= 0.5 * options.minOrder;
+    if (!floor) {
+        fitSteps = fineSteps;
+        fitErrors = fineErrors;
+        if (!(fineOrder >= 0.5 * options.minOrder)) {  // no floor and no convergence over the finest: the whole sweep
+            fitSteps = steps;
+            fitErrors = theirs;
+        }
+    }
+    const double order = orderOf(fitSteps, fitErrors);
+    const double maxOrder = orderOf(fineSteps, std::vector<double>(theirsMax.end() - 3, theirsMax.end()));
+    const double ourOrder = orderOf(fineSteps, std::vector<double>(ours.end() - 3, ours.end()));
+    // No positive error to fit (NaN) passes only where the images are the reference itself.
+    const bool converges = std::isnan(order) ? theirs.back() == 0.0 : order >= options.minOrder;
+    std::string convergence = "observed order " + number(order) + " of the mean error over steps " +
+                              exactNumber(fitSteps.front()) + " to " + exactNumber(fitSteps.back()) + " (largest error: " +
+                              number(maxOrder) + "; vri's own at these steps: " + number(ourOrder) + ")";
+    if (!converges)
+        convergence += ", below " + number(options.minOrder) +
+                       (order < 0.25 ? ": the error does not fall with the step. Is the opacity corrected for the "
+                                       "step (alpha = 1 - exp(-tau dx), tau per world unit, dx the step in world units)?"
+                                     : ": the renderer converges more slowly than a Riemann sum should");
+    findings.push_back({"convergence", converges, convergence});
+    std::string floorText = "none: at the finest step the error is " + number(theirs.back()) + ", vri's own " +
+                            number(ours.back());
+    if (floor) {
+        const bool eightBit = quantisation == "8-bit";
+        floorText = "the error stops near " + number(theirs.back()) + " (vri's own Riemann sum at step " +
+                    exactNumber(steps.back()) + ": " + number(ours.back()) + "); " +
+                    (eightBit ? "the image is 8-bit, which alone leaves up to 1/510 = 0.00196 per channel"
+                              : "not the step's: a quantised transfer function or texture, the interpolation, or an "
+                                "approximate opacity correction");
+    }
+    findings.push_back({"error floor", true, floorText});
+
+    VerificationReport report;
+    report.passed = std::ranges::all_of(findings, [](const Finding& f) { return f.passed; });
+    nlohmann::json list = nlohmann::json::array();
+    for (const Finding& f : findings) list.push_back({{"name", f.name}, {"passed", f.passed}, {"message", f.message}});
+    report.record = {{"renderer", {{"name", name}, {"version", version}, {"command", renderer.command}}},
+                     {"reference", {{"method", "exact"}, {"tolerance", options.referenceTolerance},
+                                    {"error_bound_max", referenceBound}}},
+                     {"steps", rows},
+                     {"order", order},
+                     {"order_max_error", maxOrder},
+                     {"vri_order", ourOrder},
+                     {"min_order", options.minOrder},
+                     {"floor", floor ? nlohmann::json(theirs.back()) : nlohmann::json()},
+                     {"quantisation", quantisation},
+                     {"placement", placementName(best)},
+                     {"placement_rmse", placements},
+                     {"upside_down", upsideDown},
+                     {"findings", list},
+                     {"passed", report.passed}};
+
+    std::string& md = report.markdown;
+    md = "# Verification of " + name + (version.empty() ? "" : " " + version) + "\n\n";
+    md += std::string("**") + (report.passed ? "PASSED" : "FAILED") + "**, against vri's exact reference (error bound " +
+          number(referenceBound) + ").\n\n| finding | | |\n|---|---|---|\n";
+    for (const Finding& f : findings)
+        md += "| " + f.name + " | " + (f.passed ? "pass" : "**FAIL**") + " | " + f.message + " |\n";
+    md += "\n| step (voxels) | mean error | largest error | vri's mean error | seconds |\n|--:|--:|--:|--:|--:|\n";
+    for (const nlohmann::json& r : rows) {
+        std::vector<double> seconds = r["wall_seconds"].get<std::vector<double>>();
+        std::nth_element(seconds.begin(), seconds.begin() + static_cast<std::ptrdiff_t>(seconds.size() / 2), seconds.end());
+        md += "| " + exactNumber(r["step"].get<double>()) + " | " + number(r["renderer"]["mean"]) + " | " +
+              number(r["renderer"]["max"]) + " | " + number(r["vri"]["mean"]) + " | " +
+              number(seconds[seconds.size() / 2]) + " (" + r["timed"].get<std::string>() + ") |\n";
+    }
+
+    std::string& xml = report.junit;
+    const auto failures = std::ranges::count_if(findings, [](const Finding& f) { return !f.passed; });
+    xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"vri-verify " + xmlEscaped(name) +
+          "\" tests=\"" + std::to_string(findings.size()) + "\" failures=\"" + std::to_string(failures) + "\">\n";
+    for (const Finding& f : findings) {
+        xml += "  <testcase classname=\"vri-verify\" name=\"" + xmlEscaped(f.name) + "\">";
+        xml += f.passed ? "<system-out>" + xmlEscaped(f.message) + "</system-out>"
+                        : "<failure message=\"" + xmlEscaped(f.message) + "\"/>";
+        xml += "</testcase>\n";
+    }
+    xml += "</testsuite>\n";
+    return report;
+}
+
+}  // namespace vri

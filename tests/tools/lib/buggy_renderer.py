@@ -1,0 +1,30 @@
+#!/usr/bin/python3
+"""The card's example renderer with one defect injected, for vri-verify's tests (tests/tools/verify.sh):
+
+    buggy_renderer.py BUG CARD OUTPUT     BUG: none, flip, entry-placement, no-opacity-correction
+
+flip: row 0 at the bottom. entry-placement: the entry placement whatever the card asks.
+no-opacity-correction: each sample's opacity as if the step were one voxel, as a renderer does that reads
+a transfer function's per-sample alpha without correcting it for the step (tau scaled by 1 / step)."""
+import json
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.environ["VRI_SOURCE"], "examples", "scene_card"))
+import render_from_card  # noqa: E402
+
+bug, card_path, out = sys.argv[1:]
+card = render_from_card.load_card(card_path)
+if bug == "entry-placement":
+    card["method"]["placement"] = "entry"
+elif bug == "no-opacity-correction":
+    for point in card["transfer_function"]["points"]:
+        point["tau"] *= card["method"]["samples_per_voxel"]
+elif bug not in ("none", "flip"):
+    sys.exit("unknown bug " + bug)
+image = render_from_card.render(card, os.path.dirname(os.path.abspath(card_path)))
+if bug == "flip":
+    image = image[::-1]
+np.ascontiguousarray(image, dtype="<f4").tofile(out)

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# vri-verify and vri-outside end to end, with the card's example renderer as the outside renderer: a correct
+# renderer passes every finding (order of convergence, placement, orientation), and each injected defect
+# (an image upside down, the wrong placement, no opacity correction) fails with exit 3 and a message that
+# names it. Then docs/ci-recipe.md's verification step runs as written.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+bin=${VRI_BIN:?} src=${VRI_SOURCE:?}
+python=/usr/bin/python3
+"$python" -c 'import numpy, OpenImageIO' 2> /dev/null || { echo "needs python3-numpy and python3-openimageio: skipping"; exit 77; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
+buggy=(-- "$python" "$src/tests/tools/lib/buggy_renderer.py")
+scene=(--volume blob_8x8x8_uint8.raw --tf tf.yaml --size 24x18 --renderer-image f32 -q)
+
+# vri-outside: one run's image is the renderer's, and its record says what ran.
+"$bin/vri-outside" "${scene[@]}" --step 0.5 -o one.exr --png one.png --stats one.json "${buggy[@]}" none {card} {output}
+"$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 24x18 -q --step 0.5 --precision double -o vri.exr
+"$bin/vri-diff" vri.exr one.exr --fail 1e-6 > /dev/null
+"$python" - one.json <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["tool"] == "vri-outside" and r["stats"]["backend"] == "outside", r["stats"]
+assert r["renderer"]["executable"]["sha512"] and r["renderer"]["quantisation"] == "float32"
+assert r["timing"]["timed"] == "process" and r["timing"]["median_wall_seconds"] > 0
+assert r["options"]["step_voxels"] == 0.5
+PY
+[ -z "$(ls -A | grep '^\.vri-outside-')" ] || fail "vri-outside left its work folder"
+
+verify() {  # verify EXPECTED_EXIT PATTERN BUG [OPTIONS...]
+  local want=$1 pattern=$2 bug=$3; shift 3
+  set +e
+  "$bin/vri-verify" "${scene[@]}" --steps 2,1,0.5,0.25 "$@" --report "$bug.md" --json "$bug.json" \
+    --junit "$bug.xml" "${buggy[@]}" "$bug" {card} {output} 2> "$bug.err"
+  local rc=$?
+  set -e
+  [ "$rc" -eq "$want" ] || { cat "$bug.err"; fail "$bug: exit $rc, expected $want"; }
+  grep -Eq -- "$pattern" "$bug.err" || { cat "$bug.err"; fail "$bug: expected '$pattern'"; }
+  grep -q '<testsuite' "$bug.xml" && grep -q "^# Verification" "$bug.md"
+}
+verify 0 "pass: convergence: observed order (0\.9|1\.0)" none --placement eye
+verify 3 "FAIL: orientation: the image is upside down" flip
+verify 3 "FAIL: placement: uses placement entry .* but the card asks for eye" entry-placement --placement eye
+verify 3 "FAIL: convergence: .*the error does not fall with the step. Is the opacity corrected" no-opacity-correction
+"$python" - none.json <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["passed"] and r["placement"] == "eye" and not r["upside_down"], r
+assert 0.85 < r["order"] < 1.2, r["order"]   # a Riemann sum: first order
+PY
+
+# docs/ci-recipe.md's verification step, as written, with ./my-renderer the example renderer.
+printf '#!/bin/sh\nexec %s %s "$@"\n' "$python" "$src/examples/scene_card/render_from_card.py" > my-renderer
+chmod +x my-renderer
+sed -n '/^ *# vri-verify: begin/,/^ *# vri-verify: end/p' "$src/docs/ci-recipe.md" | sed 's/^ \{14\}//' > recipe.sh
+[ "$(wc -l < recipe.sh)" -gt 3 ] || fail "docs/ci-recipe.md: no verification step between its markers"
+PATH="$bin:$PATH" bash -e recipe.sh
+grep -q 'failures="0"' vri-junit.xml || fail "the recipe's JUnit report has failures"
+echo "vri-verify: a correct renderer passes, three injected defects are named"
