@@ -11,9 +11,11 @@ export VRI_DATA_DIR
 all: build
 
 # The Debian packages the build and the tests need (scripts/install-deps.sh); build, test and
-# experiments depend on it, so it runs first everywhere.
+# experiments depend on it, so it runs first everywhere. Then the web peers' npm packages (npm ci in
+# tools/peers/web) when node_modules is missing or older than package-lock.json, if npm is here.
 deps:
 	@scripts/install-deps.sh
+	@cd tools/peers/web && { [ node_modules/.package-lock.json -nt package-lock.json ] || ! command -v npm >/dev/null || npm ci --no-audit --no-fund --loglevel=error; }
 
 # ccache, when installed (make deps installs it), keeps compiled objects across build folders and
 # clones: a second clone, or a build after a pull, recompiles only what changed. Looked up when the

@@ -16,6 +16,7 @@ packages=(
   time                       # GNU time: the bad-input suites' peak resident memory (tests/tools/lib/bad_input.sh)
   ccache                     # the Makefile compiles through it when it is there: a rebuild reuses objects
   python3-jsonschema         # the scene card's schema check (tests/tools/scene_card.sh)
+  chromium                   # tools/peers/web: three.js, vtk.js and NiiVue in headless Chromium (tests/tools/peers_web.sh)
   help2man                   # the tools' man pages, made from their --help at build time (docs/CMakeLists.txt)
 )
 if [ "${1:-}" = fuzz ]; then

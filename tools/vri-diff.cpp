@@ -22,6 +22,7 @@
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/atomic_file.h"
+#include "libvri/util/parse.h"
 
 namespace {
 
@@ -32,6 +33,7 @@ struct Options {
     std::string a, b;
     std::vector<double> thresholds = vri::kDefaultThresholds;
     std::string json, diffImage, histogram;
+    std::string channels;  // --channels: names, comma separated; empty: all
     double diffScale = 1.0;
     std::vector<std::string> scaleOver;  // a PNG heat map's scale: the largest |A - X| over B and these
     std::vector<double> histogramRange{1e-6, 1.0};
@@ -98,6 +100,20 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const std:
 const CLI::Validator kNonNegative = vri::numberAbove(0.0, true);
 const CLI::Validator kPositive = vri::numberAbove(0.0, false);
 
+// A failed comparison of two images of which one is upside down says so: B flipped vertically much
+// nearer A is a renderer that writes row 0 at the bottom, not a render that is wrong everywhere.
+void flipHint(const vri::Image& a, const vri::Image& b, const vri::ImageDiff& diff) {
+    const auto rmse = [](const vri::ImageDiff& d) {
+        double worst = 0;
+        for (const vri::ChannelDiff& c : d.channels) worst = std::max(worst, c.rmse);
+        return worst;
+    };
+    const double upright = rmse(diff), flipped = rmse(vri::compareImages(a, vri::flippedVertically(b), {}));
+    if (flipped < 0.5 * upright)
+        std::cerr << kTool << ": hint: B flipped vertically is " << upright / flipped << " times nearer A (RMSE "
+                  << flipped << " against " << upright << "): is B's row 0 at the bottom?\n";
+}
+
 // The one-line message of vri::guardedMain, with the exit code that names this kind of failure.
 int exitWith(int code, const std::exception& error) {
     std::cerr << kTool << ": error: " << vri::printable(error.what()) << '\n';
@@ -112,6 +128,8 @@ int run(int argc, char** argv) {
                  kTool};
     app.add_option("A", options.a, "first image (reference), any format OpenImageIO reads")->required();
     app.add_option("B", options.b, "second image, same size and channel count")->required();
+    app.add_option("--channels", options.channels,
+                   "compare only these channels, by name, comma separated (R,G,B for an image without alpha)");
     app.add_option("--threshold", options.thresholds, "error thresholds to report, comma separated")
         ->delimiter(',')
         ->check(kNonNegative)
@@ -196,8 +214,13 @@ int run(int argc, char** argv) {
     vri::requireOutputsApartFromInputs(outputs, inputs);
     if (!options.json.empty()) vri::requireUtf8Arguments(argc, argv);
     // A file that cannot be read or written is guardedMain's failure, exit 1.
-    const vri::Image a = vri::readImage(options.a);
-    const vri::Image b = vri::readImage(options.b);
+    vri::Image a = vri::readImage(options.a);
+    vri::Image b = vri::readImage(options.b);
+    if (!options.channels.empty()) {
+        const std::vector<std::string> names = vri::parseWordList(options.channels, "--channels");
+        a = vri::selectChannels(a, names, options.a);
+        b = vri::selectChannels(b, names, options.b);
+    }
     try {
         vri::requireSameShape(a, b);
     } catch (const vri::Error& e) {
@@ -250,6 +273,7 @@ int run(int argc, char** argv) {
     // The summary goes to standard output unless an output does (it would run into that output).
     if (std::none_of(outputs.begin(), outputs.end(), [](const vri::OutputArgument& o) { return o.path == "-"; }))
         printSummary(options, diff, verdict.text);
+    if (verdict.code != vri::kExitOk) flipHint(a, b, diff);
     return verdict.code;
 }
 

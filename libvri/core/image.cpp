@@ -40,4 +40,33 @@ int channelIndex(const Image& image, std::string_view name) {
     return it == image.channelNames.end() ? -1 : static_cast<int>(it - image.channelNames.begin());
 }
 
+Image flippedVertically(const Image& image) {
+    Image out = image;
+    const std::size_t row = static_cast<std::size_t>(image.width) * image.channels;
+    for (std::size_t y = 0; y < static_cast<std::size_t>(image.height); ++y)
+        std::copy_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row), row,
+                    out.pixels.begin() + static_cast<std::ptrdiff_t>((image.height - 1 - y) * row));
+    return out;
+}
+
+Image selectChannels(const Image& image, const std::vector<std::string>& names, const std::string& what) {
+    std::vector<int> from;
+    for (const std::string& name : names) {
+        const int c = channelIndex(image, name);
+        if (c < 0) {
+            std::string has;
+            for (const std::string& n : image.channelNames) has += (has.empty() ? "" : ",") + n;
+            throw Error(what + ": no channel '" + name + "' (it has " + has + ")");
+        }
+        from.push_back(c);
+    }
+    Image out(image.width, image.height, static_cast<int>(names.size()));
+    out.channelNames = names;
+    const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+    for (std::size_t p = 0; p < pixels; ++p)
+        for (std::size_t c = 0; c < from.size(); ++c)
+            out.pixels[p * from.size() + c] = image.pixels[p * image.channels + from[c]];
+    return out;
+}
+
 }  // namespace vri

@@ -45,4 +45,10 @@ struct PixelRegion {
 // The index of the channel called `name`, or -1 when the image has none.
 int channelIndex(const Image& image, std::string_view name);
 
+// The image with its rows in reverse order: row 0 becomes the bottom row.
+Image flippedVertically(const Image& image);
+
+// The channels called `names`, in that order; throws vri::Error "<what>: no channel '<name>' (it has ...)".
+Image selectChannels(const Image& image, const std::vector<std::string>& names, const std::string& what);
+
 }  // namespace vri

@@ -94,22 +94,11 @@ Image readOutsideImage(const fs::path& path, int width, int height, std::string&
     if (image.width != width || image.height != height)
         throw Error(path.string() + ": " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                     ", the card's image is " + std::to_string(width) + "x" + std::to_string(height));
-    const auto channel = [&](const std::string& name) {
-        for (int c = 0; c < image.channels; ++c)
-            if (image.channelNames[c] == name) return c;
-        return -1;
-    };
-    const int r = channel("R"), g = channel("G"), b = channel("B"), a = channel("A");
-    if (r < 0 || g < 0 || b < 0 || a < 0)
-        throw Error(path.string() + ": channels " + [&] {
-            std::string names;
-            for (const std::string& n : image.channelNames) names += (names.empty() ? "" : ",") + n;
-            return names;
-        }() + ", expected R, G, B and A (premultiplied, as the card's output section says)");
-    Image rgba(width, height);
-    for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p)
-        for (int c = 0; c < 4; ++c) rgba.pixels[p * 4 + c] = image.pixels[p * image.channels + (c == 0 ? r : c == 1 ? g : c == 2 ? b : a)];
-    return rgba;
+    try {
+        return selectChannels(image, {"R", "G", "B", "A"}, path.string());
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) + ": expected R, G, B and A, premultiplied, as the card's output section says");
+    }
 }
 
 OutsideRun runOutsideRenderer(const OutsideRenderer& renderer, const nlohmann::json& card, const fs::path& workDir) {
@@ -163,6 +152,11 @@ OutsideRun runOutsideRenderer(const OutsideRenderer& renderer, const nlohmann::j
             throw Error(stats.string() + ": the renderer's stats: expected \"format\": \"" +
                         std::string(kOutsideStatsFormat) + "\" (docs/outside-renderers.md)");
         run.renderer["stats"] = own;
+        // An image read back from 8 bits and written as float is 8-bit: the renderer's word for it holds.
+        if (const auto i = own.find("image"); i != own.end() && i->is_object() && i->contains("quantisation")) {
+            run.quantisation = i->at("quantisation").get<std::string>();
+            run.renderer["quantisation"] = run.quantisation;
+        }
         if (const auto r = own.find("renderer"); r != own.end() && r->is_object()) {
             if (const std::string n = r->value("name", ""); !n.empty()) run.renderer["name"] = n;
             run.renderer["version"] = r->value("version", "");

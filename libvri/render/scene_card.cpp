@@ -337,4 +337,11 @@ std::string sceneCardVoxelBytes(const SceneSetup& setup) {
     return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
+SceneCardFiles sceneCardWithVoxels(const SceneSetup& setup, const RenderRequest& request, const std::string& voxelsPath) {
+    if (voxelsPath.empty()) return {sceneCard(setup, request), std::string()};
+    std::string bytes = sceneCardVoxelBytes(setup);
+    const SceneCardVoxels voxels{voxelsPath, sha512Hex(std::as_bytes(std::span(bytes.data(), bytes.size()))), bytes.size()};
+    return {sceneCard(setup, request, voxels), std::move(bytes)};
+}
+
 }  // namespace vri

@@ -35,4 +35,11 @@ nlohmann::json sceneCard(const SceneSetup& setup, const RenderRequest& request,
 // The voxels of `setup`'s dense volume in the card's plain layout.
 std::string sceneCardVoxelBytes(const SceneSetup& setup);
 
+// The card and, when `voxelsPath` is not empty, the voxels it names there (their bytes, to be written there).
+struct SceneCardFiles {
+    nlohmann::json card;
+    std::string voxels;
+};
+SceneCardFiles sceneCardWithVoxels(const SceneSetup& setup, const RenderRequest& request, const std::string& voxelsPath);
+
 }  // namespace vri

@@ -11,7 +11,6 @@
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
-#include "libvri/util/sha512.h"
 #include "libvri/util/statistics.h"
 #include "libvri/render/scene_card.h"
 
@@ -49,15 +48,6 @@ Errors errorsAgainst(const Image& reference, const Image& image) {
 
 nlohmann::json toJson(const Errors& e) { return {{"mean", e.mean}, {"max", e.max}, {"rmse", e.rmse}}; }
 
-Image flippedVertically(const Image& image) {
-    Image out = image;
-    const std::size_t row = static_cast<std::size_t>(image.width) * image.channels;
-    for (int y = 0; y < image.height; ++y)
-        std::copy_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row), row,
-                    out.pixels.begin() + static_cast<std::ptrdiff_t>((image.height - 1 - y) * row));
-    return out;
-}
-
 RenderRequest atStep(const RenderRequest& base, double step, std::optional<Placement> placement = std::nullopt) {
     RenderRequest request = base;
     request.options.samplingRate = 1.0 / step;
@@ -70,15 +60,9 @@ RenderRequest atStep(const RenderRequest& base, double step, std::optional<Place
 OutsideRun runOnCard(const OutsideRenderer& renderer, const SceneSetup& setup, const RenderRequest& request,
                      const fs::path& dir) {
     fs::create_directories(dir);
+    auto [card, voxels] = sceneCardWithVoxels(setup, request, setup.scene.volume ? "voxels.raw" : "");
     OutputSet files;
-    std::optional<SceneCardVoxels> voxels;
-    if (setup.scene.volume) {
-        std::string bytes = sceneCardVoxelBytes(setup);
-        voxels = SceneCardVoxels{"voxels.raw", sha512Hex(std::as_bytes(std::span(bytes.data(), bytes.size()))),
-                                 bytes.size()};
-        files.add(dir / "voxels.raw", std::move(bytes));
-    }
-    const nlohmann::json card = sceneCard(setup, request, voxels);
+    if (setup.scene.volume) files.add(dir / "voxels.raw", std::move(voxels));
     files.add(dir / "card.json", card.dump(2) + "\n");
     files.write();
     return runOutsideRenderer(renderer, card, dir);
@@ -139,6 +123,7 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
     std::string quantisation, name, version;
     for (std::size_t i = 0; i < steps.size(); ++i) {
         const RenderRequest request = atStep(base, steps[i]);
+        validateRender(scene, camera, request.options);  // the card's step, before the renderer is run on it
         runs.push_back(runOnCard(renderer, setup, request, workDir / ("step-" + std::to_string(i + 1))));
         ours.push_back(errorsAgainst(referenceImage, render(scene, camera, request.options)).mean);
         quantisation = runs.back().quantisation;

@@ -21,7 +21,6 @@
 #include "libvri/render/render_json.h"
 #include "libvri/render/scene_card.h"
 #include "libvri/render/verification.h"
-#include "libvri/util/sha512.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/format.h"
 
@@ -166,16 +165,6 @@ RenderRequest RenderCommand::request() const {
 
 namespace {
 
-// The scene card of `setup` and, when `voxelsPath` is given, the voxels it names there.
-std::pair<nlohmann::json, std::string> cardWithVoxels(const SceneSetup& setup, const RenderRequest& request,
-                                                      const std::string& voxelsPath) {
-    if (!request.exact) validateRender(setup.scene, Camera(setup.camera), request.options);
-    if (voxelsPath.empty()) return {sceneCard(setup, request), std::string()};
-    std::string bytes = sceneCardVoxelBytes(setup);
-    const SceneCardVoxels voxels{voxelsPath, sha512Hex(std::as_bytes(std::span(bytes.data(), bytes.size()))), bytes.size()};
-    return {sceneCard(setup, request, voxels), std::move(bytes)};
-}
-
 // A folder of its own beside `near`, removed with everything in it unless kept.
 class WorkFolder {
 public:
@@ -213,7 +202,18 @@ int RenderCommand::describe() {
         if (given(renderOnly))
             throw UsageError(std::string(renderOnly) + ": --describe renders nothing, so it writes no " + renderOnly);
     if (mode_ != Mode::Vri) throw UsageError("--describe: " + name_ + " runs a renderer; vri-render --describe writes the card");
-    auto [card, voxels] = cardWithVoxels(scene_.load(), this->request(), voxelsPath_);
+    const RenderRequest request = this->request();
+    const SceneSetup setup = scene_.load();
+    if (!request.exact) validateRender(setup.scene, Camera(setup.camera), request.options);
+    // The card names its voxels relative to its own folder (the current one for a card on stdout), so that
+    // the two move together.
+    std::string voxelsName;
+    if (!voxelsPath_.empty()) {
+        namespace fs = std::filesystem;
+        const fs::path cardFolder = describePath_ == "-" ? fs::current_path() : fs::absolute(describePath_).parent_path();
+        voxelsName = fs::absolute(voxelsPath_).lexically_normal().lexically_relative(cardFolder.lexically_normal()).string();
+    }
+    auto [card, voxels] = sceneCardWithVoxels(setup, request, voxelsName);
     OutputSet files;
     if (!voxelsPath_.empty()) files.add(voxelsPath_, std::move(voxels));
     files.add(describePath_, card.dump(2) + "\n");
@@ -236,7 +236,8 @@ int RenderCommand::runOutside() {
     const PngOptions png = preview_.get();
     const SceneSetup setup = scene_.load();
     const bool volume = setup.scene.volume != nullptr;
-    auto [card, voxels] = cardWithVoxels(setup, request, volume ? "voxels.raw" : "");
+    if (!request.exact) validateRender(setup.scene, Camera(setup.camera), request.options);
+    auto [card, voxels] = sceneCardWithVoxels(setup, request, volume ? "voxels.raw" : "");
 
     WorkFolder work(output_);
     if (keepWork_) work.keep();
@@ -261,9 +262,11 @@ int RenderCommand::runOutside() {
                        {"out_of_range_pixels", toJson(findOutOfRangePixels(run.image))}};
     record["timing"] = frameTimingRecord(0, run.wallSeconds);
     record["timing"]["timed"] = run.timed;
+    // The renderer's command as given, placeholders and all: the work folder is a fresh name each run, and the
+    // image's bytes must not depend on it (the stats keep the words as run).
     const ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
                                     {"vri:options", record["options"].dump()},
-                                    {"vri:renderer", nlohmann::json(run.renderer["argv"]).dump()}};
+                                    {"vri:renderer", run.renderer["command"].dump()}};
     OutputSet files;
     files.add(output_, encodeExr(output_, run.image, metadata));
     if (!pngPath_.empty()) files.add(pngPath_, encodePng(pngPath_, run.image, png));
