@@ -121,21 +121,21 @@ OutsideRun runOutsideRenderer(const OutsideRenderer& renderer, const nlohmann::j
     const std::optional<fs::path> program = findProgram(words[0]);
     if (!program) throw Error("renderer command '" + printable(words[0]) + "': no such executable (in PATH or as a path)");
 
-    OutsideRun run;
-    const auto start = std::chrono::steady_clock::now();
-    const ExitStatus status = runProcess(*program, words);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!status.ok()) throw Error("renderer '" + printable(words[0]) + "' failed (" + status.describe() + ")");
-    run.image = readOutsideImage(image, width, height, run.quantisation);
-
     // Its name: its stats' (below), else the one given, else the program's file name (the script's, after an
     // interpreter such as python3 or node).
     std::string name = renderer.name;
     if (name.empty()) {
-        const std::string program = fs::path(words[0]).filename().string();
-        const bool interpreter = program.starts_with("python") || program == "node" || program == "sh" || program == "bash";
+        const std::string file = fs::path(words[0]).filename().string();
+        const bool interpreter = file.starts_with("python") || file == "node" || file == "sh" || file == "bash";
         name = fs::path(interpreter && words.size() > 1 ? words[1] : words[0]).filename().string();
     }
+    OutsideRun run;
+    const auto start = std::chrono::steady_clock::now();
+    const ExitStatus status = runProcess(*program, words);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!status.ok()) throw Error("renderer '" + printable(name) + "' failed (" + status.describe() + ")");
+    run.image = readOutsideImage(image, width, height, run.quantisation);
+
     run.renderer = {{"name", name},
                     {"version", ""},
                     {"command", renderer.command},
