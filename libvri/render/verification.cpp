@@ -185,31 +185,33 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
                                              std::string(placementName(*options.placement))
                                        : "placement " + placementText});
 
-    // Convergence: the order over the finest steps, unless the error stops falling there (a floor).
+    // Convergence: the order over the finest steps, unless the error stops falling there, a floor: the
+    // error fell over the first interval and no longer over the last. The order is then fitted over the
+    // leading intervals where it still fell, and the floor is reported with what it may come from.
     const std::size_t n = steps.size();
     const std::vector<double> fineSteps(steps.end() - 3, steps.end()), fineErrors(theirs.end() - 3, theirs.end());
-    const double fineOrder = orderOf(fineSteps, fineErrors);
-    // A floor: the error fell over the coarser steps and stops over the finest, well above vri's own. Where it
-    // never fell, nothing converges, and the order over the whole sweep says so.
-    std::vector<double> fitSteps, fitErrors;
-    for (std::size_t i = 0; i < n; ++i)
-        if (theirs[i] > 3.0 * theirs.back()) {
-            fitSteps.push_back(steps[i]);
-            fitErrors.push_back(theirs[i]);
-        }
-    const bool floor = !(fineOrder >= 0.5 * options.minOrder) && theirs.back() > 4.0 * ours.back() &&
-                       fitSteps.size() >= 2 && orderOf(fitSteps, fitErrors) >= 0.5 * options.minOrder;
-    if (!floor) {
-        fitSteps = fineSteps;
-        fitErrors = fineErrors;
-        if (!(fineOrder >= 0.5 * options.minOrder)) {  // no floor and no convergence over the finest: the whole sweep
-            fitSteps = steps;
-            fitErrors = theirs;
-        }
+    std::vector<double> pairwise;  // the order over each interval, coarse to fine
+    for (std::size_t i = 0; i + 1 < n; ++i) pairwise.push_back(orderOf({steps[i], steps[i + 1]}, {theirs[i], theirs[i + 1]}));
+    const bool floor = pairwise.front() >= 0.8 * options.minOrder && !(pairwise.back() >= 0.5 * options.minOrder);
+    std::vector<double> fitSteps = fineSteps, fitErrors = fineErrors;
+    if (floor) {
+        std::size_t falling = 0;
+        while (falling < pairwise.size() && pairwise[falling] >= 0.5 * options.minOrder) ++falling;
+        fitSteps.assign(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(falling + 1));
+        fitErrors.assign(theirs.begin(), theirs.begin() + static_cast<std::ptrdiff_t>(falling + 1));
+    } else if (!(orderOf(fineSteps, fineErrors) >= 0.5 * options.minOrder)) {  // nothing falls: the whole sweep
+        fitSteps = steps;
+        fitErrors = theirs;
     }
     const double order = orderOf(fitSteps, fitErrors);
-    const double maxOrder = orderOf(fineSteps, std::vector<double>(theirsMax.end() - 3, theirsMax.end()));
-    const double ourOrder = orderOf(fineSteps, std::vector<double>(ours.end() - 3, ours.end()));
+    std::vector<double> fitMax, fitOurs;  // over the same steps: the largest error's order, and vri's own
+    for (const double h : fitSteps) {
+        const auto i = static_cast<std::size_t>(std::find(steps.begin(), steps.end(), h) - steps.begin());
+        fitMax.push_back(theirsMax[i]);
+        fitOurs.push_back(ours[i]);
+    }
+    const double maxOrder = orderOf(fitSteps, fitMax);
+    const double ourOrder = orderOf(fitSteps, fitOurs);
     // No positive error to fit (NaN) passes only where the images are the reference itself.
     const bool converges = std::isnan(order) ? theirs.back() == 0.0 : order >= options.minOrder;
     std::string convergence = "observed order " + number(order) + " of the mean error over steps " +
@@ -217,16 +219,18 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
                               number(maxOrder) + "; vri's own at these steps: " + number(ourOrder) + ")";
     if (!converges)
         convergence += ", below " + number(options.minOrder) +
-                       (order < 0.25 ? ": the error does not fall with the step. Is the opacity corrected for the "
-                                       "step (alpha = 1 - exp(-tau dx), tau per world unit, dx the step in world units)?"
+                       (order < 0.25 ? ": the error does not fall with the step. Does the renderer take the card's "
+                                       "step, and correct the opacity for it (alpha = 1 - exp(-tau dx), tau per world unit, "
+                                       "dx the step in world units)? Or does another error, larger than the step's, hide it?"
                                      : ": the renderer converges more slowly than a Riemann sum should");
     findings.push_back({"convergence", converges, convergence});
     std::string floorText = "none: at the finest step the error is " + number(theirs.back()) + ", vri's own " +
                             number(ours.back());
     if (floor) {
-        const bool eightBit = quantisation == "8-bit";
-        floorText = "the error stops near " + number(theirs.back()) + " (vri's own Riemann sum at step " +
-                    exactNumber(steps.back()) + ": " + number(ours.back()) + "); " +
+        const bool eightBit = quantisation == "8-bit" && theirs.back() <= 2.0 / 255.0;
+        floorText = "the error stops falling near " + number(theirs.back()) + " from step " +
+                    exactNumber(fitSteps.back()) + " (order " + number(pairwise.back()) + " over the last interval; vri's "
+                    "own Riemann sum at step " + exactNumber(steps.back()) + ": " + number(ours.back()) + "): " +
                     (eightBit ? "the image is 8-bit, which alone leaves up to 1/510 = 0.00196 per channel"
                               : "not the step's: a quantised transfer function or texture, the interpolation, or an "
                                 "approximate opacity correction");

@@ -39,7 +39,7 @@ verify() {  # verify EXPECTED_EXIT PATTERN BUG [OPTIONS...]
 verify 0 "pass: convergence: observed order (0\.9|1\.0)" none --placement eye
 verify 3 "FAIL: orientation: the image is upside down" flip
 verify 3 "FAIL: placement: uses placement entry .* but the card asks for eye" entry-placement --placement eye
-verify 3 "FAIL: convergence: .*the error does not fall with the step. Is the opacity corrected" no-opacity-correction
+verify 3 "FAIL: convergence: .*the error does not fall with the step. Does the renderer take the card's step, and correct the opacity" no-opacity-correction
 "$python" - none.json <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
