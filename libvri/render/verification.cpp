@@ -258,9 +258,10 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
                      {"passed", report.passed}};
 
     std::string& md = report.markdown;
-    md = "# Verification of " + name + (version.empty() ? "" : " " + version) + "\n\n";
-    md += std::string("**") + (report.passed ? "PASSED" : "FAILED") + "**, against vri's exact reference (error bound " +
-          number(referenceBound) + ").\n\n| finding | | |\n|---|---|---|\n";
+    // No heading of its own: the report stands alone and also sits inside the results gallery's sections.
+    md = "**Verification of " + name + (version.empty() ? "" : " " + version) + ": " +
+         (report.passed ? "PASSED" : "FAILED") + "**, against vri's exact reference (error bound " +
+         number(referenceBound) + ").\n\n| finding | | |\n|---|---|---|\n";
     for (const Finding& f : findings)
         md += "| " + f.name + " | " + (f.passed ? "pass" : "**FAIL**") + " | " + f.message + " |\n";
     md += "\n| step (voxels) | mean error | largest error | vri's mean error | seconds |\n|--:|--:|--:|--:|--:|\n";

@@ -34,7 +34,7 @@ verify() {  # verify EXPECTED_EXIT PATTERN BUG [OPTIONS...]
   set -e
   [ "$rc" -eq "$want" ] || { cat "$bug.err"; fail "$bug: exit $rc, expected $want"; }
   grep -Eq -- "$pattern" "$bug.err" || { cat "$bug.err"; fail "$bug: expected '$pattern'"; }
-  grep -q '<testsuite' "$bug.xml" && grep -q "^# Verification" "$bug.md"
+  grep -q '<testsuite' "$bug.xml" && grep -q "^\*\*Verification of " "$bug.md"
 }
 verify 0 "pass: convergence: observed order (0\.9|1\.0)" none --placement eye
 verify 3 "FAIL: orientation: the image is upside down" flip
