@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The relative links of README.md and docs/**/*.md: each target exists, and an #anchor into a Markdown file
+"""The relative links of README.md, docs/**/*.md and the results gallery (results/*.md): each target exists, and an #anchor into a Markdown file
 names one of its headings (GitHub's slugs). Prints each broken link as FILE:LINE and exits 1; web links are
 not followed (nothing is fetched).
 Usage: scripts/check-doc-links.py [ROOT]   (ROOT: the repository, default this one)"""
@@ -29,6 +29,7 @@ def slugs(path):
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..")
     files = [os.path.join(root, "README.md")] + sorted(glob.glob(os.path.join(root, "docs", "**", "*.md"), recursive=True))
+    files += sorted(glob.glob(os.path.join(root, "results", "*.md")))
     broken = count = 0
     for name in files:
         fence = False

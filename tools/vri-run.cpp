@@ -21,6 +21,7 @@
 #include "libvri/experiment/experiment_reproduce.h"
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
+#include "libvri/experiment/gallery.h"
 #include "libvri/experiment/manifest.h"
 #include "libvri/experiment/new_study.h"
 #include "libvri/experiment/plan_waves.h"
@@ -300,9 +301,11 @@ int run(const Options& options) {
     }
     if (options.estimate) printEstimate(estimates);
     if (!options.gallery.empty()) {
-        const fs::path readme = fs::path(options.gallery) / "README.md";
-        vri::writeTextFile(readme, vri::galleryMarkdown(options.gallery));
-        std::cerr << kTool << ": wrote " << readme.string() << '\n';
+        for (const vri::GalleryPage& page : vri::galleryPages(options.gallery)) {
+            const fs::path file = fs::path(options.gallery) / page.name;
+            vri::writeTextFile(file, page.text);
+            std::cerr << kTool << ": wrote " << file.string() << '\n';
+        }
     }
     return reproduced ? vri::kExitOk : vri::kExitError;
 }

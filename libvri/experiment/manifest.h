@@ -1,7 +1,7 @@
 #pragma once
 // The manifest of an experiment's results (<results>/manifest.json): what the experiment shows,
 // the source tree and build, the machine, and for every step its exact command, parameters,
-// input and output digests and wall time. The gallery (results/README.md) is read from manifests.
+// input and output digests and wall time. The gallery (gallery.h) is read from manifests.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -26,10 +26,5 @@ std::optional<WorkTree> workTreeOf(const std::filesystem::path& file);
 // Writes <plan.resultsDir>/manifest.json atomically.
 void writeManifest(const Experiment& experiment, const Plan& plan, const std::vector<StepOutcome>& outcomes,
                    const std::filesystem::path& toolDir, FileHasher& hasher);
-
-// Markdown for results/README.md from every <resultsRoot>/*/manifest.json, in name order; image
-// and table links are relative to resultsRoot. Each agreement text has its {{table:...}} numbers filled
-// from its experiment's CSV tables (caption_numbers.h); one that does not resolve is a vri::Error.
-std::string galleryMarkdown(const std::filesystem::path& resultsRoot);
 
 }  // namespace vri

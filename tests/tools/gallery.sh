@@ -13,8 +13,15 @@ for manifest in "$VRI_SOURCE"/results/*/manifest.json; do
   find "$folder" -maxdepth 1 \( -name '*.csv' -o -name '*.md' -o -name '*.json' \) -exec cp {} "results/$name/" \;
 done
 "$bin/vri-run" --gallery results 2> /dev/null
-cmp results/README.md "$VRI_SOURCE/results/README.md" ||
-  fail "results/README.md differs from the gallery of the committed manifests (run vri-run --gallery results): $(diff results/README.md "$VRI_SOURCE/results/README.md" | head -8)"
+for page in results/*.md; do  # README.md and the long sections' own pages
+  cmp "$page" "$VRI_SOURCE/$page" ||
+    fail "$page differs from the gallery of the committed manifests (run vri-run --gallery results): $(diff "$page" "$VRI_SOURCE/$page" | head -8)"
+done
+# The index: one row per experiment, in the papers' order (paper A's items, then paper B's, then own studies).
+rows=$(grep -c '^| \(Paper [AB], \|own study\)' results/README.md)
+[ "$rows" -eq "$(ls results/*/manifest.json | wc -l)" ] || fail "the index has $rows rows for $(ls results/*/manifest.json | wc -l) experiments"
+grep -o '^| \(Paper [AB]\|own study\)' results/README.md | uniq | tr '\n' ';' | grep -qx '| Paper A;| Paper B;| own study;' ||
+  fail "the index is not in the papers' order: $(grep -o '^| \(Paper [AB]\|own study\)' results/README.md | uniq | tr '\n' ' ')"
 
 # A cited cell that is not in the data.
 first=$(ls -d results/*/ | head -1)

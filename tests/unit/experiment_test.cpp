@@ -14,6 +14,7 @@
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
 #include "libvri/experiment/gallery_grid.h"
+#include "libvri/experiment/gallery.h"
 #include "libvri/experiment/manifest.h"
 #include "libvri/experiment/step_cache.h"
 #include "libvri/util/error.h"
@@ -322,7 +323,11 @@ figures:
     d.write("results/t/time.md", "| time table |\n");
     vri::FileHasher hasher;
     vri::writeManifest(e, plan, std::vector<vri::StepOutcome>(plan.steps.size()), d.dir / "bin", hasher);
-    const std::string md = vri::galleryMarkdown(d.dir / "results");
+    const std::vector<vri::GalleryPage> pages = vri::galleryPages(d.dir / "results");
+    REQUIRE(pages.size() == 1);  // a short section stays on README.md
+    CHECK(pages.front().name == "README.md");
+    const std::string& md = pages.front().text;
+    CHECK(md.find("| paper item | section | ours against the paper |") < md.find("(t/riemann.png)"));
     const std::vector<std::string> order{"(t/riemann.png)", "(t/c.png)", "| command table |", "| time table |",
                                          "(t/f.png)"};
     for (std::size_t i = 0; i + 1 < order.size(); ++i) {

@@ -1,0 +1,255 @@
+#include "libvri/experiment/gallery.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "libvri/experiment/caption_numbers.h"
+#include "libvri/experiment/gallery_grid.h"
+#include "libvri/experiment/step_costs.h"
+#include "libvri/util/file_text.h"
+#include "libvri/util/json_file.h"
+
+namespace vri {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// "commit 0123456789ab" (12 digits, as git shows short ids), with "(tracked files modified)" when the
+// tree was dirty: what the gallery says an experiment's results were made from.
+std::string commitNote(const nlohmann::json& sourceTree) {
+    const std::string commit = sourceTree.at("commit").get<std::string>();
+    if (commit == "unknown") return "commit unknown";
+    std::string note = "commit `" + commit.substr(0, 12) + "`";
+    if (sourceTree.value("modified_files", false)) note += " (tracked files modified)";
+    return note;
+}
+
+// The caption of an experiment's heat maps: what they show and each one's scale, read from the
+// comparison's vri-diff JSON beside it (a diff image is named as its JSON: <comparison id>.png). Maps
+// that share a scale (vri-diff --scale-over, `diff_scale: shared`) are listed together, the top once.
+void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs::path& dir) {
+    std::vector<std::pair<std::string, std::string>> scales;  // ids, the top they share or have alone
+    for (const nlohmann::json& item : diffImages) {
+        const std::string id = item.at("id").get<std::string>();
+        const fs::path json = dir / (id + ".json");
+        if (!fs::is_regular_file(json)) continue;
+        const nlohmann::json diff = readJsonFile(json);
+        if (!diff.contains("heat_map")) continue;  // results of a vri-diff that drew RGB on black
+        char top[32];
+        std::snprintf(top, sizeof top, "%.3g", readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
+        const bool shared = diff.at("heat_map").contains("scale_over");
+        if (shared && !scales.empty() && scales.back().second == top + std::string(" (one scale)"))
+            scales.back().first += ", " + id;
+        else
+            scales.emplace_back(id, top + std::string(shared ? " (one scale)" : ""));
+    }
+    if (scales.empty()) return;
+    md << "*Difference images: heat maps of the largest |run - reference| over the channels (alpha included), "
+          "viridis from 0 (dark blue, the colour bar's left end) to the top of the scale (yellow, its right end; "
+          "larger errors saturate), the bar numbered at quarters of it. Top of the scale: ";
+    for (std::size_t i = 0; i < scales.size(); ++i) md << (i ? "; " : "") << scales[i].first << " " << scales[i].second;
+    md << ".*\n\n";
+}
+
+// A table's Markdown without the notes under its last row when an earlier table of the experiment had
+// the same: a kind of table is explained once, not under each of its tables.
+std::string withNewNotes(const std::string& table, std::set<std::string>& notesSeen) {
+    const std::size_t lastRow = table.rfind("\n|");
+    const std::size_t rowEnd = lastRow == std::string::npos ? std::string::npos : table.find('\n', lastRow + 1);
+    if (rowEnd == std::string::npos) return table;
+    const std::string notes = table.substr(rowEnd + 1);
+    if (notes.find_first_not_of(" \n") == std::string::npos || notesSeen.insert(notes).second) return table;
+    return table.substr(0, rowEnd + 1);
+}
+
+// An id without the scene's name in front (bonsai-riemann-h0.5 -> riemann-h0.5): the same run's
+// column in every scene's row.
+std::string withoutScene(const std::string& id, const std::string& scene) {
+    return !scene.empty() && id.starts_with(scene + "-") ? id.substr(scene.size() + 1) : id;
+}
+
+// Where each gallery image goes in its experiment's scene-by-run matrix: a render's row is its scene
+// and its column its run; a difference image's row is its run's scene and its column "RUN vs REFERENCE",
+// or its comparison's id when another comparison of the same pair took that column already (two
+// comparisons of one run, say on different scales). A command's image has no scene.
+std::vector<GridImage> gridImages(const nlohmann::json& list, const nlohmann::json& steps, const std::string& dir) {
+    std::map<std::string, const nlohmann::json*> parameters;
+    for (const nlohmann::json& step : steps) parameters.emplace(step.at("id").get<std::string>(), &step.at("parameters"));
+    const auto scene = [&](const std::string& id) {
+        const auto found = parameters.find(id);
+        return found == parameters.end() ? std::string() : found->second->value("scene", std::string());
+    };
+    std::vector<GridImage> images;
+    std::set<std::pair<std::string, std::string>> cells;  // (row, column) taken
+    for (const nlohmann::json& item : list) {
+        const std::string id = item.at("id").get<std::string>();
+        GridImage image{id, dir + "/" + item.at("file").get<std::string>(), scene(id), id};
+        if (const auto found = parameters.find(id); found != parameters.end() && found->second->contains("run")) {
+            const std::string run = found->second->at("run").get<std::string>();
+            const std::string reference = found->second->value("reference", std::string());
+            image.row = scene(run);
+            image.column = withoutScene(run, image.row) + " vs " + withoutScene(reference, scene(reference));
+            if (cells.contains({image.row, image.column})) image.column = withoutScene(id, image.row);
+        } else {
+            image.column = withoutScene(id, image.row);
+        }
+        cells.emplace(image.row, image.column);
+        images.push_back(std::move(image));
+    }
+    return images;
+}
+
+// One experiment's section: its heading, what the paper says, its datasets' notes, image grids, tables,
+// figures, how ours agrees, and where it came from. `notedIn` names the section that explained each
+// dataset that is not exact, so that later sections point there instead of repeating it.
+std::string gallerySection(const fs::path& path, std::map<std::string, std::string>& notedIn) {
+    std::ostringstream md;
+    readingJsonOf(path, [&] {
+        const nlohmann::json m = readJsonFile(path);
+        const nlohmann::json& e = m.at("experiment");
+        const std::string dir = path.parent_path().filename().string();
+        md << "\n## " << e.at("title").get<std::string>() << "\n\n";
+        const nlohmann::json& paper = e.at("paper");
+        if (paper.at("paper") != "none")
+            md << "**Paper " << paper.at("paper").get<std::string>() << ", " << paper.at("item").get<std::string>()
+               << ":** " << paper.at("says").get<std::string>() << "\n\n";
+        for (const nlohmann::json& d : m.at("datasets")) {
+            const std::string dataset = d.at("dataset").get<std::string>();
+            if (d.at("status") == "exact" || (notedIn.contains(dataset) && notedIn.at(dataset) == dir)) continue;
+            md << "*Dataset " << dataset << " is " << d.at("status").get<std::string>();
+            if (const auto first = notedIn.emplace(dataset, dir); first.second)
+                md << ":* " << d.at("note").get<std::string>() << "\n\n";
+            else
+                md << "* (see " << first.first->second << ").\n\n";
+        }
+        const nlohmann::json& outputs = m.at("outputs");
+        md << imageGrid(gridImages(outputs.at("images"), m.at("steps"), dir), "scene");
+        md << imageGrid(gridImages(outputs.at("diff_images"), m.at("steps"), dir), "scene");
+        heatMapScales(md, outputs.at("diff_images"), path.parent_path());
+        std::set<std::string> notesSeen;
+        for (const nlohmann::json& table : outputs.at("tables"))
+            if (const auto text = tryReadFileText(path.parent_path() / table.at("file").get<std::string>()); text && !text->empty())
+                md << withNewNotes(*text, notesSeen) << "\n";
+        // A figure is as wide as the page: one a line.
+        for (const nlohmann::json& figure : outputs.at("figures"))
+            md << "![" << figure.at("id").get<std::string>() << "](" << dir << "/" << figure.at("file").get<std::string>()
+               << ")\n\n";
+        if (!e.at("agreement").get<std::string>().empty())
+            md << "**Ours against the paper:** "
+               << fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path()) << "\n\n";
+        md << "Experiment file `" << e.at("source").get<std::string>() << "`, " << commitNote(m.at("source_tree"))
+           << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json); from nothing its "
+           << m.at("steps").size() << (m.at("steps").size() == 1 ? " step takes " : " steps take ")
+           << secondsText(manifestSeconds(m)) << ".\n";
+    });
+    return md.str();
+}
+
+// What the index knows of an experiment, and where the papers put it: paper A's items, then paper B's,
+// each in the order of their numbers ("Fig. 2" before "Fig. 10"), then the own studies.
+struct IndexEntry {
+    fs::path manifest;
+    std::string dir, title, paper, item, verdict;
+};
+
+IndexEntry indexEntry(const fs::path& path) {
+    return readingJsonOf(path, [&] {
+        const nlohmann::json m = readJsonFile(path);
+        const nlohmann::json& e = m.at("experiment");
+        IndexEntry entry{path, path.parent_path().filename().string(), e.at("title").get<std::string>(),
+                         e.at("paper").at("paper").get<std::string>(), e.at("paper").value("item", ""), ""};
+        // The verdict: the agreement's opening words, up to its first ':' or '.' ("Agrees", "Partly",
+        // "Differs, as a CPU device must"); an own study has none to give.
+        if (entry.paper != "none") {
+            const std::string agreement = fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path());
+            entry.verdict = agreement.substr(0, agreement.find_first_of(".:"));
+            if (entry.verdict.size() > 60) entry.verdict = entry.verdict.substr(0, 57) + "...";
+        }
+        return entry;
+    });
+}
+
+// Text with its runs of digits compared as numbers.
+bool naturalLess(const std::string& a, const std::string& b) {
+    std::size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+        if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
+            std::size_t ie = i, je = j;
+            while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
+            while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
+            const std::string x = a.substr(i, ie - i), y = b.substr(j, je - j);
+            if (x.size() != y.size()) return x.size() < y.size();
+            if (x != y) return x < y;
+            i = ie;
+            j = je;
+        } else {
+            if (a[i] != b[j]) return a[i] < b[j];
+            ++i;
+            ++j;
+        }
+    }
+    return a.size() - i < b.size() - j;
+}
+
+// GitHub's anchor of a heading: lower case, punctuation dropped but '-' and '_', blanks as '-'.
+std::string headingAnchor(const std::string& heading) {
+    std::string anchor;
+    for (const char c : heading) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (std::isalnum(u) || c == '-' || c == '_' || u >= 0x80) anchor += static_cast<char>(std::tolower(u));
+        else if (c == ' ') anchor += '-';
+    }
+    return anchor;
+}
+
+// A section longer than this many lines gets a page of its own, linked from the index.
+constexpr std::size_t kLongSectionLines = 120;
+
+}  // namespace
+
+std::vector<GalleryPage> galleryPages(const fs::path& resultsRoot) {
+    std::vector<IndexEntry> entries;
+    for (const fs::directory_entry& entry : fs::directory_iterator(resultsRoot))
+        if (fs::is_regular_file(entry.path() / "manifest.json")) entries.push_back(indexEntry(entry.path() / "manifest.json"));
+    const auto rank = [](const std::string& paper) { return paper == "A" ? 0 : paper == "B" ? 1 : 2; };
+    std::sort(entries.begin(), entries.end(), [&](const IndexEntry& x, const IndexEntry& y) {
+        if (rank(x.paper) != rank(y.paper)) return rank(x.paper) < rank(y.paper);
+        if (x.item != y.item) return naturalLess(x.item, y.item);
+        return x.dir < y.dir;
+    });
+
+    std::vector<GalleryPage> pages{{"README.md", ""}};
+    std::ostringstream index, sections;
+    index << "# Results\n\n"
+             "Generated by `vri-run --gallery` from each experiment's `manifest.json`; regenerate everything with\n"
+             "`make experiments`. Each experiment's folder holds its images, tables, figures and the manifest with the\n"
+             "exact commands, input digests, build, machine and wall times. The sections follow the papers: paper A's\n"
+             "items, then paper B's, then our own studies; a long section has a page of its own.\n\n"
+             "| paper item | section | ours against the paper |\n|:--|:--|:--|\n";
+    std::map<std::string, std::string> notedIn;
+    for (const IndexEntry& entry : entries) {
+        const std::string section = gallerySection(entry.manifest, notedIn);
+        const bool own = std::count(section.begin(), section.end(), '\n') > static_cast<std::ptrdiff_t>(kLongSectionLines);
+        const std::string link = own ? entry.dir + ".md" : "#" + headingAnchor(entry.title);
+        index << "| " << (entry.paper == "none" ? "own study" : "Paper " + entry.paper + ", " + entry.item) << " | ["
+              << entry.title << "](" << link << ") | " << (entry.verdict.empty() ? "-" : entry.verdict) << " |\n";
+        if (own) {
+            pages.push_back({entry.dir + ".md", "[Results](README.md) / " + entry.dir + "\n" + section});
+            sections << "\n## " << entry.title << "\n\nOn a page of its own: [" << entry.dir << ".md](" << entry.dir
+                     << ".md).\n";
+        } else {
+            sections << section;
+        }
+    }
+    pages.front().text = index.str() + sections.str();
+    return pages;
+}
+
+}  // namespace vri
