@@ -88,4 +88,22 @@ EOF
 "$bin/vri-diff" exact.exr raycast.exr --threshold 0.01,0.001 --failpercent 100 --warnpercent 100 --json diff.json
 "$bin/vri-tabulate" --layout tradeoff --run vtk raycast.json diff.json -o speed.md --csv speed.csv
 grep -q '^vtk,' speed.csv || fail "vri-tabulate's tradeoff has no row for the peer: $(cat speed.csv)"
+# The adapter as an outside renderer: vri-outside writes the card, the adapter reads it (--card), and the image
+# is the adapter's own on the same scene, bit for bit; its stats are the outside-renderer record.
+"$bin/vri-peer-vtk" --volume vol_12x12x12_uint8.raw --tf tf.yaml "${camera[@]}" --fov 35 --step 0.5 --repeat 1 -q \
+  -o direct.exr
+"$bin/vri-outside" --volume vol_12x12x12_uint8.raw --tf tf.yaml "${camera[@]}" --fov 35 --step 0.5 -q -o card.exr \
+  --stats card.json -- "$bin/vri-peer-vtk" --card {card} --repeat 1 -q -o {output} --stats {stats}
+"$bin/vri-diff" direct.exr card.exr --fail 0 > /dev/null || fail "the adapter on the card differs from its own run"
+/usr/bin/python3 - card.json <<'EOF'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["renderer"]["name"] == "VTK vtkFixedPointVolumeRayCastMapper" and r["renderer"]["version"].startswith("9.")
+assert r["timing"]["timed"] == "frame" and r["stats"]["quantisation"] == "8-bit", (r["timing"], r["stats"])
+EOF
+set +e
+"$bin/vri-peer-vtk" --card c.json --volume vol_12x12x12_uint8.raw -o x.exr 2> err.txt; rc=$?
+set -e
+[ "$rc" -eq 64 ] && grep -q "^vri-peer-vtk: error: --card: --volume would override the card's scene" err.txt ||
+  fail "--card with --volume: exit $rc, $(cat err.txt)"
 echo "peers: all checks passed"

@@ -151,7 +151,10 @@ def arguments(argv):
                "  vri-peer-vtk ... --image raycast -o raw.exr     # the CPU mapper's 15-bit image, before display\n\n"
                "Without an X display it reruns itself under xvfb-run (Debian xvfb). Bad input is one error line\n"
                "and exit 1, a bad argument exit 64. Frames are timed from Render() through reading the pixels back.")
-    p.add_argument("--volume", required=True, help="volume file: .raw, .nhdr, .dat, .vdb (read by vri-convert)")
+    p.add_argument("--card", help="a vri scene card (docs/scene-card.md, with its voxels): the volume, transfer "
+                                  "function, camera, size and step from it, in place of those options; its stats "
+                                  "then follow docs/outside-renderers.md (vri-outside runs the adapter so)")
+    p.add_argument("--volume", help="volume file: .raw, .nhdr, .dat, .vdb (read by vri-convert)")
     p.add_argument("--dims", help="raw input: X,Y,Z (else taken from NAME_XxYxZ_TYPE.raw)")
     p.add_argument("--type", help="raw input: uint8, uint16 or float32")
     p.add_argument("--byte-order", help="raw input: little (default) or big")
@@ -159,10 +162,10 @@ def arguments(argv):
     p.add_argument("--spacing", help="voxel spacing X,Y,Z, overriding what the input says")
     p.add_argument("--range", help="raw value range lo,hi that maps to s = 0..1 (default: vri-render's)")
     p.add_argument("--convention", default="cell", choices=["cell", "node"], help="grid convention (default cell)")
-    p.add_argument("--tf", required=True, help="transfer function YAML")
+    p.add_argument("--tf", help="transfer function YAML")
     p.add_argument("--size", default="800x600", help="image size WIDTHxHEIGHT (default 800x600)")
-    p.add_argument("--eye", required=True, help="camera position X,Y,Z")
-    p.add_argument("--target", required=True, help="point looked at X,Y,Z")
+    p.add_argument("--eye", help="camera position X,Y,Z")
+    p.add_argument("--target", help="point looked at X,Y,Z")
     p.add_argument("--up", default="0,1,0", help="up vector X,Y,Z (default 0,1,0)")
     p.add_argument("--fov", type=number_option, default=30.0, help="vertical field of view, degrees (default 30)")
     p.add_argument("--method", default="vtk-fixed-point", choices=sorted(MAPPERS),
@@ -197,6 +200,12 @@ def arguments(argv):
         if name.startswith("-") and name != "-" and name not in p._option_string_actions:
             raise UsageError("The following argument was not expected: " + word + " (see --help)")
     a = p.parse_args(argv)
+    if a.card:
+        scene_from_card(a, [w.split("=", 1)[0] for w in argv])
+    else:
+        missing = [o for o in ("--volume", "--tf", "--eye", "--target") if getattr(a, o[2:]) is None]
+        if missing:
+            raise UsageError("the following arguments are required: " + ", ".join(missing))
 
     a.width, a.height = parse_size(a.size)
     a.eye_v = parse_vector(a.eye, "--eye")
@@ -225,6 +234,48 @@ def arguments(argv):
     for path in outputs:
         check_output_path(path)
     return a
+
+
+CARD_OPTIONS = ("--volume", "--dims", "--type", "--byte-order", "--header-bytes", "--spacing", "--range",
+                "--convention", "--tf", "--size", "--eye", "--target", "--up", "--fov", "--step")
+
+
+def scene_from_card(a, given):
+    """The scene options from a vri scene card: the card's voxels (its plain raw layout), value range, grid
+    convention, transfer function (written as YAML beside the outputs' temporary folder), camera, size and
+    step. A scene option given beside --card is refused: the card is the scene."""
+    both = [o for o in CARD_OPTIONS if o in given]
+    if both:
+        raise UsageError("--card: %s would override the card's scene (give one or the other)" % ", ".join(both))
+    try:
+        with open(a.card, encoding="utf-8") as f:
+            card = json.load(f)
+    except (OSError, ValueError) as e:
+        raise InputError("%s: cannot read the card: %s" % (printable(a.card), printable(e)))
+    if card.get("format") != "vri-scene-card" or card.get("version") != 1:
+        raise InputError("%s: not a version 1 vri scene card" % printable(a.card))
+    volume, camera, method = card["volume"], card["camera"], card["method"]
+    if volume["kind"] != "volume" or "file" not in volume.get("voxels", {}):
+        raise InputError("%s: VTK renders sampled volumes: the card needs its voxels (vri-render --describe-voxels)"
+                         % printable(a.card))
+    if method.get("kind") != "fixed-step":
+        raise InputError("%s: the card's method is %s: VTK's ray casters take a fixed step" % (printable(a.card), method.get("kind")))
+    text = lambda v: ",".join(repr(float(x)) for x in v)
+    a.volume = os.path.join(os.path.dirname(os.path.abspath(a.card)), volume["voxels"]["file"])
+    a.dims = ",".join(str(n) for n in volume["dims"])
+    a.type, a.byte_order, a.header_bytes = volume["voxels"]["voxel_type"], "little", None
+    a.spacing = text(volume["spacing"])
+    a.range = text([volume["value_to_s"]["lo"], volume["value_to_s"]["hi"]])
+    a.convention = volume["grid_convention"]
+    a.size = "%dx%d" % (camera["width"], camera["height"])
+    a.eye, a.target, a.up = text(camera["eye"]), text(camera["target"]), text(camera["up"])
+    a.fov = float(camera["fov_y_degrees"])
+    if camera["zoom"] != 1.0:
+        raise InputError("%s: a zoomed card (zoom %g): VTK's camera has no off-centre close-up" % (printable(a.card), camera["zoom"]))
+    a.step = float(method["step"])
+    tf = card["transfer_function"]
+    a.tf_text = "emission: %s\npoints:\n" % tf["emission"] + "".join(
+        "  - [%r, %r, %r, %r, %r]\n" % (p["s"], p["r"], p["g"], p["b"], p["tau"]) for p in tf["points"])
 
 
 # --- Outputs: written beside themselves and renamed into place once complete (vri's atomic_file.h rule). ---
@@ -544,8 +595,13 @@ def render(a):
     if a.threads is None:
         a.threads = len(os.sched_getaffinity(0))
     with tempfile.TemporaryDirectory(prefix="vri-peer-vtk.") as folder:
+        if a.card:  # the card's transfer function as the YAML vri-tf reads; the card names it in the stats
+            a.tf = os.path.join(folder, "card-tf.yaml")
+            with open(a.tf, "w", encoding="utf-8") as f:
+                f.write(a.tf_text)
         voxels, info = read_volume(a, folder)
         tf_rows = read_transfer_function(a, info["voxel_type"], folder)
+        inputs = [{"path": p, "sha512": sha512(p)} for p in ((a.card, a.volume) if a.card else (a.volume, a.tf))]
     longest = sum((n * d / min(info["spacing"])) ** 2 for n, d in zip(info["dims"], info["spacing"])) ** 0.5
     if longest / a.step > MAX_SAMPLES_PER_RAY:
         raise UsageError("--step %g would put more than 1e9 samples on a ray through this volume" % a.step)
@@ -590,7 +646,7 @@ def render(a):
                       "numpy": np.__version__, "openimageio": oiio.__version__,
                       "adapter_sha512": sha512(os.path.abspath(sys.argv[0]))},
             "command": {"argv": argv, "shell": shlex.join(argv)},
-            "inputs": [{"path": p, "sha512": sha512(p)} for p in (a.volume, a.tf)],
+            "inputs": inputs,
             "machine": machine(),
             "camera": {"eye": a.eye_v, "target": a.target_v, "up": a.up_v, "fov_y_degrees": a.fov,
                        "width": a.width, "height": a.height, "zoom": 1.0, "zoom_centre": None},
@@ -601,8 +657,13 @@ def render(a):
                        "warm_up": a.warm_up, "wall_seconds": seconds,
                        "timed": "Render() through reading the frame back"},
             "transfer_function": {"emission": "color-times-extinction", "points_s_r_g_b_tau": rows,
-                                  "source": a.tf},
+                                  "source": a.card or a.tf},
         }
+        if a.card:  # the outside-renderer record vri-outside reads (docs/outside-renderers.md)
+            document.update({"format": "vri-outside-stats", "version": 1,
+                             "renderer": {"name": "VTK " + MAPPERS[a.method], "version": vtk.vtkVersion.GetVTKVersion()},
+                             "image": {"quantisation": "8-bit" if a.image == "display" else "15-bit fixed point"}})
+            document["timing"]["what"] = "frame"
         write_json(a.stats, document)
 
 
