@@ -38,8 +38,8 @@ void parseSimd(std::string_view name, const std::string& what, RenderOptions& op
     if (name == "on" || name == "off") return;
     options.simdTarget = simdTargetNamed(name);
     if (options.simdTarget.empty())
-        throw Error(what + ": unknown value '" + printable(name) + "' (expected on, off or a SIMD target this CPU and " +
-                    "build have: " + simdTargetList() + ")");
+        throw Error(what + ": unknown value '" + printable(name) +
+                    "' (expected on, off or a SIMD target this CPU and " + "build have: " + simdTargetList() + ")");
 }
 
 void parseEarlyTermination(const std::string& text, const std::string& what, RenderOptions& options) {
@@ -90,7 +90,8 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
     // A named target where the packets cannot run would be recorded as asked for and never run (with "on"
     // the scalar path runs, and the stats say so).
     if (options.simd && !options.simdTarget.empty() && packetMethod(options) && !PacketScene::supports(scene, options))
-        throw Error("--simd " + options.simdTarget + ": the SIMD packets need a dense volume (not --storage sparse) of 4 "
+        throw Error("--simd " + options.simdTarget +
+                    ": the SIMD packets need a dense volume (not --storage sparse) of 4 "
                     "to 2^31 - 1 bytes with at least 2 voxels along x, and a transfer function of at most " +
                     std::to_string(PacketScene::kMaxPoints) + " points; this scene is not one: leave --simd on");
     if (!(options.earlyTermination >= 0.0 && options.earlyTermination < 1.0))
@@ -107,19 +108,22 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
                                                                  : !(rule.simpsonThreshold<float>() > 0.0f);
         if (none) {
             const double hMax = simpsonParameters(options).hMax;
-            throw Error("--early-termination auto:" + exactNumber(options.terminationBound) + ": " +
-                        std::string(integratorName(options.integrator)) + " with steps up to " +
-                        (std::isfinite(hMax) ? exactNumber(hMax) + " voxels" : std::string("the whole ray (no h_max)")) +
-                        " at this transfer function's largest tau cannot bound what an ended ray leaves out (" +
-                        exactNumber(rule.simpsonFactor()) + " times its transparency): give --h-max or a transparency threshold");
+            throw Error(
+                "--early-termination auto:" + exactNumber(options.terminationBound) + ": " +
+                std::string(integratorName(options.integrator)) + " with steps up to " +
+                (std::isfinite(hMax) ? exactNumber(hMax) + " voxels" : std::string("the whole ray (no h_max)")) +
+                " at this transfer function's largest tau cannot bound what an ended ray leaves out (" +
+                exactNumber(rule.simpsonFactor()) +
+                " times its transparency): give --h-max or a transparency threshold");
         }
     }
     const bool preintegrated = options.integrator == Integrator::Preintegrated;
     // A looked-up segment's colour is not bounded by C_max times its alpha (the table interpolates colour
     // and depth apart), so early_termination.h's bounds do not hold for it.
     if (preintegrated && (options.earlyTermination > 0.0 || options.terminationBound > 0.0))
-        throw Error("early termination: not available for the preintegrated method (its bound does not hold for "
-                    "interpolated table entries)");
+        throw Error(
+            "early termination: not available for the preintegrated method (its bound does not hold for "
+            "interpolated table entries)");
     if (options.jitter && (isSimpson(options.integrator)))
         throw Error("jitter: applies to the placed fixed-step methods (riemann, composite, preintegrated), not " +
                     std::string(integratorName(options.integrator)));
@@ -153,9 +157,10 @@ void validateRender(const Scene& scene, const Camera& camera, const RenderOption
         const double maxSteps = inFloat ? 4194304.0 : 1e9;
         if (!(glm::length(dims) / hMin <= maxSteps))
             throw Error((options.integrator == Integrator::Simpson ? "step " : "h_min ") + exactNumber(hMin) +
-                        " would allow more than " + (inFloat ? "2^22 steps on a ray through this volume in float "
-                                                               "precision (a shorter step no longer advances the ray)"
-                                                             : "1e9 steps on a ray through this volume"));
+                        " would allow more than " +
+                        (inFloat ? "2^22 steps on a ray through this volume in float "
+                                   "precision (a shorter step no longer advances the ray)"
+                                 : "1e9 steps on a ray through this volume"));
     }
     const PixelRegion area = renderedRegion(options.region, camera);
     if (options.logPixel && !area.contains(options.logPixel->x, options.logPixel->y))

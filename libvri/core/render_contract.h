@@ -124,11 +124,11 @@ struct RenderStats {
     std::string backend = "cpu";      // "cpu" or "vulkan" (vulkan_renderer.h)
     std::string device;               // the Vulkan device's name; empty on the CPU
     std::string interpolation;        // the Vulkan backend's: "shader" or "sampler"; empty on the CPU
-    std::string simdTarget;           // the packet engine's Highway target ("AVX2", ...); empty when the scalar path ran
+    std::string simdTarget;  // the packet engine's Highway target ("AVX2", ...); empty when the scalar path ran
     // On AVX2, how the packets read an 8-bit volume's stencils and the bricks' distances (voxel_loads.h):
     // "gather" or "scalar"; empty where neither is read (or another target ran).
     std::string voxelLoads;
-    NonFinitePixels nonfinite;        // the image's NaN and infinite pixels, found after the render
+    NonFinitePixels nonfinite;  // the image's NaN and infinite pixels, found after the render
 };
 
 // The pixels a render computes: `region` when given, else the camera's whole image. Throws vri::Error on a

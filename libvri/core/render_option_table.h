@@ -40,7 +40,7 @@ struct RenderRequest {
     RenderOptions options;        // every other method's settings
     double exactTolerance = 0.0;  // --method exact's --tolerance (its own default, not the adaptive one's)
     // --method exact's --max-error: the largest per-pixel error bound asked for; the tool then searches the
-    // tolerance that gives it (render_command.h), since the tolerance is per piece of a ray, not per pixel.
+    // tolerance that gives it (max_error_search.h), since the tolerance is per piece of a ray, not per pixel.
     std::optional<double> maxError;
     Backend backend = Backend::Cpu;
     std::string device;  // Vulkan: an index of --list-devices or part of a name; empty: the first

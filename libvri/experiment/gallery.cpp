@@ -43,7 +43,8 @@ void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs:
         const nlohmann::json diff = readJsonFile(json);
         if (!diff.contains("heat_map")) continue;  // results of a vri-diff that drew RGB on black
         char top[32];
-        std::snprintf(top, sizeof top, "%.3g", readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
+        std::snprintf(top, sizeof top, "%.3g",
+                      readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
         const bool shared = diff.at("heat_map").contains("scale_over");
         if (shared && !scales.empty() && scales.back().second == top + std::string(" (one scale)"))
             scales.back().first += ", " + id;
@@ -81,7 +82,8 @@ std::string withoutScene(const std::string& id, const std::string& scene) {
 // comparisons of one run, say on different scales). A command's image has no scene.
 std::vector<GridImage> gridImages(const nlohmann::json& list, const nlohmann::json& steps, const std::string& dir) {
     std::map<std::string, const nlohmann::json*> parameters;
-    for (const nlohmann::json& step : steps) parameters.emplace(step.at("id").get<std::string>(), &step.at("parameters"));
+    for (const nlohmann::json& step : steps)
+        parameters.emplace(step.at("id").get<std::string>(), &step.at("parameters"));
     const auto scene = [&](const std::string& id) {
         const auto found = parameters.find(id);
         return found == parameters.end() ? std::string() : found->second->value("scene", std::string());
@@ -135,12 +137,13 @@ std::string gallerySection(const fs::path& path, std::map<std::string, std::stri
         heatMapScales(md, outputs.at("diff_images"), path.parent_path());
         std::set<std::string> notesSeen;
         for (const nlohmann::json& table : outputs.at("tables"))
-            if (const auto text = tryReadFileText(path.parent_path() / table.at("file").get<std::string>()); text && !text->empty())
+            if (const auto text = tryReadFileText(path.parent_path() / table.at("file").get<std::string>());
+                text && !text->empty())
                 md << withNewNotes(*text, notesSeen) << "\n";
         // A figure is as wide as the page: one a line.
         for (const nlohmann::json& figure : outputs.at("figures"))
-            md << "![" << figure.at("id").get<std::string>() << "](" << dir << "/" << figure.at("file").get<std::string>()
-               << ")\n\n";
+            md << "![" << figure.at("id").get<std::string>() << "](" << dir << "/"
+               << figure.at("file").get<std::string>() << ")\n\n";
         if (!e.at("agreement").get<std::string>().empty())
             md << "**Ours against the paper:** "
                << fillCaptionNumbers(e.at("agreement").get<std::string>(), path.parent_path()) << "\n\n";
@@ -163,8 +166,12 @@ IndexEntry indexEntry(const fs::path& path) {
     return readingJsonOf(path, [&] {
         const nlohmann::json m = readJsonFile(path);
         const nlohmann::json& e = m.at("experiment");
-        IndexEntry entry{path, path.parent_path().filename().string(), e.at("title").get<std::string>(),
-                         e.at("paper").at("paper").get<std::string>(), e.at("paper").value("item", ""), ""};
+        IndexEntry entry{path,
+                         path.parent_path().filename().string(),
+                         e.at("title").get<std::string>(),
+                         e.at("paper").at("paper").get<std::string>(),
+                         e.at("paper").value("item", ""),
+                         ""};
         // The verdict: the agreement's opening words, up to its first ':' or '.' ("Agrees", "Partly",
         // "Differs, as a CPU device must"); an own study has none to give.
         if (entry.paper != "none") {
@@ -203,8 +210,10 @@ std::string headingAnchor(const std::string& heading) {
     std::string anchor;
     for (const char c : heading) {
         const unsigned char u = static_cast<unsigned char>(c);
-        if (std::isalnum(u) || c == '-' || c == '_' || u >= 0x80) anchor += static_cast<char>(std::tolower(u));
-        else if (c == ' ') anchor += '-';
+        if (std::isalnum(u) || c == '-' || c == '_' || u >= 0x80)
+            anchor += static_cast<char>(std::tolower(u));
+        else if (c == ' ')
+            anchor += '-';
     }
     return anchor;
 }
@@ -217,7 +226,8 @@ constexpr std::size_t kLongSectionLines = 120;
 std::vector<GalleryPage> galleryPages(const fs::path& resultsRoot) {
     std::vector<IndexEntry> entries;
     for (const fs::directory_entry& entry : fs::directory_iterator(resultsRoot))
-        if (fs::is_regular_file(entry.path() / "manifest.json")) entries.push_back(indexEntry(entry.path() / "manifest.json"));
+        if (fs::is_regular_file(entry.path() / "manifest.json"))
+            entries.push_back(indexEntry(entry.path() / "manifest.json"));
     const auto rank = [](const std::string& paper) { return paper == "A" ? 0 : paper == "B" ? 1 : 2; };
     std::sort(entries.begin(), entries.end(), [&](const IndexEntry& x, const IndexEntry& y) {
         if (rank(x.paper) != rank(y.paper)) return rank(x.paper) < rank(y.paper);
@@ -227,16 +237,18 @@ std::vector<GalleryPage> galleryPages(const fs::path& resultsRoot) {
 
     std::vector<GalleryPage> pages{{"README.md", ""}};
     std::ostringstream index, sections;
-    index << "# Results\n\n"
-             "Generated by `vri-run --gallery` from each experiment's `manifest.json`; regenerate everything with\n"
-             "`make experiments`. Each experiment's folder holds its images, tables, figures and the manifest with the\n"
-             "exact commands, input digests, build, machine and wall times. The sections follow the papers: paper A's\n"
-             "items, then paper B's, then our own studies; a long section has a page of its own.\n\n"
-             "| paper item | section | ours against the paper |\n|:--|:--|:--|\n";
+    index
+        << "# Results\n\n"
+           "Generated by `vri-run --gallery` from each experiment's `manifest.json`; regenerate everything with\n"
+           "`make experiments`. Each experiment's folder holds its images, tables, figures and the manifest with the\n"
+           "exact commands, input digests, build, machine and wall times. The sections follow the papers: paper A's\n"
+           "items, then paper B's, then our own studies; a long section has a page of its own.\n\n"
+           "| paper item | section | ours against the paper |\n|:--|:--|:--|\n";
     std::map<std::string, std::string> notedIn;
     for (const IndexEntry& entry : entries) {
         const std::string section = gallerySection(entry.manifest, notedIn);
-        const bool own = std::count(section.begin(), section.end(), '\n') > static_cast<std::ptrdiff_t>(kLongSectionLines);
+        const bool own =
+            std::count(section.begin(), section.end(), '\n') > static_cast<std::ptrdiff_t>(kLongSectionLines);
         const std::string link = own ? entry.dir + ".md" : "#" + headingAnchor(entry.title);
         index << "| " << (entry.paper == "none" ? "own study" : "Paper " + entry.paper + ", " + entry.item) << " | ["
               << entry.title << "](" << link << ") | " << (entry.verdict.empty() ? "-" : entry.verdict) << " |\n";

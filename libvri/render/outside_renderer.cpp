@@ -30,7 +30,8 @@ std::vector<std::string> expandPlaceholders(const std::vector<std::string>& comm
                 ++i;
                 continue;
             }
-            if (c == '}') throw Error("renderer command word '" + printable(word) + "': a '}' without its '{' (write }})");
+            if (c == '}')
+                throw Error("renderer command word '" + printable(word) + "': a '}' without its '{' (write }})");
             if (c != '{') {
                 out += c;
                 continue;
@@ -43,8 +44,8 @@ std::vector<std::string> expandPlaceholders(const std::vector<std::string>& comm
             if (found == values.end()) {
                 std::string known;
                 for (const auto& [key, value] : values) known += (known.empty() ? "{" : ", {") + key + "}";
-                throw Error("renderer command word '" + printable(word) + "': unknown placeholder {" +
-                            printable(name) + "} (expected " + known + ")");
+                throw Error("renderer command word '" + printable(word) + "': unknown placeholder {" + printable(name) +
+                            "} (expected " + known + ")");
             }
             out += found->second;
             i = end;
@@ -97,7 +98,8 @@ Image readOutsideImage(const fs::path& path, int width, int height, std::string&
     try {
         return selectChannels(image, {"R", "G", "B", "A"}, path.string());
     } catch (const Error& e) {
-        throw Error(std::string(e.what()) + ": expected R, G, B and A, premultiplied, as the card's output section says");
+        throw Error(std::string(e.what()) +
+                    ": expected R, G, B and A, premultiplied, as the card's output section says");
     }
 }
 
@@ -119,7 +121,8 @@ OutsideRun runOutsideRenderer(const OutsideRenderer& renderer, const nlohmann::j
         {"height", std::to_string(height)}};
     const std::vector<std::string> words = expandPlaceholders(renderer.command, values);
     const std::optional<fs::path> program = findProgram(words[0]);
-    if (!program) throw Error("renderer command '" + printable(words[0]) + "': no such executable (in PATH or as a path)");
+    if (!program)
+        throw Error("renderer command '" + printable(words[0]) + "': no such executable (in PATH or as a path)");
 
     // Its name: its stats' (below), else the one given, else the program's file name (the script's, after an
     // interpreter such as python3 or node).
@@ -163,7 +166,8 @@ OutsideRun runOutsideRenderer(const OutsideRenderer& renderer, const nlohmann::j
         }
         if (const auto t = own.find("timing"); t != own.end() && t->contains("wall_seconds")) {
             const std::vector<double> frames = t->at("wall_seconds").get<std::vector<double>>();
-            if (frames.empty() || std::ranges::any_of(frames, [](double s) { return !(s >= 0.0) || !std::isfinite(s); }))
+            if (frames.empty() ||
+                std::ranges::any_of(frames, [](double s) { return !(s >= 0.0) || !std::isfinite(s); }))
                 throw Error(stats.string() + ": timing.wall_seconds: expected a non-empty list of seconds >= 0");
             run.wallSeconds = frames;
             run.timed = t->value("what", "frame");

@@ -30,11 +30,11 @@ struct OutsideRenderer {
 inline constexpr std::string_view kOutsideStatsFormat = "vri-outside-stats";
 
 struct OutsideRun {
-    Image image;                 // RGBA, the card's size, premultiplied as the card asks
-    std::string quantisation;    // "float32", "16-bit", "8-bit" (from the file)
-    nlohmann::json renderer;     // the record's "renderer": name, version, command, executable and its digest, ...
+    Image image;                      // RGBA, the card's size, premultiplied as the card asks
+    std::string quantisation;         // "float32", "16-bit", "8-bit" (from the file)
+    nlohmann::json renderer;          // the record's "renderer": name, version, command, executable and its digest, ...
     std::vector<double> wallSeconds;  // the renderer's own frame times, else the process's one time
-    std::string timed;           // "frame" (the renderer's own timing) or "process" (vri's of the whole command)
+    std::string timed;                // "frame" (the renderer's own timing) or "process" (vri's of the whole command)
 };
 
 // The words of `command` with the placeholders replaced; throws vri::Error naming an unknown or unclosed one.

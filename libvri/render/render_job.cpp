@@ -45,8 +45,9 @@ RenderFrame RenderJob::frame() {
     RenderFrame f;
     if (request_.exact) {
         // The search's accepted render is the first frame at the tolerance it found: not rendered again.
-        const ExactReference& ref = search_ && search_->accepted ? *std::exchange(search_->accepted, nullptr)
-                                                                 : backend_.renderExact(scene, camera_, request_.exactOptions());
+        const ExactReference& ref = search_ && search_->accepted
+                                        ? *std::exchange(search_->accepted, nullptr)
+                                        : backend_.renderExact(scene, camera_, request_.exactOptions());
         f.image = ref.image();
         if (context_.wantBounds) f.bounds = ref.boundImage();
         f.exactStats = ref.stats;
@@ -60,8 +61,13 @@ RenderFrame RenderJob::frame() {
 }
 
 RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
-    RenderResult result{std::move(first.image), std::move(first.bounds), std::move(first.stats),
-                        std::move(first.exactStats), {}, {}, {}};
+    RenderResult result{std::move(first.image),
+                        std::move(first.bounds),
+                        std::move(first.stats),
+                        std::move(first.exactStats),
+                        {},
+                        {},
+                        {}};
     const std::optional<PixelRegion>& region = request_.options.region;
     RenderStats& stats = result.stats;
     if (region && stats.nonfinite.count > 0) {  // in pixels of the whole image, as everything else
@@ -71,7 +77,8 @@ RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
     if (stats.nonfinite.count > 0) {
         const std::string what = "the image: " + stats.nonfinite.describe() + ": the integration overflowed";
         if (!context_.allowNonFinite)
-            throw Error(what + " (a smaller extinction or step, or " + context_.allowNonFiniteName + " to write it anyway)");
+            throw Error(what + " (a smaller extinction or step, or " + context_.allowNonFiniteName +
+                        " to write it anyway)");
         result.warnings.push_back(what);
     }
     if (stats.simpsonRange && stats.simpsonRange->pixelsBeyond > 0)
@@ -89,18 +96,20 @@ RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
         // A black image with exit 0 looks like a render; said as a warning and kept in the record.
         // A tile (--region) of background is no mistake of the camera's: said so.
         const std::string warning =
-            region ? "no ray of --region " + region->text() +
-                         " enters the volume's box: the region is background, and its image is empty (stats: rays_hit 0)"
-                   : "no ray enters the volume's box: the camera (eye " + record["camera"]["eye"].dump() +
-                         ", target " + record["camera"]["target"].dump() +
-                         ") misses the volume, and the image is empty (stats: rays_hit 0)";
+            region
+                ? "no ray of --region " + region->text() +
+                      " enters the volume's box: the region is background, and its image is empty (stats: rays_hit 0)"
+                : "no ray enters the volume's box: the camera (eye " + record["camera"]["eye"].dump() + ", target " +
+                      record["camera"]["target"].dump() +
+                      ") misses the volume, and the image is empty (stats: rays_hit 0)";
         result.warnings.push_back(warning);
         record["warnings"] = {warning};
     }
     const nlohmann::json& command = record["command"];
-    result.metadata = {{"vri:command", command.contains("shell") ? command["shell"].get<std::string>() : command.dump()},
-                       {"vri:options", record["options"].dump()},
-                       {"vri:scene", record["scene"].dump()}};
+    result.metadata = {
+        {"vri:command", command.contains("shell") ? command["shell"].get<std::string>() : command.dump()},
+        {"vri:options", record["options"].dump()},
+        {"vri:scene", record["scene"].dump()}};
     if (region) {
         // The images hold the region alone, an ordinary WIDTH x HEIGHT image that every reader takes as it
         // is; where it lies in the camera's image (the record's camera.width x camera.height) is said here.

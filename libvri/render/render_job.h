@@ -29,10 +29,10 @@ namespace vri {
 
 // Who asks, for the record, and what the caller wants beyond the image.
 struct RenderJobContext {
-    std::string tool;            // the record's "tool": "vri-render", "vri-reference", "python"
-    nlohmann::json command;      // the record's "command": commandLine()'s {"argv", "shell"}, or Python's call
-    bool wantBounds = false;     // the exact method's per-pixel bound image (--error-image)
-    bool allowNonFinite = false; // keep an image with NaN or infinite pixels (a warning) instead of refusing it
+    std::string tool;             // the record's "tool": "vri-render", "vri-reference", "python"
+    nlohmann::json command;       // the record's "command": commandLine()'s {"argv", "shell"}, or Python's call
+    bool wantBounds = false;      // the exact method's per-pixel bound image (--error-image)
+    bool allowNonFinite = false;  // keep an image with NaN or infinite pixels (a warning) instead of refusing it
     std::string allowNonFiniteName = "--allow-nonfinite";  // how the caller spells that, for the refusal
 };
 
@@ -42,16 +42,16 @@ struct RenderFrame {
     std::optional<Image> bounds;  // the exact method's per-pixel error bounds, when RenderJobContext asks
     RenderStats stats;            // the exact method: only the non-finite count (it has stats of its own)
     std::optional<ExactReferenceStats> exactStats;
-    double seconds = 0.0;         // the frame's own work (the method's stats' seconds)
+    double seconds = 0.0;  // the frame's own work (the method's stats' seconds)
 };
 
 struct RenderResult {
-    Image image;                  // clamped when the request asks for it
+    Image image;  // clamped when the request asks for it
     std::optional<Image> bounds;
     RenderStats stats;
     std::optional<ExactReferenceStats> exactStats;
-    nlohmann::json record;        // the provenance record a stats file holds
-    ImageMetadata metadata;       // what the EXR and PNG outputs carry (vri:command, vri:options, ...)
+    nlohmann::json record;              // the provenance record a stats file holds
+    ImageMetadata metadata;             // what the EXR and PNG outputs carry (vri:command, vri:options, ...)
     std::vector<std::string> warnings;  // one line each, for stderr (the record keeps those a reader needs)
 };
 

@@ -94,8 +94,9 @@ Json volumeSection(const SceneSetup& setup, const std::optional<SceneCardVoxels>
     if (!scene.volume) {
         const LinearField& f = *scene.field;
         j["field"] = {{"name", "linear"},
-                      {"formula", "s(p) = (p.x - box.lo.x) / (box.hi.x - box.lo.x), evaluated exactly at every point "
-                                  "(no grid, no interpolation); equivalently s = u.x"},
+                      {"formula",
+                       "s(p) = (p.x - box.lo.x) / (box.hi.x - box.lo.x), evaluated exactly at every point "
+                       "(no grid, no interpolation); equivalently s = u.x"},
                       {"grid_dims_for_placement", {f.dims.x, f.dims.y, f.dims.z}}};
         return j;
     }
@@ -111,12 +112,12 @@ Json volumeSection(const SceneSetup& setup, const std::optional<SceneCardVoxels>
                                          {0.0, v.spacing.y, 0.0, v.origin.y + offset * v.spacing.y},
                                          {0.0, 0.0, v.spacing.z, v.origin.z + offset * v.spacing.z},
                                          {0.0, 0.0, 0.0, 1.0}}});
-    j["value_to_s"] = {
-        {"lo", r.lo},
-        {"hi", r.hi},
-        {"inverse_range", r.hi > r.lo ? 1.0 / (r.hi - r.lo) : 0.0},
-        {"formula", "s = (v - lo) * inverse_range, v the trilinearly interpolated voxel value (in the voxels' own "
-                    "units, before any normalisation); s is not clamped to [0, 1]"}};
+    j["value_to_s"] = {{"lo", r.lo},
+                       {"hi", r.hi},
+                       {"inverse_range", r.hi > r.lo ? 1.0 / (r.hi - r.lo) : 0.0},
+                       {"formula",
+                        "s = (v - lo) * inverse_range, v the trilinearly interpolated voxel value (in the voxels' own "
+                        "units, before any normalisation); s is not clamped to [0, 1]"}};
     j["interpolation"] =
         "trilinear on the clamped index x: i = min(floor(x), max(dims - 2, 0)), w = x - i per axis (an axis of one "
         "voxel reads that voxel twice); lerp(a, b, w) = a + w * (b - a), along x first (four lerps), then y (two), "
@@ -143,9 +144,10 @@ Json transferFunctionSection(const TransferFunction& tf, const Json& inputs) {
             {"emission_meaning", product ? "the source term is g(s) = C(s) tau(s) (Max's model as paper B writes it)"
                                          : "the source term is g(s) = C(s) (paper A's analytic study)"},
             {"points", std::move(points)},
-            {"interpolation", "piecewise linear in s between consecutive points: w = (s - a.s) / (b.s - a.s), value = "
-                              "a + w * (b - a) per channel; constant beyond the first and the last point; where two "
-                              "points share s (a jump) the value at that s is the right-hand point's"},
+            {"interpolation",
+             "piecewise linear in s between consecutive points: w = (s - a.s) / (b.s - a.s), value = "
+             "a + w * (b - a) per channel; constant beyond the first and the last point; where two "
+             "points share s (a jump) the value at that s is the right-hand point's"},
             {"tau_unit", "extinction per world unit of ray length (per voxel where the spacing is 1)"},
             {"colour", "linear, not premultiplied by anything; r, g, b may exceed 1"},
             {"source", inputs.empty() ? Json() : inputs.back()}};
@@ -168,12 +170,14 @@ Json cameraSection(const CameraSpec& spec, const Box& box) {
              {{"forward", triple(b.forward)},
               {"right", triple(b.right)},
               {"up", triple(b.up)},
-              {"formula", "forward = normalize(target - eye); right = normalize(forward x up_given); up = right x forward"}}},
+              {"formula",
+               "forward = normalize(target - eye); right = normalize(forward x up_given); up = right x forward"}}},
             {"tan_half_fov_x", b.tanHalfX},
             {"tan_half_fov_y", b.tanHalfY},
             {"aspect_rule", "tan_half_fov_x = tan_half_fov_y * width / height (square pixels)"},
-            {"pixel_centre_rule", "pixel (i, j), i the column from the left, j the row from the top (row 0 at the top), "
-                                  "is sampled once, at its centre (i + 0.5, j + 0.5)"},
+            {"pixel_centre_rule",
+             "pixel (i, j), i the column from the left, j the row from the top (row 0 at the top), "
+             "is sampled once, at its centre (i + 0.5, j + 0.5)"},
             {"ray",
              {{"origin", "the eye, for every pixel"},
               {"direction",
@@ -205,9 +209,16 @@ Json placementFormulas() {
           {"t_incr", "L / n"},
           {"t_start", "(1 - fract(|entry_u - eye_u| / t_incr)) * t_incr, eye_u = (eye - box.lo) / (box.hi - box.lo)"},
           {"count", "every k with t_k < L"}}},
-        {"entry", {{"samples", "n = n_vox * rate (not rounded)"}, {"t_incr", "L / n"}, {"t_start", start}, {"count", "every k with t_k < L"}}},
+        {"entry",
+         {{"samples", "n = n_vox * rate (not rounded)"},
+          {"t_incr", "L / n"},
+          {"t_start", start},
+          {"count", "every k with t_k < L"}}},
         {"entry-exit",
-         {{"samples", "n = floor(n_vox * rate); no sample when n = 0"}, {"t_incr", "L / n"}, {"t_start", start}, {"count", "n"}}},
+         {{"samples", "n = floor(n_vox * rate); no sample when n = 0"},
+          {"t_incr", "L / n"},
+          {"t_start", start},
+          {"count", "n"}}},
         {"entry-exit-corner",
          {{"samples", "n = ceil(rate * |(exit_u - entry_u) * (dims - 1)|); no sample when n = 0"},
           {"t_incr", "L / n"},
@@ -255,7 +266,8 @@ Json workedRays(const SceneSetup& setup, const RenderRequest& request) {
     const Box box = setup.scene.box();
     const glm::dvec3 dims = setup.scene.dims();
     const int w = camera.width(), h = camera.height();
-    const glm::ivec2 pixels[] = {{0, 0}, {w - 1, 0}, {0, h - 1}, {w - 1, h - 1}, {w / 2, h / 2}, {w / 2, h / 2 - (h > 1)}};
+    const glm::ivec2 pixels[] = {{0, 0},         {w - 1, 0},     {0, h - 1},
+                                 {w - 1, h - 1}, {w / 2, h / 2}, {w / 2, h / 2 - (h > 1)}};
     const bool fixedStep = !request.exact && !isSimpson(request.options.integrator);
     Json rays = Json::array();
     for (const glm::ivec2& p : pixels) {
@@ -275,9 +287,9 @@ Json workedRays(const SceneSetup& setup, const RenderRequest& request) {
         ray["entry_u"] = triple(entry);
         ray["exit_u"] = triple(exit);
         if (fixedStep) {
-            const SampleSchedule<double> s = placeSamples<double>(request.options.placement, entry, exit,
-                                                                  box.toTexture(camera.eye()), dims,
-                                                                  request.options.samplingRate);
+            const SampleSchedule<double> s =
+                placeSamples<double>(request.options.placement, entry, exit, box.toTexture(camera.eye()), dims,
+                                     request.options.samplingRate);
             ray["t_end"] = s.tEnd;
             ray["t_start"] = s.tStart;
             ray["t_incr"] = s.tIncr;
@@ -295,8 +307,9 @@ nlohmann::json sceneCard(const SceneSetup& setup, const RenderRequest& request,
                          const std::optional<SceneCardVoxels>& voxels) {
     const Scene& scene = setup.scene;
     if (scene.sparse)
-        throw Error("--describe: the volume is kept sparse (--storage sparse, or auto for a .vdb too large to unpack), "
-                    "and a scene card describes dense voxels: use --storage dense");
+        throw Error(
+            "--describe: the volume is kept sparse (--storage sparse, or auto for a .vdb too large to unpack), "
+            "and a scene card describes dense voxels: use --storage dense");
     const Box box = scene.box();
     Json card = {
         {"format", "vri-scene-card"},
@@ -307,11 +320,13 @@ nlohmann::json sceneCard(const SceneSetup& setup, const RenderRequest& request,
         {"transfer_function", transferFunctionSection(scene.transferFunction, setup.inputs)},
         {"camera", cameraSection(setup.camera, box)},
         {"integration",
-         {{"domain", "the part of each ray inside the closed box: t in [t_near, t_far], t_near >= 0 (a ray from an eye "
-                     "inside the box starts at the eye); rays that only touch the box integrate nothing; no other "
-                     "clipping"},
-          {"integral", "C = integral over [t_near, t_far] of g(s(t)) T(t) dt, T(t) = exp(-integral from t_near to t of "
-                       "tau(s(t')) dt'), t in world units along the unit direction; alpha = 1 - T(t_far)"},
+         {{"domain",
+           "the part of each ray inside the closed box: t in [t_near, t_far], t_near >= 0 (a ray from an eye "
+           "inside the box starts at the eye); rays that only touch the box integrate nothing; no other "
+           "clipping"},
+          {"integral",
+           "C = integral over [t_near, t_far] of g(s(t)) T(t) dt, T(t) = exp(-integral from t_near to t of "
+           "tau(s(t')) dt'), t in world units along the unit direction; alpha = 1 - T(t_far)"},
           {"s_along_the_ray", "s(t) is the volume's reconstruction (volume.interpolation) at u(eye + t d)"}}},
         {"output",
          {{"channels", {"R", "G", "B", "A"}},
@@ -319,8 +334,9 @@ nlohmann::json sceneCard(const SceneSetup& setup, const RenderRequest& request,
           {"meaning", "R, G, B are the integral C itself (already weighted by opacity: premultiplied), A = 1 - T"},
           {"linear", true},
           {"background", {0.0, 0.0, 0.0, 0.0}},
-          {"background_meaning", "nothing behind the volume: a ray that misses is (0, 0, 0, 0); composite over a "
-                                 "background B as C + (1 - A) B"},
+          {"background_meaning",
+           "nothing behind the volume: a ray that misses is (0, 0, 0, 0); composite over a "
+           "background B as C + (1 - A) B"},
           {"type", "float32"},
           {"row_order", "row 0 at the top"},
           {"image", "OpenEXR RGBA float (vri-render -o); vri-diff also reads RGB EXR, 8- and 16-bit PNG"}}},
@@ -337,10 +353,12 @@ std::string sceneCardVoxelBytes(const SceneSetup& setup) {
     return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
-SceneCardFiles sceneCardWithVoxels(const SceneSetup& setup, const RenderRequest& request, const std::string& voxelsPath) {
+SceneCardFiles sceneCardWithVoxels(const SceneSetup& setup, const RenderRequest& request,
+                                   const std::string& voxelsPath) {
     if (voxelsPath.empty()) return {sceneCard(setup, request), std::string()};
     std::string bytes = sceneCardVoxelBytes(setup);
-    const SceneCardVoxels voxels{voxelsPath, sha512Hex(std::as_bytes(std::span(bytes.data(), bytes.size()))), bytes.size()};
+    const SceneCardVoxels voxels{voxelsPath, sha512Hex(std::as_bytes(std::span(bytes.data(), bytes.size()))),
+                                 bytes.size()};
     return {sceneCard(setup, request, voxels), std::move(bytes)};
 }
 

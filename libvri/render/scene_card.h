@@ -40,6 +40,7 @@ struct SceneCardFiles {
     nlohmann::json card;
     std::string voxels;
 };
-SceneCardFiles sceneCardWithVoxels(const SceneSetup& setup, const RenderRequest& request, const std::string& voxelsPath);
+SceneCardFiles sceneCardWithVoxels(const SceneSetup& setup, const RenderRequest& request,
+                                   const std::string& voxelsPath);
 
 }  // namespace vri

@@ -324,7 +324,7 @@ MergedTiles mergeTiles(const std::vector<TileFiles>& tiles) {
                                    {"command", records[i].value("command", json())},
                                    {"time_utc", records[i].value("time_utc", json())}});
     merged.record = std::move(record);
-    // The attributes vri-render writes (render_command.cpp), from the tiles' shared records.
+    // The attributes vri-render writes (render_job.cpp), from the tiles' shared records.
     merged.metadata = {{"vri:options", records[0]["options"].dump()}, {"vri:scene", records[0]["scene"].dump()}};
     return merged;
 }

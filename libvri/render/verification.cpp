@@ -69,7 +69,7 @@ OutsideRun runOnCard(const OutsideRenderer& renderer, const SceneSetup& setup, c
 }
 
 struct Finding {
-    std::string name;     // the test case: "orientation", "placement", "convergence", "error floor"
+    std::string name;  // the test case: "orientation", "placement", "convergence", "error floor"
     bool passed;
     std::string message;  // what was found, and what is wrong when it failed
 };
@@ -143,8 +143,8 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
                         upsideDown ? "the image is upside down: flipped vertically it is " + number(upright / flipped) +
                                          " times nearer the reference (RMSE " + number(flipped) + " against " +
                                          number(upright) + "); row 0 must be the top of the image (docs/scene-card.md)"
-                                   : "row 0 at the top, as the card asks (RMSE against the reference " + number(upright) +
-                                         "; flipped " + number(flipped) + ")"});
+                                   : "row 0 at the top, as the card asks (RMSE against the reference " +
+                                         number(upright) + "; flipped " + number(flipped) + ")"});
     if (upsideDown)
         for (OutsideRun& run : runs) run.image = flippedVertically(run.image);
 
@@ -154,18 +154,23 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
         const Errors their = errorsAgainst(referenceImage, runs[i].image);
         theirs.push_back(their.mean);
         theirsMax.push_back(their.max);
-        rows.push_back({{"step", steps[i]}, {"renderer", toJson(their)}, {"vri", {{"mean", ours[i]}}},
-                        {"wall_seconds", runs[i].wallSeconds}, {"timed", runs[i].timed}});
-        progress("step " + exactNumber(steps[i]) + ": mean error " + number(their.mean) + " (vri " + number(ours[i]) + ")");
+        rows.push_back({{"step", steps[i]},
+                        {"renderer", toJson(their)},
+                        {"vri", {{"mean", ours[i]}}},
+                        {"wall_seconds", runs[i].wallSeconds},
+                        {"timed", runs[i].timed}});
+        progress("step " + exactNumber(steps[i]) + ": mean error " + number(their.mean) + " (vri " + number(ours[i]) +
+                 ")");
     }
 
     // Placement, from the coarsest image: placements differ most at a long step.
     nlohmann::json placements = nlohmann::json::object();
     Placement best = Placement::EntryAlign;
     double bestRmse = std::numeric_limits<double>::infinity(), secondRmse = bestRmse;
-    for (const Placement p : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,
-                              Placement::EntryExitAlignCorner}) {
-        const double rmse = errorsAgainst(render(scene, camera, atStep(base, steps.front(), p).options), runs.front().image).rmse;
+    for (const Placement p :
+         {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign, Placement::EntryExitAlignCorner}) {
+        const double rmse =
+            errorsAgainst(render(scene, camera, atStep(base, steps.front(), p).options), runs.front().image).rmse;
         placements[std::string(placementName(p))] = rmse;
         if (rmse < bestRmse) {
             secondRmse = bestRmse;
@@ -191,7 +196,8 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
     const std::size_t n = steps.size();
     const std::vector<double> fineSteps(steps.end() - 3, steps.end()), fineErrors(theirs.end() - 3, theirs.end());
     std::vector<double> pairwise;  // the order over each interval, coarse to fine
-    for (std::size_t i = 0; i + 1 < n; ++i) pairwise.push_back(orderOf({steps[i], steps[i + 1]}, {theirs[i], theirs[i + 1]}));
+    for (std::size_t i = 0; i + 1 < n; ++i)
+        pairwise.push_back(orderOf({steps[i], steps[i + 1]}, {theirs[i], theirs[i + 1]}));
     const bool floor = pairwise.front() >= 0.8 * options.minOrder && !(pairwise.back() >= 0.5 * options.minOrder);
     std::vector<double> fitSteps = fineSteps, fitErrors = fineErrors;
     if (floor) {
@@ -215,22 +221,26 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
     // No positive error to fit (NaN) passes only where the images are the reference itself.
     const bool converges = std::isnan(order) ? theirs.back() == 0.0 : order >= options.minOrder;
     std::string convergence = "observed order " + number(order) + " of the mean error over steps " +
-                              exactNumber(fitSteps.front()) + " to " + exactNumber(fitSteps.back()) + " (largest error: " +
-                              number(maxOrder) + "; vri's own at these steps: " + number(ourOrder) + ")";
+                              exactNumber(fitSteps.front()) + " to " + exactNumber(fitSteps.back()) +
+                              " (largest error: " + number(maxOrder) +
+                              "; vri's own at these steps: " + number(ourOrder) + ")";
     if (!converges)
-        convergence += ", below " + number(options.minOrder) +
-                       (order < 0.25 ? ": the error does not fall with the step. Does the renderer take the card's "
-                                       "step, and correct the opacity for it (alpha = 1 - exp(-tau dx), tau per world unit, "
-                                       "dx the step in world units)? Or does another error, larger than the step's, hide it?"
-                                     : ": the renderer converges more slowly than a Riemann sum should");
+        convergence +=
+            ", below " + number(options.minOrder) +
+            (order < 0.25 ? ": the error does not fall with the step. Does the renderer take the card's "
+                            "step, and correct the opacity for it (alpha = 1 - exp(-tau dx), tau per world unit, "
+                            "dx the step in world units)? Or does another error, larger than the step's, hide it?"
+                          : ": the renderer converges more slowly than a Riemann sum should");
     findings.push_back({"convergence", converges, convergence});
-    std::string floorText = "none: at the finest step the error is " + number(theirs.back()) + ", vri's own " +
-                            number(ours.back());
+    std::string floorText =
+        "none: at the finest step the error is " + number(theirs.back()) + ", vri's own " + number(ours.back());
     if (floor) {
         const bool eightBit = quantisation == "8-bit" && theirs.back() <= 2.0 / 255.0;
         floorText = "the error stops falling near " + number(theirs.back()) + " from step " +
-                    exactNumber(fitSteps.back()) + " (order " + number(pairwise.back()) + " over the last interval; vri's "
-                    "own Riemann sum at step " + exactNumber(steps.back()) + ": " + number(ours.back()) + "): " +
+                    exactNumber(fitSteps.back()) + " (order " + number(pairwise.back()) +
+                    " over the last interval; vri's "
+                    "own Riemann sum at step " +
+                    exactNumber(steps.back()) + ": " + number(ours.back()) + "): " +
                     (eightBit ? "the image is 8-bit, which alone leaves up to 1/510 = 0.00196 per channel"
                               : "not the step's: a quantised transfer function or texture, the interpolation, or an "
                                 "approximate opacity correction");
@@ -241,21 +251,22 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
     report.passed = std::ranges::all_of(findings, [](const Finding& f) { return f.passed; });
     nlohmann::json list = nlohmann::json::array();
     for (const Finding& f : findings) list.push_back({{"name", f.name}, {"passed", f.passed}, {"message", f.message}});
-    report.record = {{"renderer", {{"name", name}, {"version", version}, {"command", renderer.command}}},
-                     {"reference", {{"method", "exact"}, {"tolerance", options.referenceTolerance},
-                                    {"error_bound_max", referenceBound}}},
-                     {"steps", rows},
-                     {"order", order},
-                     {"order_max_error", maxOrder},
-                     {"vri_order", ourOrder},
-                     {"min_order", options.minOrder},
-                     {"floor", floor ? nlohmann::json(theirs.back()) : nlohmann::json()},
-                     {"quantisation", quantisation},
-                     {"placement", placementName(best)},
-                     {"placement_rmse", placements},
-                     {"upside_down", upsideDown},
-                     {"findings", list},
-                     {"passed", report.passed}};
+    report.record = {
+        {"renderer", {{"name", name}, {"version", version}, {"command", renderer.command}}},
+        {"reference",
+         {{"method", "exact"}, {"tolerance", options.referenceTolerance}, {"error_bound_max", referenceBound}}},
+        {"steps", rows},
+        {"order", order},
+        {"order_max_error", maxOrder},
+        {"vri_order", ourOrder},
+        {"min_order", options.minOrder},
+        {"floor", floor ? nlohmann::json(theirs.back()) : nlohmann::json()},
+        {"quantisation", quantisation},
+        {"placement", placementName(best)},
+        {"placement_rmse", placements},
+        {"upside_down", upsideDown},
+        {"findings", list},
+        {"passed", report.passed}};
 
     std::string& md = report.markdown;
     // No heading of its own: the report stands alone and also sits inside the results gallery's sections.
@@ -267,7 +278,8 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
     md += "\n| step (voxels) | mean error | largest error | vri's mean error | seconds |\n|--:|--:|--:|--:|--:|\n";
     for (const nlohmann::json& r : rows) {
         std::vector<double> seconds = r["wall_seconds"].get<std::vector<double>>();
-        std::nth_element(seconds.begin(), seconds.begin() + static_cast<std::ptrdiff_t>(seconds.size() / 2), seconds.end());
+        std::nth_element(seconds.begin(), seconds.begin() + static_cast<std::ptrdiff_t>(seconds.size() / 2),
+                         seconds.end());
         md += "| " + exactNumber(r["step"].get<double>()) + " | " + number(r["renderer"]["mean"]) + " | " +
               number(r["renderer"]["max"]) + " | " + number(r["vri"]["mean"]) + " | " +
               number(seconds[seconds.size() / 2]) + " (" + r["timed"].get<std::string>() + ") |\n";

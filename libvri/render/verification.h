@@ -25,9 +25,9 @@
 namespace vri {
 
 struct VerificationOptions {
-    std::vector<double> steps;        // in voxels, at least 3, each used for one card
-    double minOrder = 0.75;           // the observed order below which convergence fails
-    double referenceTolerance = 1e-9; // the exact method's quadrature tolerance per piece
+    std::vector<double> steps;         // in voxels, at least 3, each used for one card
+    double minOrder = 0.75;            // the observed order below which convergence fails
+    double referenceTolerance = 1e-9;  // the exact method's quadrature tolerance per piece
     // The placement the renderer must use; none: it is identified and reported, not checked.
     std::optional<Placement> placement;
 };
@@ -35,7 +35,7 @@ struct VerificationOptions {
 struct VerificationReport {
     nlohmann::json record;  // every number of the report
     std::string markdown;
-    std::string junit;      // JUnit XML: one test case per finding
+    std::string junit;  // JUnit XML: one test case per finding
     bool passed = false;
 };
 

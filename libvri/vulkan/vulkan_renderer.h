@@ -1,6 +1,7 @@
 #pragma once
-// The Vulkan compute backend: the CPU raycaster's methods (cpu_renderer.h) in single precision on a Vulkan
-// device (a GPU, or Mesa's lavapipe on the CPU). The Vulkan headers stay in libvri/vulkan/*.cpp.
+// The Vulkan compute backend: the CPU raycaster's methods (cpu_renderer.h; both render against
+// render_contract.h) in single precision on a Vulkan device (a GPU, or Mesa's lavapipe on the CPU). The
+// Vulkan headers stay in libvri/vulkan/*.cpp.
 //
 // What differs from vri::render() with Precision::Float: float arithmetic whose rounding the device
 // chooses (exp, division), no per-ray log, and, with VulkanInterpolation::Sampler, the device's own

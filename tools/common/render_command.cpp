@@ -28,8 +28,8 @@ namespace vri {
 
 RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int argc, char** argv, Mode mode)
     : tool_(tool),
-      name_(mode == Mode::Outside  ? "vri-outside"
-            : mode == Mode::Verify ? "vri-verify"
+      name_(mode == Mode::Outside        ? "vri-outside"
+            : mode == Mode::Verify       ? "vri-verify"
             : tool == RenderTool::Render ? "vri-render"
                                          : "vri-reference"),
       argc_(argc),
@@ -65,7 +65,8 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
         CLI::App* target = &app_;
         if (!row.group.empty()) {
             auto& group = groups[row.group];
-            if (!group) group = app_.add_option_group(std::string(row.group), std::string(renderOptionGroupHelp(row.group)));
+            if (!group)
+                group = app_.add_option_group(std::string(row.group), std::string(renderOptionGroupHelp(row.group)));
             target = group;
         }
         const std::string names(row.names), help(row.help);
@@ -91,7 +92,8 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
     for (const TableOption& t : tableOptions_)
         if (!t.row->excludes.empty()) t.option->excludes(byFlag.at(t.row->excludes));
     if (tool_ == RenderTool::Render && mode_ == Mode::Vri) {
-        app_.add_flag("--list-devices")->description("list the Vulkan devices (index, name, type, API version) and exit");
+        app_.add_flag("--list-devices")
+            ->description("list the Vulkan devices (index, name, type, API version) and exit");
         CLI::Option* logRay = byFlag.at("--log-ray");
         CLI::Option* log = groups.at("adaptive")
                                ->add_option("--log", logPath_, "CSV of the logged ray's tries (with --log-ray)")
@@ -201,7 +203,8 @@ int RenderCommand::describe() {
     for (const char* renderOnly : {"-o", "--png", "--error-image", "--stats", "--log"})
         if (given(renderOnly))
             throw UsageError(std::string(renderOnly) + ": --describe renders nothing, so it writes no " + renderOnly);
-    if (mode_ != Mode::Vri) throw UsageError("--describe: " + name_ + " runs a renderer; vri-render --describe writes the card");
+    if (mode_ != Mode::Vri)
+        throw UsageError("--describe: " + name_ + " runs a renderer; vri-render --describe writes the card");
     const RenderRequest request = this->request();
     const SceneSetup setup = scene_.load();
     if (!request.exact) validateRender(setup.scene, Camera(setup.camera), request.options);
@@ -210,8 +213,10 @@ int RenderCommand::describe() {
     std::string voxelsName;
     if (!voxelsPath_.empty()) {
         namespace fs = std::filesystem;
-        const fs::path cardFolder = describePath_ == "-" ? fs::current_path() : fs::absolute(describePath_).parent_path();
-        voxelsName = fs::absolute(voxelsPath_).lexically_normal().lexically_relative(cardFolder.lexically_normal()).string();
+        const fs::path cardFolder =
+            describePath_ == "-" ? fs::current_path() : fs::absolute(describePath_).parent_path();
+        voxelsName =
+            fs::absolute(voxelsPath_).lexically_normal().lexically_relative(cardFolder.lexically_normal()).string();
     }
     auto [card, voxels] = sceneCardWithVoxels(setup, request, voxelsName);
     OutputSet files;
@@ -282,7 +287,8 @@ int RenderCommand::runOutside() {
 int RenderCommand::runVerify() {
     if (rendererCommand_.empty())
         throw UsageError("expected the renderer's command after -- (e.g. -- ./my-renderer {card} {output})");
-    const std::vector<OutputArgument> outputs{{"--report", reportPath_}, {"--json", jsonPath_}, {"--junit", junitPath_}};
+    const std::vector<OutputArgument> outputs{
+        {"--report", reportPath_}, {"--json", jsonPath_}, {"--junit", junitPath_}};
     requireDistinctOutputs(outputs);
     requireOutputsApartFromInputs(outputs, scene_.inputs());
     for (const char* vriOnly : {"--error-image", "--log", "--png", "--stats"})
@@ -296,12 +302,13 @@ int RenderCommand::runVerify() {
         throw UsageError("--method: vri-verify sweeps the step of a fixed-step method (riemann, composite)");
     if (request.wasGiven("--placement")) options.placement = request.options.placement;
     const SceneSetup setup = scene_.load();
-    WorkFolder work(reportPath_.empty() || reportPath_ == "-" ? std::filesystem::path("report") : std::filesystem::path(reportPath_));
+    WorkFolder work(reportPath_.empty() || reportPath_ == "-" ? std::filesystem::path("report")
+                                                              : std::filesystem::path(reportPath_));
     if (keepWork_) work.keep();
-    const VerificationReport report =
-        verifyRenderer({rendererCommand_, rendererImage_, rendererName_}, setup, request, options, work.path(), [&](const std::string& line) {
-            if (!quiet_) std::cerr << name_ << ": " << line << '\n';
-        });
+    const VerificationReport report = verifyRenderer({rendererCommand_, rendererImage_, rendererName_}, setup, request,
+                                                     options, work.path(), [&](const std::string& line) {
+                                                         if (!quiet_) std::cerr << name_ << ": " << line << '\n';
+                                                     });
     if (keepWork_) std::cerr << name_ << ": kept the work folder " << work.path().string() << '\n';
     OutputSet files;
     if (!reportPath_.empty()) files.add(reportPath_, report.markdown);
@@ -315,8 +322,8 @@ int RenderCommand::runVerify() {
     if (!junitPath_.empty()) files.add(junitPath_, report.junit);
     files.write();
     for (const nlohmann::json& f : report.record["findings"])
-        std::cerr << name_ << ": " << (f["passed"].get<bool>() ? "pass" : "FAIL") << ": " << f["name"].get<std::string>()
-                  << ": " << f["message"].get<std::string>() << '\n';
+        std::cerr << name_ << ": " << (f["passed"].get<bool>() ? "pass" : "FAIL") << ": "
+                  << f["name"].get<std::string>() << ": " << f["message"].get<std::string>() << '\n';
     return report.passed || exitZero_ ? kExitOk : kExitVerifyFailed;
 }
 
@@ -372,8 +379,8 @@ int RenderCommand::run() {
         files.write();
         if (!quiet_) {
             std::cerr << name_ << ": " << record["options"]["method"].get<std::string>() << ", " << image.width << "x"
-                      << image.height << (region ? " at " + std::to_string(region->x) + "," + std::to_string(region->y) : "")
-                      << ", ";
+                      << image.height
+                      << (region ? " at " + std::to_string(region->x) + "," + std::to_string(region->y) : "") << ", ";
             if (result.exactStats)
                 std::cerr << result.exactStats->piecesVisible << " visible pieces in " << timing_.summary(wallSeconds)
                           << " on " << result.exactStats->threads << " threads; error bound max "

@@ -1,7 +1,8 @@
 #pragma once
-// vri-render and vri-reference, whole: the command line read off the render option table
-// (render_option_table.h) plus the scene, timing, preview and output options, then the render, its
-// checks and its files. A tool's main() is
+// The command lines of the tools that take a scene and the render option table (render_option_table.h):
+// vri-render and vri-reference (RenderJob, render_job.h), vri-outside (an outside renderer on the scene
+// card, outside_renderer.h) and vri-verify (verification.h). This file reads and checks options and
+// writes files; the work is the render layer's. A tool's main() is
 //     return vri::RenderCommand::fromArgs(vri::RenderTool::Render, help, argc, argv).run();
 // in the spirit of GDAL's GDALTranslate(..., GDALTranslateOptionsNew(argv)).
 #include <optional>
