@@ -31,6 +31,7 @@
 #include "libvri/experiment/step_cache.h"
 #include "libvri/experiment/step_costs.h"
 #include "libvri/util/atomic_file.h"
+#include "libvri/util/process.h"
 #include "libvri/util/folder_lock.h"
 #include "libvri/util/json_file.h"
 #include "libvri/util/stale_temp_files.h"
@@ -226,7 +227,7 @@ bool runOnSlurm(const Options& options, const std::vector<vri::Experiment>& expe
 int run(const Options& options) {
     if ((options.record || options.check) && !options.quick)
         throw vri::Error("--record and --check apply to quick runs (add --quick)");
-    const fs::path toolDir = fs::read_symlink("/proc/self/exe").parent_path();
+    const fs::path toolDir = vri::thisProgramFolder();
     const fs::path resultsRoot = !options.results.empty() ? fs::path(options.results)
                                  : options.quick          ? fs::path("build/experiments-quick")
                                                           : fs::path("results");

@@ -392,9 +392,13 @@ void ExperimentReader::readRenderers(const YAML::Node& node) {
         renderer.image = entry["image"] ? text(entry["image"], "image") : "exr";
         if (renderer.image != "exr" && renderer.image != "png" && renderer.image != "f32")
             throw Error(at(entry["image"]) + ": image must be exr, png or f32, got '" + printable(renderer.image) + "'");
-        try {  // the placeholders checked now, not when the step runs
+        try {  // the placeholders checked now, not when the step runs; {vri_bin} is known now: vri-run's folder
             expandPlaceholders(renderer.command, {{"card", ""}, {"voxels", ""}, {"output", ""}, {"stats", ""},
-                                                  {"step", ""}, {"width", ""}, {"height", ""}});
+                                                  {"step", ""}, {"width", ""}, {"height", ""}, {"vri_bin", ""}});
+            const std::string tools = thisProgramFolder().string();
+            for (std::string& word : renderer.command)
+                for (std::size_t at = word.find("{vri_bin}"); at != std::string::npos; at = word.find("{vri_bin}", at))
+                    word.replace(at, 9, tools);
         } catch (const Error& e) {
             throw Error(at(command) + ": " + e.what());
         }

@@ -118,7 +118,8 @@ OutsideRun runOutsideRenderer(const OutsideRenderer& renderer, const nlohmann::j
         {"stats", stats.string()},
         {"step", method.contains("step") ? exactNumber(method["step"].get<double>()) : std::string()},
         {"width", std::to_string(width)},
-        {"height", std::to_string(height)}};
+        {"height", std::to_string(height)},
+        {"vri_bin", thisProgramFolder().string()}};
     const std::vector<std::string> words = expandPlaceholders(renderer.command, values);
     const std::optional<fs::path> program = findProgram(words[0]);
     if (!program)

@@ -155,4 +155,11 @@ std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const
     return {waitProcess(pid), std::move(output)};
 }
 
+std::filesystem::path thisProgramFolder() {
+    std::error_code error;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error) throw Error("/proc/self/exe: cannot read where this program is: " + error.message());
+    return self.parent_path();
+}
+
 }  // namespace vri

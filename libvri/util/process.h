@@ -36,6 +36,10 @@ struct ExitStatus {
 // executable regular file is found.
 std::optional<std::filesystem::path> findProgram(const std::string& name);
 
+// The folder of this process's own executable (/proc/self/exe): where vri's tools find each other.
+// Throws vri::Error when it cannot be read.
+std::filesystem::path thisProgramFolder();
+
 // Whether findProgram finds `name` (gnuplot, curl, ...).
 bool commandAvailable(const std::string& name);
 
