@@ -71,9 +71,11 @@ private:
     }
     // An outside renderer's command after --, last (vri-outside, vri-verify); its files key the step's cache.
     static void rendererCommand(Step& step, const std::vector<std::string>& command, const std::string& name,
-                                const std::string& image, const std::vector<fs::path>& files) {
+                                const std::string& image, const std::string& timeout, const std::vector<fs::path>& files) {
         if (command.empty()) return;
-        step.arguments.insert(step.arguments.end(), {"--renderer-image", image, "--renderer-name", name, "--"});
+        step.arguments.insert(step.arguments.end(), {"--renderer-image", image, "--renderer-name", name});
+        if (!timeout.empty()) step.arguments.insert(step.arguments.end(), {"--timeout", timeout});
+        step.arguments.push_back("--");
         step.arguments.insert(step.arguments.end(), command.begin(), command.end());
         step.inputs.insert(step.inputs.end(), files.begin(), files.end());
         step.parameters.emplace_back("renderer", name);
@@ -116,7 +118,7 @@ void Planner::addRender(const RunSpec& run) {
     output(step, "--stats", result(run.id + ".json"));
     if (std::ranges::any_of(run.parameters, [](auto& kv) { return kv.first == "log_ray"; }))
         output(step, "--log", result(run.id + "-ray.csv"));
-    rendererCommand(step, run.command, run.rendererName, run.rendererImage, run.commandFiles);
+    rendererCommand(step, run.command, run.rendererName, run.rendererImage, run.rendererTimeout, run.commandFiles);
     plan_.steps.push_back(std::move(step));
 }
 
@@ -169,7 +171,8 @@ void Planner::addCommand(const CommandSpec& command) {
     for (const ToolOption& o : command.options) option(step, o);
     for (const auto& [word, path] : command.inputs) input(step, word, path);
     for (const auto& [word, file] : command.outputs) output(step, word, result(file));
-    rendererCommand(step, command.command, command.rendererName, command.rendererImage, command.commandFiles);
+    rendererCommand(step, command.command, command.rendererName, command.rendererImage, command.rendererTimeout,
+                    command.commandFiles);
     plan_.steps.push_back(std::move(step));
 }
 

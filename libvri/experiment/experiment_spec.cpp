@@ -123,6 +123,7 @@ private:
     struct Renderer {
         std::vector<std::string> command;
         std::string image;
+        std::string timeout;          // seconds, as written; empty: no limit
         std::vector<fs::path> files;  // the executable, then every word that names an existing file
     };
     std::map<std::string, Renderer, std::less<>> renderers_;
@@ -383,13 +384,17 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
 
 void ExperimentReader::readRenderers(const YAML::Node& node) {
     for (const auto& [name, entry] : entries(node, "renderers")) {
-        yaml::requireKeys(entry, source_, {"command", "image"});
+        yaml::requireKeys(entry, source_, {"command", "image", "timeout"});
         const YAML::Node command = required(entry, "command", "renderer '" + name + "'");
         if (!command.IsSequence() || command.size() == 0)
             throw Error(at(command) + ": command must be a list of words, the program first");
         Renderer renderer;
         for (const YAML::Node& word : command) renderer.command.push_back(text(word, "command"));
         renderer.image = entry["image"] ? text(entry["image"], "image") : "exr";
+        if (const YAML::Node t = entry["timeout"]) {  // seconds a run may take: vri-outside's --timeout
+            renderer.timeout = number(t, "timeout");
+            if (!(t.as<double>() > 0.0)) throw Error(at(t) + ": timeout must be seconds > 0, got " + renderer.timeout);
+        }
         if (renderer.image != "exr" && renderer.image != "png" && renderer.image != "f32")
             throw Error(at(entry["image"]) + ": image must be exr, png or f32, got '" + printable(renderer.image) + "'");
         try {  // the placeholders checked now, not when the step runs; {vri_bin} is known now: vri-run's folder
@@ -526,7 +531,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         std::vector<std::size_t> index(axes.size(), 0);
         for (const std::string& scene : scenes) {
             for (bool more = true; more;) {
-                RunSpec run{experiment.scenes.size() > 1 ? scene + "-" + prefix : prefix, "vri-render", scene, reference, {}, {}, 1, {}, {}, {}, {}};
+                RunSpec run{experiment.scenes.size() > 1 ? scene + "-" + prefix : prefix, "vri-render", scene, reference, {}, {}, 1, {}, {}, {}, {}, {}};
                 const auto method = std::find_if(axes.begin(), axes.end(), [](auto& a) { return a.row->key == "method"; });
                 const std::string& methodName = method->values[index[method - axes.begin()]];
                 const bool exact = methodName == kExactMethod;
@@ -540,6 +545,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     run.tool = "vri-outside";
                     run.command = renderer->command;
                     run.rendererName = rendererName;
+                    run.rendererTimeout = renderer->timeout;
                     run.rendererImage = renderer->image;
                     run.commandFiles = renderer->files;
                 }
@@ -677,7 +683,7 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
         yaml::requireKeys(entry, source_, {"tool", "options", "inputs", "outputs", "renderer", "scene"});
         const std::string what = "command '" + name + "'";
         const YAML::Node tool = required(entry, "tool", what);
-        CommandSpec command{name, text(tool, "tool"), {}, {}, {}, {}, {}, {}, {}, {}};
+        CommandSpec command{name, text(tool, "tool"), {}, {}, {}, {}, {}, {}, {}, {}, {}};
         if (!command.tool.starts_with("vri-") || command.tool.size() == 4 ||
             command.tool.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-", 4) != std::string::npos)
             throw Error(at(tool) + ": tool must be a vri tool (vri-[a-z0-9-]+), got '" + command.tool + "'");
@@ -692,6 +698,7 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
                 throw Error(at(r) + ": renderer: applies to vri-verify and vri-outside, not " + command.tool);
             command.command = found->second.command;
             command.rendererName = rendererName;
+            command.rendererTimeout = found->second.timeout;
             const YAML::Node scene = required(entry, "scene", what + " with a renderer");
             command.scene = text(scene, "scene");
             if (std::none_of(experiment.scenes.begin(), experiment.scenes.end(),

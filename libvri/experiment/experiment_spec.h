@@ -55,7 +55,7 @@ struct RunSpec {
     // `renderer: NAME` (tool vri-outside): the renderer's command after --, with its placeholders, what it
     // writes at {output}, and the files the command names (its executable first), whose digests key the cache.
     std::vector<std::string> command;
-    std::string rendererName, rendererImage;
+    std::string rendererName, rendererImage, rendererTimeout;
     std::vector<std::filesystem::path> commandFiles;
 };
 
@@ -92,7 +92,7 @@ struct CommandSpec {
     // that scene's options (its volume, transfer function, camera and size), as a render of it takes them.
     std::string scene;
     std::vector<std::string> command;
-    std::string rendererName, rendererImage;
+    std::string rendererName, rendererImage, rendererTimeout;
     std::vector<std::filesystem::path> commandFiles;
 };
 

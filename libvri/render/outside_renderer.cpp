@@ -135,8 +135,12 @@ OutsideRun runOutsideRenderer(const OutsideRenderer& renderer, const nlohmann::j
     }
     OutsideRun run;
     const auto start = std::chrono::steady_clock::now();
-    const ExitStatus status = runProcess(*program, words);
+    bool timedOut = false;
+    const ExitStatus status = runProcessWithin(*program, words, renderer.timeoutSeconds, timedOut);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (timedOut)
+        throw Error("renderer '" + printable(name) + "' ran past the time limit of " +
+                    exactNumber(renderer.timeoutSeconds) + " s and was stopped (--timeout)");
     if (!status.ok()) throw Error("renderer '" + printable(name) + "' failed (" + status.describe() + ")");
     run.image = readOutsideImage(image, width, height, run.quantisation);
 

@@ -23,6 +23,7 @@ struct OutsideRenderer {
     std::vector<std::string> command;  // argv with placeholders; command[0] is looked up in PATH as execvp does
     std::string imageFormat = "exr";   // what {output} ends in: exr (RGBA float), png (8 or 16 bit RGBA), f32 (raw)
     std::string name;                  // the record's name when the renderer's stats give none; empty: the program's
+    double timeoutSeconds = 0.0;       // stop it (SIGTERM, then SIGKILL) past this; 0: no limit
 };
 
 // The minimal statistics record a renderer may write to {stats} (docs/outside-renderers.md):

@@ -2,14 +2,17 @@
 #include "libvri/util/process.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <thread>
 
 #include "libvri/util/error.h"
 
@@ -125,6 +128,31 @@ std::pair<pid_t, ExitStatus> waitAnyProcess() {
 
 ExitStatus runProcess(const fs::path& program, const std::vector<std::string>& words, const ProcessStreams& streams) {
     return waitProcess(startProcess(program, words, streams));
+}
+
+ExitStatus runProcessWithin(const fs::path& program, const std::vector<std::string>& words, double seconds,
+                            bool& timedOut) {
+    timedOut = false;
+    const pid_t pid = startProcess(program, words);
+    if (!(seconds > 0.0)) return waitProcess(pid);
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    const auto waited = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    double killAt = seconds;  // SIGTERM at the limit, SIGKILL 2 s later
+    int status = 0;
+    for (;;) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) return ExitStatus::fromWaitStatus(status);
+        if (done < 0 && errno != EINTR)
+            throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
+        if (waited() >= killAt) {
+            ::kill(pid, timedOut ? SIGKILL : SIGTERM);
+            if (timedOut) return waitProcess(pid);
+            timedOut = true;
+            killAt = seconds + 2.0;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
 }
 
 std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const std::vector<std::string>& words,

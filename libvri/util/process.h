@@ -57,6 +57,11 @@ std::pair<pid_t, ExitStatus> waitAnyProcess();
 ExitStatus runProcess(const std::filesystem::path& program, const std::vector<std::string>& words,
                       const ProcessStreams& streams = {});
 
+// Starts `program` and waits for it at most `seconds`: past that it is sent SIGTERM, and SIGKILL 2 s later
+// if it still runs; `timedOut` says whether it was stopped so. seconds <= 0 waits without a limit.
+ExitStatus runProcessWithin(const std::filesystem::path& program, const std::vector<std::string>& words, double seconds,
+                            bool& timedOut);
+
 // Runs `program` with its stdout captured (streams.out is ignored; streams.errToOut captures stderr
 // too): its exit status and everything it printed.
 std::pair<ExitStatus, std::string> captureProcess(const std::filesystem::path& program,

@@ -58,4 +58,18 @@ bad_entry 'bad.yaml:[0-9]+:[0-9]+: .*unknown placeholder \{out\}' "  numpy: {com
 bad_entry "bad.yaml:[0-9]+:[0-9]+: renderer 'numpy': no program 'no-such-renderer'" "  numpy: {command: [no-such-renderer, '{card}']}"
 bad_entry 'bad.yaml:[0-9]+:[0-9]+: image must be exr, png or f32' "  numpy: {command: [$python], image: tiff}"
 bad_entry 'bad.yaml:[0-9]+:[0-9]+: unknown renderer .numpy.' "  other: {command: [$python]}"
+bad_entry 'bad.yaml:[0-9]+:[0-9]+: timeout must be seconds > 0, got 0' "  numpy: {command: [$python], timeout: 0}"
+
+# A renderer that never ends is stopped at --timeout (SIGTERM), one that ignores SIGTERM 2 s later (SIGKILL);
+# without the limit each would run 60 s and then fail another way, so the message is the check, not the time.
+timeout_case() {  # timeout_case PROGRAM ARGS...
+  local rc=0
+  "$bin/vri-outside" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q -o t.exr --timeout 1 -- "$@" 2> t.txt ||
+    rc=$?
+  [ "$rc" -eq 1 ] && grep -q "ran past the time limit of 1 s and was stopped (--timeout)" t.txt ||
+    fail "--timeout 1 on $*: exit $rc, $(cat t.txt)"
+  [ ! -e t.exr ] || fail "--timeout: an image was written"
+}
+timeout_case /bin/sleep 60
+timeout_case "$python" -c 'import signal, time; signal.signal(signal.SIGTERM, signal.SIG_IGN); time.sleep(60)'
 echo "outside renderers in experiments: run, compared, cached by their script, refused in one line"

@@ -123,6 +123,10 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
                         "little-endian float32 RGBA, row 0 at the top)")
             ->capture_default_str();
         app_.add_flag("--keep-work", keepWork_, "keep the folder with the card, the voxels and the renderer's files");
+        app_.add_option("--timeout", timeout_,
+                        "seconds a run of the renderer may take; past them it is stopped (SIGTERM, SIGKILL 2 s "
+                        "later) and this is an error (default: no limit)")
+            ->check(numberAbove(0.0, false));
         app_.add_option("--renderer-name", rendererName_,
                         "what the records and charts call the renderer when its stats name none (default: the "
                         "program's file name)");
@@ -251,7 +255,7 @@ int RenderCommand::runOutside() {
     cardFiles.add(work.path() / "card.json", card.dump(2) + "\n");
     cardFiles.write();
     if (!quiet_) std::cerr << name_ << ": running " << shellQuote(rendererCommand_[0]) << " on the card\n";
-    OutsideRun run = runOutsideRenderer({rendererCommand_, rendererImage_, rendererName_}, card, work.path());
+    OutsideRun run = runOutsideRenderer({rendererCommand_, rendererImage_, rendererName_, timeout_}, card, work.path());
     if (keepWork_) std::cerr << name_ << ": kept the work folder " << work.path().string() << '\n';
 
     const NonFinitePixels nonfinite = findNonFinitePixels(run.image);
@@ -305,7 +309,7 @@ int RenderCommand::runVerify() {
     WorkFolder work(reportPath_.empty() || reportPath_ == "-" ? std::filesystem::path("report")
                                                               : std::filesystem::path(reportPath_));
     if (keepWork_) work.keep();
-    const VerificationReport report = verifyRenderer({rendererCommand_, rendererImage_, rendererName_}, setup, request,
+    const VerificationReport report = verifyRenderer({rendererCommand_, rendererImage_, rendererName_, timeout_}, setup, request,
                                                      options, work.path(), [&](const std::string& line) {
                                                          if (!quiet_) std::cerr << name_ << ": " << line << '\n';
                                                      });
