@@ -19,6 +19,7 @@
 #include <pybind11/stl.h>
 #include <tbb/global_control.h>
 
+#include "libvri/render/camera_request.h"
 #include "libvri/render/diff_verdict.h"
 #include "libvri/render/exact_reference_json.h"
 #include "libvri/render/image_compare_json.h"
@@ -109,30 +110,10 @@ py::object toPython(const nlohmann::json& record) {
     return py::module_::import("json").attr("loads")(record.dump());
 }
 
-// A camera as the tools' --size, --eye, --target, --up, --fov, --zoom and --zoom-centre give it; the eye
-// and the target the tools' framing puts them at (framingCamera) unless given.
-struct CameraOptions {
-    glm::ivec2 size{800, 600};
-    std::optional<glm::dvec3> eye, target;
-    glm::dvec3 up{0.0, 1.0, 0.0};
-    double fov = 30.0, zoom = 1.0;
-    std::optional<glm::dvec2> zoomCentre;
-
-    CameraSpec spec(const Box& box) const {
-        CameraSpec spec = framingCamera(box, size.x, size.y, fov);
-        if (target) spec.target = *target;
-        if (eye) spec.eye = *eye;
-        spec.up = up;
-        spec.zoom = zoom;
-        spec.zoomCentre = zoomCentre;
-        return spec;
-    }
-};
-
-CameraOptions makeCamera(const py::object& size, const py::object& eye, const py::object& target,
+CameraRequest makeCamera(const py::object& size, const py::object& eye, const py::object& target,
                          const py::object& up, const py::object& fov, const py::object& zoom,
                          const py::object& zoomCentre) {
-    CameraOptions c;
+    CameraRequest c;
     if (!size.is_none()) {
         std::string text = optionText(size, "size");  // (800, 600) reads as "800,600", the tools' 800x600
         if (!py::isinstance<py::str>(size)) std::replace(text.begin(), text.end(), ',', 'x');
@@ -165,7 +146,7 @@ nlohmann::json pythonCall(const std::string& function, const py::kwargs& kwargs)
 }
 
 // vri-render's flow (RenderJob) for one frame: the same checks, backends, --max-error search and record.
-py::tuple renderImage(const Source& source, const TransferFunction& tf, const CameraOptions& cameraOptions,
+py::tuple renderImage(const Source& source, const TransferFunction& tf, const CameraRequest& cameraOptions,
                       const std::string& convention, const py::kwargs& kwargs) {
     RenderRequest request =
         requestFrom(RenderTool::Render, takenByRender, kwargs, {"threads", "allow_nonfinite"}, "render");
@@ -194,7 +175,7 @@ py::tuple renderImage(const Source& source, const TransferFunction& tf, const Ca
 }
 
 // vri-render --describe: the scene card of this scene and these options, as a dict.
-py::object sceneCardOf(const Source& source, const TransferFunction& tf, const CameraOptions& cameraOptions,
+py::object sceneCardOf(const Source& source, const TransferFunction& tf, const CameraRequest& cameraOptions,
                          const std::string& convention, const py::kwargs& kwargs) {
     const RenderRequest request = requestFrom(RenderTool::Render, takenByRender, kwargs, {}, "describe");
     SceneSetup setup{makeScene(source, tf, convention), {}};
@@ -203,7 +184,7 @@ py::object sceneCardOf(const Source& source, const TransferFunction& tf, const C
     return toPython(sceneCard(setup, request));
 }
 
-py::tuple exactReference(const Source& source, const TransferFunction& tf, const CameraOptions& cameraOptions,
+py::tuple exactReference(const Source& source, const TransferFunction& tf, const CameraRequest& cameraOptions,
                          const std::string& convention, const py::kwargs& kwargs) {
     const RenderRequest request = requestFrom(RenderTool::Reference, takenByReference, kwargs, {"threads"}, "reference");
     const std::optional<int> threads = threadCount(kwargs);
@@ -407,15 +388,15 @@ PYBIND11_MODULE(vri, m) {
     m.def("parse_transfer_function", [](const std::string& text) { return parseTransferFunction(text, "yaml"); },
           py::arg("text"), "Reads a transfer function from YAML text");
 
-    py::class_<CameraOptions>(m, "Camera", "A pinhole camera, as vri-render's camera options give it")
+    py::class_<CameraRequest>(m, "Camera", "A pinhole camera, as vri-render's camera options give it")
         .def(py::init(&makeCamera), py::kw_only(), py::arg("size") = py::none(), py::arg("eye") = py::none(),
              py::arg("target") = py::none(), py::arg("up") = py::none(), py::arg("fov") = py::none(),
              py::arg("zoom") = py::none(), py::arg("zoom_centre") = py::none(),
              "size (width, height) or 'WxH' (default 800x600); eye and target default to the tools' framing of "
              "the box (in front of it, +z, looking at its centre); up (0, 1, 0); fov 30 degrees, vertical")
-        .def_property_readonly("size", [](const CameraOptions& c) { return py::make_tuple(c.size.x, c.size.y); })
-        .def_property_readonly("fov", [](const CameraOptions& c) { return c.fov; })
-        .def("__repr__", [](const CameraOptions& c) {
+        .def_property_readonly("size", [](const CameraRequest& c) { return py::make_tuple(c.size.x, c.size.y); })
+        .def_property_readonly("fov", [](const CameraRequest& c) { return c.fov; })
+        .def("__repr__", [](const CameraRequest& c) {
             std::string text = "vri.Camera(size=" + tupleText(py::make_tuple(c.size.x, c.size.y));
             if (c.eye) text += ", eye=" + tupleText(vec3(*c.eye));
             if (c.target) text += ", target=" + tupleText(vec3(*c.target));
@@ -432,14 +413,14 @@ PYBIND11_MODULE(vri, m) {
         "interpolation, ...), threads, allow_nonfinite. The same flow as vri-render (RenderJob): backend='vulkan' "
         "renders on the Vulkan device, max_error=E searches the exact method's tolerance. Warnings are Python "
         "RuntimeWarnings. The GIL is released while it renders.";
-    m.def("render", &renderImage, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraOptions{},
+    m.def("render", &renderImage, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraRequest{},
           py::arg("convention") = "cell", renderHelp);
-    m.def("describe", &sceneCardOf, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraOptions{},
+    m.def("describe", &sceneCardOf, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraRequest{},
           py::arg("convention") = "cell",
           "describe(source, tf, camera, convention='cell', **options) -> dict\nvri-render --describe: the scene card "
           "(docs/scene-card.md), everything another renderer needs to reproduce this render's integral; renders "
           "nothing. options: as render()'s.");
-    m.def("reference", &exactReference, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraOptions{},
+    m.def("reference", &exactReference, py::arg("source"), py::arg("tf"), py::arg("camera") = CameraRequest{},
           py::arg("convention") = "cell",
           "reference(source, tf, camera, convention='cell', tolerance=1e-13, threads=None) -> (values, bounds, "
           "stats)\nvri-reference's exact method: the values and their per-pixel error bounds as float64 arrays "

@@ -6,6 +6,7 @@
 #include "common/cli.h"
 #include "libvri/core/analytic_field.h"
 #include "libvri/io/transfer_function_yaml.h"
+#include "libvri/render/camera_request.h"
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
 #include "libvri/util/sha512.h"
@@ -82,13 +83,16 @@ SceneSetup SceneOptions::load() const {
     Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse};
     inputs.push_back({{"path", tfPath_}, {"sha512", sha512File(tfPath_)}});
 
-    CameraSpec cam = framingCamera(scene.box(), imageSize.x, imageSize.y, fov_);
-    if (!target_.empty()) cam.target = parseVec3(target_, "--target");
-    if (!eye_.empty()) cam.eye = parseVec3(eye_, "--eye");
-    cam.up = parseVec3(up_, "--up");
-    cam.zoom = zoom_;
-    if (!zoomCentre_.empty()) cam.zoomCentre = parseVec2(zoomCentre_, "--zoom-centre");
-    return {std::move(scene), cam, std::move(inputs)};
+    CameraRequest camera;
+    camera.size = imageSize;
+    camera.fov = fov_;
+    camera.zoom = zoom_;
+    if (!target_.empty()) camera.target = parseVec3(target_, "--target");
+    if (!eye_.empty()) camera.eye = parseVec3(eye_, "--eye");
+    camera.up = parseVec3(up_, "--up");
+    if (!zoomCentre_.empty()) camera.zoomCentre = parseVec2(zoomCentre_, "--zoom-centre");
+    const CameraSpec spec = camera.spec(scene.box());
+    return {std::move(scene), spec, std::move(inputs)};
 }
 
 }  // namespace vri
