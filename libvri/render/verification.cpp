@@ -104,7 +104,7 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
     std::vector<double> steps = options.steps;
     std::sort(steps.begin(), steps.end(), std::greater<>());
     if (steps.size() < 3 || std::adjacent_find(steps.begin(), steps.end()) != steps.end())
-        throw Error("--steps: expected at least 3 different steps, for an order over more than one interval");
+        throw UsageError("--steps: expected at least 3 different steps, for an order over more than one interval");
     const Scene& scene = setup.scene;
     const Camera camera(setup.camera);
 

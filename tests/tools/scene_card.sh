@@ -91,5 +91,17 @@ bad 1 "${E}--describe-voxels: the scene is an analytic field, which has no voxel
   "$bin/vri-render" --field linear --tf tf.yaml --describe c.json --describe-voxels v.raw
 bad 64 "${E}--output is required \(or --describe, which renders nothing\)" -- \
   "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml
+# vri-outside's and vri-verify's own options (docs/tools/vri-outside.md, vri-verify.md).
+O='^vri-outside: error: ' V='^vri-verify: error: '
+scene=(--volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x6 -q)
+bad 64 "${O}--renderer-image: expected exr, png or f32, got 'tiff'" -- \
+  "$bin/vri-outside" "${scene[@]}" -o x.exr --renderer-image tiff -- /bin/true
+bad 64 "${O}expected the renderer's command after -- " -- "$bin/vri-outside" "${scene[@]}" -o x.exr
+bad 64 "${O}--timeout: expected a number > 0, got '0'" -- "$bin/vri-outside" "${scene[@]}" -o x.exr --timeout 0 -- /bin/true
+bad 1 "${O}.*image.exr: the renderer wrote no image there" -- "$bin/vri-outside" "${scene[@]}" -o x.exr -- /bin/true
+bad 64 "${V}--steps: expected at least 3 different steps" -- "$bin/vri-verify" "${scene[@]}" --steps 1,1,1 -- /bin/true
+bad 64 "${V}--min-order: expected a number > 0, got 'nan'" -- "$bin/vri-verify" "${scene[@]}" --min-order nan -- /bin/true
+bad 64 "${V}--method: vri-verify sweeps the step of a fixed-step method" -- \
+  "$bin/vri-verify" "${scene[@]}" --method exact -- /bin/true
 bad_done
 echo "scene card: ${#cases[@]} cases reproduced from the card alone"

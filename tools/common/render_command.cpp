@@ -23,6 +23,7 @@
 #include "libvri/render/verification.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/format.h"
+#include "libvri/util/printable.h"
 
 namespace vri {
 
@@ -107,10 +108,12 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
         app_.add_option("--steps", steps_, "the steps (voxels) of the sweep, at least 3, each one card")
             ->capture_default_str();
         app_.add_option("--min-order", minOrder_, "the observed order of convergence below which the check fails")
-            ->capture_default_str();
+            ->capture_default_str()
+            ->check(numberAbove(0.0, false));
         app_.add_option("--reference-tolerance", referenceTolerance_,
                         "the exact reference's quadrature tolerance (its error bound is in the report)")
-            ->capture_default_str();
+            ->capture_default_str()
+            ->check(numberAbove(0.0, false));
         app_.add_option("--report", reportPath_, "the report as Markdown ('-' for stdout)");
         app_.add_option("--json", jsonPath_, "every number of the report as JSON");
         app_.add_option("--junit", junitPath_, "JUnit XML, one test case per finding, for a CI job's test view");
@@ -231,9 +234,15 @@ int RenderCommand::describe() {
     return kExitOk;
 }
 
-int RenderCommand::runOutside() {
+void RenderCommand::requireRendererCommand() const {
     if (rendererCommand_.empty())
         throw UsageError("expected the renderer's command after -- (e.g. -- ./my-renderer {card} {output})");
+    if (rendererImage_ != "exr" && rendererImage_ != "png" && rendererImage_ != "f32")
+        throw UsageError("--renderer-image: expected exr, png or f32, got '" + printable(rendererImage_) + "'");
+}
+
+int RenderCommand::runOutside() {
+    requireRendererCommand();
     if (output_.empty()) throw UsageError("--output is required");
     requireExrOutput({"-o", output_});
     const std::vector<OutputArgument> outputs{{"-o", output_}, {"--png", pngPath_}, {"--stats", statsPath_}};
@@ -289,8 +298,7 @@ int RenderCommand::runOutside() {
 }
 
 int RenderCommand::runVerify() {
-    if (rendererCommand_.empty())
-        throw UsageError("expected the renderer's command after -- (e.g. -- ./my-renderer {card} {output})");
+    requireRendererCommand();
     const std::vector<OutputArgument> outputs{
         {"--report", reportPath_}, {"--json", jsonPath_}, {"--junit", junitPath_}};
     requireDistinctOutputs(outputs);

@@ -57,6 +57,8 @@ private:
     bool given(const std::string& option) const;
     // --describe: the scene card (and the voxels), no render.
     int describe();
+    // vri-outside, vri-verify: the command after -- and --renderer-image, checked (usage errors).
+    void requireRendererCommand() const;
     // vri-outside: the card, the renderer's run, the run's image and record.
     int runOutside();
     // vri-verify: the sweep, the report and its exit code.
