@@ -120,18 +120,21 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
     // The sweep: the renderer's images, and vri's own at every step.
     std::vector<OutsideRun> runs;
     std::vector<double> ours;
-    std::string quantisation, name, version;
+    Image oursCoarsest;  // vri's image at the coarsest step, also the placement probe's at the base placement
     for (std::size_t i = 0; i < steps.size(); ++i) {
         const RenderRequest request = atStep(base, steps[i]);
         validateRender(scene, camera, request.options);  // the card's step, before the renderer is run on it
         runs.push_back(runOnCard(renderer, setup, request, workDir / ("step-" + std::to_string(i + 1))));
-        ours.push_back(errorsAgainst(referenceImage, render(scene, camera, request.options)).mean);
-        quantisation = runs.back().quantisation;
-        name = runs.back().renderer.value("name", renderer.command.front());
-        version = runs.back().renderer.value("version", "");
+        Image mine = render(scene, camera, request.options);
+        ours.push_back(errorsAgainst(referenceImage, mine).mean);
+        if (i == 0) oursCoarsest = std::move(mine);
         progress("step " + exactNumber(steps[i]) + ": rendered in " + number(runs.back().wallSeconds.front()) + " s (" +
                  runs.back().timed + ")");
     }
+    // What the renderer says of itself (the last run's stats hold what every run's do).
+    const std::string quantisation = runs.back().quantisation;
+    const std::string name = runs.back().renderer.value("name", renderer.command.front());
+    const std::string version = runs.back().renderer.value("version", "");
 
     std::vector<Finding> findings;
     // Orientation, from the finest image, the nearest to the reference: upside down, it is nearer flipped.
@@ -169,8 +172,9 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
     double bestRmse = std::numeric_limits<double>::infinity(), secondRmse = bestRmse;
     for (const Placement p :
          {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign, Placement::EntryExitAlignCorner}) {
-        const double rmse =
-            errorsAgainst(render(scene, camera, atStep(base, steps.front(), p).options), runs.front().image).rmse;
+        const Image vri =
+            p == base.options.placement ? oursCoarsest : render(scene, camera, atStep(base, steps.front(), p).options);
+        const double rmse = errorsAgainst(vri, runs.front().image).rmse;
         placements[std::string(placementName(p))] = rmse;
         if (rmse < bestRmse) {
             secondRmse = bestRmse;

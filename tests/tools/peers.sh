@@ -10,24 +10,7 @@ bin=$VRI_BIN
     { echo "python3-vtk9, python3-numpy, python3-openimageio or python3-yaml not installed: skipping"; exit 77; }
 command -v xvfb-run >/dev/null || [ -n "${DISPLAY:-}" ] || { echo "no X display and no xvfb-run (xvfb): skipping"; exit 77; }
 
-/usr/bin/python3 - <<'EOF'
-import numpy as np
-n = 12
-z, y, x = np.meshgrid(np.arange(n), np.arange(n), np.arange(n), indexing="ij")
-v = 40 + 12 * y + 6 * x + 80 * np.exp(-((x - 7.5) ** 2 + (y - 8) ** 2 + (z - 5) ** 2) / 6.0)
-v[[0, -1], :, :] = v[:, [0, -1], :] = v[:, :, [0, -1]] = 0
-v = np.clip(np.round(v), 0, 255).astype(np.uint8)
-v.tofile("vol_12x12x12_uint8.raw")
-v[:, ::-1, :].tofile("flip_12x12x12_uint8.raw")
-EOF
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.1, 0.0, 0.0, 0.0, 0.0]
-  - [0.4, 0.9, 0.4, 0.1, 0.08]
-  - [0.7, 0.3, 0.6, 1.0, 0.3]
-  - [1.0, 1.0, 1.0, 1.0, 0.5]
-YAML
+source "$(dirname "${BASH_SOURCE[0]}")/lib/peer_scene.sh" && write_peer_scene
 sed 's/0.08]/0.16]/; s/0.3]$/0.6]/; s/0.5]$/1.0]/' tf.yaml > tau2.yaml
 camera=(--size 96x72 --eye 16,21,-22 --target 6,6,6 --up 0,1,0)
 

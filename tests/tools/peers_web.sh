@@ -96,23 +96,8 @@ scene() {
   "$bin/vri-render" "$@" --fov "$((fov + 10))" --method riemann --step 0.5 -q -o "$name/wide.exr"
 }
 
-# A 12^3 volume: zero on its faces, an off-centre blob on a ramp (as tests/tools/peers.sh), seen obliquely.
-/usr/bin/python3 - <<'EOF'
-import numpy as np
-n = 12
-z, y, x = np.meshgrid(np.arange(n), np.arange(n), np.arange(n), indexing="ij")
-v = 40 + 12 * y + 6 * x + 80 * np.exp(-((x - 7.5) ** 2 + (y - 8) ** 2 + (z - 5) ** 2) / 6.0)
-v[[0, -1], :, :] = v[:, [0, -1], :] = v[:, :, [0, -1]] = 0
-np.clip(np.round(v), 0, 255).astype(np.uint8).tofile("vol_12x12x12_uint8.raw")
-EOF
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.1, 0.0, 0.0, 0.0, 0.0]
-  - [0.4, 0.9, 0.4, 0.1, 0.08]
-  - [0.7, 0.3, 0.6, 1.0, 0.3]
-  - [1.0, 1.0, 1.0, 1.0, 0.5]
-YAML
+# A 12^3 volume: zero on its faces, an off-centre blob on a ramp (lib/peer_scene.sh), seen obliquely.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/peer_scene.sh" && write_peer_scene
 scene small 35 --volume "$PWD/vol_12x12x12_uint8.raw" --tf "$PWD/tf.yaml" --size 48x36 --eye 16,21,-22 --target 6,6,6 --up 0,1,0
 # Measured mean errors against vri's image: three.js 0.029, vtk.js 0.0049, NiiVue 0.029.
 check_adapter small three f32 0.045 perspective
