@@ -18,10 +18,10 @@ constexpr vri::RenderCommandHelp kHelp{
 The command runs without a shell, from the current folder, with these placeholders filled in: {card} (the
 scene card, docs/scene-card.md), {voxels} (its raw voxels), {output} (where the renderer writes its image:
 image.exr, image.png or image.f32 by --renderer-image), {stats} (where it may write its statistics,
-docs/outside-renderers.md), {step} (the step in voxels), {width}, {height}; {{ and }} are braces. Its image
-must be RGBA, premultiplied, linear, over a (0, 0, 0, 0) background, row 0 at the top, as the card says.
-Timing: the renderer's own frame times when its stats give them ("timed": "frame"), else the whole
-command's wall time ("timed": "process").)"};
+docs/outside-renderers.md), {step} (the step in voxels), {seed} (a jittered card's seed), {width}, {height};
+{{ and }} are braces. Its image must be RGBA, premultiplied, linear, over a (0, 0, 0, 0) background, row 0 at
+the top, as the card says. Timing: the renderer's own frame times when its stats give them ("timed": "frame"),
+else the whole command's wall time ("timed": "process").)"};
 
 }  // namespace
 

@@ -139,8 +139,26 @@ def clip(eye, d, lo, hi):
     return t_near, t_far, hit & (t_near <= t_far)
 
 
-def schedule(method, entry, exit_, eye_u, dims):
-    """Paper A's placement: t_start, t_incr, count, t_end (card: method.placements)."""
+def mix(x):
+    """Wellons' lowbias32 on uint32 arrays (card: method.jitter.fraction); NumPy's uint32 products wrap."""
+    x = x ^ (x >> np.uint32(16))
+    x = x * np.uint32(0x7FEB352D)
+    x = x ^ (x >> np.uint32(15))
+    x = x * np.uint32(0x846CA68B)
+    return x ^ (x >> np.uint32(16))
+
+
+def jitter_fraction(card, seed):
+    """Each pixel's first-sample fraction in [0, 1) under `seed`, in the rays' order (row 0 first)."""
+    cam = card["camera"]
+    py, px = (a.ravel().astype(np.uint32) for a in np.mgrid[0:cam["height"], 0:cam["width"]])
+    h = mix(px ^ mix(py ^ mix(np.full(px.shape, seed, dtype=np.uint32))))
+    return (h >> np.uint32(8)).astype(np.float64) * 2.0**-24
+
+
+def schedule(method, entry, exit_, eye_u, dims, fraction=None):
+    """Paper A's placement: t_start, t_incr, count, t_end (card: method.placements); with a jitter
+    `fraction`, the first sample at that fraction of the step (card: method.jitter.t_start)."""
     placement, rate = method["placement"], method["samples_per_voxel"]
     ray = exit_ - entry
     t_end = length(ray)
@@ -158,7 +176,9 @@ def schedule(method, entry, exit_, eye_u, dims):
             t_start = (1.0 - (steps - np.floor(steps))) * t_incr
         else:
             t_start = 0.5 * t_incr
-    if placement in ("entry-exit", "entry-exit-corner"):
+    if fraction is not None:
+        t_start = fraction * t_incr
+    if placement in ("entry-exit", "entry-exit-corner") and fraction is None:
         count = np.where(ok, samples, 0).astype(np.int64)
     else:  # every k with t_start + k t_incr < t_end, counted on those very numbers
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -170,6 +190,18 @@ def schedule(method, entry, exit_, eye_u, dims):
 
 
 def render(card, card_dir):
+    """The card's image: one frame, or with jitter the mean of its frames (card: method.jitter.frames_rule)."""
+    jitter = card["method"].get("jitter")
+    if not jitter:
+        return render_frame(card, card_dir, None)
+    total = np.zeros((card["camera"]["height"], card["camera"]["width"], 4))
+    for f in range(jitter["frames"]):
+        seed = (jitter["seed"] + f) % 2**32
+        total += render_frame(card, card_dir, jitter_fraction(card, seed))  # float32 values, summed in double
+    return (total / jitter["frames"]).astype(np.float32)
+
+
+def render_frame(card, card_dir, fraction):
     method = card["method"]
     if method["kind"] != "fixed-step" or method["settings"]["method"] not in ("riemann", "composite"):
         sys.exit("this example renders the fixed-step riemann and composite methods only")
@@ -185,7 +217,7 @@ def render(card, card_dir):
     entry = (eye + t_near[:, None] * d - lo) / (hi - lo)  # texture coordinates
     exit_ = (eye + t_far[:, None] * d - lo) / (hi - lo)
     dims = np.array(method["dims_for_placement"])
-    t_start, t_incr, count, t_end = schedule(method, entry, exit_, (eye - lo) / (hi - lo), dims)
+    t_start, t_incr, count, t_end = schedule(method, entry, exit_, (eye - lo) / (hi - lo), dims, fraction)
     count = np.where(hit, count, 0)
     with np.errstate(divide="ignore", invalid="ignore"):
         du = np.where((count > 0)[:, None], (exit_ - entry) / t_end[:, None], 0.0)

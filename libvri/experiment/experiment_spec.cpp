@@ -34,19 +34,6 @@ namespace {
 // `method: exact` is vri-reference's accurate solution (a reference, not a vri-render method).
 constexpr std::string_view kExactMethod = "exact";
 
-// Peer renderers (tools/peers/): a method of another renderer, run by its adapter with vri-render's scene options,
-// --method, --step (voxels), --repeat and --warm-up, and the same outputs.
-struct PeerMethod {
-    std::string_view method, tool;
-};
-constexpr PeerMethod kPeerMethods[] = {{"vtk-fixed-point", "vri-peer-vtk"}, {"vtk-gpu", "vri-peer-vtk"}};
-
-const PeerMethod* peerMethod(std::string_view method) {
-    for (const PeerMethod& peer : kPeerMethods)
-        if (peer.method == method) return &peer;
-    return nullptr;
-}
-
 // The options with which vri tools write a file: in `commands:` they belong under `outputs:`, where
 // the file lands in the results folder, never under `options:` or `inputs:` (an input named `o`
 // would be overwritten wherever it is). A tool with a new output option adds it here.
@@ -399,7 +386,7 @@ void ExperimentReader::readRenderers(const YAML::Node& node) {
             throw Error(at(entry["image"]) + ": image must be exr, png or f32, got '" + printable(renderer.image) + "'");
         try {  // the placeholders checked now, not when the step runs; {vri_bin} is known now: vri-run's folder
             expandPlaceholders(renderer.command, {{"card", ""}, {"voxels", ""}, {"output", ""}, {"stats", ""},
-                                                  {"step", ""}, {"width", ""}, {"height", ""}, {"vri_bin", ""}});
+                                                  {"step", ""}, {"seed", ""}, {"width", ""}, {"height", ""}, {"vri_bin", ""}});
             const std::string tools = thisProgramFolder().string();
             for (std::string& word : renderer.command)
                 for (std::size_t at = word.find("{vri_bin}"); at != std::string::npos; at = word.find("{vri_bin}", at))
@@ -496,7 +483,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     return;
                 }
                 RenderRequest scratch(RenderTool::Render);  // the row's own check, where the value is
-                if (!(key == "method" && peerMethod(v.Scalar()))) row->apply(v.Scalar(), at(v) + ": " + key, scratch);
+                row->apply(v.Scalar(), at(v) + ": " + key, scratch);
                 axis.values.push_back(v.Scalar());
             };
             if (axis.swept)
@@ -535,11 +522,9 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                 const auto method = std::find_if(axes.begin(), axes.end(), [](auto& a) { return a.row->key == "method"; });
                 const std::string& methodName = method->values[index[method - axes.begin()]];
                 const bool exact = methodName == kExactMethod;
-                const PeerMethod* peer = peerMethod(methodName);
                 if (exact) run.tool = "vri-reference";
-                if (peer) run.tool = std::string(peer->tool);
                 if (renderer) {
-                    if (exact || peer)
+                    if (exact)
                         throw Error(at(entry) + ": renderer: runs another renderer on a card of vri's own methods, not " +
                                     methodName);
                     run.tool = "vri-outside";
@@ -553,17 +538,11 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                 for (std::size_t a = 0; a < axes.size(); ++a) {
                     const RenderOptionRow& row = *axes[a].row;
                     const std::string& v = axes[a].values[index[a]];
-                    if (peer) {  // a peer's adapter takes vri-render's scene options and these only
-                        if (row.key != "method" && row.key != "step" && row.key != "repeat" && row.key != "warm_up")
-                            throw Error(at(entry) + ": " + std::string(row.key) + " does not apply to method " +
-                                        methodName + " (" + run.tool + ": step, repeat and warm_up)");
-                    } else {
-                        if (!row.takenBy(request.tool))
-                            throw Error(at(entry) + ": " + std::string(row.key) +
-                                        " does not apply to method exact (vri-reference)");
-                        row.apply(v, std::string(row.key), request);
-                        request.given.push_back(row.flag());
-                    }
+                    if (!row.takenBy(request.tool))
+                        throw Error(at(entry) + ": " + std::string(row.key) +
+                                    " does not apply to method exact (vri-reference)");
+                    row.apply(v, std::string(row.key), request);
+                    request.given.push_back(row.flag());
                     run.parameters.emplace_back(row.key, v);
                     if (row.kind != OptionValueKind::Flag) run.options.emplace_back(row.flag(), v);
                     else if (v == "true") run.options.emplace_back(row.flag(), "");  // a flag has no value
@@ -572,30 +551,14 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     const std::string_view idPrefix = exact && row.key == "eps" ? "tol" : row.idPrefix;
                     if (axes[a].swept) run.id.append("-").append(idPrefix).append(v);
                 }
-                if (peer) {
-                    // A peer renders a volume with an explicit camera; zoom, previews' looks and fields are vri's.
-                    static const std::set<std::string, std::less<>> peerSceneOptions = {
-                        "--volume", "--dims", "--type", "--byte-order", "--spacing", "--convention",
-                        "--tf",     "--size", "--eye",  "--target",     "--up",      "--fov"};
-                    const std::string peerRuns = at(entry) + ": method " + methodName + " (" + run.tool + ")";
-                    const ToolOptions& given = experiment.scene(scene).options;
-                    for (const auto& [option, value] : given)
-                        if (!peerSceneOptions.contains(option))
-                            throw Error(peerRuns + " cannot render scene '" + scene + "' with " + option +
-                                        " (a peer takes a volume, a camera and a size)");
-                    for (const std::string option : {"--eye", "--target"})
-                        if (std::none_of(given.begin(), given.end(), [&](auto& o) { return o.first == option; }))
-                            throw Error(peerRuns + " needs scene '" + scene + "' to set camera." + option.substr(2));
-                } else {
-                    try {  // the rules between the options, as the tool will check them
-                        finishRenderRequest(request);
-                    } catch (const Error& e) {
-                        throw Error(at(entry) + ": " + section + " entry '" + prefix + "': " + e.what());
-                    }
+                try {  // the rules between the options, as the tool will check them
+                    finishRenderRequest(request);
+                } catch (const Error& e) {
+                    throw Error(at(entry) + ": " + section + " entry '" + prefix + "': " + e.what());
                 }
                 if (tiles > 1) {
                     const std::string tiled = tilesAt + ": tiles: " + std::to_string(tiles) + ": ";
-                    if (peer || renderer)
+                    if (renderer)
                         throw Error(tiled + "method " + methodName + " (" + run.tool + ") renders whole images only");
                     if (request.options.logPixel) throw Error(tiled + "log_ray logs one pixel: render it untiled");
                     // Each tile's --max-error search would see its own pixels only and find its own tolerance:

@@ -117,6 +117,7 @@ OutsideRun runOutsideRenderer(const OutsideRenderer& renderer, const nlohmann::j
         {"output", image.string()},
         {"stats", stats.string()},
         {"step", method.contains("step") ? exactNumber(method["step"].get<double>()) : std::string()},
+        {"seed", method.contains("jitter") ? std::to_string(method["jitter"]["seed"].get<std::uint32_t>()) : "0"},
         {"width", std::to_string(width)},
         {"height", std::to_string(height)},
         {"vri_bin", thisProgramFolder().string()}};

@@ -6,8 +6,8 @@
 //
 // The command's placeholders: {card} (the card's path), {voxels} (the raw voxels, or empty for an analytic
 // field), {output} (where the renderer writes its image), {stats} (where it may write its statistics),
-// {step} (the step in voxels), {width}, {height}, {vri_bin} (the folder of vri's tools: vri-peer-vtk is an
-// outside renderer too); {{ and }} stand for braces.
+// {step} (the step in voxels), {seed} (a jittered card's seed, else 0), {width}, {height}, {vri_bin} (the
+// folder of vri's tools: vri-peer-vtk is an outside renderer too); {{ and }} stand for braces.
 #include <filesystem>
 #include <map>
 #include <string>

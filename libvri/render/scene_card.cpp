@@ -246,6 +246,21 @@ Json methodSection(const Scene& scene, const RenderRequest& request) {
     j["dims_for_placement"] = triple(dims);
     j["placement"] = placementName(o.placement);
     j["placements"] = placementFormulas();
+    if (o.jitter)
+        j["jitter"] = {
+            {"seed", o.seed},
+            {"frames", o.frames},
+            {"fraction",
+             "j(px, py, seed) = (h >> 8) * 2^-24, h = mix(px ^ mix(py ^ mix(seed))), in 32-bit unsigned arithmetic "
+             "(wrapping), px the pixel's column, py its row from the top; mix(x): x ^= x >> 16; x *= 0x7feb352d; "
+             "x ^= x >> 15; x *= 0x846ca68b; x ^= x >> 16 (Wellons' lowbias32)"},
+            {"t_start", "j * t_incr, in place of the placement's t_start; the count is then every k with t_k < t_end "
+                        "for every placement"},
+            {"frames_rule",
+             "frame f = 0 .. frames - 1 uses seed + f (wrapping past 2^32 - 1); the pixel is the mean of the frames' "
+             "float32 values, summed in double in frame order and divided by frames"},
+            {"meaning", "each ray's first sample at a random fraction of the step past the entry, uniform on [0, 1) "
+                        "over seeds: a renderer with its own random numbers reproduces the expectation, not the bits"}};
     const bool product = scene.transferFunction.emission() == EmissionModel::ColourTimesExtinction;
     j["accumulation"] =
         std::string("front to back from T = 1, C = 0; at each sample, v = tf(s(u_k)): ") +

@@ -7,7 +7,11 @@
 //  - the error floor, where the error stops falling with the step, set against vri's own Riemann sum at the
 //    same step, and where the floor comes from when the data say (8-bit output);
 //  - which of paper A's four placements the renderer uses: its coarsest image against vri's at each;
-//  - whether the image is upside down (row 0 must be the top).
+//  - whether the image is upside down (row 0 must be the top);
+//  - for a jittered renderer (seeds > 1: each card run once per seed), its bias against its noise at each
+//    step, and whether its expectation is that of the card's jittered Riemann sum, per pixel: Welch's t-test
+//    of the renderer's frames against vri's own jittered frames, Benjamini-Hochberg over every pixel, channel
+//    and step. Convergence is then that of the mean of the frames, and the placement is the jitter's.
 // Each finding is a pass or a failure with a message that names what is wrong. The report is written as
 // Markdown, JSON and JUnit XML; its exit code is for a CI job to gate on.
 #include <filesystem>
@@ -30,6 +34,10 @@ struct VerificationOptions {
     double referenceTolerance = 1e-9;  // the exact method's quadrature tolerance per piece
     // The placement the renderer must use; none: it is identified and reported, not checked.
     std::optional<Placement> placement;
+    // Jittered cards: each step's card run with seeds base.seed, base.seed + 1, ... (the base request must
+    // ask for jitter, one frame); 1: the renderer is deterministic.
+    int seeds = 1;
+    double falseDiscoveryRate = 0.001;  // q of the Benjamini-Hochberg procedure over every pixel test
 };
 
 struct VerificationReport {

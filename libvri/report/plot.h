@@ -25,7 +25,7 @@ struct PlotAxis {
 // segments: a line segment per row, from (x, y) to (x2, y2).
 inline constexpr const char* kPlotStyles[] = {"line",        "dashed",    "dotted",  "points",
                                               "linespoints", "histogram", "heatmap", "segments"};
-inline constexpr const char* kPlotPoints[] = {"circle", "square", "cross", "triangle", "diamond"};
+inline constexpr const char* kPlotPoints[] = {"circle", "square", "cross", "triangle", "triangle-down", "diamond"};
 inline constexpr const char* kPlotPalettes[] = {"viridis", "gray", "diverging"};
 
 struct PlotSeries {

@@ -172,12 +172,13 @@ std::string panelCommands(const PlotPanel& panel, const PanelFit& fit, int keyRo
     return out;
 }
 
-// gnuplot's filled circle, filled square, cross, filled triangle and filled diamond.
+// gnuplot's filled circle, filled square, cross, filled triangle (up and down) and filled diamond.
 int pointType(const std::string& point) {
     if (point == "square") return 5;
     if (point == "diamond") return 13;
     if (point == "cross") return 2;
     if (point == "triangle") return 9;
+    if (point == "triangle-down") return 11;
     return 7;
 }
 

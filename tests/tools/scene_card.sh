@@ -2,7 +2,7 @@
 # The scene card (vri-render --describe, docs/scene-card.md): valid against its JSON Schema, and complete
 # enough that examples/scene_card/render_from_card.py, which reads nothing else, reproduces vri-render's
 # image on both grid conventions, all four placements, unequal spacings, a zoomed close-up, composite,
-# the colour emission model and the analytic field.
+# the colour emission model, the analytic field, and jittered frames (the seed across 2^31 - 1).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 bin=${VRI_BIN:?} src=${VRI_SOURCE:?}
 python=/usr/bin/python3
@@ -37,6 +37,8 @@ cases=(
   "composite      --volume blob_8x8x8_uint8.raw --tf tf.yaml --method composite --placement entry-exit --step 0.5"
   "colour_model   --volume blob_8x8x8_uint8.raw --tf colour.yaml --method composite --convention node --step 0.5"
   "field          --field linear --tf colour.yaml --placement eye --step 0.5"
+  "jitter         --volume blob_8x8x8_uint8.raw --tf tf.yaml --placement eye --step 0.7 --jitter --seed 7"
+  "jitter_frames  --volume blob_8x8x8_uint8.raw --tf tf.yaml --convention node --placement entry-exit-corner --step 0.6 --jitter --seed 2147483647 --frames 3"
 )
 worst=0
 for case in "${cases[@]}"; do

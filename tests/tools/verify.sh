@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # vri-verify and vri-outside end to end, with the card's example renderer as the outside renderer: a correct
 # renderer passes every finding (order of convergence, placement, orientation), and each injected defect
-# (an image upside down, the wrong placement, no opacity correction) fails with exit 3 and a message that
-# names it. Then docs/ci-recipe.md's verification step runs as written.
+# (an image upside down, the wrong placement, no opacity correction; jitter that ignores the seed or is not
+# uniform over the step) fails with exit 3 and a message that names it. Then docs/ci-recipe.md's verification step runs as written.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 bin=${VRI_BIN:?} src=${VRI_SOURCE:?}
 python=/usr/bin/python3
@@ -28,7 +28,7 @@ PY
 verify() {  # verify EXPECTED_EXIT PATTERN BUG [OPTIONS...]
   local want=$1 pattern=$2 bug=$3; shift 3
   set +e
-  "$bin/vri-verify" "${scene[@]}" --steps 2,1,0.5,0.25 "$@" --report "$bug.md" --json "$bug.json" \
+  "$bin/vri-verify" "${scene[@]}" --steps "${steps:-2,1,0.5,0.25}" "$@" --report "$bug.md" --json "$bug.json" \
     --junit "$bug.xml" "${buggy[@]}" "$bug" {card} {output} 2> "$bug.err"
   local rc=$?
   set -e
@@ -47,6 +47,42 @@ assert r["passed"] and r["placement"] == "eye" and not r["upside_down"], r
 assert 0.85 < r["order"] < 1.2, r["order"]   # a Riemann sum: first order
 PY
 
+# Jittered renderers, each card run with 12 seeds: the example renderer (vri's own hash: the same frames) and
+# one with random numbers of its own pass; one that ignores the seed, and one whose first sample falls in the
+# first half of the step only, fail. The permutation test is exact, and the seeds fixed: the verdicts are too.
+steps=2,1,0.5
+verify 0 "pass: jitter: its frames are distributed as the card's jittered Riemann sum's" none --jitter --seeds 12
+verify 0 "pass: jitter: .*smallest p (0\.[1-9]|1 )" jitter-other-seeds --jitter --seeds 12 --seed 40
+verify 3 "FAIL: jitter: the 12 frames of every card are identical: the renderer does not jitter, or does not take the card's seed" \
+  jitter-ignores-seed --jitter --seeds 12
+verify 3 "FAIL: jitter: its frames are not distributed as the card's jittered Riemann sum's .*smallest p 0\.001" \
+  jitter-half --jitter --seeds 12
+"$python" - jitter-half.json <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["placement"] == "jittered" and r["jitter"]["differs"] and r["jitter"]["seeds"] == 12, r["jitter"]
+for row in r["steps"]:   # the defect is bias, not noise: more of it than vri's own jittered sum has
+    assert row["renderer"]["bias_rms"] > row["vri"]["bias_rms"], row
+PY
+"$python" - none.json <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["jitter"]["smallest_p"] == 1 and r["jitter"]["differing"] == 0, r["jitter"]   # vri's own frames, bit for bit
+PY
+unset steps
+bad() {  # bad PATTERN OPTIONS...: a usage error (exit 64) naming the option
+  local pattern=$1; shift
+  set +e
+  "$bin/vri-verify" "${scene[@]}" "$@" -- "$python" -c pass 2> usage.err
+  local rc=$?
+  set -e
+  [ "$rc" -eq 64 ] && grep -q -- "$pattern" usage.err || { cat usage.err; fail "expected exit 64 and '$pattern' (exit $rc)"; }
+}
+bad "^vri-verify: error: --seeds: tests a jittered renderer; give --jitter" --seeds 8
+bad "^vri-verify: error: --jitter: a jittered renderer is verified over seeds" --jitter
+bad "^vri-verify: error: --frames: vri-verify runs each card once per seed" --jitter --seeds 4 --frames 2
+bad "^vri-verify: error: --seeds" --jitter --seeds 0
+
 # docs/ci-recipe.md's verification step, as written, with ./my-renderer the example renderer.
 printf '#!/bin/sh\nexec %s %s "$@"\n' "$python" "$src/examples/scene_card/render_from_card.py" > my-renderer
 chmod +x my-renderer
@@ -54,4 +90,4 @@ sed -n '/^ *# vri-verify: begin/,/^ *# vri-verify: end/p' "$src/docs/ci-recipe.m
 [ "$(wc -l < recipe.sh)" -gt 3 ] || fail "docs/ci-recipe.md: no verification step between its markers"
 PATH="$bin:$PATH" bash -e recipe.sh
 grep -q 'failures="0"' vri-junit.xml || fail "the recipe's JUnit report has failures"
-echo "vri-verify: a correct renderer passes, three injected defects are named"
+echo "vri-verify: a correct renderer passes, three injected defects are named, and so are two jitter defects"

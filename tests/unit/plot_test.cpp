@@ -303,7 +303,7 @@ TEST_CASE("plot: segments and point spec errors") {
     CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, width: -1}\n", dir.path) ==
           "fig.yaml:2:41: series[0].width must be a positive number");
     CHECK(errorOf("series:\n  - {file: s.csv, x: t0, y: row, style: points, point: star}\n", dir.path) ==
-          "fig.yaml:2:56: series[0].point 'star' is unknown (expected circle, square, cross, triangle or diamond)");
+          "fig.yaml:2:56: series[0].point 'star' is unknown (expected circle, square, cross, triangle, triangle-down or diamond)");
     const std::string series = "series:\n  - {file: s.csv, x: t0, y: row}\n";
     CHECK(errorOf("labels:\n  - {x: 0, y: 1}\n" + series, dir.path) == "fig.yaml:2:5: labels[0] is missing 'text'");
     CHECK(errorOf("labels:\n  - {x: left, y: 1, text: a}\n" + series, dir.path) ==

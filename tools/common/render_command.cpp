@@ -110,6 +110,12 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
         app_.add_option("--min-order", minOrder_, "the observed order of convergence below which the check fails")
             ->capture_default_str()
             ->check(numberAbove(0.0, false));
+        app_.add_option("--seeds", seeds_,
+                        "with --jitter: run each step's card with this many seeds (--seed, --seed + 1, ...) and test "
+                        "the renderer's bias, noise and expectation per pixel against vri's jittered frames "
+                        "(16 or more)")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 4096));
         app_.add_option("--reference-tolerance", referenceTolerance_,
                         "the exact reference's quadrature tolerance (its error bound is in the report)")
             ->capture_default_str()
@@ -313,6 +319,13 @@ int RenderCommand::runVerify() {
     if (request.exact || isSimpson(request.options.integrator))
         throw UsageError("--method: vri-verify sweeps the step of a fixed-step method (riemann, composite)");
     if (request.wasGiven("--placement")) options.placement = request.options.placement;
+    options.seeds = seeds_;
+    if (seeds_ > 1 && !request.options.jitter)
+        throw UsageError("--seeds: tests a jittered renderer; give --jitter (and --seed for the first seed)");
+    if (request.options.jitter && seeds_ < 2)
+        throw UsageError("--jitter: a jittered renderer is verified over seeds: give --seeds N (16 or more)");
+    if (request.options.frames > 1)
+        throw UsageError("--frames: vri-verify runs each card once per seed (--seeds), one frame each");
     const SceneSetup setup = scene_.load();
     WorkFolder work(reportPath_.empty() || reportPath_ == "-" ? std::filesystem::path("report")
                                                               : std::filesystem::path(reportPath_));

@@ -1,11 +1,15 @@
 #!/usr/bin/python3
 """The card's example renderer with one defect injected, for vri-verify's tests (tests/tools/verify.sh):
 
-    buggy_renderer.py BUG CARD OUTPUT     BUG: none, flip, entry-placement, no-opacity-correction
+    buggy_renderer.py BUG CARD OUTPUT     BUG: none, flip, entry-placement, no-opacity-correction,
+                                               jitter-other-seeds, jitter-ignores-seed, jitter-half
 
 flip: row 0 at the bottom. entry-placement: the entry placement whatever the card asks.
 no-opacity-correction: each sample's opacity as if the step were one voxel, as a renderer does that reads
-a transfer function's per-sample alpha without correcting it for the step (tau scaled by 1 / step)."""
+a transfer function's per-sample alpha without correcting it for the step (tau scaled by 1 / step).
+jitter-other-seeds: no defect, but random numbers of its own (the seed + 1000): the same expectation, not the
+same bits. jitter-ignores-seed: every frame with the seed 1. jitter-half: the first sample in the first half of
+the step only (a fraction in [0, 1/2))."""
 import json
 import os
 import sys
@@ -22,6 +26,12 @@ if bug == "entry-placement":
 elif bug == "no-opacity-correction":
     for point in card["transfer_function"]["points"]:
         point["tau"] *= card["method"]["samples_per_voxel"]
+elif bug.startswith("jitter-"):
+    fraction = render_from_card.jitter_fraction
+    seed_of = {"jitter-other-seeds": lambda seed: seed + 1000, "jitter-ignores-seed": lambda seed: 1,
+               "jitter-half": lambda seed: seed}[bug]
+    scale = 0.5 if bug == "jitter-half" else 1.0
+    render_from_card.jitter_fraction = lambda card, seed: scale * fraction(card, seed_of(seed))
 elif bug not in ("none", "flip"):
     sys.exit("unknown bug " + bug)
 image = render_from_card.render(card, os.path.dirname(os.path.abspath(card_path)))
