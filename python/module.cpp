@@ -35,7 +35,7 @@
 #include "libvri/core/image_compare.h"
 #include "libvri/core/out_of_range_pixels.h"
 #include "libvri/core/render_option_table.h"
-#include "libvri/experiment/datasets.h"
+#include "libvri/io/volume_lookup.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/stored_voxels.h"
 #include "libvri/io/transfer_function_yaml.h"

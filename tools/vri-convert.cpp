@@ -134,7 +134,10 @@ or summarised sparse (--storage auto, the default, or sparse: its stored 8^3 bri
     std::string input, output, grid;
     vri::RawInputOptions raw;
     bool info = false, json = false, quiet = false;
-    app.add_option("input", input, "volume to read: .raw, .nhdr, .nrrd, .dat, .vdb, .mhd, .mha or .tif")->required();
+    app.add_option("input", input,
+                   "volume to read: .raw, .nhdr, .nrrd, .dat, .vdb, .mhd, .mha or .tif (a bare name also in $VRI_DATA_DIR)")
+        ->required()
+        ->transform(vri::volumeInDataDir());
     app.add_option("output", output, "volume to write: .vdb, .nhdr, .nrrd, .dat or .raw (not needed with --info)");
     raw.addTo(app);
     app.add_option("--grid", grid, ".vdb input: the grid to read (default: the first scalar grid)");

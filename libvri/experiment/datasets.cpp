@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <set>
 #include <system_error>
 
@@ -133,14 +132,6 @@ std::vector<DatasetInfo> parseDatasetCatalog(const std::string& yamlText, const 
     return catalogFromYaml(yaml::parse(yamlText, source), source);
 }
 
-std::optional<fs::path> findVolume(const fs::path& path, const fs::path& base) {
-    const fs::path beside = (base / path).lexically_normal();
-    if (fs::is_regular_file(beside)) return fs::absolute(beside);
-    const fs::path inData = (defaultDataDir() / path).lexically_normal();
-    if (path.is_relative() && fs::is_regular_file(inData)) return fs::absolute(inData);
-    return std::nullopt;
-}
-
 bool isDatasetCatalog(const fs::path& yamlPath) {
     try {
         const YAML::Node root = yaml::load(yamlPath);
@@ -174,12 +165,6 @@ RawLayout rawLayout(const DatasetInfo& info) {
     layout.order = info.order;
     layout.spacing = info.spacing;
     return layout;
-}
-
-fs::path defaultDataDir() {
-    const char* fromEnvironment = std::getenv("VRI_DATA_DIR");
-    if (fromEnvironment != nullptr && *fromEnvironment != '\0') return fromEnvironment;
-    return fs::path("..") / "shared" / "data" / "volumes";
 }
 
 bool verifyDataset(const DatasetInfo& info, const fs::path& dataDir, std::string* why) {

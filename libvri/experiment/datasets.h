@@ -12,6 +12,7 @@
 
 #include "libvri/core/voxel_type.h"
 #include "libvri/io/volume_io.h"
+#include "libvri/io/volume_lookup.h"  // defaultDataDir(), where the datasets are
 
 namespace vri {
 
@@ -35,11 +36,6 @@ struct DatasetInfo {
 // Stand-in: a different dataset used in place of one the papers name.
 inline constexpr const char* kDatasetStatuses[] = {"exact", "reconstructed", "stand-in"};
 
-// A volume file as experiment files (`volume:`) and the Python module's load_volume name it: `path` when it
-// exists (a relative one taken from `base`), else, for a relative path, that path in defaultDataDir()
-// ($VRI_DATA_DIR); nullopt when neither exists.
-std::optional<std::filesystem::path> findVolume(const std::filesystem::path& path, const std::filesystem::path& base);
-
 // True when `yaml` is a dataset catalog (a map with `datasets:` and no experiment `name:`), as
 // experiments/datasets.yaml beside the experiments: what `vri-run experiments/*.yaml` skips. A file that is
 // not YAML is not one (reading it as an experiment then says what is wrong).
@@ -57,9 +53,6 @@ const DatasetInfo& findDataset(const std::vector<DatasetInfo>& catalog, const st
 std::filesystem::path datasetPath(const DatasetInfo& info, const std::filesystem::path& dataDir);
 // The raw file's layout, for readRaw or vri-render's --dims/--type/--byte-order/--spacing.
 RawLayout rawLayout(const DatasetInfo& info);
-
-// $VRI_DATA_DIR when set and not empty, else ../shared/data/volumes relative to the current directory.
-std::filesystem::path defaultDataDir();
 
 // True when the raw file (and header, if any) exists, has the size its layout says and, when a
 // digest is recorded, that SHA-512. Otherwise false, with the reason in *why (if not null).

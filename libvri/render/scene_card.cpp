@@ -201,9 +201,9 @@ Json placementFormulas() {
         {"common",
          "entry_u, exit_u: the ray's entry and exit in texture coordinates; L = |exit_u - entry_u| (texture units); "
          "n_vox = |(exit_u - entry_u) * dims| (the ray's length counted in voxels, componentwise product); "
-         "rate = 1 / step; sample k at t_k = t_start + k * t_incr (computed directly, never accumulated), position "
-         "u_k = entry_u + t_k * (exit_u - entry_u) / L; each sample stands for dx = t_incr * world_length / L world "
-         "units, world_length = t_far - t_near"},
+         "rate = 1 / step; t_end = L; sample k at t_k = t_start + k * t_incr (computed directly, never accumulated), "
+         "position u_k = entry_u + t_k * du with du = (exit_u - entry_u) / L; each sample stands for "
+         "dx = t_incr * (world_length / L) world units, world_length = t_far - t_near"},
         {"eye",
          {{"samples", "n = n_vox * rate (not rounded)"},
           {"t_incr", "L / n"},
@@ -270,7 +270,7 @@ Json methodSection(const Scene& scene, const RenderRequest& request) {
          : o.integrator == Integrator::Preintegrated
              ? "segments from half a step before each sample to half a step after, looked up in a pre-integrated table "
                "(docs/conventions)"
-             : std::string("C += T * ") + (product ? "tau * dx" : "dx") + " * c") +
+             : std::string("C += T * ") + (product ? "(tau * dx)" : "dx") + " * c") +
         "; T *= exp(-tau dx). The pixel is (C.r, C.g, C.b, 1 - T)";
     return j;
 }

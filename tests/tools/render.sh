@@ -75,6 +75,20 @@ for tool in vri-render vri-reference; do
     [ ! -s t.txt ] || { echo "$tool: a warning for --threads 1: $(cat t.txt)"; exit 1; }
 done
 
+# A bare volume name is also looked up in $VRI_DATA_DIR (as vri-run and Python do), by vri-render and
+# vri-convert alike; a file of that name at hand comes first; the provenance names the file read.
+mkdir -p data elsewhere && cp blob_8x8x8_uint8.raw data/only_8x8x8_uint8.raw
+render -o direct.exr
+(cd elsewhere && VRI_DATA_DIR=$PWD/../data "$bin/vri-render" --volume only_8x8x8_uint8.raw --tf ../tf.yaml --size 40x30 -q \
+   -o ../from-data.exr --stats ../from-data.json) || fail "a bare name in \$VRI_DATA_DIR was not found"
+"$bin/vri-diff" direct.exr from-data.exr --fail 0 > /dev/null
+grep -q '"path": "[^"]*/data/only_8x8x8_uint8.raw"' from-data.json || fail "the stats do not name the file read from \$VRI_DATA_DIR"
+(cd elsewhere && VRI_DATA_DIR=$PWD/../data "$bin/vri-convert" only_8x8x8_uint8.raw only.nhdr > /dev/null) || fail "vri-convert: no lookup in \$VRI_DATA_DIR"
+if (cd elsewhere && VRI_DATA_DIR=$PWD/../nowhere "$bin/vri-render" --volume only_8x8x8_uint8.raw --tf ../tf.yaml -q -o x.exr 2> ../err.txt); then
+  fail "a volume in no folder was read"
+fi
+grep -q "only_8x8x8_uint8.raw" err.txt || fail "the missing volume is not named: $(cat err.txt)"
+
 help=$("$bin/vri-render" --help)  # captured whole: grep -q on a pipe would cut the writer off (SIGPIPE)
 grep -q "Example" <<<"$help"
 echo "render: all checks passed"

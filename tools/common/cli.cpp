@@ -13,6 +13,7 @@
 
 #include "libvri/io/provenance.h"
 #include "libvri/io/volume_io.h"
+#include "libvri/io/volume_lookup.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/format.h"
 #include "libvri/util/json_file.h"
@@ -211,6 +212,16 @@ CLI::Validator numberAbove(double lo, bool orEqual) {
                        : "expected a number " + bound + ", got '" + value + "'";
         },
         bound, "lower bound");
+}
+
+CLI::Validator volumeInDataDir() {
+    return CLI::Validator(
+        [](std::string& value) -> std::string {
+            if (const std::optional<std::filesystem::path> found = findVolume(value, "."); found && !value.empty())
+                value = found->string();
+            return "";
+        },
+        "", "volume in $VRI_DATA_DIR");
 }
 
 std::string versionText(std::string_view tool) {

@@ -37,6 +37,11 @@ CLI::Validator integerRange(std::int64_t lo, std::int64_t hi);
 CLI::Validator numberRange(double lo, double hi);
 CLI::Validator numberAbove(double lo, bool orEqual);
 
+// A volume file option's lookup, as experiment files and Python make it: a relative name that is no file here
+// becomes that file in the data directory ($VRI_DATA_DIR, io/volume_lookup.h) when it is there; else the
+// value stays as given, and reading it says what is missing.
+CLI::Validator volumeInDataDir();
+
 // Parses the command line, after adding --version; a usage error becomes the one line
 // "<tool>: error: <what> (see --help)" and exit kExitUsage, --help and --version print on stdout
 // (exit 0). Returns the exit code to leave with, if any. Every number option's text is checked first in

@@ -115,7 +115,7 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
                         "the renderer's bias, noise and expectation per pixel against vri's jittered frames "
                         "(16 or more)")
             ->capture_default_str()
-            ->check(CLI::Range(1, 4096));
+            ->check(integerRange(1, 4096));
         app_.add_option("--reference-tolerance", referenceTolerance_,
                         "the exact reference's quadrature tolerance (its error bound is in the report)")
             ->capture_default_str()

@@ -15,7 +15,9 @@ namespace vri {
 
 void SceneOptions::addTo(CLI::App& app) {
     auto* input = app.add_option_group("input", "what to render (one of)");
-    CLI::Option* volume = input->add_option("--volume", volumePath_, "volume file: .raw, .nhdr, .dat, .vdb");
+    CLI::Option* volume = input->add_option("--volume", volumePath_,
+                                            "volume file: .raw, .nhdr, .dat, .vdb (a bare name also in $VRI_DATA_DIR)")
+                              ->transform(volumeInDataDir());
     input->add_option("--field", field_, "analytic field: linear (paper A's f = (x + 1.5) / 3)");
     input->require_option(1);
     raw_.addTo(app);

@@ -8,6 +8,7 @@ const TABLE = 1024; // vtk.js's colour and opacity tables: colorTextureWidth and
 
 function prepare(card, voxels, step) {
   const { volume, camera, transfer_function: tfCard } = card;
+  const seed = card.method?.jitter?.seed ?? 1; // vri-verify --seeds varies it card by card
   const m = volume.world_from_voxel_index;
   const spacing = [m[0][0], m[1][1], m[2][2]];
   // vtk.js samples every ray at one world distance; the card's step is in voxels along the ray. They agree
@@ -38,7 +39,7 @@ function prepare(card, voxels, step) {
   const [cx, cy] = camera.zoom_centre_pixels;
 
   const notes = [
-    'vtk.js jitters each ray\'s first sample by a per-pixel random fraction of the step (its jitter texture and a hash of the pixel); the adapter seeds Math.random so that the pattern repeats run to run',
+    `vtk.js jitters each ray's first sample by a per-pixel random fraction of the step (its jitter texture and a hash of the pixel); the adapter seeds Math.random with ${seed} (the card's method.jitter.seed, else 1) so that the pattern repeats run to run`,
     `placement: vtk.js's own, not the card's '${card.method?.placement ?? 'none'}': a first sample at the entry weighted by the jitter fraction j, then samples at t = (j + k) d, then one at the exit weighted by the remainder`,
     'vtk.js stops a ray when its alpha passes 0.99 and then sets alpha to 1',
     `colour table: ${TABLE} texels of 8 bits per channel (vtk.js uploads colours as bytes); opacity table: ${TABLE} float texels`,
@@ -52,6 +53,7 @@ function prepare(card, voxels, step) {
 
   return {
     scene: {
+      seed,
       width: camera.width, height: camera.height, dims: volume.dims, voxelType: volume.voxel_type,
       origin: [m[0][3], m[1][3], m[2][3]], spacing,
       sampleDistance, opacityUnitDistance: sampleDistance, maximumSamples: Math.ceil(diagonal / sampleDistance) + 16,

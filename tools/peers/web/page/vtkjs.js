@@ -15,8 +15,8 @@ import { fetchBytes, timeFrames as time, toBase64, waitForGpu, webglRenderer } f
 
 let state = null;
 
-// vtk.js jitters each ray's start with a texture of Math.random() values: a fixed seed makes the image
-// the same on every run (the jitter pattern stays vtk.js's).
+// vtk.js jitters each ray's start with a texture of Math.random() values: a fixed seed (the card's) makes the
+// image the same on every run (the jitter pattern stays vtk.js's).
 function seedMathRandom(seed) {
   let a = seed >>> 0;
   Math.random = () => {
@@ -37,7 +37,7 @@ function imageData(scene, raw) {
 }
 
 export async function setup(scene) {
-  seedMathRandom(1);
+  seedMathRandom(scene.seed);
   const { width, height } = scene;
   const view = document.getElementById('view');
   view.style.width = `${width}px`;
