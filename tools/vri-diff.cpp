@@ -22,6 +22,7 @@
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/atomic_file.h"
+#include "libvri/util/json_file.h"
 #include "libvri/util/parse.h"
 
 namespace {
@@ -36,6 +37,7 @@ struct Options {
     std::string channels;  // --channels: names, comma separated; empty: all
     double diffScale = 1.0;
     std::vector<std::string> scaleOver;  // a PNG heat map's scale: the largest |A - X| over B and these
+    std::string scaleFrom;               // or the scale another vri-diff's JSON records (heat_map.top)
     std::vector<double> histogramRange{1e-6, 1.0};
     int binsPerDecade = 5;
     vri::DiffLimits limits;
@@ -154,6 +156,12 @@ int run(int argc, char** argv) {
         ->allow_extra_args(false)
         ->needs(diffImage)
         ->excludes(diffScale);
+    app.add_option("--scale-from", options.scaleFrom,
+                   "JSON: a PNG heat map's scale is the one another vri-diff's --json recorded (its heat_map.top): the "
+                   "set's scale computed once, by the comparison of the set that takes --scale-over")
+        ->needs(diffImage)
+        ->excludes(diffScale)
+        ->excludes("--scale-over");
     app.add_option("--histogram", options.histogram, "write per-channel error histograms as CSV "
                                                      "(bin_lo,bin_hi,R,G,B,A; bins (lo, hi], plus a zero bin)");
     app.add_option("--histogram-range", options.histogramRange, "LO,HI: logarithmic histogram bins span this")
@@ -203,14 +211,18 @@ int run(int argc, char** argv) {
         }
     }
 
-    if (!options.scaleOver.empty() && !isPng(options.diffImage))
-        return exitWith(vri::kExitUsage, vri::Error("--scale-over sets the scale of a PNG heat map; --diff-image '" +
-                                                    options.diffImage + "' is not a .png"));
+    for (const auto& [option, given] : {std::pair{"--scale-over", !options.scaleOver.empty()},
+                                        std::pair{"--scale-from", !options.scaleFrom.empty()}})
+        if (given && !isPng(options.diffImage))
+            return exitWith(vri::kExitUsage, vri::Error(std::string(option) +
+                                                        " sets the scale of a PNG heat map; --diff-image '" +
+                                                        options.diffImage + "' is not a .png"));
     const std::vector<vri::OutputArgument> outputs{
         {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram}};
     vri::requireDistinctOutputs(outputs);
     std::vector<vri::InputArgument> inputs{{"A", options.a}, {"B", options.b}};
     for (const std::string& x : options.scaleOver) inputs.push_back({"--scale-over", x});
+    if (!options.scaleFrom.empty()) inputs.push_back({"--scale-from", options.scaleFrom});
     vri::requireOutputsApartFromInputs(outputs, inputs);
     if (!options.json.empty()) vri::requireUtf8Arguments(argc, argv);
     // A file that cannot be read or written is guardedMain's failure, exit 1.
@@ -248,6 +260,14 @@ int run(int argc, char** argv) {
             takeLargest(vri::compareImages(a, x, {}));
         }
         heatTop = diffScale->count() > 0 ? 1.0 / options.diffScale : largest;
+        if (!options.scaleFrom.empty()) {
+            try {
+                const nlohmann::json other = vri::readJsonFile(options.scaleFrom);
+                heatTop = vri::readingJsonOf(options.scaleFrom, [&] { return other.at("heat_map").at("top").get<double>(); });
+            } catch (const vri::Error& e) {
+                return exitWith(vri::kExitError, vri::Error("--scale-from " + std::string(e.what())));
+            }
+        }
         if (!(*heatTop > 0) || !std::isfinite(*heatTop)) heatTop = 1.0;  // equal images, or an infinite error
         files.add(options.diffImage, vri::encodePng(options.diffImage, vri::heatMapImage(a, b, *heatTop)));
     } else if (!options.diffImage.empty()) {
@@ -267,6 +287,7 @@ int run(int argc, char** argv) {
                                 {"colormap", "viridis"},
                                 {"top", *heatTop}};
         if (heatTop && !options.scaleOver.empty()) json["heat_map"]["scale_over"] = options.scaleOver;
+        if (heatTop && !options.scaleFrom.empty()) json["heat_map"]["scale_from"] = options.scaleFrom;
         files.add(options.json, json.dump(2) + "\n");
     }
     files.write();

@@ -33,7 +33,8 @@ std::string commitNote(const nlohmann::json& sourceTree) {
 
 // The caption of an experiment's heat maps: what they show and each one's scale, read from the
 // comparison's vri-diff JSON beside it (a diff image is named as its JSON: <comparison id>.png). Maps
-// that share a scale (vri-diff --scale-over, `diff_scale: shared`) are listed together, the top once.
+// that share a scale (vri-diff --scale-over and --scale-from, `diff_scale: shared`) are listed together, the top
+// once.
 void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs::path& dir) {
     std::vector<std::pair<std::string, std::string>> scales;  // ids, the top they share or have alone
     for (const nlohmann::json& item : diffImages) {
@@ -45,7 +46,7 @@ void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs:
         char top[32];
         std::snprintf(top, sizeof top, "%.3g",
                       readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
-        const bool shared = diff.at("heat_map").contains("scale_over");
+        const bool shared = diff.at("heat_map").contains("scale_over") || diff.at("heat_map").contains("scale_from");
         if (shared && !scales.empty() && scales.back().second == top + std::string(" (one scale)"))
             scales.back().first += ", " + id;
         else

@@ -221,6 +221,11 @@ bad 64 "${E}--scale-over sets the scale of a PNG heat map; --diff-image 'd\.exr'
 bad 1 "${E}missing\.exr: no such file$" -- "$bin/vri-diff" a.exr a.exr --diff-image d.png --scale-over missing.exr
 bad 4 "${E}--scale-over small\.exr: images differ in shape: 8x8 with 4 channels vs 4x4 with 4 channels$" -- \
     "$bin/vri-diff" a.exr a.exr --diff-image d.png --scale-over small.exr
+bad 64 "${E}--scale-over excludes --scale-from" -- "$bin/vri-diff" a.exr a.exr --diff-image d.png --scale-from s.json --scale-over a.exr
+bad 64 "${E}--scale-from sets the scale of a PNG heat map; --diff-image 'd\.exr' is not a \.png$" -- \
+    "$bin/vri-diff" a.exr a.exr --diff-image d.exr --scale-from s.json
+echo '{"channels": []}' > noscale.json
+bad 1 "${E}--scale-from noscale\.json: .*heat_map" -- "$bin/vri-diff" a.exr a.exr --diff-image d.png --scale-from noscale.json
 bad 64 "${E}--diff-image 'a\.png' is the same file as --scale-over 'a\.png'" -- \
     "$bin/vri-diff" a.exr a.exr --diff-image a.png --scale-over a.png
 

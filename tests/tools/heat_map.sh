@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # vri-diff's PNG difference image is a heat map: the largest |A - B| over the channels through viridis,
 # with a colour bar below the image, numbered at quarters of the scale; the scale is the largest difference,
-# or 1/--diff-scale, or the largest over a set of comparisons (--scale-over, `diff_scale: shared`), and the
+# or 1/--diff-scale, or the largest over a set of comparisons (--scale-over, or --scale-from the JSON of the one
+# that took it; `diff_scale: shared`), and the
 # JSON says which (heat_map.top); the gallery's caption names each heat map's scale.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 command -v oiiotool > /dev/null || { echo "oiiotool not installed: skipped"; exit 77; }
@@ -48,6 +49,11 @@ grep -q '"top": 0.25' shared.json && grep -A3 '"scale_over"' shared.json | grep 
 oiiotool --dumpdata shared.png > pixels.txt
 read -r r g b <<< "$(pixel 14 6)"
 (( g > 100 && g < 180 && b > 120 )) || fail "c's error on the shared scale: $r $g $b"
+# --scale-from: the scale another comparison's JSON recorded, taken as it is: the map is the --scale-over one.
+"$VRI_BIN/vri-diff" a.exr c.exr --diff-image from.png --scale-from shared.json --json from.json \
+    --failpercent 100 --warnpercent 100 > /dev/null
+cmp shared.png from.png || fail "--scale-from drew another map than --scale-over"
+grep -q '"top": 0.25' from.json && grep -q '"scale_from": "shared.json"' from.json || fail "--scale-from: $(grep -A8 heat_map from.json)"
 # --diff-scale 2 sets the top at 0.5: the largest error is then half-way.
 "$VRI_BIN/vri-diff" a.exr b.exr --diff-image heat2.png --diff-scale 2 --json d2.json --failpercent 100 --warnpercent 100 > /dev/null
 grep -q '"top": 0.5' d2.json || fail "the scale with --diff-scale: $(grep -A4 heat_map d2.json)"

@@ -217,8 +217,9 @@ CLI::Validator numberAbove(double lo, bool orEqual) {
 CLI::Validator volumeInDataDir() {
     return CLI::Validator(
         [](std::string& value) -> std::string {
-            if (const std::optional<std::filesystem::path> found = findVolume(value, "."); found && !value.empty())
-                value = found->string();
+            std::error_code ec;
+            if (value.empty() || std::filesystem::exists(std::filesystem::symlink_status(value, ec))) return "";
+            if (const std::optional<std::filesystem::path> found = findVolume(value, ".")) value = found->string();
             return "";
         },
         "", "volume in $VRI_DATA_DIR");
