@@ -33,6 +33,8 @@
 #include "libvri/core/cpu_renderer.h"
 #include "libvri/core/exact_reference.h"
 #include "libvri/core/image_compare.h"
+#include "libvri/core/image_metrics.h"
+#include "libvri/core/pixel_mask.h"
 #include "libvri/core/out_of_range_pixels.h"
 #include "libvri/core/render_option_table.h"
 #include "libvri/io/volume_lookup.h"
@@ -428,23 +430,31 @@ PYBIND11_MODULE(vri, m) {
 
     m.def("compare",
           [](const py::object& a, const py::object& b, const std::vector<double>& thresholds, double fail,
-             double failPercent, double warn, double warnPercent, bool perPixel) {
+             double failPercent, double warn, double warnPercent, bool perPixel, const std::string& maskText) {
               const Image reference = fromNumpy(a, "a");  // a's shape is checked first
               const Image other = fromNumpy(b, "b");
               const DiffLimits limits{requireNonNegative(fail, "fail"), requirePercent(failPercent, "failpercent"),
                                       requireNonNegative(warn, "warn"), requirePercent(warnPercent, "warnpercent"),
                                       perPixel};
-              nlohmann::json record = toJson(compareImages(reference, other, thresholds));
-              addVerdict(record, diffVerdict(reference, other, limits));
+              requireSameShape(reference, other);
+              const MaskSpec spec = parseMaskSpec(maskText);
+              const PixelMask mask = spec.kind == MaskSpec::Kind::All ? fullMask(reference.width, reference.height)
+                                     : spec.kind == MaskSpec::Kind::Alpha
+                                         ? alphaMask(reference, other, spec.level)
+                                         : imageMask(readImage(spec.file), reference.width, reference.height);
+              nlohmann::json record = toJson(compareImages(reference, other, thresholds, &mask));
+              record["metrics"] = toJson(imageMetrics(reference, other, &mask));
+              addVerdict(record, diffVerdict(reference, other, limits, &mask));
               return toPython(record);
           },
           py::arg("a"), py::arg("b"), py::arg("thresholds") = vri::kDefaultThresholds, py::kw_only(),
           py::arg("fail") = DiffLimits{}.fail, py::arg("failpercent") = DiffLimits{}.failPercent,
           py::arg("warn") = DiffLimits{}.warn, py::arg("warnpercent") = DiffLimits{}.warnPercent,
-          py::arg("per_pixel") = false,
-          "vri-diff's --json record of |a - b| per channel as a dict, a the reference, with its verdict: 'verdict' "
-          "(pass, warn or fail), 'exit_code' (vri-diff's: 0, 2 or 3) and the 'fail' and 'warn' counts, from vri-diff's "
-          "--fail, --failpercent, --warn, --warnpercent and --per-pixel");
+          py::arg("per_pixel") = false, py::arg("mask") = "all",
+          "vri-diff's --json record of |a - b| per channel as a dict, a the reference, with its image metrics "
+          "('metrics': PSNR, SSIM, relative MSE, SMAPE) and its verdict: 'verdict' (pass, warn or fail), 'exit_code' "
+          "(vri-diff's: 0, 2 or 3) and the 'fail' and 'warn' counts, from vri-diff's --fail, --failpercent, --warn, "
+          "--warnpercent, --per-pixel and --mask (all, hit, alpha>T or a mask image's path)");
     m.def("read_image", [](const std::string& path) { return toNumpy(readImage(path)); }, py::arg("path"),
           "An image file (EXR, PNG, ...) as a float32 array (height, width, channels)");
     m.def("write_exr", [](const std::string& path, const py::object& image) { writeExr(path, fromNumpy(image, "image")); },

@@ -19,6 +19,8 @@
 #include "libvri/render/image_compare_json.h"
 #include "libvri/core/heat_map.h"
 #include "libvri/core/image_compare.h"
+#include "libvri/core/image_metrics.h"
+#include "libvri/core/pixel_mask.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/atomic_file.h"
@@ -35,6 +37,7 @@ struct Options {
     std::vector<double> thresholds = vri::kDefaultThresholds;
     std::string json, diffImage, histogram;
     std::string channels;  // --channels: names, comma separated; empty: all
+    std::string mask = "all";  // --mask: all, hit, alpha>T or a mask image
     double diffScale = 1.0;
     std::vector<std::string> scaleOver;  // a PNG heat map's scale: the largest |A - X| over B and these
     std::string scaleFrom;               // or the scale another vri-diff's JSON records (heat_map.top)
@@ -70,9 +73,11 @@ private:
     std::size_t column_ = 0;
 };
 
-void printSummary(const Options& options, const vri::ImageDiff& diff, const std::string& verdict) {
+void printSummary(const Options& options, const vri::ImageDiff& diff, const vri::ImageMetrics& metrics,
+                  const std::string& verdict) {
     std::cout << options.a << " vs " << options.b << ": " << diff.width << "x" << diff.height << ", "
-              << diff.channels.size() << " channels, all " << diff.pixels << " pixels counted\n";
+              << diff.channels.size() << " channels, " << diff.pixels << " pixels counted ("
+              << (diff.mask == vri::kAllPixels ? std::string("all") : diff.mask) << ")\n";
     Row header;
     header.cell("channel", 8).cell("max", 13).cell("at (x,y)", 12).cell("mean", 13).cell("RMSE", 13);
     for (double t : diff.thresholds) header.cell("% > " + format("%g", t), 12);  // of the channel's pixels
@@ -96,7 +101,13 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const std:
         pixelChannels.cell(format("%.4f", pixelChannelPercent(diff, t)), 12);
         pixels.cell(format("%.4f", pixelPercent(diff, t)), 12);
     }
-    std::cout << pixelChannels.str() << '\n' << pixels.str() << '\n' << verdict << '\n';
+    std::cout << pixelChannels.str() << '\n' << pixels.str() << '\n';
+    const auto metric = [](const char* pattern, double x) { return std::isfinite(x) ? format(pattern, x) : "n/a"; };
+    std::cout << "PSNR " << (metrics.all.psnr == INFINITY ? std::string("inf") : metric("%.2f", metrics.all.psnr))
+              << " dB (peak 1), SSIM " << metric("%.4f", metrics.all.ssim) << " (11x11 Gaussian, sigma 1.5), relMSE "
+              << metric("%.4g", metrics.all.relMse) << ", SMAPE " << metric("%.4g", metrics.all.smape)
+              << " (all channels)\n"
+              << verdict << '\n';
 }
 
 const CLI::Validator kNonNegative = vri::numberAbove(0.0, true);
@@ -162,6 +173,10 @@ int run(int argc, char** argv) {
         ->needs(diffImage)
         ->excludes(diffScale)
         ->excludes("--scale-over");
+    app.add_option("--mask", options.mask,
+                   "which pixels every statistic counts: all (default), hit (alpha > 0 in either image), alpha>T, "
+                   "or a mask image (its first channel's non-zero pixels)")
+        ->capture_default_str();
     app.add_option("--histogram", options.histogram, "write per-channel error histograms as CSV "
                                                      "(bin_lo,bin_hi,R,G,B,A; bins (lo, hi], plus a zero bin)");
     app.add_option("--histogram-range", options.histogramRange, "LO,HI: logarithmic histogram bins span this")
@@ -239,8 +254,23 @@ int run(int argc, char** argv) {
         return exitWith(vri::kDiffDifferentShape, e);
     }
 
-    const vri::ImageDiff diff = vri::compareImages(a, b, options.thresholds);
-    const vri::DiffVerdict verdict = vri::diffVerdict(a, b, options.limits);
+    vri::MaskSpec spec;
+    try {
+        spec = vri::parseMaskSpec(options.mask);
+    } catch (const vri::Error& e) {
+        return exitWith(vri::kExitUsage, vri::Error("--mask: " + std::string(e.what())));
+    }
+    vri::PixelMask mask;
+    try {
+        mask = spec.kind == vri::MaskSpec::Kind::All     ? vri::fullMask(a.width, a.height)
+               : spec.kind == vri::MaskSpec::Kind::Alpha ? vri::alphaMask(a, b, spec.level)
+                                                         : vri::imageMask(vri::readImage(spec.file), a.width, a.height);
+    } catch (const vri::Error& e) {
+        return exitWith(vri::kExitError, vri::Error("--mask " + options.mask + ": " + e.what()));
+    }
+    const vri::ImageDiff diff = vri::compareImages(a, b, options.thresholds, &mask);
+    const vri::ImageMetrics metrics = vri::imageMetrics(a, b, &mask);
+    const vri::DiffVerdict verdict = vri::diffVerdict(a, b, options.limits, &mask);
 
     std::optional<double> heatTop;  // the top of a PNG heat map's scale
     vri::OutputSet files;
@@ -274,9 +304,10 @@ int run(int argc, char** argv) {
         files.add(options.diffImage, vri::encodeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale)));
     }
     if (!options.histogram.empty())
-        files.add(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges)));
+        files.add(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges, &mask)));
     if (!options.json.empty()) {
         nlohmann::json json = vri::toJson(diff);
+        json["metrics"] = vri::toJson(metrics);
         json["a"] = options.a;
         json["b"] = options.b;
         vri::addVerdict(json, verdict);
@@ -293,7 +324,7 @@ int run(int argc, char** argv) {
     files.write();
     // The summary goes to standard output unless an output does (it would run into that output).
     if (std::none_of(outputs.begin(), outputs.end(), [](const vri::OutputArgument& o) { return o.path == "-"; }))
-        printSummary(options, diff, verdict.text);
+        printSummary(options, diff, metrics, verdict.text);
     if (verdict.code != vri::kExitOk) flipHint(a, b, diff);
     return verdict.code;
 }

@@ -21,14 +21,25 @@ double absoluteError(float a, float b) {
     return std::isnan(d) ? kInfinity : d;  // only one side is NaN here
 }
 
-// Calls f(channel, x, y, error) for every pixel-channel, rows from the top, channels innermost.
-// a and b have the same shape.
+// Calls f(channel, x, y, error) for every pixel-channel the mask keeps (all when null), rows from the top,
+// channels innermost. a and b have the same shape, the mask theirs.
 template <class F>
-void forEachError(const Image& a, const Image& b, F&& f) {
-    std::size_t i = 0;
+void forEachError(const Image& a, const Image& b, const PixelMask* mask, F&& f) {
+    std::size_t i = 0, p = 0;
     for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x)
+        for (int x = 0; x < a.width; ++x, ++p) {
+            if (mask && !mask->keep[p]) {
+                i += static_cast<std::size_t>(a.channels);
+                continue;
+            }
             for (int c = 0; c < a.channels; ++c, ++i) f(c, x, y, absoluteError(a.pixels[i], b.pixels[i]));
+        }
+}
+
+void requireMaskOf(const Image& a, const PixelMask* mask) {
+    if (mask && mask->keep.size() != static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height))
+        throw Error("the mask has " + std::to_string(mask->keep.size()) + " pixels, the images " +
+                    std::to_string(static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height)));
 }
 
 std::string shape(const Image& image) {
@@ -54,13 +65,15 @@ void requireSameShape(const Image& a, const Image& b) {
         throw Error("images differ in shape: " + shape(a) + " vs " + shape(b));
 }
 
-ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double>& thresholds) {
+ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double>& thresholds, const PixelMask* mask) {
     requireSameShape(a, b);
+    requireMaskOf(a, mask);
     ImageDiff diff;
     diff.width = a.width;
     diff.height = a.height;
     diff.thresholds = thresholds;
-    diff.pixels = static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height);
+    diff.pixels = mask ? mask->count : static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height);
+    diff.mask = mask ? mask->description : kAllPixels;
     std::vector<double> sum(a.channels, 0.0), sumOfSquares(a.channels, 0.0);
     for (int c = 0; c < a.channels; ++c) {
         ChannelDiff channel;
@@ -70,7 +83,7 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double
     }
     diff.pixelsAbove.assign(thresholds.size(), 0);
     double pixelLargest = 0;  // the largest error over the channels of the pixel being visited
-    forEachError(a, b, [&](int c, int x, int y, double error) {
+    forEachError(a, b, mask, [&](int c, int x, int y, double error) {
         ChannelDiff& channel = diff.channels[c];
         pixelLargest = c == 0 ? error : std::max(pixelLargest, error);
         if (c + 1 == a.channels)
@@ -85,7 +98,7 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double
         for (std::size_t t = 0; t < thresholds.size(); ++t)
             if (error > thresholds[t]) ++channel.countAbove[t];
     });
-    const double pixels = static_cast<double>(diff.pixels);
+    const double pixels = std::max(static_cast<double>(diff.pixels), 1.0);  // a mask of no pixel: all zero
     for (int c = 0; c < a.channels; ++c) {
         ChannelDiff& channel = diff.channels[c];
         channel.meanAbs = sum[c] / pixels;
@@ -101,7 +114,7 @@ Image differenceImage(const Image& a, const Image& b, double scale) {
     Image difference(a.width, a.height, a.channels);
     difference.channelNames = a.channelNames;
     std::size_t i = 0;
-    forEachError(a, b, [&](int, int, int, double error) { difference.pixels[i++] = static_cast<float>(error * scale); });
+    forEachError(a, b, nullptr, [&](int, int, int, double error) { difference.pixels[i++] = static_cast<float>(error * scale); });
     return difference;
 }
 
@@ -112,16 +125,17 @@ double ErrorHistogram::binUpper(std::size_t bin) const {
     return bin <= edges.size() ? edges[bin - 1] : kInfinity;
 }
 
-ErrorHistogram errorHistogram(const Image& a, const Image& b, std::vector<double> edges) {
+ErrorHistogram errorHistogram(const Image& a, const Image& b, std::vector<double> edges, const PixelMask* mask) {
     requireValidEdges(edges);
     requireSameShape(a, b);
+    requireMaskOf(a, mask);
     ErrorHistogram histogram;
     histogram.edges = std::move(edges);
     histogram.channelNames = a.channelNames;
-    histogram.pixels = static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height);
+    histogram.pixels = mask ? mask->count : static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height);
     histogram.counts.assign(a.channels, std::vector<std::uint64_t>(histogram.binCount(), 0));
     const std::vector<double>& e = histogram.edges;
-    forEachError(a, b, [&](int c, int, int, double error) {
+    forEachError(a, b, mask, [&](int c, int, int, double error) {
         // The first edge >= error closes the bin (edge before, edge]; past the last edge, overflow.
         const std::size_t bin = error == 0.0 ? 0 : 1 + (std::lower_bound(e.begin(), e.end(), error) - e.begin());
         ++histogram.counts[c][bin];

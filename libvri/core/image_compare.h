@@ -3,7 +3,7 @@
 // error exceeds 0.01 / 0.005 / 0.001" and its error histograms).
 //
 // Every pixel counts as a ray, background pixels that miss the volume included, so percentages
-// are over width * height whatever the scene covers.
+// are over width * height whatever the scene covers, unless a mask (pixel_mask.h) says which count.
 //
 // The error of a pixel-channel is |a - b| in double. Two NaNs, or two equal infinities, agree
 // (error 0); a NaN against a number is an infinite error, so a broken render never passes.
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "libvri/core/image.h"
+#include "libvri/core/pixel_mask.h"
 
 namespace vri {
 
@@ -31,7 +32,8 @@ struct ImageDiff {
     int height = 0;
     std::vector<double> thresholds;
     std::vector<ChannelDiff> channels;  // in the order of the images' channels, named after a's
-    std::uint64_t pixels = 0;           // width * height: all pixels count
+    std::uint64_t pixels = 0;           // the pixels counted: width * height, or the mask's
+    std::string mask;                   // which pixels count (PixelMask::description)
     // Per threshold: pixels whose error in some channel is above it, as OpenImageIO's idiff counts (a
     // channel's countAbove counts that channel's pixels; summed over the channels, pixel-channels).
     std::vector<std::uint64_t> pixelsAbove;
@@ -44,8 +46,10 @@ void requireSameShape(const Image& a, const Image& b);
 // papers' 0.01, 0.005 and 0.001.
 inline const std::vector<double> kDefaultThresholds{0.01, 0.005, 0.001};
 
-// Deterministic (a fixed summation order in double). Throws as requireSameShape.
-ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double>& thresholds);
+// Deterministic (a fixed summation order in double). Over the pixels `mask` keeps (all when null); a mask
+// that keeps none gives zero statistics. Throws as requireSameShape.
+ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double>& thresholds,
+                        const PixelMask* mask = nullptr);
 
 // Per-channel error |a - b| (as above) times `scale` (to make small errors visible in an 8-bit
 // picture), channel names from a. Throws as requireSameShape.
@@ -69,8 +73,9 @@ struct ErrorHistogram {
     double binUpper(std::size_t bin) const;  // +infinity for the last bin
 };
 
-// Throws vri::Error on bad edges, and as requireSameShape.
-ErrorHistogram errorHistogram(const Image& a, const Image& b, std::vector<double> edges);
+// Over the pixels `mask` keeps (all when null). Throws vri::Error on bad edges, and as requireSameShape.
+ErrorHistogram errorHistogram(const Image& a, const Image& b, std::vector<double> edges,
+                              const PixelMask* mask = nullptr);
 
 // lo, then binsPerDecade edges per factor of ten, up to hi (lo and hi exactly; the last step may
 // be shorter). Throws vri::Error unless 0 < lo < hi and binsPerDecade >= 1.

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 
+#include "libvri/core/pixel_mask.h"
 #include "libvri/io/plot_data_files.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/error.h"
@@ -169,6 +170,10 @@ void Planner::addDiff(const ComparisonSpec& c) {
         } else {
             input(step, "--scale-from", result(first->id + ".json"));
         }
+    }
+    if (!c.mask.empty()) {
+        if (parseMaskSpec(c.mask).kind == MaskSpec::Kind::Image) input(step, "--mask", c.mask);
+        else step.arguments.insert(step.arguments.end(), {"--mask", c.mask});
     }
     if (c.histogram) output(step, "--histogram", result(c.id + "-histogram.csv"));
     plan_.steps.push_back(std::move(step));

@@ -18,6 +18,7 @@
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
 #include "libvri/io/yaml_util.h"
+#include "libvri/core/pixel_mask.h"
 #include "libvri/render/outside_renderer.h"
 #include "libvri/util/checked_size.h"
 #include "libvri/util/format.h"
@@ -590,7 +591,8 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
 
 void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [group, entry] : entries(node, "comparisons")) {
-        yaml::requireKeys(entry, source_, {"reference", "runs", "thresholds", "diff_image", "diff_scale", "histogram"});
+        yaml::requireKeys(entry, source_,
+                          {"reference", "runs", "thresholds", "diff_image", "diff_scale", "histogram", "mask"});
         const YAML::Node ref = required(entry, "reference", "comparison '" + group + "'");
         const std::string reference = text(ref, "reference");
         requireRun(experiment, reference, ref);
@@ -602,7 +604,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             for (const RunSpec& r : experiment.runs)
                 if (!r.reference && r.id != reference && r.scene == experiment.run(reference).scene) runs.push_back(r.id);
         }
-        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", "", false};
+        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", "", false, false, ""};
         if (const YAML::Node t = entry["thresholds"]) {
             if (!t.IsSequence() || t.size() == 0) throw Error(at(t) + ": thresholds must be a list of numbers");
             base.thresholds.clear();
@@ -628,6 +630,19 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             }
         }
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
+        if (const YAML::Node m = entry["mask"]) {
+            base.mask = text(m, "mask");
+            try {
+                if (parseMaskSpec(base.mask).kind == MaskSpec::Kind::Image) {
+                    const fs::path image = baseDir_ / base.mask;
+                    if (!fs::is_regular_file(image))
+                        throw Error("no mask image " + image.string() + " (all, hit, alpha>T, or an image's path)");
+                    base.mask = fs::absolute(image).lexically_normal().string();
+                }
+            } catch (const Error& e) {
+                throw Error(at(m) + ": mask: " + e.what());
+            }
+        }
         for (const std::string& run : runs) {
             ComparisonSpec c = base;
             c.id = comparisonId(group, run, experiment.run(run).scene);

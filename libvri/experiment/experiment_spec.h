@@ -68,9 +68,12 @@ struct ComparisonSpec {
     std::string diffImage;  // "", "png" or "exr"
     std::string diffScale;  // vri-diff --diff-scale, as written; "" for none
     // `diff_scale: shared`: one heat-map scale for the whole comparison, the largest difference of any of
-    // its runs (vri-diff --scale-over each other run's image).
+    // its runs (vri-diff --scale-over each other run's image, computed once: --scale-from).
     bool sharedScale = false;
     bool histogram = false;
+    // vri-diff --mask: which pixels every statistic counts ("all", "hit", "alpha>T" or an image, from the
+    // experiment's folder); "" for all.
+    std::string mask;
 };
 
 // A comparison's id, the name of its files: its name and the run's id, with the words (between '-') that

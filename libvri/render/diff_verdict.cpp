@@ -53,8 +53,8 @@ double pixelPercent(const ImageDiff& diff, std::size_t t) {
     return 100.0 * static_cast<double>(diff.pixelsAbove[t]) / static_cast<double>(diff.pixels);
 }
 
-DiffVerdict diffVerdict(const Image& a, const Image& b, const DiffLimits& limits) {
-    const ImageDiff counts = compareImages(a, b, {limits.fail, limits.warn});
+DiffVerdict diffVerdict(const Image& a, const Image& b, const DiffLimits& limits, const PixelMask* mask) {
+    const ImageDiff counts = compareImages(a, b, {limits.fail, limits.warn}, mask);
     DiffVerdict verdict;
     verdict.fail = checkLimit(counts, 0, limits.failPercent, limits.perPixel);
     verdict.warn = checkLimit(counts, 1, limits.warnPercent, limits.perPixel);

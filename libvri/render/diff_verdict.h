@@ -47,8 +47,8 @@ struct DiffVerdict {
 double pixelChannelPercent(const ImageDiff& diff, std::size_t t);
 double pixelPercent(const ImageDiff& diff, std::size_t t);
 
-// Throws as requireSameShape.
-DiffVerdict diffVerdict(const Image& a, const Image& b, const DiffLimits& limits);
+// Throws as requireSameShape. Over the pixels `mask` keeps (all when null).
+DiffVerdict diffVerdict(const Image& a, const Image& b, const DiffLimits& limits, const PixelMask* mask = nullptr);
 
 // Adds "verdict" (pass, warn, fail), "exit_code", "fail" and "warn" ({threshold, allowed_percent, count,
 // percent, counted, exceeded}) to a comparison's record (image_compare_json.h).

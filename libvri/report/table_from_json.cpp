@@ -153,6 +153,13 @@ std::string digitsNote(const std::optional<int>& decimals) {
     return ", to " + std::to_string(kPercentDigits) + " significant digits (0: no ray)";
 }
 
+// Which pixels a comparison's percentages count, from its vri-diff JSON: "all pixels, background included",
+// or its --mask's description.
+std::string pixelsCounted(const json& diff) {
+    const std::string counted = diff.value("pixels_counted", "all");
+    return counted == "all" ? "all pixels, background included" : counted;
+}
+
 }  // namespace
 
 Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> thresholds, std::optional<int> decimals) {
@@ -191,8 +198,8 @@ Table thresholdTable(const std::vector<ThresholdRow>& rows, std::vector<double> 
                 cells.push_back(percentAbove(diffs[which], c, thresholds[t], row.files[which]));
         }
     }
-    table.notes.push_back("Percentage of rays (all pixels, background included) whose absolute error exceeds the "
-                          "threshold, per channel" + digitsNote(decimals) + ".");
+    table.notes.push_back("Percentage of rays (" + pixelsCounted(firstDiff) +
+                          ") whose absolute error exceeds the threshold, per channel" + digitsNote(decimals) + ".");
     return table;
 }
 
@@ -373,8 +380,8 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     if (const std::string host = hostNote(readJsonFile(rows.front().stats)); !host.empty()) table.notes.push_back(host);
     std::string percents;
     for (double t : options.thresholds) percents += (percents.empty() ? "" : ", ") + formatThreshold(t);
-    const std::string rays = "% of rays (all pixels, background included) whose absolute error exceeds t (t = " +
-                             percents + ")" + digitsNote(options.decimals);
+    const std::string rays = "% of rays (" + pixelsCounted(readJsonFile(rows.front().diff)) +
+                             ") whose absolute error exceeds t (t = " + percents + ")" + digitsNote(options.decimals);
     if (options.perChannel)
         table.notes.push_back(channels.front() + " > t ... worst > t: " + rays + ", per channel and in the worst "
                               "channel; max " + channels.front() + " ... max: the largest absolute error, per channel "

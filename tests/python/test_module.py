@@ -162,9 +162,20 @@ class RenderEqualsTools(unittest.TestCase):
         with open(scratch("diff.json")) as f:
             tool = json.load(f)
         mine = vri.compare(a, b)
-        for key in ("width", "height", "pixels", "pixels_counted", "thresholds", "channels"):
+        for key in ("width", "height", "pixels", "pixels_counted", "thresholds", "channels", "metrics"):
             self.assertEqual(mine[key], tool[key], key)
         self.assertGreater(mine["channels"][0]["max_abs"], 0.0)
+        # The mask, as vri-diff's --mask: the same record over the pixels the volume covers.
+        code, err = run_tool("vri-diff", scratch("a.exr"), scratch("b.exr"), "--mask", "hit", "--json",
+                             scratch("hit.json"))
+        with open(scratch("hit.json")) as f:
+            tool = json.load(f)
+        hit = vri.compare(a, b, mask="hit")
+        self.assertEqual(hit["metrics"], tool["metrics"])
+        self.assertEqual(hit["pixels"], tool["pixels"])
+        self.assertLess(hit["pixels"], mine["pixels"])
+        with self.assertRaisesRegex(vri.Error, "alpha>T"):
+            vri.compare(a, b, mask="alpha>2")
 
 
 class AsUsersExpect(unittest.TestCase):

@@ -1,0 +1,42 @@
+#pragma once
+// The image metrics rendering papers and their reviewers read, beside vri's error statistics
+// (image_compare.h): PSNR, SSIM, relative MSE and SMAPE, per channel and over all channels, over the
+// pixels a mask keeps. The reference is the first image.
+//  - PSNR = 10 log10(peak^2 / MSE) dB with peak 1, the top of a linear [0, 1] render (infinite for equal
+//    images). Over all channels, the MSE of every pixel-channel.
+//  - SSIM (Wang, Bovik, Sheikh and Simoncelli 2004): an 11 x 11 Gaussian window of sigma 1.5, normalised,
+//    K1 = 0.01, K2 = 0.03, dynamic range L = 1, on each channel alone (linear values, no colour transform);
+//    the mean of the SSIM map over the window positions that fit inside the image ("valid", as the authors'
+//    MATLAB code) whose centre the mask keeps. Over all channels, the mean of the channels' SSIM. NaN for an
+//    image smaller than the window.
+//  - Relative MSE: the mean of (a - b)^2 / (a^2 + 0.01), a the reference (Rousselle et al.'s form).
+//  - SMAPE: the mean of |a - b| / (|a| + |b| + 0.01).
+// Errors follow image_compare.h: a NaN against a number is an infinite error.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "libvri/core/image.h"
+#include "libvri/core/pixel_mask.h"
+
+namespace vri {
+
+struct MetricValues {
+    double psnr = 0, ssim = 0, relMse = 0, smape = 0;
+};
+
+struct ImageMetrics {
+    std::vector<std::string> channelNames;
+    std::vector<MetricValues> channels;  // in the images' channel order
+    MetricValues all;                    // over every channel
+    std::uint64_t pixels = 0;            // the pixels counted
+    std::uint64_t ssimWindows = 0;       // the SSIM window positions counted
+};
+
+inline constexpr double kPsnrPeak = 1.0;
+inline constexpr double kRelativeEpsilon = 0.01;  // relative MSE's and SMAPE's guard against division by 0
+
+// Throws vri::Error when the images differ in shape or the mask is not theirs.
+ImageMetrics imageMetrics(const Image& reference, const Image& test, const PixelMask* mask = nullptr);
+
+}  // namespace vri
