@@ -35,18 +35,21 @@ std::vector<double> windowMeans(const std::vector<double>& values, int width, in
     static const std::array<double, kWindow> g = gaussianWeights();
     const int w = width - kWindow + 1, h = height - kWindow + 1;
     std::vector<double> rows(static_cast<std::size_t>(w) * height), out(static_cast<std::size_t>(w) * h);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < w; ++x) {
-            double s = 0;
-            for (int k = 0; k < kWindow; ++k) s += g[k] * values[static_cast<std::size_t>(y) * width + x + k];
-            rows[static_cast<std::size_t>(y) * w + x] = s;
+    // The taps outside, the pixels of a row inside: the inner loops run over contiguous memory and vectorise,
+    // and each output still sums its taps in the order k = 0 .. 10.
+    for (int y = 0; y < height; ++y) {
+        const double* in = values.data() + static_cast<std::size_t>(y) * width;
+        double* row = rows.data() + static_cast<std::size_t>(y) * w;
+        for (int k = 0; k < kWindow; ++k)
+            for (int x = 0; x < w; ++x) row[x] += g[k] * in[x + k];
+    }
+    for (int y = 0; y < h; ++y) {
+        double* o = out.data() + static_cast<std::size_t>(y) * w;
+        for (int k = 0; k < kWindow; ++k) {
+            const double* row = rows.data() + static_cast<std::size_t>(y + k) * w;
+            for (int x = 0; x < w; ++x) o[x] += g[k] * row[x];
         }
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            double s = 0;
-            for (int k = 0; k < kWindow; ++k) s += g[k] * rows[static_cast<std::size_t>(y + k) * w + x];
-            out[static_cast<std::size_t>(y) * w + x] = s;
-        }
+    }
     return out;
 }
 
