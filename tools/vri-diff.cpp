@@ -38,6 +38,9 @@ struct Options {
     std::string json, diffImage, histogram;
     std::string channels;  // --channels: names, comma separated; empty: all
     std::string mask = "all";  // --mask: all, hit, alpha>T or a mask image
+    std::string heatScale = "linear";  // --heat-scale: linear or log[:DECADES]
+    bool heatLog = false;
+    int decades = 3;
     double diffScale = 1.0;
     std::vector<std::string> scaleOver;  // a PNG heat map's scale: the largest |A - X| over B and these
     std::string scaleFrom;               // or the scale another vri-diff's JSON records (heat_map.top)
@@ -167,6 +170,11 @@ int run(int argc, char** argv) {
         ->allow_extra_args(false)
         ->needs(diffImage)
         ->excludes(diffScale);
+    app.add_option("--heat-scale", options.heatScale,
+                   "a PNG heat map's colours: linear from 0 to the top, or log: the DECADES decades below the top "
+                   "(log is log:3), for a set whose errors span orders of magnitude")
+        ->needs(diffImage)
+        ->capture_default_str();
     app.add_option("--scale-from", options.scaleFrom,
                    "JSON: a PNG heat map's scale is the one another vri-diff's --json recorded (its heat_map.top): the "
                    "set's scale computed once, by the comparison of the set that takes --scale-over")
@@ -232,6 +240,19 @@ int run(int argc, char** argv) {
             return exitWith(vri::kExitUsage, vri::Error(std::string(option) +
                                                         " sets the scale of a PNG heat map; --diff-image '" +
                                                         options.diffImage + "' is not a .png"));
+    if (options.heatScale != "linear") {
+        const std::string& h = options.heatScale;
+        const std::optional<std::int64_t> decades =
+            h == "log" ? std::optional<std::int64_t>(3) : h.starts_with("log:") ? vri::integerFromText(h.substr(4)) : std::nullopt;
+        if (!decades || *decades < 1 || *decades > 12)
+            return exitWith(vri::kExitUsage, vri::Error("--heat-scale: expected linear, log or log:N with N decades "
+                                                        "in 1..12, got '" + h + "'"));
+        if (!isPng(options.diffImage))
+            return exitWith(vri::kExitUsage, vri::Error("--heat-scale sets a PNG heat map's colours; --diff-image '" +
+                                                        options.diffImage + "' is not a .png"));
+        options.heatLog = true;
+        options.decades = static_cast<int>(*decades);
+    }
     const std::vector<vri::OutputArgument> outputs{
         {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram}};
     vri::requireDistinctOutputs(outputs);
@@ -299,7 +320,8 @@ int run(int argc, char** argv) {
             }
         }
         if (!(*heatTop > 0) || !std::isfinite(*heatTop)) heatTop = 1.0;  // equal images, or an infinite error
-        files.add(options.diffImage, vri::encodePng(options.diffImage, vri::heatMapImage(a, b, *heatTop)));
+        files.add(options.diffImage,
+                  vri::encodePng(options.diffImage, vri::heatMapImage(a, b, {*heatTop, options.heatLog, options.decades})));
     } else if (!options.diffImage.empty()) {
         files.add(options.diffImage, vri::encodeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale)));
     }
@@ -316,7 +338,13 @@ int run(int argc, char** argv) {
             json["heat_map"] = {{"file", options.diffImage},
                                 {"value", "largest |A - B| over the channels"},
                                 {"colormap", "viridis"},
-                                {"top", *heatTop}};
+                                {"top", *heatTop},
+                                {"scale", options.heatLog ? "log" : "linear"},
+                                {"clipped", "magenta: above the top"}};
+        if (heatTop && options.heatLog) {
+            json["heat_map"]["decades"] = options.decades;
+            json["heat_map"]["bottom"] = *heatTop * std::pow(10.0, -options.decades);
+        }
         if (heatTop && !options.scaleOver.empty()) json["heat_map"]["scale_over"] = options.scaleOver;
         if (heatTop && !options.scaleFrom.empty()) json["heat_map"]["scale_from"] = options.scaleFrom;
         files.add(options.json, json.dump(2) + "\n");

@@ -52,37 +52,63 @@ void paint(Image& image, int x, int y, const std::array<double, 3>& srgb) {
 }
 
 constexpr int kGap = 4, kBar = 12, kTicks = 6, kLabelGap = 2, kMargin = 2;
+constexpr std::array<double, 3> kClipped{1.0, 0.0, 1.0};  // magenta: above the top of the scale
 
-// The value of the tick at quarter q of the scale, as its label prints it.
-std::string tickLabel(double top, int quarter) {
-    if (quarter == 0) return "0";
+// Where an error sits on the scale, 0 (bottom) to 1 (top); above 1 when it is clipped.
+double positionOf(double e, const HeatMapScale& scale) {
+    if (!scale.log) return e / scale.top;
+    if (!(e > 0)) return 0.0;
+    return std::max(0.0, 1.0 + std::log10(e / scale.top) / scale.decades);
+}
+
+struct Tick {
+    double at;  // 0 to 1 along the bar
+    std::string label;
+};
+
+std::string numberLabel(double value) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.2g", top * quarter / 4.0);
+    std::snprintf(text, sizeof text, "%.2g", value);
     return text;
+}
+
+// Linear: quarters of the scale, 0 first; log: each decade, top / 10^decades first.
+std::vector<Tick> ticksOf(const HeatMapScale& scale) {
+    std::vector<Tick> ticks;
+    if (!scale.log) {
+        for (int q = 0; q <= 4; ++q) ticks.push_back({q / 4.0, q == 0 ? "0" : numberLabel(scale.top * q / 4.0)});
+    } else {
+        for (int d = 0; d <= scale.decades; ++d)
+            ticks.push_back({double(d) / scale.decades, numberLabel(scale.top * std::pow(10.0, d - scale.decades))});
+    }
+    return ticks;
 }
 
 // The left edge of a label centred on the tick at x, kept on the canvas.
 int labelLeft(int x, int width, int canvasWidth) { return std::clamp(x - width / 2, 0, std::max(0, canvasWidth - width)); }
 
-int tickX(int canvasWidth, int quarter) { return (canvasWidth - 1) * quarter / 4; }
+int tickX(int canvasWidth, double at) { return static_cast<int>(std::floor((canvasWidth - 1) * at)); }
 
 // The space that keeps two labels apart: two characters' advance, so that "0" and "0.25" never read
 // as "00.25".
 int labelSpace(int scale) { return 2 * (kGlyphColumns + 1) * scale; }
 
-// The quarters whose labels stand labelSpace apart on a canvas `canvasWidth` wide: all five, else 0,
-// 1/2 and 1, else 0 and 1; empty when not even those two fit.
-std::vector<int> labelledQuarters(double top, int canvasWidth, int scale) {
-    for (const std::vector<int>& quarters : {std::vector<int>{0, 1, 2, 3, 4}, {0, 2, 4}, {0, 4}}) {
+// The ticks whose labels stand labelSpace apart on a canvas `canvasWidth` wide: all, else every other one
+// (both ends kept), else the two ends; empty when not even those two fit.
+std::vector<Tick> labelledTicks(const std::vector<Tick>& ticks, int canvasWidth, int scale) {
+    std::vector<Tick> everyOther, ends{ticks.front(), ticks.back()};
+    for (std::size_t i = 0; i < ticks.size(); i += 2) everyOther.push_back(ticks[i]);
+    if (everyOther.back().at != ticks.back().at) everyOther.push_back(ticks.back());
+    for (const std::vector<Tick>& candidate : {ticks, everyOther, ends}) {
         bool apart = true;
         int right = -labelSpace(scale);  // the previous label's right edge
-        for (int q : quarters) {
-            const int width = numberTextWidth(tickLabel(top, q), scale);
-            const int left = labelLeft(tickX(canvasWidth, q), width, canvasWidth);
+        for (const Tick& t : candidate) {
+            const int width = numberTextWidth(t.label, scale);
+            const int left = labelLeft(tickX(canvasWidth, t.at), width, canvasWidth);
             apart = apart && left >= right + labelSpace(scale);
             right = left + width;
         }
-        if (apart) return quarters;
+        if (apart) return candidate;
     }
     return {};
 }
@@ -91,18 +117,23 @@ std::vector<int> labelledQuarters(double top, int canvasWidth, int scale) {
 
 int heatMapLabelScale(int canvasWidth) { return canvasWidth >= 256 ? 2 : 1; }
 
-Image heatMapImage(const Image& a, const Image& b, double top) {
-    if (!(top > 0) || !std::isfinite(top)) throw Error("heat map: the top of the scale must be a positive number");
+Image heatMapImage(const Image& a, const Image& b, const HeatMapScale& scale) {
+    if (!(scale.top > 0) || !std::isfinite(scale.top))
+        throw Error("heat map: the top of the scale must be a positive number");
+    if (scale.log && (scale.decades < 1 || scale.decades > 12))
+        throw Error("heat map: a log scale spans 1 to 12 decades, got " + std::to_string(scale.decades));
     const Image difference = differenceImage(a, b);
+    const std::vector<Tick> ticks = ticksOf(scale);
 
-    // A canvas wide enough for the labels 0 and `top`, labelSpace apart.
+    // A canvas wide enough for the labels of both ends, labelSpace apart.
     int canvasWidth = a.width;
-    if (labelledQuarters(top, canvasWidth, heatMapLabelScale(canvasWidth)).empty()) {
-        const int scale = heatMapLabelScale(canvasWidth);
-        canvasWidth = numberTextWidth(tickLabel(top, 0), scale) + numberTextWidth(tickLabel(top, 4), scale) + labelSpace(scale);
+    if (labelledTicks(ticks, canvasWidth, heatMapLabelScale(canvasWidth)).empty()) {
+        const int cell = heatMapLabelScale(canvasWidth);
+        canvasWidth = numberTextWidth(ticks.front().label, cell) + numberTextWidth(ticks.back().label, cell) +
+                      labelSpace(cell);
     }
-    const int scale = heatMapLabelScale(canvasWidth);
-    const int barRows = kGap + kBar + kTicks + kLabelGap + kGlyphRows * scale + kMargin;
+    const int cell = heatMapLabelScale(canvasWidth);
+    const int barRows = kGap + kBar + kTicks + kLabelGap + kGlyphRows * cell + kMargin;
     Image heat(canvasWidth, a.height + barRows, 4);
     for (int y = 0; y < heat.height; ++y)
         for (int x = 0; x < heat.width; ++x) paint(heat, x, y, {1.0, 1.0, 1.0});
@@ -112,20 +143,20 @@ Image heatMapImage(const Image& a, const Image& b, double top) {
         for (int x = 0; x < a.width; ++x) {
             double e = 0;
             for (int c = 0; c < a.channels; ++c) e = std::max(e, double(difference.pixels[(std::size_t(y) * a.width + x) * a.channels + c]));
-            paint(heat, left + x, y, viridis(e / top));
+            const double u = positionOf(e, scale);
+            paint(heat, left + x, y, u > 1.0 ? kClipped : viridis(u));
         }
     const int barTop = a.height + kGap;
     for (int x = 0; x < canvasWidth; ++x) {
         const auto colour = viridis(canvasWidth > 1 ? double(x) / double(canvasWidth - 1) : 0.0);
         for (int y = barTop; y < barTop + kBar; ++y) paint(heat, x, y, colour);
     }
-    for (int quarter = 0; quarter <= 4; ++quarter)
-        for (int y = barTop + kBar; y < barTop + kBar + kTicks; ++y) paint(heat, tickX(canvasWidth, quarter), y, {0.0, 0.0, 0.0});
+    for (const Tick& t : ticks)
+        for (int y = barTop + kBar; y < barTop + kBar + kTicks; ++y) paint(heat, tickX(canvasWidth, t.at), y, {0.0, 0.0, 0.0});
     const int labelTop = barTop + kBar + kTicks + kLabelGap;
-    for (int quarter : labelledQuarters(top, canvasWidth, scale)) {
-        const std::string label = tickLabel(top, quarter);
-        const int width = numberTextWidth(label, scale);
-        drawNumberText(heat, labelLeft(tickX(canvasWidth, quarter), width, canvasWidth), labelTop, scale, label,
+    for (const Tick& t : labelledTicks(ticks, canvasWidth, cell)) {
+        const int width = numberTextWidth(t.label, cell);
+        drawNumberText(heat, labelLeft(tickX(canvasWidth, t.at), width, canvasWidth), labelTop, cell, t.label,
                        {0.0f, 0.0f, 0.0f, 1.0f});
     }
     return heat;

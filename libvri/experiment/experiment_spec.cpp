@@ -592,7 +592,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
 void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [group, entry] : entries(node, "comparisons")) {
         yaml::requireKeys(entry, source_,
-                          {"reference", "runs", "thresholds", "diff_image", "diff_scale", "histogram", "mask"});
+                          {"reference", "runs", "thresholds", "diff_image", "diff_scale", "heat_scale", "histogram", "mask"});
         const YAML::Node ref = required(entry, "reference", "comparison '" + group + "'");
         const std::string reference = text(ref, "reference");
         requireRun(experiment, reference, ref);
@@ -604,7 +604,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             for (const RunSpec& r : experiment.runs)
                 if (!r.reference && r.id != reference && r.scene == experiment.run(reference).scene) runs.push_back(r.id);
         }
-        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", "", false, false, ""};
+        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", "", false, false, "", ""};
         if (const YAML::Node t = entry["thresholds"]) {
             if (!t.IsSequence() || t.size() == 0) throw Error(at(t) + ": thresholds must be a list of numbers");
             base.thresholds.clear();
@@ -630,6 +630,18 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             }
         }
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
+        if (const YAML::Node h = entry["heat_scale"]) {
+            base.heatScale = text(h, "heat_scale");
+            const std::optional<std::int64_t> decades =
+                base.heatScale == "log" ? std::optional<std::int64_t>(3)
+                : base.heatScale.starts_with("log:") ? integerFromText(std::string_view(base.heatScale).substr(4))
+                                                     : std::nullopt;
+            if (base.heatScale == "linear") base.heatScale.clear();
+            else if (!decades || *decades < 1 || *decades > 12)
+                throw Error(at(h) + ": heat_scale must be linear, log or log:N (N decades in 1..12), got '" +
+                            printable(base.heatScale) + "'");
+            if (base.diffImage != "png") throw Error(at(h) + ": heat_scale is the colour scale of PNG heat maps (diff_image: png)");
+        }
         if (const YAML::Node m = entry["mask"]) {
             base.mask = text(m, "mask");
             try {

@@ -74,6 +74,7 @@ struct ComparisonSpec {
     // vri-diff --mask: which pixels every statistic counts ("all", "hit", "alpha>T" or an image, from the
     // experiment's folder); "" for all.
     std::string mask;
+    std::string heatScale;  // vri-diff --heat-scale of a PNG heat map: "", "log" or "log:N"
 };
 
 // A comparison's id, the name of its files: its name and the run's id, with the words (between '-') that

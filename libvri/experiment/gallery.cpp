@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <set>
 #include <sstream>
@@ -43,9 +44,12 @@ void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs:
         if (!fs::is_regular_file(json)) continue;
         const nlohmann::json diff = readJsonFile(json);
         if (!diff.contains("heat_map")) continue;  // results of a vri-diff that drew RGB on black
-        char top[32];
+        char top[64];
         std::snprintf(top, sizeof top, "%.3g",
                       readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
+        if (diff.at("heat_map").value("scale", "linear") == "log")  // "0.99, log over 3 decades"
+            std::snprintf(top + std::strlen(top), sizeof top - std::strlen(top), ", log over %d decades",
+                          readingJsonOf(json, [&] { return diff.at("heat_map").at("decades").get<int>(); }));
         const bool shared = diff.at("heat_map").contains("scale_over") || diff.at("heat_map").contains("scale_from");
         if (shared && !scales.empty() && scales.back().second == top + std::string(" (one scale)"))
             scales.back().first += ", " + id;
@@ -54,8 +58,9 @@ void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs:
     }
     if (scales.empty()) return;
     md << "*Difference images: heat maps of the largest |run - reference| over the channels (alpha included), "
-          "viridis from 0 (dark blue, the colour bar's left end) to the top of the scale (yellow, its right end; "
-          "larger errors saturate), the bar numbered at quarters of it. Top of the scale: ";
+          "viridis from the bottom of the scale (dark blue, the colour bar's left end: 0, or on a log scale the top "
+          "over 10^decades) to its top (yellow, its right end; larger errors in magenta), the bar numbered at "
+          "quarters of it or at each decade. Top of the scale: ";
     for (std::size_t i = 0; i < scales.size(); ++i) md << (i ? "; " : "") << scales[i].first << " " << scales[i].second;
     md << ".*\n\n";
 }

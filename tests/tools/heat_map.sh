@@ -57,6 +57,27 @@ grep -q '"top": 0.25' from.json && grep -q '"scale_from": "shared.json"' from.js
 # --diff-scale 2 sets the top at 0.5: the largest error is then half-way.
 "$VRI_BIN/vri-diff" a.exr b.exr --diff-image heat2.png --diff-scale 2 --json d2.json --failpercent 100 --warnpercent 100 > /dev/null
 grep -q '"top": 0.5' d2.json || fail "the scale with --diff-scale: $(grep -A4 heat_map d2.json)"
+# A log scale over one decade below the top 0.25: c's 0.125 sits at 1 + log10(1/2) = 0.70 of the bar, viridis'
+# green (45,175,126 by its stops), where the linear scale put it at half; no error is the bottom's dark blue.
+"$VRI_BIN/vri-diff" a.exr b.exr --diff-image log.png --heat-scale log:1 --json log.json --failpercent 100 --warnpercent 100 > /dev/null
+grep -q '"scale": "log"' log.json && grep -q '"decades": 1' log.json && grep -q '"bottom": 0.025' log.json ||
+    fail "the log scale's JSON: $(grep -A10 heat_map log.json)"
+oiiotool --dumpdata log.png > pixels.txt
+width=$(oiiotool --info log.png | tr -s " " | sed -n 's/.* \([0-9]*\) x [0-9]*, 3 channel.*/\1/p')
+left=$(( (width - 8) / 2 ))   # the 8-pixel image, centred on a canvas as wide as the labels 0.025 and 0.25 need
+read -r r g b <<< "$(pixel $((left + 5)) 6)"
+(( r < 70 && g > 160 && b > 100 && b < 150 )) || fail "0.125 on a decade's log scale: $r $g $b"
+[[ $(pixel "$left" 0) == "68 1 84" ]] || fail "zero on the log scale: $(pixel "$left" 0)"
+# A scale below the largest error clips it, in magenta; an error at the top is yellow.
+"$VRI_BIN/vri-diff" a.exr b.exr --diff-image clip.png --diff-scale 8 --failpercent 100 --warnpercent 100 > /dev/null
+oiiotool --dumpdata clip.png > pixels.txt
+[[ $(pixel 12 2) == "255 0 255" ]] || fail "a clipped error: $(pixel 12 2)"
+[[ $(pixel 14 6) == "253 231 37" ]] || fail "an error at the top: $(pixel 14 6)"
+for bad in log:0 log:13 logarithmic; do
+  if "$VRI_BIN/vri-diff" a.exr b.exr --diff-image x.png --heat-scale "$bad" 2> err.txt; then fail "--heat-scale $bad was taken"; fi
+  grep -q "^vri-diff: error: --heat-scale: expected linear, log or log:N with N decades in 1..12, got '$bad'" err.txt ||
+    fail "--heat-scale $bad: $(cat err.txt)"
+done
 # An EXR difference image stays the exact per-channel difference (no heat map in the JSON).
 "$VRI_BIN/vri-diff" a.exr b.exr --diff-image d.exr --json d3.json --failpercent 100 --warnpercent 100 > /dev/null
 ! grep -q heat_map d3.json || fail "an EXR diff image has a heat-map scale"
@@ -78,15 +99,19 @@ methods:
 comparisons:
   vs-fine: {reference: riemann-h0.25, runs: [riemann-h1], diff_image: png}
   vs-finest: {reference: riemann-h0.25, runs: [riemann-h1, riemann-h0.5], diff_image: png, diff_scale: shared}
+  vs-log: {reference: riemann-h0.25, runs: [riemann-h1], diff_image: png, heat_scale: log:2}
 YAML
 "$VRI_BIN/vri-run" --results out --gallery out exp.yaml 2> run.txt || fail "the run failed: $(cat run.txt)"
 top=$(sed -n "s/^ *\"top\": \([0-9.e+-]*\),\?$/\1/p" out/heat/vs-fine-riemann-h1.json)
 want=$(printf '%.3g' "$top")
-grep -q "viridis from 0 (dark blue.*Top of the scale: vs-fine-riemann-h1 $want;" out/README.md ||
+grep -q "viridis from the bottom of the scale (dark blue.*Top of the scale: vs-fine-riemann-h1 $want;" out/README.md ||
     fail "the gallery's caption (top $top): $(grep -i heat out/README.md)"
 # diff_scale: shared: both maps of vs-finest run to the larger error (h = 1's), listed together once.
-grep -q "; vs-finest-riemann-h1, vs-finest-riemann-h0.5 $want (one scale)\.\*\$" out/README.md ||
+grep -q "; vs-finest-riemann-h1, vs-finest-riemann-h0.5 $want (one scale);" out/README.md ||
     fail "the shared scale's caption: $(grep -i heat out/README.md)"
 grep -q "(heat/vs-finest-riemann-h1.png)" out/README.md || fail "vs-finest-riemann-h1 is not in the gallery"
 grep -q "\"top\": $top" out/heat/vs-finest-riemann-h0.5.json || fail "h = 0.5's map on the shared scale: $(grep -A8 heat_map out/heat/vs-finest-riemann-h0.5.json)"
+# heat_scale: log:2 reaches vri-diff, and the caption says so.
+grep -q "; vs-log-riemann-h1 $want, log over 2 decades\.\*\$" out/README.md || fail "the log scale's caption: $(grep -i heat out/README.md)"
+grep -q '"scale": "log"' out/heat/vs-log-riemann-h1.json || fail "heat_scale did not reach vri-diff"
 echo "heat map: all checks passed"
