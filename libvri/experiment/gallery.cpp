@@ -65,6 +65,25 @@ void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs:
     md << ".*\n\n";
 }
 
+// The caption under an experiment's tables and charts when any of its renders was timed while other processes
+// kept the cores busy (timing.load.overloaded in the run's stats, frame_timing.h): its seconds are inflated.
+void loadWarning(std::ostream& md, const nlohmann::json& steps, const fs::path& dir) {
+    std::vector<std::string> loaded;
+    for (const nlohmann::json& step : steps) {
+        if (step.value("kind", "") != "render") continue;
+        const fs::path stats = dir / (step.at("id").get<std::string>() + ".json");
+        if (!fs::is_regular_file(stats)) continue;
+        const nlohmann::json record = readJsonFile(stats);
+        if (!record.contains("timing") || !record["timing"].is_object()) continue;
+        const nlohmann::json& load = record["timing"].value("load", nlohmann::json());
+        if (load.is_object() && load.value("overloaded", false)) loaded.push_back(step.at("id").get<std::string>());
+    }
+    if (loaded.empty()) return;
+    md << "*Timed under load: " << loaded.size() << (loaded.size() == 1 ? " run (" : " runs (") << loaded.front()
+       << (loaded.size() > 1 ? ", ..." : "") << ") ran while other processes kept the cores busy (timing.load in "
+       << "their stats): their seconds, in the tables and charts here, are inflated.*\n\n";
+}
+
 // A table's Markdown without the notes under its last row when an earlier table of the experiment had
 // the same: a kind of table is explained once, not under each of its tables.
 std::string withNewNotes(const std::string& table, std::set<std::string>& notesSeen) {
@@ -146,6 +165,7 @@ std::string gallerySection(const fs::path& path, std::map<std::string, std::stri
             if (const auto text = tryReadFileText(path.parent_path() / table.at("file").get<std::string>());
                 text && !text->empty())
                 md << withNewNotes(*text, notesSeen) << "\n";
+        loadWarning(md, m.at("steps"), path.parent_path());
         // A figure is as wide as the page: one a line.
         for (const nlohmann::json& figure : outputs.at("figures"))
             md << "![" << figure.at("id").get<std::string>() << "](" << dir << "/"

@@ -3,10 +3,12 @@
 
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "libvri/io/provenance.h"
 #include "libvri/util/error.h"
 #include "libvri/util/file_text.h"
+#include "libvri/util/json_file.h"
 #include "libvri/util/printable.h"
 
 namespace vri {
@@ -93,11 +95,40 @@ bool StepLedger::succeeded(std::size_t i, double wallSeconds, const StepExecutio
         }
     // Its outputs are sound whatever else failed: a rerun need not make them again.
     writeRecord(recordPath(plan_, step), record);
+    // The tool's warnings (timed under load, more threads than cores, ...) reach the console, the rest of its
+    // output goes with the log.
+    if (const std::optional<std::string> log = tryReadFileText(logPath(i))) {
+        std::istringstream lines(*log);
+        for (std::string line; std::getline(lines, line);)
+            if (line.find(": warning: ") != std::string::npos)
+                progress_.warning(i, printable(line.substr(0, 400)));
+    }
     fs::remove(logPath(i));
+    if (step.kind == "render") warnIfTimedUnderLoad(i);
     std::string detail = secondsDetail(wallSeconds);
     if (!execution.jobId.empty()) detail += ", job " + execution.jobId + " on " + execution.node;
     settle(i, StepOutcome::State::Ran, "ran", detail);
     return true;
+}
+
+void StepLedger::warnIfTimedUnderLoad(std::size_t i) {
+    for (const fs::path& out : plan_.steps[i].outputs) {
+        if (out.extension() != ".json") continue;
+        try {
+            const nlohmann::json stats = readJsonFile(out);
+            const nlohmann::json& timing = stats.value("timing", nlohmann::json());
+            const nlohmann::json& load = timing.is_object() ? timing.value("load", nlohmann::json()) : nlohmann::json();
+            if (!load.is_object() || !load.value("overloaded", false)) continue;
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "warning: timed while other processes used %.1f cores beside its %d threads on %d cores: "
+                          "its seconds are inflated",
+                          load.value("other_cores", 0.0), load.value("threads", 0), load.value("cores", 0));
+            progress_.warning(i, text);
+        } catch (const std::exception&) {
+            // Not a stats record: nothing to say of its timing.
+        }
+    }
 }
 
 void StepLedger::failed(std::size_t i, const std::string& why, double wallSeconds) {

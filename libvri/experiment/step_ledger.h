@@ -52,6 +52,8 @@ public:
 
 private:
     void settle(std::size_t i, StepOutcome::State state, const std::string& how, const std::string& detail);
+    // A render's stats that say it was timed beside other processes' load (timing.load): a warning line.
+    void warnIfTimedUnderLoad(std::size_t i);
 
     const Plan& plan_;
     const RunOptions& options_;

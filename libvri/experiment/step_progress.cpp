@@ -74,6 +74,10 @@ std::string StepProgress::statusText() const {
     return text;
 }
 
+void StepProgress::warning(std::size_t step, const std::string& text) {
+    if (style_ != Style::Quiet) line(plan_.steps[step].id + ": " + text);
+}
+
 void StepProgress::line(const std::string& text) {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     std::fprintf(stderr, "%svri-run: %s [%zu/%zu] %.1f s: %s\n", liveShown_ ? "\r\x1b[K" : "",

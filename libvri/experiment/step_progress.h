@@ -31,6 +31,9 @@ public:
     // `how`: "ran", "cached", "failed", ...; `detail` follows in parentheses ("1.23 s").
     void settled(std::size_t step, const std::string& how, const std::string& detail);
 
+    // What a step's tool warned of, on a line of its own (shown in every style but Quiet's).
+    void warning(std::size_t step, const std::string& text);
+
     // The live line's text: "[done/total] running: a, b; ETA 12.3 s" (public for its test).
     std::string statusText() const;
 

@@ -1,5 +1,7 @@
 #include "libvri/render/render_job.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "libvri/core/out_of_range_pixels.h"
@@ -134,11 +136,40 @@ nlohmann::json provenanceRecord(const std::string& tool, const nlohmann::json& c
             {"options", toJson(request)}};
 }
 
-nlohmann::json frameTimingRecord(int warmUpFrames, const std::vector<double>& wallSeconds) {
-    return {{"warm_up_frames", warmUpFrames},
-            {"repeats", wallSeconds.size()},
-            {"wall_seconds", wallSeconds},
-            {"median_wall_seconds", median(wallSeconds)}};
+MedianInterval medianInterval(std::vector<double> values) {
+    if (values.empty()) throw Error("a median's interval of no values");
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    // coverage(k) = 1 - 2 P(B < k), B ~ Binomial(n, 1/2): the chance that the median lies between the k-th
+    // smallest and the k-th largest.
+    const auto coverage = [n](std::size_t k) {
+        double below = 0, term = std::pow(0.5, static_cast<double>(n));  // P(B = 0)
+        for (std::size_t j = 0; j < k; ++j) {
+            below += term;
+            term *= static_cast<double>(n - j) / static_cast<double>(j + 1);
+        }
+        return 1.0 - 2.0 * below;
+    };
+    std::size_t k = 1;
+    while (2 * (k + 1) <= n + 1 && coverage(k + 1) >= 0.95) ++k;
+    return {values[k - 1], values[n - k], coverage(k)};
+}
+
+nlohmann::json frameTimingRecord(int warmUpFrames, const std::vector<double>& wallSeconds,
+                                 const std::optional<TimingLoad>& load) {
+    const MedianInterval ci = medianInterval(wallSeconds);
+    nlohmann::json record = {{"warm_up_frames", warmUpFrames},
+                             {"repeats", wallSeconds.size()},
+                             {"wall_seconds", wallSeconds},
+                             {"median_wall_seconds", median(wallSeconds)},
+                             {"median_ci", {{"low", ci.low}, {"high", ci.high}, {"coverage", ci.coverage}}},
+                             {"load", nullptr}};
+    if (load)
+        record["load"] = {{"other_cores", load->otherCores},
+                          {"threads", load->threads},
+                          {"cores", load->cores},
+                          {"overloaded", load->overloaded()}};
+    return record;
 }
 
 }  // namespace vri

@@ -87,7 +87,26 @@ private:
 nlohmann::json provenanceRecord(const std::string& tool, const nlohmann::json& command, const SceneSetup& setup,
                                 const RenderRequest& request);
 
-// The record of the frames a render timed: {"warm_up_frames", "repeats", "wall_seconds", "median_wall_seconds"}.
-nlohmann::json frameTimingRecord(int warmUpFrames, const std::vector<double>& wallSeconds);
+// What else ran while a render timed its frames (util/cpu_load.h): other processes' cores beside the
+// render's threads, on the machine's cores. Overloaded, when together they exceed the cores by more than half
+// a core, the times are inflated.
+struct TimingLoad {
+    double otherCores = 0;
+    int threads = 1, cores = 1;
+    bool overloaded() const { return otherCores + threads > cores + 0.5; }
+};
+
+// The record of the frames a render timed: {"warm_up_frames", "repeats", "wall_seconds", "median_wall_seconds",
+// "median_ci": {"low", "high", "coverage"}, "load": {"other_cores", "threads", "cores", "overloaded"} or null}.
+// The median's interval is that of the frames' order statistics (x_(k), x_(n+1-k)) with the largest k whose
+// coverage, 1 - 2 P(Binomial(n, 1/2) < k), is at least 0.95, else k = 1 and its coverage (75 % for 3 frames).
+nlohmann::json frameTimingRecord(int warmUpFrames, const std::vector<double>& wallSeconds,
+                                 const std::optional<TimingLoad>& load = std::nullopt);
+
+// The interval above as (low, high, coverage).
+struct MedianInterval {
+    double low = 0, high = 0, coverage = 0;
+};
+MedianInterval medianInterval(std::vector<double> values);
 
 }  // namespace vri

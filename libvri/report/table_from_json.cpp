@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "libvri/render/render_job.h"  // medianInterval
 #include "libvri/report/pareto.h"
 #include "libvri/report/table.h"
 #include "libvri/util/error.h"
@@ -153,6 +154,27 @@ std::string digitsNote(const std::optional<int>& decimals) {
     return ", to " + std::to_string(kPercentDigits) + " significant digits (0: no ray)";
 }
 
+// A warning for a table of times when any of its runs was timed beside other processes that kept the cores
+// busy (timing.load.overloaded, frame_timing.h); empty when none was, or the stats do not say.
+std::string loadWarning(const std::vector<fs::path>& statsFiles) {
+    std::size_t loaded = 0;
+    double most = 0;
+    for (const fs::path& file : statsFiles) {
+        const json stats = readJsonFile(file);
+        if (!stats.contains("timing") || !stats["timing"].is_object()) continue;
+        const json& load = stats["timing"].value("load", json());
+        if (!load.is_object() || !load.value("overloaded", false)) continue;
+        ++loaded;
+        most = std::max(most, load.value("other_cores", 0.0));
+    }
+    if (loaded == 0) return {};
+    char cores[32];
+    std::snprintf(cores, sizeof cores, "%.1f", most);
+    return "Warning: " + std::to_string(loaded) + " of these " + std::to_string(statsFiles.size()) +
+           " runs were timed while other processes kept the cores busy (up to " + cores +
+           " cores beside their threads; timing.load in each run's stats): their seconds are inflated.";
+}
+
 // Which pixels a comparison's percentages count, from its vri-diff JSON: "all pixels, background included",
 // or its --mask's description.
 std::string pixelsCounted(const json& diff) {
@@ -250,6 +272,13 @@ Table matrixTable(const std::vector<MatrixCell>& cells, const MatrixOptions& opt
     }
     table.notes.push_back(values + ".");
     if (const std::string note = medianNote(fewest, most); !note.empty()) table.notes.push_back(note);
+    bool timed = options.value.find("timing.") != std::string::npos;
+    for (const auto& [column, expression] : options.columnValue) timed = timed || expression.find("timing.") != std::string::npos;
+    if (timed) {
+        std::vector<fs::path> files;
+        for (const MatrixCell& cell : cells) files.insert(files.end(), cell.files.begin(), cell.files.end());
+        if (const std::string warning = loadWarning(files); !warning.empty()) table.notes.push_back(warning);
+    }
     return table;
 }
 
@@ -281,6 +310,8 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     addColumn("seconds", kDigits, true);
     addColumn("frames", 0, false);
     addColumn("spread %", 2, true);
+    addColumn("ci low", kDigits, true);
+    addColumn("ci high", kDigits, true);
     if (!options.baseline.empty()) addColumn("time ratio", kDigits, true);
     addColumn("Msamples/s", kDigits, true);
     for (double t : options.thresholds) {
@@ -322,6 +353,9 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         const auto [fastest, slowest] = std::ranges::minmax(times);
         cells.push_back(static_cast<double>(times.size()));
         cells.push_back(seconds > 0 ? 100 * (slowest - fastest) / seconds : 0.0);
+        const MedianInterval ci = medianInterval(times);
+        cells.push_back(ci.low);
+        cells.push_back(ci.high);
         if (!options.baseline.empty()) cells.push_back(seconds / baselineSeconds);
         const json* samples = stats.contains("stats") ? &stats["stats"] : nullptr;
         if (samples && samples->contains("samples_evaluated") && seconds > 0)
@@ -375,8 +409,15 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
                           (options.baseline.empty() ? std::string()
                                                     : " time ratio: seconds over those of " + options.baseline +
                                                           ", timed in the same run."));
+    table.notes.push_back("ci low, ci high: the frames' order statistics that hold the median time with a known "
+                          "chance, whatever the times' distribution: the fastest and slowest of 3 frames (75 %) or "
+                          "of 5 (94 %); from 6 frames on, the narrowest such pair that holds it with at least 95 % "
+                          "(timing.median_ci).");
     table.notes.push_back("Msamples/s: millions of samples evaluated per second (stats.samples_evaluated over "
                           "seconds; - where the method counts none).");
+    std::vector<fs::path> statsFiles;
+    for (const TradeoffRow& row : rows) statsFiles.push_back(row.stats);
+    if (const std::string warning = loadWarning(statsFiles); !warning.empty()) table.notes.push_back(warning);
     if (const std::string host = hostNote(readJsonFile(rows.front().stats)); !host.empty()) table.notes.push_back(host);
     std::string percents;
     for (double t : options.thresholds) percents += (percents.empty() ? "" : ", ") + formatThreshold(t);

@@ -5,7 +5,6 @@
 #include <iostream>
 #include <sstream>
 
-#include "libvri/render/render_job.h"
 #include "libvri/util/statistics.h"
 
 namespace vri {
@@ -39,8 +38,25 @@ void FrameTiming::report(const char* what, int index, int count, double seconds)
     std::fprintf(stderr, "%s: %s %d of %d: %.3g s\n", tool_.c_str(), what, index + 1, count, seconds);
 }
 
+void FrameTiming::measureLoad(const std::optional<CpuSample>& before) const {
+    load_.reset();
+    const std::optional<CpuSample> after = sampleCpu();
+    if (!before || !after) return;
+    const std::optional<double> others = otherProcessCores(*before, *after);
+    if (!others) return;
+    const int cores = onlineCores(), usable = tbb::info::default_concurrency();
+    load_ = TimingLoad{*others, threads_ == 0 ? usable : std::min(threads_, usable), cores};
+    if (load_->overloaded() && !quiet_) {  // quiet (as under vri-run), the stats record it and vri-run says it
+        char text[64];
+        std::snprintf(text, sizeof text, "%.1f", load_->otherCores);
+        std::cerr << tool_ << ": warning: the timed frames ran while other processes used " << text << " cores beside "
+                  << load_->threads << (load_->threads == 1 ? " thread" : " threads") << " on " << cores
+                  << " cores: their times are inflated (timing.load in the stats)\n";
+    }
+}
+
 nlohmann::json FrameTiming::toJson(const std::vector<double>& wallSeconds) const {
-    return frameTimingRecord(warmUp_, wallSeconds);
+    return frameTimingRecord(warmUp_, wallSeconds, load_);
 }
 
 std::string FrameTiming::summary(const std::vector<double>& wallSeconds) const {

@@ -12,6 +12,8 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "libvri/render/render_job.h"
+#include "libvri/util/cpu_load.h"
 #include "libvri/util/error.h"
 
 namespace vri {
@@ -31,6 +33,7 @@ public:
     template <class Frame>
     auto run(const Frame& frame) const {
         for (int i = 0; i < warmUp_; ++i) report("warm-up frame", i, warmUp_, frame().seconds);
+        const std::optional<CpuSample> before = sampleCpu();
         auto first = frame();
         report("frame", 0, repeat_, first.seconds);
         std::vector<double> wallSeconds{first.seconds};
@@ -41,16 +44,20 @@ public:
                 throw Error("--repeat: frame " + std::to_string(i + 1) + " differs from the first");
             wallSeconds.push_back(again.seconds);
         }
+        measureLoad(before);
         return std::pair{std::move(first), std::move(wallSeconds)};
     }
 
-    // {"warm_up_frames", "repeats", "wall_seconds", "median_wall_seconds"}
+    // frameTimingRecord's, with the load measured over the timed frames.
     nlohmann::json toJson(const std::vector<double>& wallSeconds) const;
     // For the tools' closing line: "0.94 s", or "0.94 s (median of 3)".
     std::string summary(const std::vector<double>& wallSeconds) const;
 
 private:
     void report(const char* what, int index, int count, double seconds) const;
+    // The other processes' load over the timed frames since `before`; said on stderr when it inflates them.
+    void measureLoad(const std::optional<CpuSample>& before) const;
+    mutable std::optional<TimingLoad> load_;
 
     int threads_ = 0, repeat_ = 1, warmUp_ = 0;
     std::string tool_;
