@@ -119,9 +119,11 @@ struct PlotSpec {
 //         - {file: orders.csv, x: h, y: error, style: linespoints, where: {series: a}, label_from: legend}
 //         - {file: speed.csv, x: seconds, y: max, style: linespoints, where: {method: exact}, label: exact,
 //            label_ends: run}                                   # keyed "exact, eps1e-6 to eps1e-7"
+//         - {file: speed.csv, x: seconds, y: max, style: linespoints, group_by: method, label_ends: run}
+//                                  # a series per method family, each its colour and point (below)
 //
 // A series' `width` (line width) is for line, dashed, dotted, linespoints and segments; `size` and
-// `point` (circle, square, cross, triangle) for points and linespoints; heatmaps take neither
+// `point` (circle, square, cross, triangle, triangle-down, diamond) for points and linespoints; heatmaps take neither
 // `color` nor `label`. Without `label` a series is keyed by its y column; `label: ""` leaves it
 // out of the key. `where: {column: text, ...}` keeps only the rows whose columns hold those
 // texts, or with a trailing '*' start with the rest (`{run: "leaves-coupled-eps0.01-*"}`; not for histograms

@@ -111,16 +111,20 @@ std::string axisCommands(const char* name, const PlotAxis& axis, bool fit, const
 }
 
 // A key below the plot is one column of entries, under the x axis's tics and label: `belowRows` lines of
-// margin hold the longest such key of the figure, so that every panel's plot is as high as its neighbours'
-// (gnuplot would shrink each panel by its own key). Other keys leave the margin to gnuplot.
+// margin hold the longest such key of the figure, and every panel of such a figure gets them, keyed below or
+// not, so that every panel's plot is as high as its neighbours' (gnuplot would shrink each panel by its own
+// key). In a figure without such a key (belowRows 0) the margin is gnuplot's.
 std::string keyCommand(const std::string& key, int belowRows) {
     if (key == "below")
         return "    set key below vertical maxcols 1\n    set bmargin " + std::to_string(belowRows) + "\n";
-    std::string out = "    set bmargin\n";
+    std::string out = belowRows > 0 ? "    set bmargin " + std::to_string(belowRows) + "\n" : "    set bmargin\n";
     if (key == "off") return out + "    unset key\n";
     if (key == "outside") return out + "    set key outside right top\n";
     return out + "    set key " + key + "\n";
 }
+
+// The height of a line of text in the figures' 10-point sans font, in pixels.
+constexpr int kKeyLinePixels = 16;
 
 // The lines of bottom margin that the figure's longest key below a panel needs: its entries, and four
 // for the x tic labels, the x label and the space around them.
@@ -384,7 +388,11 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
         }
         out += "EOD\n";
     }
-    const std::string size = std::to_string(spec.width) + "," + std::to_string(spec.height);
+    // A key below a panel gets lines of its own: the canvas grows by them, so that the plots keep the height
+    // the spec gives them however long the key (gnuplot would take the lines from the plot).
+    const bool keyBelow = std::ranges::any_of(spec.panels, [](const PlotPanel& p) { return p.key == "below"; });
+    const int height = spec.height + (keyBelow ? spec.rows * belowRows(spec) * kKeyLinePixels : 0);
+    const std::string size = std::to_string(spec.width) + "," + std::to_string(height);
     out += "do for [format in \"png svg\"] {\n"
            "    if (format eq \"png\") {\n"
            "        set terminal pngcairo size " + size + " noenhanced font \"sans,10\"\n"
@@ -398,7 +406,7 @@ std::string gnuplotScript(const PlotSpec& spec, const fs::path& scriptPath, cons
     for (std::size_t p = 0; p < spec.panels.size(); ++p) {
         const PlotPanel& panel = spec.panels[p];
         out += "    # panel " + std::to_string(p + 1) + "\n";
-        out += panelCommands(panel, fits[p], belowRows(spec)) + "    plot ";
+        out += panelCommands(panel, fits[p], keyBelow ? belowRows(spec) : 0) + "    plot ";
         for (std::size_t s = 0; s < panel.series.size(); ++s) {
             const PlotSeries& series = panel.series[s];
             // A heatmap is keyed by its colour bar, not in the legend.

@@ -203,7 +203,7 @@ PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std:
     yaml::requireMap(node, src.name, what);
     yaml::requireKeys(node, src.name,
                       {"file", "x", "y", "z", "x2", "y2", "style", "label", "label_from", "color", "width", "size", "point",
-                       "where", "optional", "labels", "label_ends"});
+                       "where", "optional", "labels", "label_ends", "group_by"});
     PlotSeries series;
     if (node["style"]) series.style = toChoice(node["style"], src, what + ".style", kPlotStyles);
     requireStyleKeys(node, src, what, series.style);
@@ -215,7 +215,7 @@ PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std:
     findColumns(series, node, src, what);
     if (node["label"]) series.label = yaml::toString(node["label"], src.name, what + ".label");
     else if (!node["label_from"]) series.label = series.y;
-    if (const YAML::Node ends = node["label_ends"]) {
+    if (const YAML::Node ends = node["label_ends"]; ends && !node["group_by"]) {  // a group's: each member's own
         const std::string name = yaml::toString(ends, src.name, what + ".label_ends");
         const int column = columnIndex(readCsv(series.file).header, name, ends, src, series.file);
         series.label += endsText(plot::keptRows(series), column);
@@ -229,6 +229,42 @@ PlotSeries parseSeries(const YAML::Node& node, const SpecSource& src, const std:
     if (node["point"]) series.point = toChoice(node["point"], src, what + ".point", kPlotPoints);
     if (node["optional"]) series.optional = yaml::toBool(node["optional"], src.name, what + ".optional");
     return series;
+}
+
+// Okabe and Ito's eight colours, distinct to readers with any common colour-vision deficiency, the darkest
+// first (their yellow last: faint on white).
+constexpr const char* kGroupColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                         "#E69F00", "#56B4E9", "#000000", "#F0E442"};
+
+// `group_by: COLUMN`: one series per text of that column among the rows the series keeps, in the order they
+// first appear, each keyed by its text (and its label_ends), in a colour of kGroupColours and a point type of
+// kPlotPoints, both taken in turn, so that 48 groups differ in one or the other. A colour or point given in
+// the spec holds for every group.
+std::vector<PlotSeries> groupedSeries(const PlotSeries& base, const YAML::Node& node, const SpecSource& src,
+                                      const std::string& what) {
+    const std::vector<std::string> header = readCsv(base.file).header;
+    const int column = columnIndex(header, yaml::toString(node["group_by"], src.name, what + ".group_by"),
+                                   node["group_by"], src, base.file);
+    const int endsColumn = node["label_ends"] ? columnIndex(header, yaml::toString(node["label_ends"], src.name,
+                                                                                   what + ".label_ends"),
+                                                            node["label_ends"], src, base.file)
+                                              : 0;
+    std::vector<std::string> groups;
+    for (const std::vector<std::string>& row : plot::keptRows(base))
+        if (column <= int(row.size()) && std::ranges::find(groups, row[column - 1]) == groups.end())
+            groups.push_back(row[column - 1]);
+    constexpr std::size_t colours = std::size(kGroupColours), points = std::size(kPlotPoints);
+    std::vector<PlotSeries> out;
+    for (std::size_t k = 0; k < groups.size(); ++k) {
+        PlotSeries series = base;
+        series.where.emplace_back(column, groups[k]);
+        series.label = groups[k];
+        if (endsColumn > 0) series.label += endsText(plot::keptRows(series), endsColumn);
+        if (!node["color"]) series.color = kGroupColours[k % colours];
+        if (!node["point"]) series.point = kPlotPoints[k % points];
+        out.push_back(std::move(series));
+    }
+    return out;
 }
 
 PlotColorbar parseColorbar(const YAML::Node& node, const SpecSource& src, const std::string& what) {
@@ -291,6 +327,12 @@ PlotPanel parsePanel(const YAML::Node& node, const SpecSource& src, const std::s
     for (std::size_t i = 0; i < list.size(); ++i) {
         const std::string name = field("series[" + std::to_string(i) + "]");
         PlotSeries series = parseSeries(list[i], src, name);
+        if (list[i]["group_by"] && !plot::keptRows(series).empty()) {
+            if (series.style == "histogram" || series.style == "heatmap")
+                throw Error(src.at(list[i]["group_by"]) + ": " + name + ".group_by: not for a " + series.style);
+            for (PlotSeries& member : groupedSeries(series, list[i], src, name)) panel.series.push_back(std::move(member));
+            continue;
+        }
         if (plot::keptRows(series).empty()) {
             if (series.optional) continue;  // nothing of it on this host
             // Drawn as a key entry alone, which a reader may not notice: a typo in where, or a run missing.

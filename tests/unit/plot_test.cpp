@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "temp_dir.h"
@@ -521,4 +522,48 @@ TEST_CASE("plot: reference slopes, data tics and a key below the panel") {
     writeFile(dir / "hist.csv", "bin_lo,bin_hi,R\n0,1e-3,1\n1e-3,1e-2,3\n");
     CHECK(errorOf("x: {log: true, ticks: data}\nseries:\n  - {file: hist.csv, y: R, style: histogram}\n", dir.path) ==
           "fig.yaml:1:23: x.ticks is for panels of points and lines only (no histogram, heatmap or segments)");
+}
+
+TEST_CASE("plot: group_by makes a series per family, each in a colour-blind-safe colour and point of its own") {
+    test::TempDir dir("plot");
+    writeFile(dir / "s.csv",
+              "run,method,seconds,max\nr-h1,riemann,1,0.1\nr-h0.5,riemann,2,0.05\nc-h1,composite,1.1,0.01\n"
+              "x,exact,3,1e-7\nt-h1,three.js,0.5,0.9\n");
+    const PlotSpec spec = parsePlotSpec("series:\n"
+                                        "  - {file: s.csv, x: seconds, y: max, style: linespoints, group_by: method, "
+                                        "label_ends: run}\n",
+                                        "fig.yaml", dir.path);
+    const std::vector<PlotSeries>& series = spec.panels[0].series;
+    REQUIRE(series.size() == 4);  // in the order the families first appear
+    CHECK(series[0].label == "riemann, h1 to h0.5");  // each keyed by its family and its own ends
+    CHECK(series[1].label == "composite");
+    CHECK(series[3].label == "three.js");
+    CHECK(series[2].where == std::vector<std::pair<int, std::string>>{{2, "exact"}});
+    std::set<std::pair<std::string, std::string>> looks;
+    for (const PlotSeries& s : series) looks.insert({s.color, s.point});
+    CHECK(looks.size() == series.size());
+    CHECK(series[0].color == "#0072B2");  // Okabe and Ito's, darkest first
+    // A colour given holds for every family; a where keeps its rows before they are grouped.
+    const PlotSpec blue = parsePlotSpec("series:\n  - {file: s.csv, x: seconds, y: max, group_by: method, "
+                                        "color: \"#112233\", where: {method: riemann}}\n",
+                                        "fig.yaml", dir.path);
+    REQUIRE(blue.panels[0].series.size() == 1);
+    CHECK(blue.panels[0].series[0].color == "#112233");
+    CHECK(errorOf("series:\n  - {file: s.csv, x: seconds, y: max, group_by: colour}\n", dir.path).find(
+              "column 'colour' is not in") != std::string::npos);
+}
+
+TEST_CASE("plot: a key below grows the canvas and gives every panel its margin") {
+    test::TempDir dir("plot");
+    writeFile(dir / "o.csv", "h,error\n0.2,0.1\n0.1,0.03\n");
+    const std::string series = "    series:\n      - {file: o.csv, x: h, y: error}\n      - {file: o.csv, x: h, y: error}\n";
+    const PlotSpec spec = parsePlotSpec("size: [800, 400]\ngrid: [1, 2]\npanels:\n  - key: off\n" + series +
+                                            "  - key: below\n" + series,
+                                        "fig.yaml", dir.path);
+    const std::string script = gnuplotScript(spec, dir / "fig.gp", "fig.png", "fig.svg");
+    INFO(script);
+    // Two entries and four lines: 6 lines of 16 pixels added to the 400 the plots keep.
+    CHECK(script.find("size 800,496 ") != std::string::npos);
+    CHECK(script.find("    set bmargin 6\n    unset key\n") != std::string::npos);  // the keyless panel too
+    CHECK(script.find("    set key below vertical maxcols 1\n    set bmargin 6\n") != std::string::npos);
 }
