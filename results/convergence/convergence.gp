@@ -239,10 +239,10 @@ $series3_14 << EOD
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1800,1150 noenhanced font "sans,10"
+        set terminal pngcairo size 1800,1438 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1800,1150 noenhanced font "sans,10" background "white"
+        set terminal svg size 1800,1438 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,3 title 'Observed orders: max |error| against the step h (64 x 64 images)'

@@ -11,67 +11,67 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3372,14.2
-1.47,2.9
+0.355,14.2
+1.5,2.9
 EOD
 $series1_2 << EOD
-1.078,0.518
-0.6097,1.61
-0.3457,6.19
-0.1897,18.1
-0.1275,25.9
+1.071,0.518
+0.5739,1.61
+0.3354,6.19
+0.2073,18.1
+0.1215,25.9
 EOD
 $series1_3 << EOD
-1.151,0.518
-0.6062,1.58
-0.3606,5.19
-0.2354,14.4
-0.1598,25.6
+1.072,0.518
+0.6133,1.58
+0.3794,5.19
+0.2685,14.4
+0.1822,25.6
 EOD
 $pareto1 << EOD
-0.1275,25.9
-0.1598,25.6
-0.1897,18.1
-0.2354,14.4
-0.3372,14.2
-0.3457,6.19
-0.3606,5.19
-0.6062,1.58
-1.078,0.518
+0.1215,25.9
+0.1822,25.6
+0.2073,18.1
+0.2685,14.4
+0.3354,6.19
+0.3794,5.19
+0.5739,1.61
+0.6133,1.58
+1.071,0.518
 EOD
 $series2_1 << EOD
-0.3372,0.04754
-1.47,0.008352
+0.355,0.04754
+1.5,0.008352
 EOD
 $series2_2 << EOD
-1.078,0.01018
-0.6097,0.03639
-0.3457,0.1157
-0.1897,0.2807
-0.1275,0.6652
+1.071,0.01018
+0.5739,0.03639
+0.3354,0.1157
+0.2073,0.2807
+0.1215,0.6652
 EOD
 $series2_3 << EOD
-1.151,0.0102
-0.6062,0.0364
-0.3606,0.1157
-0.2354,0.2807
-0.1598,0.6652
+1.072,0.0102
+0.6133,0.0364
+0.3794,0.1157
+0.2685,0.2807
+0.1822,0.6652
 EOD
 $pareto2 << EOD
-0.1275,0.6652
-0.1897,0.2807
-0.3372,0.04754
-0.6062,0.0364
-0.6097,0.03639
-1.078,0.01018
-1.47,0.008352
+0.1215,0.6652
+0.2073,0.2807
+0.3354,0.1157
+0.355,0.04754
+0.5739,0.03639
+1.071,0.01018
+1.5,0.008352
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,728 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,728 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'BluntFin, eps = 0.01, h_max swept: seconds per frame against error (accurate reference)'
@@ -83,13 +83,13 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1)
-    set xrange [0.11010366000056113:1.7022594889129463] noextend
+    set xrange [0.1044925623640368:1.7441432756244186] noextend
     set ylabel '% of rays'
     set logscale y
     set format y '%g'
     set ytics (0.5, 1, 2, 5, 10, 20)
     set yrange [0.40962981513528207:32.75201048431799] noextend
-    set bmargin
+    set bmargin 8
     unset key
     set size noratio
     unset label
@@ -105,14 +105,14 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.2, 0.5, 1)
-    set xrange [0.11010366000056113:1.7022594889129463] noextend
+    set xrange [0.1044925623640368:1.7441432756244186] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics (0.01, 0.02, 0.05, 0.1, 0.2, 0.5)
     set yrange [0.006422746488511732:0.8650116285824897] noextend
-    set bmargin
-    set key outside right top
+    set key below vertical maxcols 1
+    set bmargin 8
     set size noratio
     unset label
     plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \

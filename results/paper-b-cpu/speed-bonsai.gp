@@ -11,181 +11,203 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3675,27
-0.429,26.5
-0.5256,25.7
-0.72,23.4
-1.353,16.4
+0.504,27
+0.5938,26.5
+0.7429,25.7
+1.032,23.4
+1.892,16.4
 EOD
 $series1_2 << EOD
-0.04499,27
-0.05301,26.5
-0.06744,25.7
-0.0892,23.4
-0.16,16.4
+0.06889,27
+0.07872,26.5
+0.09845,25.7
+0.1365,23.4
+0.245,16.4
 EOD
 $series1_3 << EOD
-0.01824,27.4
-0.02778,21.8
-0.04522,11.3
+0.02649,27.4
+0.04109,21.8
+0.07104,11.3
 EOD
 $series1_4 << EOD
-1.06,14.7
-1.058,14.7
-1.057,14.2
+1.343,14.7
+1.324,14.7
+1.355,14.2
 EOD
 $series1_5 << EOD
-1.06,12.5
-1.08,12.5
-1.052,12.3
+1.36,12.5
+1.402,12.5
+1.385,12.3
 EOD
 $series1_6 << EOD
-0.3548,28.2
-0.6305,24
-1.188,11.8
+0.53,28.2
+0.9358,24
+1.765,11.8
 EOD
 $series1_7 << EOD
-0.628,22.5
-1.194,11.4
-2.305,7.35
+0.8921,22.5
+1.656,11.4
+3.121,7.35
 EOD
 $series1_8 << EOD
-0.3856,27.1
-0.4415,26.6
-0.5484,25.7
-0.7171,23.4
-1.352,16.4
+0.5021,27.1
+0.5972,26.6
+0.7338,25.7
+1.021,23.4
+1.882,16.4
 EOD
 $series1_9 << EOD
-1.552,26.9
-1.797,26.4
-2.135,25.6
-2.939,23.2
-5.507,16.1
+2.002,26.9
+2.351,26.4
+2.947,25.6
+4.084,23.2
+7.631,16.1
 EOD
 $series1_10 << EOD
-0.3313,5.442468800928215
-0.3472,5.442468800928215
-0.3151,5.442468800928215
-0.3555,5.442468800928215
+0.4613,5.4121676920605655
+0.4756,5.4121676920605655
+0.4475,5.4121676920605655
+0.4939,5.4121676920605655
 EOD
 $series1_11 << EOD
-0.352,5.442468800928215
-0.3952,5.442468800928215
+0.4826,5.4121676920605655
+0.5359,5.4121676920605655
 EOD
 $series1_12 << EOD
-0.1256,29.9
-0.1255,29.9
-0.2176,29.9
-0.3221,29.9
-0.7149,29.8
-1.425,29.9
+0.1242,29.9
+0.1395,29.9
+0.2217,29.9
+0.3797,29.9
+0.83,29.8
+1.616,29.9
 EOD
 $series1_13 << EOD
-0.2728,28.3
-0.487,27.4
-0.9577,27.1
+0.3087,28.3
+0.6032,27.4
+1.127,27.1
+EOD
+$series1_14 << EOD
+0.9786,29.3
+1.899,29.2
+EOD
+$series1_15 << EOD
+0.9821,26.6
+1.917,25.6
+EOD
+$series1_16 << EOD
+0.5864,31.7
 EOD
 $pareto1 << EOD
-0.01824,27.4
-0.02778,21.8
-0.04522,11.3
-0.3151,5.442468800928215
+0.02649,27.4
+0.04109,21.8
+0.07104,11.3
+0.4475,5.4121676920605655
 EOD
 $series2_1 << EOD
-0.3675,0.1074
-0.429,0.09284
-0.5256,0.05965
-0.72,0.03929
-1.353,0.01856
+0.504,0.1074
+0.5938,0.09284
+0.7429,0.05965
+1.032,0.03929
+1.892,0.01856
 EOD
 $series2_2 << EOD
-0.04499,0.1074
-0.05301,0.09284
-0.06744,0.05965
-0.0892,0.03929
-0.16,0.01856
+0.06889,0.1074
+0.07872,0.09284
+0.09845,0.05965
+0.1365,0.03929
+0.245,0.01856
 EOD
 $series2_3 << EOD
-0.01824,0.2766
-0.02778,0.1414
-0.04522,0.05138
+0.02649,0.2766
+0.04109,0.1414
+0.07104,0.05138
 EOD
 $series2_4 << EOD
-1.06,0.04547
-1.058,0.04547
-1.057,0.04005
+1.343,0.04547
+1.324,0.04547
+1.355,0.04005
 EOD
 $series2_5 << EOD
-1.06,0.03886
-1.08,0.03886
-1.052,0.03609
+1.36,0.03886
+1.402,0.03886
+1.385,0.03609
 EOD
 $series2_6 << EOD
-0.3548,0.2483
-0.6305,0.1241
-1.188,0.04762
+0.53,0.2483
+0.9358,0.1241
+1.765,0.04762
 EOD
 $series2_7 << EOD
-0.628,0.2206
-1.194,0.1108
-2.305,0.04851
+0.8921,0.2206
+1.656,0.1108
+3.121,0.04851
 EOD
 $series2_8 << EOD
-0.3856,0.1169
-0.4415,0.08383
-0.5484,0.05987
-0.7171,0.0394
-1.352,0.01886
+0.5021,0.1169
+0.5972,0.08383
+0.7338,0.05987
+1.021,0.0394
+1.882,0.01886
 EOD
 $series2_9 << EOD
-1.552,0.1069
-1.797,0.07774
-2.135,0.05721
-2.939,0.03938
-5.507,0.01874
+2.002,0.1069
+2.351,0.07774
+2.947,0.05721
+4.084,0.03938
+7.631,0.01874
 EOD
 $series2_10 << EOD
-0.3313,7.778e-06
-0.3472,7.898e-07
-0.3151,0.0004849
-0.3555,2.533e-07
+0.4613,7.778e-06
+0.4756,7.898e-07
+0.4475,0.0004849
+0.4939,2.533e-07
 EOD
 $series2_11 << EOD
-0.352,0.0004849
-0.3952,2.533e-07
+0.4826,0.0004849
+0.5359,2.533e-07
 EOD
 $series2_12 << EOD
-0.1256,0.4228
-0.1255,0.402
-0.2176,0.3922
-0.3221,0.9932
-0.7149,0.9938
-1.425,0.9938
+0.1242,0.4228
+0.1395,0.402
+0.2217,0.3922
+0.3797,0.9932
+0.83,0.9938
+1.616,0.9938
 EOD
 $series2_13 << EOD
-0.2728,0.4893
-0.487,0.3752
-0.9577,0.3207
+0.3087,0.4893
+0.6032,0.3752
+1.127,0.3207
+EOD
+$series2_14 << EOD
+0.9786,1
+1.899,1
+EOD
+$series2_15 << EOD
+0.9821,0.1706
+1.917,0.08825
+EOD
+$series2_16 << EOD
+0.5864,1
 EOD
 $pareto2 << EOD
-0.01824,0.2766
-0.02778,0.1414
-0.04499,0.1074
-0.04522,0.05138
-0.0892,0.03929
-0.16,0.01856
-0.3151,0.0004849
-0.3313,7.778e-06
-0.3472,7.898e-07
-0.3555,2.533e-07
+0.02649,0.2766
+0.04109,0.1414
+0.06889,0.1074
+0.07104,0.05138
+0.1365,0.03929
+0.245,0.01856
+0.4475,0.0004849
+0.4613,7.778e-06
+0.4756,7.898e-07
+0.4939,2.533e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,936 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,936 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Bonsai: seconds per frame against error (accurate reference)'
@@ -196,12 +218,12 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.012948856542481815:7.757262555999242] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
+    set xrange [0.01885871027731908:10.718929716159602] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics ('0' 5.442468800928215, 7, 8, 9, 10, 20, 30)
+    set ytics ('0' 5.4121676920605655, 7, 8, 9, 10, 20, 30)
     set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
     set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
     set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
@@ -209,8 +231,8 @@ do for [format in "png svg"] {
     set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
     set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
     set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
-    set yrange [5.191208033508357:34.385] noextend
-    set bmargin
+    set yrange [5.153835841380764:36.455] noextend
+    set bmargin 21
     unset key
     set size noratio
     unset label
@@ -227,6 +249,9 @@ do for [format in "png svg"] {
          $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
          $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
+         $series1_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
+         $series1_16 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -235,15 +260,15 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.012948856542481815:7.757262555999242] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
+    set xrange [0.01885871027731908:10.718929716159602] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [1.0186274177641085e-07:2.4712621672068034] noextend
-    set bmargin
-    set key outside right top
+    set yrange [1.0182473797170501e-07:2.4876076781104692] noextend
+    set key below vertical maxcols 1
+    set bmargin 21
     set size noratio
     unset label
     plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
@@ -259,6 +284,9 @@ do for [format in "png svg"] {
          $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
          $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
+         $series2_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
+         $series2_16 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -11,177 +11,200 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3165,23.1
-0.374,20.9
-0.4584,17.1
-0.6319,10.7
-1.129,9.26
+0.4457,23.1
+0.515,20.9
+0.6456,17.1
+0.8837,10.7
+1.621,9.26
 EOD
 $series1_2 << EOD
-0.03622,23.1
-0.04142,20.9
-0.05211,17.1
-0.07556,10.7
-0.1429,9.26
+0.05496,23.1
+0.06578,20.9
+0.08135,17.1
+0.1171,10.7
+0.2202,9.26
 EOD
 $series1_3 << EOD
-0.01498,22.8
-0.02201,13.3
-0.03539,7.55
+0.02352,22.8
+0.0338,13.3
+0.0541,7.55
 EOD
 $series1_4 << EOD
-0.807,7.09
-0.8133,7.09
-0.7813,7.08
+1.059,7.09
+1.065,7.09
+1.074,7.08
 EOD
 $series1_5 << EOD
-0.8481,6.69
-0.8448,6.69
-0.8658,6.69
+1.108,6.69
+1.113,6.69
+1.091,6.69
 EOD
 $series1_6 << EOD
-0.2762,27.3
-0.5024,22.9
-0.8776,7.79
+0.3965,27.3
+0.7012,22.9
+1.302,7.79
 EOD
 $series1_7 << EOD
-0.4607,14.3
-0.8607,6.09
-1.566,1.61
+0.5923,14.3
+1.092,6.09
+2.074,1.61
 EOD
 $series1_8 << EOD
-0.3892,23.1
-0.5382,20.8
-0.5422,17.1
-0.6428,10.7
-1.23,9.26
+0.4376,23.1
+0.5129,20.8
+0.6377,17.1
+0.8833,10.7
+1.651,9.26
 EOD
 $series1_9 << EOD
-1.286,23.2
-1.57,20.8
-1.951,16.9
-2.638,10.3
-5.043,9.26
+1.753,23.2
+2.05,20.8
+2.541,16.9
+3.533,10.3
+6.507,9.26
 EOD
 $series1_10 << EOD
-0.6216,0.9958519752751349
-0.6176,0.9958519752751349
-0.7026,0.9958519752751349
-0.6433,0.9958519752751349
+0.907,0.9907135287412148
+0.912,0.9907135287412148
+0.9014,0.9907135287412148
+0.9119,0.9907135287412148
 EOD
 $series1_11 << EOD
-0.7457,0.9958519752751349
-0.7425,0.9958519752751349
+0.9899,0.9907135287412148
+0.9944,0.9907135287412148
 EOD
 $series1_12 << EOD
-0.08053,25.2
-0.1324,25.4
-0.2047,26.7
-0.4629,27.8
-0.7317,28.4
-1.393,28.6
+0.09351,25.2
+0.1493,25.4
+0.2438,26.7
+0.4035,27.8
+0.8677,28.4
+1.6,28.6
 EOD
 $series1_13 << EOD
-0.1813,24.5
-0.3982,23.6
-0.8246,24.1
+0.2222,24.5
+0.4075,23.6
+0.7903,24.1
+EOD
+$series1_14 << EOD
+0.6481,26.7
+1.239,26.7
+EOD
+$series1_15 << EOD
+0.7095,20.8
+1.349,18
+EOD
+$series1_16 << EOD
+0.7418,29.5
 EOD
 $pareto1 << EOD
-0.01498,22.8
-0.02201,13.3
-0.03539,7.55
-0.6176,0.9958519752751349
+0.02352,22.8
+0.0338,13.3
+0.0541,7.55
+0.9014,0.9907135287412148
 EOD
 $series2_1 << EOD
-0.3165,0.06248
-0.374,0.04992
-0.4584,0.03695
-0.6319,0.02473
-1.129,0.01212
+0.4457,0.06248
+0.515,0.04992
+0.6456,0.03695
+0.8837,0.02473
+1.621,0.01212
 EOD
 $series2_2 << EOD
-0.03622,0.06248
-0.04142,0.04992
-0.05211,0.03695
-0.07556,0.02473
-0.1429,0.01212
+0.05496,0.06248
+0.06578,0.04992
+0.08135,0.03695
+0.1171,0.02473
+0.2202,0.01212
 EOD
 $series2_3 << EOD
-0.01498,0.1125
-0.02201,0.04035
-0.03539,0.0149
+0.02352,0.1125
+0.0338,0.04035
+0.0541,0.0149
 EOD
 $series2_4 << EOD
-0.807,0.02604
-0.8133,0.02604
-0.7813,0.02124
+1.059,0.02604
+1.065,0.02604
+1.074,0.02124
 EOD
 $series2_5 << EOD
-0.8481,0.02591
-0.8448,0.02591
-0.8658,0.02103
+1.108,0.02591
+1.113,0.02591
+1.091,0.02103
 EOD
 $series2_6 << EOD
-0.2762,0.1469
-0.5024,0.04854
-0.8776,0.01691
+0.3965,0.1469
+0.7012,0.04854
+1.302,0.01691
 EOD
 $series2_7 << EOD
-0.4607,0.1116
-0.8607,0.03518
-1.566,0.01408
+0.5923,0.1116
+1.092,0.03518
+2.074,0.01408
 EOD
 $series2_8 << EOD
-0.3892,0.06325
-0.5382,0.0497
-0.5422,0.03759
-0.6428,0.02473
-1.23,0.01216
+0.4376,0.06325
+0.5129,0.0497
+0.6377,0.03759
+0.8833,0.02473
+1.651,0.01216
 EOD
 $series2_9 << EOD
-1.286,0.06274
-1.57,0.04945
-1.951,0.03726
-2.638,0.02451
-5.043,0.01216
+1.753,0.06274
+2.05,0.04945
+2.541,0.03726
+3.533,0.02451
+6.507,0.01216
 EOD
 $series2_10 << EOD
-0.6216,1.296e-05
-0.6176,1.431e-06
-0.7026,0.000348
-0.6433,1.788e-07
+0.907,1.296e-05
+0.912,1.431e-06
+0.9014,0.000348
+0.9119,1.788e-07
 EOD
 $series2_11 << EOD
-0.7457,0.000348
-0.7425,1.788e-07
+0.9899,0.000348
+0.9944,1.788e-07
 EOD
 $series2_12 << EOD
-0.08053,0.1676
-0.1324,0.1323
-0.2047,0.131
-0.4629,0.1349
-0.7317,0.131
-1.393,0.1252
+0.09351,0.1676
+0.1493,0.1323
+0.2438,0.131
+0.4035,0.1349
+0.8677,0.131
+1.6,0.1252
 EOD
 $series2_13 << EOD
-0.1813,0.1495
-0.3982,0.1113
-0.8246,0.09071
+0.2222,0.1495
+0.4075,0.1113
+0.7903,0.09071
+EOD
+$series2_14 << EOD
+0.6481,0.5464
+1.239,0.5477
+EOD
+$series2_15 << EOD
+0.7095,0.04932
+1.349,0.02025
+EOD
+$series2_16 << EOD
+0.7418,0.8896
 EOD
 $pareto2 << EOD
-0.01498,0.1125
-0.02201,0.04035
-0.03539,0.0149
-0.1429,0.01212
-0.6176,1.431e-06
-0.6433,1.788e-07
+0.02352,0.1125
+0.0338,0.04035
+0.0541,0.0149
+0.2202,0.01212
+0.9014,0.000348
+0.907,1.296e-05
+0.9119,1.788e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1700,600 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,936 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1700,600 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,936 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Engine: seconds per frame against error (accurate reference)'
@@ -193,11 +216,11 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.01056528420635627:7.150223176632698] noextend
+    set xrange [0.01678497535981524:9.11795440381776] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
-    set ytics ('0' 0.9958519752751349, 2, 5, 10, 20)
+    set ytics ('0' 0.9907135287412148, 2, 5, 10, 20)
     set object rect from graph 0, graph 0 to graph 1, graph 0.05 fc rgb '#e0e0e0' fs solid 1 noborder behind
     set object rect from graph -0.012, graph 0.05 to graph 0.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
     set arrow from graph -0.012, graph 0.04 to graph 0.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
@@ -205,8 +228,8 @@ do for [format in "png svg"] {
     set object rect from graph 0.988, graph 0.05 to graph 1.012, graph 0.11 fc rgb 'white' fs solid 1 noborder front
     set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
     set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
-    set yrange [0.9096690386795501:33.989004326735646] noextend
-    set bmargin
+    set yrange [0.9040935763143167:35.12382335865151] noextend
+    set bmargin 21
     unset key
     set size noratio
     unset label
@@ -223,6 +246,9 @@ do for [format in "png svg"] {
          $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
          $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
+         $series1_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
+         $series1_16 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -232,14 +258,14 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.01056528420635627:7.150223176632698] noextend
+    set xrange [0.01678497535981524:9.11795440381776] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
-    set yrange [7.835254805716079e-08:0.3824620991028673] noextend
-    set bmargin
-    set key outside right top
+    set yrange [7.088557700954801e-08:2.2439047082677366] noextend
+    set key below vertical maxcols 1
+    set bmargin 21
     set size noratio
     unset label
     plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
@@ -255,6 +281,9 @@ do for [format in "png svg"] {
          $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
          $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
          $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
+         $series2_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
+         $series2_16 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output
