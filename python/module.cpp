@@ -251,9 +251,16 @@ std::shared_ptr<Volume> volumeFromArray(const py::array& array, const py::object
         if (n > std::numeric_limits<int>::max()) throw Error("array: " + std::to_string(n) + " voxels along an axis");
         dims[axis] = int(n);
     }
-    const auto contiguous = py::array::ensure(array, py::array::c_style);
+    // The size is checked against vri's limit before NumPy is asked for a contiguous copy (a broadcast view
+    // of a few bytes can stand for terabytes), and a copy NumPy cannot make is an error, not a null array.
     const std::size_t bytes = checkedBytes("array", {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z),
                                                      detail::storedSize(found->second)});
+    const auto contiguous = py::array::ensure(array, py::array::c_style);
+    if (!contiguous) {
+        PyErr_Clear();
+        throw Error("array: NumPy could not make a contiguous copy of its " + std::to_string(bytes) +
+                    " bytes (out of memory?)");
+    }
     auto volume = std::make_shared<Volume>(detail::decodeVoxels(
         "array", dims, found->second, nativeByteOrder(),
         std::string_view(static_cast<const char*>(contiguous.data()), bytes)));

@@ -24,6 +24,7 @@
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/atomic_file.h"
+#include "libvri/util/format.h"
 #include "libvri/util/json_file.h"
 #include "libvri/util/parse.h"
 
@@ -234,6 +235,10 @@ int run(int argc, char** argv) {
         }
     }
 
+    if (diffScale->count() > 0 && isPng(options.diffImage) && !std::isfinite(1.0 / options.diffScale))
+        return exitWith(vri::kExitUsage,
+                        vri::Error("--diff-scale: " + vri::exactNumber(options.diffScale) +
+                                   " puts the heat map's top at 1/K, which is not a finite number"));
     for (const auto& [option, given] : {std::pair{"--scale-over", !options.scaleOver.empty()},
                                         std::pair{"--scale-from", !options.scaleFrom.empty()}})
         if (given && !isPng(options.diffImage))

@@ -394,6 +394,8 @@ SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
     return vri::guardedMain(kTool, [&] {
         if (!options.nodeSteps.empty()) return vri::runNodeSteps(options.nodeSteps);
         if (!options.nodeCheck.empty()) return vri::runNodeCheck(options.nodeCheck);
+        if (app.count("--new") > 0 && options.newStudy.empty())
+            throw vri::UsageError("--new: expected a study's name (NAME.yaml is written), got nothing");
         if (!options.newStudy.empty()) {
             if (!options.experiments.empty()) throw vri::UsageError("--new writes files and runs none: name no EXPERIMENT");
             for (const fs::path& file : vri::writeNewStudy(options.newStudy))

@@ -279,6 +279,12 @@ class BadInput(unittest.TestCase):
                            "depth 1)", vri.Volume.from_array, np.zeros((4, 4), dtype=np.float64))
         self.assertOneLine("array: float64 voxel 1 is 1e+300, beyond float32's range (float64 volumes are kept as "
                            "float32)", vri.Volume.from_array, np.array([[[0.0, 1e300]]]))
+        # A broadcast view of one byte standing for 64 GiB: refused by size before NumPy is asked for a copy (it
+        # used to be copied first, and a failed copy dereferenced: SIGSEGV); a small one is copied and kept.
+        with self.assertRaisesRegex(vri.Error, r"^array: needs 68719476736 bytes, limit"):
+            vri.Volume.from_array(np.broadcast_to(np.zeros(1, np.uint8), (4096, 4096, 4096)))
+        small = vri.Volume.from_array(np.broadcast_to(np.arange(3, dtype=np.uint8), (2, 2, 3)))
+        self.assertTrue(np.array_equal(small.values(), np.broadcast_to(np.arange(3, dtype=np.uint8), (2, 2, 3))))
         self.assertOneLine("a: expected an image array of shape (height, width, channels)", vri.compare,
                            np.zeros((4, 4)), np.zeros((4, 4)))
 

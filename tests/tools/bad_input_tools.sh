@@ -210,6 +210,8 @@ bad 64 "${E}--histogram-range: an empty item in '1e-6,,1'" -- \
 bad 64 "${E}--failpercent: expected a number from 0 to 100, got '101'" -- "$bin/vri-diff" a.exr a.exr --failpercent 101
 bad 64 "${E}--warnpercent: expected a number from 0 to 100, got '-1'" -- "$bin/vri-diff" a.exr a.exr --warnpercent -1
 bad 64 "${E}--diff-scale: expected a number > 0, got '0'" -- "$bin/vri-diff" a.exr a.exr --diff-scale 0 --diff-image d.exr
+bad 64 "${E}--diff-scale: 1e-320 puts the heat map's top at 1/K, which is not a finite number" -- \
+    "$bin/vri-diff" a.exr a.exr --diff-scale 1e-320 --diff-image d.png
 bad 64 "${E}--bins-per-decade: expected a number > 0, got '0'" -- \
     "$bin/vri-diff" a.exr a.exr --bins-per-decade 0 --histogram h.csv
 bad 64 "${E}--diff-scale requires --diff-image" -- "$bin/vri-diff" a.exr a.exr --diff-scale 2

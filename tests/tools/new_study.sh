@@ -38,6 +38,8 @@ cp hydrogen.yaml before.yaml
 if vri-run --new hydrogen 2> exists.txt; then fail "--new overwrote a study"; fi
 [ "$(wc -l < exists.txt)" -eq 1 ] && grep -q "^vri-run: error: --new: hydrogen.yaml exists" exists.txt || fail "$(cat exists.txt)"
 cmp hydrogen.yaml before.yaml || fail "--new changed hydrogen.yaml"
+if vri-run --new "" 2> bad.txt; then fail "--new took no name"; fi
+grep -q "^vri-run: error: --new: expected a study's name (NAME.yaml is written), got nothing" bad.txt || fail "$(cat bad.txt)"
 if vri-run --new "a b" 2> bad.txt; then fail "--new took an unsafe name"; fi
 grep -q "^vri-run: error: --new: 'a b' must be letters" bad.txt || fail "$(cat bad.txt)"
 [ ! -e "a b.yaml" ] || fail "--new wrote an unsafe name"
