@@ -246,17 +246,15 @@ int run(int argc, char** argv) {
                                                         " sets the scale of a PNG heat map; --diff-image '" +
                                                         options.diffImage + "' is not a .png"));
     if (options.heatScale != "linear") {
-        const std::string& h = options.heatScale;
-        const std::optional<std::int64_t> decades =
-            h == "log" ? std::optional<std::int64_t>(3) : h.starts_with("log:") ? vri::integerFromText(h.substr(4)) : std::nullopt;
-        if (!decades || *decades < 1 || *decades > 12)
+        const std::optional<int> decades = vri::heatScaleDecades(options.heatScale);
+        if (!decades)
             return exitWith(vri::kExitUsage, vri::Error("--heat-scale: expected linear, log or log:N with N decades "
-                                                        "in 1..12, got '" + h + "'"));
+                                                        "in 1..12, got '" + options.heatScale + "'"));
         if (!isPng(options.diffImage))
             return exitWith(vri::kExitUsage, vri::Error("--heat-scale sets a PNG heat map's colours; --diff-image '" +
                                                         options.diffImage + "' is not a .png"));
         options.heatLog = true;
-        options.decades = static_cast<int>(*decades);
+        options.decades = *decades;
     }
     const std::vector<vri::OutputArgument> outputs{
         {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram}};

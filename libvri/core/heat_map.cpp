@@ -11,6 +11,7 @@
 #include "libvri/core/image_compare.h"
 #include "libvri/core/number_glyphs.h"
 #include "libvri/util/error.h"
+#include "libvri/util/parse.h"
 
 namespace vri {
 
@@ -114,6 +115,15 @@ std::vector<Tick> labelledTicks(const std::vector<Tick>& ticks, int canvasWidth,
 }
 
 }  // namespace
+
+std::optional<int> heatScaleDecades(std::string_view text) {
+    if (text == "linear") return 0;
+    if (text == "log") return 3;
+    if (!text.starts_with("log:")) return std::nullopt;
+    const std::optional<std::int64_t> n = integerFromText(text.substr(4));
+    if (!n || *n < 1 || *n > 12) return std::nullopt;
+    return static_cast<int>(*n);
+}
 
 int heatMapLabelScale(int canvasWidth) { return canvasWidth >= 256 ? 2 : 1; }
 

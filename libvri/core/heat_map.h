@@ -1,6 +1,9 @@
 #pragma once
 // A difference image made to be read: |a - b| as a heat map with a numbered colour bar, instead of the
 // raw per-channel differences shown as RGB on black.
+#include <optional>
+#include <string_view>
+
 #include "libvri/core/image.h"
 
 namespace vri {
@@ -14,6 +17,10 @@ struct HeatMapScale {
     bool log = false;
     int decades = 3;
 };
+
+// A heat scale's spelling (vri-diff --heat-scale, an experiment's heat_scale:): "linear" is 0 decades, "log"
+// 3, "log:N" N in 1..12; nullopt for anything else.
+std::optional<int> heatScaleDecades(std::string_view text);
 
 // An RGBA image (alpha 1): the heat map of a on a white canvas, with its colour bar below. Each pixel
 // of a shows e = the largest |a - b| over all channels (alpha included) through viridis (matplotlib's

@@ -14,13 +14,6 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-double absoluteError(float a, float b) {
-    if (a == b) return 0.0;  // also equal infinities, whose difference would be NaN
-    if (std::isnan(a) && std::isnan(b)) return 0.0;
-    const double d = std::abs(static_cast<double>(a) - static_cast<double>(b));
-    return std::isnan(d) ? kInfinity : d;  // only one side is NaN here
-}
-
 // Calls f(channel, x, y, error) for every pixel-channel the mask keeps (all when null), rows from the top,
 // channels innermost. a and b have the same shape, the mask theirs.
 template <class F>
@@ -59,6 +52,13 @@ void requireValidEdges(const std::vector<double>& edges) {
 }
 
 }  // namespace
+
+double absoluteError(float a, float b) {
+    if (a == b) return 0.0;  // also equal infinities, whose difference would be NaN
+    if (std::isnan(a) && std::isnan(b)) return 0.0;
+    const double d = std::abs(static_cast<double>(a) - static_cast<double>(b));
+    return std::isnan(d) ? kInfinity : d;  // only one side is NaN here
+}
 
 void requireSameShape(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height || a.channels != b.channels)

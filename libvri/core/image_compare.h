@@ -39,6 +39,10 @@ struct ImageDiff {
     std::vector<std::uint64_t> pixelsAbove;
 };
 
+// One pixel-channel's error |a - b| in double, by the rules above (equal NaNs or infinities 0, a NaN against a
+// number infinite): every statistic of a comparison, image_metrics.h's too, counts errors this way.
+double absoluteError(float a, float b);
+
 // Throws vri::Error naming both shapes when a and b differ in size or channel count.
 void requireSameShape(const Image& a, const Image& b);
 

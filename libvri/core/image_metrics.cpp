@@ -89,13 +89,6 @@ double psnrOf(double mse) {
     return mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(kPsnrPeak * kPsnrPeak / mse);
 }
 
-// |a - b| as image_compare.h counts it: equal values (NaNs and infinities too) 0, NaN against a number infinite.
-double errorOf(float a, float b) {
-    if (a == b || (std::isnan(a) && std::isnan(b))) return 0.0;
-    const double d = std::abs(static_cast<double>(a) - static_cast<double>(b));
-    return std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
-}
-
 }  // namespace
 
 ImageMetrics imageMetrics(const Image& reference, const Image& test, const PixelMask* mask) {
@@ -111,7 +104,7 @@ ImageMetrics imageMetrics(const Image& reference, const Image& test, const Pixel
         if (mask && !mask->keep[p]) continue;
         for (int c = 0; c < channels; ++c) {
             const float a = reference.pixels[p * channels + c], b = test.pixels[p * channels + c];
-            const double e = errorOf(a, b);
+            const double e = absoluteError(a, b);
             squared[c] += e * e;
             relative[c] += e * e / (static_cast<double>(a) * a + kRelativeEpsilon);
             smape[c] += e / (std::abs(static_cast<double>(a)) + std::abs(static_cast<double>(b)) + kRelativeEpsilon);

@@ -18,6 +18,7 @@
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
 #include "libvri/io/yaml_util.h"
+#include "libvri/core/heat_map.h"
 #include "libvri/core/pixel_mask.h"
 #include "libvri/render/outside_renderer.h"
 #include "libvri/util/checked_size.h"
@@ -632,15 +633,12 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
         if (entry["histogram"]) base.histogram = flag(entry["histogram"], "histogram");
         if (const YAML::Node h = entry["heat_scale"]) {
             base.heatScale = text(h, "heat_scale");
-            const std::optional<std::int64_t> decades =
-                base.heatScale == "log" ? std::optional<std::int64_t>(3)
-                : base.heatScale.starts_with("log:") ? integerFromText(std::string_view(base.heatScale).substr(4))
-                                                     : std::nullopt;
-            if (base.heatScale == "linear") base.heatScale.clear();
-            else if (!decades || *decades < 1 || *decades > 12)
+            const std::optional<int> decades = heatScaleDecades(base.heatScale);
+            if (!decades)
                 throw Error(at(h) + ": heat_scale must be linear, log or log:N (N decades in 1..12), got '" +
                             printable(base.heatScale) + "'");
             if (base.diffImage != "png") throw Error(at(h) + ": heat_scale is the colour scale of PNG heat maps (diff_image: png)");
+            if (*decades == 0) base.heatScale.clear();  // linear: vri-diff's default
         }
         if (const YAML::Node m = entry["mask"]) {
             base.mask = text(m, "mask");

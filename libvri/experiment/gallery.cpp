@@ -13,6 +13,7 @@
 #include "libvri/experiment/caption_numbers.h"
 #include "libvri/experiment/gallery_grid.h"
 #include "libvri/experiment/step_costs.h"
+#include "libvri/render/render_job.h"  // timingLoadOf
 #include "libvri/util/file_text.h"
 #include "libvri/util/json_file.h"
 
@@ -73,10 +74,8 @@ void loadWarning(std::ostream& md, const nlohmann::json& steps, const fs::path& 
         if (step.value("kind", "") != "render") continue;
         const fs::path stats = dir / (step.at("id").get<std::string>() + ".json");
         if (!fs::is_regular_file(stats)) continue;
-        const nlohmann::json record = readJsonFile(stats);
-        if (!record.contains("timing") || !record["timing"].is_object()) continue;
-        const nlohmann::json& load = record["timing"].value("load", nlohmann::json());
-        if (load.is_object() && load.value("overloaded", false)) loaded.push_back(step.at("id").get<std::string>());
+        const std::optional<TimingLoad> load = timingLoadOf(readJsonFile(stats));
+        if (load && load->overloaded()) loaded.push_back(step.at("id").get<std::string>());
     }
     if (loaded.empty()) return;
     md << "*Timed under load: " << loaded.size() << (loaded.size() == 1 ? " run (" : " runs (") << loaded.front()

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "libvri/io/provenance.h"
+#include "libvri/render/render_job.h"  // timingLoadOf
 #include "libvri/util/error.h"
 #include "libvri/util/file_text.h"
 #include "libvri/util/json_file.h"
@@ -115,15 +116,13 @@ void StepLedger::warnIfTimedUnderLoad(std::size_t i) {
     for (const fs::path& out : plan_.steps[i].outputs) {
         if (out.extension() != ".json") continue;
         try {
-            const nlohmann::json stats = readJsonFile(out);
-            const nlohmann::json& timing = stats.value("timing", nlohmann::json());
-            const nlohmann::json& load = timing.is_object() ? timing.value("load", nlohmann::json()) : nlohmann::json();
-            if (!load.is_object() || !load.value("overloaded", false)) continue;
+            const std::optional<TimingLoad> load = timingLoadOf(readJsonFile(out));
+            if (!load || !load->overloaded()) continue;
             char text[160];
             std::snprintf(text, sizeof text,
                           "warning: timed while other processes used %.1f cores beside its %d threads on %d cores: "
                           "its seconds are inflated",
-                          load.value("other_cores", 0.0), load.value("threads", 0), load.value("cores", 0));
+                          load->otherCores, load->threads, load->cores);
             progress_.warning(i, text);
         } catch (const std::exception&) {
             // Not a stats record: nothing to say of its timing.

@@ -155,6 +155,13 @@ MedianInterval medianInterval(std::vector<double> values) {
     return {values[k - 1], values[n - k], coverage(k)};
 }
 
+std::optional<TimingLoad> timingLoadOf(const nlohmann::json& stats) {
+    if (!stats.is_object() || !stats.contains("timing") || !stats["timing"].is_object()) return std::nullopt;
+    const nlohmann::json& load = stats["timing"].value("load", nlohmann::json());
+    if (!load.is_object()) return std::nullopt;
+    return TimingLoad{load.value("other_cores", 0.0), load.value("threads", 1), load.value("cores", 1)};
+}
+
 nlohmann::json frameTimingRecord(int warmUpFrames, const std::vector<double>& wallSeconds,
                                  const std::optional<TimingLoad>& load) {
     const MedianInterval ci = medianInterval(wallSeconds);

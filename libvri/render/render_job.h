@@ -103,6 +103,10 @@ struct TimingLoad {
 nlohmann::json frameTimingRecord(int warmUpFrames, const std::vector<double>& wallSeconds,
                                  const std::optional<TimingLoad>& load = std::nullopt);
 
+// A run's stats record's timing.load, the reader of frameTimingRecord's: nullopt where the record has none
+// (an outside renderer's, frames too short to measure, stats of an older vri).
+std::optional<TimingLoad> timingLoadOf(const nlohmann::json& stats);
+
 // The interval above as (low, high, coverage).
 struct MedianInterval {
     double low = 0, high = 0, coverage = 0;

@@ -160,12 +160,10 @@ std::string loadWarning(const std::vector<fs::path>& statsFiles) {
     std::size_t loaded = 0;
     double most = 0;
     for (const fs::path& file : statsFiles) {
-        const json stats = readJsonFile(file);
-        if (!stats.contains("timing") || !stats["timing"].is_object()) continue;
-        const json& load = stats["timing"].value("load", json());
-        if (!load.is_object() || !load.value("overloaded", false)) continue;
+        const std::optional<TimingLoad> load = timingLoadOf(readJsonFile(file));
+        if (!load || !load->overloaded()) continue;
         ++loaded;
-        most = std::max(most, load.value("other_cores", 0.0));
+        most = std::max(most, load->otherCores);
     }
     if (loaded == 0) return {};
     char cores[32];
