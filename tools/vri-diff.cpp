@@ -36,10 +36,14 @@ constexpr const char* kTool = "vri-diff";
 struct Options {
     std::string a, b;
     std::vector<double> thresholds = vri::kDefaultThresholds;
-    std::string json, diffImage, histogram;
+    std::string json, diffImage, histogram, layers;
     std::string channels;  // --channels: names, comma separated; empty: all
     std::string mask = "all";  // --mask: all, hit, alpha>T or a mask image
     std::string heatScale = "linear";  // --heat-scale: linear or log[:DECADES]
+    std::string heatTop = "max";       // --heat-top: max or pN
+    std::string title;                 // --title: the heat map's; empty: what is compared, the value, the scale
+    bool signedMaps = false;           // --heat-signed
+    bool hdrFlip = false;              // --hdr-flip
     bool heatLog = false;
     int decades = 3;
     double diffScale = 1.0;
@@ -110,8 +114,29 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const vri:
     std::cout << "PSNR " << (metrics.all.psnr == INFINITY ? std::string("inf") : metric("%.2f", metrics.all.psnr))
               << " dB (peak 1), SSIM " << metric("%.4f", metrics.all.ssim) << " (11x11 Gaussian, sigma 1.5), relMSE "
               << metric("%.4g", metrics.all.relMse) << ", SMAPE " << metric("%.4g", metrics.all.smape)
-              << " (all channels)\n"
-              << verdict << '\n';
+              << " (all channels)\n";
+    for (const auto& [name, flip] : {std::pair{"LDR-FLIP", &metrics.ldrFlip}, std::pair{"HDR-FLIP", &metrics.hdrFlip}})
+        if (*flip)
+            std::cout << name << " mean " << format("%.4f", (*flip)->mean) << ", median " << format("%.4f", (*flip)->median)
+                      << ", 95th percentile " << format("%.4f", (*flip)->p95) << ", max " << format("%.4f", (*flip)->max)
+                      << " (R, G, B at " << format("%.1f", vri::FlipViewing{}.pixelsPerDegree()) << " pixels per degree)\n";
+    if (!metrics.flipUnavailable.empty()) std::cout << metrics.flipUnavailable << '\n';
+    std::cout << verdict << '\n';
+}
+
+// A heat map's default title: "B vs A: max |A-B|, linear to 0.045" (the files' stems), what a reader of the
+// PNG alone needs to know.
+std::string heatMapTitle(const Options& options, double top, const std::string& topFrom) {
+    const auto stem = [](const std::string& path) { return std::filesystem::path(path).stem().string(); };
+    std::string title = stem(options.b) + " vs " + stem(options.a) + ": ";
+    if (options.signedMaps) return title + "B - A per channel, -" + format("%.3g", top) + " to " + format("%.3g", top);
+    title += "max |A-B| over channels, ";
+    if (options.heatLog) title += "log, " + std::to_string(options.decades) + " decades to ";
+    else title += "linear to ";
+    title += format("%.3g", top);
+    if (topFrom.starts_with("p")) title += " (" + topFrom + ")";
+    if (!options.scaleOver.empty() || !options.scaleFrom.empty()) title += ", one scale for the set";
+    return title;
 }
 
 const CLI::Validator kNonNegative = vri::numberAbove(0.0, true);
@@ -176,12 +201,32 @@ int run(int argc, char** argv) {
                    "(log is log:3), for a set whose errors span orders of magnitude")
         ->needs(diffImage)
         ->capture_default_str();
+    app.add_option("--heat-top", options.heatTop,
+                   "a PNG heat map's top when --diff-scale and --scale-from do not set it: max, the largest error of B "
+                   "and the --scale-over images, or pN, the Nth percentile of their pixels' errors (those --mask keeps "
+                   "and that are not 0), so that one outlier cannot darken every map; pixels above it show in magenta")
+        ->needs(diffImage)
+        ->excludes(diffScale)
+        ->capture_default_str();
+    app.add_flag("--heat-signed", options.signedMaps,
+                 "a PNG shows B - A per channel, side by side, blue below 0, red above, on one linear scale")
+        ->needs(diffImage)
+        ->excludes("--heat-scale");
+    app.add_option("--title", options.title,
+                   "the title line above a PNG heat map (default: B vs A, the value shown and its scale)")
+        ->needs(diffImage);
     app.add_option("--scale-from", options.scaleFrom,
                    "JSON: a PNG heat map's scale is the one another vri-diff's --json recorded (its heat_map.top): the "
                    "set's scale computed once, by the comparison of the set that takes --scale-over")
         ->needs(diffImage)
         ->excludes(diffScale)
         ->excludes("--scale-over");
+    app.add_flag("--hdr-flip", options.hdrFlip,
+                 "also HDR-FLIP (tone mapped over the exposures of the reference's hit pixels); LDR-FLIP is always "
+                 "computed for R, G, B");
+    app.add_option("--layers", options.layers,
+                   "write FILE.exr with three layers, reference.*, test.* and error.* (|A - B|), to flip between in tev "
+                   "or another EXR viewer");
     app.add_option("--mask", options.mask,
                    "which pixels every statistic counts: all (default), hit (alpha > 0 in either image), alpha>T, "
                    "or a mask image (its first channel's non-zero pixels)")
@@ -256,8 +301,22 @@ int run(int argc, char** argv) {
         options.heatLog = true;
         options.decades = *decades;
     }
+    if (!options.layers.empty() && std::filesystem::path(options.layers).extension() != ".exr")
+        return exitWith(vri::kExitUsage, vri::Error("--layers: expected a .exr file (only OpenEXR keeps layers), got '" +
+                                                    options.layers + "'"));
+    const std::optional<double> percentile = vri::heatTopPercentile(options.heatTop);
+    if (!percentile)
+        return exitWith(vri::kExitUsage, vri::Error("--heat-top: expected max or pN with N in (0, 100], got '" +
+                                                    options.heatTop + "'"));
+    for (const auto& [option, given] : {std::pair{"--heat-top", options.heatTop != "max"},
+                                        std::pair{"--heat-signed", options.signedMaps},
+                                        std::pair{"--title", !options.title.empty()}})
+        if (given && !isPng(options.diffImage))
+            return exitWith(vri::kExitUsage, vri::Error(std::string(option) + " is a PNG heat map's; --diff-image '" +
+                                                        options.diffImage + "' is not a .png"));
     const std::vector<vri::OutputArgument> outputs{
-        {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram}};
+        {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram},
+        {"--layers", options.layers}};
     vri::requireDistinctOutputs(outputs);
     std::vector<vri::InputArgument> inputs{{"A", options.a}, {"B", options.b}};
     for (const std::string& x : options.scaleOver) inputs.push_back({"--scale-over", x});
@@ -293,41 +352,51 @@ int run(int argc, char** argv) {
         return exitWith(vri::kExitError, vri::Error("--mask " + options.mask + ": " + e.what()));
     }
     const vri::ImageDiff diff = vri::compareImages(a, b, options.thresholds, &mask);
-    const vri::ImageMetrics metrics = vri::imageMetrics(a, b, &mask);
+    const vri::ImageMetrics metrics = vri::imageMetrics(a, b, &mask, options.hdrFlip);
     const vri::DiffVerdict verdict = vri::diffVerdict(a, b, options.limits, &mask);
 
     std::optional<double> heatTop;  // the top of a PNG heat map's scale
+    std::string topFrom;            // what set it: --diff-scale, max or pN (of this set, or of --scale-from's)
     vri::OutputSet files;
     if (!options.diffImage.empty() && isPng(options.diffImage)) {
-        double largest = 0;
-        const auto takeLargest = [&](const vri::ImageDiff& d) {
-            for (const vri::ChannelDiff& channel : d.channels) largest = std::max(largest, channel.maxAbs);
-        };
-        takeLargest(diff);
+        std::vector<vri::Image> others;  // --scale-over's images
         for (const std::string& path : options.scaleOver) {
-            const vri::Image x = vri::readImage(path);
+            others.push_back(vri::readImage(path));
             try {
-                vri::requireSameShape(a, x);
+                vri::requireSameShape(a, others.back());
             } catch (const vri::Error& e) {
                 return exitWith(vri::kDiffDifferentShape, vri::Error("--scale-over " + path + ": " + e.what()));
             }
-            takeLargest(vri::compareImages(a, x, {}));
         }
-        heatTop = diffScale->count() > 0 ? 1.0 / options.diffScale : largest;
-        if (!options.scaleFrom.empty()) {
+        if (diffScale->count() > 0) {
+            heatTop = 1.0 / options.diffScale;
+            topFrom = "--diff-scale";
+        } else if (!options.scaleFrom.empty()) {  // the set's top, and the rule that set it
             try {
                 const nlohmann::json other = vri::readJsonFile(options.scaleFrom);
-                heatTop = vri::readingJsonOf(options.scaleFrom, [&] { return other.at("heat_map").at("top").get<double>(); });
+                vri::readingJsonOf(options.scaleFrom, [&] {
+                    heatTop = other.at("heat_map").at("top").get<double>();
+                    topFrom = other.at("heat_map").value("top_from", "max");
+                });
             } catch (const vri::Error& e) {
                 return exitWith(vri::kExitError, vri::Error("--scale-from " + std::string(e.what())));
             }
+        } else {
+            std::vector<const vri::Image*> set{&b};
+            for (const vri::Image& x : others) set.push_back(&x);
+            heatTop = vri::heatMapTop(a, set, *percentile, &mask);
+            topFrom = options.heatTop;
         }
         if (!(*heatTop > 0) || !std::isfinite(*heatTop)) heatTop = 1.0;  // equal images, or an infinite error
+        const std::string title = !options.title.empty() ? options.title : heatMapTitle(options, *heatTop, topFrom);
         files.add(options.diffImage,
-                  vri::encodePng(options.diffImage, vri::heatMapImage(a, b, {*heatTop, options.heatLog, options.decades})));
+                  vri::encodePng(options.diffImage,
+                                 options.signedMaps ? vri::signedHeatMapImage(a, b, *heatTop, title)
+                                                    : vri::heatMapImage(a, b, {*heatTop, options.heatLog, options.decades}, title)));
     } else if (!options.diffImage.empty()) {
         files.add(options.diffImage, vri::encodeImage(options.diffImage, vri::differenceImage(a, b, options.diffScale)));
     }
+    if (!options.layers.empty()) files.add(options.layers, vri::encodeImage(options.layers, vri::comparisonLayers(a, b)));
     if (!options.histogram.empty())
         files.add(options.histogram, vri::toCsv(vri::errorHistogram(a, b, histogramEdges, &mask)));
     if (!options.json.empty()) {
@@ -339,10 +408,11 @@ int run(int argc, char** argv) {
         json["command"] = vri::commandLine(argc, argv);
         if (heatTop)
             json["heat_map"] = {{"file", options.diffImage},
-                                {"value", "largest |A - B| over the channels"},
-                                {"colormap", "viridis"},
+                                {"value", options.signedMaps ? "B - A per channel" : "largest |A - B| over the channels"},
+                                {"colormap", options.signedMaps ? "cool-warm" : "viridis"},
                                 {"top", *heatTop},
                                 {"scale", options.heatLog ? "log" : "linear"},
+                                {"top_from", topFrom},
                                 {"clipped", "magenta: above the top"}};
         if (heatTop && options.heatLog) {
             json["heat_map"]["decades"] = options.decades;

@@ -22,6 +22,7 @@
 #include "libvri/experiment/experiment_run.h"
 #include "libvri/experiment/experiment_spec.h"
 #include "libvri/experiment/gallery.h"
+#include "libvri/experiment/results_viewer.h"
 #include "libvri/experiment/manifest.h"
 #include "libvri/experiment/new_study.h"
 #include "libvri/experiment/plan_waves.h"
@@ -307,6 +308,13 @@ int run(const Options& options) {
             vri::writeTextFile(file, page.text);
             std::cerr << kTool << ": wrote " << file.string() << '\n';
         }
+        const std::vector<vri::GalleryEntry> entries = vri::galleryEntries(options.gallery);
+        for (const vri::GalleryPage& page : vri::viewerPages(entries))
+            vri::writeTextFile(fs::path(options.gallery) / page.name, page.text);
+        const std::size_t floats = vri::writeViewerFloats(entries);
+        std::cerr << kTool << ": wrote the viewer, " << (fs::path(options.gallery) / "index.html").string()
+                  << ", and the float data of " << floats << (floats == 1 ? " render" : " renders")
+                  << " from their EXRs\n";
     }
     return reproduced ? vri::kExitOk : vri::kExitError;
 }
@@ -366,7 +374,7 @@ int main(int argc, char** argv) {
         ->excludes("--record");
     app.add_option("--committed", options.committed, "the committed results root for --record and --check")
         ->capture_default_str();
-    app.add_option("--gallery", options.gallery, "afterwards, write DIR/README.md from DIR/*/manifest.json");
+    app.add_option("--gallery", options.gallery, "afterwards, write the gallery from DIR/*/manifest.json: DIR/README.md and the viewer, DIR/index.html");
     app.footer(R"(Steps are cached in <results>/<experiment>/.steps/: a step is skipped when its command, tool binary,
 input files (or the steps that write them) and outputs are as when it last succeeded.
 Tools are taken from the directory vri-run is in. One vri-run at a time works in an experiment's folder

@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "libvri/core/image_compare.h"
-#include "libvri/core/number_glyphs.h"
+#include "libvri/core/text_glyphs.h"
+#include "libvri/util/checked_size.h"
 #include "libvri/util/error.h"
 #include "libvri/util/parse.h"
 
@@ -104,7 +105,7 @@ std::vector<Tick> labelledTicks(const std::vector<Tick>& ticks, int canvasWidth,
         bool apart = true;
         int right = -labelSpace(scale);  // the previous label's right edge
         for (const Tick& t : candidate) {
-            const int width = numberTextWidth(t.label, scale);
+            const int width = glyphTextWidth(t.label, scale);
             const int left = labelLeft(tickX(canvasWidth, t.at), width, canvasWidth);
             apart = apart && left >= right + labelSpace(scale);
             right = left + width;
@@ -127,48 +128,145 @@ std::optional<int> heatScaleDecades(std::string_view text) {
 
 int heatMapLabelScale(int canvasWidth) { return canvasWidth >= 256 ? 2 : 1; }
 
-Image heatMapImage(const Image& a, const Image& b, const HeatMapScale& scale) {
+std::optional<double> heatTopPercentile(std::string_view text) {
+    if (text == "max") return 100.0;
+    if (!text.starts_with("p")) return std::nullopt;
+    const std::optional<double> n = numberFromText(text.substr(1));
+    if (!n || !(*n > 0) || *n > 100) return std::nullopt;
+    return *n;
+}
+
+double heatMapTop(const Image& a, const std::vector<const Image*>& set, double percentile, const PixelMask* mask) {
+    std::vector<float> errors;
+    for (const Image* x : set) {
+        const Image difference = differenceImage(a, *x);
+        for (std::size_t p = 0; p < std::size_t(a.width) * std::size_t(a.height); ++p) {
+            if (mask && !mask->keep[p]) continue;
+            float e = 0;
+            for (int c = 0; c < a.channels; ++c) e = std::max(e, difference.pixels[p * std::size_t(a.channels) + c]);
+            if (e > 0) errors.push_back(e);
+        }
+    }
+    if (errors.empty()) return 0.0;
+    // Nearest rank: the smallest error at or above `percentile` % of them.
+    const std::size_t rank = std::min(errors.size() - 1,
+                                      static_cast<std::size_t>(std::ceil(percentile / 100.0 * double(errors.size()))) - 1);
+    std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(rank), errors.end());
+    return errors[rank];
+}
+
+namespace {
+
+constexpr int kTitleTop = 2, kTitleGap = 4;
+
+int titleRows(const std::string& title, int cell) { return title.empty() ? 0 : kTitleTop + kGlyphRows * cell + kTitleGap; }
+
+// The title at the canvas' top left, a cell in, cut to its width with "..".
+void drawTitle(Image& canvas, const std::string& title, int cell) {
+    if (title.empty()) return;
+    std::string text = title;
+    if (glyphTextWidth(text, cell) > canvas.width - 2 * cell) {
+        while (!text.empty() && glyphTextWidth(text + "..", cell) > canvas.width - 2 * cell) text.pop_back();
+        text += "..";
+    }
+    drawGlyphText(canvas, cell, kTitleTop, cell, text, {0.0f, 0.0f, 0.0f, 1.0f});
+}
+
+// A canvas mapWidth wide, or wider when the bar's end labels need it (labelSpace apart).
+int canvasWidthFor(int mapWidth, const std::vector<Tick>& ticks) {
+    if (!labelledTicks(ticks, mapWidth, heatMapLabelScale(mapWidth)).empty()) return mapWidth;
+    const int cell = heatMapLabelScale(mapWidth);
+    return glyphTextWidth(ticks.front().label, cell) + glyphTextWidth(ticks.back().label, cell) + labelSpace(cell);
+}
+
+// A white canvas for a map mapHeight high: the title's rows, the map, the bar's.
+Image whiteCanvas(int width, int mapHeight, int titleHeight) {
+    const int cell = heatMapLabelScale(width);
+    Image canvas(width, titleHeight + mapHeight + kGap + kBar + kTicks + kLabelGap + kGlyphRows * cell + kMargin, 4);
+    for (int y = 0; y < canvas.height; ++y)
+        for (int x = 0; x < canvas.width; ++x) paint(canvas, x, y, {1.0, 1.0, 1.0});
+    return canvas;
+}
+
+// The colour bar from barTop down: colourAt(u) from the left edge (u = 0) to the right (u = 1), the ticks
+// and their labels.
+template <typename ColourAt>
+void drawBar(Image& canvas, int barTop, const std::vector<Tick>& ticks, ColourAt colourAt) {
+    const int cell = heatMapLabelScale(canvas.width);
+    for (int x = 0; x < canvas.width; ++x) {
+        const auto colour = colourAt(canvas.width > 1 ? double(x) / double(canvas.width - 1) : 0.0);
+        for (int y = barTop; y < barTop + kBar; ++y) paint(canvas, x, y, colour);
+    }
+    for (const Tick& t : ticks)
+        for (int y = barTop + kBar; y < barTop + kBar + kTicks; ++y) paint(canvas, tickX(canvas.width, t.at), y, {0.0, 0.0, 0.0});
+    const int labelTop = barTop + kBar + kTicks + kLabelGap;
+    for (const Tick& t : labelledTicks(ticks, canvas.width, cell)) {
+        const int width = glyphTextWidth(t.label, cell);
+        drawGlyphText(canvas, labelLeft(tickX(canvas.width, t.at), width, canvas.width), labelTop, cell, t.label,
+                      {0.0f, 0.0f, 0.0f, 1.0f});
+    }
+}
+
+// Moreland's cool-warm diverging map in sRGB, its ends and its light grey middle (not the canvas' white, so
+// that a map's edge shows where it has no error): the signed maps' colours, interpolated in sRGB.
+constexpr std::array<double, 3> kCool{0.230, 0.299, 0.754}, kMiddle{0.865, 0.865, 0.865}, kWarm{0.706, 0.016, 0.150};
+
+std::array<double, 3> coolWarm(double u) {  // u in [0, 1], 0.5 the middle
+    const double f = std::clamp(std::abs(2.0 * u - 1.0), 0.0, 1.0);
+    const auto& end = u < 0.5 ? kCool : kWarm;
+    return {kMiddle[0] + f * (end[0] - kMiddle[0]), kMiddle[1] + f * (end[1] - kMiddle[1]),
+            kMiddle[2] + f * (end[2] - kMiddle[2])};
+}
+
+}  // namespace
+
+Image heatMapImage(const Image& a, const Image& b, const HeatMapScale& scale, const std::string& title) {
     if (!(scale.top > 0) || !std::isfinite(scale.top))
         throw Error("heat map: the top of the scale must be a positive number");
     if (scale.log && (scale.decades < 1 || scale.decades > 12))
         throw Error("heat map: a log scale spans 1 to 12 decades, got " + std::to_string(scale.decades));
     const Image difference = differenceImage(a, b);
     const std::vector<Tick> ticks = ticksOf(scale);
-
-    // A canvas wide enough for the labels of both ends, labelSpace apart.
-    int canvasWidth = a.width;
-    if (labelledTicks(ticks, canvasWidth, heatMapLabelScale(canvasWidth)).empty()) {
-        const int cell = heatMapLabelScale(canvasWidth);
-        canvasWidth = numberTextWidth(ticks.front().label, cell) + numberTextWidth(ticks.back().label, cell) +
-                      labelSpace(cell);
-    }
-    const int cell = heatMapLabelScale(canvasWidth);
-    const int barRows = kGap + kBar + kTicks + kLabelGap + kGlyphRows * cell + kMargin;
-    Image heat(canvasWidth, a.height + barRows, 4);
-    for (int y = 0; y < heat.height; ++y)
-        for (int x = 0; x < heat.width; ++x) paint(heat, x, y, {1.0, 1.0, 1.0});
-
+    const int canvasWidth = canvasWidthFor(a.width, ticks);
+    const int mapTop = titleRows(title, heatMapLabelScale(canvasWidth));
+    Image heat = whiteCanvas(canvasWidth, a.height, mapTop);
+    drawTitle(heat, title, heatMapLabelScale(canvasWidth));
     const int left = (canvasWidth - a.width) / 2;
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
             double e = 0;
             for (int c = 0; c < a.channels; ++c) e = std::max(e, double(difference.pixels[(std::size_t(y) * a.width + x) * a.channels + c]));
             const double u = positionOf(e, scale);
-            paint(heat, left + x, y, u > 1.0 ? kClipped : viridis(u));
+            paint(heat, left + x, mapTop + y, u > 1.0 ? kClipped : viridis(u));
         }
-    const int barTop = a.height + kGap;
-    for (int x = 0; x < canvasWidth; ++x) {
-        const auto colour = viridis(canvasWidth > 1 ? double(x) / double(canvasWidth - 1) : 0.0);
-        for (int y = barTop; y < barTop + kBar; ++y) paint(heat, x, y, colour);
+    drawBar(heat, mapTop + a.height + kGap, ticks, viridis);
+    return heat;
+}
+
+Image signedHeatMapImage(const Image& a, const Image& b, double top, const std::string& title) {
+    if (!(top > 0) || !std::isfinite(top)) throw Error("heat map: the top of the scale must be a positive number");
+    requireSameShape(a, b);
+    constexpr int kBetween = 8;
+    const int mapsWidth = static_cast<int>(checkedCount("signed heat map", {std::uint64_t(a.channels), std::uint64_t(a.width) + kBetween},
+                                                        std::uint64_t(1) << 20, "pixels wide")) - kBetween;
+    const std::vector<Tick> ticks{{0.0, "-" + numberLabel(top)}, {0.5, "0"}, {1.0, numberLabel(top)}};
+    const int canvasWidth = canvasWidthFor(mapsWidth, ticks);
+    const int cell = heatMapLabelScale(canvasWidth);
+    const int mapTop = titleRows(title, cell), namesRows = kTitleTop + kGlyphRows * cell;
+    Image heat = whiteCanvas(canvasWidth, a.height + namesRows, mapTop);
+    drawTitle(heat, title, cell);
+    for (int c = 0; c < a.channels; ++c) {
+        const int left = (canvasWidth - mapsWidth) / 2 + c * (a.width + kBetween);
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x) {
+                const double d = double(b.at(x, y, c)) - double(a.at(x, y, c));
+                const double u = 0.5 + 0.5 * d / top;
+                paint(heat, left + x, mapTop + y, !(u >= 0.0 && u <= 1.0) ? kClipped : coolWarm(u));
+            }
+        drawGlyphText(heat, left, mapTop + a.height + kTitleTop, cell, a.channelNames[std::size_t(c)],
+                      {0.0f, 0.0f, 0.0f, 1.0f});
     }
-    for (const Tick& t : ticks)
-        for (int y = barTop + kBar; y < barTop + kBar + kTicks; ++y) paint(heat, tickX(canvasWidth, t.at), y, {0.0, 0.0, 0.0});
-    const int labelTop = barTop + kBar + kTicks + kLabelGap;
-    for (const Tick& t : labelledTicks(ticks, canvasWidth, cell)) {
-        const int width = numberTextWidth(t.label, cell);
-        drawNumberText(heat, labelLeft(tickX(canvasWidth, t.at), width, canvasWidth), labelTop, cell, t.label,
-                       {0.0f, 0.0f, 0.0f, 1.0f});
-    }
+    drawBar(heat, mapTop + a.height + namesRows + kGap, ticks, coolWarm);
     return heat;
 }
 

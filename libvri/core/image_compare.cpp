@@ -118,6 +118,23 @@ Image differenceImage(const Image& a, const Image& b, double scale) {
     return difference;
 }
 
+Image comparisonLayers(const Image& a, const Image& b) {
+    const Image error = differenceImage(a, b);
+    const int n = a.channels;
+    Image layers(a.width, a.height, static_cast<int>(checkedCount("comparison layers", {3, std::uint64_t(n)}, 1024, "channels")));
+    layers.channelNames.clear();
+    for (const char* layer : {"reference.", "test.", "error."})
+        for (const std::string& name : a.channelNames) layers.channelNames.push_back(layer + name);
+    for (std::size_t p = 0; p < std::size_t(a.width) * std::size_t(a.height); ++p)
+        for (int c = 0; c < n; ++c) {
+            const std::size_t from = p * std::size_t(n) + std::size_t(c), to = p * std::size_t(3 * n) + std::size_t(c);
+            layers.pixels[to] = a.pixels[from];
+            layers.pixels[to + std::size_t(n)] = b.pixels[from];
+            layers.pixels[to + std::size_t(2 * n)] = error.pixels[from];
+        }
+    return layers;
+}
+
 double ErrorHistogram::binLower(std::size_t bin) const { return bin < 2 ? 0.0 : edges.at(bin - 2); }
 
 double ErrorHistogram::binUpper(std::size_t bin) const {

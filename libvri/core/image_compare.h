@@ -59,6 +59,11 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::vector<double
 // picture), channel names from a. Throws as requireSameShape.
 Image differenceImage(const Image& a, const Image& b, double scale = 1.0);
 
+// The pair as one image of three layers for an EXR viewer (tev, OpenImageIO's iv, Nuke), which lists the
+// layers by their channels' prefixes: reference.<C> = a, test.<C> = b and error.<C> = |a - b| (as above),
+// for each channel C of a. Throws as requireSameShape, or vri::Error when 3 x a's channels exceed the limit.
+Image comparisonLayers(const Image& a, const Image& b);
+
 // Counts of errors per bin and channel. Bins follow the "strictly above" rule of compareImages,
 // so the count above any edge is the sum of the bins past it:
 //   bin 0: error == 0 exactly

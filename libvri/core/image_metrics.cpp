@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "libvri/core/image_compare.h"
+#include "libvri/core/pixel_mask.h"
 #include "libvri/util/error.h"
 
 namespace vri {
@@ -89,9 +90,38 @@ double psnrOf(double mse) {
     return mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(kPsnrPeak * kPsnrPeak / mse);
 }
 
+void addFlip(ImageMetrics& m, const Image& reference, const Image& test, const PixelMask* mask, bool withHdrFlip) {
+    for (const char* name : {"R", "G", "B"})
+        if (channelIndex(reference, name) < 0) {
+            m.flipUnavailable = "FLIP compares colours: the images have no " + std::string(name) + " channel";
+            return;
+        }
+    for (const Image* image : {&reference, &test})
+        for (std::size_t i = 0; i < image->pixels.size(); ++i)
+            if (!std::isfinite(image->pixels[i]) && image->channelNames[i % std::size_t(image->channels)] != "A") {
+                m.flipUnavailable = "FLIP needs finite colours: an image holds a NaN or an infinity";
+                return;
+            }
+    m.ldrFlip = ldrFlip(reference, test, {}, mask);
+    m.ldrFlip->errorMap = {};
+    if (!withHdrFlip) return;
+    const PixelMask hit = alphaMask(reference, test, 0.0);
+    try {
+        FlipHdrOptions options;
+        const FlipExposureRange range = flipExposureRange(reference, options.toneMapper, &hit);
+        options.startExposure = range.start;
+        options.stopExposure = range.stop;
+        options.exposures = range.count;
+        m.hdrFlip = hdrFlip(reference, test, {}, mask, options);
+        m.hdrFlip->errorMap = {};
+    } catch (const Error& e) {
+        m.flipUnavailable = std::string("HDR-FLIP: ") + e.what();
+    }
+}
+
 }  // namespace
 
-ImageMetrics imageMetrics(const Image& reference, const Image& test, const PixelMask* mask) {
+ImageMetrics imageMetrics(const Image& reference, const Image& test, const PixelMask* mask, bool withHdrFlip) {
     requireSameShape(reference, test);
     const std::size_t pixels = static_cast<std::size_t>(reference.width) * reference.height;
     if (mask && mask->keep.size() != pixels) throw Error("the mask is not the images' size");
@@ -128,6 +158,7 @@ ImageMetrics imageMetrics(const Image& reference, const Image& test, const Pixel
     m.all.relMse = allRelative / (count * channels);
     m.all.smape = allSmape / (count * channels);
     m.all.ssim = allSsim / channels;
+    addFlip(m, reference, test, mask, withHdrFlip);
     return m;
 }
 

@@ -11,11 +11,18 @@
 //    image smaller than the window.
 //  - Relative MSE: the mean of (a - b)^2 / (a^2 + 0.01), a the reference (Rousselle et al.'s form).
 //  - SMAPE: the mean of |a - b| / (|a| + |b| + 0.01).
+//  - FLIP (flip.h): LDR-FLIP of the R, G and B channels (linear, clamped to [0, 1]) at the papers' viewing
+//    distance, its mean, median, 95th percentile and largest error over the mask's pixels; HDR-FLIP on
+//    request, its exposures from the reference's pixels that either image hits (alpha > 0: the black
+//    background would put the median luminance, and so the last exposure, at 0). Not computed for images
+//    without R, G and B, or with a NaN or infinity in them; `flipUnavailable` then says why.
 // Errors follow image_compare.h: a NaN against a number is an infinite error.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "libvri/core/flip.h"
 #include "libvri/core/image.h"
 #include "libvri/core/pixel_mask.h"
 
@@ -31,12 +38,15 @@ struct ImageMetrics {
     MetricValues all;                    // over every channel
     std::uint64_t pixels = 0;            // the pixels counted
     std::uint64_t ssimWindows = 0;       // the SSIM window positions counted
+    std::optional<FlipResult> ldrFlip, hdrFlip;  // their error maps left empty
+    std::string flipUnavailable;                 // why FLIP is missing, "" when it is not
 };
 
 inline constexpr double kPsnrPeak = 1.0;
 inline constexpr double kRelativeEpsilon = 0.01;  // relative MSE's and SMAPE's guard against division by 0
 
 // Throws vri::Error when the images differ in shape or the mask is not theirs.
-ImageMetrics imageMetrics(const Image& reference, const Image& test, const PixelMask* mask = nullptr);
+ImageMetrics imageMetrics(const Image& reference, const Image& test, const PixelMask* mask = nullptr,
+                          bool withHdrFlip = false);
 
 }  // namespace vri

@@ -160,6 +160,8 @@ void Planner::addDiff(const ComparisonSpec& c) {
     if (!c.diffImage.empty()) output(step, "--diff-image", result(c.id + "." + c.diffImage));
     if (!c.diffScale.empty()) step.arguments.insert(step.arguments.end(), {"--diff-scale", c.diffScale});
     if (!c.heatScale.empty()) step.arguments.insert(step.arguments.end(), {"--heat-scale", c.heatScale});
+    if (!c.heatTop.empty()) step.arguments.insert(step.arguments.end(), {"--heat-top", c.heatTop});
+    if (c.heatSigned) step.arguments.push_back("--heat-signed");
     // One scale for the set, computed once: the set's first comparison takes the largest error over every run
     // (--scale-over), the others read it from its JSON (--scale-from); each reading every image would cost the
     // square of the set's size in image reads (56 Bonsai maps of paper-b-cpu: 3,136 reads, 116 s).

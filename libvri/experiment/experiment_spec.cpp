@@ -14,6 +14,8 @@
 #include "libvri/experiment/datasets.h"
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_spec.h"
+
+#include "libvri/experiment/experiment_keys.h"
 #include "libvri/experiment/timing_defaults.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
@@ -208,7 +210,7 @@ void ExperimentReader::requireRun(const Experiment& experiment, const std::strin
 
 PaperItem ExperimentReader::readPaper(const YAML::Node& node) const {
     yaml::requireMap(node, source_, "paper");
-    yaml::requireKeys(node, source_, {"paper", "item", "says"});
+    yaml::requireKeys(node, source_, kPaperKeys);
     PaperItem paper{text(required(node, "paper", "paper"), "paper.paper"), "", ""};
     if (paper.paper != "A" && paper.paper != "B" && paper.paper != "none")
         throw Error(at(node["paper"]) + ": paper.paper must be A, B or none, got '" + paper.paper + "'");
@@ -251,8 +253,7 @@ void ExperimentReader::requireAllKeys(const YAML::Node& root) const {
 }
 
 SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node& node) {
-    yaml::requireKeys(node, source_,
-                      {"dataset", "volume", "field", "field_dims", "as_grid", "convention", "tf", "camera", "size", "png"});
+    yaml::requireKeys(node, source_, kSceneKeys);
     SceneSpec scene{name, {}, {}, {}, {}, {}};
     const std::string what = "scene '" + name + "'";
     const int inputs = !!node["dataset"] + !!node["volume"] + !!node["field"];
@@ -339,7 +340,7 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
     }
     if (const YAML::Node camera = node["camera"]) {
         yaml::requireMap(camera, source_, "camera");
-        yaml::requireKeys(camera, source_, {"eye", "target", "up", "fov", "zoom", "zoom_centre"});
+        yaml::requireKeys(camera, source_, kCameraKeys);
         for (const char* key : {"eye", "target", "up"})
             if (camera[key]) scene.options.emplace_back(std::string("--") + key, vec3(camera[key], key));
         if (const YAML::Node fov = camera["fov"]) {
@@ -360,7 +361,7 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
     }
     if (const YAML::Node png = node["png"]) {
         yaml::requireMap(png, source_, "png");
-        yaml::requireKeys(png, source_, {"invert", "exposure", "background"});
+        yaml::requireKeys(png, source_, kPngKeys);
         if (png["invert"] && flag(png["invert"], "png.invert")) scene.options.emplace_back("--png-invert", "");
         if (const YAML::Node e = png["exposure"]) {
             parsePositive(number(e, "png.exposure"), at(e) + ": png.exposure");
@@ -373,7 +374,7 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
 
 void ExperimentReader::readRenderers(const YAML::Node& node) {
     for (const auto& [name, entry] : entries(node, "renderers")) {
-        yaml::requireKeys(entry, source_, {"command", "image", "timeout"});
+        yaml::requireKeys(entry, source_, kRendererKeys);
         const YAML::Node command = required(entry, "command", "renderer '" + name + "'");
         if (!command.IsSequence() || command.size() == 0)
             throw Error(at(command) + ": command must be a list of words, the program first");
@@ -466,7 +467,8 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             }
             const RenderOptionRow* row = findRenderOption(key);
             if (!row) {
-                std::string list = "scenes, tiles, renderer";
+                std::string list;
+                for (const std::string_view k : kMethodKeysBesideOptions) list += (list.empty() ? "" : ", ") + std::string(k);
                 for (const RenderOptionRow& r : renderOptionTable())
                     if (!r.key.empty()) list += ", " + std::string(r.key);
                 throw Error(at(kv.first) + ": unknown key '" + key + "' (expected one of: " + list + ")");
@@ -592,8 +594,7 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
 
 void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [group, entry] : entries(node, "comparisons")) {
-        yaml::requireKeys(entry, source_,
-                          {"reference", "runs", "thresholds", "diff_image", "diff_scale", "heat_scale", "histogram", "mask"});
+        yaml::requireKeys(entry, source_, kComparisonKeys);
         const YAML::Node ref = required(entry, "reference", "comparison '" + group + "'");
         const std::string reference = text(ref, "reference");
         requireRun(experiment, reference, ref);
@@ -605,7 +606,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             for (const RunSpec& r : experiment.runs)
                 if (!r.reference && r.id != reference && r.scene == experiment.run(reference).scene) runs.push_back(r.id);
         }
-        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", "", false, false, "", ""};
+        ComparisonSpec base{"", group, reference, "", {"0.01", "0.005", "0.001"}, "", "", false, false, "", "", "", false};
         if (const YAML::Node t = entry["thresholds"]) {
             if (!t.IsSequence() || t.size() == 0) throw Error(at(t) + ": thresholds must be a list of numbers");
             base.thresholds.clear();
@@ -640,6 +641,21 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
             if (base.diffImage != "png") throw Error(at(h) + ": heat_scale is the colour scale of PNG heat maps (diff_image: png)");
             if (*decades == 0) base.heatScale.clear();  // linear: vri-diff's default
         }
+        if (const YAML::Node t = entry["heat_top"]) {
+            base.heatTop = text(t, "heat_top");
+            if (!heatTopPercentile(base.heatTop))
+                throw Error(at(t) + ": heat_top must be max or pN (N in (0, 100]), got '" + printable(base.heatTop) + "'");
+            if (base.diffImage != "png") throw Error(at(t) + ": heat_top is the top of PNG heat maps (diff_image: png)");
+            if (!base.diffScale.empty()) throw Error(at(t) + ": heat_top and a numeric diff_scale both set the top");
+            if (base.heatTop == "max") base.heatTop.clear();  // vri-diff's default
+        }
+        if (const YAML::Node g = entry["heat_signed"]) {
+            base.heatSigned = flag(g, "heat_signed");
+            if (base.heatSigned && base.diffImage != "png")
+                throw Error(at(g) + ": heat_signed draws PNG heat maps (diff_image: png)");
+            if (base.heatSigned && !base.heatScale.empty())
+                throw Error(at(g) + ": heat_signed maps are linear; drop heat_scale");
+        }
         if (const YAML::Node m = entry["mask"]) {
             base.mask = text(m, "mask");
             try {
@@ -668,7 +684,7 @@ void ExperimentReader::readComparisons(const YAML::Node& node, Experiment& exper
 
 void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "commands")) {
-        yaml::requireKeys(entry, source_, {"tool", "options", "inputs", "outputs", "renderer", "scene"});
+        yaml::requireKeys(entry, source_, kCommandKeys);
         const std::string what = "command '" + name + "'";
         const YAML::Node tool = required(entry, "tool", what);
         CommandSpec command{name, text(tool, "tool"), {}, {}, {}, {}, {}, {}, {}, {}, {}};
@@ -724,8 +740,7 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
 
 void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "tables")) {
-        yaml::requireKeys(entry, source_, {"title", "layout", "comparisons", "runs", "rows", "value", "column",
-                                           "group_by", "threshold", "baseline", "channels", "precision"});
+        yaml::requireKeys(entry, source_, kTableKeys);
         TableSpec table;
         table.name = table.title = name;
         if (entry["value"]) table.value = text(entry["value"], "value");
@@ -834,7 +849,7 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
 
 void ExperimentReader::readFigures(const YAML::Node& node, Experiment& experiment) const {
     for (const auto& [name, entry] : entries(node, "figures")) {
-        yaml::requireKeys(entry, source_, {"spec", "data"});
+        yaml::requireKeys(entry, source_, kFigureKeys);
         FigureSpec figure{name, existingFile(required(entry, "spec", "figure '" + name + "'"), "spec"), {}, {}};
         if (const YAML::Node d = entry["data"]) {  // whether some step writes each file, the plan checks
             figure.data = names(d, "data");
@@ -846,14 +861,14 @@ void ExperimentReader::readFigures(const YAML::Node& node, Experiment& experimen
 
 void ExperimentReader::readReproduce(const YAML::Node& node, Experiment& experiment) const {
     yaml::requireMap(node, source_, "reproduce");
-    yaml::requireKeys(node, source_, {"tolerance", "checks"});
+    yaml::requireKeys(node, source_, kReproduceKeys);
     double tolerance = 0;
     if (node["tolerance"]) tolerance = yaml::toDouble(node["tolerance"], source_, "tolerance");
     const YAML::Node checks = required(node, "checks", "reproduce");
     if (!checks.IsSequence() || checks.size() == 0) throw Error(at(checks) + ": checks must be a non-empty list");
     for (const YAML::Node& c : checks) {
         yaml::requireMap(c, source_, "a check");
-        yaml::requireKeys(c, source_, {"of", "metrics", "file", "tolerance"});
+        yaml::requireKeys(c, source_, kReproduceCheckKeys);
         ReproduceCheck check{text(required(c, "of", "a check"), "of"), {}, "", tolerance};
         if (c["tolerance"]) check.tolerance = yaml::toDouble(c["tolerance"], source_, "tolerance");
         if (!(check.tolerance >= 0)) throw Error(at(c) + ": tolerance must be >= 0");
@@ -900,14 +915,10 @@ void mergeOverrides(YAML::Node base, const YAML::Node& overrides) {
 
 Experiment ExperimentReader::read(YAML::Node root, bool quick) {
     yaml::requireMap(root, source_, "an experiment");
-    static const std::initializer_list<std::string_view> topLevel{
-        "name", "title", "paper", "agreement", "scenes", "renderers", "methods", "references",
-        "comparisons", "commands", "tables", "figures", "reproduce", "quick"};
-    yaml::requireKeys(root, source_, topLevel);
+        yaml::requireKeys(root, source_, kTopLevelKeys);
     if (const YAML::Node q = root["quick"]) {
         yaml::requireMap(q, source_, "quick");
-        yaml::requireKeys(q, source_,
-                          {"title", "scenes", "methods", "references", "comparisons", "commands", "tables", "figures"});
+        yaml::requireKeys(q, source_, kQuickKeys);
         if (quick) mergeOverrides(root, q);
     }
     requireAllKeys(root);

@@ -75,6 +75,8 @@ struct ComparisonSpec {
     // experiment's folder); "" for all.
     std::string mask;
     std::string heatScale;  // vri-diff --heat-scale of a PNG heat map: "", "log" or "log:N"
+    std::string heatTop;    // vri-diff --heat-top: "" (the largest error) or "pN"
+    bool heatSigned = false;  // vri-diff --heat-signed
 };
 
 // A comparison's id, the name of its files: its name and the run's id, with the words (between '-') that

@@ -33,56 +33,6 @@ std::string commitNote(const nlohmann::json& sourceTree) {
     return note;
 }
 
-// The caption of an experiment's heat maps: what they show and each one's scale, read from the
-// comparison's vri-diff JSON beside it (a diff image is named as its JSON: <comparison id>.png). Maps
-// that share a scale (vri-diff --scale-over and --scale-from, `diff_scale: shared`) are listed together, the top
-// once.
-void heatMapScales(std::ostream& md, const nlohmann::json& diffImages, const fs::path& dir) {
-    std::vector<std::pair<std::string, std::string>> scales;  // ids, the top they share or have alone
-    for (const nlohmann::json& item : diffImages) {
-        const std::string id = item.at("id").get<std::string>();
-        const fs::path json = dir / (id + ".json");
-        if (!fs::is_regular_file(json)) continue;
-        const nlohmann::json diff = readJsonFile(json);
-        if (!diff.contains("heat_map")) continue;  // results of a vri-diff that drew RGB on black
-        char top[64];
-        std::snprintf(top, sizeof top, "%.3g",
-                      readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
-        if (diff.at("heat_map").value("scale", "linear") == "log")  // "0.99, log over 3 decades"
-            std::snprintf(top + std::strlen(top), sizeof top - std::strlen(top), ", log over %d decades",
-                          readingJsonOf(json, [&] { return diff.at("heat_map").at("decades").get<int>(); }));
-        const bool shared = diff.at("heat_map").contains("scale_over") || diff.at("heat_map").contains("scale_from");
-        if (shared && !scales.empty() && scales.back().second == top + std::string(" (one scale)"))
-            scales.back().first += ", " + id;
-        else
-            scales.emplace_back(id, top + std::string(shared ? " (one scale)" : ""));
-    }
-    if (scales.empty()) return;
-    md << "*Difference images: heat maps of the largest |run - reference| over the channels (alpha included), "
-          "viridis from the bottom of the scale (dark blue, the colour bar's left end: 0, or on a log scale the top "
-          "over 10^decades) to its top (yellow, its right end; larger errors in magenta), the bar numbered at "
-          "quarters of it or at each decade. Top of the scale: ";
-    for (std::size_t i = 0; i < scales.size(); ++i) md << (i ? "; " : "") << scales[i].first << " " << scales[i].second;
-    md << ".*\n\n";
-}
-
-// The caption under an experiment's tables and charts when any of its renders was timed while other processes
-// kept the cores busy (timing.load.overloaded in the run's stats, frame_timing.h): its seconds are inflated.
-void loadWarning(std::ostream& md, const nlohmann::json& steps, const fs::path& dir) {
-    std::vector<std::string> loaded;
-    for (const nlohmann::json& step : steps) {
-        if (step.value("kind", "") != "render") continue;
-        const fs::path stats = dir / (step.at("id").get<std::string>() + ".json");
-        if (!fs::is_regular_file(stats)) continue;
-        const std::optional<TimingLoad> load = timingLoadOf(readJsonFile(stats));
-        if (load && load->overloaded()) loaded.push_back(step.at("id").get<std::string>());
-    }
-    if (loaded.empty()) return;
-    md << "*Timed under load: " << loaded.size() << (loaded.size() == 1 ? " run (" : " runs (") << loaded.front()
-       << (loaded.size() > 1 ? ", ..." : "") << ") ran while other processes kept the cores busy (timing.load in "
-       << "their stats): their seconds, in the tables and charts here, are inflated.*\n\n";
-}
-
 // A table's Markdown without the notes under its last row when an earlier table of the experiment had
 // the same: a kind of table is explained once, not under each of its tables.
 std::string withNewNotes(const std::string& table, std::set<std::string>& notesSeen) {
@@ -92,44 +42,6 @@ std::string withNewNotes(const std::string& table, std::set<std::string>& notesS
     const std::string notes = table.substr(rowEnd + 1);
     if (notes.find_first_not_of(" \n") == std::string::npos || notesSeen.insert(notes).second) return table;
     return table.substr(0, rowEnd + 1);
-}
-
-// An id without the scene's name in front (bonsai-riemann-h0.5 -> riemann-h0.5): the same run's
-// column in every scene's row.
-std::string withoutScene(const std::string& id, const std::string& scene) {
-    return !scene.empty() && id.starts_with(scene + "-") ? id.substr(scene.size() + 1) : id;
-}
-
-// Where each gallery image goes in its experiment's scene-by-run matrix: a render's row is its scene
-// and its column its run; a difference image's row is its run's scene and its column "RUN vs REFERENCE",
-// or its comparison's id when another comparison of the same pair took that column already (two
-// comparisons of one run, say on different scales). A command's image has no scene.
-std::vector<GridImage> gridImages(const nlohmann::json& list, const nlohmann::json& steps, const std::string& dir) {
-    std::map<std::string, const nlohmann::json*> parameters;
-    for (const nlohmann::json& step : steps)
-        parameters.emplace(step.at("id").get<std::string>(), &step.at("parameters"));
-    const auto scene = [&](const std::string& id) {
-        const auto found = parameters.find(id);
-        return found == parameters.end() ? std::string() : found->second->value("scene", std::string());
-    };
-    std::vector<GridImage> images;
-    std::set<std::pair<std::string, std::string>> cells;  // (row, column) taken
-    for (const nlohmann::json& item : list) {
-        const std::string id = item.at("id").get<std::string>();
-        GridImage image{id, dir + "/" + item.at("file").get<std::string>(), scene(id), id};
-        if (const auto found = parameters.find(id); found != parameters.end() && found->second->contains("run")) {
-            const std::string run = found->second->at("run").get<std::string>();
-            const std::string reference = found->second->value("reference", std::string());
-            image.row = scene(run);
-            image.column = withoutScene(run, image.row) + " vs " + withoutScene(reference, scene(reference));
-            if (cells.contains({image.row, image.column})) image.column = withoutScene(id, image.row);
-        } else {
-            image.column = withoutScene(id, image.row);
-        }
-        cells.emplace(image.row, image.column);
-        images.push_back(std::move(image));
-    }
-    return images;
 }
 
 // One experiment's section: its heading, what the paper says, its datasets' notes, image grids, tables,
@@ -158,13 +70,15 @@ std::string gallerySection(const fs::path& path, std::map<std::string, std::stri
         const nlohmann::json& outputs = m.at("outputs");
         md << imageGrid(gridImages(outputs.at("images"), m.at("steps"), dir), "scene");
         md << imageGrid(gridImages(outputs.at("diff_images"), m.at("steps"), dir), "scene");
-        heatMapScales(md, outputs.at("diff_images"), path.parent_path());
+        if (const std::string caption = heatMapCaption(outputs.at("diff_images"), path.parent_path()); !caption.empty())
+            md << "*" << caption << "*\n\n";
         std::set<std::string> notesSeen;
         for (const nlohmann::json& table : outputs.at("tables"))
             if (const auto text = tryReadFileText(path.parent_path() / table.at("file").get<std::string>());
                 text && !text->empty())
                 md << withNewNotes(*text, notesSeen) << "\n";
-        loadWarning(md, m.at("steps"), path.parent_path());
+        if (const std::string caption = loadCaption(m.at("steps"), path.parent_path()); !caption.empty())
+            md << "*" << caption << "*\n\n";
         // A figure is as wide as the page: one a line.
         for (const nlohmann::json& figure : outputs.at("figures"))
             md << "![" << figure.at("id").get<std::string>() << "](" << dir << "/"
@@ -180,18 +94,11 @@ std::string gallerySection(const fs::path& path, std::map<std::string, std::stri
     return md.str();
 }
 
-// What the index knows of an experiment, and where the papers put it: paper A's items, then paper B's,
-// each in the order of their numbers ("Fig. 2" before "Fig. 10"), then the own studies.
-struct IndexEntry {
-    fs::path manifest;
-    std::string dir, title, paper, item, verdict;
-};
-
-IndexEntry indexEntry(const fs::path& path) {
+GalleryEntry galleryEntry(const fs::path& path) {
     return readingJsonOf(path, [&] {
         const nlohmann::json m = readJsonFile(path);
         const nlohmann::json& e = m.at("experiment");
-        IndexEntry entry{path,
+        GalleryEntry entry{path,
                          path.parent_path().filename().string(),
                          e.at("title").get<std::string>(),
                          e.at("paper").at("paper").get<std::string>(),
@@ -248,17 +155,86 @@ constexpr std::size_t kLongSectionLines = 120;
 
 }  // namespace
 
-std::vector<GalleryPage> galleryPages(const fs::path& resultsRoot) {
-    std::vector<IndexEntry> entries;
+// The caption of an experiment's heat maps: what they show and each one's scale, read from the
+// comparison's vri-diff JSON beside it (a diff image is named as its JSON: <comparison id>.png). Maps
+// that share a scale (vri-diff --scale-over and --scale-from, `diff_scale: shared`) are listed together, the top
+// once.
+std::string heatMapCaption(const nlohmann::json& diffImages, const fs::path& dir) {
+    std::vector<std::pair<std::string, std::string>> scales;  // ids, the top they share or have alone
+    bool anySigned = false;
+    for (const nlohmann::json& item : diffImages) {
+        const std::string id = item.at("id").get<std::string>();
+        const fs::path json = dir / (id + ".json");
+        if (!fs::is_regular_file(json)) continue;
+        const nlohmann::json diff = readJsonFile(json);
+        if (!diff.contains("heat_map")) continue;  // results of a vri-diff that drew RGB on black
+        char top[160];
+        std::snprintf(top, sizeof top, "%.3g",
+                      readingJsonOf(json, [&] { return diff.at("heat_map").at("top").get<double>(); }));
+        if (diff.at("heat_map").value("scale", "linear") == "log")  // "0.99, log over 3 decades"
+            std::snprintf(top + std::strlen(top), sizeof top - std::strlen(top), ", log over %d decades",
+                          readingJsonOf(json, [&] { return diff.at("heat_map").at("decades").get<int>(); }));
+        const std::string topFrom = diff.at("heat_map").value("top_from", "max");
+        if (topFrom.starts_with("p"))  // "0.12, the 99th percentile of the errors"
+            std::snprintf(top + std::strlen(top), sizeof top - std::strlen(top), ", the %sth percentile", topFrom.c_str() + 1);
+        if (diff.at("heat_map").value("value", "") == "B - A per channel") {
+            std::snprintf(top + std::strlen(top), sizeof top - std::strlen(top), ", signed per channel");
+            anySigned = true;
+        }
+        const bool shared = diff.at("heat_map").contains("scale_over") || diff.at("heat_map").contains("scale_from");
+        if (shared && !scales.empty() && scales.back().second == top + std::string(" (one scale)"))
+            scales.back().first += ", " + id;
+        else
+            scales.emplace_back(id, top + std::string(shared ? " (one scale)" : ""));
+    }
+    if (scales.empty()) return "";
+    std::ostringstream md;
+    md << "Difference images: heat maps of the largest |run - reference| over the channels (alpha included), "
+          "viridis from the bottom of the scale (dark blue, the colour bar's left end: 0, or on a log scale the top "
+          "over 10^decades) to its top (yellow, its right end; larger errors in magenta), the bar numbered at "
+          "quarters of it or at each decade";
+    if (anySigned) md << "; a signed map shows run - reference per channel, blue below 0, red above";
+    md << ". Top of the scale: ";
+    for (std::size_t i = 0; i < scales.size(); ++i) md << (i ? "; " : "") << scales[i].first << " " << scales[i].second;
+    md << ".";
+    return md.str();
+}
+
+// The caption under an experiment's tables and charts when any of its renders was timed while other processes
+// kept the cores busy (timing.load.overloaded in the run's stats, frame_timing.h): its seconds are inflated.
+std::string loadCaption(const nlohmann::json& steps, const fs::path& dir) {
+    std::vector<std::string> loaded;
+    for (const nlohmann::json& step : steps) {
+        if (step.value("kind", "") != "render") continue;
+        const fs::path stats = dir / (step.at("id").get<std::string>() + ".json");
+        if (!fs::is_regular_file(stats)) continue;
+        const std::optional<TimingLoad> load = timingLoadOf(readJsonFile(stats));
+        if (load && load->overloaded()) loaded.push_back(step.at("id").get<std::string>());
+    }
+    if (loaded.empty()) return "";
+    std::ostringstream md;
+    md << "Timed under load: " << loaded.size() << (loaded.size() == 1 ? " run (" : " runs (") << loaded.front()
+       << (loaded.size() > 1 ? ", ..." : "") << ") ran while other processes kept the cores busy (timing.load in "
+       << "their stats): their seconds, in the tables and charts here, are inflated.";
+    return md.str();
+}
+
+std::vector<GalleryEntry> galleryEntries(const fs::path& resultsRoot) {
+    std::vector<GalleryEntry> entries;
     for (const fs::directory_entry& entry : fs::directory_iterator(resultsRoot))
         if (fs::is_regular_file(entry.path() / "manifest.json"))
-            entries.push_back(indexEntry(entry.path() / "manifest.json"));
+            entries.push_back(galleryEntry(entry.path() / "manifest.json"));
     const auto rank = [](const std::string& paper) { return paper == "A" ? 0 : paper == "B" ? 1 : 2; };
-    std::sort(entries.begin(), entries.end(), [&](const IndexEntry& x, const IndexEntry& y) {
+    std::sort(entries.begin(), entries.end(), [&](const GalleryEntry& x, const GalleryEntry& y) {
         if (rank(x.paper) != rank(y.paper)) return rank(x.paper) < rank(y.paper);
         if (x.item != y.item) return naturalLess(x.item, y.item);
         return x.dir < y.dir;
     });
+    return entries;
+}
+
+std::vector<GalleryPage> galleryPages(const fs::path& resultsRoot) {
+    const std::vector<GalleryEntry> entries = galleryEntries(resultsRoot);
 
     std::vector<GalleryPage> pages{{"README.md", ""}};
     std::ostringstream index, sections;
@@ -270,7 +246,7 @@ std::vector<GalleryPage> galleryPages(const fs::path& resultsRoot) {
            "items, then paper B's, then our own studies; a long section has a page of its own.\n\n"
            "| paper item | section | ours against the paper |\n|:--|:--|:--|\n";
     std::map<std::string, std::string> notedIn;
-    for (const IndexEntry& entry : entries) {
+    for (const GalleryEntry& entry : entries) {
         const std::string section = gallerySection(entry.manifest, notedIn);
         const bool own =
             std::count(section.begin(), section.end(), '\n') > static_cast<std::ptrdiff_t>(kLongSectionLines);

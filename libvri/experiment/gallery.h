@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 namespace vri {
 
 struct GalleryPage {
@@ -18,5 +20,24 @@ struct GalleryPage {
 };
 
 std::vector<GalleryPage> galleryPages(const std::filesystem::path& resultsRoot);
+
+// What the index knows of an experiment: its manifest, folder, title, paper ("A", "B" or "none"), item
+// ("Table IV") and verdict (the agreement's opening words, "" for an own study).
+struct GalleryEntry {
+    std::filesystem::path manifest;
+    std::string dir, title, paper, item, verdict;
+};
+
+// The experiments under resultsRoot in the papers' order: paper A's items, then paper B's, each in the
+// order of their numbers ("Fig. 2" before "Fig. 10"), then the own studies.
+std::vector<GalleryEntry> galleryEntries(const std::filesystem::path& resultsRoot);
+
+// The caption of an experiment's heat maps: what they show and each one's scale, read from each
+// comparison's vri-diff JSON in `dir` ("" when none has a heat map).
+std::string heatMapCaption(const nlohmann::json& diffImages, const std::filesystem::path& dir);
+
+// The warning under an experiment's tables and charts when any of its renders was timed under load ("" when
+// none was).
+std::string loadCaption(const nlohmann::json& steps, const std::filesystem::path& dir);
 
 }  // namespace vri

@@ -131,7 +131,7 @@ void requireMap(const YAML::Node& node, const std::string& source, std::string_v
     if (!node.IsMap()) throw Error(where(source, node) + ": " + std::string(what) + " must be a mapping");
 }
 
-void requireKeys(const YAML::Node& map, const std::string& source, std::initializer_list<std::string_view> allowed) {
+void requireKeys(const YAML::Node& map, const std::string& source, std::span<const std::string_view> allowed) {
     for (const auto& kv : map) {
         if (!kv.first.IsScalar()) throw Error(where(source, kv.first) + ": keys must be plain names");
         const std::string key = kv.first.as<std::string>();

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -26,7 +27,10 @@ YAML::Node parse(const std::string& text, const std::string& source);
 YAML::Node load(const std::filesystem::path& path);
 
 // Throws "source:line:column: unknown key 'k' (expected one of: ...)" for a key not in `allowed`.
-void requireKeys(const YAML::Node& map, const std::string& source, std::initializer_list<std::string_view> allowed);
+void requireKeys(const YAML::Node& map, const std::string& source, std::span<const std::string_view> allowed);
+inline void requireKeys(const YAML::Node& map, const std::string& source, std::initializer_list<std::string_view> allowed) {
+    requireKeys(map, source, std::span(allowed.begin(), allowed.size()));
+}
 void requireMap(const YAML::Node& node, const std::string& source, std::string_view what);
 
 double toDouble(const YAML::Node& node, const std::string& source, std::string_view what);

@@ -19,7 +19,20 @@ nlohmann::json toJson(const ImageMetrics& metrics) {
         one["name"] = metrics.channelNames[c];
         channels.push_back(std::move(one));
     }
+    const auto flip = [](const std::optional<FlipResult>& f) {
+        if (!f) return nlohmann::json();
+        nlohmann::json one{{"mean", f->mean}, {"median", f->median}, {"p95", f->p95}, {"max", f->max}, {"pixels", f->pixels}};
+        if (f->exposures.count > 0)
+            one["exposures"] = {{"start", f->exposures.start}, {"stop", f->exposures.stop}, {"count", f->exposures.count}};
+        return one;
+    };
+    nlohmann::json flipRecord{{"ldr", flip(metrics.ldrFlip)},
+                              {"pixels_per_degree", FlipViewing{}.pixelsPerDegree()},
+                              {"of", "R, G, B, linear, clamped to [0, 1] for LDR; Andersson et al. 2020, 2021"}};
+    if (metrics.hdrFlip) flipRecord["hdr"] = flip(metrics.hdrFlip);
+    if (!metrics.flipUnavailable.empty()) flipRecord["unavailable"] = metrics.flipUnavailable;
     return {{"all", values(metrics.all)},
+            {"flip", std::move(flipRecord)},
             {"channels", std::move(channels)},
             {"psnr_peak", kPsnrPeak},
             {"ssim", "Wang et al. 2004: Gaussian window 11, sigma 1.5, K1 0.01, K2 0.03, L 1, each channel alone, "

@@ -15,23 +15,25 @@ oiiotool b1.exr --pattern constant:color=0,0,0,0.125 1x1 4 -d float --origin +5+
 grep -q '"top": 0.25' d.json || fail "the scale: $(grep -A4 heat_map d.json)"
 grep -q '"colormap": "viridis"' d.json || fail "the colour map: $(grep -A4 heat_map d.json)"
 # The labels 0 and 0.25 (font cells of 1 pixel, 3 x 5, two characters apart: 3 + 8 + 15 pixels) need a
-# canvas wider than the 8-pixel image, which is centred on it (9 pixels to its left); below it 4 white rows,
-# the 12-row bar, 6 rows of ticks, 2 white rows, the 5 rows of labels and 2 white rows.
-[[ $(oiiotool --info heat.png | tr -s " ") == *"26 x 39, 3 channel"* ]] || fail "size: $(oiiotool --info heat.png)"
+# canvas wider than the 8-pixel image, which is centred on it (9 pixels to its left); above it the title line
+# (t = 11 rows: 2 white, 5 of glyphs, 4 white), below it 4 white rows, the 12-row bar, 6 rows of ticks, 2 white
+# rows, the 5 rows of labels and 2 white rows.
+t=11
+[[ $(oiiotool --info heat.png | tr -s " ") == *"26 x 50, 3 channel"* ]] || fail "size: $(oiiotool --info heat.png)"
 # Bytes as a viewer reads them: 0 dark blue (68,1,84), the top yellow (253,231,37), half of it in between.
 oiiotool --dumpdata heat.png > pixels.txt
 pixel() { sed -n "s/^ *Pixel ($1, $2): \([0-9]* [0-9]* [0-9]*\) .*/\1/p" pixels.txt; }
-[[ $(pixel 9 0) == "68 1 84" ]] || fail "zero: $(pixel 9 0)"
-[[ $(pixel 12 2) == "253 231 37" ]] || fail "the largest error: $(pixel 12 2)"
-read -r r g b <<< "$(pixel 14 6)"
+[[ $(pixel 9 $((0 + t))) == "68 1 84" ]] || fail "zero: $(pixel 9 $((0 + t)))"
+[[ $(pixel 12 $((2 + t))) == "253 231 37" ]] || fail "the largest error: $(pixel 12 $((2 + t)))"
+read -r r g b <<< "$(pixel 14 $((6 + t)))"
 (( g > 100 && g < 180 && b > 120 )) || fail "half the scale: $r $g $b"
-[[ $(pixel 0 0) == "255 255 255" ]] || fail "the canvas beside the image: $(pixel 0 0)"
-[[ $(pixel 0 10) == "255 255 255" ]] || fail "the gap above the bar: $(pixel 0 10)"
-[[ $(pixel 25 15) == "253 231 37" ]] || fail "the bar's right end: $(pixel 25 15)"
-[[ $(pixel 0 27) == "0 0 0" && $(pixel 25 27) == "0 0 0" ]] || fail "the ticks at 0 and the top: $(pixel 0 27) $(pixel 25 27)"
+[[ $(pixel 0 $((0 + t))) == "255 255 255" ]] || fail "the canvas beside the image: $(pixel 0 $((0 + t)))"
+[[ $(pixel 0 $((10 + t))) == "255 255 255" ]] || fail "the gap above the bar: $(pixel 0 $((10 + t)))"
+[[ $(pixel 25 $((15 + t))) == "253 231 37" ]] || fail "the bar's right end: $(pixel 25 $((15 + t)))"
+[[ $(pixel 0 $((27 + t))) == "0 0 0" && $(pixel 25 $((27 + t))) == "0 0 0" ]] || fail "the ticks at 0 and the top: $(pixel 0 $((27 + t))) $(pixel 25 $((27 + t)))"
 # The labels: "0" from x = 0 (its top row, 3 cells, all black), "0.25" ending at the right edge ("5": top
 # row all black; "." only a dot in its bottom row, so its column is white in the top row).
-label_row=$(for x in $(seq 0 25); do [[ $(pixel "$x" 32) == "0 0 0" ]] && printf '#' || printf '.'; done)
+label_row=$(for x in $(seq 0 25); do [[ $(pixel "$x" $((32 + t))) == "0 0 0" ]] && printf '#' || printf '.'; done)
 [[ $label_row == "###........###.#.###.###" || $label_row == "###........###...###.###" ]] ||
     [[ $label_row == "###........###.###.###" ]] || [[ ${label_row:0:3} == "###" && ${label_row: -3} == "###" ]] ||
     fail "the labels' top row: $label_row"
@@ -47,7 +49,7 @@ grep -q '"top": 0.125' alone.json || fail "c's own scale: $(grep -A6 heat_map al
 grep -q '"top": 0.25' shared.json && grep -A3 '"scale_over"' shared.json | grep -q '"b1.exr"' ||
     fail "the shared scale: $(grep -A8 heat_map shared.json)"
 oiiotool --dumpdata shared.png > pixels.txt
-read -r r g b <<< "$(pixel 14 6)"
+read -r r g b <<< "$(pixel 14 $((6 + t)))"
 (( g > 100 && g < 180 && b > 120 )) || fail "c's error on the shared scale: $r $g $b"
 # --scale-from: the scale another comparison's JSON recorded, taken as it is: the map is the --scale-over one.
 "$VRI_BIN/vri-diff" a.exr c.exr --diff-image from.png --scale-from shared.json --json from.json \
@@ -65,14 +67,14 @@ grep -q '"scale": "log"' log.json && grep -q '"decades": 1' log.json && grep -q 
 oiiotool --dumpdata log.png > pixels.txt
 width=$(oiiotool --info log.png | tr -s " " | sed -n 's/.* \([0-9]*\) x [0-9]*, 3 channel.*/\1/p')
 left=$(( (width - 8) / 2 ))   # the 8-pixel image, centred on a canvas as wide as the labels 0.025 and 0.25 need
-read -r r g b <<< "$(pixel $((left + 5)) 6)"
+read -r r g b <<< "$(pixel $((left + 5)) $((6 + t)))"
 (( r < 70 && g > 160 && b > 100 && b < 150 )) || fail "0.125 on a decade's log scale: $r $g $b"
-[[ $(pixel "$left" 0) == "68 1 84" ]] || fail "zero on the log scale: $(pixel "$left" 0)"
+[[ $(pixel "$left" $((0 + t))) == "68 1 84" ]] || fail "zero on the log scale: $(pixel "$left" $((0 + t)))"
 # A scale below the largest error clips it, in magenta; an error at the top is yellow.
 "$VRI_BIN/vri-diff" a.exr b.exr --diff-image clip.png --diff-scale 8 --failpercent 100 --warnpercent 100 > /dev/null
 oiiotool --dumpdata clip.png > pixels.txt
-[[ $(pixel 12 2) == "255 0 255" ]] || fail "a clipped error: $(pixel 12 2)"
-[[ $(pixel 14 6) == "253 231 37" ]] || fail "an error at the top: $(pixel 14 6)"
+[[ $(pixel 12 $((2 + t))) == "255 0 255" ]] || fail "a clipped error: $(pixel 12 $((2 + t)))"
+[[ $(pixel 14 $((6 + t))) == "253 231 37" ]] || fail "an error at the top: $(pixel 14 $((6 + t)))"
 for bad in log:0 log:13 logarithmic; do
   if "$VRI_BIN/vri-diff" a.exr b.exr --diff-image x.png --heat-scale "$bad" 2> err.txt; then fail "--heat-scale $bad was taken"; fi
   grep -q "^vri-diff: error: --heat-scale: expected linear, log or log:N with N decades in 1..12, got '$bad'" err.txt ||
@@ -81,6 +83,44 @@ done
 # An EXR difference image stays the exact per-channel difference (no heat map in the JSON).
 "$VRI_BIN/vri-diff" a.exr b.exr --diff-image d.exr --json d3.json --failpercent 100 --warnpercent 100 > /dev/null
 ! grep -q heat_map d3.json || fail "an EXR diff image has a heat-map scale"
+
+# The title line (2 white rows, then the glyphs from x = 1): "b vs a: max |A-B| over channels, linear to 0.25",
+# cut with ".." to the 26-pixel canvas; its first glyph, B, has its top row's two left cells black.
+oiiotool --dumpdata heat.png > pixels.txt
+[[ $(pixel 1 2) == "0 0 0" && $(pixel 2 2) == "0 0 0" && $(pixel 3 2) == "255 255 255" ]] ||
+    fail "the title's B: $(pixel 1 2) $(pixel 2 2) $(pixel 3 2)"
+[[ $(pixel 1 0) == "255 255 255" && $(pixel 1 $((t - 1))) == "255 255 255" ]] || fail "the title's white rows"
+# --heat-top p50: the median of the errors that are not 0 (0.125 and 0.25, nearest rank: 0.125) tops the scale;
+# the 0.25 above it is magenta, the 0.125 at it yellow.
+"$VRI_BIN/vri-diff" a.exr b.exr --diff-image p50.png --heat-top p50 --json p50.json --failpercent 100 --warnpercent 100 > /dev/null
+grep -q '"top": 0.125' p50.json && grep -q '"top_from": "p50"' p50.json || fail "--heat-top p50: $(grep -A9 heat_map p50.json)"
+oiiotool --dumpdata p50.png > pixels.txt
+[[ $(pixel 12 $((2 + t))) == "255 0 255" && $(pixel 14 $((6 + t))) == "253 231 37" ]] ||
+    fail "the p50 map: $(pixel 12 $((2 + t))) $(pixel 14 $((6 + t)))"
+# --heat-signed: b - a per channel, 4 maps of 8 pixels 8 apart (56 wide), light grey at 0, the top +0.25 in
+# cool-warm's red (180,4,38): G's +0.25 at (3,2) of the second map; A's +0.125 half-way to red in the fourth.
+"$VRI_BIN/vri-diff" a.exr b.exr --diff-image signed.png --heat-signed --json signed.json --failpercent 100 --warnpercent 100 > /dev/null
+grep -q '"value": "B - A per channel"' signed.json || fail "the signed map's JSON: $(grep -A9 heat_map signed.json)"
+oiiotool --dumpdata signed.png > pixels.txt
+[[ $(pixel $((16 + 3)) $((2 + t))) == "180 4 38" ]] || fail "G's +0.25: $(pixel $((16 + 3)) $((2 + t)))"
+[[ $(pixel 16 $((0 + t))) == "221 221 221" && $(pixel 3 $((2 + t))) == "221 221 221" ]] ||
+    fail "no difference: $(pixel 16 $((0 + t))) $(pixel 3 $((2 + t)))"
+read -r r g b <<< "$(pixel $((48 + 5)) $((6 + t)))"
+(( r > 190 && r < 210 && g > 100 && g < 125 )) || fail "A's +0.125: $r $g $b"
+# --layers: the pair and its error as layers an EXR viewer lists.
+"$VRI_BIN/vri-diff" a.exr b.exr --layers layers.exr --failpercent 100 --warnpercent 100 > /dev/null
+channels=$(oiiotool --info -v layers.exr | sed -n 's/^ *channel list: //p')
+for c in reference test error; do for k in R G B A; do
+  [[ ", $channels," == *" $c.$k,"* ]] || fail "--layers lacks $c.$k: $channels"
+done; done
+for bad in "--heat-top p0" "--heat-top p100.5" "--heat-top top" "--layers x.png" "--heat-signed --heat-scale log"; do
+  rc=0
+  # shellcheck disable=SC2086
+  "$VRI_BIN/vri-diff" a.exr b.exr --diff-image x.png $bad > /dev/null 2> err.txt || rc=$?
+  [[ $rc -eq 64 && $(wc -l < err.txt) -eq 1 ]] || fail "$bad: exit $rc, $(cat err.txt)"
+done
+grep -q "^vri-diff: error: --heat-top: expected max or pN with N in (0, 100\], got 'top'" <("$VRI_BIN/vri-diff" a.exr b.exr --diff-image x.png --heat-top top 2>&1) ||
+  fail "the --heat-top message"
 
 # The gallery states each heat map's scale, read from its comparison's JSON.
 cat > tf.yaml <<'YAML'
@@ -100,6 +140,8 @@ comparisons:
   vs-fine: {reference: riemann-h0.25, runs: [riemann-h1], diff_image: png}
   vs-finest: {reference: riemann-h0.25, runs: [riemann-h1, riemann-h0.5], diff_image: png, diff_scale: shared}
   vs-log: {reference: riemann-h0.25, runs: [riemann-h1], diff_image: png, heat_scale: log:2}
+  vs-p: {reference: riemann-h0.25, runs: [riemann-h1, riemann-h0.5], diff_image: png, diff_scale: shared, heat_top: p90,
+         heat_signed: true}
 YAML
 "$VRI_BIN/vri-run" --results out --gallery out exp.yaml 2> run.txt || fail "the run failed: $(cat run.txt)"
 top=$(sed -n "s/^ *\"top\": \([0-9.e+-]*\),\?$/\1/p" out/heat/vs-fine-riemann-h1.json)
@@ -112,6 +154,16 @@ grep -q "; vs-finest-riemann-h1, vs-finest-riemann-h0.5 $want (one scale);" out/
 grep -q "(heat/vs-finest-riemann-h1.png)" out/README.md || fail "vs-finest-riemann-h1 is not in the gallery"
 grep -q "\"top\": $top" out/heat/vs-finest-riemann-h0.5.json || fail "h = 0.5's map on the shared scale: $(grep -A8 heat_map out/heat/vs-finest-riemann-h0.5.json)"
 # heat_scale: log:2 reaches vri-diff, and the caption says so.
-grep -q "; vs-log-riemann-h1 $want, log over 2 decades\.\*\$" out/README.md || fail "the log scale's caption: $(grep -i heat out/README.md)"
+grep -q "; vs-log-riemann-h1 $want, log over 2 decades;" out/README.md || fail "the log scale's caption: $(grep -i heat out/README.md)"
 grep -q '"scale": "log"' out/heat/vs-log-riemann-h1.json || fail "heat_scale did not reach vri-diff"
+# heat_top and heat_signed reach vri-diff: the set's first map takes the 90th percentile over both runs; the
+# caption says so.
+grep -q "; vs-p-riemann-h1, vs-p-riemann-h0.5 [0-9.e-]*, the 90th percentile, signed per channel (one scale)\.\*\$" out/README.md ||
+  fail "the percentile's caption: $(grep -i heat out/README.md)"
+grep -q '"top_from": "p90"' out/heat/vs-p-riemann-h1.json && grep -q '"value": "B - A per channel"' out/heat/vs-p-riemann-h1.json ||
+  fail "heat_top/heat_signed did not reach vri-diff: $(grep -A12 heat_map out/heat/vs-p-riemann-h1.json)"
+sed 's/heat_top: p90/heat_top: top/' exp.yaml > bad.yaml
+rc=0; "$VRI_BIN/vri-run" --dry-run bad.yaml > /dev/null 2> err.txt || rc=$?
+grep -q "^vri-run: error: bad.yaml:[0-9]*:[0-9]*: heat_top must be max or pN (N in (0, 100\]), got 'top'" err.txt ||
+  fail "a bad heat_top: exit $rc, $(cat err.txt)"
 echo "heat map: all checks passed"
