@@ -89,7 +89,8 @@ struct TradeoffOptions {
 // stats count none, as vri-reference's); per threshold t "R > t", ... per channel and "worst > t", the
 // largest of them: the % of rays whose error exceeds t (as `decimals` says); "max R", ... and "max":
 // the largest absolute error per channel and of all; "rmse", the largest channel's root mean square
-// error; "pareto %" and "pareto max": 1 for the rows on the Pareto front of seconds against "worst > t"
+// error; "PSNR dB", "SSIM" and "FLIP", when any diff has metrics: its (image_metrics.h; empty where none);
+// "pareto %" and "pareto max": 1 for the rows on the Pareto front of seconds against "worst > t"
 // (the first threshold) or against "max" (see paretoFront), else 0. Throws vri::Error naming the file
 // when a diff lacks a threshold or its channels differ from the first diff's, or when no row is the baseline.
 Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions& options = {});

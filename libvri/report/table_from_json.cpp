@@ -322,6 +322,10 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         for (const std::string& channel : channels) addColumn("max " + channel, kDigits, true);
     addColumn("max", kDigits, true);
     addColumn("rmse", kDigits, true);
+    // The metrics the field reads (image_metrics.h), when the diffs carry them: rankings can differ by metric.
+    const bool anyMetrics = std::ranges::any_of(rows, [](const TradeoffRow& row) { return readJsonFile(row.diff).contains("metrics"); });
+    if (anyMetrics)
+        for (const char* name : {"PSNR dB", "SSIM", "FLIP"}) addColumn(name, kDigits, true);
     if (anyBound) addColumn("bound", kDigits, true);
     addColumn("pareto %", 0, false);
     addColumn("pareto max", 0, false);
@@ -379,6 +383,12 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         }
         cells.push_back(worstMax);
         cells.push_back(worstRmse);
+        for (const char* path : {"/metrics/all/psnr_db", "/metrics/all/ssim", "/metrics/flip/ldr/mean"}) {
+            if (!anyMetrics) break;
+            const json::json_pointer pointer(path);
+            if (diff.contains(pointer) && diff.at(pointer).is_number()) cells.push_back(diff.at(pointer).get<double>());
+            else cells.emplace_back();  // equal images (an infinite PSNR), or a diff made before the metrics
+        }
         if (anyBound) {
             if (stats.contains("stats") && stats["stats"].contains("error_bound")) {
                 double bound = 0;
@@ -413,6 +423,10 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
                           "(timing.median_ci).");
     table.notes.push_back("Msamples/s: millions of samples evaluated per second (stats.samples_evaluated over "
                           "seconds; - where the method counts none).");
+    if (anyMetrics)
+        table.notes.push_back("PSNR dB (peak 1; - for equal images), SSIM (Wang et al. 2004, the channels' mean) and FLIP "
+                          "(LDR-FLIP's mean over R, G, B, Andersson et al. 2020): vri-diff's metrics over the pixels "
+                          "the comparison counts.");
     std::vector<fs::path> statsFiles;
     for (const TradeoffRow& row : rows) statsFiles.push_back(row.stats);
     if (const std::string warning = loadWarning(statsFiles); !warning.empty()) table.notes.push_back(warning);

@@ -95,6 +95,19 @@ riemann-h0.5,riemann double,0.4,3,0,0.4,0.4,5,5,1,5,0.05,0.1,0.1,0.02,0,1
 simpson-e0.001,riemann double,0.2,3,0,0.2,0.2,10,0,0.5,0.5,0.001,inf,inf,0.02,1,0
 CSV
 diff -u expected.csv speed.csv || fail "tradeoff CSV"
+# Diffs with vri-diff's metrics add PSNR, SSIM and FLIP columns (empty for a diff without them, and a PSNR of
+# equal images, null).
+/usr/bin/python3 - <<'PY'
+import json
+d = json.load(open("vs-riemann-h1.json"))
+d["metrics"] = {"all": {"psnr_db": 31.5, "ssim": 0.9876, "rel_mse": 0.1, "smape": 0.1}, "flip": {"ldr": {"mean": 0.0456}}}
+json.dump(d, open("vs-riemann-h1-metrics.json", "w"))
+PY
+"$tabulate" --layout tradeoff --run riemann-h1 riemann-h1.json vs-riemann-h1-metrics.json \
+    --run riemann-h0.5 riemann-h0.5.json vs-riemann-h0.5.json -o - --csv metrics.csv > /dev/null
+[[ $(head -1 metrics.csv) == *",rmse,PSNR dB,SSIM,FLIP,pareto %,pareto max" ]] || fail "metric columns: $(head -1 metrics.csv)"
+[[ $(sed -n 2p metrics.csv) == *",31.5,0.9876,0.0456,"* && $(sed -n 3p metrics.csv) == *",0.02,,,,"* ]] ||
+  fail "metric cells: $(sed -n 2,3p metrics.csv)"
 # Another threshold the diffs counted, other decimals and row heading.
 "$tabulate" --layout tradeoff --threshold 0.01 --precision 1 --row-header Method \
     --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o - | grep -q "^| Method | method | seconds | frames | spread % | ci low | ci high | Msamples/s | R > 0.01 | A > 0.01 | worst > 0.01 |" ||

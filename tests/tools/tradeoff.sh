@@ -66,7 +66,7 @@ grep -q -- "vri-tabulate --layout tradeoff --title 'Seconds per frame against er
     fail "the table's command: $(grep vri-tabulate commands.sh)"
 "$VRI_BIN/vri-run" --results out exp.yaml 2> first.txt || fail "the run failed: $(cat first.txt)"
 table=out/small/speed.csv
-[[ $(head -1 $table) == "run,method,seconds,frames,spread %,ci low,ci high,Msamples/s,R > 0.001,G > 0.001,B > 0.001,A > 0.001,worst > 0.001,max R,max G,max B,max A,max,rmse,pareto %,pareto max" ]] ||
+[[ $(head -1 $table) == "run,method,seconds,frames,spread %,ci low,ci high,Msamples/s,R > 0.001,G > 0.001,B > 0.001,A > 0.001,worst > 0.001,max R,max G,max B,max A,max,rmse,PSNR dB,SSIM,FLIP,pareto %,pareto max" ]] ||
     fail "header: $(head -1 $table)"
 [[ $(cut -d, -f1 $table | tail -n +2 | tr '\n' ' ') == "riemann-h1 riemann-h0.5 riemann-h0.25 composite-h1 composite-h0.25 " ]] ||
     fail "rows: $(cut -d, -f1 $table)"
@@ -74,8 +74,8 @@ grep -q "^| riemann-h0.25 | riemann double | " out/small/speed.md || fail "Markd
 grep -q "^composite-h1,composite double," $table || fail "method of composite-h1: $(grep composite-h1 $table)"
 
 # Each flag as the numbers say: 1 exactly when no other row is at least as fast and as accurate and
-# better in one (seconds: column 3; worst %: column 13; max: column 18; flags: columns 20 and 21).
-awk -F, 'NR > 1 { n++; t[n] = $3; p[n] = $13; m[n] = $18; fp[n] = $20; fm[n] = $21 }
+# better in one (seconds: column 3; worst %: column 13; max: column 18; flags: columns 23 and 24).
+awk -F, 'NR > 1 { n++; t[n] = $3; p[n] = $13; m[n] = $18; fp[n] = $23; fm[n] = $24 }
          function dominated(i, e,   j) {
              for (j = 1; j <= n; j++)
                  if (j != i && t[j] <= t[i] && e[j] <= e[i] && (t[j] < t[i] || e[j] < e[i])) return 1
@@ -87,7 +87,7 @@ awk -F, 'NR > 1 { n++; t[n] = $3; p[n] = $13; m[n] = $18; fp[n] = $20; fm[n] = $
 # The benchmark form: each run's time over the baseline's, measured in the same run; the worst channel at
 # both thresholds; samples per second from the stats.
 bench=out/small/bench.csv
-[[ $(head -1 $bench) == "run,method,seconds,frames,spread %,ci low,ci high,time ratio,Msamples/s,worst > 0.001,worst > 0.01,max,rmse,pareto %,pareto max" ]] ||
+[[ $(head -1 $bench) == "run,method,seconds,frames,spread %,ci low,ci high,time ratio,Msamples/s,worst > 0.001,worst > 0.01,max,rmse,PSNR dB,SSIM,FLIP,pareto %,pareto max" ]] ||
     fail "bench header: $(head -1 $bench)"
 # Seconds and ratios are printed to 4 significant digits, each off by at most 5e-4 of itself, so a ratio
 # recomputed from two printed times may differ from the printed one by up to about 1.5e-3 of it.
