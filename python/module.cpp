@@ -23,6 +23,7 @@
 #include "libvri/render/diff_verdict.h"
 #include "libvri/render/exact_reference_json.h"
 #include "libvri/render/image_compare_json.h"
+#include "libvri/render/pixel_mask_for.h"
 #include "libvri/render/render_job.h"
 #include "libvri/render/render_json.h"
 #include "libvri/render/scene_card.h"
@@ -437,29 +438,27 @@ PYBIND11_MODULE(vri, m) {
 
     m.def("compare",
           [](const py::object& a, const py::object& b, const std::vector<double>& thresholds, double fail,
-             double failPercent, double warn, double warnPercent, bool perPixel, const std::string& maskText) {
+             double failPercent, double warn, double warnPercent, bool perPixel, const std::string& maskText,
+             bool withHdrFlip) {
               const Image reference = fromNumpy(a, "a");  // a's shape is checked first
               const Image other = fromNumpy(b, "b");
               const DiffLimits limits{requireNonNegative(fail, "fail"), requirePercent(failPercent, "failpercent"),
                                       requireNonNegative(warn, "warn"), requirePercent(warnPercent, "warnpercent"),
                                       perPixel};
               requireSameShape(reference, other);
-              const MaskSpec spec = parseMaskSpec(maskText);
-              const PixelMask mask = spec.kind == MaskSpec::Kind::All ? fullMask(reference.width, reference.height)
-                                     : spec.kind == MaskSpec::Kind::Alpha
-                                         ? alphaMask(reference, other, spec.level)
-                                         : imageMask(readImage(spec.file), reference.width, reference.height);
+              const PixelMask mask = pixelMaskFor(parseMaskSpec(maskText), reference, other);
               nlohmann::json record = toJson(compareImages(reference, other, thresholds, &mask));
-              record["metrics"] = toJson(imageMetrics(reference, other, &mask));
+              record["metrics"] = toJson(imageMetrics(reference, other, &mask, withHdrFlip));
               addVerdict(record, diffVerdict(reference, other, limits, &mask));
               return toPython(record);
           },
           py::arg("a"), py::arg("b"), py::arg("thresholds") = vri::kDefaultThresholds, py::kw_only(),
           py::arg("fail") = DiffLimits{}.fail, py::arg("failpercent") = DiffLimits{}.failPercent,
           py::arg("warn") = DiffLimits{}.warn, py::arg("warnpercent") = DiffLimits{}.warnPercent,
-          py::arg("per_pixel") = false, py::arg("mask") = "all",
+          py::arg("per_pixel") = false, py::arg("mask") = "all", py::arg("hdr_flip") = false,
           "vri-diff's --json record of |a - b| per channel as a dict, a the reference, with its image metrics "
-          "('metrics': PSNR, SSIM, relative MSE, SMAPE) and its verdict: 'verdict' (pass, warn or fail), 'exit_code' "
+          "('metrics': PSNR, SSIM, relative MSE, SMAPE and 'flip': LDR-FLIP, and HDR-FLIP with hdr_flip=True, as "
+          "vri-diff --hdr-flip) and its verdict: 'verdict' (pass, warn or fail), 'exit_code' "
           "(vri-diff's: 0, 2 or 3) and the 'fail' and 'warn' counts, from vri-diff's --fail, --failpercent, --warn, "
           "--warnpercent, --per-pixel and --mask (all, hit, alpha>T or a mask image's path)");
     m.def("read_image", [](const std::string& path) { return toNumpy(readImage(path)); }, py::arg("path"),

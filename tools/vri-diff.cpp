@@ -16,6 +16,7 @@
 
 #include "common/cli.h"
 #include "libvri/render/diff_verdict.h"
+#include "libvri/render/pixel_mask_for.h"
 #include "libvri/render/image_compare_json.h"
 #include "libvri/core/heat_map.h"
 #include "libvri/core/image_compare.h"
@@ -345,9 +346,7 @@ int run(int argc, char** argv) {
     }
     vri::PixelMask mask;
     try {
-        mask = spec.kind == vri::MaskSpec::Kind::All     ? vri::fullMask(a.width, a.height)
-               : spec.kind == vri::MaskSpec::Kind::Alpha ? vri::alphaMask(a, b, spec.level)
-                                                         : vri::imageMask(vri::readImage(spec.file), a.width, a.height);
+        mask = vri::pixelMaskFor(spec, a, b);
     } catch (const vri::Error& e) {
         return exitWith(vri::kExitError, vri::Error("--mask " + options.mask + ": " + e.what()));
     }

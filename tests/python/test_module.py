@@ -176,6 +176,14 @@ class RenderEqualsTools(unittest.TestCase):
         self.assertLess(hit["pixels"], mine["pixels"])
         with self.assertRaisesRegex(vri.Error, "alpha>T"):
             vri.compare(a, b, mask="alpha>2")
+        # FLIP, as vri-diff's: LDR always (the same numbers in both records, checked above), HDR on request.
+        self.assertGreater(mine["metrics"]["flip"]["ldr"]["mean"], 0.0)
+        self.assertNotIn("hdr", mine["metrics"]["flip"])
+        code, err = run_tool("vri-diff", scratch("a.exr"), scratch("b.exr"), "--hdr-flip", "--json", scratch("hdr.json"))
+        with open(scratch("hdr.json")) as f:
+            tool = json.load(f)
+        self.assertEqual(vri.compare(a, b, hdr_flip=True)["metrics"]["flip"], tool["metrics"]["flip"])
+        self.assertGreater(tool["metrics"]["flip"]["hdr"]["exposures"]["count"], 1)
 
 
 class AsUsersExpect(unittest.TestCase):
