@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 VRI_DATA_DIR ?= $(if $(wildcard ../shared/data/volumes),$(abspath ../shared/data/volumes),$(abspath data))
 export VRI_DATA_DIR
 
-.PHONY: all deps deps-fuzz build test test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench estimate clean
+.PHONY: all deps deps-fuzz build test test-full test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench estimate clean
 
 all: build
 
@@ -33,6 +33,11 @@ build: deps $(BUILD)/build.ninja
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# Every test at full size: the exact bound's adversarial suites run all their transfer functions, not the
+# quick tier's third (docs/testing.md, "Tiers").
+test-full: build
+	VRI_TEST_TIER=full ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 # The tools, libraries, headers, vriConfig.cmake and vri.pc under PREFIX (README, "Using vri as a library").
 PREFIX ?= /usr/local

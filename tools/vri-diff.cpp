@@ -125,7 +125,7 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const vri:
     std::cout << verdict << '\n';
 }
 
-// A heat map's default title: "B vs A: max |A-B|, linear to 0.045" (the files' stems), what a reader of the
+// A heat map's default title: "b vs a: max |A-B| over channels, linear to 0.045" (the files' stems), what a reader of the
 // PNG alone needs to know.
 std::string heatMapTitle(const Options& options, double top, const std::string& topFrom) {
     const auto stem = [](const std::string& path) { return std::filesystem::path(path).stem().string(); };

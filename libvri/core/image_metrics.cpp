@@ -97,16 +97,19 @@ void addFlip(ImageMetrics& m, const Image& reference, const Image& test, const P
             return;
         }
     for (const Image* image : {&reference, &test})
-        for (std::size_t i = 0; i < image->pixels.size(); ++i)
-            if (!std::isfinite(image->pixels[i]) && image->channelNames[i % std::size_t(image->channels)] != "A") {
-                m.flipUnavailable = "FLIP needs finite colours: an image holds a NaN or an infinity";
-                return;
-            }
+        for (const char* name : {"R", "G", "B"})
+            for (std::size_t i = std::size_t(channelIndex(*image, name)); i < image->pixels.size(); i += std::size_t(image->channels))
+                if (!std::isfinite(image->pixels[i])) {
+                    m.flipUnavailable = "FLIP needs finite colours: an image holds a NaN or an infinity in R, G or B";
+                    return;
+                }
     m.ldrFlip = ldrFlip(reference, test, {}, mask);
     m.ldrFlip->errorMap = {};
     if (!withHdrFlip) return;
-    const PixelMask hit = alphaMask(reference, test, 0.0);
     try {
+        // The pixels either image hits, where the images have an alpha channel; else all of them.
+        const PixelMask hit = channelIndex(reference, "A") == reference.channels - 1 ? alphaMask(reference, test, 0.0)
+                                                                                  : fullMask(reference.width, reference.height);
         FlipHdrOptions options;
         const FlipExposureRange range = flipExposureRange(reference, options.toneMapper, &hit);
         options.startExposure = range.start;

@@ -13,9 +13,10 @@
 //  - SMAPE: the mean of |a - b| / (|a| + |b| + 0.01).
 //  - FLIP (flip.h): LDR-FLIP of the R, G and B channels (linear, clamped to [0, 1]) at the papers' viewing
 //    distance, its mean, median, 95th percentile and largest error over the mask's pixels; HDR-FLIP on
-//    request, its exposures from the reference's pixels that either image hits (alpha > 0: the black
-//    background would put the median luminance, and so the last exposure, at 0). Not computed for images
-//    without R, G and B, or with a NaN or infinity in them; `flipUnavailable` then says why.
+//    request, its exposures from the reference's pixels that either image hits (alpha > 0, where the last
+//    channel is A: the black background would put the median luminance, and so the last exposure, at 0).
+//    Not computed for images without R, G and B, or with a NaN or infinity in them; `flipUnavailable` then
+//    says why (for HDR-FLIP alone: "HDR-FLIP: ..." when its exposures cannot be computed).
 // Errors follow image_compare.h: a NaN against a number is an infinite error.
 #include <cstdint>
 #include <optional>

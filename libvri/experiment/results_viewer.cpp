@@ -86,7 +86,6 @@ nlohmann::json grid(const std::string& name, const nlohmann::json& list, const n
         }
         if (const auto found = exr.find(image.id); found != exr.end()) {
             item["floats"] = std::string(kFloatsFolder) + "/" + image.id + ".js";
-            item["channels"] = {"R", "G", "B", "A"};
         }
         if (const auto found = parameters.find(image.id); found != parameters.end() && found->second->contains("run")) {
             item["run"] = found->second->at("run");

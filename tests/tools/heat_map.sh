@@ -113,6 +113,11 @@ channels=$(oiiotool --info -v layers.exr | sed -n 's/^ *channel list: //p')
 for c in reference test error; do for k in R G B A; do
   [[ ", $channels," == *" $c.$k,"* ]] || fail "--layers lacks $c.$k: $channels"
 done; done
+# --hdr-flip on an image without alpha: its exposures over every pixel.
+"$VRI_BIN/vri-diff" a.exr b.exr --channels R,G,B --hdr-flip --json rgb.json --failpercent 100 --warnpercent 100 > /dev/null ||
+  fail "--hdr-flip on R, G, B: exit $?"
+/usr/bin/python3 -c 'import json, sys; f = json.load(open("rgb.json"))["metrics"]["flip"]; sys.exit(0 if f["hdr"]["exposures"]["count"] >= 2 and "unavailable" not in f else 1)' ||
+  fail "HDR-FLIP of R, G, B: $(grep -A12 '"flip"' rgb.json)"
 for bad in "--heat-top p0" "--heat-top p100.5" "--heat-top top" "--layers x.png" "--heat-signed --heat-scale log"; do
   rc=0
   # shellcheck disable=SC2086

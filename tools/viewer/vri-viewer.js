@@ -22,8 +22,8 @@
  *    #view[data-drawn] counts draws; #view[data-mode] holds the mode;
  *  - #probe-a, #probe-b and #probe-err carry data-x, data-y and data-values (a JSON array of the float32
  *    values as decoded; a non-finite value is written as the string "NaN", "Infinity" or "-Infinity") and
- *    data-channels (their names); #probe-err has |A - B| per shared channel and data-max, their maximum
- *    (NaN when any is NaN);
+ *    data-channels (their names); #probe-err has |A - B| per shared channel, counted as vri counts errors
+ *    (a NaN against a number is infinite, equal NaNs 0), and data-max, their maximum;
  *  - window.vriViewer = {ready, pick(aId, bId), setMode(mode), zoomTo(x, y, pixelsPerImagePixel),
  *    canvasPointOf(x, y), whenIdle(), fit(), state()}; the first four return promises that settle once the
  *    loads they start are done and drawn. canvasPointOf gives viewport CSS pixels (x, y, as mouse events
@@ -31,8 +31,9 @@
  *
  * Display of float images: c = rgb + (1 - a) * background (linear, premultiplied, as vri's PNG previews),
  * then clamp01(c * 2^exposure) through the sRGB curve (the default) or 1/gamma, rounded to a byte; NaN
- * shows as 0. With the defaults (sRGB, exposure 0, a black background) this reproduces the PNG previews
- * byte for byte. The error view uses heat_map.cpp's viridis and scale, so it reproduces vri-diff's heat maps.
+ * shows as 0. With the defaults (sRGB, exposure 0, a black background) this reproduces the PNG previews of
+ * scenes without png: settings (inverted or exposed previews differ) byte for byte. The error view uses
+ * heat_map.cpp's viridis, scale and error rule, so it reproduces vri-diff's heat maps.
  * Keys: 1 A, 2 B, s side by side, w swipe, f flip, e error, 0 fit.
  */
 (function () {
@@ -58,7 +59,6 @@
   // The checker background, in linear units (composited before the transfer curve, like the PNG previews).
   const CHECKER = [0.2, 0.45];
   const CHECKER_CELL = 8; // image pixels
-  const NAN_RGB = [255, 0, 0]; // error view: a NaN error
   const CLIPPED_RGB = [255, 0, 255]; // error view: above the top of the scale (as vri's PNG heat maps)
   // Viridis in sRGB at 9 evenly spaced stops plus the last colour, interpolated linearly: the same table as
   // libvri/core/heat_map.cpp, so that the error view matches the PNG heat maps that vri-diff writes.
@@ -320,6 +320,15 @@
     return ticks;
   }
 
+  // One pixel-channel's error as vri counts it (image_compare.h's absoluteError): |a - b| in double, 0 for
+  // equal values (infinities and NaNs too), infinite for a NaN against a number, so the view, the probe and
+  // vri-diff's heat maps agree pixel for pixel.
+  function absoluteError(a, b) {
+    if (a === b || (Number.isNaN(a) && Number.isNaN(b))) return 0;
+    const d = Math.abs(a - b);
+    return Number.isNaN(d) ? Infinity : d;
+  }
+
   // The per-pixel error max over the shared channels of |A - B|, with its statistics. Channels are matched
   // by name (A's order); A and B must have the same size (the caller checks).
   function errorField(A, B) {
@@ -334,20 +343,14 @@
     let maxAt = -1;
     let sum = 0;
     let finite = 0;
-    let nan = 0;
     let inf = 0;
     const na = A.channels.length;
     const nb = B.channels.length;
     for (let p = 0; p < n; ++p) {
       let m = 0;
-      for (const [ca, cb] of shared) {
-        const d = Math.abs(A.data[p * na + ca] - B.data[p * nb + cb]);
-        if (!(d <= m)) m = d; // a NaN difference wins: m becomes NaN and stays NaN
-        if (Number.isNaN(m)) break;
-      }
+      for (const [ca, cb] of shared) m = Math.max(m, absoluteError(A.data[p * na + ca], B.data[p * nb + cb]));
       e[p] = m;
-      if (Number.isNaN(m)) ++nan;
-      else if (m === Infinity) ++inf;
+      if (m === Infinity) ++inf;
       else {
         sum += m;
         ++finite;
@@ -360,7 +363,7 @@
     return {
       width: A.width, height: A.height, e, channels: shared.map((s) => s[2]),
       max: finite ? max : NaN, maxX: maxAt >= 0 ? maxAt % A.width : -1, maxY: maxAt >= 0 ? Math.floor(maxAt / A.width) : -1,
-      mean: finite ? sum / finite : NaN, nan, inf,
+      mean: finite ? sum / finite : NaN, inf,
     };
   }
 
@@ -372,13 +375,8 @@
     const out = ctx.createImageData(field.width, field.height);
     const px = out.data;
     for (let p = 0, o = 0; p < field.e.length; ++p, o += 4) {
-      const v = field.e[p];
-      let rgb;
-      if (Number.isNaN(v)) rgb = NAN_RGB;
-      else {
-        const u = positionOf(v, scale);
-        rgb = u > 1 ? CLIPPED_RGB : viridisBytes(u);
-      }
+      const u = positionOf(field.e[p], scale);
+      const rgb = u > 1 ? CLIPPED_RGB : viridisBytes(u);
       px[o] = rgb[0];
       px[o + 1] = rgb[1];
       px[o + 2] = rgb[2];
@@ -743,8 +741,7 @@
     const errorInfo = el('p', { id: 'error-info', class: 'vri-error-info' });
     const colorbar = el('div', { class: 'vri-colorbar', id: 'colorbar-box', hidden: true }, [
       el('div', { class: 'vri-colorbar-scale' }, [bar, barTicks]),
-      el('span', { class: 'vri-swatch vri-swatch-clipped' }), ' above the top  ',
-      el('span', { class: 'vri-swatch vri-swatch-nan' }), ' NaN',
+      el('span', { class: 'vri-swatch vri-swatch-clipped' }), ' above the top (a NaN against a number: infinite)',
       errorInfo,
     ]);
     const probeA = el('div', { id: 'probe-a', 'data-values': '[]' });
@@ -1084,7 +1081,6 @@
         (field.maxX >= 0 ? ' at (' + field.maxX + ', ' + field.maxY + ')' : ''),
       'mean ' + (Number.isNaN(field.mean) ? 'n/a' : formatValue(field.mean)),
       'channels ' + field.channels.join(' ')];
-      if (field.nan) parts.push(field.nan + ' NaN pixels');
       if (field.inf) parts.push(field.inf + ' infinite');
       errorInfo.textContent = parts.join('; ');
     }
@@ -1261,10 +1257,9 @@
           const kb = fb.channels.indexOf(c);
           if (kb < 0) return;
           channels.push(c);
-          values.push(Math.abs(va[k] - vb[kb]));
+          values.push(absoluteError(va[k], vb[kb]));
         });
-        let max = 0;
-        for (const v of values) if (!(v <= max) && !Number.isNaN(max)) max = v; // NaN, once met, stays
+        const max = Math.max(0, ...values);
         probeErr.dataset.max = values.length ? valuesJson([max]).slice(1, -1) : '';
         text = channels.map((c, k) => c + ' ' + formatValue(values[k])).join('  ') + '  max ' + (values.length ? formatValue(max) : 'n/a');
       }
