@@ -55,11 +55,14 @@ struct Options {
     vri::DiffLimits limits;
 };
 
-bool isPng(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext == ".png";
+// Whether the path's extension is `ext` (".png", ".exr"), in any case.
+bool hasExtension(const std::string& path, std::string_view ext) {
+    std::string own = std::filesystem::path(path).extension().string();
+    std::transform(own.begin(), own.end(), own.begin(), [](unsigned char c) { return std::tolower(c); });
+    return own == ext;
 }
+
+bool isPng(const std::string& path) { return hasExtension(path, ".png"); }
 
 std::string format(const char* pattern, double value) {
     char text[64];
@@ -302,7 +305,7 @@ int run(int argc, char** argv) {
         options.heatLog = true;
         options.decades = *decades;
     }
-    if (!options.layers.empty() && std::filesystem::path(options.layers).extension() != ".exr")
+    if (!options.layers.empty() && !hasExtension(options.layers, ".exr"))
         return exitWith(vri::kExitUsage, vri::Error("--layers: expected a .exr file (only OpenEXR keeps layers), got '" +
                                                     options.layers + "'"));
     const std::optional<double> percentile = vri::heatTopPercentile(options.heatTop);
