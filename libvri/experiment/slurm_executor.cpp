@@ -20,6 +20,7 @@
 #include "libvri/experiment/step_ledger.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/error.h"
+#include "libvri/util/own_folder.h"
 #include "libvri/util/process.h"
 
 namespace vri {
@@ -402,6 +403,8 @@ std::size_t SlurmRun::prepare() {
 
 void SlurmRun::submitAll() {
     if (jobs_.empty()) return;
+    requireOwnFolder(slurmDir_.parent_path());  // never a recursive delete through a link
+    requireOwnFolder(slurmDir_);
     fs::remove_all(slurmDir_);  // the job files of an earlier run
     fs::create_directories(slurmDir_);
     writeJobScript(slurmDir_ / "vri-job.sh");

@@ -10,6 +10,7 @@
 #include "libvri/util/error.h"
 #include "libvri/util/file_text.h"
 #include "libvri/util/json_file.h"
+#include "libvri/util/own_folder.h"
 #include "libvri/util/printable.h"
 
 namespace vri {
@@ -32,6 +33,7 @@ StepLedger::StepLedger(const Plan& plan, const RunOptions& options, FileHasher& 
       progress_(plan, options.prices, options.executor == Executor::Local ? options.jobs : 1,
                 StepProgress::styleFor(options.quiet)) {
     for (const Step& step : plan.steps) programs_.push_back(options.toolDir / step.tool);
+    requireOwnFolder(plan.resultsDir / ".steps");
 }
 
 void StepLedger::settle(std::size_t i, StepOutcome::State state, const std::string& how, const std::string& detail) {
@@ -72,7 +74,10 @@ fs::path StepLedger::logPath(std::size_t i) const {
 
 std::vector<std::string> StepLedger::prepare(std::size_t i) {
     const fs::path record = recordPath(plan_, plan_.steps[i]);
+    // A link in their place (to anywhere) is removed, never written through: the step's log is opened for
+    // writing and truncated as the step starts.
     fs::remove(record);
+    fs::remove(logPath(i));
     fs::create_directories(record.parent_path());
     std::vector<std::string> words = commandWords(plan_, plan_.steps[i], options_.toolDir);
     outcomes_[i].record.command = shellCommand(words);
