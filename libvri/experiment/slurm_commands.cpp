@@ -83,28 +83,73 @@ std::string parseSbatchJobId(const std::string& output) {
     throw Error("sbatch printed no job id: " + printable(firstErrorLine(output)));
 }
 
+namespace {
+
+// The sbatch options a site or user may add: what the jobs ask for (account, queue, time, resources,
+// placement, notices), never where their files go, their order or how vri-run reads them.
+enum class SiteValue { Required, None, Optional };
+struct SiteOption {
+    std::string_view name;
+    SiteValue value;
+};
+constexpr SiteOption kSiteOptions[] = {
+    {"--account", SiteValue::Required},       {"--qos", SiteValue::Required},
+    {"--partition", SiteValue::Required},     {"--reservation", SiteValue::Required},
+    {"--wckey", SiteValue::Required},         {"--time", SiteValue::Required},
+    {"--time-min", SiteValue::Required},      {"--begin", SiteValue::Required},
+    {"--deadline", SiteValue::Required},      {"--nice", SiteValue::Required},
+    {"--priority", SiteValue::Required},      {"--mem", SiteValue::Required},
+    {"--mem-per-cpu", SiteValue::Required},   {"--cpus-per-task", SiteValue::Required},
+    {"--tmp", SiteValue::Required},           {"--gres", SiteValue::Required},
+    {"--gpus", SiteValue::Required},          {"--gpus-per-node", SiteValue::Required},
+    {"--gpus-per-task", SiteValue::Required}, {"--licenses", SiteValue::Required},
+    {"--constraint", SiteValue::Required},    {"--prefer", SiteValue::Required},
+    {"--nodelist", SiteValue::Required},      {"--exclude", SiteValue::Required},
+    {"--hint", SiteValue::Required},          {"--threads-per-core", SiteValue::Required},
+    {"--comment", SiteValue::Required},       {"--mail-type", SiteValue::Required},
+    {"--mail-user", SiteValue::Required},     {"--signal", SiteValue::Required},
+    {"--exclusive", SiteValue::Optional},     {"--requeue", SiteValue::None},
+    {"--no-requeue", SiteValue::None},        {"--oversubscribe", SiteValue::None},
+    {"--contiguous", SiteValue::None}};
+
+// Those vri-run sets itself, and why: named in the refusal of one of them.
+constexpr std::pair<std::string_view, std::string_view> kOwnedOptions[] = {
+    {"--dependency", "the jobs' order"}, {"--kill-on-invalid-dep", "the jobs' order"},
+    {"--array", "one job per bundle"},   {"--clusters", "the cluster vri-run watches"},
+    {"--chdir", "the jobs' files"},      {"--output", "the jobs' files"},
+    {"--error", "the jobs' files"},      {"--parsable", "reading the job id"},
+    {"--wait", "watching the jobs"},     {"--wrap", "the job script"},
+    {"--job-name", "the jobs' names"}};
+
+}  // namespace
+
 void checkSiteSbatchOption(const std::string& option, const std::string& source) {
-    static const std::vector<std::pair<std::string, std::string>> owned{
-        {"--dependency", "the jobs' order"}, {"--kill-on-invalid-dep", "the jobs' order"},
-        {"--array", "one job per bundle"},   {"--clusters", "the cluster vri-run watches"},
-        {"--chdir", "the jobs' files"},      {"--output", "the jobs' files"},
-        {"--error", "the jobs' files"},      {"--parsable", "reading the job id"},
-        {"--wait", "watching the jobs"},     {"--wrap", "the job script"}};
-    static const std::map<char, std::string> shortForms{{'d', "--dependency"}, {'a', "--array"}, {'M', "--clusters"},
-                                                        {'D', "--chdir"},      {'o', "--output"}, {'e', "--error"},
-                                                        {'W', "--wait"}};
+    const std::string quoted = "'" + printable(option.substr(0, 200)) + (option.size() > 200 ? "..." : "") + "'";
     if (option.size() < 2 || option[0] != '-')
-        throw Error(source + ": '" + printable(option) + "' is not an sbatch option (expected one word such as --qos=long)");
-    std::string name = option.substr(0, option.find('='));
-    if (option[1] != '-') {
-        const auto found = shortForms.find(option[1]);
-        if (found == shortForms.end()) return;
-        name = found->second;
-    }
-    // sbatch, through getopt_long, takes any unambiguous beginning of a long option ("--depend=").
-    for (const auto& [owner, why] : owned)
+        throw Error(source + ": " + quoted + " is not an sbatch option (expected one word such as --qos=long)");
+    if (option[1] != '-')
+        throw Error(source + ": " + quoted + ": short options are refused (sbatch reads a bundle such as -vo<path> as "
+                    "-v -o <path>); use the long form, such as --partition=short");
+    const std::size_t equals = option.find('=');
+    const std::string name = option.substr(0, equals);
+    // sbatch, through getopt_long, takes any unambiguous beginning of a long option ("--depend="): one of
+    // vri-run's own is named as such, and only whole names are passed on.
+    for (const auto& [owner, why] : kOwnedOptions)
         if (name.size() > 2 && owner.starts_with(name))
-            throw Error(source + ": '" + printable(option) + "': vri-run sets " + owner + " itself (" + why + ")");
+            throw Error(source + ": " + quoted + ": vri-run sets " + std::string(owner) + " itself (" + std::string(why) + ")");
+    for (const SiteOption& allowed : kSiteOptions) {
+        if (allowed.name != name) continue;
+        if (allowed.value == SiteValue::Required && (equals == std::string::npos || equals + 1 == option.size()))
+            throw Error(source + ": " + quoted + ": needs its value in the same word (" + name + "=VALUE)");
+        if (allowed.value == SiteValue::None && equals != std::string::npos)
+            throw Error(source + ": " + quoted + ": " + name + " takes no value");
+        if (equals != std::string::npos && option.find_first_of("\n\r", equals) != std::string::npos)
+            throw Error(source + ": " + quoted + ": a value holds a line break");
+        return;
+    }
+    std::string list;
+    for (const SiteOption& allowed : kSiteOptions) list += (list.empty() ? "" : ", ") + std::string(allowed.name);
+    throw Error(source + ": " + quoted + " is not among the sbatch options vri-run passes on (" + list + ")");
 }
 
 std::string submitJob(const std::vector<std::string>& arguments) {

@@ -28,10 +28,14 @@ std::map<std::string, SlurmJob> parseSqueue(const std::string& output);
 // The job id sbatch --parsable printed ("12" or "12;cluster"). Anything else is a vri::Error.
 std::string parseSbatchJobId(const std::string& output);
 
-// Refuses, as a vri::Error naming `source` (--slurm-arg, VRI_SLURM_ARGS), a site's or user's sbatch option
-// that would break vri-run's own: not an option at all (a word without '-' would be taken as the
-// script), or one of --dependency, --kill-on-invalid-dep, --array, --clusters, --chdir, --output,
-// --error, --parsable, --wait, --wrap (and their short forms).
+// Checks a site's or user's sbatch option (--slurm-arg, VRI_SLURM_ARGS) against an allow-list, as sbatch's
+// parser would read the word: one long option whose name is whole (no abbreviation, which getopt_long would
+// stretch to another option), with its value after '=' when it takes one (a value-less --comment would take
+// the job script as its value). Allowed: what the jobs ask for (--account, --qos, --partition, --time,
+// --mem, --gres, --constraint, --exclusive, ...: the list in slurm_commands.cpp and docs/cluster.md). A
+// short option is refused (sbatch reads -vo<path> as -v -o <path>), and so is one of the options vri-run
+// sets itself (--dependency, --output, --chdir, --array, --job-name, ...), named as such. The refusal is a
+// vri::Error naming `source`.
 void checkSiteSbatchOption(const std::string& option, const std::string& source);
 
 // Runs sbatch with `arguments` (options, then the script and its arguments) and returns the job id.

@@ -86,20 +86,33 @@ TEST_CASE("parseSqueue reads squeue's fields and refuses what is not a job line"
     CHECK(!vri::isFinalJobState("PENDING"));
 }
 
-TEST_CASE("checkSiteSbatchOption refuses the options vri-run sets itself, and words that are no option") {
-    CHECK_NOTHROW(vri::checkSiteSbatchOption("--qos=long", "--slurm-arg"));
-    CHECK_NOTHROW(vri::checkSiteSbatchOption("-pshort", "--slurm-arg"));
-    CHECK_NOTHROW(vri::checkSiteSbatchOption("--mem=0", "--slurm-arg"));
+TEST_CASE("checkSiteSbatchOption passes on the allowed long options only, as sbatch would read them") {
+    for (const char* ok : {"--qos=long", "--mem=0", "--exclusive", "--exclusive=user", "--partition=short",
+                           "--time=10:00", "--comment=a b", "--requeue"})
+        CHECK_NOTHROW(vri::checkSiteSbatchOption(ok, "--slurm-arg"));
     CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("--dependency=afterok:1", "--slurm-arg"),
                          doctest::Contains("--slurm-arg: '--dependency=afterok:1': vri-run sets --dependency itself"), vri::Error);
-    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("-o/tmp/x", "VRI_SLURM_ARGS"),
-                         doctest::Contains("VRI_SLURM_ARGS: '-o/tmp/x': vri-run sets --output itself"), vri::Error);
-    CHECK_THROWS_AS(vri::checkSiteSbatchOption("--array=1-3", "--slurm-arg"), vri::Error);
-    CHECK_THROWS_AS(vri::checkSiteSbatchOption("--depend=afterany:2", "--slurm-arg"), vri::Error);
-    CHECK_NOTHROW(vri::checkSiteSbatchOption("--exclusive", "--slurm-arg"));
-    CHECK_THROWS_AS(vri::checkSiteSbatchOption("-Mother", "--slurm-arg"), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("--depend=afterany:2", "--slurm-arg"),
+                         doctest::Contains("vri-run sets --dependency itself"), vri::Error);
+    // Short options, alone or bundled: sbatch reads -vo<path> as -v -o <path>.
+    for (const char* bundle : {"-o/tmp/x", "-vo/tmp/x", "-pshort", "-Mother", "-v"})
+        CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption(bundle, "VRI_SLURM_ARGS"),
+                             doctest::Contains("short options are refused"), vri::Error);
+    // A value-less option that takes one would take the next word, the job script, as its value.
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("--comment", "--slurm-arg"),
+                         doctest::Contains("needs its value in the same word (--comment=VALUE)"), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("--qos=", "--slurm-arg"), doctest::Contains("needs its value"), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("--requeue=1", "--slurm-arg"), doctest::Contains("takes no value"),
+                         vri::Error);
+    // Abbreviations and anything not on the list.
+    for (const char* other : {"--acc=x", "--export=ALL", "--hold", "--array=1-3", "--open-mode=append", "--wrap=true"})
+        CHECK_THROWS_AS(vri::checkSiteSbatchOption(other, "--slurm-arg"), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("--export=ALL", "--slurm-arg"),
+                         doctest::Contains("is not among the sbatch options vri-run passes on (--account, --qos"), vri::Error);
     CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption("script.sh", "--slurm-arg"),
                          doctest::Contains("is not an sbatch option"), vri::Error);
+    CHECK_THROWS_WITH_AS(vri::checkSiteSbatchOption(std::string(100000, '-'), "--slurm-arg"),
+                         doctest::Contains("..."), vri::Error);
 }
 
 TEST_CASE("parseSbatchJobId takes --parsable's id, with or without the cluster") {
