@@ -446,6 +446,9 @@ PYBIND11_MODULE(vri, m) {
                                       requireNonNegative(warn, "warn"), requirePercent(warnPercent, "warnpercent"),
                                       perPixel};
               requireSameShape(reference, other);
+              for (const double t : thresholds)
+                  if (!(t >= 0) || !std::isfinite(t))
+                      throw Error("thresholds: expected numbers >= 0, got " + exactNumber(t));
               const PixelMask mask = pixelMaskFor(parseMaskSpec(maskText), reference, other);
               nlohmann::json record = toJson(compareImages(reference, other, thresholds, &mask));
               record["metrics"] = toJson(imageMetrics(reference, other, &mask, withHdrFlip));

@@ -21,6 +21,7 @@
 #include "libvri/core/heat_map.h"
 #include "libvri/core/image_compare.h"
 #include "libvri/core/image_metrics.h"
+#include "libvri/core/nonfinite_pixels.h"
 #include "libvri/core/pixel_mask.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
@@ -133,7 +134,9 @@ void printSummary(const Options& options, const vri::ImageDiff& diff, const vri:
 std::string heatMapTitle(const Options& options, double top, const std::string& topFrom) {
     const auto stem = [](const std::string& path) { return std::filesystem::path(path).stem().string(); };
     std::string title = stem(options.b) + " vs " + stem(options.a) + ": ";
-    if (options.signedMaps) return title + "B - A per channel, -" + format("%.3g", top) + " to " + format("%.3g", top);
+    if (options.signedMaps)
+        return title + "B - A per channel, -" + format("%.3g", top) + " to " + format("%.3g", top) +
+               (topFrom.starts_with("p") ? " (" + topFrom + ")" : "");
     title += "max |A-B| over channels, ";
     if (options.heatLog) title += "log, " + std::to_string(options.decades) + " decades to ";
     else title += "linear to ";
@@ -284,6 +287,11 @@ int run(int argc, char** argv) {
         }
     }
 
+    for (const char* output : {"--json", "--diff-image", "--histogram", "--layers", "--title"})
+        if (app.count(output) > 0 && app[output]->as<std::string>().empty())
+            return exitWith(vri::kExitUsage, vri::Error(std::string(output) + ": expected " +
+                                                        (std::string(output) == "--title" ? "a title" : "a file name") +
+                                                        ", got ''"));
     if (diffScale->count() > 0 && isPng(options.diffImage) && !std::isfinite(1.0 / options.diffScale))
         return exitWith(vri::kExitUsage,
                         vri::Error("--diff-scale: " + vri::exactNumber(options.diffScale) +
@@ -353,6 +361,12 @@ int run(int argc, char** argv) {
     } catch (const vri::Error& e) {
         return exitWith(vri::kExitError, vri::Error("--mask " + options.mask + ": " + e.what()));
     }
+    // Non-finite values are compared by vri's rule (image_compare.h), which the reader should know was applied.
+    const vri::NonFinitePixels nonfiniteA = vri::findNonFinitePixels(a), nonfiniteB = vri::findNonFinitePixels(b);
+    for (const auto& [name, found] : {std::pair{"A", &nonfiniteA}, std::pair{"B", &nonfiniteB}})
+        if (found->count > 0)
+            std::cerr << kTool << ": warning: " << name << ": " << found->describe()
+                      << "; each against a number counts as an infinite error, equal ones as none\n";
     const vri::ImageDiff diff = vri::compareImages(a, b, options.thresholds, &mask);
     const vri::ImageMetrics metrics = vri::imageMetrics(a, b, &mask, options.hdrFlip);
     const vri::DiffVerdict verdict = vri::diffVerdict(a, b, options.limits, &mask);
@@ -389,7 +403,10 @@ int run(int argc, char** argv) {
             heatTop = vri::heatMapTop(a, set, *percentile, &mask);
             topFrom = options.heatTop;
         }
-        if (!(*heatTop > 0) || !std::isfinite(*heatTop)) heatTop = 1.0;  // equal images, or an infinite error
+        if (!(*heatTop > 0) || !std::isfinite(*heatTop)) {  // equal images, or an infinite error
+            heatTop = 1.0;
+            topFrom = "1: no finite error above 0 to scale by";
+        }
         const std::string title = !options.title.empty() ? options.title : heatMapTitle(options, *heatTop, topFrom);
         files.add(options.diffImage,
                   vri::encodePng(options.diffImage,
@@ -404,6 +421,7 @@ int run(int argc, char** argv) {
     if (!options.json.empty()) {
         nlohmann::json json = vri::toJson(diff);
         json["metrics"] = vri::toJson(metrics);
+        json["nonfinite_pixels"] = {{"a", nonfiniteA.count}, {"b", nonfiniteB.count}};
         json["a"] = options.a;
         json["b"] = options.b;
         vri::addVerdict(json, verdict);
@@ -415,7 +433,7 @@ int run(int argc, char** argv) {
                                 {"top", *heatTop},
                                 {"scale", options.heatLog ? "log" : "linear"},
                                 {"top_from", topFrom},
-                                {"clipped", "magenta: above the top"}};
+                                {"clipped", options.signedMaps ? "black: beyond -top or +top" : "magenta: above the top"}};
         if (heatTop && options.heatLog) {
             json["heat_map"]["decades"] = options.decades;
             json["heat_map"]["bottom"] = *heatTop * std::pow(10.0, -options.decades);

@@ -258,6 +258,12 @@ int run(const Options& options) {
     if (options.executor == "slurm") {
         runOptions.executor = vri::Executor::Slurm;
         runOptions.slurm = slurmOptions(options);
+        // The jobs' folders (--chdir) are under the results folder, and Slurm reads '%' in them as a pattern
+        // (%j: the job id): the jobs would then work in another folder and fail, blaming the file system.
+        for (const vri::Plan& plan : plans)
+            if (const std::string folder = fs::absolute(plan.resultsDir).string(); folder.find('%') != std::string::npos)
+                throw vri::Error("--executor slurm: the results folder " + folder + " holds a '%', which Slurm reads as "
+                                 "a pattern in the jobs' folders (%j: the job id); choose --results without '%'");
     }
     // An experiment that reads another's results runs after it (plan_waves.h).
     std::vector<std::string> names;

@@ -480,7 +480,7 @@ double startExposure(const std::vector<float>& luminance, FlipToneMapper toneMap
     const double brightest = luminance.empty() ? 0.0 : *std::max_element(luminance.begin(), luminance.end());
     if (!(brightest > 0))
         throw Error("HDR-FLIP: the reference's brightest luminance is " + std::to_string(brightest) +
-                    ": there is no start exposure to compute; give one");
+                    ": there is no start exposure to compute");
     return std::log2(exposedInput(toneMapper) / brightest);
 }
 
@@ -493,8 +493,7 @@ double stopExposure(std::vector<float>& luminance, FlipToneMapper toneMapper) {
     }
     if (!(median > 0))
         throw Error("HDR-FLIP: the reference's median luminance is " + std::to_string(median) +
-                    " (a black background?): there is no stop exposure to compute; give one, or take the range "
-                    "over a mask");
+                    " (a black background?): there is no stop exposure to compute");
     return std::log2(exposedInput(toneMapper) / median);
 }
 

@@ -55,6 +55,8 @@ void paint(Image& image, int x, int y, const std::array<double, 3>& srgb) {
 
 constexpr int kGap = 4, kBar = 12, kTicks = 6, kLabelGap = 2, kMargin = 2;
 constexpr std::array<double, 3> kClipped{1.0, 0.0, 1.0};  // magenta: above the top of the scale
+// Black on a signed map, where magenta would read as its red end: beyond -top or +top (or NaN).
+constexpr std::array<double, 3> kSignedClipped{0.0, 0.0, 0.0};
 
 // Where an error sits on the scale, 0 (bottom) to 1 (top); above 1 when it is clipped.
 double positionOf(double e, const HeatMapScale& scale) {
@@ -130,7 +132,10 @@ int heatMapLabelScale(int canvasWidth) { return canvasWidth >= 256 ? 2 : 1; }
 
 std::optional<double> heatTopPercentile(std::string_view text) {
     if (text == "max") return 100.0;
-    if (!text.starts_with("p")) return std::nullopt;
+    // Decimal only ("p99.5", "p1e-3"): no hexadecimal, no blanks, no sign.
+    if (!text.starts_with("p") || text.size() < 2 || text.find_first_not_of("0123456789.eE-", 1) != std::string_view::npos ||
+        text[1] == '-')
+        return std::nullopt;
     const std::optional<double> n = numberFromText(text.substr(1));
     if (!n || !(*n > 0) || *n > 100) return std::nullopt;
     return *n;
@@ -261,7 +266,7 @@ Image signedHeatMapImage(const Image& a, const Image& b, double top, const std::
             for (int x = 0; x < a.width; ++x) {
                 const double d = double(b.at(x, y, c)) - double(a.at(x, y, c));
                 const double u = 0.5 + 0.5 * d / top;
-                paint(heat, left + x, mapTop + y, !(u >= 0.0 && u <= 1.0) ? kClipped : coolWarm(u));
+                paint(heat, left + x, mapTop + y, !(u >= 0.0 && u <= 1.0) ? kSignedClipped : coolWarm(u));
             }
         drawGlyphText(heat, left, mapTop + a.height + kTitleTop, cell, a.channelNames[std::size_t(c)],
                       {0.0f, 0.0f, 0.0f, 1.0f});

@@ -57,8 +57,8 @@ double heatMapTop(const Image& a, const std::vector<const Image*>& set, double p
 Image heatMapImage(const Image& a, const Image& b, const HeatMapScale& scale, const std::string& title = "");
 
 // The signed differences b - a, one map per channel side by side (named under each, 8 white columns between
-// them), on a diverging scale from -top (blue) through 0 (light grey) to +top (red), larger magnitudes in
-// magenta, with a bar numbered at -top, 0 and +top; linear only. A run that is brighter than the reference
+// them), on a diverging scale from -top (blue) through 0 (light grey) to +top (red), larger magnitudes (and
+// NaN) in black, with a bar numbered at -top, 0 and +top; linear only. A run that is brighter than the reference
 // in red and darker in alpha shows as such, where the unsigned map shows only that they differ.
 Image signedHeatMapImage(const Image& a, const Image& b, double top, const std::string& title = "");
 

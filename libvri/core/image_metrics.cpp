@@ -118,7 +118,7 @@ void addFlip(ImageMetrics& m, const Image& reference, const Image& test, const P
         m.hdrFlip = hdrFlip(reference, test, {}, mask, options);
         m.hdrFlip->errorMap = {};
     } catch (const Error& e) {
-        m.flipUnavailable = std::string("HDR-FLIP: ") + e.what();
+        m.flipUnavailable = e.what();  // "HDR-FLIP: ..."
     }
 }
 

@@ -2,6 +2,7 @@
 #include "libvri/core/text_glyphs.h"
 
 #include <cstdint>
+#include <string>
 
 namespace vri {
 
@@ -77,14 +78,23 @@ const Glyph& glyphOf(char c) {
     return kGlyphs.back();
 }
 
+// The characters of UTF-8 text: a multi-byte character (its continuation bytes 10xxxxxx skipped) is one '?'.
+std::string glyphCharacters(std::string_view text) {
+    std::string characters;
+    for (const char c : text)
+        if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) characters += static_cast<unsigned char>(c) < 0x80 ? c : '?';
+    return characters;
+}
+
 }  // namespace
 
 int glyphTextWidth(std::string_view text, int scale) {
-    return text.empty() ? 0 : (int(text.size()) * (kGlyphColumns + 1) - 1) * scale;
+    const std::size_t n = glyphCharacters(text).size();
+    return n == 0 ? 0 : (int(n) * (kGlyphColumns + 1) - 1) * scale;
 }
 
 void drawGlyphText(Image& image, int x, int y, int scale, std::string_view text, const std::array<float, 4>& colour) {
-    for (char c : text) {
+    for (char c : glyphCharacters(text)) {
         const Glyph& g = glyphOf(c);
         for (int row = 0; row < kGlyphRows; ++row)
             for (int column = 0; column < kGlyphColumns; ++column) {

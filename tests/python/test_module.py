@@ -176,6 +176,9 @@ class RenderEqualsTools(unittest.TestCase):
         self.assertLess(hit["pixels"], mine["pixels"])
         with self.assertRaisesRegex(vri.Error, "alpha>T"):
             vri.compare(a, b, mask="alpha>2")
+        for bad in (float("nan"), -1.0, float("inf")):
+            with self.assertRaisesRegex(vri.Error, "thresholds: expected numbers >= 0"):
+                vri.compare(a, b, [0.01, bad])
         # FLIP, as vri-diff's: LDR always (the same numbers in both records, checked above), HDR on request.
         self.assertGreater(mine["metrics"]["flip"]["ldr"]["mean"], 0.0)
         self.assertNotIn("hdr", mine["metrics"]["flip"])

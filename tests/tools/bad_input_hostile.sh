@@ -115,4 +115,8 @@ bad 1 "^vri-run: error: twin\.yaml: name 'small' is also exp\.yaml's \(both woul
   "$bin/vri-run" --quick --dry-run exp.yaml twin.yaml
 bad 1 "^vri-run: error: exp\.yaml: name 'small' is also exp\.yaml's" -- "$bin/vri-run" --dry-run --results out exp.yaml exp.yaml
 
+# A '%' in the results path, which Slurm would read as a pattern in the jobs' --chdir (issue 48, class 3a).
+bad 1 "^vri-run: error: --executor slurm: the results folder .*/r%j/small holds a '%', which Slurm reads as a pattern" -- \
+  "$bin/vri-run" --executor slurm --results 'r%j' exp.yaml
+
 bad_done

@@ -118,12 +118,14 @@ done; done
   fail "--hdr-flip on R, G, B: exit $?"
 /usr/bin/python3 -c 'import json, sys; f = json.load(open("rgb.json"))["metrics"]["flip"]; sys.exit(0 if f["hdr"]["exposures"]["count"] >= 2 and "unavailable" not in f else 1)' ||
   fail "HDR-FLIP of R, G, B: $(grep -A12 '"flip"' rgb.json)"
-for bad in "--heat-top p0" "--heat-top p100.5" "--heat-top top" "--layers x.png" "--heat-signed --heat-scale log"; do
+for bad in "--heat-top p0" "--heat-top p100.5" "--heat-top top" "--heat-top p0x10" "--heat-top p-5" "--layers x.png" "--heat-signed --heat-scale log"; do
   rc=0
   # shellcheck disable=SC2086
   "$VRI_BIN/vri-diff" a.exr b.exr --diff-image x.png $bad > /dev/null 2> err.txt || rc=$?
   [[ $rc -eq 64 && $(wc -l < err.txt) -eq 1 ]] || fail "$bad: exit $rc, $(cat err.txt)"
 done
+rc=0; "$VRI_BIN/vri-diff" a.exr b.exr --layers '' > /dev/null 2> err.txt || rc=$?
+[[ $rc -eq 64 ]] && grep -q "^vri-diff: error: --layers: expected a file name, got ''$" err.txt || fail "--layers '': exit $rc, $(cat err.txt)"
 grep -q "^vri-diff: error: --heat-top: expected max or pN with N in (0, 100\], got 'top'" <("$VRI_BIN/vri-diff" a.exr b.exr --diff-image x.png --heat-top top 2>&1) ||
   fail "the --heat-top message"
 

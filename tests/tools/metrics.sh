@@ -113,4 +113,25 @@ PY
 sed 's/mask: hit/mask: alpha>7/' exp.yaml > bad.yaml
 if "$bin/vri-run" --results res2 --dry-run bad.yaml 2> bad.txt > /dev/null; then fail "a bad mask was taken"; fi
 grep -q "mask: 'alpha>7': expected alpha>T with T a number in \[0, 1)" bad.txt || fail "the bad mask's message: $(cat bad.txt)"
+# Non-finite pixels: vri-diff warns, names how they were counted and records how many; FLIP, which needs finite
+# colours, says why it is missing.
+"$python" - <<'PY'
+import numpy as np, OpenImageIO as oiio
+a = np.full((6, 8, 4), 0.5, np.float32)
+a[2, 3, 0] = np.nan; a[4, 5, 1] = np.inf
+out = oiio.ImageOutput.create("nan.exr"); out.open("nan.exr", oiio.ImageSpec(8, 6, 4, "float")); out.write_image(a); out.close()
+a[2, 3, 0] = 0.5; a[4, 5, 1] = 0.5
+out = oiio.ImageOutput.create("grey.exr"); out.open("grey.exr", oiio.ImageSpec(8, 6, 4, "float")); out.write_image(a); out.close()
+PY
+rc=0
+"$bin/vri-diff" grey.exr nan.exr --json nan.json > nan.txt 2> nan-err.txt || rc=$?
+[ "$rc" -eq 3 ] || fail "NaN against a number: exit $rc, expected 3 (failure)"
+grep -q "^vri-diff: warning: B: 2 of 48 pixels are not finite (first at 3,2: R=nan G=0.5 B=0.5 A=0.5); each against a number counts as an infinite error, equal ones as none$" nan-err.txt ||
+  fail "the non-finite warning: $(cat nan-err.txt)"
+"$python" - <<'PY' || fail "the non-finite record: $(cat nan.json)"
+import json
+d = json.load(open("nan.json"))
+assert d["nonfinite_pixels"] == {"a": 0, "b": 2}, d["nonfinite_pixels"]
+assert d["metrics"]["flip"]["ldr"] is None and "finite" in d["metrics"]["flip"]["unavailable"], d["metrics"]["flip"]
+PY
 echo "metrics: PSNR, SSIM, relative MSE and SMAPE equal NumPy's over four masks; a masked comparison's table says so"
