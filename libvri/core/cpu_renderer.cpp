@@ -69,27 +69,57 @@ RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sa
 // Pre-integration: sample k of paper A's placement stands for the segment from half a step before it to
 // half a step after (as in composite), whose integral the table gives from the scalars at its ends (and
 // at the sample itself, the midpoint, for order 2). The segments share their ends, so a ray of n
-// samples reads n + 1 scalars (2n + 1 for order 2). Every segment is looked up: an entry interpolates
-// its neighbours in the table, so a segment in an empty brick need not look up exactly zero.
+// samples reads n + 1 scalars (2n + 1 for order 2).
+//
+// Empty space, `occupancy` being the table's own (OccupancyGrid over PreintegrationTable::isInvisible): a
+// segment whose two ends lie in empty bricks looks up exactly 0, which adds nothing (addSegment), so it is
+// skipped, bit for bit. Its ends lie one step apart, so in one brick or in two that touch, whose scalar
+// ranges (margins included) overlap: then the table reads zeros between them too. A step longer than a
+// brick could join two bricks that do not touch, and such a ray skips nothing.
 template <class Real, class Sampler>
-RayAccumulator<Real> marchSegments(const TextureRay<Real>& ray, const Sampler& sample, const glm::vec<3, Real>& eyeU,
+RayAccumulator<Real> marchSegments(const TextureRay<Real>& ray, const Sampler& sample, const OccupancyGrid* occupancy,
+                                   const GridIndexing& indexMap, const glm::vec<3, Real>& eyeU,
                                    const glm::vec<3, Real>& dims, const PreintegrationTable& table,
                                    const RenderOptions& opt, std::optional<Real> jitter, MarchCounts& counts) {
     RayAccumulator<Real> acc;
-    const FixedStepSamples<Real> march(ray, opt, eyeU, dims, jitter);
+    // The walk's positions are the segments' ends: boundary k at the sample schedule's t(k) - half a step,
+    // k = 0 .. count, each in a brick that skipEmpty() looks up.
+    FixedStepRay<Real> ends(ray, opt, eyeU, dims, indexMap, jitter);
+    const FixedStepSamples<Real> march = ends;  // the samples, as placed (a copy: `ends` walks the boundaries)
     const std::int64_t count = march.schedule.count;
     if (count == 0) return acc;
+    const double stepVoxels = glm::length(glm::dvec3(march.du) * indexMap.scale) * static_cast<double>(march.schedule.tIncr);
+    if (!(stepVoxels < OccupancyGrid::kBrick)) occupancy = nullptr;
+    SampleSchedule<Real> boundaries = march.schedule;
+    boundaries.tStart -= march.halfStep();
+    boundaries.count += 1;
+    ends.schedule = boundaries;
     const Real lengthRatio = march.dx / static_cast<Real>(table.segmentLength());
     const bool secondOrder = table.order() == 2;
-    Real front = sample(march.segmentStart(0));
-    for (std::int64_t k = 0; k < count; ++k) {
+    std::int64_t k = 0, lookedUp = 0;
+    bool haveFront = false;
+    Real front{};
+    while (k < count) {
+        if (occupancy && ends.mayBeEmpty(k)) {
+            // Boundaries k .. next - 1 lie in empty bricks: the segments between them look up 0.
+            const std::int64_t next = ends.skipEmpty(*occupancy, k);
+            if (next - 1 > k) {
+                k = next - 1;
+                haveFront = false;
+                if (k >= count) break;
+            }
+        }
+        if (!haveFront) front = sample(march.segmentStart(k));
         const Real back = sample(march.segmentStart(k + 1));
         const Real delta = secondOrder ? sample(march.position(k)) - Real(0.5) * (front + back) : Real(0);
         acc.addSegment(table(front, back, delta), lengthRatio);
         front = back;
+        haveFront = true;
+        ++lookedUp;
+        ++k;
     }
     counts.samplesPlaced += static_cast<std::uint64_t>(count);
-    counts.samplesEvaluated += static_cast<std::uint64_t>(count);
+    counts.samplesEvaluated += static_cast<std::uint64_t>(lookedUp);
     return acc;
 }
 
@@ -202,7 +232,7 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                         opt.jitter ? std::optional<Real>(static_cast<Real>(jitterFraction(px, py, opt.seed)))
                                    : std::nullopt;
                     const RayAccumulator<Real> acc =
-                        table ? marchSegments(ray, sample, eyeU, dims, *table, opt, jitter, counts)
+                        table ? marchSegments(ray, sample, occupancy, indexMap, eyeU, dims, *table, opt, jitter, counts)
                               : marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt, termination,
                                              jitter, counts);
                     out[0] = static_cast<float>(acc.r);
@@ -219,24 +249,33 @@ template <class Real>
 void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& opt, Image& image,
                  Counters& counters, RenderStats& stats, OccupancyCache& cache, double& setupSpent) {
     std::vector<AdaptiveTry>* log = opt.logPixel ? &stats.rayLog : nullptr;
-    std::optional<PreintegrationTable> table;
+    const PreintegrationTable* lookup = nullptr;  // the table of --method preintegrated, kept across frames
     if (opt.integrator == Integrator::Preintegrated) {
-        const auto start = std::chrono::steady_clock::now();
-        table.emplace(scene.transferFunction, preintegrationSegmentLength(scene, opt), opt.preintegrationSize,
-                      opt.preintegrationOrder);
-        stats.preintegration = {table->size(), table->order(), table->segmentLength(), table->check(scene.transferFunction)};
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        stats.setupSeconds += seconds;
-        setupSpent += seconds;
+        const auto entry = cache.preintegration(scene.volume, scene.convention, scene.transferFunction,
+                                                preintegrationSegmentLength(scene, opt), opt.preintegrationSize,
+                                                opt.preintegrationOrder);
+        lookup = &entry.structure.table;
+        stats.preintegration = {lookup->size(), lookup->order(), lookup->segmentLength(), entry.structure.error};
+        stats.setupSeconds += entry.buildSeconds;
+        stats.setupReused = entry.reused;
+        if (!entry.reused) setupSpent += entry.buildSeconds;
     }
-    const PreintegrationTable* lookup = table ? &*table : nullptr;
     if (!scene.volume && !scene.sparse) {
         renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, GridIndexing{}, camera, opt, image, counters,
                          log, lookup);
         return;
     }
     const OccupancyGrid* occupancy = nullptr;
-    if (opt.skipEmptySpace && !table) {
+    if (opt.skipEmptySpace && lookup && scene.volume && !(opt.simd && PacketScene::supports(scene, opt))) {
+        const auto grid = cache.preintegrationGrid(scene.volume, scene.convention, scene.transferFunction,
+                                                   lookup->segmentLength(), lookup->size(), lookup->order());
+        occupancy = &grid.structure;  // the table's own empty space (dense volumes, the scalar path)
+        stats.setupSeconds += grid.buildSeconds;
+        stats.setupReused = stats.setupReused && grid.reused;
+        if (!grid.reused) setupSpent += grid.buildSeconds;
+        stats.emptyBrickFraction = occupancy->emptyFraction();
+    }
+    if (opt.skipEmptySpace && !lookup) {
         const auto grid = scene.sparse ? cache.grid(scene.sparse, scene.convention, scene.transferFunction)
                                        : cache.grid(scene.volume, scene.convention, scene.transferFunction);
         occupancy = &grid.structure;
@@ -255,7 +294,7 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     }
     if (opt.simd && PacketScene::supports(scene, opt)) {
         const StencilBricks* stencils = nullptr;
-        if (opt.skipEmptySpace && !table) {
+        if (opt.skipEmptySpace && !lookup) {
             const auto entry =
                 cache.stencilBricks(scene.volume, scene.convention, scene.transferFunction, rayOctants(camera));
             stencils = &entry.structure;

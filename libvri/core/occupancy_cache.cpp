@@ -18,6 +18,8 @@ void OccupancyCache::key(const std::shared_ptr<const void>& volume, GridConventi
     grid_.structure.reset();
     exact_.structure.reset();
     stencils_.structure.reset();
+    preintegration_.structure.reset();
+    preintegrationGrid_.structure.reset();
     volume_ = volume;
     convention_ = convention;
     points_ = p;
@@ -68,6 +70,36 @@ OccupancyCache::Entry<StencilBricks> OccupancyCache::stencilBricks(const std::sh
     // The bricks themselves were built by an earlier call if `entry` was reused: this call spent only the octants.
     stencils_.buildSeconds += seconds;
     return {*stencils_.structure, entry.reused ? seconds : stencils_.buildSeconds, false};
+}
+
+OccupancyCache::Entry<OccupancyCache::Preintegration> OccupancyCache::preintegration(
+    const std::shared_ptr<const Volume>& volume, GridConvention convention, const TransferFunction& tf, double length,
+    int size, int order) {
+    key(volume, convention, tf);
+    if (const TableKey wanted{length, size, order}; !(tableKey_ == wanted)) {
+        preintegration_.structure.reset();
+        preintegrationGrid_.structure.reset();
+        tableKey_ = wanted;
+    }
+    Slot<Preintegration>& slot = preintegration_;
+    if (slot.structure) return {*slot.structure, slot.buildSeconds, true};
+    const auto start = std::chrono::steady_clock::now();
+    slot.structure.emplace(tf, length, size, order);
+    slot.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return {*slot.structure, slot.buildSeconds, false};
+}
+
+OccupancyCache::Entry<OccupancyGrid> OccupancyCache::preintegrationGrid(const std::shared_ptr<const Volume>& volume,
+                                                                        GridConvention convention,
+                                                                        const TransferFunction& tf, double length,
+                                                                        int size, int order) {
+    const PreintegrationTable& table = preintegration(volume, convention, tf, length, size, order).structure.table;
+    Slot<OccupancyGrid>& slot = preintegrationGrid_;
+    if (slot.structure) return {*slot.structure, slot.buildSeconds, true};
+    const auto start = std::chrono::steady_clock::now();
+    slot.structure.emplace(*volume, convention, table);
+    slot.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return {*slot.structure, slot.buildSeconds, false};
 }
 
 }  // namespace vri

@@ -14,6 +14,7 @@
 #include "libvri/core/exact_empty_space.h"
 #include "libvri/core/grid_convention.h"
 #include "libvri/core/occupancy_grid.h"
+#include "libvri/core/preintegration_table.h"
 #include "libvri/core/sparse_volume.h"
 #include "libvri/core/transfer_function.h"
 #include "libvri/core/volume.h"
@@ -40,6 +41,19 @@ public:
                               const TransferFunction& tf);
     Entry<ExactEmptySpace> exactEmptySpace(const std::shared_ptr<const Volume>& volume, GridConvention convention,
                                            const TransferFunction& tf);
+    // Pre-integration's setup: the table of this transfer function at a segment length, size and order, with
+    // its measured error (PreintegrationTable::check), and the grid of the table's own empty space over the
+    // volume (null for an analytic field: no grid); another length, size or order builds both again.
+    struct Preintegration {
+        Preintegration(const TransferFunction& tf, double length, int size, int order)
+            : table(tf, length, size, order), error(table.check(tf)) {}
+        PreintegrationTable table;
+        PreintegrationError error;
+    };
+    Entry<Preintegration> preintegration(const std::shared_ptr<const Volume>& volume, GridConvention convention,
+                                         const TransferFunction& tf, double length, int size, int order);
+    Entry<OccupancyGrid> preintegrationGrid(const std::shared_ptr<const Volume>& volume, GridConvention convention,
+                                            const TransferFunction& tf, double length, int size, int order);
     // With the distances of `octants` (rayOctants()) built; building missing ones counts as building.
     Entry<StencilBricks> stencilBricks(const std::shared_ptr<const Volume>& volume, GridConvention convention,
                                        const TransferFunction& tf, unsigned octants);
@@ -64,6 +78,13 @@ private:
     Slot<OccupancyGrid> grid_;
     Slot<ExactEmptySpace> exact_;
     Slot<StencilBricks> stencils_;
+    Slot<Preintegration> preintegration_;
+    Slot<OccupancyGrid> preintegrationGrid_;
+    struct TableKey {
+        double length = 0;
+        int size = 0, order = 0;
+        bool operator==(const TableKey&) const = default;
+    } tableKey_;
 };
 
 }  // namespace vri

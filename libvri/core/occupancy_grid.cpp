@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -14,11 +15,13 @@ namespace vri {
 
 namespace {
 
-// Whether a brick whose voxels (and margin) span the raw values mn..mx is invisible under tf.
+// Whether a brick whose voxels (and margin) span the raw values mn..mx is invisible: to the transfer
+// function, or to a pre-integration table (its lookups there are exactly 0).
 class EmptinessTest {
 public:
-    EmptinessTest(const ValueRange& range, const TransferFunction& tf)
-        : range_(range), invRange_(range.hi > range.lo ? 1.0 / (range.hi - range.lo) : 0.0), tf_(tf) {}
+    EmptinessTest(const ValueRange& range, std::function<bool(double, double)> invisible)
+        : range_(range), invRange_(range.hi > range.lo ? 1.0 / (range.hi - range.lo) : 0.0),
+          invisible_(std::move(invisible)) {}
 
     bool operator()(double mn, double mx) const {
         const double s0 = (mn - range_.lo) * invRange_, s1 = (mx - range_.lo) * invRange_;
@@ -26,14 +29,18 @@ public:
         // errors of a few float ulps of |lo|, |mn|, |mx|, scaled by 1 / (hi - lo). Pad by far more.
         const double magnitude = 1.0 + (std::abs(range_.lo) + std::abs(mn) + std::abs(mx)) * invRange_;
         const double pad = 1e-5 * magnitude;
-        return tf_.isInvisible(s0 - pad, s1 + pad);
+        return invisible_(s0 - pad, s1 + pad);
     }
 
 private:
     ValueRange range_;
     double invRange_;
-    const TransferFunction& tf_;
+    std::function<bool(double, double)> invisible_;
 };
+
+std::function<bool(double, double)> invisibleTo(const TransferFunction& tf) {
+    return [&tf](double s0, double s1) { return tf.isInvisible(s0, s1); };
+}
 
 // Per block of `size` voxels (x fastest), 1 when isEmpty holds for the range of its voxels, the first of
 // the next block and `margin` more on each side: blockRanges()' blocks [b B - margin, (b + 1) B + margin].
@@ -93,15 +100,22 @@ OccupancyGrid::OccupancyGrid(glm::ivec3 dims) : dims_(dims), maxIndex_(glm::dvec
 
 OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const TransferFunction& tf)
     : OccupancyGrid(volume.dims) {
-    const EmptinessTest isEmpty(volume.normalisationRange(), tf);
+    const EmptinessTest isEmpty(volume.normalisationRange(), invisibleTo(tf));
     // Each brick's voxels plus a one-voxel margin on every side.
+    empty_ = emptyBlocks(volume, bricks_, kBrick, 1, isEmpty);
+}
+
+OccupancyGrid::OccupancyGrid(const Volume& volume, GridConvention, const PreintegrationTable& table)
+    : OccupancyGrid(volume.dims) {
+    const EmptinessTest isEmpty(volume.normalisationRange(),
+                                [&table](double s0, double s1) { return table.isInvisible(s0, s1); });
     empty_ = emptyBlocks(volume, bricks_, kBrick, 1, isEmpty);
 }
 
 OccupancyGrid::OccupancyGrid(const SparseVolume& volume, GridConvention, const TransferFunction& tf)
     : OccupancyGrid(volume.dims) {
     static_assert(kBrick == SparseVolume::kBrick, "the occupancy grid's bricks are the sparse volume's");
-    const EmptinessTest isEmpty(volume.normalisationRange(), tf);
+    const EmptinessTest isEmpty(volume.normalisationRange(), invisibleTo(tf));
     const double background = volume.background();
     std::fill(empty_.begin(), empty_.end(), isEmpty(background, background));
     // Brick m's voxels and margin, [8m - 1, 8m + 9] along each axis as blockRanges takes them above, are
@@ -162,7 +176,7 @@ StencilBricks::StencilBricks(const Volume& volume, GridConvention, const Transfe
     const int size = 1 << kShift;
     for (int a = 0; a < 3; ++a) bricks_[a] = (volume.dims[a] - 1) / size + 1;
     // Each brick's voxels and the next one's first (the stencils' far corners).
-    empty_ = emptyBlocks(volume, bricks_, size, 0, EmptinessTest(volume.normalisationRange(), tf));
+    empty_ = emptyBlocks(volume, bricks_, size, 0, EmptinessTest(volume.normalisationRange(), invisibleTo(tf)));
     distance_.assign(8 * empty_.size() + 3, 0);
 }
 

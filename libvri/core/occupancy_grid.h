@@ -14,6 +14,7 @@
 
 #include "libvri/core/camera.h"
 #include "libvri/core/grid_convention.h"
+#include "libvri/core/preintegration_table.h"
 #include "libvri/core/sparse_volume.h"
 #include "libvri/core/transfer_function.h"
 #include "libvri/core/volume.h"
@@ -26,6 +27,9 @@ public:
     static constexpr int kBrick = 1 << kBrickShift;  // voxels per brick edge
 
     OccupancyGrid(const Volume& volume, GridConvention convention, const TransferFunction& tf);
+    // The bricks where every lookup of a pre-integration table is exactly 0 (PreintegrationTable::isInvisible),
+    // for the segments of --method preintegrated.
+    OccupancyGrid(const Volume& volume, GridConvention convention, const PreintegrationTable& table);
     // The same grid, bit for bit, from the stored bricks alone: a brick and its margin in no stored
     // brick's block hold the background only.
     OccupancyGrid(const SparseVolume& volume, GridConvention convention, const TransferFunction& tf);

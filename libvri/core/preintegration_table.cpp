@@ -66,6 +66,48 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, double segm
     for (int c = 0; c < 3; ++c) upper_[c] = colourMax[c] * weight;
     upper_[3] = depthMax;
     for (int c = 0; c < 4; ++c) upperFloat_[c] = static_cast<float>(upper_[c]);
+    findZeroRuns();
+}
+
+// A run [p, q] of indices whose every pair (i, j) in [p, q]^2 has all four values (and slopes) exactly 0,
+// grown from the left as long as the next index keeps the square zero; the next run starts after it. The
+// runs partition the indices that are in one, so two ranges of indices that share one lie in the same run.
+void PreintegrationTable::findZeroRuns() {
+    const auto zero = [&](int i, int j) {
+        const std::size_t at = (static_cast<std::size_t>(i) * size_ + j) * 4;
+        for (int c = 0; c < 4; ++c)
+            if (values_[at + c] != 0.0 || (order_ == 2 && slopes_[at + c] != 0.0)) return false;
+        return true;
+    };
+    zeroRun_.assign(static_cast<std::size_t>(size_), -1);
+    int runs = 0;
+    for (int p = 0; p < size_;) {
+        if (!zero(p, p)) {
+            ++p;
+            continue;
+        }
+        int q = p;
+        const auto extends = [&](int next) {
+            for (int i = p; i <= next; ++i)
+                if (!zero(i, next) || !zero(next, i)) return false;
+            return true;
+        };
+        while (q + 1 < size_ && extends(q + 1)) ++q;
+        for (int i = p; i <= q; ++i) zeroRun_[static_cast<std::size_t>(i)] = runs;
+        ++runs;
+        p = q + 1;
+    }
+}
+
+bool PreintegrationTable::isInvisible(double s0, double s1) const {
+    // The entries a lookup of a scalar reads: its cell's two ends, located as operator() locates it.
+    const auto cell = [&](double s) {
+        const double x = std::clamp(s, 0.0, 1.0) * (size_ - 1);
+        return std::min(static_cast<int>(x), size_ - 2);
+    };
+    const int first = cell(s0), last = cell(s1) + 1;
+    const int run = zeroRun_[static_cast<std::size_t>(first)];
+    return run >= 0 && zeroRun_[static_cast<std::size_t>(last)] == run;
 }
 
 SegmentIntegral<double> PreintegrationTable::direct(const TransferFunction& tf, double segmentLength, double front,

@@ -108,6 +108,14 @@ public:
     // table's spacing: a measured largest error, not a bound.
     PreintegrationError check(const TransferFunction& tf) const;
 
+    // True when every lookup whose front and back scalars lie in [s0, s1] is exactly 0 in all four values
+    // (every entry, and slope, it could read is 0), so that a segment there adds nothing, bit for bit
+    // (RayAccumulator::addSegment): the table's own empty space, which can be wider or narrower than the
+    // transfer function's, as interpolation reads the neighbouring entries. Between two such ranges that
+    // overlap, a lookup is 0 too (they lie in one run of zero entries), which is what lets a march skip
+    // segments whose ends lie in neighbouring empty bricks.
+    bool isInvisible(double s0, double s1) const;
+
     template <class Real>
     const Real* values() const;
     template <class Real>
@@ -126,6 +134,9 @@ private:
     std::vector<float> valuesFloat_, slopesFloat_;  // the same, rounded once
     double upper_[4];
     float upperFloat_[4];
+    // Per index, the run of zero entries it belongs to (findZeroRuns), -1 for none.
+    std::vector<int> zeroRun_;
+    void findZeroRuns();
 };
 
 template <>

@@ -159,3 +159,30 @@ TEST_CASE("preintegrated render: double and float agree, and the table does not 
     const Image c = render(scene, camera, opt);
     for (std::size_t i = 0; i < a.pixels.size(); ++i) CHECK(std::abs(a.pixels[i] - c.pixels[i]) < 1e-5);
 }
+
+TEST_CASE("preintegration table: its own empty space is where every lookup is exactly 0, and only there") {
+    // Zero below s = 0.05 and above 0.95: lookups with both ends there read only zero entries, except
+    // those whose cell reaches the first non-zero entry (interpolation reads a cell's two ends).
+    const TransferFunction tf = jumpingTransferFunction();
+    for (int order : {1, 2}) {
+        const PreintegrationTable table(tf, 1.0, 64, order);
+        CHECK(table.isInvisible(0.0, 0.02));
+        CHECK(table.isInvisible(0.97, 1.0));
+        CHECK(!table.isInvisible(0.0, 0.1));    // reaches the rise after 0.05
+        CHECK(!table.isInvisible(0.3, 0.4));    // visible
+        CHECK(!table.isInvisible(0.02, 0.97));  // two empty ends, a visible segment between them
+        // Wherever the test says empty, every lookup there is 0: dense front, back and delta.
+        for (double s0 = 0.0; s0 < 1.0; s0 += 1.0 / 128)
+            for (double s1 = s0; s1 <= 1.0; s1 += 1.0 / 128) {
+                if (!table.isInvisible(s0, s1)) continue;
+                for (double front = s0; front <= s1; front += (s1 - s0) / 7 + 1e-9)
+                    for (double back = s0; back <= s1; back += (s1 - s0) / 7 + 1e-9)
+                        for (double delta : {0.0, 0.01, -0.3}) {
+                            const SegmentIntegral<double> v = table(front, back, delta);
+                            const SegmentIntegral<float> f = table(float(front), float(back), float(delta));
+                            CHECK((v.r == 0 && v.g == 0 && v.b == 0 && v.depth == 0));
+                            CHECK((f.r == 0 && f.g == 0 && f.b == 0 && f.depth == 0));
+                        }
+            }
+    }
+}
