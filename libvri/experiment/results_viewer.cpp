@@ -35,7 +35,9 @@ std::string page(const std::string& title, const char* dataId, const nlohmann::j
     std::string escaped;
     for (const char c : title) escaped += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
     return "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + escaped +
-           "</title>\n<link rel=\"stylesheet\" href=\"" + up + "viewer/vri-viewer.css\"></head>\n<body>\n<script id=\"" +
+           "</title>\n<link rel=\"stylesheet\" href=\"" + up + "viewer/vri-viewer.css\"></head>\n<body>\n"
+           "<p id=\"vri-fallback\">This page is drawn by " + up + "viewer/vri-viewer.js, which did not run: open it from its "
+           "results folder, beside viewer/ (vri-run --gallery writes both), in a browser with JavaScript.</p>\n<script id=\"" +
            dataId + "\" type=\"application/json\">" + scriptSafeJson(data) + "</script>\n<script src=\"" + up +
            "viewer/vri-viewer.js\"></script>\n</body></html>\n";
 }

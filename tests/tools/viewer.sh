@@ -38,6 +38,9 @@ cmp out/viewer/vri-viewer.js "$VRI_SOURCE/tools/viewer/vri-viewer.js" || fail "t
 # The title is data, never markup: no '<' of it reaches the HTML but the <title>'s escaped one.
 ! grep -q '<script>document' out/view/index.html || fail "the title's markup reached the page: $(grep -o '.\{20\}<script>document.\{20\}' out/view/index.html)"
 
+grep -q '<p id="vri-fallback">This page is drawn by \.\./viewer/vri-viewer\.js, which did not run' out/view/index.html ||
+  fail "the page has no sentence for a browser that does not run its script"
+
 x=21 y=13
 node "$VRI_SOURCE/tests/tools/lib/viewer_check.mjs" out/view/index.html riemann-h1 riemann-h0.25 $x $y shots > seen.json 2> check.txt ||
   fail "the browser check: $(cat check.txt)"

@@ -23,11 +23,15 @@
  *  - #probe-a, #probe-b and #probe-err carry data-x, data-y and data-values (a JSON array of the float32
  *    values as decoded; a non-finite value is written as the string "NaN", "Infinity" or "-Infinity") and
  *    data-channels (their names); #probe-err has |A - B| per shared channel, counted as vri counts errors
- *    (a NaN against a number is infinite, equal NaNs 0), and data-max, their maximum;
+ *    (a NaN against a number is infinite, equal NaNs 0), and data-max, their maximum. They always hold the
+ *    last pixel probed inside the image; #probe[data-where] says whether the pointer is on it ("in"), on the
+ *    canvas outside the image ("outside"), gone from the canvas ("left"), or no pixel was probed ("none");
+ *  - #zoom-level shows the zoom (CSS pixels per image pixel: "zoom 16x", with a multiplication sign);
  *  - window.vriViewer = {ready, pick(aId, bId), setMode(mode), zoomTo(x, y, pixelsPerImagePixel),
  *    canvasPointOf(x, y), whenIdle(), fit(), state()}; the first four return promises that settle once the
- *    loads they start are done and drawn. canvasPointOf gives viewport CSS pixels (x, y, as mouse events
- *    take them), page pixels (pageX, pageY) and pixels within #view (canvasX, canvasY).
+ *    loads they start are done and drawn (pick and setMode reject, never throw, on an unknown id or mode).
+ *    canvasPointOf gives viewport CSS pixels (x, y, as mouse events take them), page pixels (pageX, pageY)
+ *    and pixels within #view (canvasX, canvasY).
  *
  * Display of float images: c = rgb + (1 - a) * background (linear, premultiplied, as vri's PNG previews),
  * then clamp01(c * 2^exposure) through the sRGB curve (the default) or 1/gamma, rounded to a byte; NaN
@@ -55,7 +59,8 @@
   const PANEL_GAP = 4; // CSS pixels between the two side-by-side panels
   const FLOAT_CACHE_SIZE = 12; // decoded float images kept (about 8 MB each at 800x600 RGBA)
   const TONE_CACHE_SIZE = 8; // tone-mapped canvases kept
-  const NO_FLOATS = 'no float data: run make experiments (EXRs are not kept in git)';
+  const LONG_TEXT = 400; // characters: a longer description or agreement starts collapsed to its opening
+  const OUTLINE_SCALE = 8; // CSS pixels per image pixel from which the probed pixel is outlined
   // The checker background, in linear units (composited before the transfer curve, like the PNG previews).
   const CHECKER = [0.2, 0.45];
   const CHECKER_CELL = 8; // image pixels
@@ -107,13 +112,39 @@
     return str(path).split('/').map(encodeURIComponent).join('/');
   }
 
-  // "Paper B, Table IV"; an item without a paper (our own studies) stands alone.
+  // A paper or item name from the data; "none" (our own studies write paper: none) is no name.
+  function named(v) {
+    v = str(v).trim();
+    return v.toLowerCase() === 'none' ? '' : v;
+  }
+
+  // "Paper B, Table IV"; a study without a paper is "own study", with its item if it has one.
   function paperItem(paper, item) {
-    paper = str(paper);
-    item = str(item);
+    paper = named(paper);
+    item = named(item);
     if (paper && item) return 'Paper ' + paper + ', ' + item;
     if (paper) return 'Paper ' + paper;
-    return item || 'own study';
+    return item ? 'own study: ' + item : 'own study';
+  }
+
+  // Where a text's opening sentences end: the first sentence end at 60 characters or more, else the last
+  // one before 300 ("Differs." alone when the next sentence is long); -1 when no sentence ends by then. A
+  // sentence ends at '.', '!' or '?' (and closing brackets or quotes) followed by space and a capital, not
+  // after an abbreviation such as "Fig." or "vs.", nor inside `code`.
+  function openingEnd(text) {
+    const re = /[.!?][)\]"']*\s+(?=[A-Z(\[`*"])/g;
+    let m;
+    let last = -1;
+    while ((m = re.exec(text)) !== null) {
+      const end = m.index + m[0].trimEnd().length;
+      if (end > 300) return last;
+      const word = /(\S+)$/.exec(text.slice(0, m.index));
+      if (word && /^(?:Fig|Figs|Sec|Secs|Eq|Eqs|Tab|No|Ref|Refs|vs|cf|al|etc|approx|e\.g|i\.e|[A-Z])$/i.test(word[1].replace(/^[(\[]+/, ''))) continue;
+      if ((text.slice(0, end).match(/`/g) || []).length % 2) continue;
+      if (end >= 60) return end;
+      last = end;
+    }
+    return last;
   }
 
   // C's "%.<p>g", as vri's heat-map labels print numbers.
@@ -233,7 +264,9 @@
       };
       script.onerror = () => {
         done();
-        reject(new Error('cannot load ' + path));
+        const error = new Error('cannot load ' + path);
+        error.missing = true; // not written (no EXR here, or vri-run --gallery not run since), not broken
+        reject(error);
       };
       script.src = urlOf(path);
       document.head.append(script);
@@ -514,10 +547,11 @@
       if (!x || typeof x !== 'object') continue;
       const name = str(x.title) || str(x.dir);
       const page = str(x.page);
+      const verdict = str(x.verdict).trim();
       body.append(el('tr', null, [
         el('td', { text: paperItem(x.paper, x.item) }),
         el('td', null, [page ? el('a', { href: urlOf(page), text: name }) : name]),
-        el('td', { text: str(x.verdict) }),
+        el('td', { class: verdict ? null : 'vri-none', text: verdict || '\u2013', title: verdict ? null : 'no verdict: not a paper\'s item' }),
       ]));
     }
     main.append(experiments.length ? el('div', { class: 'vri-table-wrap' }, [table]) : el('p', { text: 'No experiments.' }));
@@ -546,7 +580,7 @@
       channels: Array.isArray(raw.channels) ? raw.channels.map(str) : [],
       run: str(raw.run), reference: str(raw.reference), heat: parseHeat(raw.heat),
       picture: null, pictureState: 'none', pictureError: '',
-      floats: null, floatState: floatsPath ? 'none' : 'absent', floatError: '',
+      floats: null, floatState: floatsPath ? 'none' : 'absent', floatError: '', floatMissing: false,
       lastUse: 0, thumbs: [],
     };
   }
@@ -571,7 +605,11 @@
     document.body.prepend(main);
     main.append(headerOf(data, title));
 
-    const viewer = entries.size ? makeViewer(entries) : null;
+    const layoutOfGrids = grids.map((g, k) => ({
+      name: str(g.name), rows: Array.isArray(g.rows) ? g.rows.map(str) : [],
+      columns: Array.isArray(g.columns) ? g.columns.map(str) : [], list: gridEntries[k],
+    }));
+    const viewer = entries.size ? makeViewer(entries, layoutOfGrids, resultsFolderOf(data)) : null;
     if (viewer) main.append(viewer.section);
     grids.forEach((g, k) => main.append(gridSection(g, gridEntries[k], viewer)));
     main.append(...extrasOf(data));
@@ -585,6 +623,22 @@
     viewer.start();
   }
 
+  // The results folder as a shell word for the hint that writes missing float data: the folder of the
+  // index page, when the page is a file; else a placeholder.
+  function resultsFolderOf(data) {
+    const placeholder = '<results folder>';
+    if (!data.index) return placeholder;
+    try {
+      const url = new URL('.', new URL(urlOf(data.index), window.location.href));
+      if (url.protocol !== 'file:') return placeholder;
+      let folder = decodeURIComponent(url.pathname).replace(/\/+$/, '') || '/';
+      if (/^\/[A-Za-z]:/.test(folder)) folder = folder.slice(1); // file:///C:/... on Windows
+      return /^[\w@%+=:,./-]+$/.test(folder) ? folder : "'" + folder.replace(/'/g, "'\\''") + "'";
+    } catch (e) {
+      return placeholder;
+    }
+  }
+
   function headerOf(data, title) {
     const header = el('header', { class: 'vri-header' });
     const nav = header.appendChild(el('nav'));
@@ -592,13 +646,36 @@
     if (data.manifest) nav.append(el('a', { href: urlOf(data.manifest), id: 'manifest-link', text: 'manifest.json' }));
     header.append(el('h1', { text: title }), el('p', { class: 'vri-item', text: paperItem(data.paper, data.item) }));
     const dl = header.appendChild(el('dl'));
-    const add = (term, text) => {
-      if (!str(text)) return;
+    // A long text starts collapsed to its opening sentences (the summary; the rest follows it when opened),
+    // so that the compare view stays on the first screen.
+    const add = (term, id, value) => {
+      const text = str(value).trim();
+      if (!text) return;
       dl.append(el('dt', { text: term }));
-      appendInline(dl.appendChild(el('dd')), str(text));
+      const dd = dl.appendChild(el('dd', { id }));
+      if (text.length <= LONG_TEXT) {
+        appendInline(dd, text);
+        return;
+      }
+      const details = dd.appendChild(el('details', { class: 'vri-long' }));
+      const summary = details.appendChild(el('summary'));
+      const end = openingEnd(text);
+      if (end > 0) {
+        appendInline(summary.appendChild(el('span', { class: 'vri-opening' })), text.slice(0, end));
+        summary.append(el('span', { class: 'vri-more', text: ' \u2026 more' }));
+        appendInline(details.appendChild(el('div', { class: 'vri-rest' })), text.slice(end).trim());
+      } else {
+        // No sentence ends early enough: the summary is the first words, the full text follows when opened.
+        const cut = text.slice(0, 240).replace(/\s+\S*$/, '');
+        appendInline(summary.appendChild(el('span', { class: 'vri-opening vri-cut' })), cut);
+        summary.append(el('span', { class: 'vri-more', text: '\u2026 more' }), el('span', { class: 'vri-less', text: 'less' }));
+        appendInline(details.appendChild(el('div', { class: 'vri-rest' })), text);
+      }
     };
-    add('The paper', data.says);
-    add('Ours', data.agreement);
+    // A study of our own has no paper: its "says" describes the study, its "agreement" is what it found.
+    const own = !named(data.paper);
+    add(own ? 'About this study' : 'The paper', 'says', data.says);
+    add(own ? 'Findings' : 'Ours', 'agreement', data.agreement);
     if (data.commit) {
       dl.append(el('dt', { text: 'Commit' }));
       dl.append(el('dd', null, [el('code', { text: str(data.commit) }),
@@ -685,19 +762,22 @@
 
   // ---------------------------------------------------------------- the compare view
 
-  function makeViewer(entries) {
+  function makeViewer(entries, grids, resultsFolder) {
     const ids = [...entries.keys()];
+    const refreshHint = 'run vri-run --gallery ' + resultsFolder + ' after make experiments (EXRs are not kept in git)';
     const state = {
       a: null, b: null, mode: 'a', flipB: false, swipe: 0.5,
       cx: 0, cy: 0, s: 1, fitted: false, geometry: '',
       look: { exposure: 0, gamma: DEFAULT_GAMMA, srgb: true, background: 'black' },
       errorScale: null, // {log, top, decades}, reset on each new pair
-      probe: null, // {x, y} of the last probed image pixel
+      probe: null, // {x, y} of the last image pixel probed inside the image
+      probeWhere: 'none', // the pointer: 'in' the image, 'outside' it on the canvas, 'left' the canvas; 'none' yet
       W: 0, H: 0, dpr: 1, drawn: 0, pending: 0, useClock: 0,
     };
     const toneCache = new Map(); // key -> canvas, in least recently used order
     let errorCache = null; // {key, field}
     let errorImageCache = null; // {key, canvas}
+    let shownTop = null; // {text, top}: the error scale's top as #error-top shows it (rounded), and exactly
     let idleWaiters = [];
     let drag = null;
 
@@ -727,7 +807,8 @@
     for (const v of ['black', 'white', 'checker']) background.append(el('option', { value: v, text: v }));
     const errorScaleSelect = el('select', { id: 'error-scale', 'aria-label': 'error scale' });
     for (const v of ['linear', 'log']) errorScaleSelect.append(el('option', { value: v, text: v }));
-    const errorTop = el('input', { type: 'text', id: 'error-top', inputmode: 'decimal', size: 10, 'aria-label': 'top of the error scale' });
+    const errorTop = el('input', { type: 'text', id: 'error-top', inputmode: 'decimal', size: 10, 'aria-label': 'top of the error scale', placeholder: 'default',
+      title: 'shown to 4 significant digits; the exact value is used until you edit it' });
     const errorDecades = el('input', { type: 'number', id: 'error-decades', min: 1, max: 12, step: 1, value: 3, 'aria-label': 'decades' });
     const pairButton = el('button', { type: 'button', id: 'open-pair', hidden: true });
 
@@ -735,6 +816,8 @@
     const ctx = canvas.getContext('2d');
     const canvasWrap = el('div', { class: 'vri-canvas-wrap' }, [canvas]);
     const message = el('p', { id: 'view-message', class: 'vri-view-message', 'aria-live': 'polite' });
+    const zoomLevel = el('output', { id: 'zoom-level', class: 'vri-zoom-level', title: 'zoom: CSS pixels per image pixel' });
+    const viewStatus = el('div', { class: 'vri-view-status' }, [zoomLevel, message]);
     const pairInfo = el('p', { id: 'pair-info', class: 'vri-pair-info' });
     const bar = el('canvas', { id: 'colorbar', width: 256, height: 12 });
     const barTicks = el('div', { class: 'vri-colorbar-ticks' });
@@ -748,7 +831,7 @@
     const probeB = el('div', { id: 'probe-b', 'data-values': '[]' });
     const probeErr = el('div', { id: 'probe-err', 'data-values': '[]' });
     const probeXY = el('div', { id: 'probe-xy', text: 'Hover over the picture to read its pixels.' });
-    const probe = el('div', { id: 'probe', class: 'vri-probe' }, [probeXY, probeA, probeB, probeErr]);
+    const probe = el('div', { id: 'probe', class: 'vri-probe', 'data-where': 'none' }, [probeXY, probeA, probeB, probeErr]);
 
     const label = (text, control) => el('label', null, [text + ' ', control]);
     const section = el('section', { class: 'vri-compare', id: 'compare' }, [
@@ -766,7 +849,7 @@
       ]),
       el('p', { class: 'vri-help', text: 'Wheel zooms about the cursor, drag pans (in swipe mode, drag the divider). ' +
         'Keys: 1 A, 2 B, s side by side, w swipe, f flip, e error, 0 fit. Click a thumbnail below for A, shift-click for B.' }),
-      pairInfo, canvasWrap, message, colorbar, probe,
+      pairInfo, canvasWrap, viewStatus, colorbar, probe,
     ]);
 
     // -------- loading
@@ -803,7 +886,9 @@
           evictFloats();
         }, (error) => {
           entry.floatState = 'error';
-          entry.floatError = 'float data unavailable: ' + (error && error.message ? error.message : error);
+          entry.floatMissing = !!(error && error.missing); // then refreshHint says how to write it
+          entry.floatError = entry.floatMissing ? 'no float data (' + entry.floatsPath + ' is missing)'
+            : 'float data unavailable: ' + (error && error.message ? error.message : error);
         }));
       }
     }
@@ -840,7 +925,10 @@
     function setPair(aId, bId) {
       const a = entries.get(aId);
       const b = entries.get(bId);
-      if (!a || !b) throw new Error('no image with id ' + JSON.stringify(a ? bId : aId));
+      if (!a || !b) {
+        const known = ids.slice(0, 8).map((id) => JSON.stringify(id)).join(', ') + (ids.length > 8 ? ', \u2026' : '');
+        throw new Error('no image with id ' + JSON.stringify(a ? bId : aId) + ' on this page (its ids: ' + known + ')');
+      }
       const changed = a !== state.a || b !== state.b;
       state.a = a;
       state.b = b;
@@ -857,8 +945,14 @@
       }
       if (changed) {
         state.errorScale = null;
+        if (document.activeElement !== errorTop) errorTop.value = ''; // the new pair's default fills it
+        shownTop = null;
         const geometry = sizeOf(a).join('x') + '/' + sizeOf(b).join('x');
-        if (geometry !== state.geometry) fit(); // same sizes: keep the zoom, to compare many images at one spot
+        if (geometry !== state.geometry) { // same sizes: keep the zoom and probe, to compare many images at one spot
+          fit();
+          state.probe = null; // it may lie outside the new picture; the pointer's next move probes again
+          state.probeWhere = 'none';
+        }
         state.geometry = geometry;
       }
       const diff = a.heat && entries.get(a.run) && entries.get(a.reference) ? a
@@ -875,11 +969,52 @@
       setPair(which === 'a' ? id : state.a.id, which === 'b' ? id : state.b.id);
     }
 
-    // The default pair: the run and reference of the first difference image that has both, else the first
-    // two images.
+    // The default pair [A, B]: the run and reference of the first difference image that has both; else two
+    // renders of one row (scene) and one size, B in the first column named like a reference ("exact",
+    // "ref") and A in the next column of that size that is not one (else the next), or else the row's first
+    // two images of one size; else the first two images of one size; else the first two, or the only one
+    // twice.
     function defaultPair() {
       for (const e of entries.values()) {
         if (e.heat && entries.has(e.run) && entries.has(e.reference)) return [e.run, e.reference];
+      }
+      const sameSize = (x, y) => x.width === y.width && x.height === y.height;
+      const isReference = (column) => /exact|ref/i.test(column);
+      // The Renders grid first; difference images never.
+      const ordered = grids.filter((g) => g.name === 'Renders').concat(grids.filter((g) => g.name !== 'Renders'));
+      const rowsOf = ordered.map((g) => {
+        const list = g.list.filter((e) => !e.heat);
+        const rows = g.rows.concat(list.map((e) => e.row).filter((r) => !g.rows.includes(r)));
+        const columns = g.columns.concat(list.map((e) => e.column).filter((c) => !g.columns.includes(c)));
+        // Each row's images in column order.
+        return rows.map((r) => {
+          const cells = [];
+          for (const c of columns) for (const e of list) if (e.row === r && e.column === c) cells.push(e);
+          return cells;
+        });
+      });
+      for (const rows of rowsOf) {
+        for (const cells of rows) {
+          const k = cells.findIndex((e) => isReference(e.column));
+          if (k < 0) continue;
+          const b = cells[k];
+          const after = cells.slice(k + 1).concat(cells.slice(0, k)).filter((e) => sameSize(e, b));
+          const a = after.find((e) => !isReference(e.column)) || after[0];
+          if (a) return [a.id, b.id];
+        }
+      }
+      for (const rows of rowsOf) {
+        for (const cells of rows) {
+          for (let i = 0; i < cells.length; ++i) {
+            const b = cells.slice(i + 1).find((e) => sameSize(e, cells[i]));
+            if (b) return [cells[i].id, b.id];
+          }
+        }
+      }
+      const all = [...entries.values()];
+      for (let i = 0; i < all.length; ++i) {
+        const b = all.slice(i + 1).find((e) => sameSize(e, all[i]));
+        if (b) return [all[i].id, b.id];
       }
       return [ids[0], ids[Math.min(1, ids.length - 1)]];
     }
@@ -955,9 +1090,8 @@
       return { x: panel.x + panel.w / 2 - state.cx * state.s, y: panel.y + panel.h / 2 - state.cy * state.s };
     }
 
-    function fit() {
-      layout();
-      const p = panels()[0];
+    // The size of the picture: the larger of A and B in each direction.
+    function pictureSize() {
       let w = 1;
       let h = 1;
       for (const e of [state.a, state.b]) {
@@ -966,10 +1100,31 @@
         w = Math.max(w, ew);
         h = Math.max(h, eh);
       }
+      return [w, h];
+    }
+
+    function fit() {
+      layout();
+      const p = panels()[0];
+      const [w, h] = pictureSize();
       state.s = clamp(Math.min(p.w / w, p.h / h), MIN_SCALE, MAX_SCALE);
       state.cx = w / 2;
       state.cy = h / 2;
       state.fitted = true;
+    }
+
+    // Keeps a quarter of the picture on the panel in each direction (a quarter of the panel when the picture
+    // is larger than it), so that panning or zooming out never loses the picture. A view centred on a
+    // pixel of the picture, as fit and zoomTo make, is never moved.
+    function clampView() {
+      const p = panels()[0];
+      const [w, h] = pictureSize();
+      const halfX = p.w / (2 * state.s);
+      const halfY = p.h / (2 * state.s);
+      const needX = Math.min(w, 2 * halfX) / 4;
+      const needY = Math.min(h, 2 * halfY) / 4;
+      state.cx = clamp(state.cx, needX - halfX, w - needX + halfX);
+      state.cy = clamp(state.cy, needY - halfY, h - needY + halfY);
     }
 
     // Zoom by `factor` keeping the image point under (mx, my) (canvas CSS pixels, in `panel`) in place.
@@ -1020,18 +1175,31 @@
       return state.a.id + '\u0000' + state.b.id;
     }
 
-    // Why the error view cannot be drawn, or '' when it can.
+    // Why an entry that is not loading has no float data.
+    function noFloatsReason(entry) {
+      if (entry.heat) return 'a heat map (PNG only)';
+      if (entry.floatState === 'error') return entry.floatError;
+      return 'PNG only (its step wrote no EXR)';
+    }
+
+    // Why the error view cannot be drawn, or '' when it can. A loading problem is 'loading float data...'.
     function errorProblem() {
       const { a, b } = state;
-      for (const [name, e] of [['A', a], ['B', b]]) {
+      for (const e of [a, b]) {
         if (e.floatState === 'loading' || (e.floatState === 'none' && e.floatsPath)) return 'loading float data\u2026';
-        if (!e.floats) {
-          return 'the error view needs float data of A and B; ' + name + ' (' + e.id + ') has none: ' +
-            (e.heat ? 'it is a heat map (PNG only)' : e.floatState === 'error' ? e.floatError : NO_FLOATS);
-        }
+      }
+      const missing = [['A', a], ['B', b]].filter(([, e]) => !e.floats);
+      if (missing.length) {
+        const who = missing.map(([name, e]) => name + ' (' + e.id + ')');
+        const reasons = missing.map(([, e]) => (e.floatMissing ? e.floatsPath + ' is missing' : noFloatsReason(e)));
+        const head = 'the error view needs float data of A and B; ' +
+          (missing.length === 2 ? 'neither ' + who[0] + ' nor ' + who[1] + ' has it' : who[0] + ' has none');
+        const hint = missing.some(([, e]) => e.floatMissing) ? '; ' + refreshHint : '';
+        if (missing.length === 2 && reasons[0] === reasons[1]) return head + ': ' + reasons[0] + hint;
+        return head + ': ' + missing.map(([name], k) => (missing.length === 2 ? name + ': ' : '') + reasons[k]).join('; ') + hint;
       }
       if (a.floats.width !== b.floats.width || a.floats.height !== b.floats.height) {
-        return 'sizes differ (A ' + a.floats.width + 'x' + a.floats.height + ', B ' + b.floats.width + 'x' +
+        return 'sizes differ (A ' + a.floats.width + '\u00d7' + a.floats.height + ', B ' + b.floats.width + '\u00d7' +
           b.floats.height + '): no per-pixel error';
       }
       if (!a.floats.channels.some((c) => b.floats.channels.includes(c))) return 'A and B share no channel';
@@ -1059,7 +1227,11 @@
     function syncErrorControls() {
       const sc = state.errorScale;
       errorScaleSelect.value = sc.log ? 'log' : 'linear';
-      if (document.activeElement !== errorTop) errorTop.value = String(sc.top);
+      // The top shows to 4 significant digits; until it is edited, the exact top it stands for is kept.
+      if (document.activeElement !== errorTop && !(shownTop && shownTop.top === sc.top && errorTop.value === shownTop.text)) {
+        errorTop.value = formatG(sc.top, 4);
+        shownTop = { text: errorTop.value, top: sc.top };
+      }
       errorDecades.value = String(sc.decades);
       errorDecades.disabled = !sc.log;
     }
@@ -1079,7 +1251,8 @@
       }
       const parts = ['max |A \u2212 B| = ' + (Number.isNaN(field.max) ? 'n/a' : formatValue(field.max)) +
         (field.maxX >= 0 ? ' at (' + field.maxX + ', ' + field.maxY + ')' : ''),
-      'mean ' + (Number.isNaN(field.mean) ? 'n/a' : formatValue(field.mean)),
+      'mean of max |A \u2212 B| over channels ' + (Number.isNaN(field.mean) ? 'n/a' : formatValue(field.mean)) +
+        (field.inf ? ' (finite pixels)' : ''),
       'channels ' + field.channels.join(' ')];
       if (field.inf) parts.push(field.inf + ' infinite');
       errorInfo.textContent = parts.join('; ');
@@ -1120,23 +1293,25 @@
       if (!state.a) return;
       pairInfo.replaceChildren(
         el('span', { class: 'vri-a', text: 'A' }), ' ' + describe(state.a) + '   ',
-        el('span', { class: 'vri-b', text: 'B' }), ' ' + describe(state.b));
+        el('span', { class: 'vri-b', text: 'B' }), ' ' + describe(state.b),
+        ...(entries.size === 1 ? [el('span', { class: 'vri-only-one', text: '   only one image on this page: A and B are the same' })] : []));
       layout();
+      clampView();
       const { a, b, mode, W, H } = state;
       ctx.setTransform(state.dpr, 0, 0, state.dpr, 0, 0);
       ctx.fillStyle = '#3a3a3a';
       ctx.fillRect(0, 0, W, H);
       const ps = panels();
       const messages = [];
+      let hint = false; // a shown image's float data is missing: say once how to write it
       const note = (entry, name, src) => {
         if (src.message) messages.push(name + ': ' + src.message);
         else if (!entry.floats) {
-          messages.push(name + ' shows its PNG: ' + (entry.heat ? 'a heat map, no float data'
-            : entry.floatState === 'loading' ? 'loading float data\u2026'
-              : entry.floatState === 'error' ? entry.floatError : NO_FLOATS));
+          messages.push(name + ' shows its PNG: ' + (entry.floatState === 'loading' ? 'loading float data\u2026' : noFloatsReason(entry)));
+          hint = hint || entry.floatMissing;
         }
       };
-      colorbar.hidden = mode !== 'error';
+      let barShown = false;
       if (mode === 'a' || mode === 'b' || mode === 'flip') {
         const showB = mode === 'b' || (mode === 'flip' && state.flipB);
         const entry = showB ? b : a;
@@ -1183,11 +1358,14 @@
         }
         if (state.errorScale) {
           syncErrorControls();
-          drawErrorBar(field);
+          if (field) drawErrorBar(field);
         }
+        barShown = !!(field && state.errorScale);
         if (problem) {
-          drawImageIn(ps[0], { message: problem }, ps[0]);
-          messages.push(problem);
+          // The reason goes below the picture, once, where it wraps and can be copied.
+          const loading = problem.startsWith('loading');
+          drawImageIn(ps[0], { message: loading ? problem : 'no error view: see the note below' }, ps[0]);
+          if (!loading) messages.push(problem);
         } else {
           const sc = state.errorScale;
           const key = pairKey() + '\u0000' + [sc.log, sc.top, sc.decades].join('\u0000');
@@ -1196,8 +1374,12 @@
           tag('|A \u2212 B|', 4, 4);
         }
       }
+      colorbar.hidden = !barShown;
+      if (hint) messages.push(refreshHint);
       message.textContent = messages.join(' \u00b7 ');
-      if (state.probe) renderProbe(state.probe.x, state.probe.y);
+      zoomLevel.textContent = 'zoom ' + formatG(state.s, 3) + '\u00d7';
+      drawProbeOutline(ps);
+      renderProbe();
       canvas.dataset.mode = mode;
       canvas.dataset.drawn = String(++state.drawn);
       canvas.dataset.busy = state.pending ? '1' : '0';
@@ -1224,7 +1406,7 @@
       let text;
       if (!f) {
         text = entry.heat ? 'a heat map: no float values' : entry.floatState === 'loading' ? 'loading float data\u2026'
-          : entry.floatState === 'error' ? entry.floatError : NO_FLOATS;
+          : noFloatsReason(entry);
       } else if (x < 0 || y < 0 || x >= f.width || y >= f.height) {
         text = 'outside (' + f.width + '\u00d7' + f.height + ')';
       } else {
@@ -1238,9 +1420,21 @@
       return values;
     }
 
-    function renderProbe(x, y) {
-      state.probe = { x, y };
-      probeXY.textContent = 'x ' + x + ', y ' + y;
+    // The probe's lines for the last pixel probed inside the picture, marked when the pointer is no longer on
+    // it: never a position outside the picture.
+    function renderProbe() {
+      const where = state.probeWhere;
+      probe.dataset.where = where;
+      probe.classList.toggle('is-stale', !!state.probe && where !== 'in');
+      if (!state.probe) {
+        probeXY.textContent = where === 'outside' ? 'outside the image' : 'Hover over the picture to read its pixels.';
+        return;
+      }
+      const { x, y } = state.probe;
+      const at = 'x ' + x + ', y ' + y;
+      probeXY.textContent = where === 'in' ? at
+        : where === 'outside' ? 'outside the image (below: the last pixel probed, ' + at + ')'
+          : at + ' (the last pixel probed; the pointer has left the picture)';
       const va = probeLine(probeA, 'A', state.a, x, y);
       const vb = probeLine(probeB, 'B', state.b, x, y);
       probeErr.dataset.x = String(x);
@@ -1269,11 +1463,55 @@
       probeErr.replaceChildren(el('b', { text: '|A\u2212B|' }), ' ' + text);
     }
 
+    // Probes the pixel under canvas point (mx, my): inside the picture it becomes the probed pixel; outside
+    // it (or between the panels) the last one stays, marked. Redraws when the outline must move.
     function probeAt(mx, my) {
       const p = panelAt(mx, my);
-      if (!p) return;
-      const o = originOf(p);
-      renderProbe(Math.floor((mx - o.x) / state.s), Math.floor((my - o.y) / state.s));
+      const before = state.probe;
+      const whereBefore = state.probeWhere;
+      state.probeWhere = 'outside';
+      if (p) {
+        const o = originOf(p);
+        const x = Math.floor((mx - o.x) / state.s);
+        const y = Math.floor((my - o.y) / state.s);
+        const [w, h] = pictureSize();
+        if (x >= 0 && y >= 0 && x < w && y < h) {
+          state.probeWhere = 'in';
+          if (!before || before.x !== x || before.y !== y) state.probe = { x, y };
+        }
+      }
+      if (state.s >= OUTLINE_SCALE && (state.probe !== before || state.probeWhere !== whereBefore)) draw();
+      else renderProbe();
+    }
+
+    function leaveProbe() {
+      if (drag || state.probeWhere === 'none') return;
+      state.probeWhere = 'left';
+      if (state.s >= OUTLINE_SCALE && state.probe) draw();
+      else renderProbe();
+    }
+
+    // A thin outline around the probed pixel in each panel, once pixels are large enough to see it: solid
+    // while the pointer is on the pixel, dashed when it is the last one probed.
+    function drawProbeOutline(ps) {
+      if (!state.probe || state.s < OUTLINE_SCALE) return;
+      const s = state.s;
+      for (const p of ps) {
+        const o = originOf(p);
+        const x = o.x + state.probe.x * s;
+        const y = o.y + state.probe.y * s;
+        ctx.save();
+        ctx.beginPath();
+        ctx.rect(p.x, p.y, p.w, p.h);
+        ctx.clip();
+        ctx.lineWidth = 1;
+        if (state.probeWhere !== 'in') ctx.setLineDash([3, 3]);
+        ctx.strokeStyle = '#000';
+        ctx.strokeRect(x - 0.5, y - 0.5, s + 1, s + 1);
+        ctx.strokeStyle = '#fff';
+        ctx.strokeRect(x + 0.5, y + 0.5, s - 1, s - 1);
+        ctx.restore();
+      }
     }
 
     // -------- events
@@ -1322,7 +1560,9 @@
     const errorControlsChanged = () => {
       // Read the controls first: entering the error mode fills them with the pair's default scale.
       const log = errorScaleSelect.value === 'log';
-      const top = Number(errorTop.value);
+      const topText = errorTop.value.trim();
+      // The rounded top as shown stands for the exact one it was made from.
+      const top = shownTop && topText === shownTop.text ? shownTop.top : topText ? Number(topText) : NaN;
       const decades = Number(errorDecades.value);
       if (state.mode !== 'error') setMode('error');
       if (!state.errorScale) return; // the float data is still loading; its default scale comes first
@@ -1332,7 +1572,10 @@
         top: topOk ? top : state.errorScale.top,
         decades: Number.isInteger(decades) && decades >= 1 && decades <= 12 ? decades : state.errorScale.decades,
       };
-      if (!topOk) errorTop.value = String(state.errorScale.top); // an unusable top reverts to the one in use
+      if (!topOk) { // an unusable top reverts to the one in use
+        errorTop.value = formatG(state.errorScale.top, 4);
+        shownTop = { text: errorTop.value, top: state.errorScale.top };
+      }
       draw();
     };
     errorScaleSelect.addEventListener('change', errorControlsChanged);
@@ -1378,8 +1621,14 @@
       drag = null;
       canvas.classList.remove('dragging');
     };
-    canvas.addEventListener('pointerup', endDrag);
+    canvas.addEventListener('pointerup', (ev) => {
+      endDrag();
+      // A drag that ended off the canvas: the pointer has left it.
+      const { mx, my } = canvasPoint(ev);
+      if (mx < 0 || my < 0 || mx >= state.W || my >= state.H) leaveProbe();
+    });
     canvas.addEventListener('pointercancel', endDrag);
+    canvas.addEventListener('pointerleave', leaveProbe);
     canvas.addEventListener('dblclick', () => {
       fit();
       draw();
@@ -1410,12 +1659,21 @@
     const api = {
       ready,
       whenIdle,
+      // A bad id or mode rejects the promise (with the message), as a failed load would; nothing throws.
       pick(aId, bId) {
-        setPair(str(aId), str(bId));
+        try {
+          setPair(str(aId), str(bId));
+        } catch (e) {
+          return Promise.reject(new Error('vriViewer.pick: ' + e.message));
+        }
         return whenIdle();
       },
       setMode(mode) {
-        setMode(str(mode));
+        try {
+          setMode(str(mode));
+        } catch (e) {
+          return Promise.reject(new Error('vriViewer.setMode: ' + e.message + ' (modes: ' + MODES.map((m) => m[0]).join(', ') + ')'));
+        }
         return whenIdle();
       },
       // Centre image pixel (x, y) in the (first) panel at `ppp` CSS pixels per image pixel: with a whole
@@ -1464,6 +1722,9 @@
   // ---------------------------------------------------------------- start
 
   function start() {
+    // The page's own sentence for a browser that never runs this script (results_viewer.cpp): not needed here.
+    const fallback = document.getElementById('vri-fallback');
+    if (fallback) fallback.remove();
     try {
       const experiment = document.getElementById('vri-experiment');
       const index = document.getElementById('vri-index');

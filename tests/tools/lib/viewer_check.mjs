@@ -87,6 +87,8 @@ async function checkExperiment(page, errors, pagePath, idA, idB, x, y, outdir) {
   await guarded(page.waitForSelector('body[data-ready]', { state: 'attached', timeout: TIMEOUT }), errors, 'waiting for the page to be ready');
   const ready = await page.evaluate(() => document.body.dataset.ready);
   if (ready !== '1') fail(`the page did not get ready (data-ready="${ready}")`);
+  // The sentence a page shows when its script never runs is gone once it has.
+  if (await page.$('#vri-fallback')) fail('the page still shows its no-script sentence (#vri-fallback)');
   if (!(await page.$('#view'))) fail('the page has no #view (no images?)');
 
   // Pick as a user would, through the selects.
