@@ -391,6 +391,11 @@ void finishRenderRequest(RenderRequest& r) {
         if ((row(flag).backends & (1u << unsigned(r.backend))) == 0)
             throw Error(std::string(flag) + ": needs --backend " + (r.backend == Backend::Cpu ? "vulkan" : "cpu"));
     if (r.backend == Backend::Vulkan && !r.wasGiven("--precision")) r.options.precision = Precision::Float;
+    const long long rendered = static_cast<long long>(r.warmUp + r.repeat) * r.options.frames;
+    if (rendered > kMaxRenderedFrames)
+        throw Error("(--warm-up " + std::to_string(r.warmUp) + " + --repeat " + std::to_string(r.repeat) + ") x --frames " +
+                    std::to_string(r.options.frames) + " asks for " + std::to_string(rendered) +
+                    " frames; at most " + std::to_string(kMaxRenderedFrames) + " in one run");
 }
 
 std::vector<Setting> settingsRecord(const RenderRequest& request) {

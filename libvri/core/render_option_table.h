@@ -25,6 +25,9 @@ namespace vri {
 // and is compared with the first, so memory and time grow with the count; 1000 frames give a median
 // far tighter than a machine's noise.
 inline constexpr int kMaxFrames = 1000;
+// The most frames one run renders in all, (--warm-up + --repeat) x --frames: each option within its own
+// limit, together they could ask for two million (hours of a test blob, days at 800 x 600) without a word.
+inline constexpr long long kMaxRenderedFrames = 10000;
 
 // The tools that render: vri-render (every method, either backend) and vri-reference (the exact
 // method, or paper B's reference: Riemann, entry placement, double, a 0.01-voxel step).

@@ -22,6 +22,7 @@ write_blob_scene
 cp exp.yaml twin.yaml
 sed 's/riemann: {rate: 1}/riemann: {rate: 1, repeat: 1001}/' exp.yaml > repeat.yaml
 sed 's/riemann: {rate: 1}/riemann: {rate: 1, warm_up: [1, 100000]}/' exp.yaml > warm.yaml
+sed 's/riemann: {rate: 1}/riemann: {rate: 1, jitter: true, frames: 100, repeat: [3, 200]}/' exp.yaml > frames.yaml
 { cat exp.yaml; printf -- '---\n]\n'; } > exp-bracket.yaml
 printf '{"name": "small", "title": "One render"},\n' > exp-comma.json.yaml
 printf 'a: 1\n,\n' > block-comma.yaml
@@ -114,6 +115,12 @@ bad 1 "^vri-run: error: twin\.yaml: name 'small' is also exp\.yaml's \(both woul
 bad 1 "^vri-run: error: twin\.yaml: name 'small' is also exp\.yaml's \(both would write build/experiments-quick/small/\)$" -- \
   "$bin/vri-run" --quick --dry-run exp.yaml twin.yaml
 bad 1 "^vri-run: error: exp\.yaml: name 'small' is also exp\.yaml's" -- "$bin/vri-run" --dry-run --results out exp.yaml exp.yaml
+
+# Limits that hold one by one but not together (issue 48, class 4): frames x (warm-up + repeat).
+bad 1 "^vri-render: error: \(--warm-up 1000 \+ --repeat 1000\) x --frames 1000 asks for 2000000 frames; at most 10000 in one run$" -- \
+  "${t[@]}" "$bin/vri-render" --field linear --tf tf.yaml --jitter --frames 1000 --repeat 1000 --warm-up 1000 -q -o out.exr
+bad 1 "^vri-run: error: frames\.yaml:[0-9]+:[0-9]+: .*\(--warm-up 0 \+ --repeat 200\) x --frames 100 asks for 20000 frames; at most 10000 in one run$" -- \
+  "${t[@]}" "$bin/vri-run" --dry-run frames.yaml
 
 # A '%' in the results path, which Slurm would read as a pattern in the jobs' --chdir (issue 48, class 3a).
 bad 1 "^vri-run: error: --executor slurm: the results folder .*/r%j/small holds a '%', which Slurm reads as a pattern" -- \
