@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The committed gallery is what `vri-run --gallery` makes of the committed manifests and tables, so
+# The committed gallery (results/README.md and the viewer's pages) is what `vri-run --gallery` makes of the
+# committed manifests, tables and PNGs, so
 # every number a caption takes from a table ({{table:NAME:ROW:COLUMN}}) is in that table; a caption
 # that cites a cell its table lacks stops the gallery with one line. The tables, CSVs and JSON files (which
 # {{json:NAME:PATH}} citations and the heat-map scales read) are copied beside the manifests.
@@ -11,9 +12,15 @@ for manifest in "$VRI_SOURCE"/results/*/manifest.json; do
   mkdir "results/$name"
   cp "$manifest" "results/$name/"
   find "$folder" -maxdepth 1 \( -name '*.csv' -o -name '*.md' -o -name '*.json' \) -exec cp {} "results/$name/" \;
+  # The PNGs give the viewer's pages each image's size: linked where the file system allows, else copied.
+  for png in "$folder"/*.png; do
+    [ -f "$png" ] || continue
+    ln "$png" "results/$name/" 2> /dev/null || cp "$png" "results/$name/"
+  done
 done
 "$bin/vri-run" --gallery results 2> /dev/null
-for page in results/*.md; do  # README.md and the long sections' own pages
+# README.md, the long sections' own pages, and the viewer: its index, a page per experiment, its script and style.
+for page in results/*.md results/index.html results/*/index.html results/viewer/vri-viewer.js results/viewer/vri-viewer.css; do
   cmp "$page" "$VRI_SOURCE/$page" ||
     fail "$page differs from the gallery of the committed manifests (run vri-run --gallery results): $(diff "$page" "$VRI_SOURCE/$page" | head -8)"
 done
