@@ -39,8 +39,16 @@ std::string firstErrorLine(const std::string& output) {
 
 bool isFinalJobState(const std::string& state) {
     static const std::set<std::string> final{"COMPLETED", "FAILED",        "TIMEOUT",   "CANCELLED", "PREEMPTED",
-                                             "NODE_FAIL", "OUT_OF_MEMORY", "BOOT_FAIL", "DEADLINE"};
-    return final.contains(state);
+                                             "NODE_FAIL", "OUT_OF_MEMORY", "BOOT_FAIL", "DEADLINE",  "REVOKED",
+                                             "SPECIAL_EXIT"};
+    static const std::set<std::string> going{"PENDING",      "RUNNING",  "SUSPENDED",    "COMPLETING",
+                                             "CONFIGURING",  "REQUEUED", "REQUEUE_FED",  "REQUEUE_HOLD",
+                                             "RESIZING",     "SIGNALING", "STAGE_OUT",   "STOPPED",
+                                             "RESV_DEL_HOLD"};
+    if (final.contains(state)) return true;
+    if (going.contains(state)) return false;
+    throw Error("squeue says a job is in state '" + printableShort(state, 40) +
+                "', which vri-run does not know (neither one a job leaves nor one it ends in)");
 }
 
 std::vector<std::string> squeueArguments(const std::vector<std::string>& jobIds) {
@@ -66,7 +74,7 @@ std::map<std::string, SlurmJob> parseSqueue(const std::string& output) {
         };
         for (std::string& f : fields) trim(f);
         if (fields.size() != kSqueueFields || fields[0].empty() || fields[1].empty())
-            throw Error("squeue printed a line vri-run cannot read: " + printable(line));
+            throw Error("squeue printed a line vri-run cannot read: " + printableShort(line));
         // The state is its first word, should a Slurm version say more ("CANCELLED by 0", as sacct does).
         jobs[fields[0]] = {fields[0], fields[1].substr(0, fields[1].find(' ')), fields[2], fields[3]};
     }
@@ -78,9 +86,14 @@ std::string parseSbatchJobId(const std::string& output) {
     std::string line;
     while (std::getline(lines, line)) {
         const std::string id = line.substr(0, line.find(';'));
-        if (!id.empty() && std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) return id;
+        if (id.empty() || !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+        // Slurm's ids are 32-bit; a longer run of digits is not one (and would not fit where ids are counted).
+        if (id.size() > 10 || std::stoull(id) > 0xFFFFFFFFull)
+            throw Error("sbatch printed a job id vri-run cannot use: " + printableShort(id, 40) +
+                        " (Slurm's are below 2^32)");
+        return id;
     }
-    throw Error("sbatch printed no job id: " + printable(firstErrorLine(output)));
+    throw Error("sbatch printed no job id: " + printableShort(firstErrorLine(output)));
 }
 
 namespace {
@@ -124,7 +137,7 @@ constexpr std::pair<std::string_view, std::string_view> kOwnedOptions[] = {
 }  // namespace
 
 void checkSiteSbatchOption(const std::string& option, const std::string& source) {
-    const std::string quoted = "'" + printable(option.substr(0, 200)) + (option.size() > 200 ? "..." : "") + "'";
+    const std::string quoted = "'" + printableShort(option) + "'";
     if (option.size() < 2 || option[0] != '-')
         throw Error(source + ": " + quoted + " is not an sbatch option (expected one word such as --qos=long)");
     if (option[1] != '-')
@@ -152,12 +165,21 @@ void checkSiteSbatchOption(const std::string& option, const std::string& source)
     throw Error(source + ": " + quoted + " is not among the sbatch options vri-run passes on (" + list + ")");
 }
 
+volatile std::sig_atomic_t gSlurmInterrupt = 0;
+
+namespace {
+
+const CaptureLimits kClientLimits{kSlurmClientSeconds, kSlurmClientBytes, &gSlurmInterrupt};
+
+}  // namespace
+
 std::string submitJob(const std::vector<std::string>& arguments) {
     std::vector<std::string> words{"sbatch", "--parsable"};
     words.insert(words.end(), arguments.begin(), arguments.end());
     const auto [status, output] =
-        captureProcess(slurmProgram("sbatch"), words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true});
-    if (!status.ok()) throw Error("sbatch refused the job (" + status.describe() + "): " + printable(firstErrorLine(output)));
+        captureProcess(slurmProgram("sbatch"), words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true},
+                       kClientLimits);
+    if (!status.ok()) throw Error("sbatch refused the job (" + status.describe() + "): " + printableShort(firstErrorLine(output)));
     return parseSbatchJobId(output);
 }
 
@@ -167,14 +189,15 @@ std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds
     const std::vector<std::string> words = squeueArguments(jobIds);
     // Its warnings on stderr are not job lines: only stdout is read.
     const auto [status, output] =
-        captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false});
+        captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false}, kClientLimits);
     if (status.ok()) return parseSqueue(output);
     // squeue lists the ids it knows and skips the others, but fails when it knows none of them; asked
     // again with its stderr, its message tells that from a controller that does not answer.
-    const auto [again, said] = captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true});
+    const auto [again, said] =
+        captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true}, kClientLimits);
     if (again.ok()) return parseSqueue(said);
     if (said.find("Invalid job id") != std::string::npos) return {};
-    throw Error("squeue failed (" + again.describe() + "): " + printable(firstErrorLine(said)));
+    throw Error("squeue failed (" + again.describe() + "): " + printableShort(firstErrorLine(said)));
 }
 
 void cancelJobs(const std::vector<std::string>& jobIds) {
@@ -182,9 +205,11 @@ void cancelJobs(const std::vector<std::string>& jobIds) {
     std::vector<std::string> words{"scancel"};
     words.insert(words.end(), jobIds.begin(), jobIds.end());
     try {
-        runProcess(slurmProgram("scancel"), words, {.in = "/dev/null", .out = "/dev/null", .err = "/dev/null", .errToOut = false});
+        // Within the time limit, but not stopped by the signal: cancelling is what a stopped vri-run does last.
+        captureProcess(slurmProgram("scancel"), words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true},
+                       CaptureLimits{kSlurmClientSeconds, kSlurmClientBytes, nullptr});
     } catch (const Error&) {
-        // scancel is missing or cannot start: nothing more can be done for these jobs from here.
+        // scancel is missing, cannot start or does not answer: nothing more can be done for these jobs from here.
     }
 }
 

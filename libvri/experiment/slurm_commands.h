@@ -2,6 +2,7 @@
 // Slurm's own commands, as vri-run uses them: sbatch to submit, squeue to watch, scancel to cancel.
 // Every word goes to them as an argument vector (util/process.h), never through a shell. Slurm's
 // commands find their cluster as usual (SLURM_CONF, /etc/slurm/slurm.conf).
+#include <csignal>
 #include <map>
 #include <string>
 #include <vector>
@@ -17,7 +18,9 @@ struct SlurmJob {
 };
 
 // True for a state a job does not leave: COMPLETED, FAILED, TIMEOUT, CANCELLED, PREEMPTED (not
-// requeued), NODE_FAIL, OUT_OF_MEMORY, BOOT_FAIL, DEADLINE. COMPLETING is not: its epilog still runs.
+// requeued), NODE_FAIL, OUT_OF_MEMORY, BOOT_FAIL, DEADLINE, REVOKED, SPECIAL_EXIT; false for one it leaves
+// (PENDING, RUNNING, COMPLETING, whose epilog still runs, SUSPENDED, REQUEUED, ...). Any other is a
+// vri::Error naming it: counted as running, it would be waited on for ever.
 bool isFinalJobState(const std::string& state);
 
 // squeue's arguments for these jobs, in every state it still knows them (--states=all), one line each.
@@ -25,7 +28,8 @@ std::vector<std::string> squeueArguments(const std::vector<std::string>& jobIds)
 // The jobs in squeue's output for squeueArguments(), by id. A line that is not one is a vri::Error.
 std::map<std::string, SlurmJob> parseSqueue(const std::string& output);
 
-// The job id sbatch --parsable printed ("12" or "12;cluster"). Anything else is a vri::Error.
+// The job id sbatch --parsable printed ("12" or "12;cluster"), below 2^32 as Slurm's are. Anything else is
+// a vri::Error.
 std::string parseSbatchJobId(const std::string& output);
 
 // Checks a site's or user's sbatch option (--slurm-arg, VRI_SLURM_ARGS) against an allow-list, as sbatch's
@@ -37,6 +41,15 @@ std::string parseSbatchJobId(const std::string& output);
 // sets itself (--dependency, --output, --chdir, --array, --job-name, ...), named as such. The refusal is a
 // vri::Error naming `source`.
 void checkSiteSbatchOption(const std::string& option, const std::string& source);
+
+// The signal that asked vri-run to stop while it runs Slurm jobs (set by the executor's handler,
+// slurm_executor.cpp), 0 for none: a client call in progress (sbatch, squeue) then ends at once.
+extern volatile std::sig_atomic_t gSlurmInterrupt;
+
+// The most a Slurm client call may take, and print: a client that never answers, or answers without end,
+// must not hang vri-run (Slurm's own MessageTimeout is 10 s; a busy controller can take a few of them).
+inline constexpr double kSlurmClientSeconds = 120;
+inline constexpr std::size_t kSlurmClientBytes = std::size_t(16) << 20;
 
 // Runs sbatch with `arguments` (options, then the script and its arguments) and returns the job id.
 // A refusal is a vri::Error with sbatch's own first line.

@@ -41,14 +41,13 @@ constexpr double kCancelWaitSeconds = 60;
 // The state of a job squeue has forgotten (it ended long ago: MinJobAge).
 const std::string kForgotten = "ENDED";
 
-volatile std::sig_atomic_t gInterrupt = 0;
-extern "C" void onInterrupt(int signal) { gInterrupt = signal; }
+extern "C" void onInterrupt(int signal) { gSlurmInterrupt = signal; }
 
-// SIGINT, SIGTERM and SIGHUP set gInterrupt while it lives, so that vri-run cancels its jobs before it exits.
+// SIGINT, SIGTERM and SIGHUP set gSlurmInterrupt (slurm_commands.h) while it lives, so that vri-run cancels its jobs before it exits.
 class InterruptGuard {
 public:
     InterruptGuard() {
-        gInterrupt = 0;
+        gSlurmInterrupt = 0;
         struct sigaction action = {};
         action.sa_handler = onInterrupt;
         sigemptyset(&action.sa_mask);
@@ -167,7 +166,7 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
         const std::string id = submitJob(arguments);
         try {
             for (;;) {
-                if (gInterrupt) throw Error("interrupted by " + signalName(gInterrupt) + ": cancelled the Slurm check job " + id);
+                if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + ": cancelled the Slurm check job " + id);
                 pause(options.slurm.pollSeconds);
                 const std::map<std::string, SlurmJob> states = queryJobs({id});
                 const auto found = states.find(id);
@@ -183,7 +182,7 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
         }
         // A check that completed wrote its report, which a shared file system may show late.
         const auto start = Clock::now();
-        while (completed && !fs::exists(check.report) && !gInterrupt &&
+        while (completed && !fs::exists(check.report) && !gSlurmInterrupt &&
                std::chrono::duration<double>(Clock::now() - start).count() < kSharedFileDelaySeconds)
             pause(0.2);
         problems = readNodeCheckReport(check);
@@ -350,7 +349,7 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
     for (std::size_t i : job.bundle.steps) {
         if (ledger_.settled(i)) continue;
         std::optional<NodeStepStatus> status = failed ? std::nullopt : statusOf(i);
-        while (!failed && !status && wroteStatuses && !gInterrupt &&
+        while (!failed && !status && wroteStatuses && !gSlurmInterrupt &&
                std::chrono::duration<double>(Clock::now() - start).count() < kSharedFileDelaySeconds) {
             pause(0.2);
             status = statusOf(i);
@@ -409,7 +408,7 @@ void SlurmRun::submitAll() {
     fs::create_directories(slurmDir_);
     writeJobScript(slurmDir_ / "vri-job.sh");
     for (std::size_t j = 0; j < jobs_.size(); ++j) {
-        if (gInterrupt) throw Error("interrupted by " + signalName(gInterrupt) + " while submitting");
+        if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + " while submitting");
         submit(j);
     }
     std::vector<std::string> ids;
@@ -465,7 +464,7 @@ void SlurmBatch::run() {
     try {
         auto lastAnswer = slurm_detail::Clock::now();
         for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty(); ids = impl_->unendedIds()) {
-            if (slurm_detail::gInterrupt) throw Error("interrupted by " + slurm_detail::signalName(slurm_detail::gInterrupt) + ": cancelled Slurm jobs " + slurm_detail::jobList(ids));
+            if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt) + ": cancelled Slurm jobs " + slurm_detail::jobList(ids));
             slurm_detail::pause(poll);
             std::map<std::string, SlurmJob> states;
             try {

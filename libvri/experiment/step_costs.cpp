@@ -41,9 +41,13 @@ std::vector<std::optional<double>> stepPrices(const Plan& plan, const fs::path& 
     if (fs::is_regular_file(manifest)) {
         const nlohmann::json m = readJsonFile(manifest);
         readingJsonOf(manifest, [&] {
-            for (const nlohmann::json& s : m.at("steps"))
-                last[s.at("id").get<std::string>()] = {s.at("command").get<std::string>(),
-                                                       s.at("wall_seconds").get<double>()};
+            for (const nlohmann::json& s : m.at("steps")) {
+                // A price only from a time a step can have taken: one edited to 1e300 or -1e6 (a Slurm job's
+                // --time is made from it) leaves the step unpriced, as a step never run.
+                const double seconds = s.at("wall_seconds").get<double>();
+                if (seconds >= 0 && seconds <= kMostStepSeconds)
+                    last[s.at("id").get<std::string>()] = {s.at("command").get<std::string>(), seconds};
+            }
         });
     }
     std::vector<std::optional<double>> prices;

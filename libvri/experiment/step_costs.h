@@ -25,8 +25,12 @@ struct CostEstimate {
     bool hasManifest = false;
 };
 
+// The longest a step's recorded wall time may be to price it: 30 days.
+inline constexpr double kMostStepSeconds = 30.0 * 24 * 3600;
+
 // Per step of the plan, its wall time in `manifest` when the manifest holds a step of the same id and
-// arguments; nullopt for the others, and for all when there is no such file.
+// arguments, and that time is in [0, kMostStepSeconds]; nullopt for the others, and for all when there is
+// no such file.
 std::vector<std::optional<double>> stepPrices(const Plan& plan, const std::filesystem::path& manifest);
 
 // The plan's steps priced from `manifest` (an experiment's manifest.json). No such file: every step

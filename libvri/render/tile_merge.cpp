@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <optional>
 
 #include "libvri/util/error.h"
 #include "libvri/util/json_file.h"
+#include "libvri/util/printable.h"
 #include "libvri/util/statistics.h"
 
 namespace vri {
@@ -26,6 +28,10 @@ std::optional<TileRule> ruleOf(const std::string& pointer) {
         if (pointer == r.pointer || (pointer.starts_with(r.pointer) && pointer[r.pointer.size()] == '/')) return r.rule;
     return std::nullopt;
 }
+
+// The largest count or time a tile's stats may hold: 2^53, beyond which a double no longer counts by one,
+// and no sum of a few thousand tiles' overflows 64 bits.
+constexpr long long kMostCount = 1LL << 53;
 
 // Sum, Max, Min or PixelMean of numbers (`weights`: each tile's pixels, for PixelMean); nullopt when a
 // value is not a number.
@@ -57,7 +63,7 @@ public:
     StatsCombiner(const std::vector<json>& records, const std::vector<std::string>& names)
         : records_(records), names_(names) {
         for (std::size_t i = 0; i < records.size(); ++i)
-            weights_.push_back(readingJsonOf(names[i], [&] { return records[i].at("stats").at("rays").get<double>(); }));
+            weights_.push_back(static_cast<double>(wholeNumberAt(records[i], "stats.rays", names[i], 0, kMostCount)));
     }
 
     // The combined value at `pointer`, or null (noted in notCombined) when it cannot be combined.
@@ -112,6 +118,7 @@ public:
             }
             return out;
         }
+        if (*rule == TileRule::Sum) requireCounts(values, pointer);
         const std::optional<json> v = combineNumbers(*rule, values, weights_);
         return v ? *v : notCombined(pointer);
     }
@@ -119,6 +126,18 @@ public:
     json notCombinedList() const { return notCombined_; }
 
 private:
+    // What is summed (counts, seconds) is a finite number >= 0 that a sum of them cannot overflow: a stats
+    // file edited to rays 1e308 or seconds -5 is named, not added.
+    void requireCounts(const std::vector<const json*>& values, const std::string& pointer) const {
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            if (!values[i]->is_number()) continue;  // not combined, as before
+            const double v = values[i]->get<double>();
+            if (!(v >= 0.0 && v <= static_cast<double>(kMostCount)))
+                throw Error(names_[i] + ": " + dotted(pointer) + ": expected a count or a time in [0, 2^53], got " +
+                            printableShort(values[i]->dump(), 40));
+        }
+    }
+
     json notCombined(const std::string& pointer) {
         notCombined_.push_back(dotted(pointer));
         return nullptr;
@@ -252,64 +271,68 @@ MergedTiles mergeTiles(const std::vector<TileFiles>& tiles) {
     }
     for (const char* key : {"tool", "build", "inputs", "scene", "transfer_function", "camera", "options"})
         requireShared(records, names, key);
-    const auto [width, height] = readingJsonOf(names[0], [&] {
-        return std::pair(records[0].at("camera").at("width").get<int>(), records[0].at("camera").at("height").get<int>());
-    });
+    // Sizes from the files, range-checked before they size anything.
+    constexpr long long kLargest = std::numeric_limits<int>::max();
+    const int width = static_cast<int>(wholeNumberAt(records[0], "camera.width", names[0], 1, kLargest));
+    const int height = static_cast<int>(wholeNumberAt(records[0], "camera.height", names[0], 1, kLargest));
     const std::string imageSize = std::to_string(width) + "x" + std::to_string(height);
 
     std::vector<PixelRegion> regions;
     for (std::size_t i = 0; i < tiles.size(); ++i) {
         if (!records[i].contains("region"))
             throw Error(names[i] + ": has no \"region\" (not a tile: render one with --region X,Y,WIDTH,HEIGHT)");
-        const PixelRegion r = readingJsonOf(names[i], [&] {
-            const json& j = records[i].at("region");
-            return PixelRegion{j.at("x").get<int>(), j.at("y").get<int>(), j.at("width").get<int>(),
-                               j.at("height").get<int>()};
-        });
+        const auto at = [&](const char* key, long long lo) {
+            return static_cast<int>(wholeNumberAt(records[i], std::string("region.") + key, names[i], lo, kLargest));
+        };
+        const PixelRegion r{at("x", 0), at("y", 0), at("width", 1), at("height", 1)};
         if (!r.inside(width, height))
             throw Error(names[i] + ": region " + r.text() + " is not inside its camera's " + imageSize + " image");
         regions.push_back(r);
     }
+    // The tiles cover the image once: no two overlap (rectangle against rectangle), and their areas add up
+    // to the image's. Nothing the size of the image is made before the tiles' own images have been read.
+    std::uint64_t covered = 0;
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        const PixelRegion& r = regions[i];
+        for (std::size_t j = 0; j < i; ++j) {
+            const PixelRegion& o = regions[j];
+            const int x = std::max(r.x, o.x), y = std::max(r.y, o.y);
+            if (x < std::min(r.x + r.width, o.x + o.width) && y < std::min(r.y + r.height, o.y + o.height))
+                throw Error(names[i] + ": region " + r.text() + " overlaps " + names[j] + "'s region " + o.text() +
+                            " at pixel " + std::to_string(x) + "," + std::to_string(y) +
+                            " (tiles must cover the image once)");
+        }
+        covered += static_cast<std::uint64_t>(r.width) * static_cast<std::uint64_t>(r.height);
+    }
+    const std::uint64_t pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    if (covered != pixels)
+        throw Error("the tiles cover " + std::to_string(covered) + " of the " + imageSize + " image's " +
+                    std::to_string(pixels) + " pixels (tiles must cover the image once)");
 
-    MergedTiles merged;
-    merged.image = Image(width, height);  // its size checked against the byte limit before allocating
-    // Which tile each pixel came from (-1: none yet): an overlap and a gap each name a pixel.
-    std::vector<int> owner(static_cast<std::size_t>(width) * height, -1);
+    std::vector<Image> images;
     for (std::size_t i = 0; i < tiles.size(); ++i) {
         const PixelRegion& r = regions[i];
-        for (int y = r.y; y < r.y + r.height; ++y)
-            for (int x = r.x; x < r.x + r.width; ++x) {
-                int& o = owner[static_cast<std::size_t>(y) * width + x];
-                if (o >= 0)
-                    throw Error(names[i] + ": region " + r.text() + " overlaps " + names[o] + "'s region " +
-                                regions[o].text() + " at pixel " + std::to_string(x) + "," + std::to_string(y) +
-                                " (tiles must cover the image once)");
-                o = static_cast<int>(i);
-            }
-    }
-    if (const auto gap = std::ranges::find(owner, -1); gap != owner.end()) {
-        const std::size_t at = gap - owner.begin();
-        throw Error("the tiles leave pixel " + std::to_string(at % width) + "," + std::to_string(at / width) +
-                    " of the " + imageSize + " image uncovered (" +
-                    std::to_string(owner.size() - std::ranges::count(owner, -1)) + " of " +
-                    std::to_string(owner.size()) + " pixels; tiles must cover the image once)");
-    }
-
-    for (std::size_t i = 0; i < tiles.size(); ++i) {
-        const PixelRegion& r = regions[i];
-        const Image tile = readImage(tiles[i].image);
-        if (tile.width != r.width || tile.height != r.height || tile.channelNames != merged.image.channelNames)
+        Image tile = readImage(tiles[i].image);
+        if (tile.width != r.width || tile.height != r.height || tile.channels != 4 ||
+            tile.channelNames != Image().channelNames)
             throw Error(tiles[i].image + ": a " + std::to_string(tile.width) + "x" + std::to_string(tile.height) +
                         " image of " + std::to_string(tile.channels) + " channels, but " + names[i] +
                         " says a RGBA region " + r.text());
         const ImageMetadata metadata = readImageMetadata(tiles[i].image);
         const auto said = std::ranges::find(metadata, std::string("vri:region"), &ImageMetadata::value_type::first);
         if (said == metadata.end() || said->second != r.text())
-            throw Error(tiles[i].image + ": its vri:region is '" + (said == metadata.end() ? "" : said->second) +
+            throw Error(tiles[i].image + ": its vri:region is '" + (said == metadata.end() ? "" : said->second.substr(0, 60)) +
                         "', but " + names[i] + " says " + r.text() + " (an image and stats of different tiles?)");
+        images.push_back(std::move(tile));
+    }
+    MergedTiles merged;
+    merged.image = Image(width, height);  // as many pixels as the tiles' images hold: checked above
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+        const PixelRegion& r = regions[i];
         for (int y = 0; y < r.height; ++y)
-            std::copy_n(tile.pixels.begin() + std::ptrdiff_t(y) * r.width * 4, std::size_t(r.width) * 4,
+            std::copy_n(images[i].pixels.begin() + std::ptrdiff_t(y) * r.width * 4, std::size_t(r.width) * 4,
                         &merged.image.at(r.x, r.y + y, 0));
+        images[i] = Image();  // each tile's pixels freed once copied
     }
 
     json record = records[0];

@@ -1,6 +1,7 @@
 #include "libvri/util/json_file.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "libvri/util/file_text.h"
 
@@ -18,7 +19,18 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
 std::string jsonExceptionText(const nlohmann::json::exception& e) {
     const std::string text = e.what();
     const std::size_t tagEnd = text.starts_with("[json.exception.") ? text.find("] ") : std::string::npos;
-    return tagEnd == std::string::npos ? text : text.substr(tagEnd + 2);
+    std::string message = tagEnd == std::string::npos ? text : text.substr(tagEnd + 2);
+    // JSON_DIAGNOSTICS puts where the value lies first, as a JSON pointer: "(/steps/3/wall_seconds) type must
+    // be ...", written as the dotted path this project's messages use, "steps.3.wall_seconds: type must be ...".
+    if (message.starts_with("(/")) {
+        const std::size_t close = message.find(") ");
+        if (close != std::string::npos) {
+            std::string path = message.substr(2, close - 2);
+            std::replace(path.begin(), path.end(), '/', '.');
+            message = path + ": " + message.substr(close + 2);
+        }
+    }
+    return message;
 }
 
 const nlohmann::json& jsonAtPath(const nlohmann::json& root, const std::string& path, const std::filesystem::path& file) {
@@ -34,6 +46,26 @@ const nlohmann::json& jsonAtPath(const nlohmann::json& root, const std::string& 
         start = end + 1;
     }
     return *node;
+}
+
+long long wholeNumberAt(const nlohmann::json& root, const std::string& path, const std::filesystem::path& file,
+                        long long lo, long long hi) {
+    const nlohmann::json& v = jsonAtPath(root, path, file);
+    if (v.is_number_integer() && !v.is_number_unsigned()) {
+        if (const long long n = v.get<long long>(); n >= lo && n <= hi) return n;
+    } else if (v.is_number_unsigned()) {
+        if (const unsigned long long n = v.get<unsigned long long>(); hi >= 0 && n <= static_cast<unsigned long long>(hi) &&
+                                                                    static_cast<long long>(n) >= lo)
+            return static_cast<long long>(n);
+    } else if (v.is_number_float()) {
+        // Only a float that is a whole number within the range, compared as doubles before any cast.
+        if (const double d = v.get<double>(); d == std::floor(d) && d >= static_cast<double>(lo) && d <= static_cast<double>(hi))
+            return static_cast<long long>(d);
+    }
+    std::string text = v.dump();
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    throw Error(file.string() + ": " + path + ": expected a whole number in [" + std::to_string(lo) + ", " +
+                std::to_string(hi) + "], got " + text);
 }
 
 }  // namespace vri

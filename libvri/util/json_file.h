@@ -16,7 +16,14 @@ nlohmann::json readJsonFile(const std::filesystem::path& path);
 // vri::Error "<file>: has no '<path so far>'" where the path leaves the document.
 const nlohmann::json& jsonAtPath(const nlohmann::json& root, const std::string& path, const std::filesystem::path& file);
 
-// nlohmann's message without its "[json.exception.type_error.302] " tag: "type must be string, but is number".
+// The whole number at a dotted path, within [lo, hi]; throws vri::Error "<file>: <path>: expected a whole
+// number in [lo, hi], got <value>" for anything else (a fraction, 1e300, a string), where nlohmann's get<int>
+// would wrap or truncate what an edited file holds. The value is quoted shortened.
+long long wholeNumberAt(const nlohmann::json& root, const std::string& path, const std::filesystem::path& file,
+                        long long lo, long long hi);
+
+// nlohmann's message without its "[json.exception.type_error.302] " tag, where the value lies as a dotted
+// path first: "steps.3.wall_seconds: type must be number, but is string".
 std::string jsonExceptionText(const nlohmann::json::exception& e);
 
 // use(), reading JSON that came from `file`: a missing key or a value of the wrong type (nlohmann's

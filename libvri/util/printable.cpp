@@ -32,6 +32,13 @@ std::string escapeControls(std::string_view text, bool keepNewlines) {
 
 std::string printable(std::string_view text) { return escapeControls(text, false); }
 
+std::string printableShort(std::string_view text, std::size_t most) {
+    if (text.size() <= most) return printable(text);
+    std::size_t cut = most;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a character
+    return printable(text.substr(0, cut)) + "... (" + std::to_string(text.size() - cut) + " more bytes)";
+}
+
 std::string printableLines(std::string_view text) { return escapeControls(text, true); }
 
 std::string oneLine(std::string message) {

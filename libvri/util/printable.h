@@ -10,6 +10,13 @@ namespace vri {
 // controls as their code point, \x80..\x9f); everything else, other UTF-8 included, unchanged.
 std::string printable(std::string_view text);
 
+// printable() of at most the first `most` bytes of `text` (cut where a UTF-8 character begins), then
+// "... (N more bytes)" when it was longer: input quoted in a message (a 50 MB squeue line) stays a line.
+std::string printableShort(std::string_view text, std::size_t most = 200);
+
+// The longest one-line message a tool prints; a longer one is cut as printableShort cuts.
+inline constexpr std::size_t kMaxMessageBytes = 2000;
+
 // The same, newlines kept: text of several lines (a DetailedError's) shown as those lines.
 std::string printableLines(std::string_view text);
 

@@ -2,6 +2,7 @@
 #include "libvri/util/process.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "libvri/util/error.h"
+#include "libvri/util/format.h"
 
 extern char** environ;
 
@@ -181,6 +183,69 @@ std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const
     }
     ::close(pipeFds[0]);
     return {waitProcess(pid), std::move(output)};
+}
+
+std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const std::vector<std::string>& words,
+                                                  const ProcessStreams& streams, const CaptureLimits& limits) {
+    int pipeFds[2];
+    if (::pipe2(pipeFds, O_CLOEXEC) != 0) throw Error(std::string("cannot create a pipe: ") + std::strerror(errno));
+    // Only our end waits without blocking: the child's stays blocking, as every program expects its stdout
+    // (a non-blocking one makes a writer that outpaces us fail with EAGAIN).
+    ::fcntl(pipeFds[0], F_SETFL, ::fcntl(pipeFds[0], F_GETFL) | O_NONBLOCK);
+    pid_t pid = 0;
+    try {
+        FileActions actions;
+        redirect(actions, streams, pipeFds[1]);
+        pid = spawn(program, words, actions);
+    } catch (...) {
+        ::close(pipeFds[0]);
+        ::close(pipeFds[1]);
+        throw;
+    }
+    ::close(pipeFds[1]);
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    const std::string name = words.empty() ? program.filename().string() : words[0];
+    std::string output;
+    // Why it must be stopped now, or "" while it may go on.
+    const auto overLimit = [&]() -> std::string {
+        if (limits.stop && *limits.stop) return name + ": stopped by a signal while it ran";
+        if (limits.seconds > 0 && std::chrono::duration<double>(Clock::now() - start).count() > limits.seconds)
+            return name + ": no answer within " + exactNumber(limits.seconds) + " s";
+        if (limits.maxBytes > 0 && output.size() > limits.maxBytes)
+            return name + ": printed more than " + std::to_string(limits.maxBytes) + " bytes";
+        return "";
+    };
+    std::string why;
+    char buffer[4096];
+    for (bool open = true; open && why.empty(); why = overLimit()) {
+        pollfd fd{pipeFds[0], POLLIN, 0};
+        ::poll(&fd, 1, 100);  // a signal or 100 ms ends the wait: the limits are checked at least that often
+        ssize_t n = 0;
+        while ((n = ::read(pipeFds[0], buffer, sizeof buffer)) > 0) {
+            output.append(buffer, static_cast<std::size_t>(n));
+            if (limits.maxBytes > 0 && output.size() > limits.maxBytes) break;  // a writer faster than us
+        }
+        open = n != 0;  // 0: end of output; -1: nothing more now (EAGAIN) or a signal (EINTR)
+    }
+    ::close(pipeFds[0]);
+    // Its output closed, it may still run (a client that closes stdout and hangs): waited for within the limits.
+    while (why.empty()) {
+        int status = 0;
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) return {ExitStatus::fromWaitStatus(status), std::move(output)};
+        if (done < 0 && errno != EINTR) throw Error("waiting for " + name + ": " + std::strerror(errno));
+        why = overLimit();
+        if (why.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ::kill(pid, SIGTERM);  // then SIGKILL 2 s later, as runProcessWithin
+    for (int i = 0; i < 100 && ::waitpid(pid, nullptr, WNOHANG) == 0; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (::kill(pid, 0) == 0) {
+        ::kill(pid, SIGKILL);
+        waitProcess(pid);
+    }
+    throw Error(why);
 }
 
 std::filesystem::path thisProgramFolder() {

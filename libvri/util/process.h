@@ -4,6 +4,7 @@
 // code. Standard streams are inherited unless redirected to a file.
 #include <sys/types.h>
 
+#include <csignal>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -67,5 +68,20 @@ ExitStatus runProcessWithin(const std::filesystem::path& program, const std::vec
 std::pair<ExitStatus, std::string> captureProcess(const std::filesystem::path& program,
                                                   const std::vector<std::string>& words,
                                                   const ProcessStreams& streams = {});
+
+// How long a captured program may run, how much it may print, and a flag that ends the wait at once (a
+// signal handler's: SIGTERM must stop a vri-run that waits on a client that never answers).
+struct CaptureLimits {
+    double seconds = 0;                                  // > 0: the most it may run
+    std::size_t maxBytes = 0;                            // > 0: the most it may print
+    const volatile std::sig_atomic_t* stop = nullptr;    // non-zero: stop now
+};
+
+// captureProcess within `limits`: a program that runs too long, prints too much or is asked to stop is
+// sent SIGTERM, SIGKILL 2 s later, waited for, and the call throws vri::Error "<name>: no answer within N s",
+// "<name>: printed more than N bytes" or "<name>: stopped by a signal while it ran" (name: words[0]).
+std::pair<ExitStatus, std::string> captureProcess(const std::filesystem::path& program,
+                                                  const std::vector<std::string>& words, const ProcessStreams& streams,
+                                                  const CaptureLimits& limits);
 
 }  // namespace vri

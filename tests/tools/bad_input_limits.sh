@@ -110,7 +110,7 @@ bad 1 "bell\.nhdr:2: type: 'uchar\\\\x07' is not supported" -- "$bin/vri-convert
 bad 1 "escape-tf\.yaml:3:1: unknown key 'po\\\\x1bints'" -- "$bin/vri-render" --field linear --tf escape-tf.yaml -q -o out.exr
 bad 1 "--method: unknown method 'x\\\\x0ay'" -- "${render[@]}" --method $'x\ny'
 bad nonzero "--size: expected a positive image size WIDTHxHEIGHT, got '1x\\\\x1b1'" -- "${render[@]}" --size $'1x\e1'
-bad 1 '^vri-tabulate: error: wrong-type\.json: type must be number, but is string$' -- "$bin/vri-tabulate" --layout thresholds --row a wrong-type.json -o table.md
+bad 1 '^vri-tabulate: error: wrong-type\.json: channels\.0\.above\.0\.threshold: type must be number, but is string$' -- "$bin/vri-tabulate" --layout thresholds --row a wrong-type.json -o table.md
 bad 1 '^vri-tabulate: error: truncated\.json: not valid JSON: parse error at line 2, column 1: syntax error while parsing value - unexpected end of input' -- "$bin/vri-tabulate" --layout thresholds --row a truncated.json -o table.md
 bad 1 '^vri-run: error: missing-dir: No such file or directory$' -- "$bin/vri-run" --gallery missing-dir
 bad 64 "^vri-convert: error: argument 3 'latin\\\\xFF_2x2x2_uint8\.raw' is not valid UTF-8 \(byte 5\): --json names the input, and JSON holds UTF-8 text only$" -- \

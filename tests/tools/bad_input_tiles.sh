@@ -30,6 +30,21 @@ bad 1 "${E}the logged pixel 1,5 is outside the region 0,0,8,3 of the 8x6 image$"
 "$bin/vri-render" "${scene[@]}" --region 0,3,8,3 --repeat 2 -o twice.exr --stats twice.json
 "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 8x7 -q --region 0,3,8,3 -o big.exr --stats big.json
 "$bin/vri-render" "${scene[@]}" -o whole.exr --stats whole.json
+# Stats edited by hand (issue 48, classes 5 and 7): a camera of 30000 x 30000 that one region covers, which once
+# made vri-merge-tiles allocate 17.6 GB before it read a tile; numbers that no int holds.
+/usr/bin/python3 - <<'PY'
+import json
+t = json.load(open("t1.json"))
+t["camera"]["width"] = t["camera"]["height"] = 30000
+t["region"] = {"x": 0, "y": 0, "width": 30000, "height": 30000}
+json.dump(t, open("huge.json", "w"))
+for key, value in (("x", 1e300), ("width", 2.5), ("y", "0"), ("height", -3)):
+    t = json.load(open("t1.json")); t["region"][key] = value
+    json.dump(t, open(f"forged-{key}.json", "w"))
+for key, value in (("rays", 1e308), ("wall_seconds", -5)):
+    t = json.load(open("t2.json")); t["stats"][key] = value
+    json.dump(t, open(f"forged-{key}.json", "w"))
+PY
 M="^vri-merge-tiles: error: "
 merge=("$bin/vri-merge-tiles")
 bad 64 "${M}--tile is required \(see --help\)$" -- "${merge[@]}" -o out.exr
@@ -39,7 +54,7 @@ bad 64 "${M}--stats: 'out.exr' is also -o's output$" -- "${merge[@]}" --tile t1.
 bad 1 "${M}missing.json: no such file" -- "${merge[@]}" --tile t1.exr t1.json --tile t2.exr missing.json -o out.exr
 bad 1 "${M}t3.json: region 0,2,8,4 overlaps t1.json's region 0,0,8,3 at pixel 0,2 \(tiles must cover the image once\)$" \
   -- "${merge[@]}" --tile t1.exr t1.json --tile t3.exr t3.json -o out.exr
-bad 1 "${M}the tiles leave pixel 0,3 of the 8x6 image uncovered \(24 of 48 pixels; tiles must cover the image once\)$" \
+bad 1 "${M}the tiles cover 24 of the 8x6 image's 48 pixels \(tiles must cover the image once\)$" \
   -- "${merge[@]}" --tile t1.exr t1.json -o out.exr
 bad 1 "${M}t1.json: region 0,0,8,3 overlaps t1.json's region 0,0,8,3 at pixel 0,0" \
   -- "${merge[@]}" --tile t1.exr t1.json --tile t1.exr t1.json --tile t2.exr t2.json -o out.exr
@@ -55,6 +70,20 @@ bad 1 "${M}t2.exr: its vri:region is '0,3,8,3', but t1.json says 0,0,8,3 \(an im
 bad 1 "${M}t3.exr: a 8x4 image of 4 channels, but t2.json says a RGBA region 0,3,8,3$" \
   -- "${merge[@]}" --tile t1.exr t1.json --tile t3.exr t2.json -o out.exr
 bad 1 "${M}tf.yaml: " -- "${merge[@]}" --tile t1.exr tf.yaml -o out.exr
+bad 1 "${M}t1.exr: a 8x3 image of 4 channels, but huge.json says a RGBA region 0,0,30000,30000$" \
+  -- "${merge[@]}" --tile t1.exr huge.json -o out.exr
+bad 1 "${M}forged-x.json: region.x: expected a whole number in \[0, 2147483647\], got 1e\+300$" \
+  -- "${merge[@]}" --tile t1.exr forged-x.json -o out.exr
+bad 1 "${M}forged-width.json: region.width: expected a whole number in \[1, 2147483647\], got 2.5$" \
+  -- "${merge[@]}" --tile t1.exr forged-width.json -o out.exr
+bad 1 "${M}forged-y.json: region.y: expected a whole number in \[0, 2147483647\], got \"0\"$" \
+  -- "${merge[@]}" --tile t1.exr forged-y.json -o out.exr
+bad 1 "${M}forged-rays.json: stats.rays: expected a whole number in \[0, 9007199254740992\], got 1e\+308$" \
+  -- "${merge[@]}" --tile t1.exr t1.json --tile t2.exr forged-rays.json -o out.exr
+bad 1 "${M}forged-wall_seconds.json: stats.wall_seconds: expected a count or a time in \[0, 2\^53\], got -5$" \
+  -- "${merge[@]}" --tile t1.exr t1.json --tile t2.exr forged-wall_seconds.json -o out.exr
+bad 1 "${M}forged-height.json: region.height: expected a whole number in \[1, 2147483647\], got -3$" \
+  -- "${merge[@]}" --tile t1.exr forged-height.json -o out.exr
 # Tiles of a --max-error render each searched their own pixels: the message says so.
 "$bin/vri-reference" "${scene[@]}" --region 0,0,8,3 --max-error 1e-9 -o m1.exr --stats m1.json
 "$bin/vri-reference" "${scene[@]}" --region 0,3,8,3 --max-error 1e-9 -o m2.exr --stats m2.json

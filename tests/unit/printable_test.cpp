@@ -20,3 +20,12 @@ TEST_CASE("printable: control characters become \\xNN, other text is unchanged")
     CHECK(printable("\xc2") == "\xc2");           // a lone lead byte at the end is left as it is
     CHECK(printable("") == "");
 }
+
+TEST_CASE("printableShort quotes the beginning of long input, cut where a character begins, and says how much more") {
+    using vri::printableShort;
+    CHECK(printableShort("short") == "short");
+    CHECK(printableShort(std::string(300, 'x'), 200) == std::string(200, 'x') + "... (100 more bytes)");
+    // "\xc3\xa9" is one character: a cut at byte 3 of "ab\xc3\xa9" moves back to byte 2.
+    CHECK(printableShort("ab\xc3\xa9z", 3) == "ab... (3 more bytes)");
+    CHECK(printableShort("a\nbcdef", 3) == "a\\x0ab... (4 more bytes)");
+}

@@ -3,6 +3,8 @@
 
 #include <signal.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -66,4 +68,34 @@ TEST_CASE("process: redirections and exit statuses") {
     CHECK_THROWS_AS(
         startProcess(*printf, {"printf"}, {.in = dir / "no-such-input", .out = {}, .err = {}, .errToOut = false}),
         Error);
+}
+
+TEST_CASE("process: a captured program is stopped at its time and size limits, and by a signal flag") {
+    using Clock = std::chrono::steady_clock;
+    const auto seconds = [](Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); };
+    // A program that never answers: stopped after the limit (SIGTERM), well before it would end.
+    auto start = Clock::now();
+    CHECK_THROWS_WITH_AS(vri::captureProcess("/bin/sleep", {"sleep", "60"}, {}, vri::CaptureLimits{0.3, 0, nullptr}),
+                         "sleep: no answer within 0.3 s", vri::Error);
+    CHECK(seconds(start) < 10);
+    // One that closes its output and goes on: waited for within the same limit.
+    start = Clock::now();
+    CHECK_THROWS_WITH_AS(vri::captureProcess("/bin/sh", {"sh", "-c", "exec >&- 2>&-; sleep 60"}, {},
+                                             vri::CaptureLimits{0.3, 0, nullptr}),
+                         "sh: no answer within 0.3 s", vri::Error);
+    CHECK(seconds(start) < 10);
+    // Output without end.
+    CHECK_THROWS_WITH_AS(vri::captureProcess("/usr/bin/yes", {"yes"}, {}, vri::CaptureLimits{0, 1 << 20, nullptr}),
+                         "yes: printed more than 1048576 bytes", vri::Error);
+    // A signal flag already set: stopped at once.
+    volatile std::sig_atomic_t stop = SIGTERM;
+    start = Clock::now();
+    CHECK_THROWS_WITH_AS(vri::captureProcess("/bin/sleep", {"sleep", "60"}, {}, vri::CaptureLimits{0, 0, &stop}),
+                         "sleep: stopped by a signal while it ran", vri::Error);
+    CHECK(seconds(start) < 10);
+    // Within the limits: as captureProcess.
+    const auto [status, output] =
+        vri::captureProcess("/bin/echo", {"echo", "hello"}, {}, vri::CaptureLimits{30, 1 << 20, nullptr});
+    CHECK(status.ok());
+    CHECK(output == "hello\n");
 }

@@ -80,10 +80,22 @@ TEST_CASE("parseSqueue reads squeue's fields and refuses what is not a job line"
     CHECK_THROWS_AS(vri::parseSqueue("12|COMPLETED|n\n"), vri::Error);
     CHECK_THROWS_AS(vri::parseSqueue("squeue: warning: something\n"), vri::Error);
     CHECK_THROWS_AS(vri::parseSqueue("|RUNNING|n|None|\n"), vri::Error);
+    // A line of 50 MB becomes a message of a few hundred bytes (issue 48, class 6).
+    try {
+        vri::parseSqueue(std::string(50 << 20, 'x') + "\n");
+        FAIL("a 50 MB line was read as a job");
+    } catch (const vri::Error& e) {
+        CHECK(std::string(e.what()).size() < 400);
+        CHECK(std::string(e.what()).ends_with("... (52428600 more bytes)"));
+    }
     CHECK(vri::isFinalJobState("TIMEOUT"));
     CHECK(vri::isFinalJobState("PREEMPTED"));
     CHECK(!vri::isFinalJobState("COMPLETING"));
     CHECK(!vri::isFinalJobState("PENDING"));
+    CHECK(vri::isFinalJobState("REVOKED"));
+    CHECK(vri::isFinalJobState("SPECIAL_EXIT"));
+    CHECK_THROWS_WITH_AS(vri::isFinalJobState("FLOATING"), doctest::Contains("state 'FLOATING', which vri-run does not know"),
+                         vri::Error);
 }
 
 TEST_CASE("checkSiteSbatchOption passes on the allowed long options only, as sbatch would read them") {
@@ -118,6 +130,10 @@ TEST_CASE("checkSiteSbatchOption passes on the allowed long options only, as sba
 TEST_CASE("parseSbatchJobId takes --parsable's id, with or without the cluster") {
     CHECK(vri::parseSbatchJobId("42\n") == "42");
     CHECK(vri::parseSbatchJobId("sbatch: warning: something\n43;cluster\n") == "43");
+    CHECK(vri::parseSbatchJobId("4294967295\n") == "4294967295");
+    CHECK_THROWS_WITH_AS(vri::parseSbatchJobId("12345678901234567890123\n"),
+                         doctest::Contains("sbatch printed a job id vri-run cannot use: 12345678901234567890123"), vri::Error);
+    CHECK_THROWS_AS(vri::parseSbatchJobId("4294967296\n"), vri::Error);
     CHECK_THROWS_WITH_AS(vri::parseSbatchJobId("sbatch: error: Batch job submission failed\n"),
                          doctest::Contains("sbatch: error: Batch job submission failed"), vri::Error);
 }

@@ -56,6 +56,26 @@ TEST_CASE("estimateCost refuses a manifest that is not one, naming it") {
                          vri::Error);
 }
 
+TEST_CASE("stepPrices leaves unpriced a step whose recorded time no step can take (issue 48, class 7)") {
+    vri::test::TempDir dir{"step-costs-forged"};
+    vri::Plan plan{dir.path, dir.path, {}, {}};
+    plan.steps = {step("a", "render", {"-o", "a.exr"}), step("b", "render", {"-o", "b.exr"}),
+                  step("c", "render", {"-o", "c.exr"}), step("d", "render", {"-o", "d.exr"})};
+    const nlohmann::json manifest = {
+        {"steps",
+         {{{"id", "a"}, {"command", "vri-x -o a.exr"}, {"wall_seconds", 1e300}},
+          {{"id", "b"}, {"command", "vri-x -o b.exr"}, {"wall_seconds", -1e6}},
+          {{"id", "c"}, {"command", "vri-x -o c.exr"}, {"wall_seconds", 31.0 * 24 * 3600}},
+          {{"id", "d"}, {"command", "vri-x -o d.exr"}, {"wall_seconds", 4.5}}}}};
+    std::ofstream(dir / "manifest.json") << manifest.dump();
+    const std::vector<std::optional<double>> prices = vri::stepPrices(plan, dir / "manifest.json");
+    CHECK_FALSE(prices[0]);
+    CHECK_FALSE(prices[1]);
+    CHECK_FALSE(prices[2]);
+    REQUIRE(prices[3]);
+    CHECK(*prices[3] == 4.5);
+}
+
 TEST_CASE("secondsText switches to minutes from two minutes on") {
     CHECK(vri::secondsText(42.06) == "42.1 s");
     CHECK(vri::secondsText(119.9) == "119.9 s");

@@ -95,7 +95,9 @@ std::string describeUnexpected(const std::exception& e);
 // What body() printed must have reached stdout: a full disk behind a redirection is a failure too.
 template <class Body>
 int guardedMain(std::string_view tool, Body&& body) {
-    const auto report = [&](const std::string& what) { std::cerr << tool << ": error: " << printable(what) << '\n'; };
+    const auto report = [&](const std::string& what) {
+        std::cerr << tool << ": error: " << printableShort(what, kMaxMessageBytes) << '\n';
+    };
     try {
         const int code = body();
         if (!std::cout.flush()) throw Error("stdout: cannot write what was printed (disk full or output closed?)");
