@@ -47,6 +47,7 @@
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
 #include "libvri/util/parse.h"
+#include "libvri/util/utf8.h"
 
 namespace py = pybind11;
 
@@ -333,7 +334,16 @@ PYBIND11_MODULE(vri, m) {
     using namespace vri;
     m.doc() = "vri: volume rendering integrals, rendered and measured (README.md, \"From Python\")";
     m.attr("__version__") = VRI_VERSION;
-    py::register_exception<Error>(m, "Error", PyExc_ValueError);
+    // vri.Error, its message made well-formed UTF-8 first: Python decodes it as UTF-8, and a message naming a
+    // path of other bytes (load_volume(b"\xff.raw")) would otherwise arrive empty.
+    static py::exception<Error> errorType(m, "Error", PyExc_ValueError);
+    py::register_exception_translator([](std::exception_ptr thrown) {
+        try {
+            if (thrown) std::rethrow_exception(thrown);
+        } catch (const Error& e) {
+            errorType(escapeInvalidUtf8(e.what()).c_str());
+        }
+    });
 
     py::class_<Volume, std::shared_ptr<Volume>>(m, "Volume", "A regular scalar volume in its native voxel type")
         .def_static("from_array", &volumeFromArray, py::arg("array"), py::kw_only(), py::arg("spacing") = py::none(),

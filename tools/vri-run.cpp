@@ -154,6 +154,9 @@ void removeStaleTempFiles(const vri::Plan& plan) {
     for (const vri::Step& step : plan.steps) {
         targets.insert(targets.end(), step.outputs.begin(), step.outputs.end());
         targets.push_back(vri::recordPath(plan, step));
+        // A figure's gnuplot log, the temporary file of a NAME.log never kept (plot_draw.cpp).
+        for (const fs::path& out : step.outputs)
+            if (step.kind == "figure" && out.extension() == ".png") targets.push_back(fs::path(out).replace_extension(".log"));
     }
     for (const fs::path& target : targets)
         for (const fs::path& stale : vri::removeStaleTempFiles(target))

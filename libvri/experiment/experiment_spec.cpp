@@ -28,6 +28,7 @@
 #include "libvri/util/parse.h"
 #include "libvri/util/printable.h"
 #include "libvri/util/process.h"
+#include "libvri/util/utf8.h"
 
 namespace vri {
 
@@ -73,7 +74,15 @@ public:
 
 private:
     std::string at(const YAML::Node& node) const { return yaml::where(source_, node); }
-    std::string text(const YAML::Node& node, std::string_view what) const { return yaml::toString(node, source_, what); }
+    // A text of the file; UTF-8, as the manifest that will hold it is JSON: refused at its line, not after
+    // the work whose record it would break.
+    std::string text(const YAML::Node& node, std::string_view what) const {
+        std::string value = yaml::toString(node, source_, what);
+        if (const std::optional<std::size_t> bad = firstInvalidUtf8(value))
+            throw Error(at(node) + ": " + std::string(what) + ": not UTF-8 at byte " + std::to_string(*bad) + " ('" +
+                        escapeInvalidUtf8(value.substr(0, 60)) + "')");
+        return value;
+    }
     std::string number(const YAML::Node& node, std::string_view what) const {
         yaml::toDouble(node, source_, what);
         return node.Scalar();
@@ -135,8 +144,9 @@ std::vector<std::string> ExperimentReader::names(const YAML::Node& node, std::st
 
 fs::path ExperimentReader::existingFile(const YAML::Node& node, std::string_view what) const {
     const fs::path path = (baseDir_ / text(node, what)).lexically_normal();
-    if (!fs::is_regular_file(path))
-        throw Error(at(node) + ": " + std::string(what) + ": no such file: " + path.string());
+    if (!fs::exists(path)) throw Error(at(node) + ": " + std::string(what) + ": no such file: " + path.string());
+    if (!fs::is_regular_file(path))  // a device, a FIFO, a folder: read by steps later, or never ending
+        throw Error(at(node) + ": " + std::string(what) + ": " + path.string() + " is not a regular file");
     return fs::absolute(path);
 }
 

@@ -7,6 +7,7 @@
 #include "libvri/util/error.h"
 #include "libvri/util/file_text.h"
 #include "libvri/util/process.h"
+#include "libvri/util/stale_temp_files.h"
 
 namespace vri {
 
@@ -67,6 +68,9 @@ void drawPlot(const PlotSpec& spec, const fs::path& png) {
     if (!gnuplot) throw Error("gnuplot is not installed (Debian: apt-get install gnuplot-nox); nothing was written");
     const fs::path script = besidePng(png, ".gp"), svg = besidePng(png, ".svg");
     const std::string text = gnuplotScript(spec, script, png.filename().string(), svg.filename().string());
+    // gnuplot's log is the temporary file of a NAME.log never kept (temporaryFileFor): one a killed run left
+    // is removed here, as a rerun removes its images' (vri-run does the same for a figure step).
+    removeStaleTempFiles(besidePng(png, ".log"));
     // Nested, so that the three files appear only once gnuplot has drawn both images.
     writeAtomically(script, [&](const fs::path& tmpScript) {
         writeTextFile(tmpScript, text);

@@ -190,6 +190,11 @@ class RenderEqualsTools(unittest.TestCase):
 
 
 class AsUsersExpect(unittest.TestCase):
+    def test_a_path_of_other_bytes_is_named(self):
+        # Not UTF-8: the message escapes the bytes instead of arriving empty (issue 48, class 8).
+        with self.assertRaisesRegex(vri.Error, r"\\xFF\\xFE\.raw: no such file"):
+            vri.load_volume(b"/nonexistent/\xff\xfe.raw")
+
     def test_float64_is_rounded_to_float32(self):
         values = np.linspace(0.0, 1.0, 3 * 4 * 5).reshape(3, 4, 5)  # float64, NumPy's default
         volume = vri.Volume.from_array(values)

@@ -23,6 +23,8 @@ cp exp.yaml twin.yaml
 sed 's/riemann: {rate: 1}/riemann: {rate: 1, repeat: 1001}/' exp.yaml > repeat.yaml
 sed 's/riemann: {rate: 1}/riemann: {rate: 1, warm_up: [1, 100000]}/' exp.yaml > warm.yaml
 sed 's/riemann: {rate: 1}/riemann: {rate: 1, jitter: true, frames: 100, repeat: [3, 200]}/' exp.yaml > frames.yaml
+sed 's|tf: tf.yaml|tf: /dev/zero|' exp.yaml > devzero.yaml
+printf 'name: small\ntitle: \xff\xfe\n' > latin.yaml && sed -n '3,$p' exp.yaml >> latin.yaml
 { cat exp.yaml; printf -- '---\n]\n'; } > exp-bracket.yaml
 printf '{"name": "small", "title": "One render"},\n' > exp-comma.json.yaml
 printf 'a: 1\n,\n' > block-comma.yaml
@@ -121,6 +123,11 @@ bad 1 "^vri-render: error: \(--warm-up 1000 \+ --repeat 1000\) x --frames 1000 a
   "${t[@]}" "$bin/vri-render" --field linear --tf tf.yaml --jitter --frames 1000 --repeat 1000 --warm-up 1000 -q -o out.exr
 bad 1 "^vri-run: error: frames\.yaml:[0-9]+:[0-9]+: .*\(--warm-up 0 \+ --repeat 200\) x --frames 100 asks for 20000 frames; at most 10000 in one run$" -- \
   "${t[@]}" "$bin/vri-run" --dry-run frames.yaml
+
+# Messages that say what was wrong (issue 48, class 9): a transfer function that exists but is no file; a
+# title that is not UTF-8, refused at its line rather than after every step ran (the manifest is JSON).
+bad 1 "^vri-run: error: devzero\.yaml:4:[0-9]+: tf: /dev/zero is not a regular file$" -- "$bin/vri-run" --dry-run devzero.yaml
+bad 1 "^vri-run: error: latin\.yaml:2:8: title: not UTF-8 at byte 0 \('\\\\xFF\\\\xFE'\)$" -- "$bin/vri-run" --dry-run latin.yaml
 
 # A '%' in the results path, which Slurm would read as a pattern in the jobs' --chdir (issue 48, class 3a).
 bad 1 "^vri-run: error: --executor slurm: the results folder .*/r%j/small holds a '%', which Slurm reads as a pattern" -- \

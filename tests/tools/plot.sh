@@ -202,4 +202,14 @@ for figure in counts orders; do
     [[ ! -s err.txt ]] || fail "gnuplot warned on $figure: $(cat err.txt)"
     [[ $(head -c 8 out/$figure.png | od -An -tx1 | tr -d ' ') == 89504e470d0a1a0a ]] || fail "$figure.png is not a PNG"
 done
+# gnuplot's log of a vri-plot killed with -9 (issue 48, class 10): the next run removes it, a file of a
+# process that is gone, and leaves a live process's alone.
+sh -c 'exit 0' & gone=$!; wait "$gone"
+: > "out/.fig.tmp.$gone.log"
+sleep 1000 & live=$!
+: > "out/.fig.tmp.$live.log"
+"$plot" figs/fig.yaml -o out/fig.png 2> err.txt || fail "the rerun after a killed one: $(cat err.txt)"
+[ ! -e "out/.fig.tmp.$gone.log" ] || fail "the log of a process that is gone was left"
+[ -e "out/.fig.tmp.$live.log" ] || fail "the log of a live process was removed"
+kill "$live"; rm -f "out/.fig.tmp.$live.log"
 echo "plot: all checks passed"
