@@ -159,30 +159,7 @@ ExitStatus runProcessWithin(const fs::path& program, const std::vector<std::stri
 
 std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const std::vector<std::string>& words,
                                                   const ProcessStreams& streams) {
-    int pipeFds[2];
-    if (::pipe2(pipeFds, O_CLOEXEC) != 0) throw Error(std::string("cannot create a pipe: ") + std::strerror(errno));
-    pid_t pid = 0;
-    try {
-        FileActions actions;
-        redirect(actions, streams, pipeFds[1]);
-        pid = spawn(program, words, actions);
-    } catch (...) {
-        ::close(pipeFds[0]);
-        ::close(pipeFds[1]);
-        throw;
-    }
-    ::close(pipeFds[1]);  // the child's copy is the only writer left: read() sees EOF when it exits
-    std::string output;
-    char buffer[4096];
-    for (;;) {
-        const ssize_t n = ::read(pipeFds[0], buffer, sizeof buffer);
-        if (n > 0)
-            output.append(buffer, static_cast<std::size_t>(n));
-        else if (n == 0 || errno != EINTR)
-            break;
-    }
-    ::close(pipeFds[0]);
-    return {waitProcess(pid), std::move(output)};
+    return captureProcess(program, words, streams, CaptureLimits{});
 }
 
 std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const std::vector<std::string>& words,
