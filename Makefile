@@ -76,7 +76,7 @@ test-sanitize: deps $(SANITIZE_BUILD)/build.ninja
 # The parsers' libFuzzer targets (tests/fuzz), FUZZ_SECONDS each, built with clang in $(FUZZ_BUILD).
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS ?= nhdr mhd dat tf_yaml experiment_yaml vdb_metadata
+FUZZ_TARGETS ?= nhdr mhd dat tf_yaml experiment_yaml vdb_metadata squeue tile_stats manifest
 FUZZ_CXX ?= clang++-14
 deps-fuzz:
 	@scripts/install-deps.sh fuzz
