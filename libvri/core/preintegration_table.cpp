@@ -131,7 +131,9 @@ PreintegrationError PreintegrationTable::check(const TransferFunction& tf) const
     cell.erase(std::unique(cell.begin(), cell.end()), cell.end());
     const int checked = static_cast<int>(cell.size());
     std::vector<double> deltas{0.0};
-    if (order_ == 2) deltas = {0.0, 0.25 * spacing, -0.25 * spacing};
+    for (const double k : order_ == 2 ? std::vector<double>(std::begin(kCheckedDeltas), std::end(kCheckedDeltas))
+                                      : std::vector<double>{})
+        if (k > 0) deltas.insert(deltas.end(), {k * spacing, -k * spacing});
     std::vector<PreintegrationError> rows(checked);
     tbb::parallel_for(tbb::blocked_range<int>(0, checked), [&](const tbb::blocked_range<int>& range) {
         ExactRay ray(tf, kEntryTolerance);
@@ -149,6 +151,8 @@ PreintegrationError PreintegrationTable::check(const TransferFunction& tf) const
                 }
     });
     PreintegrationError total;
+    for (const double delta : deltas)
+        if (order_ == 2 && delta >= 0) total.deltas.push_back(delta);
     for (const PreintegrationError& e : rows) {
         total.colour = std::max(total.colour, e.colour);
         total.alpha = std::max(total.alpha, e.alpha);

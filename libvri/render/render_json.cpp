@@ -55,7 +55,8 @@ nlohmann::json toJson(const RenderStats& s) {
                                {"segment_length", p.segmentLength},
                                {"table_error_colour", p.error.colour},
                                {"table_error_alpha", p.error.alpha},
-                               {"table_points_checked", p.error.points}};
+                               {"table_points_checked", p.error.points},
+                               {"table_checked_deltas", p.error.deltas}};
     }
     j["nonfinite_pixels"] = s.nonfinite.count;
     if (s.nonfinite.count > 0) j["first_nonfinite_pixel"] = {s.nonfinite.firstX, s.nonfinite.firstY};

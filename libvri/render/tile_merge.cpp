@@ -16,6 +16,14 @@ namespace {
 
 using nlohmann::json;
 
+// A key as one step of a JSON pointer (RFC 6901): '~' as "~0", '/' as "~1". A key of a stats file edited by
+// hand can hold either, which would otherwise end the pointer or make it invalid (fuzzing found it).
+std::string pointerStep(const std::string& key) {
+    std::string step;
+    for (const char c : key) step += c == '~' ? std::string("~0") : c == '/' ? std::string("~1") : std::string(1, c);
+    return step;
+}
+
 // "stats.error_bound.max" for "/stats/error_bound/max".
 std::string dotted(const std::string& pointer) {
     std::string name = pointer.substr(1);
@@ -80,7 +88,7 @@ public:
             json out = json::object();
             for (const json* v : values)
                 for (const auto& [key, unused] : v->items())
-                    if (!out.contains(key)) out[key] = combine(pointer + "/" + key);
+                    if (!out.contains(key)) out[key] = combine(pointer + "/" + pointerStep(key));
             return out;
         }
         if (!rule) return notCombined(pointer);

@@ -98,10 +98,11 @@ TEST_CASE("preintegration table: order 2 follows a quadratic scalar that order 1
         CHECK(firstError > 1e-4);                     // the midpoint moved the integral
         CHECK(secondError < firstError / 20.0);       // the derivative table follows it
     }
-    // Over the cells, the curved segments add little to what the interpolation costs at delta = 0.
+    // Over the cells at deviations up to four spacings, the first-order expansion in delta drifts: the measured
+    // error grows past what interpolation costs at delta = 0 (the check reports it, where +-1/4 alone hid it).
     const PreintegrationError e = second.check(tf), flat = first.check(tf);
-    CHECK(e.points == 3 * 64 * 64);  // delta 0 and +-1/4 of the spacing
-    CHECK(e.colour < 1.5 * flat.colour);
+    CHECK(e.points == 7 * 64 * 64);  // delta 0, +-1/4, +-1 and +-4 spacings
+    CHECK(e.colour > flat.colour);
 }
 
 TEST_CASE("preintegration table: sizes and orders outside their ranges are refused") {
@@ -185,4 +186,25 @@ TEST_CASE("preintegration table: its own empty space is where every lookup is ex
                         }
             }
     }
+}
+
+TEST_CASE("preintegration table: order 2's measured error covers midpoint deviations up to four spacings") {
+    const TransferFunction tf = jumpingTransferFunction();
+    const PreintegrationTable table(tf, 1.0, 64, 2);
+    const PreintegrationError e = table.check(tf);
+    const double spacing = 1.0 / 63;
+    REQUIRE(e.deltas.size() == 4);
+    CHECK(e.deltas[0] == 0.0);
+    CHECK(e.deltas[3] == doctest::Approx(4 * spacing));
+    // A lookup at a checked cell centre and four spacings' deviation is within what the check reports.
+    for (const double front : {10.5 * spacing, 30.5 * spacing})
+        for (const double back : {12.5 * spacing, 44.5 * spacing})
+            for (const double delta : {4 * spacing, -4 * spacing}) {
+                const SegmentIntegral<double> got = table(front, back, delta);
+                const SegmentIntegral<double> want = PreintegrationTable::direct(tf, 1.0, front, back, delta);
+                CHECK(std::max({std::abs(got.r - want.r), std::abs(got.g - want.g), std::abs(got.b - want.b)}) <=
+                      e.colour + 1e-12);
+            }
+    // Order 1 has no deviation to check.
+    CHECK(PreintegrationTable(tf, 1.0, 64, 1).check(tf).deltas.empty());
 }
