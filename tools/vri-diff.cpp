@@ -56,14 +56,7 @@ struct Options {
     vri::DiffLimits limits;
 };
 
-// Whether the path's extension is `ext` (".png", ".exr"), in any case.
-bool hasExtension(const std::string& path, std::string_view ext) {
-    std::string own = std::filesystem::path(path).extension().string();
-    std::transform(own.begin(), own.end(), own.begin(), [](unsigned char c) { return std::tolower(c); });
-    return own == ext;
-}
-
-bool isPng(const std::string& path) { return hasExtension(path, ".png"); }
+bool isPng(const std::string& path) { return vri::lowercaseExtension(path) == ".png"; }
 
 std::string format(const char* pattern, double value) {
     char text[64];
@@ -313,7 +306,7 @@ int run(int argc, char** argv) {
         options.heatLog = true;
         options.decades = *decades;
     }
-    if (!options.layers.empty() && !hasExtension(options.layers, ".exr"))
+    if (!options.layers.empty() && vri::lowercaseExtension(options.layers) != ".exr")
         return exitWith(vri::kExitUsage, vri::Error("--layers: expected a .exr file (only OpenEXR keeps layers), got '" +
                                                     options.layers + "'"));
     const std::optional<double> percentile = vri::heatTopPercentile(options.heatTop);

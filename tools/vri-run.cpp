@@ -312,12 +312,12 @@ int run(const Options& options) {
     }
     if (options.estimate) printEstimate(estimates);
     if (!options.gallery.empty()) {
-        for (const vri::GalleryPage& page : vri::galleryPages(options.gallery)) {
+        const std::vector<vri::GalleryEntry> entries = vri::galleryEntries(options.gallery);
+        for (const vri::GalleryPage& page : vri::galleryPages(entries)) {
             const fs::path file = fs::path(options.gallery) / page.name;
             vri::writeTextFile(file, page.text);
             std::cerr << kTool << ": wrote " << file.string() << '\n';
         }
-        const std::vector<vri::GalleryEntry> entries = vri::galleryEntries(options.gallery);
         for (const vri::GalleryPage& page : vri::viewerPages(entries))
             vri::writeTextFile(fs::path(options.gallery) / page.name, page.text);
         const std::size_t floats = vri::writeViewerFloats(entries);

@@ -144,12 +144,13 @@ std::optional<double> heatTopPercentile(std::string_view text) {
 double heatMapTop(const Image& a, const std::vector<const Image*>& set, double percentile, const PixelMask* mask) {
     std::vector<float> errors;
     for (const Image* x : set) {
-        const Image difference = differenceImage(a, *x);
+        requireSameShape(a, *x);
         for (std::size_t p = 0; p < std::size_t(a.width) * std::size_t(a.height); ++p) {
             if (mask && !mask->keep[p]) continue;
-            float e = 0;
-            for (int c = 0; c < a.channels; ++c) e = std::max(e, difference.pixels[p * std::size_t(a.channels) + c]);
-            if (e > 0) errors.push_back(e);
+            double e = 0;
+            for (std::size_t i = p * std::size_t(a.channels); i < (p + 1) * std::size_t(a.channels); ++i)
+                e = std::max(e, absoluteError(a.pixels[i], x->pixels[i]));
+            if (e > 0) errors.push_back(static_cast<float>(e));
         }
     }
     if (errors.empty()) return 0.0;

@@ -131,9 +131,9 @@ PreintegrationError PreintegrationTable::check(const TransferFunction& tf) const
     cell.erase(std::unique(cell.begin(), cell.end()), cell.end());
     const int checked = static_cast<int>(cell.size());
     std::vector<double> deltas{0.0};
-    for (const double k : order_ == 2 ? std::vector<double>(std::begin(kCheckedDeltas), std::end(kCheckedDeltas))
-                                      : std::vector<double>{})
-        if (k > 0) deltas.insert(deltas.end(), {k * spacing, -k * spacing});
+    if (order_ == 2)
+        for (const double k : kCheckedDeltas)
+            if (k > 0) deltas.insert(deltas.end(), {k * spacing, -k * spacing});
     std::vector<PreintegrationError> rows(checked);
     tbb::parallel_for(tbb::blocked_range<int>(0, checked), [&](const tbb::blocked_range<int>& range) {
         ExactRay ray(tf, kEntryTolerance);

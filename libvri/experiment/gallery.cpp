@@ -233,9 +233,7 @@ std::vector<GalleryEntry> galleryEntries(const fs::path& resultsRoot) {
     return entries;
 }
 
-std::vector<GalleryPage> galleryPages(const fs::path& resultsRoot) {
-    const std::vector<GalleryEntry> entries = galleryEntries(resultsRoot);
-
+std::vector<GalleryPage> galleryPages(const std::vector<GalleryEntry>& entries) {
     std::vector<GalleryPage> pages{{"README.md", ""}};
     std::ostringstream index, sections;
     index

@@ -19,8 +19,6 @@ struct GalleryPage {
     std::string text;
 };
 
-std::vector<GalleryPage> galleryPages(const std::filesystem::path& resultsRoot);
-
 // What the index knows of an experiment: its manifest, folder, title, paper ("A", "B" or "none"), item
 // ("Table IV") and verdict (the agreement's opening words, "" for an own study).
 struct GalleryEntry {
@@ -31,6 +29,9 @@ struct GalleryEntry {
 // The experiments under resultsRoot in the papers' order: paper A's items, then paper B's, each in the
 // order of their numbers ("Fig. 2" before "Fig. 10"), then the own studies.
 std::vector<GalleryEntry> galleryEntries(const std::filesystem::path& resultsRoot);
+
+// The Markdown pages of those experiments (galleryEntries'), found once and shared with the viewer's pages.
+std::vector<GalleryPage> galleryPages(const std::vector<GalleryEntry>& entries);
 
 // The caption of an experiment's heat maps: what they show and each one's scale, read from each
 // comparison's vri-diff JSON in `dir` ("" when none has a heat map).

@@ -64,12 +64,6 @@ std::vector<std::uint8_t> previewRgb8(const Image& image, const PngOptions& opti
     return rgb;
 }
 
-std::string lowercaseExtension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-    return ext;
-}
-
 // Encodes the image in memory; a library's failure becomes "PATH: cannot write image: <why>".
 template <typename Encode>
 std::string encoded(const fs::path& path, const Image& image, Encode&& encode) {
@@ -82,6 +76,12 @@ std::string encoded(const fs::path& path, const Image& image, Encode&& encode) {
 }
 
 }  // namespace
+
+std::string lowercaseExtension(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    return ext;
+}
 
 // An OpenEXR file goes to OpenEXR whatever its extension; everything else to OpenImageIO's module.
 Image readImage(const fs::path& path) {

@@ -41,6 +41,9 @@ struct PngOptions {
 // is not A is shown as grey. Without an A channel, A = 1 (no background shows through).
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options = {});
 
+// A path's extension in lower case (".exr" for "A.EXR"): how the writers below pick a format.
+std::string lowercaseExtension(const std::filesystem::path& path);
+
 // By extension: .exr -> writeExr, .png -> writePng with default options, any other format that
 // OpenImageIO can encode into memory gets float data and converts it as that format can; the
 // formats it cannot (SGI, FITS, ...) are an error, since their writes could not be checked.

@@ -323,7 +323,7 @@ figures:
     d.write("results/t/time.md", "| time table |\n");
     vri::FileHasher hasher;
     vri::writeManifest(e, plan, std::vector<vri::StepOutcome>(plan.steps.size()), d.dir / "bin", hasher);
-    const std::vector<vri::GalleryPage> pages = vri::galleryPages(d.dir / "results");
+    const std::vector<vri::GalleryPage> pages = vri::galleryPages(vri::galleryEntries(d.dir / "results"));
     REQUIRE(pages.size() == 1);  // a short section stays on README.md
     CHECK(pages.front().name == "README.md");
     const std::string& md = pages.front().text;
