@@ -163,6 +163,23 @@ void removeStaleTempFiles(const vri::Plan& plan) {
             std::cerr << kTool << ": removed " << plan.commandPath(stale) << ", a temporary file of a process that is gone\n";
 }
 
+// Before a plan's steps, on either executor: the clean tree --record asks for, the results folder locked until
+// its manifest is written, stale temporary files gone, and the last run's wall times (which price the Slurm
+// jobs and give the progress line its ETA) read while its manifest is still there. The caller removes the
+// manifest once nothing can fail before the steps run; it is written again only once every step has succeeded.
+struct StartedPlan {
+    std::unique_ptr<vri::FolderLock> lock;
+    std::vector<std::optional<double>> prices;
+};
+StartedPlan startPlan(const Options& options, const vri::Experiment& experiment, const vri::Plan& plan,
+                      const fs::path& resultsRoot) {
+    requireCleanTree(options, experiment, resultsRoot);
+    StartedPlan started{std::make_unique<vri::FolderLock>(plan.commandPath(plan.resultsDir)), {}};
+    removeStaleTempFiles(plan);
+    started.prices = vri::stepPrices(plan, plan.resultsDir / "manifest.json");
+    return started;
+}
+
 // After a plan's steps: its manifest, the summary line and, for --record or --check, the reproduce:
 // numbers; false on a reproduce mismatch.
 bool finish(const Options& options, const vri::Experiment& experiment, const vri::Plan& plan,
@@ -189,15 +206,12 @@ bool runOnSlurm(const Options& options, const std::vector<vri::Experiment>& expe
                 const std::vector<vri::Plan>& plans, const vri::RunOptions& runOptions, vri::FileHasher& hasher,
                 const fs::path& resultsRoot) {
     const auto start = std::chrono::steady_clock::now();
-    std::vector<std::unique_ptr<vri::FolderLock>> locks;  // until the manifests are written
+    std::vector<StartedPlan> started;  // their locks held until the manifests are written
     vri::SlurmBatch batch(runOptions, hasher);
     std::size_t toRun = 0;
     for (std::size_t e = 0; e < plans.size(); ++e) {
-        requireCleanTree(options, experiments[e], resultsRoot);
-        locks.push_back(std::make_unique<vri::FolderLock>(plans[e].commandPath(plans[e].resultsDir)));
-        removeStaleTempFiles(plans[e]);
-        // The last run's wall times price the jobs; read before its manifest goes.
-        toRun += batch.add(plans[e], vri::stepPrices(plans[e], plans[e].resultsDir / "manifest.json"));
+        started.push_back(startPlan(options, experiments[e], plans[e], resultsRoot));
+        toRun += batch.add(plans[e], started.back().prices);
     }
     if (toRun > 0) batch.checkNodes();
     for (const vri::Plan& plan : plans) fs::remove(plan.resultsDir / "manifest.json");
@@ -299,14 +313,11 @@ int run(const Options& options) {
                 std::cout << vri::shellCommand(vri::commandWords(plan, step, toolDir)) << '\n';
             continue;
         }
-        requireCleanTree(options, experiment, resultsRoot);
         const auto start = std::chrono::steady_clock::now();
-        const vri::FolderLock lock(plan.commandPath(plan.resultsDir));  // until its manifest is written
-        removeStaleTempFiles(plan);
+        const StartedPlan started = startPlan(options, experiment, plan, resultsRoot);
         vri::RunOptions planOptions = runOptions;
-        // The last run's wall times give the progress line its ETA; read before the manifest goes.
-        planOptions.prices = vri::stepPrices(plan, plan.resultsDir / "manifest.json");
-        fs::remove(plan.resultsDir / "manifest.json");  // rewritten only once every step has succeeded
+        planOptions.prices = started.prices;
+        fs::remove(plan.resultsDir / "manifest.json");
         const std::vector<vri::StepOutcome> outcomes = vri::runPlan(plan, planOptions, hasher);
         reproduced = finish(options, experiment, plan, outcomes, toolDir, hasher, start) && reproduced;
     }

@@ -107,6 +107,7 @@ void Planner::addRender(const RunSpec& run) {
     const SceneSpec& scene = experiment_.scene(run.scene);
     Step step{run.id, "render", run.tool, {}, {}, {}, {}};
     sceneOptions(step, scene);
+    step.pixels = static_cast<std::uint64_t>(scene.width) * static_cast<std::uint64_t>(scene.height);
     for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
@@ -132,6 +133,7 @@ void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& r
     for (std::size_t k = 0; k < bands.size(); ++k) {
         Step tile = render;
         tile.id = run.id + ".tile-" + std::to_string(k + 1);
+        tile.pixels = static_cast<std::uint64_t>(bands[k].width) * static_cast<std::uint64_t>(bands[k].height);
         tile.arguments.insert(tile.arguments.end(), {"--region", bands[k].text()});
         tile.parameters.emplace_back("region", bands[k].text());
         output(tile, "-o", result(tile.id + ".exr"));
@@ -186,6 +188,8 @@ void Planner::addCommand(const CommandSpec& command) {
     Step step{command.name, "command", command.tool, {}, {}, {}, {{"command", command.name}}};
     if (!command.scene.empty()) sceneOptions(step, experiment_.scene(command.scene));
     for (const ToolOption& o : command.options) option(step, o);
+    step.threads = command.threads;
+    step.pixels = command.pixels;
     for (const auto& [word, path] : command.inputs) input(step, word, path);
     for (const auto& [word, file] : command.outputs) output(step, word, result(file));
     rendererCommand(step, command.command, command.rendererName, command.rendererImage, command.rendererTimeout,

@@ -22,6 +22,11 @@ struct Step {
     std::vector<std::filesystem::path> inputs;   // files read (absolute)
     std::vector<std::filesystem::path> outputs;  // files written (absolute)
     std::vector<std::pair<std::string, std::string>> parameters;  // what the step stands for, for the manifest
+    // What the step asks of a machine, for its Slurm job (slurm_jobs.h), set where the planner writes the
+    // options: the threads it runs on (0: the tool's default, every core it is given) and the pixels it
+    // renders (of its region, for a tile; 0: none).
+    int threads = 0;
+    std::uint64_t pixels = 0;
 };
 
 struct Plan {

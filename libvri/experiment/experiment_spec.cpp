@@ -23,6 +23,7 @@
 #include "libvri/core/heat_map.h"
 #include "libvri/core/pixel_mask.h"
 #include "libvri/render/outside_renderer.h"
+#include "libvri/render/stats_schema.h"
 #include "libvri/util/checked_size.h"
 #include "libvri/util/format.h"
 #include "libvri/util/parse.h"
@@ -719,6 +720,8 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
                              [&](const SceneSpec& sc) { return sc.name == command.scene; }))
                 throw Error(at(scene) + ": unknown scene '" + printable(command.scene) + "'");
             command.rendererImage = found->second.image;
+            const SceneSpec& sceneSpec = experiment.scene(command.scene);
+            command.pixels = static_cast<std::uint64_t>(sceneSpec.width) * static_cast<std::uint64_t>(sceneSpec.height);
             command.commandFiles = found->second.files;
         }
         if (entry["scene"] && command.scene.empty())
@@ -732,6 +735,12 @@ void ExperimentReader::readCommands(const YAML::Node& node, Experiment& experime
                         throw Error(at(value) + ": option '" + key +
                                     "' names a file or an option: files go under inputs: or outputs:");
                     command.options.emplace_back(optionWord(key), *v);
+                    // What its Slurm job asks for (slurm_jobs.h), read here, where an error can name the line.
+                    if (key == "threads") command.threads = parseCount(*v, at(value) + ": threads", 0);
+                    if (key == "size") {
+                        const glm::ivec2 size = parseSize(*v, at(value) + ": size");
+                        command.pixels = static_cast<std::uint64_t>(size.x) * static_cast<std::uint64_t>(size.y);
+                    }
                 }
         if (const YAML::Node inputs = entry["inputs"])
             for (const auto& [key, value] : optionEntries(inputs, "inputs")) {
@@ -753,7 +762,11 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
         yaml::requireKeys(entry, source_, kTableKeys);
         TableSpec table;
         table.name = table.title = name;
-        if (entry["value"]) table.value = text(entry["value"], "value");
+        if (entry["value"]) {
+            table.value = text(entry["value"], "value");
+            const std::string path = table.value.starts_with("1/") ? table.value.substr(2) : table.value;
+            requireStatsField(path, at(entry["value"]) + ": value");
+        }
         if (entry["column"]) table.column = text(entry["column"], "column");
         if (entry["title"]) table.title = text(entry["title"], "title");
         if (const YAML::Node p = entry["precision"]) {

@@ -100,6 +100,8 @@ struct CommandSpec {
     std::vector<std::string> command;
     std::string rendererName, rendererImage, rendererTimeout;
     std::vector<std::filesystem::path> commandFiles;
+    int threads = 0;          // options: threads: N (0: the tool's default, all cores)
+    std::uint64_t pixels = 0;  // its scene's size, or options: size: WxH (0: neither)
 };
 
 // A table by vri-tabulate, in one of its layouts: "thresholds", the % of pixels above each threshold,

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <system_error>
 
-#include "libvri/util/parse.h"
 
 namespace vri {
 
@@ -16,18 +15,9 @@ namespace {
 // A render or a command may run for hours: without a price it is never bundled.
 bool mayBeLong(const Step& step) { return step.kind == "render" || step.kind == "command"; }
 
-// The word after `option` in the step's arguments, or "".
-std::string argumentAfter(const Step& step, const std::string& option) {
-    // Up to "--": what follows is an outside renderer's own command (vri-outside), not vri's options.
-    const auto end = std::find(step.arguments.begin(), step.arguments.end(), "--");
-    const auto found = std::find(step.arguments.begin(), end, option);
-    return found != end && found + 1 != end ? *(found + 1) : "";
-}
-
 int stepCpus(const Step& step, int defaultCpus) {
-    const std::string threads = argumentAfter(step, "--threads");
-    // --threads 0 is the tools' "all cores": on a cluster, what a step without --threads gets.
-    if (!threads.empty() && threads != "0") return parseCount(threads, "step '" + step.id + "' --threads", 1);
+    // Threads 0 is the tools' "all cores": on a cluster, what a step without --threads gets.
+    if (step.threads > 0) return step.threads;
     return mayBeLong(step) ? defaultCpus : 1;
 }
 
@@ -40,10 +30,7 @@ long long stepMemoryMiB(const Step& step) {
         const std::uintmax_t size = fs::file_size(input, ec);
         if (!ec) bytes += 8.0 * static_cast<double>(size);
     }
-    if (const std::string size = argumentAfter(step, "--size"); !size.empty()) {
-        const glm::ivec2 pixels = parseSize(size, "step '" + step.id + "' --size");
-        bytes += 64.0 * pixels.x * pixels.y;
-    }
+    bytes += 64.0 * static_cast<double>(step.pixels);
     return static_cast<long long>(std::ceil(std::min(bytes, 1e18) / kMiB));
 }
 

@@ -8,6 +8,7 @@
 #include "libvri/io/provenance.h"
 #include "libvri/render/exact_reference_json.h"
 #include "libvri/render/render_json.h"
+#include "libvri/render/stats_schema.h"
 #include "libvri/util/error.h"
 #include "libvri/util/statistics.h"
 
@@ -90,11 +91,11 @@ RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
 
     nlohmann::json record = provenanceRecord(context_.tool, context_.command, setup_, request_);
     record["stats"] = result.exactStats ? toJson(*result.exactStats) : toJson(stats);
-    if (result.exactStats) record["stats"]["nonfinite_pixels"] = stats.nonfinite.count;
-    if (search_) record["stats"]["max_error_search"] = search_->record;
-    record["stats"]["out_of_range_pixels"] = toJson(outOfRange);
+    if (result.exactStats) put(record, stats_field::nonfinitePixels, stats.nonfinite.count);
+    if (search_) put(record, stats_field::maxErrorSearch, search_->record);
+    putOutOfRange(record, outOfRange);
     record["timing"] = std::move(timing);
-    if (record["stats"]["rays_hit"] == 0) {
+    if (record.at(stats_field::raysHit.at()) == 0) {
         // A black image with exit 0 looks like a render; said as a warning and kept in the record.
         // A tile (--region) of background is no mistake of the camera's: said so.
         const std::string warning =
@@ -156,27 +157,31 @@ MedianInterval medianInterval(std::vector<double> values) {
 }
 
 std::optional<TimingLoad> timingLoadOf(const nlohmann::json& stats) {
-    if (!stats.is_object() || !stats.contains("timing") || !stats["timing"].is_object()) return std::nullopt;
-    const nlohmann::json& load = stats["timing"].value("load", nlohmann::json());
+    if (!stats.is_object() || !stats.contains(stats_field::load.at())) return std::nullopt;
+    const nlohmann::json& load = stats.at(stats_field::load.at());
     if (!load.is_object()) return std::nullopt;
     return TimingLoad{load.value("other_cores", 0.0), load.value("threads", 1), load.value("cores", 1)};
 }
 
+nlohmann::json medianIntervalRecord(const std::vector<double>& values) {
+    const MedianInterval ci = medianInterval(values);
+    return {{"low", ci.low}, {"high", ci.high}, {"coverage", ci.coverage}};
+}
+
 nlohmann::json frameTimingRecord(int warmUpFrames, const std::vector<double>& wallSeconds,
                                  const std::optional<TimingLoad>& load) {
-    const MedianInterval ci = medianInterval(wallSeconds);
-    nlohmann::json record = {{"warm_up_frames", warmUpFrames},
-                             {"repeats", wallSeconds.size()},
-                             {"wall_seconds", wallSeconds},
-                             {"median_wall_seconds", median(wallSeconds)},
-                             {"median_ci", {{"low", ci.low}, {"high", ci.high}, {"coverage", ci.coverage}}},
-                             {"load", nullptr}};
+    nlohmann::json record;
+    put(record, stats_field::warmUpFrames, warmUpFrames);
+    put(record, stats_field::repeats, wallSeconds.size());
+    put(record, stats_field::frameSeconds, wallSeconds);
+    put(record, stats_field::medianFrameSeconds, median(wallSeconds));
+    put(record, stats_field::medianCi, medianIntervalRecord(wallSeconds));
+    put(record, stats_field::load, nullptr);
     if (load)
-        record["load"] = {{"other_cores", load->otherCores},
-                          {"threads", load->threads},
-                          {"cores", load->cores},
-                          {"overloaded", load->overloaded()}};
-    return record;
+        put(record, stats_field::load,
+            {{"other_cores", load->otherCores}, {"threads", load->threads}, {"cores", load->cores},
+             {"overloaded", load->overloaded()}});
+    return std::move(record["timing"]);
 }
 
 }  // namespace vri

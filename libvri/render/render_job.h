@@ -112,5 +112,6 @@ struct MedianInterval {
     double low = 0, high = 0, coverage = 0;
 };
 MedianInterval medianInterval(std::vector<double> values);
+nlohmann::json medianIntervalRecord(const std::vector<double>& values);  // {"low", "high", "coverage"}
 
 }  // namespace vri

@@ -4,6 +4,7 @@
 #include <variant>
 
 #include "libvri/core/sparse_volume.h"
+#include "libvri/render/stats_schema.h"
 
 namespace vri {
 
@@ -24,58 +25,59 @@ nlohmann::json toJson(const RenderRequest& request) {
 }
 
 nlohmann::json toJson(const RenderStats& s) {
-    const double samplesPerSecond = s.seconds > 0 ? s.samplesEvaluated / s.seconds : 0.0;
-    nlohmann::json j = {{"wall_seconds", s.seconds},
-                        {"setup_seconds", s.setupSeconds},
-                        {"setup_reused", s.setupReused},
-                        {"threads", s.threads},
-                        {"rays", s.rays},
-                        {"rays_hit", s.raysHit},
-                        {"samples_placed", s.samplesPlaced},
-                        {"samples_evaluated", s.samplesEvaluated},
-                        {"samples_per_second", samplesPerSecond},
-                        {"empty_brick_fraction", s.emptyBrickFraction},
-                        // Rays ended early, and the most their samples left out could add to a channel.
-                        {"rays_terminated", s.raysTerminated},
-                        {"termination_left_out_max", s.terminationLeftOut},
-                        {"backend", s.backend}};
-    if (!s.device.empty()) j["device"] = s.device;
-    if (!s.interpolation.empty()) j["interpolation"] = s.interpolation;
-    if (s.backend == "cpu") j["simd_target"] = s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget);
-    if (!s.voxelLoads.empty()) j["voxel_loads"] = s.voxelLoads;
-    if (s.adaptive) j["adaptive"] = toJson(*s.adaptive);  // the Simpson methods
-    if (s.simpsonRange)  // and on the CPU, their steps against the range where they mean something
-        j["simpson_range"] = {{"tau_h_limit", s.simpsonRange->limit},
-                              {"largest_tau_h", s.simpsonRange->largest},
-                              {"pixels_beyond", s.simpsonRange->pixelsBeyond}};
+    using namespace stats_field;
+    nlohmann::json record;
+    putFrameWork(record, s);
+    put(record, samplesPlaced, s.samplesPlaced);
+    put(record, samplesEvaluated, s.samplesEvaluated);
+    put(record, samplesPerSecond, s.seconds > 0 ? s.samplesEvaluated / s.seconds : 0.0);
+    put(record, emptyBrickFraction, s.emptyBrickFraction);
+    // Rays ended early, and the most their samples left out could add to a channel.
+    put(record, raysTerminated, s.raysTerminated);
+    put(record, terminationLeftOutMax, s.terminationLeftOut);
+    put(record, backend, s.backend);
+    if (!s.device.empty()) put(record, device, s.device);
+    if (!s.interpolation.empty()) put(record, interpolation, s.interpolation);
+    if (s.backend == "cpu") put(record, simdTarget, s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget));
+    if (!s.voxelLoads.empty()) put(record, voxelLoads, s.voxelLoads);
+    if (s.adaptive) {  // the Simpson methods
+        const AdaptiveCounts& c = *s.adaptive;
+        put(record, adaptiveInnerTries, c.innerTries);
+        put(record, adaptiveInnerFailures, c.innerFailures);
+        put(record, adaptiveOuterTries, c.outerTries);
+        put(record, adaptiveOuterFailures, c.outerFailures);
+        put(record, adaptiveOuterSteps, c.outerSteps);
+        put(record, adaptiveAcceptedAtMinimum, c.acceptedAtMinimum);
+        put(record, adaptivePointsUsed, c.pointsUsed);
+        put(record, adaptivePointsEvaluated, c.pointsEvaluated);
+    }
+    if (s.simpsonRange) {  // and on the CPU, their steps against the range where they mean something
+        put(record, simpsonRangeLimit, s.simpsonRange->limit);
+        put(record, simpsonRangeLargest, s.simpsonRange->largest);
+        put(record, simpsonRangePixelsBeyond, s.simpsonRange->pixelsBeyond);
+    }
     if (s.preintegration) {  // the table's own error: the largest |lookup - direct evaluation| it found
         const RenderStats::Preintegration& p = *s.preintegration;
-        j["preintegration"] = {{"size", p.size},
-                               {"order", p.order},
-                               {"segment_length", p.segmentLength},
-                               {"table_error_colour", p.error.colour},
-                               {"table_error_alpha", p.error.alpha},
-                               {"table_points_checked", p.error.points},
-                               {"table_checked_deltas", p.error.deltas}};
+        put(record, preintSize, p.size);
+        put(record, preintOrder, p.order);
+        put(record, preintSegmentLength, p.segmentLength);
+        put(record, preintErrorColour, p.error.colour);
+        put(record, preintErrorAlpha, p.error.alpha);
+        put(record, preintPointsChecked, p.error.points);
+        put(record, preintCheckedDeltas, p.error.deltas);
     }
-    j["nonfinite_pixels"] = s.nonfinite.count;
-    if (s.nonfinite.count > 0) j["first_nonfinite_pixel"] = {s.nonfinite.firstX, s.nonfinite.firstY};
-    return j;
+    put(record, nonfinitePixels, s.nonfinite.count);
+    if (s.nonfinite.count > 0) put(record, firstNonfinitePixel, {s.nonfinite.firstX, s.nonfinite.firstY});
+    return std::move(record["stats"]);
 }
 
-nlohmann::json toJson(const AdaptiveCounts& c) {
-    return {{"inner_tries", c.innerTries},       {"inner_failures", c.innerFailures},
-            {"outer_tries", c.outerTries},       {"outer_failures", c.outerFailures},
-            {"outer_steps", c.outerSteps},       {"accepted_at_h_min_above_tolerance", c.acceptedAtMinimum},
-            {"points_used", c.pointsUsed},       {"points_evaluated", c.pointsEvaluated}};
-}
-
-nlohmann::json toJson(const OutOfRangePixels& o) {
-    return {{"pixels", o.pixels},
-            {"channels_above_1", o.channelsAbove},
-            {"channels_below_0", o.channelsBelow},
-            {"max", o.max},
-            {"min", o.min}};
+void putOutOfRange(nlohmann::json& record, const OutOfRangePixels& o) {
+    using namespace stats_field;
+    put(record, outOfRangePixels, o.pixels);
+    put(record, outOfRangeAbove, o.channelsAbove);
+    put(record, outOfRangeBelow, o.channelsBelow);
+    put(record, outOfRangeMax, o.max);
+    put(record, outOfRangeMin, o.min);
 }
 
 nlohmann::json toJson(const CameraSpec& c) {

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "libvri/render/render_job.h"  // medianIntervalRecord
 #include "libvri/util/error.h"
 #include "libvri/util/json_file.h"
 #include "libvri/util/printable.h"
@@ -32,8 +33,8 @@ std::string dotted(const std::string& pointer) {
 }
 
 std::optional<TileRule> ruleOf(const std::string& pointer) {
-    for (const TileStatsRule& r : tileStatsRules())
-        if (pointer == r.pointer || (pointer.starts_with(r.pointer) && pointer[r.pointer.size()] == '/')) return r.rule;
+    for (const StatsField& f : statsSchema())
+        if (pointer == f.pointer || (pointer.starts_with(f.pointer) && pointer[f.pointer.size()] == '/')) return f.rule;
     return std::nullopt;
 }
 
@@ -192,79 +193,25 @@ void requireShared(const std::vector<json>& records, const std::vector<std::stri
 
 }  // namespace
 
-const std::vector<TileStatsRule>& tileStatsRules() {
-    using enum TileRule;
-    static const std::vector<TileStatsRule> rules = {
-        // vri-render's stats (render_json.cpp) and what both tools share.
-        {"/stats/wall_seconds", Sum},
-        {"/stats/setup_seconds", Sum},  // each tile's process built its own empty space
-        {"/stats/setup_reused", All},
-        {"/stats/threads", Same},
-        {"/stats/rays", Sum},
-        {"/stats/rays_hit", Sum},
-        {"/stats/samples_placed", Sum},
-        {"/stats/samples_evaluated", Sum},
-        {"/stats/samples_per_second", Derived},
-        {"/stats/empty_brick_fraction", Same},
-        {"/stats/rays_terminated", Sum},
-        {"/stats/termination_left_out_max", Max},
-        {"/stats/backend", Same},
-        {"/stats/device", Same},
-        {"/stats/interpolation", Same},
-        {"/stats/simd_target", Same},
-        {"/stats/voxel_loads", Same},
-        {"/stats/adaptive", Sum},
-        {"/stats/simpson_range/tau_h_limit", Same},
-        {"/stats/simpson_range/largest_tau_h", Max},
-        {"/stats/simpson_range/pixels_beyond", Sum},
-        {"/stats/preintegration", Same},  // every tile builds the same table
-        {"/stats/nonfinite_pixels", Sum},
-        {"/stats/first_nonfinite_pixel", FirstPixel},
-        {"/stats/out_of_range_pixels/pixels", Sum},
-        {"/stats/out_of_range_pixels/channels_above_1", Sum},
-        {"/stats/out_of_range_pixels/channels_below_0", Sum},
-        {"/stats/out_of_range_pixels/max", Max},
-        {"/stats/out_of_range_pixels/min", Min},
-        // The exact method's (exact_reference_json.cpp).
-        {"/stats/rays_opaque", Sum},
-        {"/stats/pieces", Sum},
-        {"/stats/pieces_visible", Sum},
-        {"/stats/sub_pieces", Sum},
-        {"/stats/quadrature_intervals", Sum},
-        {"/stats/quadrature_nodes", Sum},
-        {"/stats/error_bound/channels", Same},
-        {"/stats/error_bound/max", Max},
-        {"/stats/error_bound/mean", PixelMean},
-        {"/stats/error_bound/applies_to", Same},
-        {"/stats/error_bound/float32_rounding_max", Max},
-        {"/stats/error_bound/stored_max", Max},
-        {"/stats/error_bound/error_image", Same},
-        // The frames (frame_timing.cpp): frame k of the whole is frame k of every tile, one after another.
-        {"/timing/warm_up_frames", Agree},
-        {"/timing/repeats", Agree},
-        {"/timing/wall_seconds", Sum},
-        {"/timing/median_wall_seconds", Derived},
-        {"/machine", Same},  // tiles may run on different machines
-    };
-    return rules;
-}
-
 json combineTileStats(const std::vector<json>& records, const std::vector<std::string>& names) {
+    using namespace stats_field;
     StatsCombiner combiner(records, names);
     json out = {{"stats", combiner.combine("/stats")}, {"timing", combiner.combine("/timing")}};
-    if (std::ranges::all_of(records, [](const json& r) { return r.contains("machine"); }))
-        out["machine"] = combiner.combine("/machine");
-    json& stats = out["stats"];
-    if (stats.contains("samples_per_second")) {  // as render_json.cpp computes it
-        const json& samples = stats["samples_evaluated"];
-        const json& seconds = stats["wall_seconds"];
-        stats["samples_per_second"] = samples.is_number() && seconds.is_number() && seconds.get<double>() > 0
-                                          ? samples.get<double>() / seconds.get<double>()
-                                          : 0.0;
+    if (std::ranges::all_of(records, [](const json& r) { return r.contains(machine.at()); }))
+        out[machine.at()] = combiner.combine(std::string(machine.pointer));
+    if (out.contains(samplesPerSecond.at())) {  // as render_json.cpp computes it
+        const json& samples = out.value(samplesEvaluated.at(), json());
+        const json& seconds = out.value(wallSeconds.at(), json());
+        out[samplesPerSecond.at()] = samples.is_number() && seconds.is_number() && seconds.get<double>() > 0
+                                         ? samples.get<double>() / seconds.get<double>()
+                                         : 0.0;
     }
-    json& timing = out["timing"];
-    if (timing.contains("median_wall_seconds") && timing["wall_seconds"].is_array() && !timing["wall_seconds"].empty())
-        timing["median_wall_seconds"] = median(timing["wall_seconds"].get<std::vector<double>>());
+    const json& frames = out.value(frameSeconds.at(), json());
+    if (frames.is_array() && !frames.empty() && std::ranges::all_of(frames, [](const json& f) { return f.is_number(); })) {
+        const std::vector<double> seconds = frames.get<std::vector<double>>();
+        if (out.contains(medianFrameSeconds.at())) out[medianFrameSeconds.at()] = median(seconds);
+        if (out.contains(medianCi.at())) out[medianCi.at()] = medianIntervalRecord(seconds);
+    }
     out["not_combined"] = combiner.notCombinedList();
     return out;
 }

@@ -2,7 +2,7 @@
 // vri-merge-tiles' work: the tiles of one render (vri-render or vri-reference run with --region, each an
 // EXR of its region and a stats JSON) checked to make up one image and joined into the image the untiled
 // render writes, bit for bit (every pixel of a region render is the whole render's pixel), and one stats
-// record whose fields are combined as tileStatsRules() says.
+// record whose fields are combined by the rules of the stats schema (stats_schema.h).
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,33 +11,14 @@
 
 #include "libvri/core/image.h"
 #include "libvri/io/image_io.h"
+#include "libvri/render/stats_schema.h"
 
 namespace vri {
 
-// How a field of the tiles' "stats" and "timing" records becomes the whole image's. Arrays combine
-// element by element.
-enum class TileRule {
-    Sum,         // counts (rays, samples, pieces, pixels) and seconds: the tiles ran one after another
-    Max,         // maxima (error bounds, the most early termination left out, the largest value)
-    Min,         // minima (the smallest value)
-    PixelMean,   // a mean over pixels: the tiles' means weighted by their pixels ("rays")
-    All,         // true when true in every tile (setup_reused)
-    Same,        // a property of the render (backend, threads, ...): kept when every tile agrees
-    Agree,       // the same in every tile, else the tiles are refused (timing.repeats: frames are summed)
-    FirstPixel,  // a pixel in whole-image coordinates: the first in row order of the tiles that have one
-    Derived,     // recomputed from the combined fields (samples_per_second, median_wall_seconds)
-};
-
-struct TileStatsRule {
-    std::string_view pointer;  // JSON pointer into a stats record; a rule for an object covers its members
-    TileRule rule;
-};
-// Every field vri-render's and vri-reference's stats and timing records have, and its rule. A field
-// without a rule, a Same field the tiles disagree in, or one only some tiles have is not combined: it
-// becomes null and is listed in the merged record's "not_combined", so that no tile's value is read as
-// the image's.
-const std::vector<TileStatsRule>& tileStatsRules();
-
+// Every field the schema declares (stats_schema.h) is combined by its rule; a rule for an object covers its
+// members. A field the schema lacks, a Same field the tiles disagree in, or one only some tiles have is not
+// combined: it becomes null and is listed in the merged record's "not_combined", so that no tile's value is
+// read as the image's.
 // The combined "stats" and "timing" records of tiles (each a whole stats file) and the dotted names of
 // the fields that were not combined: {"stats": ..., "timing": ..., "not_combined": [...]}. `names`
 // name the tiles' files for errors. Throws vri::Error when the tiles disagree in an Agree field or in

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "libvri/render/stats_schema.h"
 #include "libvri/util/csv.h"
 #include "libvri/util/error.h"
 #include "libvri/util/json_file.h"
@@ -50,9 +51,9 @@ std::optional<double> largestBound(const fs::path& stats) {
     if (stats.empty()) return std::nullopt;
     const json root = readJsonFile(stats);
     return readingJsonOf(stats, [&]() -> std::optional<double> {
-        if (!root.contains("stats") || !root["stats"].contains("error_bound")) return std::nullopt;
+        if (!root.contains(stats_field::errorBoundMax.at())) return std::nullopt;
         double worst = 0;
-        for (const json& bound : jsonAtPath(root, "stats.error_bound.max", stats)) worst = std::max(worst, bound.get<double>());
+        for (const json& bound : root.at(stats_field::errorBoundMax.at())) worst = std::max(worst, bound.get<double>());
         return worst;
     });
 }

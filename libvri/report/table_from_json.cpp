@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "libvri/render/render_job.h"  // medianInterval
+#include "libvri/render/stats_schema.h"
 #include "libvri/report/pareto.h"
 #include "libvri/report/table.h"
 #include "libvri/util/error.h"
@@ -39,7 +40,9 @@ struct ValueExpression {
 ValueExpression parseExpression(const std::string& expression) {
     const bool reciprocal = expression.starts_with("1/");
     ValueExpression parsed{reciprocal ? expression.substr(2) : expression, reciprocal};
-    if (parsed.path.empty()) throw Error("value '" + expression + "': expected a dotted JSON path, e.g. stats.wall_seconds");
+    if (parsed.path.empty())
+        throw Error("value '" + expression + "': expected a dotted JSON path, e.g. " + stats_field::wallSeconds.dotted());
+    requireStatsField(parsed.path, "value '" + expression + "'");
     return parsed;
 }
 
@@ -96,11 +99,12 @@ std::string methodFamily(const json& stats, const fs::path& file) {
         // A peer renderer (vri-peer-vtk) has no precision option: its family is its method.
         if (!options.contains("precision")) return method;
         // An outside renderer (vri-outside): its name; the card's method is what it was asked to compute.
-        if (stats.at("stats").value("backend", "") == "outside") return stats.at("renderer").at("name").get<std::string>();
+        using namespace stats_field;
+        const std::string runBackend = stats.value(backend.at(), "cpu");
+        if (runBackend == "outside") return stats.at("renderer").at("name").get<std::string>();
         std::string family = method + " " + options.at("precision").get<std::string>();
-        const json& run = stats.at("stats");
-        if (run.value("backend", "cpu") == "vulkan") family += " vulkan";
-        else if (run.contains("simd_target") && !run["simd_target"].is_null()) family += " SIMD";
+        if (runBackend == "vulkan") family += " vulkan";
+        else if (stats.contains(simdTarget.at()) && !stats.at(simdTarget.at()).is_null()) family += " SIMD";
         // A target forced below the best (--simd AVX2) is a family of its own, so that a chart or a
         // table's rows keep one host's targets apart.
         if (options.contains("simd_target")) family += " " + options.at("simd_target").get<std::string>();
@@ -303,7 +307,7 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     // The exact method's per-pixel error bound, where a row has one: its tolerance is no bound.
     const bool anyBound = std::ranges::any_of(rows, [](const TradeoffRow& row) {
         const json stats = readJsonFile(row.stats);
-        return stats.contains("stats") && stats["stats"].contains("error_bound");
+        return stats.contains(stats_field::errorBoundMax.at());
     });
     addColumn("seconds", kDigits, true);
     addColumn("frames", 0, false);
@@ -331,7 +335,7 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
     addColumn("pareto max", 0, false);
 
     const auto secondsOf = [](const TradeoffRow& row) {
-        return numberAt(readJsonFile(row.stats), "timing.median_wall_seconds", row.stats);
+        return numberAt(readJsonFile(row.stats), stats_field::medianFrameSeconds.dotted(), row.stats);
     };
     const double baselineSeconds = options.baseline.empty() ? 0.0 : secondsOf(*baseline);
     if (!options.baseline.empty() && !(baselineSeconds > 0))
@@ -342,16 +346,15 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         if (channelNames(diff, row.diff) != channels)
             throw Error(row.diff.string() + ": its channels differ from those of " + first.string());
         const json stats = readJsonFile(row.stats);
-        const double seconds = numberAt(stats, "timing.median_wall_seconds", row.stats);
+        const double seconds = numberAt(stats, stats_field::medianFrameSeconds.dotted(), row.stats);
         table.rows.push_back(row.label);
         table.texts.push_back({methodFamily(stats, row.stats)});
         auto& cells = table.cells.emplace_back();
         cells.push_back(seconds);
         // How far one frame's time strays: (slowest - fastest) / median over the timed frames; 0 for one frame.
-        const json& frames = stats.at("timing").at("wall_seconds");
         std::vector<double> times;
-        for (const json& t : frames) times.push_back(t.get<double>());
-        if (times.empty()) throw Error(row.stats.string() + ": timing.wall_seconds has no frame");
+        for (const json& t : jsonAtPath(stats, stats_field::frameSeconds.dotted(), row.stats)) times.push_back(t.get<double>());
+        if (times.empty()) throw Error(row.stats.string() + ": " + stats_field::frameSeconds.dotted() + " has no frame");
         const auto [fastest, slowest] = std::ranges::minmax(times);
         cells.push_back(static_cast<double>(times.size()));
         cells.push_back(seconds > 0 ? 100 * (slowest - fastest) / seconds : 0.0);
@@ -359,9 +362,8 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
         cells.push_back(ci.low);
         cells.push_back(ci.high);
         if (!options.baseline.empty()) cells.push_back(seconds / baselineSeconds);
-        const json* samples = stats.contains("stats") ? &stats["stats"] : nullptr;
-        if (samples && samples->contains("samples_evaluated") && seconds > 0)
-            cells.push_back(numberAt(stats, "stats.samples_evaluated", row.stats) / seconds / 1e6);
+        if (stats.contains(stats_field::samplesEvaluated.at()) && seconds > 0)
+            cells.push_back(numberAt(stats, stats_field::samplesEvaluated.dotted(), row.stats) / seconds / 1e6);
         else
             cells.emplace_back();
         for (std::size_t t = 0; t < options.thresholds.size(); ++t) {
@@ -390,9 +392,9 @@ Table tradeoffTable(const std::vector<TradeoffRow>& rows, const TradeoffOptions&
             else cells.emplace_back();  // equal images (an infinite PSNR), or a diff made before the metrics
         }
         if (anyBound) {
-            if (stats.contains("stats") && stats["stats"].contains("error_bound")) {
+            if (stats.contains(stats_field::errorBoundMax.at())) {
                 double bound = 0;
-                for (const json& b : stats["stats"]["error_bound"].at("max")) bound = std::max(bound, b.get<double>());
+                for (const json& b : stats.at(stats_field::errorBoundMax.at())) bound = std::max(bound, b.get<double>());
                 cells.push_back(bound);
             } else {
                 cells.emplace_back();

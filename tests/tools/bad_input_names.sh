@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Bad names and paths, each one line naming the file, line, column and key, exit 1, nothing written:
-# experiment, scene, method, comparison, command, table and figure names outside the safe set,
+# experiment, scene, method, comparison, command, table and figure names outside the safe set, a table's
+# value naming no field of the stats schema,
 # command options and inputs that would write outside the experiment's folder, tools that cannot be
 # a command's, a folder another vri-run holds, a lock file that is not a regular file, and gnuplot
 # failing, leaving a cut-off PNG, or killed, each named by its figure.
@@ -25,6 +26,14 @@ refused() {
   printf '%s\n' "$2" > "$1.yaml"
   bad 1 "^vri-run: error: $1.yaml:$3" -- "$run" --results out "$1.yaml"
 }
+refused stats_field "name: v
+$head
+$scene
+methods:
+  riemann: {placement: eye}
+tables:
+  t: {group_by: scene, value: timing.median_wall_second}" \
+  "9:31: value: 'timing.median_wall_second' is no field of a render's stats \\(nearest: timing.median_wall_seconds\\)"
 refused dotdot "name: \"..\"
 $head
 $commands" \

@@ -295,7 +295,9 @@ bad 64 "${E}--row: an empty word cannot be one of its values \(see --help\)$" --
 bad 64 "${E}--cell: an empty word cannot be one of its values \(see --help\)$" -- \
     "$bin/vri-tabulate" --layout matrix --cell A '' stats.json --value stats.wall_seconds -o table.md
 bad 1 "${E}--layout matrix needs --value EXPR" -- "$bin/vri-tabulate" --layout matrix --cell A B stats.json -o table.md
-bad 1 "${E}stats.json: has no 'stats.nothing'" -- \
+bad 1 "${E}stats.json: has no 'stats.error_bound'" -- \
+    "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.error_bound.max -o table.md
+bad 1 "${E}value 'stats.nothing': 'stats.nothing' is no field of a render's stats \\(nearest: stats.nonfinite_pixels\\)" -- \
     "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value stats.nothing -o table.md
 bad 1 "${E}value '1/': expected a dotted JSON path" -- \
     "$bin/vri-tabulate" --layout matrix --cell A B stats.json --value 1/ -o table.md

@@ -135,7 +135,7 @@ expect_failure() {  # expect_failure TEXT ARGS...
 }
 expect_failure "missing.json: no such file" --layout thresholds --row R missing.json -o t1.md --csv t1.csv
 expect_failure "no count above 0.5" --layout thresholds --thresholds 0.5 --row R riemann.json -o t1.md --csv t1.csv
-expect_failure "has no 'stats.nope'" --layout matrix --value stats.nope --cell a b run1.json -o t1.md --csv t1.csv
+expect_failure "'stats.nope' is no field of a render's stats" --layout matrix --value stats.nope --cell a b run1.json -o t1.md --csv t1.csv
 expect_failure "value belongs to --layout matrix" --layout thresholds --row R riemann.json --value x -o t1.md
 expect_failure "run belongs to --layout tradeoff" --layout thresholds --run R riemann-h1.json vs-riemann-h1.json -o t1.md
 expect_failure "row belongs to --layout thresholds" --layout tradeoff --row R riemann.json -o t1.md

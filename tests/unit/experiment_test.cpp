@@ -261,6 +261,15 @@ quick:
           "-o results/t/rays-node.csv --summary results/t/errors-node.md");
     CHECK(step.inputs == std::vector<fs::path>{d.dir / "a.yaml"});
     CHECK(step.outputs == std::vector<fs::path>{plan.resultsDir / "rays-node.csv", plan.resultsDir / "errors-node.md"});
+    CHECK(step.threads == 0);  // the tool's default
+    CHECK(step.pixels == 0);
+
+    // threads: and size: are what a Slurm job asks for, typed when the file is read.
+    const std::string sized = kHead + "commands:\n  c: {tool: vri-rays2d, options: {threads: 3, size: 20x10}, outputs: {o: c.csv}}\n";
+    const vri::Experiment s = d.parse(sized);
+    const vri::Plan sizedPlan = vri::planExperiment(s, d.dir / "results" / s.name, d.dir);
+    CHECK(sizedPlan.step("c").threads == 3);
+    CHECK(sizedPlan.step("c").pixels == 200);
 
     // quick: merges into a command's options key by key.
     const vri::ToolOptions quick = d.parse(text, true).commands.at(0).options;
@@ -284,6 +293,9 @@ TEST_CASE("experiment: a mistake in a command is named with its line and column"
               .starts_with("exp.yaml:8:18: input 'tf': no such file"));
     CHECK(d.error(head + "    outputs: {o: ../x.csv}\n").starts_with("exp.yaml:7:18: output 'o' must be a file name"));
     CHECK(d.error(head + "    outputs: {}\n").starts_with("exp.yaml:7:14: command 'c' has no outputs"));
+    CHECK(d.error(head + "    outputs: {o: x.csv}\n    options: {threads: two}\n")
+              .starts_with("exp.yaml:8:24: threads: expected"));
+    CHECK(d.error(head + "    outputs: {o: x.csv}\n    options: {size: 10}\n").starts_with("exp.yaml:8:21: size: "));
     CHECK(d.error(kHead + "commands:\n  c: {tool: rays2d, outputs: {o: x.csv}}\n")
               .starts_with("exp.yaml:5:13: tool must be a vri tool"));
 }
@@ -454,6 +466,7 @@ TEST_CASE("experiment: tiles: N plans N bands with --region and a merge writing 
     const vri::Step& tile = plan.step("riemann-r1.tile-2");
     CHECK(tile.tool == "vri-render");
     CHECK(vri::test::hasOption(tile.arguments, "--region", "0,1,8,2"));  // rows 5/3 .. 10/3
+    CHECK(tile.pixels == 8 * 2);  // what its Slurm job's memory is sized by: the region's, not the image's
     CHECK(vri::test::hasOption(tile.arguments, "-o", "results/t/riemann-r1.tile-2.exr"));
     const vri::Step& merge = plan.step("riemann-r1");
     CHECK(merge.tool == "vri-merge-tiles");

@@ -8,8 +8,11 @@
 
 namespace {
 
-vri::Step planStep(const std::string& id, const std::string& kind, std::vector<std::string> arguments = {}) {
-    return vri::Step{id, kind, "vri-x", std::move(arguments), {}, {}, {}};
+vri::Step planStep(const std::string& id, const std::string& kind, std::uint64_t pixels = 0, int threads = 0) {
+    vri::Step step{id, kind, "vri-x", {}, {}, {}, {}};
+    step.pixels = pixels;
+    step.threads = threads;
+    return step;
 }
 
 std::vector<std::vector<std::size_t>> stepsOf(const std::vector<vri::JobBundle>& bundles) {
@@ -46,7 +49,7 @@ TEST_CASE("bundleSteps packs cheap steps in plan order and keeps long or unprice
 
 TEST_CASE("jobResources: threads, memory from the image size, time from the price") {
     vri::Plan plan{"/r/exp", "/r", {}, {}};
-    plan.steps = {planStep("a", "render", {"--size", "1000x1000", "--threads", "3"}), planStep("b", "render", {"--size", "10x10"}),
+    plan.steps = {planStep("a", "render", 1000 * 1000, 3), planStep("b", "render", 10 * 10),
                   planStep("c", "diff")};
     const vri::JobResources a = vri::jobResources(plan, {{0}, 90, true}, 2);
     CHECK(a.cpus == 3);
@@ -59,7 +62,7 @@ TEST_CASE("jobResources: threads, memory from the image size, time from the pric
     CHECK(vri::jobResources(plan, {{1, 2, 0}, 1, true}, 2).cpus == 3);  // the bundle's largest
     CHECK(vri::jobName(plan, {{1, 2}, 1, true}) == "vri:exp:b+1");
     CHECK(vri::jobName(plan, {{0}, 1, true}) == "vri:exp:a");
-    plan.steps.push_back(planStep("d", "render", {"--threads", "0"}));
+    plan.steps.push_back(planStep("d", "render", 0, 0));
     CHECK(vri::jobResources(plan, {{3}, 0, false}, 4).cpus == 4);  // 0, all cores: the default
 }
 

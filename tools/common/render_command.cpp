@@ -20,6 +20,7 @@
 #include "libvri/render/render_job.h"
 #include "libvri/render/render_json.h"
 #include "libvri/render/scene_card.h"
+#include "libvri/render/stats_schema.h"
 #include "libvri/render/verification.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/format.h"
@@ -279,13 +280,13 @@ int RenderCommand::runOutside() {
     nlohmann::json record = provenanceRecord(name_, commandLine(argc_, argv_), setup, request);
     record["inputs"].push_back(run.renderer["executable"]);
     record["renderer"] = run.renderer;
-    record["stats"] = {{"backend", "outside"},
-                       {"rays", static_cast<std::uint64_t>(run.image.width) * run.image.height},
-                       {"quantisation", run.quantisation},
-                       {"nonfinite_pixels", nonfinite.count},
-                       {"out_of_range_pixels", toJson(findOutOfRangePixels(run.image))}};
+    put(record, stats_field::backend, "outside");
+    put(record, stats_field::rays, static_cast<std::uint64_t>(run.image.width) * run.image.height);
+    put(record, stats_field::quantisation, run.quantisation);
+    put(record, stats_field::nonfinitePixels, nonfinite.count);
+    putOutOfRange(record, findOutOfRangePixels(run.image));
     record["timing"] = frameTimingRecord(0, run.wallSeconds);
-    record["timing"]["timed"] = run.timed;
+    put(record, stats_field::timed, run.timed);
     // The renderer's command as given, placeholders and all: the work folder is a fresh name each run, and the
     // image's bytes must not depend on it (the stats keep the words as run).
     const ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
@@ -298,7 +299,7 @@ int RenderCommand::runOutside() {
     files.write();
     if (!quiet_)
         std::cerr << name_ << ": " << run.renderer.value("name", rendererCommand_[0]) << ", " << run.image.width << "x"
-                  << run.image.height << " (" << run.quantisation << "), " << record["timing"]["median_wall_seconds"]
+                  << run.image.height << " (" << run.quantisation << "), " << record.at(stats_field::medianFrameSeconds.at())
                   << " s (" << run.timed << ")\n";
     return kExitOk;
 }
@@ -409,7 +410,7 @@ int RenderCommand::run() {
             if (result.exactStats)
                 std::cerr << result.exactStats->piecesVisible << " visible pieces in " << timing_.summary(wallSeconds)
                           << " on " << result.exactStats->threads << " threads; error bound max "
-                          << record["stats"]["error_bound"]["max"].dump() << "\n";
+                          << record.at(stats_field::errorBoundMax.at()).dump() << "\n";
             else
                 std::cerr << stats.samplesEvaluated << " samples in " << timing_.summary(wallSeconds) << " on "
                           << (stats.device.empty() ? std::to_string(stats.threads) + " threads" : stats.device) << "\n";

@@ -1,0 +1,61 @@
+#include "libvri/render/stats_schema.h"
+
+#include <algorithm>
+#include <array>
+
+#include "libvri/util/error.h"
+
+namespace vri {
+
+std::string StatsField::dotted() const {
+    std::string name(pointer.substr(1));
+    std::ranges::replace(name, '/', '.');
+    return name;
+}
+
+std::span<const StatsField> statsSchema() {
+    using namespace stats_field;
+    static constexpr std::array fields = {
+        wallSeconds, setupSeconds, setupReused, threads, rays, raysHit, samplesPlaced, samplesEvaluated,
+        samplesPerSecond, emptyBrickFraction, raysTerminated, terminationLeftOutMax, backend, device, interpolation,
+        simdTarget, voxelLoads, nonfinitePixels, firstNonfinitePixel, maxErrorSearch,
+        adaptiveInnerTries, adaptiveInnerFailures, adaptiveOuterTries, adaptiveOuterFailures, adaptiveOuterSteps,
+        adaptiveAcceptedAtMinimum, adaptivePointsUsed, adaptivePointsEvaluated,
+        simpsonRangeLimit, simpsonRangeLargest, simpsonRangePixelsBeyond,
+        preintSize, preintOrder, preintSegmentLength, preintErrorColour, preintErrorAlpha, preintPointsChecked,
+        preintCheckedDeltas,
+        outOfRangePixels, outOfRangeAbove, outOfRangeBelow, outOfRangeMax, outOfRangeMin,
+        raysOpaque, pieces, piecesVisible, subPieces, quadratureIntervals, quadratureNodes,
+        errorBoundChannels, errorBoundMax, errorBoundMean, errorBoundAppliesTo, errorBoundRoundingMax,
+        errorBoundStoredMax, errorBoundErrorImage,
+        quantisation,
+        warmUpFrames, repeats, frameSeconds, medianFrameSeconds, medianCi, load, timed,
+        machine,
+    };
+    return fields;
+}
+
+const StatsField* statsFieldOf(std::string_view dotted) {
+    for (const StatsField& field : statsSchema()) {
+        const std::string name = field.dotted();
+        if (dotted == name || (dotted.starts_with(name) && dotted[name.size()] == '.')) return &field;
+    }
+    return nullptr;
+}
+
+void requireStatsField(const std::string& dotted, const std::string& what) {
+    if (!dotted.starts_with("stats.") && !dotted.starts_with("timing.")) return;
+    if (statsFieldOf(dotted)) return;
+    // The fields of the same record whose names share the most leading characters, as a hint.
+    std::string hint;
+    std::size_t best = 0;
+    for (const StatsField& field : statsSchema()) {
+        const std::string name = field.dotted();
+        const std::size_t shared = static_cast<std::size_t>(std::ranges::mismatch(name, dotted).in1 - name.begin());
+        if (shared > best) best = shared, hint = name;
+    }
+    throw Error(what + ": '" + dotted + "' is no field of a render's stats" + (hint.empty() ? "" : " (nearest: " + hint + ")") +
+                "; docs/stats.md lists them");
+}
+
+}  // namespace vri
