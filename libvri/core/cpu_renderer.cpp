@@ -294,9 +294,12 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
     }
     if (opt.simd && PacketScene::supports(scene, opt)) {
         const StencilBricks* stencils = nullptr;
-        if (opt.skipEmptySpace && !lookup) {
+        if (opt.skipEmptySpace) {  // the transfer function's empty space, or the table's own
             const auto entry =
-                cache.stencilBricks(scene.volume, scene.convention, scene.transferFunction, rayOctants(camera));
+                lookup ? cache.preintegrationStencils(scene.volume, scene.convention, scene.transferFunction,
+                                                      lookup->segmentLength(), lookup->size(), lookup->order(),
+                                                      rayOctants(camera))
+                       : cache.stencilBricks(scene.volume, scene.convention, scene.transferFunction, rayOctants(camera));
             stencils = &entry.structure;
             stats.setupSeconds += entry.buildSeconds;
             if (!entry.reused) setupSpent += entry.buildSeconds;

@@ -20,6 +20,7 @@ void OccupancyCache::key(const std::shared_ptr<const void>& volume, GridConventi
     stencils_.structure.reset();
     preintegration_.structure.reset();
     preintegrationGrid_.structure.reset();
+    preintegrationStencils_.structure.reset();
     volume_ = volume;
     convention_ = convention;
     points_ = p;
@@ -62,14 +63,18 @@ OccupancyCache::Entry<StencilBricks> OccupancyCache::stencilBricks(const std::sh
                                                                    GridConvention convention,
                                                                    const TransferFunction& tf, unsigned octants) {
     key(volume, convention, tf);
-    const Entry<StencilBricks> entry = get(stencils_, *volume, convention, tf);
+    return withOctants(stencils_, get(stencils_, *volume, convention, tf), octants);
+}
+
+OccupancyCache::Entry<StencilBricks> OccupancyCache::withOctants(Slot<StencilBricks>& slot, Entry<StencilBricks> entry,
+                                                                 unsigned octants) {
     if ((octants & ~entry.structure.octants() & 0xFFu) == 0) return entry;
     const auto start = std::chrono::steady_clock::now();
-    stencils_.structure->addOctants(octants);
+    slot.structure->addOctants(octants);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // The bricks themselves were built by an earlier call if `entry` was reused: this call spent only the octants.
-    stencils_.buildSeconds += seconds;
-    return {*stencils_.structure, entry.reused ? seconds : stencils_.buildSeconds, false};
+    slot.buildSeconds += seconds;
+    return {*slot.structure, entry.reused ? seconds : slot.buildSeconds, false};
 }
 
 OccupancyCache::Entry<OccupancyCache::Preintegration> OccupancyCache::preintegration(
@@ -79,6 +84,7 @@ OccupancyCache::Entry<OccupancyCache::Preintegration> OccupancyCache::preintegra
     if (const TableKey wanted{length, size, order}; !(tableKey_ == wanted)) {
         preintegration_.structure.reset();
         preintegrationGrid_.structure.reset();
+        preintegrationStencils_.structure.reset();
         tableKey_ = wanted;
     }
     Slot<Preintegration>& slot = preintegration_;
@@ -100,6 +106,18 @@ OccupancyCache::Entry<OccupancyGrid> OccupancyCache::preintegrationGrid(const st
     slot.structure.emplace(*volume, convention, table);
     slot.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return {*slot.structure, slot.buildSeconds, false};
+}
+
+OccupancyCache::Entry<StencilBricks> OccupancyCache::preintegrationStencils(
+    const std::shared_ptr<const Volume>& volume, GridConvention convention, const TransferFunction& tf, double length,
+    int size, int order, unsigned octants) {
+    const PreintegrationTable& table = preintegration(volume, convention, tf, length, size, order).structure.table;
+    Slot<StencilBricks>& slot = preintegrationStencils_;
+    if (slot.structure) return withOctants(slot, {*slot.structure, slot.buildSeconds, true}, octants);
+    const auto start = std::chrono::steady_clock::now();
+    slot.structure.emplace(*volume, convention, table);
+    slot.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return withOctants(slot, {*slot.structure, slot.buildSeconds, false}, octants);
 }
 
 }  // namespace vri

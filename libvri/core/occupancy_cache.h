@@ -57,6 +57,10 @@ public:
     // With the distances of `octants` (rayOctants()) built; building missing ones counts as building.
     Entry<StencilBricks> stencilBricks(const std::shared_ptr<const Volume>& volume, GridConvention convention,
                                        const TransferFunction& tf, unsigned octants);
+    // The packet engine's bricks of the pre-integration table's own empty space (the table as preintegration()).
+    Entry<StencilBricks> preintegrationStencils(const std::shared_ptr<const Volume>& volume, GridConvention convention,
+                                                const TransferFunction& tf, double length, int size, int order,
+                                                unsigned octants);
 
 private:
     template <class Structure>
@@ -70,6 +74,8 @@ private:
     template <class Structure, class V>
     Entry<Structure> get(Slot<Structure>& slot, const V& volume, GridConvention convention,
                          const TransferFunction& tf);
+    // `entry`, a slot's, with the distances of `octants` added where missing.
+    static Entry<StencilBricks> withOctants(Slot<StencilBricks>& slot, Entry<StencilBricks> entry, unsigned octants);
 
     std::shared_ptr<const void> volume_;  // a Volume or a SparseVolume
     GridConvention convention_ = GridConvention::CellCentred;
@@ -80,6 +86,7 @@ private:
     Slot<StencilBricks> stencils_;
     Slot<Preintegration> preintegration_;
     Slot<OccupancyGrid> preintegrationGrid_;
+    Slot<StencilBricks> preintegrationStencils_;
     struct TableKey {
         double length = 0;
         int size = 0, order = 0;

@@ -173,10 +173,18 @@ double OccupancyGrid::emptyFraction() const {
 }
 
 StencilBricks::StencilBricks(const Volume& volume, GridConvention, const TransferFunction& tf) {
+    findEmpty(volume, invisibleTo(tf));
+}
+
+StencilBricks::StencilBricks(const Volume& volume, GridConvention, const PreintegrationTable& table) {
+    findEmpty(volume, [&table](double s0, double s1) { return table.isInvisible(s0, s1); });
+}
+
+void StencilBricks::findEmpty(const Volume& volume, const std::function<bool(double, double)>& invisible) {
     const int size = 1 << kShift;
     for (int a = 0; a < 3; ++a) bricks_[a] = (volume.dims[a] - 1) / size + 1;
     // Each brick's voxels and the next one's first (the stencils' far corners).
-    empty_ = emptyBlocks(volume, bricks_, size, 0, EmptinessTest(volume.normalisationRange(), invisibleTo(tf)));
+    empty_ = emptyBlocks(volume, bricks_, size, 0, EmptinessTest(volume.normalisationRange(), invisible));
     distance_.assign(8 * empty_.size() + 3, 0);
 }
 

@@ -7,6 +7,7 @@
 // rounding in sample positions or in a float sampler cannot make it wrong.
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -100,6 +101,11 @@ public:
 
     // The empty bricks; no octant's distances yet.
     StencilBricks(const Volume& volume, GridConvention convention, const TransferFunction& tf);
+    // Pre-integration's: a brick is empty where the table's lookups between any two of its scalars are
+    // exactly 0 (PreintegrationTable::isInvisible). The ends of a segment one step apart, a step shorter than
+    // a brick along every axis, lie in one brick or in two that touch, whose voxel ranges share voxels: two
+    // such ranges lie in one run of zero entries, and the segment's lookup is 0 too.
+    StencilBricks(const Volume& volume, GridConvention convention, const PreintegrationTable& table);
 
     // Builds the distances of the octants in `octants` (bit o for octant o) not built yet.
     void addOctants(unsigned octants);
@@ -112,6 +118,8 @@ public:
     const std::vector<std::uint8_t>& distances() const { return distance_; }
 
 private:
+    void findEmpty(const Volume& volume, const std::function<bool(double, double)>& invisible);
+
     glm::ivec3 bricks_;
     std::vector<std::uint8_t> empty_;
     unsigned octants_ = 0;

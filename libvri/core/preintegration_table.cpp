@@ -1,6 +1,7 @@
 #include "libvri/core/preintegration_table.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -108,6 +109,14 @@ bool PreintegrationTable::isInvisible(double s0, double s1) const {
     const int first = cell(s0), last = cell(s1) + 1;
     const int run = zeroRun_[static_cast<std::size_t>(first)];
     return run >= 0 && zeroRun_[static_cast<std::size_t>(last)] == run;
+}
+
+double PreintegrationTable::invisibleBelow() const {
+    const int run = zeroRun_.front();
+    if (run < 0) return 0.0;
+    int last = 0;  // the run's last entry: a lookup at s reads entries up to floor(s (size - 1)) + 1
+    while (last + 1 < size_ && zeroRun_[static_cast<std::size_t>(last) + 1] == run) ++last;
+    return last + 1 == size_ ? std::numeric_limits<double>::infinity() : static_cast<double>(last) / (size_ - 1);
 }
 
 SegmentIntegral<double> PreintegrationTable::direct(const TransferFunction& tf, double segmentLength, double front,

@@ -846,9 +846,10 @@ HWY_INLINE void interpolateTable(const float* v, const TableLookup& l, int size,
     }
 }
 
-// Pre-integration (cpu_renderer.cpp's marchSegments) on packets: every lane looks up every segment (no
-// empty-space jumps: an interpolated entry next to an empty brick need not be zero), its scalars read
-// by the same stencils as a sample, and RayAccumulator::addSegment in lanes.
+// Pre-integration (cpu_renderer.cpp's marchSegments) on packets: each lane looks up its segments in order,
+// its scalars read by the same stencils as a sample, and RayAccumulator::addSegment in lanes; a lane jumps
+// over segments in the table's own empty space (sc.emptyDistance: the pre-integration StencilBricks) and
+// reads its front scalar again where it lands, at the same position the segment before would have given it.
 template <class T>
 void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
     const DF df;
@@ -863,6 +864,10 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
     const VF upper[4] = {hn::Set(df, table.upperBound<float>()[0]), hn::Set(df, table.upperBound<float>()[1]),
                          hn::Set(df, table.upperBound<float>()[2]), hn::Set(df, table.upperBound<float>()[3])};
     const float segmentLength = static_cast<float>(table.segmentLength());
+    // Below this both ends of a segment look up exactly 0 (PreintegrationTable::invisibleBelow, less far more
+    // than the float rounding of a scalar and of its cell): a round where every lane's segment lies there looks
+    // nothing up.
+    const VF zeroBelow = hn::Set(df, static_cast<float>(table.invisibleBelow() - 1e-5));
     const int width = x1 - x0;
     const PixelRegion area = renderedRegion(sc.options.region, sc.camera);
     PacketOrder order(width, y1 - y0, n);
@@ -871,11 +876,15 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
     HWY_ALIGN float r[kMaxLanes], g[kMaxLanes], b[kMaxLanes], transparency[kMaxLanes];
     HWY_ALIGN std::int32_t count[kMaxLanes];
     int pixel[kMaxLanes];
-    const auto scalarAt = [&](VF t, MF valid, const VF (&e)[3], const VF (&d)[3]) {
+    std::uint64_t lookedUp = 0;  // segments looked up, of all lanes
+    const auto stencilAt = [&](VF t, MF valid, const VF (&e)[3], const VF (&d)[3]) {
         VF u[3];
         for (int a = 0; a < 3; ++a)
             u[a] = hn::Add(e[a], hn::Mul(t, d[a]));
-        return interpolate<T>(sc, locate(sc, u, valid));
+        return locate(sc, u, valid);
+    };
+    const auto scalarAt = [&](VF t, MF valid, const VF (&e)[3], const VF (&d)[3]) {
+        return interpolate<T>(sc, stencilAt(t, valid, e, d));
     };
     for (;;) {
         std::size_t filled = 0;
@@ -912,42 +921,101 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
         const VF segmentOffset = hn::Sub(start, hn::Mul(hn::Set(df, 0.5f), step));  // FixedStepSamples::segmentStart
         const VI lanesCount = hn::Load(di, count);
         const VF zero = hn::Zero(df), one = hn::Set(df, 1.f);
-        VF cr = zero, cg = zero, cb = zero, left = one;
-        MF active = hn::RebindMask(df, hn::Lt(hn::Zero(di), lanesCount));
-        VF front = scalarAt(hn::Add(segmentOffset, hn::Mul(zero, step)), active, e, d);  // segmentStart(0)
-        std::int32_t most = 0;
-        for (std::size_t lane = 0; lane < n; ++lane)
-            most = std::max(most, count[lane]);
-        for (std::int32_t k = 0; k < most; ++k) {
-            active = hn::RebindMask(df, hn::Lt(hn::Set(di, k), lanesCount));
-            const VF next = hn::ConvertTo(df, hn::Set(di, k + 1));
-            const VF back = scalarAt(hn::Add(segmentOffset, hn::Mul(next, step)), active, e, d);
+        // The jumps over the table's empty space (StencilBricks' pre-integration bricks): samples per voxel along
+        // each axis, the octant of each ray, and which rays may jump at all: those whose step is shorter than a
+        // brick along every axis, so that a segment's two ends lie in bricks that touch.
+        VF samplesPerVoxel[3];
+        VI octant = hn::Zero(di);
+        MF mayJump = hn::RebindMask(df, hn::Lt(hn::Zero(di), lanesCount));
+        for (int a = 0; a < 3; ++a) {
+            const VF voxelsPerStep = hn::Abs(hn::Mul(hn::Mul(d[a], hn::Set(df, sc.layout.scale[a])), step));
+            samplesPerVoxel[a] = hn::Div(one, voxelsPerStep);
+            mayJump = hn::And(mayJump, hn::Lt(voxelsPerStep, hn::Set(df, float(1 << StencilBricks::kShift))));
+            octant = hn::IfThenElse(hn::RebindMask(di, hn::Lt(d[a], zero)),
+                                    hn::Add(octant, hn::Set(di, (1 << a) * sc.octantStride)), octant);
+        }
+        VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);
+        VF cr = zero, cg = zero, cb = zero, left = one, front = zero;
+        VI k = hn::Zero(di);
+        MF haveFront = hn::FirstN(df, 0);  // lanes whose front scalar, and its stencil, the round before left
+        Stencil frontStencil{};
+        const auto boundary = [&](VI at) { return hn::Add(segmentOffset, hn::Mul(hn::ConvertTo(df, at), step)); };
+        for (;;) {
+            const MF active = hn::RebindMask(df, hn::Lt(k, lanesCount));
+            if (hn::AllFalse(df, active)) break;
+            // A lane whose segment starts in an empty brick jumps over the segments whose ends certainly lie in
+            // empty bricks (samplesInEmptyCube: boundaries k .. k + m), each of which looks up exactly 0 and adds
+            // nothing (RayAccumulator::addSegment); the others look theirs up. A lane that jumped looks again
+            // from where it landed, in the next round.
+            MF jumped = hn::FirstN(df, 0);
+            const MF jumping = hn::And(active, mayJump);
+            if (sc.emptyDistance && !hn::AllFalse(df, jumping)) {
+                const Stencil stencil =
+                    hn::AllFalse(df, hn::AndNot(haveFront, jumping)) ? frontStencil : stencilAt(boundary(k), active, e, d);
+                const VI brick = hn::Add(stencil.brick, octant);
+                if (!hn::AllTrue(di, hn::Eq(brick, lastBrick))) {
+                    lastBrick = brick;
+                    lastDistance = brickDistances(sc, brick);
+                }
+                const MF empty = hn::And(jumping, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
+                if (!hn::AllFalse(df, empty)) {
+                    const VI m = samplesInEmptyCube(stencil, lastDistance, d, samplesPerVoxel, sc.jumpMargin);
+                    jumped = hn::And(empty, hn::RebindMask(df, hn::Gt(m, hn::Zero(di))));
+                    k = hn::Min(hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, jumped), m)), lanesCount);
+                    haveFront = hn::AndNot(jumped, haveFront);
+                }
+            }
+            const MF looking = hn::AndNot(jumped, active);
+            if (hn::AllFalse(df, looking)) continue;
+            const MF needFront = hn::AndNot(haveFront, looking);
+            if (!hn::AllFalse(df, needFront)) front = hn::IfThenElse(needFront, scalarAt(boundary(k), needFront, e, d), front);
+            const VI next = hn::Add(k, hn::Set(di, 1));
+            const Stencil backStencil = stencilAt(boundary(next), looking, e, d);
+            const VF back = interpolate<T>(sc, backStencil);
+            lookedUp += hn::CountTrue(df, looking);
+            const auto advance = [&] {
+                front = back;
+                frontStencil = backStencil;
+                haveFront = looking;
+                k = hn::IfThenElse(hn::RebindMask(di, looking), next, k);
+            };
+            if (hn::AllTrue(df, hn::Or(hn::Not(looking), hn::And(hn::Lt(front, zeroBelow), hn::Lt(back, zeroBelow))))) {
+                advance();  // every lane's lookup is 0
+                continue;
+            }
             VF v[4];
             const TableLookup l = lookupAt(table, front, back);
             interpolateTable(values, l, table.size(), v);
             if (secondOrder) {
-                const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, hn::Set(di, k)), step));
-                const VF delta = hn::Sub(scalarAt(t, active, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
+                const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, k), step));
+                const VF delta = hn::Sub(scalarAt(t, looking, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
                 VF slope[4];
                 interpolateTable(slopes, l, table.size(), slope);
                 for (int c = 0; c < 4; ++c)  // kept within [0, upperBound] as PreintegrationTable::operator() keeps it
-                    v[c] = hn::Max(hn::Min(hn::Add(v[c], hn::Mul(delta, slope[c])), upper[c]),
-                                   zero);
+                    v[c] = hn::Max(hn::Min(hn::Add(v[c], hn::Mul(delta, slope[c])), upper[c]), zero);
             }
             // RayAccumulator::addSegment.
             const MF adds = hn::AndNot(hn::And(hn::And(hn::Eq(v[3], zero), hn::Eq(v[0], zero)),
                                                hn::And(hn::Eq(v[1], zero), hn::Eq(v[2], zero))),
-                                       active);
-            const VF depth = hn::Mul(v[3], lengthRatio);
-            const VF corrected = hn::Div(exp_kernel::expm1(ops, hn::Neg(depth)), exp_kernel::expm1(ops, hn::Neg(v[3])));
-            const VF scale = hn::IfThenElse(hn::Eq(lengthRatio, one), one,
-                                            hn::IfThenElse(hn::Gt(v[3], zero), corrected, lengthRatio));
-            const VF w = hn::Mul(left, scale);
-            cr = hn::IfThenElse(adds, hn::Add(cr, hn::Mul(w, v[0])), cr);
-            cg = hn::IfThenElse(adds, hn::Add(cg, hn::Mul(w, v[1])), cg);
-            cb = hn::IfThenElse(adds, hn::Add(cb, hn::Mul(w, v[2])), cb);
-            left = hn::IfThenElse(adds, hn::Mul(left, exp_kernel::exp(ops, hn::Neg(depth))), left);
-            front = back;
+                                       looking);
+            if (!hn::AllFalse(df, adds)) {
+                const VF depth = hn::Mul(v[3], lengthRatio);
+                // A segment of the table's length (lengthRatio 1, every segment of an equally spaced volume under
+                // Entry or Eye Align) needs no correction: its two expm1 and a division are left out.
+                VF scale = one;
+                if (!hn::AllTrue(df, hn::Or(hn::Not(adds), hn::Eq(lengthRatio, one)))) {
+                    const VF corrected =
+                        hn::Div(exp_kernel::expm1(ops, hn::Neg(depth)), exp_kernel::expm1(ops, hn::Neg(v[3])));
+                    scale = hn::IfThenElse(hn::Eq(lengthRatio, one), one,
+                                           hn::IfThenElse(hn::Gt(v[3], zero), corrected, lengthRatio));
+                }
+                const VF w = hn::Mul(left, scale);
+                cr = hn::IfThenElse(adds, hn::Add(cr, hn::Mul(w, v[0])), cr);
+                cg = hn::IfThenElse(adds, hn::Add(cg, hn::Mul(w, v[1])), cg);
+                cb = hn::IfThenElse(adds, hn::Add(cb, hn::Mul(w, v[2])), cb);
+                left = hn::IfThenElse(adds, hn::Mul(left, exp_kernel::exp(ops, hn::Neg(depth))), left);
+            }
+            advance();
         }
         hn::Store(cr, df, r);
         hn::Store(cg, df, g);
@@ -961,9 +1029,9 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
             out[2] = b[lane];
             out[3] = 1.f - transparency[lane];
             counts.samplesPlaced += static_cast<std::uint64_t>(count[lane]);
-            counts.samplesEvaluated += static_cast<std::uint64_t>(count[lane]);
         }
     }
+    counts.samplesEvaluated += lookedUp;
 }
 
 template <class T>

@@ -172,6 +172,12 @@ TEST_CASE("preintegration table: its own empty space is where every lookup is ex
         CHECK(!table.isInvisible(0.0, 0.1));    // reaches the rise after 0.05
         CHECK(!table.isInvisible(0.3, 0.4));    // visible
         CHECK(!table.isInvisible(0.02, 0.97));  // two empty ends, a visible segment between them
+        // The leading run: every pair below invisibleBelow() is empty, and the cell after it is not.
+        const double below = table.invisibleBelow();
+        CHECK(below > 0.02);
+        CHECK(below <= 0.05 + 1.0 / 63);
+        CHECK(table.isInvisible(0.0, below - 1e-9));
+        CHECK(!table.isInvisible(0.0, below + 1.0 / 63));
         // Wherever the test says empty, every lookup there is 0: dense front, back and delta.
         for (double s0 = 0.0; s0 < 1.0; s0 += 1.0 / 128)
             for (double s1 = s0; s1 <= 1.0; s1 += 1.0 / 128) {
