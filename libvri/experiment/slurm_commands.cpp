@@ -183,18 +183,19 @@ std::string submitJob(const std::vector<std::string>& arguments) {
     return parseSbatchJobId(output);
 }
 
-std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds) {
+std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds, bool interruptible) {
     if (jobIds.empty()) return {};
+    const CaptureLimits limits = interruptible ? kClientLimits : CaptureLimits{kSlurmClientSeconds, kSlurmClientBytes, nullptr};
     const std::filesystem::path squeue = slurmProgram("squeue");
     const std::vector<std::string> words = squeueArguments(jobIds);
     // Its warnings on stderr are not job lines: only stdout is read.
     const auto [status, output] =
-        captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false}, kClientLimits);
+        captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false}, limits);
     if (status.ok()) return parseSqueue(output);
     // squeue lists the ids it knows and skips the others, but fails when it knows none of them; asked
     // again with its stderr, its message tells that from a controller that does not answer.
     const auto [again, said] =
-        captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true}, kClientLimits);
+        captureProcess(squeue, words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true}, limits);
     if (again.ok()) return parseSqueue(said);
     if (said.find("Invalid job id") != std::string::npos) return {};
     throw Error("squeue failed (" + again.describe() + "): " + printableShort(firstErrorLine(said)));

@@ -56,7 +56,9 @@ inline constexpr std::size_t kSlurmClientBytes = std::size_t(16) << 20;
 std::string submitJob(const std::vector<std::string>& arguments);
 // The jobs' states; a job squeue no longer knows is absent from the map. squeue failing otherwise (the
 // controller not answering) is a vri::Error.
-std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds);
+// `interruptible`: squeue is stopped when a signal sets gSlurmInterrupt; false for the queries made after
+// one, while a stopped vri-run waits for the jobs it cancelled to end.
+std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds, bool interruptible = true);
 // scancel for these jobs; errors are ignored (a job may have ended meanwhile).
 void cancelJobs(const std::vector<std::string>& jobIds);
 

@@ -107,10 +107,16 @@ void writeJobScript(const fs::path& script) {
 void cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
     cancelJobs(jobs);
     const auto start = Clock::now();
-    while (std::chrono::duration<double>(Clock::now() - start).count() < kCancelWaitSeconds) {
+    bool said = false;  // a wait longer than a few seconds says what it waits for
+    for (double waited = 0; waited < kCancelWaitSeconds; waited = std::chrono::duration<double>(Clock::now() - start).count()) {
+        if (!said && waited > 5) {
+            std::cerr << "vri-run: waiting for cancelled Slurm jobs " << jobList(jobs) << " to end (at most "
+                      << kCancelWaitSeconds << " s)\n";
+            said = true;
+        }
         std::map<std::string, SlurmJob> states;
         try {
-            states = queryJobs(jobs);
+            states = queryJobs(jobs, false);  // after a signal too: that is when this wait matters
         } catch (const Error&) {
             return;  // the controller does not answer: scancel has been asked, nothing more to do
         }
