@@ -51,7 +51,7 @@ struct Options {
     std::string executor = "local";
     std::string slurmPartition, slurmAccount;
     std::vector<std::string> slurmArguments;
-    double slurmBundle = 60, slurmPoll = 1;
+    double slurmBundle = 60, slurmPoll = 1, slurmMaxPending = 0;
     int slurmCpus = 2;
     std::string nodeSteps, nodeCheck;  // inside a Slurm job (hidden)
     std::string newStudy;
@@ -80,6 +80,7 @@ vri::SlurmOptions slurmOptions(const Options& options) {
     slurm.bundleSeconds = options.slurmBundle;
     slurm.cpus = options.slurmCpus;
     slurm.pollSeconds = options.slurmPoll;
+    slurm.maxPendingSeconds = options.slurmMaxPending;
     return slurm;
 }
 
@@ -383,6 +384,11 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--slurm-poll", options.slurmPoll, "seconds between two looks at the jobs (squeue), 0.1 to 600")
         ->check(vri::numberRange(0.1, 600.0))
+        ->capture_default_str();
+    app.add_option("--slurm-max-pending", options.slurmMaxPending,
+                   "give up (cancelling every job) once no job has run for SECONDS while some pend for the cluster "
+                   "(a partition down, a drained node, a hold); 0: wait; a line says why they pend after a minute")
+        ->check(vri::numberRange(0.0, 1e7))
         ->capture_default_str();
     app.add_option("--new", options.newStudy,
                    "write NAME.yaml, NAME-tf.yaml and NAME-plot.yaml: a commented study to start an own one from, "

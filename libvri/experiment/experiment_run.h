@@ -21,6 +21,8 @@ struct SlurmOptions {
     double bundleSeconds = 60;  // steps estimated below this share jobs of about this many seconds; 0: a job each
     int cpus = 2;               // CPUs of a step that does not set its own --threads
     double pollSeconds = 1;     // how often squeue is asked
+    // --slurm-max-pending: give up once no job has run this long while some pend for the cluster (0: never).
+    double maxPendingSeconds = 0;
     // Whether a job has checked that the nodes share this host's files (slurm_executor.h): once a
     // vri-run, before its first submitted job. Shared by the copies of these options.
     std::shared_ptr<bool> nodesChecked = std::make_shared<bool>(false);

@@ -17,6 +17,7 @@
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_jobs.h"
 #include "libvri/experiment/slurm_node.h"
+#include "libvri/experiment/slurm_pending.h"
 #include "libvri/experiment/step_ledger.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/error.h"
@@ -103,6 +104,11 @@ void writeJobScript(const fs::path& script) {
     writeTextFile(script, "#!/bin/sh\n# vri-run's Slurm job: runs its arguments as one command.\nexec \"$@\"\n");
 }
 
+// When a wait first says that its jobs pend (slurm_pending.h): after a minute, or halfway to giving up.
+double firstPendingLine(const SlurmOptions& slurm) {
+    return slurm.maxPendingSeconds > 0 ? std::min(60.0, slurm.maxPendingSeconds / 2) : 60.0;
+}
+
 // Cancels `jobs` and waits until squeue shows them ended (or no longer knows them), at most kCancelWaitSeconds.
 void cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
     cancelJobs(jobs);
@@ -170,11 +176,17 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
     bool completed = true;  // unless squeue says otherwise (one that forgot it cannot)
     try {
         const std::string id = submitJob(arguments);
+        PendingWatch pending("the Slurm check job " + id, options.slurm.maxPendingSeconds, firstPendingLine(options.slurm));
         try {
             for (;;) {
                 if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + ": cancelled the Slurm check job " + id);
                 pause(options.slurm.pollSeconds);
                 const std::map<std::string, SlurmJob> states = queryJobs({id});
+                try {
+                    pending.update(states, std::cerr, Clock::now());
+                } catch (const Error& e) {
+                    throw Error(std::string(e.what()) + "; cancelled it");
+                }
                 const auto found = states.find(id);
                 if (found == states.end()) break;
                 if (isFinalJobState(found->second.state)) {
@@ -469,6 +481,8 @@ void SlurmBatch::run() {
     }
     try {
         auto lastAnswer = slurm_detail::Clock::now();
+        PendingWatch pending("Slurm jobs", impl_->options.slurm.maxPendingSeconds,
+                             slurm_detail::firstPendingLine(impl_->options.slurm));
         for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty(); ids = impl_->unendedIds()) {
             if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt) + ": cancelled Slurm jobs " + slurm_detail::jobList(ids));
             slurm_detail::pause(poll);
@@ -482,6 +496,11 @@ void SlurmBatch::run() {
                             " s; cancelled Slurm jobs " + slurm_detail::jobList(ids));
             }
             for (const auto& r : impl_->runs) r->update(states);
+            try {
+                pending.update(states, std::cerr, slurm_detail::Clock::now());
+            } catch (const Error& e) {
+                throw Error(std::string(e.what()) + "; cancelled Slurm jobs " + slurm_detail::jobList(ids));
+            }
         }
     } catch (...) {
         // Whatever stops the watch (an interrupt, squeue failing for minutes, a record that cannot be

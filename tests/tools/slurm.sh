@@ -198,6 +198,17 @@ grep -q "interrupted by SIGTERM: cancelled Slurm jobs [0-9,-]* ([0-9]* jobs\?)" 
 [ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "jobs are left after SIGTERM"; }
 no_partial_outputs
 
+# A job that cannot start (held an hour: squeue's reason BeginTime, as a partition down or a drained node
+# would hold it): a line says why it pends, --slurm-max-pending gives up and cancels it, and nothing is left.
+if "${slurm[@]}" --slurm-arg=--begin=now+1hour --slurm-max-pending 3 --results pend exp.yaml 2> pending.txt; then
+    fail "vri-run succeeded although its job could not start"
+fi
+grep -q "^vri-run: the Slurm check job [0-9]*: 1 job pending (squeue's reason: BeginTime) for [0-9.]* s, none running$" pending.txt ||
+    { cat pending.txt; fail "no line saying why the job pends"; }
+grep -q "^vri-run: error: the Slurm check job [0-9]*: 1 job pending (squeue's reason: BeginTime) for [0-9.]* s, none running: gave up after --slurm-max-pending 3 s; cancelled it$" pending.txt ||
+    { cat pending.txt; fail "--slurm-max-pending did not give up with the reason"; }
+[ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "a job is left after giving up"; }
+
 # A rerun completes, running only what is missing (the fast render was cached by the runs above).
 "${slurm[@]}" --results res slow.yaml 2> rerun.txt || { cat rerun.txt; fail "the rerun failed"; }
 summary_slow=$(grep "vri-run: slow:" rerun.txt)

@@ -1,0 +1,49 @@
+#include "libvri/experiment/slurm_pending.h"
+
+#include <utility>
+
+#include "libvri/experiment/step_costs.h"  // secondsText
+#include "libvri/util/error.h"
+#include "libvri/util/format.h"
+#include "libvri/util/printable.h"
+
+namespace vri {
+
+PendingWatch::PendingWatch(std::string what, double maxSeconds, double firstSay)
+    : what_(std::move(what)), maxSeconds_(maxSeconds), nextSay_(firstSay), firstSay_(firstSay) {}
+
+void PendingWatch::update(const std::map<std::string, SlurmJob>& states, std::ostream& out, Clock::time_point now) {
+    std::map<std::string, int> reasons;  // pending for the cluster, by squeue's reason
+    int pending = 0;
+    bool ran = false;
+    for (const auto& [id, job] : states) {
+        if (job.state != "PENDING") {
+            ran = ran || job.state == "RUNNING" || job.state == "COMPLETING" || job.state == "CONFIGURING";
+            continue;
+        }
+        if (job.reason == "Dependency") continue;  // waits for a job of this run
+        ++pending;
+        ++reasons[printableShort(job.reason.empty() ? "no reason given" : job.reason, 60)];
+    }
+    if (ran || pending == 0) {
+        stuckSince_.reset();
+        nextSay_ = firstSay_;
+        return;
+    }
+    if (!stuckSince_) stuckSince_ = now;
+    const double waited = std::chrono::duration<double>(now - *stuckSince_).count();
+    std::string why;
+    for (const auto& [reason, count] : reasons)
+        why += (why.empty() ? "" : ", ") + reason + (count > 1 ? " x" + std::to_string(count) : "");
+    const std::string line = what_ + ": " + std::to_string(pending) + (pending == 1 ? " job pending" : " jobs pending") +
+                             " (squeue's reason: " + why + ") for " + secondsText(waited) +
+                             ", none running";
+    if (maxSeconds_ > 0 && waited >= maxSeconds_)
+        throw Error(line + ": gave up after --slurm-max-pending " + exactNumber(maxSeconds_) + " s");
+    if (waited >= nextSay_) {
+        out << "vri-run: " << line << '\n';
+        nextSay_ *= 2;
+    }
+}
+
+}  // namespace vri
