@@ -201,6 +201,37 @@ std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds
     throw Error("squeue failed (" + again.describe() + "): " + printableShort(firstErrorLine(said)));
 }
 
+std::vector<std::string> parseUnendedIn(const std::string& output, const std::string& workDir) {
+    std::vector<std::string> ids;
+    std::istringstream lines(output);
+    std::string line;
+    while (std::getline(lines, line)) {
+        const std::size_t idEnd = line.find('|'), stateEnd = idEnd == std::string::npos ? idEnd : line.find('|', idEnd + 1);
+        if (stateEnd == std::string::npos) continue;  // not a job line
+        const auto trimmed = [](std::string s) {
+            s.erase(0, s.find_first_not_of(' '));
+            s.erase(s.find_last_not_of(' ') + 1);
+            return s;
+        };
+        const std::string id = trimmed(line.substr(0, idEnd));
+        const std::string state = trimmed(line.substr(idEnd + 1, stateEnd - idEnd - 1));
+        std::string dir = line.substr(stateEnd + 1);
+        dir.erase(dir.find_last_not_of(' ') + 1);  // the field's padding (a path ending in a space is not matched)
+        if (id.empty() || dir != workDir) continue;
+        if (!isFinalJobState(state.substr(0, state.find(' ')))) ids.push_back(id);
+    }
+    return ids;
+}
+
+std::vector<std::string> unendedJobsIn(const std::filesystem::path& workDir) {
+    const std::vector<std::string> words{"squeue", "--noheader", "--me", "--all", "--states=all", "--Format=JobID:|,State:|,WorkDir:"};
+    const auto [status, output] = captureProcess(slurmProgram("squeue"), words,
+                                                 {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false},
+                                                 kClientLimits);
+    if (!status.ok()) throw Error("squeue failed (" + status.describe() + ") listing this user's jobs");
+    return parseUnendedIn(output, workDir.string());
+}
+
 void cancelJobs(const std::vector<std::string>& jobIds) {
     if (jobIds.empty()) return;
     std::vector<std::string> words{"scancel"};

@@ -3,6 +3,7 @@
 // Every word goes to them as an argument vector (util/process.h), never through a shell. Slurm's
 // commands find their cluster as usual (SLURM_CONF, /etc/slurm/slurm.conf).
 #include <csignal>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -59,6 +60,12 @@ std::string submitJob(const std::vector<std::string>& arguments);
 // `interruptible`: squeue is stopped when a signal sets gSlurmInterrupt; false for the queries made after
 // one, while a stopped vri-run waits for the jobs it cancelled to end.
 std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds, bool interruptible = true);
+// This user's jobs that squeue shows not ended and whose working directory is `workDir`: those of an
+// earlier vri-run on the same results folder that it could not cancel (it was killed with SIGKILL).
+std::vector<std::string> unendedJobsIn(const std::filesystem::path& workDir);
+// The lines of `squeue --Format=JobID:|,State:|,WorkDir:` (the directory last, whatever it holds): the ids of
+// jobs not ended in `workDir`.
+std::vector<std::string> parseUnendedIn(const std::string& output, const std::string& workDir);
 // scancel for these jobs; errors are ignored (a job may have ended meanwhile).
 void cancelJobs(const std::vector<std::string>& jobIds);
 

@@ -377,7 +377,10 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
             ledger_.abandoned(i, "an earlier step of its " + where + " failed");
         } else if (status && status->exited && status->code == 0) {
             failed = !ledger_.succeeded(i, status->wallSeconds,
-                                        {.executor = "slurm", .node = status->node, .jobId = job.id, .jobState = state.state,
+                                        // Slurm's name for the node, which sinfo and scontrol take; the host's own
+                                        // where squeue has forgotten the job.
+                                        {.executor = "slurm", .node = state.node.empty() ? status->node : state.node,
+                                         .jobId = job.id, .jobState = state.state,
                                          .loadBefore = std::nullopt, .loadAfter = std::nullopt});
         } else if (status) {
             const ExitStatus exit{status->exited, status->code, status->signal};
@@ -409,6 +412,14 @@ void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
 }
 
 std::size_t SlurmRun::prepare() {
+    // Jobs of an earlier run on these results that it could not cancel (killed with SIGKILL) would run its
+    // steps beside this run's and could write an output after the cache was read or this run recorded it:
+    // they go before anything else.
+    if (const std::vector<std::string> orphans = unendedJobsIn(slurmDir_); !orphans.empty()) {
+        std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": cancelling Slurm jobs " << jobList(orphans)
+                  << " of an earlier vri-run on this results folder, still in the queue\n";
+        cancelAndWait(orphans, options_.slurm.pollSeconds);
+    }
     const std::vector<std::size_t> steps = stepsToRun();
     stepCount_ = steps.size();
     for (JobBundle& bundle : bundleSteps(plan_, steps, options_.prices, options_.slurm.bundleSeconds)) {

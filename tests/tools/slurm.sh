@@ -209,8 +209,20 @@ grep -q "^vri-run: error: the Slurm check job [0-9]*: 1 job pending (squeue's re
     { cat pending.txt; fail "--slurm-max-pending did not give up with the reason"; }
 [ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "a job is left after giving up"; }
 
+# SIGKILL to vri-run leaves its jobs in the queue; the rerun below cancels them before it submits its own,
+# so that no copy of a step runs beside another.
+start_slow killed.txt
+orphan=$job
+kill -KILL "$run"
+wait "$run" 2> /dev/null || true
+[ -n "$(squeue --noheader --states=PENDING,RUNNING --jobs="$orphan" --format=%i 2> /dev/null)" ] || fail "the killed run's job is not in the queue"
+
 # A rerun completes, running only what is missing (the fast render was cached by the runs above).
 "${slurm[@]}" --results res slow.yaml 2> rerun.txt || { cat rerun.txt; fail "the rerun failed"; }
+grep -q "^vri-run: slow: cancelling Slurm jobs [0-9,-]* ([0-9]* jobs\?) of an earlier vri-run on this results folder, still in the queue$" rerun.txt ||
+    { cat rerun.txt; fail "the rerun did not cancel the killed run's jobs"; }
+[ "$(squeue --noheader --states=all --jobs="$orphan" --format=%T)" = CANCELLED ] ||
+    { squeue --states=all; fail "the killed run's job $orphan was not cancelled"; }
 summary_slow=$(grep "vri-run: slow:" rerun.txt)
 [[ $summary_slow == *"3 steps, 2 ran, 1 cached"* ]] || { cat rerun.txt; fail "the rerun did not run just what was missing"; }
 "$bin/vri-run" --results local slow.yaml 2> /dev/null

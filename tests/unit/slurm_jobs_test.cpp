@@ -140,3 +140,15 @@ TEST_CASE("parseSbatchJobId takes --parsable's id, with or without the cluster")
     CHECK_THROWS_WITH_AS(vri::parseSbatchJobId("sbatch: error: Batch job submission failed\n"),
                          doctest::Contains("sbatch: error: Batch job submission failed"), vri::Error);
 }
+
+TEST_CASE("parseUnendedIn: the jobs not ended in one working directory, whatever its name holds") {
+    const std::string out = "12|RUNNING|/r/exp/.steps/slurm\n"
+                            "13|COMPLETED|/r/exp/.steps/slurm\n"
+                            "14|PENDING|/r/exp/.steps/slurm/deeper\n"
+                            "15|COMPLETING|/r/a|b/.steps/slurm          \n"
+                            "16|PENDING|/r/exp/.steps/slurm\n"
+                            "not a job line\n";
+    CHECK(vri::parseUnendedIn(out, "/r/exp/.steps/slurm") == std::vector<std::string>{"12", "16"});
+    CHECK(vri::parseUnendedIn(out, "/r/a|b/.steps/slurm") == std::vector<std::string>{"15"});
+    CHECK(vri::parseUnendedIn(out, "/elsewhere").empty());
+}
