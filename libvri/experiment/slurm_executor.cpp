@@ -133,6 +133,33 @@ void cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
     }
 }
 
+// The job files of the runs before this one kept beside it: the output of a job an error message named stays
+// for a rerun or two.
+constexpr std::size_t kKeptRuns = 3;
+
+// Removes the job files (job-<token>-<n>.json and .out, regular files only) of all but the `keep` runs whose
+// files are newest; anything else in the folder stays.
+void pruneJobFiles(const fs::path& folder, std::size_t keep) {
+    std::map<std::string, fs::file_time_type> newest;  // per run token
+    std::vector<std::pair<std::string, fs::path>> files;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
+        const std::string name = e.path().filename().string();
+        const std::size_t dash = name.find('-', 4);
+        if (!name.starts_with("job-") || dash == std::string::npos || !e.is_regular_file() || e.is_symlink()) continue;
+        const std::string token = name.substr(4, dash - 4);
+        const fs::file_time_type time = e.last_write_time();
+        newest[token] = std::max(newest[token], time);
+        files.emplace_back(token, e.path());
+    }
+    std::vector<std::pair<fs::file_time_type, std::string>> runs;
+    for (const auto& [token, time] : newest) runs.emplace_back(time, token);
+    std::sort(runs.rbegin(), runs.rend());
+    std::set<std::string> kept;
+    for (std::size_t r = 0; r < std::min(keep, runs.size()); ++r) kept.insert(runs[r].second);
+    for (const auto& [token, path] : files)
+        if (!kept.contains(token)) fs::remove(path);
+}
+
 std::string randomToken() {
     std::random_device device;
     char text[33];
@@ -433,8 +460,8 @@ void SlurmRun::submitAll() {
     if (jobs_.empty()) return;
     requireOwnFolder(slurmDir_.parent_path());  // never a recursive delete through a link
     requireOwnFolder(slurmDir_);
-    fs::remove_all(slurmDir_);  // the job files of an earlier run
     fs::create_directories(slurmDir_);
+    pruneJobFiles(slurmDir_, kKeptRuns - 1);
     writeJobScript(slurmDir_ / "vri-job.sh");
     for (std::size_t j = 0; j < jobs_.size(); ++j) {
         if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + " while submitting");

@@ -223,6 +223,9 @@ grep -q "^vri-run: slow: cancelling Slurm jobs [0-9,-]* ([0-9]* jobs\?) of an ea
     { cat rerun.txt; fail "the rerun did not cancel the killed run's jobs"; }
 [ "$(squeue --noheader --states=all --jobs="$orphan" --format=%T)" = CANCELLED ] ||
     { squeue --states=all; fail "the killed run's job $orphan was not cancelled"; }
+# The job outputs of the runs before stay (an error message may name one), those of the last three runs only.
+runs_kept=$(ls res/slow/.steps/slurm | sed -n 's/^job-\([0-9a-f]*\)-[0-9]*\.out$/\1/p' | sort -u | wc -l)
+[ "$runs_kept" -eq 3 ] || { ls res/slow/.steps/slurm; fail "the job outputs of $runs_kept runs were kept, not 3"; }
 summary_slow=$(grep "vri-run: slow:" rerun.txt)
 [[ $summary_slow == *"3 steps, 2 ran, 1 cached"* ]] || { cat rerun.txt; fail "the rerun did not run just what was missing"; }
 "$bin/vri-run" --results local slow.yaml 2> /dev/null
