@@ -129,6 +129,7 @@ void Planner::addRender(const RunSpec& run) {
 void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& render) {
     Step merge{run.id, "render", "vri-merge-tiles", {}, {}, {}, render.parameters};
     merge.parameters.emplace_back("tiles", std::to_string(run.tiles));
+    merge.pixels = render.pixels;  // it holds the whole image (and reads every tile's)
     const std::vector<PixelRegion> bands = rowBands(scene.width, scene.height, run.tiles);
     for (std::size_t k = 0; k < bands.size(); ++k) {
         Step tile = render;

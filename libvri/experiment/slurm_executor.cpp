@@ -348,7 +348,12 @@ void SlurmRun::submit(std::size_t j) {
     try {
         job.id = submitJob(arguments);
     } catch (const Error& e) {
-        throw Error("step '" + plan_.steps[job.bundle.steps.front()].id + "': " + e.what());
+        // What vri-run asked for and where each comes from: a cluster's limits are met by changing those.
+        throw Error("step '" + plan_.steps[job.bundle.steps.front()].id + "': " + e.what() + " (the job asked --cpus-per-task=" +
+                    std::to_string(resources.cpus) + ": --slurm-cpus or the step's threads; --mem=" +
+                    std::to_string(resources.memoryMiB) + "M: from its inputs and pixels" +
+                    (resources.minutes ? "; --time=" + std::to_string(*resources.minutes) + ": from its last run's time" : "") +
+                    "; a --slurm-arg=--mem=... or --slurm-arg=--time=... overrides them for every job)");
     }
 }
 

@@ -15,6 +15,12 @@ namespace {
 // A render or a command may run for hours: without a price it is never bundled.
 bool mayBeLong(const Step& step) { return step.kind == "render" || step.kind == "command"; }
 
+// A tile of a render: the tiles of one image run side by side, each in a job of its own, priced or not
+// (bundled, they would run one after another, and tiling would buy nothing on a cluster).
+bool isTile(const Step& step) {
+    return std::ranges::any_of(step.parameters, [](const auto& p) { return p.first == "region"; });
+}
+
 int stepCpus(const Step& step, int defaultCpus) {
     // Threads 0 is the tools' "all cores": on a cluster, what a step without --threads gets.
     if (step.threads > 0) return step.threads;
@@ -46,7 +52,8 @@ std::vector<JobBundle> bundleSteps(const Plan& plan, const std::vector<std::size
     };
     for (std::size_t i : steps) {
         const std::optional<double> price = i < prices.size() ? prices[i] : std::nullopt;
-        const bool alone = price ? *price >= bundleSeconds : mayBeLong(plan.steps[i]) || bundleSeconds <= 0;
+        const bool alone =
+            isTile(plan.steps[i]) || (price ? *price >= bundleSeconds : mayBeLong(plan.steps[i]) || bundleSeconds <= 0);
         if (alone) {
             // Bundles stay contiguous in plan order, so that no job waits for one submitted after it.
             close();

@@ -141,10 +141,18 @@ grep -q "vri-run: error: failing: step 'broken' failed (exit status 64) in Slurm
 [ -s mixed/small2/manifest.json ] && [ ! -e mixed/failing/manifest.json ] || fail "manifests after a failed experiment"
 same_outputs local/small mixed/small2
 
-# Bundled: the cheap steps of a priced plan share jobs (the default bundle of 60 s holds them all).
+# Bundled: the cheap steps of a priced plan share jobs (the default bundle of 60 s holds them all), but for the
+# three tiles of exact-tiled, each in a job of its own so that they run side by side: the steps before them
+# in one job, each tile in one, the merge and the steps after it in one.
 "${slurm[@]}" --force --results res exp.yaml 2> bundled.txt || { cat bundled.txt; fail "the bundled run failed"; }
-steps=$(summary bundled.txt | sed 's/.*: \([0-9]*\) steps.*/\1/')
-grep -q "$steps steps in Slurm jobs [0-9]* (1 job)" bundled.txt || { cat bundled.txt; fail "the priced steps were not bundled"; }
+steps=$(summary bundled.txt | sed -n 's/.*: \([0-9]*\) steps, .*/\1/p')
+grep -q "^vri-run: small: $steps steps in Slurm jobs [0-9]*-[0-9]* (5 jobs)$" bundled.txt ||
+    { cat bundled.txt; fail "the priced steps were not bundled around the tiles"; }
+for k in 1 2 3; do
+    grep -q "ran vri-reference exact-tiled.tile-$k .*job [0-9]* " bundled.txt || { cat bundled.txt; fail "tile $k did not run"; }
+done
+[ "$(grep -o "ran vri-reference exact-tiled.tile-[0-9] ([0-9.]* s, job [0-9]*" bundled.txt | sed 's/.*job //' | sort -u | wc -l)" -eq 3 ] ||
+    { cat bundled.txt; fail "two tiles shared a job"; }
 same_outputs local/small res/small
 
 # A slow render (about 15 s) and a diff that needs it.
@@ -261,4 +269,12 @@ if "${slurm[@]}" --slurm-arg=--dependency=afterok:1 --results res exp.yaml 2> ba
 grep -q "^vri-run: error: --slurm-arg: '--dependency=afterok:1': vri-run sets --dependency itself" bad.txt || { cat bad.txt; fail "no line for --dependency"; }
 if VRI_SLURM_ARGS="--qos=normal -o/tmp/x" "${slurm[@]}" --results res exp.yaml 2> bad.txt; then fail "VRI_SLURM_ARGS=-o accepted"; fi
 grep -q "^vri-run: error: VRI_SLURM_ARGS: '-o/tmp/x'" bad.txt || { cat bad.txt; fail "no line for -o in VRI_SLURM_ARGS"; }
+# A job the cluster cannot hold (more CPUs than its node has): this cluster takes it and leaves it pending
+# (squeue's reason PartitionConfig), which vri-run says, and gives up on with --slurm-max-pending.
+if "${slurm[@]}" --slurm-cpus 1024 --slurm-max-pending 2 --results refused slow.yaml 2> refused.txt; then
+    fail "a job of 1024 CPUs ran"
+fi
+grep -q "^vri-run: error: Slurm jobs: [0-9]* jobs\? pending (squeue's reason: PartitionConfig.*gave up after --slurm-max-pending 2 s; cancelled Slurm jobs" refused.txt ||
+    { cat refused.txt; fail "the jobs the cluster cannot hold were not given up on with their reason"; }
+[ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "a job is left after giving up"; }
 echo "slurm: OK"

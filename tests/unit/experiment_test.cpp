@@ -470,6 +470,7 @@ TEST_CASE("experiment: tiles: N plans N bands with --region and a merge writing 
     CHECK(vri::test::hasOption(tile.arguments, "-o", "results/t/riemann-r1.tile-2.exr"));
     const vri::Step& merge = plan.step("riemann-r1");
     CHECK(merge.tool == "vri-merge-tiles");
+    CHECK(merge.pixels == 8 * 5);  // it holds the whole image
     CHECK(vri::test::hasOption(merge.arguments, "--tile", "results/t/riemann-r1.tile-3.exr"));
     CHECK(std::ranges::find(merge.arguments, "--png-invert") != merge.arguments.end());
     // The untiled run's outputs, so that diffs, tables and figures read the same files.

@@ -152,3 +152,14 @@ TEST_CASE("parseUnendedIn: the jobs not ended in one working directory, whatever
     CHECK(vri::parseUnendedIn(out, "/r/a|b/.steps/slurm") == std::vector<std::string>{"15"});
     CHECK(vri::parseUnendedIn(out, "/elsewhere").empty());
 }
+
+TEST_CASE("bundleSteps keeps the tiles of one render in jobs of their own, priced or not") {
+    vri::Plan plan{"/r/exp", "/r", {}, {}};
+    plan.steps = {planStep("a.tile-1", "render"), planStep("a.tile-2", "render"), planStep("a", "render"),
+                  planStep("d", "diff")};
+    plan.steps[0].parameters = {{"region", "0,0,8,2"}};
+    plan.steps[1].parameters = {{"region", "0,2,8,2"}};
+    const std::vector<std::optional<double>> prices{1.0, 1.0, 0.5, 0.5};
+    CHECK(stepsOf(vri::bundleSteps(plan, {0, 1, 2, 3}, prices, 60)) ==
+          std::vector<std::vector<std::size_t>>{{0}, {1}, {2, 3}});
+}
