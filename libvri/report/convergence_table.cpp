@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <limits>
 #include <tuple>
@@ -73,6 +74,20 @@ std::pair<std::optional<double>, std::optional<double>> asymptoticOrder(const st
     return {observedOrder(h, e), h.back()};
 }
 
+// The order between each two neighbouring steps, log(e_i / e_i+1) / log(h_i / h_i+1), largest h first, over the
+// steps whose error is above the floor: a fit over a few steps can straddle a change of order that these show.
+std::vector<double> localOrders(const std::vector<double>& steps, const std::vector<double>& errors, double floor) {
+    std::vector<std::pair<double, double>> usable;  // (h, error), largest h first
+    for (std::size_t i = 0; i < steps.size(); ++i)
+        if (errors[i] > floor && std::isfinite(errors[i])) usable.emplace_back(steps[i], errors[i]);
+    std::ranges::sort(usable, std::greater<>());
+    std::vector<double> orders;
+    for (std::size_t i = 0; i + 1 < usable.size(); ++i)
+        if (usable[i].first != usable[i + 1].first)
+            orders.push_back(std::log(usable[i].second / usable[i + 1].second) / std::log(usable[i].first / usable[i + 1].first));
+    return orders;
+}
+
 struct Series {
     std::string name;
     std::vector<double> steps;            // in the order given
@@ -81,6 +96,7 @@ struct Series {
     std::optional<double> bound;
     std::optional<double> maxOrder, meanOrder;     // over the asymptotic range (convergence_table.h)
     std::optional<double> maxFitFrom, meanFitFrom;  // the largest step of that range
+    std::vector<double> maxLocalOrders;             // localOrders() of the max error
 };
 
 std::vector<Series> measure(const std::vector<ConvergencePoint>& points, double floor) {
@@ -88,7 +104,7 @@ std::vector<Series> measure(const std::vector<ConvergencePoint>& points, double 
     std::vector<Series> all;
     for (const ConvergencePoint& point : points) {
         auto it = std::ranges::find(all, point.series, &Series::name);
-        if (it == all.end()) it = all.insert(all.end(), Series{point.series, {}, {}, {}, {}, {}, {}, {}, {}});
+        if (it == all.end()) it = all.insert(all.end(), Series{point.series, {}, {}, {}, {}, {}, {}, {}, {}, {}});
         const Errors errors = imageErrors(point.diff);
         if (point.step && !(*point.step > 0 && std::isfinite(*point.step)))
             throw Error(point.diff.string() + ": series '" + point.series + "': the step must be positive");
@@ -109,6 +125,7 @@ std::vector<Series> measure(const std::vector<ConvergencePoint>& points, double 
         std::vector<double> largest, mean;
         for (const Errors& e : s.errors) largest.push_back(e.max), mean.push_back(e.mean);
         std::tie(s.maxOrder, s.maxFitFrom) = asymptoticOrder(s.steps, largest, floor);
+        s.maxLocalOrders = localOrders(s.steps, largest, floor);
         std::tie(s.meanOrder, s.meanFitFrom) = asymptoticOrder(s.steps, mean, kConvergenceMeanFloor);
     }
     return all;
@@ -132,25 +149,37 @@ Table convergenceTable(const std::vector<ConvergencePoint>& points, double floor
     } columns[] = {{"points", 0, false},          {"h max", 3, true},           {"h min", 3, true},
                    {"max error at h max", 3, true}, {"max error at h min", 3, true}, {"max order", 2, false},
                    {"max fitted from h", 3, true}, {"mean error at h max", 3, true}, {"mean error at h min", 3, true},
-                   {"mean order", 2, false},       {"mean fitted from h", 3, true}, {"error bound", 2, true}};
+                   {"mean order", 2, false},       {"mean fitted from h", 3, true}, {"error bound", 2, true},
+                   {"min local order", 2, false},  {"max local order", 2, false}};
     for (const auto& c : columns) {
         table.columns.push_back(c.name);
         table.precision.push_back(c.precision);
         table.significant.push_back(c.significant);
     }
+    table.textColumns = {"local max orders"};
     for (const Series& s : measure(points, floor)) {
         table.rows.push_back(s.name);
+        std::string local;
+        for (double order : s.maxLocalOrders) local += (local.empty() ? "" : " ") + formatNumber("%.2f", order);
+        table.texts.push_back({local.empty() ? "-" : local});
         auto& cells = table.cells.emplace_back();
         if (s.unstepped) {
             cells = {std::nullopt, std::nullopt,      std::nullopt, std::nullopt, s.unstepped->max, std::nullopt,
-                     std::nullopt, std::nullopt,      s.unstepped->mean, std::nullopt, std::nullopt, s.bound};
+                     std::nullopt, std::nullopt,      s.unstepped->mean, std::nullopt, std::nullopt, s.bound,
+                     std::nullopt, std::nullopt};
             continue;
+        }
+        std::optional<double> leastLocal, mostLocal;
+        if (!s.maxLocalOrders.empty()) {
+            leastLocal = *std::ranges::min_element(s.maxLocalOrders);
+            mostLocal = *std::ranges::max_element(s.maxLocalOrders);
         }
         const auto largest = std::ranges::max_element(s.steps) - s.steps.begin();
         const auto smallest = std::ranges::min_element(s.steps) - s.steps.begin();
         cells = {double(s.steps.size()), s.steps[largest],       s.steps[smallest],      s.errors[largest].max,
                  s.errors[smallest].max, s.maxOrder,             s.maxFitFrom,           s.errors[largest].mean,
-                 s.errors[smallest].mean, s.meanOrder,           s.meanFitFrom,          s.bound};
+                 s.errors[smallest].mean, s.meanOrder,           s.meanFitFrom,          s.bound,
+                 leastLocal,              mostLocal};
     }
     table.notes.push_back(
         "max error: the largest absolute error of any pixel and channel against the accurate reference (vri-diff "
@@ -158,7 +187,9 @@ Table convergenceTable(const std::vector<ConvergencePoint>& points, double floor
         "the least-squares slope of log(error) against log(h) (Etiene et al.) over the asymptotic range, the " +
         std::to_string(kConvergenceFitSteps) + " smallest steps whose error is above float32 rounding of the images (" +
         formatNumber("%g", floor) + " for the max, " + formatNumber("%.2g", kConvergenceMeanFloor) +
-        " for the mean), from the step 'fitted from h' down; - where fewer than two remain. error bound: the "
+        " for the mean), from the step 'fitted from h' down; - where fewer than two remain. local max orders: the "
+        "order of the max error between each two neighbouring steps above that floor, largest h first, and their "
+        "least and largest: where they scatter, the fitted order holds over no range of h. error bound: the "
         "largest per-pixel bound the run's stats give (the exact method).");
     return table;
 }
