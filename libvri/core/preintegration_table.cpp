@@ -113,7 +113,8 @@ bool PreintegrationTable::isInvisible(double s0, double s1) const {
 
 double PreintegrationTable::invisibleBelow() const {
     const int run = zeroRun_.front();
-    if (run < 0) return 0.0;
+    // Scalars below 0 (a volume whose stated range is narrower than its data) are clamped to 0, onto entry 0.
+    if (run < 0) return -std::numeric_limits<double>::infinity();
     int last = 0;  // the run's last entry: a lookup at s reads entries up to floor(s (size - 1)) + 1
     while (last + 1 < size_ && zeroRun_[static_cast<std::size_t>(last) + 1] == run) ++last;
     return last + 1 == size_ ? std::numeric_limits<double>::infinity() : static_cast<double>(last) / (size_ - 1);

@@ -122,8 +122,8 @@ public:
     // overlap, a lookup is 0 too (they lie in one run of zero entries), which is what lets a march skip
     // segments whose ends lie in neighbouring empty bricks.
     bool isInvisible(double s0, double s1) const;
-    // The scalar below which every lookup is exactly 0: isInvisible(0, s) for every s below it (0 where the
-    // table's first entry is not 0). Scalars in that leading run, usually the air around a volume's object,
+    // The scalar below which every lookup is exactly 0: isInvisible(0, s) for every s below it (-infinity where
+    // the table's first entry is not 0: a scalar below 0 reads it too). Scalars in that leading run, usually the air around a volume's object,
     // cost the packet engine no lookup.
     double invisibleBelow() const;
 

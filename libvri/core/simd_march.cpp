@@ -930,7 +930,8 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
         for (int a = 0; a < 3; ++a) {
             const VF voxelsPerStep = hn::Abs(hn::Mul(hn::Mul(d[a], hn::Set(df, sc.layout.scale[a])), step));
             samplesPerVoxel[a] = hn::Div(one, voxelsPerStep);
-            mayJump = hn::And(mayJump, hn::Lt(voxelsPerStep, hn::Set(df, float(1 << StencilBricks::kShift))));
+            // Less twice the margin of the positions' rounding, so that the true step is shorter too.
+            mayJump = hn::And(mayJump, hn::Lt(voxelsPerStep, hn::Set(df, float(1 << StencilBricks::kShift) - 2 * sc.jumpMargin)));
             octant = hn::IfThenElse(hn::RebindMask(di, hn::Lt(d[a], zero)),
                                     hn::Add(octant, hn::Set(di, (1 << a) * sc.octantStride)), octant);
         }

@@ -5,6 +5,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "libvri/util/error.h"
 #include "libvri/util/printable.h"
 #include "libvri/util/process.h"
@@ -12,6 +14,13 @@
 namespace vri {
 
 namespace {
+
+// `s` without its leading and trailing spaces: squeue pads its fields.
+std::string trimmedField(std::string s) {
+    s.erase(0, s.find_first_not_of(' '));
+    s.erase(s.find_last_not_of(' ') + 1);
+    return s;
+}
 
 // squeue's fields, '|' after each (no field holds one): the format squeueArguments asks for.
 constexpr const char* kSqueueFormat = "JobID:|,State:|,NodeList:|,Reason:|";
@@ -68,11 +77,7 @@ std::map<std::string, SlurmJob> parseSqueue(const std::string& output) {
         std::size_t start = 0;
         for (std::size_t bar; (bar = line.find('|', start)) != std::string::npos; start = bar + 1)
             fields.push_back(line.substr(start, bar - start));
-        const auto trim = [](std::string& s) {
-            s.erase(0, s.find_first_not_of(' '));
-            s.erase(s.find_last_not_of(' ') + 1);
-        };
-        for (std::string& f : fields) trim(f);
+        for (std::string& f : fields) f = trimmedField(f);
         if (fields.size() != kSqueueFields || fields[0].empty() || fields[1].empty())
             throw Error("squeue printed a line vri-run cannot read: " + printableShort(line));
         // The state is its first word, should a Slurm version say more ("CANCELLED by 0", as sacct does).
@@ -170,6 +175,8 @@ volatile std::sig_atomic_t gSlurmInterrupt = 0;
 namespace {
 
 const CaptureLimits kClientLimits{kSlurmClientSeconds, kSlurmClientBytes, &gSlurmInterrupt};
+// What a stopped vri-run does last (cancel its jobs, wait for them): within the limits, but not stopped by the signal.
+const CaptureLimits kLastClientLimits{kSlurmClientSeconds, kSlurmClientBytes, nullptr};
 
 }  // namespace
 
@@ -185,7 +192,7 @@ std::string submitJob(const std::vector<std::string>& arguments) {
 
 std::map<std::string, SlurmJob> queryJobs(const std::vector<std::string>& jobIds, bool interruptible) {
     if (jobIds.empty()) return {};
-    const CaptureLimits limits = interruptible ? kClientLimits : CaptureLimits{kSlurmClientSeconds, kSlurmClientBytes, nullptr};
+    const CaptureLimits& limits = interruptible ? kClientLimits : kLastClientLimits;
     const std::filesystem::path squeue = slurmProgram("squeue");
     const std::vector<std::string> words = squeueArguments(jobIds);
     // Its warnings on stderr are not job lines: only stdout is read.
@@ -208,13 +215,8 @@ std::vector<std::string> parseUnendedIn(const std::string& output, const std::st
     while (std::getline(lines, line)) {
         const std::size_t idEnd = line.find('|'), stateEnd = idEnd == std::string::npos ? idEnd : line.find('|', idEnd + 1);
         if (stateEnd == std::string::npos) continue;  // not a job line
-        const auto trimmed = [](std::string s) {
-            s.erase(0, s.find_first_not_of(' '));
-            s.erase(s.find_last_not_of(' ') + 1);
-            return s;
-        };
-        const std::string id = trimmed(line.substr(0, idEnd));
-        const std::string state = trimmed(line.substr(idEnd + 1, stateEnd - idEnd - 1));
+        const std::string id = trimmedField(line.substr(0, idEnd));
+        const std::string state = trimmedField(line.substr(idEnd + 1, stateEnd - idEnd - 1));
         std::string dir = line.substr(stateEnd + 1);
         dir.erase(dir.find_last_not_of(' ') + 1);  // the field's padding (a path ending in a space is not matched)
         if (id.empty() || dir != workDir) continue;
@@ -224,7 +226,9 @@ std::vector<std::string> parseUnendedIn(const std::string& output, const std::st
 }
 
 std::vector<std::string> unendedJobsIn(const std::filesystem::path& workDir) {
-    const std::vector<std::string> words{"squeue", "--noheader", "--me", "--all", "--states=all", "--Format=JobID:|,State:|,WorkDir:"};
+    // --user by number: --me needs Slurm 20.11.
+    const std::vector<std::string> words{"squeue", "--noheader", "--user=" + std::to_string(::getuid()), "--all", "--states=all",
+                                         "--Format=JobID:|,State:|,WorkDir:"};
     const auto [status, output] = captureProcess(slurmProgram("squeue"), words,
                                                  {.in = "/dev/null", .out = {}, .err = "/dev/null", .errToOut = false},
                                                  kClientLimits);
@@ -239,7 +243,7 @@ void cancelJobs(const std::vector<std::string>& jobIds) {
     try {
         // Within the time limit, but not stopped by the signal: cancelling is what a stopped vri-run does last.
         captureProcess(slurmProgram("scancel"), words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true},
-                       CaptureLimits{kSlurmClientSeconds, kSlurmClientBytes, nullptr});
+                       kLastClientLimits);
     } catch (const Error&) {
         // scancel is missing, cannot start or does not answer: nothing more can be done for these jobs from here.
     }

@@ -18,7 +18,8 @@ void PendingWatch::update(const std::map<std::string, SlurmJob>& states, std::os
     bool ran = false;
     for (const auto& [id, job] : states) {
         if (job.state != "PENDING") {
-            ran = ran || job.state == "RUNNING" || job.state == "COMPLETING" || job.state == "CONFIGURING";
+            // Running, or ended since the last look (a short job can start and end between two): progress.
+            ran = ran || job.state != "SUSPENDED";
             continue;
         }
         if (job.reason == "Dependency") continue;  // waits for a job of this run

@@ -22,8 +22,8 @@ public:
     // `what`: how the line names the jobs ("small: Slurm jobs", "the Slurm check job").
     PendingWatch(std::string what, double maxSeconds, double firstSay = 60);
 
-    // After each squeue, with the states of the jobs waited for: writes the line to `out` when it is due;
-    // throws vri::Error past the limit.
+    // After each squeue, with the states of the jobs waited for (a job that ended since the look before among
+    // them, as the watch loops give them): writes the line to `out` when it is due; throws vri::Error past the limit.
     void update(const std::map<std::string, SlurmJob>& states, std::ostream& out, Clock::time_point now);
 
 private:

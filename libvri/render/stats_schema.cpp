@@ -4,14 +4,17 @@
 #include <array>
 
 #include "libvri/util/error.h"
+#include "libvri/util/printable.h"
 
 namespace vri {
 
-std::string StatsField::dotted() const {
-    std::string name(pointer.substr(1));
+std::string dottedName(std::string_view pointer) {
+    std::string name(pointer.substr(pointer.empty() ? 0 : 1));
     std::ranges::replace(name, '/', '.');
     return name;
 }
+
+std::string StatsField::dotted() const { return dottedName(pointer); }
 
 std::span<const StatsField> statsSchema() {
     using namespace stats_field;
@@ -54,7 +57,8 @@ void requireStatsField(const std::string& dotted, const std::string& what) {
         const std::size_t shared = static_cast<std::size_t>(std::ranges::mismatch(name, dotted).in1 - name.begin());
         if (shared > best) best = shared, hint = name;
     }
-    throw Error(what + ": '" + dotted + "' is no field of a render's stats" + (hint.empty() ? "" : " (nearest: " + hint + ")") +
+    throw Error(what + ": '" + printableShort(dotted) + "' is no field of a render's stats" +
+                (hint.empty() ? "" : " (nearest: " + hint + ")") +
                 "; docs/stats.md lists them");
 }
 

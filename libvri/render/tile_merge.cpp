@@ -25,13 +25,6 @@ std::string pointerStep(const std::string& key) {
     return step;
 }
 
-// "stats.error_bound.max" for "/stats/error_bound/max".
-std::string dotted(const std::string& pointer) {
-    std::string name = pointer.substr(1);
-    std::replace(name.begin(), name.end(), '/', '.');
-    return name;
-}
-
 std::optional<TileRule> ruleOf(const std::string& pointer) {
     for (const StatsField& f : statsSchema())
         if (pointer == f.pointer || (pointer.starts_with(f.pointer) && pointer[f.pointer.size()] == '/')) return f.rule;
@@ -99,7 +92,7 @@ public:
             for (std::size_t i = 1; i < values.size(); ++i)
                 if (*values[i] != *values[0]) {
                     if (rule == TileRule::Same) return notCombined(pointer);
-                    throw Error(names_[i] + ": " + dotted(pointer) + " is " + values[i]->dump() + ", but " + names_[0] +
+                    throw Error(names_[i] + ": " + dottedName(pointer) + " is " + values[i]->dump() + ", but " + names_[0] +
                                 " has " + values[0]->dump() + " (the tiles of one image must agree in it)");
                 }
             return *values[0];
@@ -117,7 +110,7 @@ public:
                 std::vector<const json*> elements;
                 for (std::size_t i = 0; i < values.size(); ++i) {
                     if (!values[i]->is_array() || values[i]->size() != values[0]->size())
-                        throw Error(names_[i] + ": " + dotted(pointer) + " has " + std::to_string(values[i]->size()) +
+                        throw Error(names_[i] + ": " + dottedName(pointer) + " has " + std::to_string(values[i]->size()) +
                                     " elements, but " + names_[0] + " has " + std::to_string(values[0]->size()));
                     elements.push_back(&(*values[i])[k]);
                 }
@@ -142,13 +135,13 @@ private:
             if (!values[i]->is_number()) continue;  // not combined, as before
             const double v = values[i]->get<double>();
             if (!(v >= 0.0 && v <= static_cast<double>(kMostCount)))
-                throw Error(names_[i] + ": " + dotted(pointer) + ": expected a count or a time in [0, 2^53], got " +
+                throw Error(names_[i] + ": " + dottedName(pointer) + ": expected a count or a time in [0, 2^53], got " +
                             printableShort(values[i]->dump(), 40));
         }
     }
 
     json notCombined(const std::string& pointer) {
-        notCombined_.push_back(dotted(pointer));
+        notCombined_.push_back(dottedName(pointer));
         return nullptr;
     }
 
@@ -199,20 +192,30 @@ json combineTileStats(const std::vector<json>& records, const std::vector<std::s
     json out = {{"stats", combiner.combine("/stats")}, {"timing", combiner.combine("/timing")}};
     if (std::ranges::all_of(records, [](const json& r) { return r.contains(machine.at()); }))
         out[machine.at()] = combiner.combine(std::string(machine.pointer));
-    if (out.contains(samplesPerSecond.at())) {  // as render_json.cpp computes it
-        const json& samples = out.value(samplesEvaluated.at(), json());
-        const json& seconds = out.value(wallSeconds.at(), json());
-        out[samplesPerSecond.at()] = samples.is_number() && seconds.is_number() && seconds.get<double>() > 0
-                                         ? samples.get<double>() / seconds.get<double>()
-                                         : 0.0;
+    // The derived fields, from the combined ones; null and listed as not combined where those are not numbers.
+    json notCombined = combiner.notCombinedList();
+    const auto underived = [&](const StatsField& field) {
+        if (!out.contains(field.at())) return;
+        out[field.at()] = nullptr;
+        notCombined.push_back(field.dotted());
+    };
+    const json samples = out.value(samplesEvaluated.at(), json()), seconds = out.value(wallSeconds.at(), json());
+    if (samples.is_number() && seconds.is_number()) {
+        if (out.contains(samplesPerSecond.at()))  // as render_json.cpp computes it
+            out[samplesPerSecond.at()] = seconds.get<double>() > 0 ? samples.get<double>() / seconds.get<double>() : 0.0;
+    } else {
+        underived(samplesPerSecond);
     }
-    const json& frames = out.value(frameSeconds.at(), json());
+    const json frames = out.value(frameSeconds.at(), json());
     if (frames.is_array() && !frames.empty() && std::ranges::all_of(frames, [](const json& f) { return f.is_number(); })) {
-        const std::vector<double> seconds = frames.get<std::vector<double>>();
-        if (out.contains(medianFrameSeconds.at())) out[medianFrameSeconds.at()] = median(seconds);
-        if (out.contains(medianCi.at())) out[medianCi.at()] = medianIntervalRecord(seconds);
+        const std::vector<double> times = frames.get<std::vector<double>>();
+        if (out.contains(medianFrameSeconds.at())) out[medianFrameSeconds.at()] = median(times);
+        if (out.contains(medianCi.at())) out[medianCi.at()] = medianIntervalRecord(times);
+    } else {
+        underived(medianFrameSeconds);
+        underived(medianCi);
     }
-    out["not_combined"] = combiner.notCombinedList();
+    out["not_combined"] = std::move(notCombined);
     return out;
 }
 

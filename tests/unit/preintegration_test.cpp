@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "test_camera.h"
 #include "libvri/core/cpu_renderer.h"
@@ -178,6 +179,10 @@ TEST_CASE("preintegration table: its own empty space is where every lookup is ex
         CHECK(below <= 0.05 + 1.0 / 63);
         CHECK(table.isInvisible(0.0, below - 1e-9));
         CHECK(!table.isInvisible(0.0, below + 1.0 / 63));
+        // Visible at 0: no scalar, not even one below 0 (clamped onto entry 0), is below the run.
+        const TransferFunction visibleAtZero({{0.0, 0.5, 0.5, 0.5, 1.0}, {1.0, 0.5, 0.5, 0.5, 1.0}},
+                                             EmissionModel::ColourTimesExtinction);
+        CHECK(PreintegrationTable(visibleAtZero, 1.0, 16, order).invisibleBelow() == -std::numeric_limits<double>::infinity());
         // Wherever the test says empty, every lookup there is 0: dense front, back and delta.
         for (double s0 = 0.0; s0 < 1.0; s0 += 1.0 / 128)
             for (double s1 = s0; s1 <= 1.0; s1 += 1.0 / 128) {

@@ -43,6 +43,11 @@ TEST_CASE("PendingWatch: a line after the first interval, then at doubling ones;
     CHECK(out.str().empty());
     watch.update(jobs({{"3", "PENDING", "", "Dependency"}}), out, at(400));
     CHECK(out.str().empty());
+    // A short job that started and ended between two looks is progress too: its end resets the clock.
+    watch.update(jobs({{"5", "PENDING", "", "Priority"}}), out, at(500));
+    watch.update(jobs({{"4", "COMPLETED", "n1", "None"}, {"5", "PENDING", "", "Priority"}}), out, at(555));
+    watch.update(jobs({{"5", "PENDING", "", "Priority"}}), out, at(590));
+    CHECK(out.str().empty());  // 35 s since the job ended, not 90 since the first look
 }
 
 TEST_CASE("PendingWatch: --slurm-max-pending gives up with the jobs' reasons") {

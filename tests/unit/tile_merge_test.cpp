@@ -91,6 +91,21 @@ TEST_CASE("tile stats: the first non-finite pixel is the first in row order of a
     CHECK_FALSE(combineTileStats({b, b}, {"a", "b"})["stats"].contains("first_nonfinite_pixel"));
 }
 
+TEST_CASE("tile stats: a derived field whose sources are not combined is null and listed, not made up") {
+    json a = renderTile(10, 1.0, {1.0}, 0), b = renderTile(10, 1.0, {1.0}, 0);
+    b["stats"]["samples_evaluated"] = "many";  // edited by hand: the sum has no number, nor has the rate
+    b["timing"]["wall_seconds"] = {"x"};
+    const json m = combineTileStats({a, b}, {"a", "b"});
+    CHECK(m["stats"]["samples_per_second"].is_null());
+    CHECK(m["timing"]["median_wall_seconds"].is_null());
+    const json& listed = m["not_combined"];
+    for (const char* name : {"stats.samples_evaluated", "stats.samples_per_second", "timing.wall_seconds",
+                             "timing.median_wall_seconds"}) {
+        INFO(name);
+        CHECK(std::ranges::find(listed, json(name)) != listed.end());
+    }
+}
+
 TEST_CASE("tile stats: tiles timed with different frame counts are refused") {
     const json a = renderTile(10, 1.0, {1.0}, 0), b = renderTile(10, 1.0, {1.0, 2.0}, 0);
     CHECK_THROWS_WITH_AS(combineTileStats({a, b}, {"a.json", "b.json"}),
