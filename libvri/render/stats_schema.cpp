@@ -4,17 +4,12 @@
 #include <array>
 
 #include "libvri/util/error.h"
+#include "libvri/util/json_file.h"
 #include "libvri/util/printable.h"
 
 namespace vri {
 
-std::string dottedName(std::string_view pointer) {
-    std::string name(pointer.substr(pointer.empty() ? 0 : 1));
-    std::ranges::replace(name, '/', '.');
-    return name;
-}
-
-std::string StatsField::dotted() const { return dottedName(pointer); }
+std::string StatsField::dotted() const { return dottedPath(pointer); }
 
 std::span<const StatsField> statsSchema() {
     using namespace stats_field;

@@ -34,9 +34,6 @@ struct StatsField {
     std::string dotted() const;  // "stats.error_bound.max", as messages and value paths spell it
 };
 
-// "stats.error_bound.max" for the JSON pointer "/stats/error_bound/max", as messages name a field.
-std::string dottedName(std::string_view pointer);
-
 // The fields. An object field (max_error_search, timing.load, machine) is combined as a whole.
 namespace stats_field {
 // Every render (render_json.cpp).

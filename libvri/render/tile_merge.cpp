@@ -92,7 +92,7 @@ public:
             for (std::size_t i = 1; i < values.size(); ++i)
                 if (*values[i] != *values[0]) {
                     if (rule == TileRule::Same) return notCombined(pointer);
-                    throw Error(names_[i] + ": " + dottedName(pointer) + " is " + values[i]->dump() + ", but " + names_[0] +
+                    throw Error(names_[i] + ": " + dottedPath(pointer) + " is " + values[i]->dump() + ", but " + names_[0] +
                                 " has " + values[0]->dump() + " (the tiles of one image must agree in it)");
                 }
             return *values[0];
@@ -110,7 +110,7 @@ public:
                 std::vector<const json*> elements;
                 for (std::size_t i = 0; i < values.size(); ++i) {
                     if (!values[i]->is_array() || values[i]->size() != values[0]->size())
-                        throw Error(names_[i] + ": " + dottedName(pointer) + " has " + std::to_string(values[i]->size()) +
+                        throw Error(names_[i] + ": " + dottedPath(pointer) + " has " + std::to_string(values[i]->size()) +
                                     " elements, but " + names_[0] + " has " + std::to_string(values[0]->size()));
                     elements.push_back(&(*values[i])[k]);
                 }
@@ -135,13 +135,13 @@ private:
             if (!values[i]->is_number()) continue;  // not combined, as before
             const double v = values[i]->get<double>();
             if (!(v >= 0.0 && v <= static_cast<double>(kMostCount)))
-                throw Error(names_[i] + ": " + dottedName(pointer) + ": expected a count or a time in [0, 2^53], got " +
+                throw Error(names_[i] + ": " + dottedPath(pointer) + ": expected a count or a time in [0, 2^53], got " +
                             printableShort(values[i]->dump(), 40));
         }
     }
 
     json notCombined(const std::string& pointer) {
-        notCombined_.push_back(dottedName(pointer));
+        notCombined_.push_back(dottedPath(pointer));
         return nullptr;
     }
 

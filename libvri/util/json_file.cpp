@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "libvri/util/file_text.h"
+#include "libvri/util/printable.h"
 
 namespace vri {
 
@@ -16,6 +17,12 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
     }
 }
 
+std::string dottedPath(std::string_view pointer) {
+    std::string name(pointer.substr(pointer.empty() ? 0 : 1));
+    std::ranges::replace(name, '/', '.');
+    return name;
+}
+
 std::string jsonExceptionText(const nlohmann::json::exception& e) {
     const std::string text = e.what();
     const std::size_t tagEnd = text.starts_with("[json.exception.") ? text.find("] ") : std::string::npos;
@@ -24,11 +31,7 @@ std::string jsonExceptionText(const nlohmann::json::exception& e) {
     // be ...", written as the dotted path this project's messages use, "steps.3.wall_seconds: type must be ...".
     if (message.starts_with("(/")) {
         const std::size_t close = message.find(") ");
-        if (close != std::string::npos) {
-            std::string path = message.substr(2, close - 2);
-            std::replace(path.begin(), path.end(), '/', '.');
-            message = path + ": " + message.substr(close + 2);
-        }
+        if (close != std::string::npos) message = dottedPath(message.substr(1, close - 1)) + ": " + message.substr(close + 2);
     }
     return message;
 }
@@ -62,10 +65,8 @@ long long wholeNumberAt(const nlohmann::json& root, const std::string& path, con
         if (const double d = v.get<double>(); d == std::floor(d) && d >= static_cast<double>(lo) && d <= static_cast<double>(hi))
             return static_cast<long long>(d);
     }
-    std::string text = v.dump();
-    if (text.size() > 40) text = text.substr(0, 37) + "...";
     throw Error(file.string() + ": " + path + ": expected a whole number in [" + std::to_string(lo) + ", " +
-                std::to_string(hi) + "], got " + text);
+                std::to_string(hi) + "], got " + printableShort(v.dump(), 40));
 }
 
 }  // namespace vri

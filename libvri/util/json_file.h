@@ -22,6 +22,10 @@ const nlohmann::json& jsonAtPath(const nlohmann::json& root, const std::string& 
 long long wholeNumberAt(const nlohmann::json& root, const std::string& path, const std::filesystem::path& file,
                         long long lo, long long hi);
 
+// "stats.error_bound.max" for the JSON pointer "/stats/error_bound/max": a place in a file as this project's
+// messages and value paths name it.
+std::string dottedPath(std::string_view pointer);
+
 // nlohmann's message without its "[json.exception.type_error.302] " tag, where the value lies as a dotted
 // path first: "steps.3.wall_seconds: type must be number, but is string".
 std::string jsonExceptionText(const nlohmann::json::exception& e);

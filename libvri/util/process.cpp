@@ -132,6 +132,25 @@ ExitStatus runProcess(const fs::path& program, const std::vector<std::string>& w
     return waitProcess(startProcess(program, words, streams));
 }
 
+namespace {
+
+// Stops a child that is past its limits: SIGTERM, then SIGKILL if it has not ended 2 s later; reaped either
+// way, so that no signal can reach another process given its pid.
+ExitStatus stopProcess(pid_t pid) {
+    ::kill(pid, SIGTERM);
+    for (int i = 0; i < 100; ++i) {
+        int status = 0;
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) return ExitStatus::fromWaitStatus(status);
+        if (done < 0 && errno != EINTR) throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ::kill(pid, SIGKILL);
+    return waitProcess(pid);
+}
+
+}  // namespace
+
 ExitStatus runProcessWithin(const fs::path& program, const std::vector<std::string>& words, double seconds,
                             bool& timedOut) {
     timedOut = false;
@@ -140,18 +159,15 @@ ExitStatus runProcessWithin(const fs::path& program, const std::vector<std::stri
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     const auto waited = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-    double killAt = seconds;  // SIGTERM at the limit, SIGKILL 2 s later
     int status = 0;
     for (;;) {
         const pid_t done = ::waitpid(pid, &status, WNOHANG);
         if (done == pid) return ExitStatus::fromWaitStatus(status);
         if (done < 0 && errno != EINTR)
             throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
-        if (waited() >= killAt) {
-            ::kill(pid, timedOut ? SIGKILL : SIGTERM);
-            if (timedOut) return waitProcess(pid);
+        if (waited() >= seconds) {
             timedOut = true;
-            killAt = seconds + 2.0;
+            return stopProcess(pid);
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
@@ -215,13 +231,7 @@ std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const
         why = overLimit();
         if (why.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    ::kill(pid, SIGTERM);  // then SIGKILL 2 s later, as runProcessWithin
-    for (int i = 0; i < 100 && ::waitpid(pid, nullptr, WNOHANG) == 0; ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    if (::kill(pid, 0) == 0) {
-        ::kill(pid, SIGKILL);
-        waitProcess(pid);
-    }
+    stopProcess(pid);
     throw Error(why);
 }
 
