@@ -27,15 +27,15 @@ void OccupancyCache::key(const std::shared_ptr<const void>& volume, GridConventi
     emission_ = tf.emission();
 }
 
-template <class Structure, class V>
+template <class Structure, class V, class Invisible>
 OccupancyCache::Entry<Structure> OccupancyCache::get(Slot<Structure>& slot, const V& volume,
-                                                     GridConvention convention, const TransferFunction& tf) {
+                                                     GridConvention convention, const Invisible& invisible) {
     if (slot.structure) return {*slot.structure, slot.buildSeconds, true};
     const auto start = std::chrono::steady_clock::now();
     if constexpr (std::is_same_v<Structure, OccupancyGrid> || std::is_same_v<Structure, StencilBricks>)
-        slot.structure.emplace(volume, convention, tf);
+        slot.structure.emplace(volume, convention, invisible);
     else
-        slot.structure.emplace(volume, tf);
+        slot.structure.emplace(volume, invisible);
     slot.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return {*slot.structure, slot.buildSeconds, false};
 }
@@ -100,24 +100,14 @@ OccupancyCache::Entry<OccupancyGrid> OccupancyCache::preintegrationGrid(const st
                                                                         const TransferFunction& tf, double length,
                                                                         int size, int order) {
     const PreintegrationTable& table = preintegration(volume, convention, tf, length, size, order).structure.table;
-    Slot<OccupancyGrid>& slot = preintegrationGrid_;
-    if (slot.structure) return {*slot.structure, slot.buildSeconds, true};
-    const auto start = std::chrono::steady_clock::now();
-    slot.structure.emplace(*volume, convention, table);
-    slot.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return {*slot.structure, slot.buildSeconds, false};
+    return get(preintegrationGrid_, *volume, convention, table);
 }
 
 OccupancyCache::Entry<StencilBricks> OccupancyCache::preintegrationStencils(
     const std::shared_ptr<const Volume>& volume, GridConvention convention, const TransferFunction& tf, double length,
     int size, int order, unsigned octants) {
     const PreintegrationTable& table = preintegration(volume, convention, tf, length, size, order).structure.table;
-    Slot<StencilBricks>& slot = preintegrationStencils_;
-    if (slot.structure) return withOctants(slot, {*slot.structure, slot.buildSeconds, true}, octants);
-    const auto start = std::chrono::steady_clock::now();
-    slot.structure.emplace(*volume, convention, table);
-    slot.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return withOctants(slot, {*slot.structure, slot.buildSeconds, false}, octants);
+    return withOctants(preintegrationStencils_, get(preintegrationStencils_, *volume, convention, table), octants);
 }
 
 }  // namespace vri

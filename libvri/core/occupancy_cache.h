@@ -71,9 +71,10 @@ private:
 
     // Keeps the slots when the key is this one, else empties them all and takes it.
     void key(const std::shared_ptr<const void>& volume, GridConvention convention, const TransferFunction& tf);
-    template <class Structure, class V>
-    Entry<Structure> get(Slot<Structure>& slot, const V& volume, GridConvention convention,
-                         const TransferFunction& tf);
+    // The slot's structure, built from the volume and what says where it is invisible (a transfer function or
+    // a pre-integration table) when it has none.
+    template <class Structure, class V, class Invisible>
+    Entry<Structure> get(Slot<Structure>& slot, const V& volume, GridConvention convention, const Invisible& invisible);
     // `entry`, a slot's, with the distances of `octants` added where missing.
     static Entry<StencilBricks> withOctants(Slot<StencilBricks>& slot, Entry<StencilBricks> entry, unsigned octants);
 

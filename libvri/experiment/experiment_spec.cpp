@@ -764,8 +764,7 @@ void ExperimentReader::readTables(const YAML::Node& node, Experiment& experiment
         table.name = table.title = name;
         if (entry["value"]) {
             table.value = text(entry["value"], "value");
-            const std::string path = table.value.starts_with("1/") ? table.value.substr(2) : table.value;
-            requireStatsField(path, at(entry["value"]) + ": value");
+            requireStatsField(table.value, at(entry["value"]) + ": value");
         }
         if (entry["column"]) table.column = text(entry["column"], "column");
         if (entry["title"]) table.title = text(entry["title"], "title");

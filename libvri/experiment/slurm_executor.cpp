@@ -104,11 +104,6 @@ void writeJobScript(const fs::path& script) {
     writeTextFile(script, "#!/bin/sh\n# vri-run's Slurm job: runs its arguments as one command.\nexec \"$@\"\n");
 }
 
-// When a wait first says that its jobs pend (slurm_pending.h): after a minute, or halfway to giving up.
-double firstPendingLine(const SlurmOptions& slurm) {
-    return slurm.maxPendingSeconds > 0 ? std::min(60.0, slurm.maxPendingSeconds / 2) : 60.0;
-}
-
 // Cancels `jobs` and waits until squeue shows them ended (or no longer knows them), at most kCancelWaitSeconds.
 void cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
     cancelJobs(jobs);
@@ -207,7 +202,7 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
     bool completed = true;  // unless squeue says otherwise (one that forgot it cannot)
     try {
         const std::string id = submitJob(arguments);
-        PendingWatch pending("the Slurm check job " + id, options.slurm.maxPendingSeconds, firstPendingLine(options.slurm));
+        PendingWatch pending("the Slurm check job " + id, options.slurm.maxPendingSeconds);
         try {
             for (;;) {
                 if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + ": cancelled the Slurm check job " + id);
@@ -534,8 +529,7 @@ void SlurmBatch::run() {
     }
     try {
         auto lastAnswer = slurm_detail::Clock::now();
-        PendingWatch pending("Slurm jobs", impl_->options.slurm.maxPendingSeconds,
-                             slurm_detail::firstPendingLine(impl_->options.slurm));
+        PendingWatch pending("Slurm jobs", impl_->options.slurm.maxPendingSeconds);
         for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty(); ids = impl_->unendedIds()) {
             if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt) + ": cancelled Slurm jobs " + slurm_detail::jobList(ids));
             slurm_detail::pause(poll);

@@ -1,5 +1,6 @@
 #include "libvri/experiment/slurm_pending.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "libvri/experiment/step_costs.h"  // secondsText
@@ -9,8 +10,9 @@
 
 namespace vri {
 
-PendingWatch::PendingWatch(std::string what, double maxSeconds, double firstSay)
-    : what_(std::move(what)), maxSeconds_(maxSeconds), nextSay_(firstSay), firstSay_(firstSay) {}
+PendingWatch::PendingWatch(std::string what, double maxSeconds)
+    : what_(std::move(what)), maxSeconds_(maxSeconds),
+      firstSay_(maxSeconds > 0 ? std::min(60.0, maxSeconds / 2) : 60.0), nextSay_(firstSay_) {}
 
 void PendingWatch::update(const std::map<std::string, SlurmJob>& states, std::ostream& out, Clock::time_point now) {
     std::map<std::string, int> reasons;  // pending for the cluster, by squeue's reason

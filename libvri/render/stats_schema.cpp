@@ -33,15 +33,21 @@ std::span<const StatsField> statsSchema() {
     return fields;
 }
 
-const StatsField* statsFieldOf(std::string_view dotted) {
-    for (const StatsField& field : statsSchema()) {
-        const std::string name = field.dotted();
-        if (dotted == name || (dotted.starts_with(name) && dotted[name.size()] == '.')) return &field;
-    }
+const StatsField* statsFieldAt(std::string_view pointer) {
+    for (const StatsField& field : statsSchema())
+        if (pointer == field.pointer || (pointer.starts_with(field.pointer) && pointer[field.pointer.size()] == '/'))
+            return &field;
     return nullptr;
 }
 
-void requireStatsField(const std::string& dotted, const std::string& what) {
+const StatsField* statsFieldOf(std::string_view dotted) {
+    std::string pointer = "/" + std::string(dotted);
+    std::ranges::replace(pointer, '.', '/');
+    return statsFieldAt(pointer);
+}
+
+void requireStatsField(std::string_view expression, const std::string& what) {
+    const std::string dotted(expression.starts_with("1/") ? expression.substr(2) : expression);
     if (!dotted.starts_with("stats.") && !dotted.starts_with("timing.")) return;
     if (statsFieldOf(dotted)) return;
     // The fields of the same record whose names share the most leading characters, as a hint.

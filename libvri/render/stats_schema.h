@@ -119,12 +119,13 @@ inline void put(nlohmann::json& record, const StatsField& field, nlohmann::json 
 // Every field above, in that order.
 std::span<const StatsField> statsSchema();
 
-// The field a dotted value path names or lies within ("stats.error_bound.max.2" lies within
-// stats.error_bound.max), or nullptr.
+// The field a JSON pointer ("/stats/error_bound/max/2", within stats.error_bound.max) or a dotted value path
+// ("stats.error_bound.max.2") names or lies within, or nullptr.
+const StatsField* statsFieldAt(std::string_view pointer);
 const StatsField* statsFieldOf(std::string_view dotted);
 
-// Throws vri::Error when a value path into a stats file ("stats.wall_seconds", "1/timing.median_wall_seconds"
-// less its "1/") begins with "stats." or "timing." but names no field of the schema; `what` begins the message.
-void requireStatsField(const std::string& dotted, const std::string& what);
+// Throws vri::Error when a value path into a stats file ("stats.wall_seconds", or "1/" and one for its
+// reciprocal) begins with "stats." or "timing." but names no field of the schema; `what` begins the message.
+void requireStatsField(std::string_view expression, const std::string& what);
 
 }  // namespace vri

@@ -17,20 +17,6 @@ namespace {
 
 using nlohmann::json;
 
-// A key as one step of a JSON pointer (RFC 6901): '~' as "~0", '/' as "~1". A key of a stats file edited by
-// hand can hold either, which would otherwise end the pointer or make it invalid (fuzzing found it).
-std::string pointerStep(const std::string& key) {
-    std::string step;
-    for (const char c : key) step += c == '~' ? std::string("~0") : c == '/' ? std::string("~1") : std::string(1, c);
-    return step;
-}
-
-std::optional<TileRule> ruleOf(const std::string& pointer) {
-    for (const StatsField& f : statsSchema())
-        if (pointer == f.pointer || (pointer.starts_with(f.pointer) && pointer[f.pointer.size()] == '/')) return f.rule;
-    return std::nullopt;
-}
-
 // The largest count or time a tile's stats may hold: 2^53, beyond which a double no longer counts by one,
 // and no sum of a few thousand tiles' overflows 64 bits.
 constexpr long long kMostCount = 1LL << 53;
@@ -65,7 +51,7 @@ public:
     StatsCombiner(const std::vector<json>& records, const std::vector<std::string>& names)
         : records_(records), names_(names) {
         for (std::size_t i = 0; i < records.size(); ++i)
-            weights_.push_back(static_cast<double>(wholeNumberAt(records[i], "stats.rays", names[i], 0, kMostCount)));
+            weights_.push_back(static_cast<double>(wholeNumberAt(records[i], stats_field::rays.dotted(), names[i], 0, kMostCount)));
     }
 
     // The combined value at `pointer`, or null (noted in notCombined) when it cannot be combined.
@@ -74,7 +60,8 @@ public:
         const json::json_pointer at(pointer);
         for (const json& r : records_)
             if (r.contains(at)) values.push_back(&r.at(at));
-        const std::optional<TileRule> rule = ruleOf(pointer);
+        const StatsField* field = statsFieldAt(pointer);
+        const std::optional<TileRule> rule = field ? std::optional(field->rule) : std::nullopt;
         if (rule == TileRule::FirstPixel) return firstPixel(values);
         if (values.size() != records_.size()) return notCombined(pointer);
         const bool objects = std::ranges::all_of(values, [](const json* v) { return v->is_object(); });
@@ -82,7 +69,8 @@ public:
             json out = json::object();
             for (const json* v : values)
                 for (const auto& [key, unused] : v->items())
-                    if (!out.contains(key)) out[key] = combine(pointer + "/" + pointerStep(key));
+                    // A key of a file edited by hand may hold '~' or '/': json_pointer escapes it (fuzzing found it).
+                    if (!out.contains(key)) out[key] = combine((json::json_pointer(pointer) / key).to_string());
             return out;
         }
         if (!rule) return notCombined(pointer);

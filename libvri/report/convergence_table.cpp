@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <cstdio>
 #include <limits>
 #include <tuple>
@@ -61,12 +60,19 @@ std::optional<double> largestBound(const fs::path& stats) {
 
 // The slope of log error against log h over the asymptotic range, the kConvergenceFitSteps smallest steps
 // whose error is above the floor, and the largest step of that range; none where fewer than two remain.
-std::pair<std::optional<double>, std::optional<double>> asymptoticOrder(const std::vector<double>& steps,
-                                                                         const std::vector<double>& errors, double floor) {
-    std::vector<std::pair<double, double>> usable;  // (h, error), smallest h first
+// The (h, error) points whose error is above the floor (and finite), smallest h first.
+std::vector<std::pair<double, double>> pointsAbove(const std::vector<double>& steps, const std::vector<double>& errors,
+                                                   double floor) {
+    std::vector<std::pair<double, double>> usable;
     for (std::size_t i = 0; i < steps.size(); ++i)
         if (errors[i] > floor && std::isfinite(errors[i])) usable.emplace_back(steps[i], errors[i]);
     std::ranges::sort(usable);
+    return usable;
+}
+
+std::pair<std::optional<double>, std::optional<double>> asymptoticOrder(const std::vector<double>& steps,
+                                                                         const std::vector<double>& errors, double floor) {
+    std::vector<std::pair<double, double>> usable = pointsAbove(steps, errors, floor);
     if (usable.size() > kConvergenceFitSteps) usable.resize(kConvergenceFitSteps);
     if (usable.size() < 2 || usable.front().first == usable.back().first) return {};
     std::vector<double> h, e;
@@ -77,10 +83,8 @@ std::pair<std::optional<double>, std::optional<double>> asymptoticOrder(const st
 // The order between each two neighbouring steps, log(e_i / e_i+1) / log(h_i / h_i+1), largest h first, over the
 // steps whose error is above the floor: a fit over a few steps can straddle a change of order that these show.
 std::vector<double> localOrders(const std::vector<double>& steps, const std::vector<double>& errors, double floor) {
-    std::vector<std::pair<double, double>> usable;  // (h, error), largest h first
-    for (std::size_t i = 0; i < steps.size(); ++i)
-        if (errors[i] > floor && std::isfinite(errors[i])) usable.emplace_back(steps[i], errors[i]);
-    std::ranges::sort(usable, std::greater<>());
+    std::vector<std::pair<double, double>> usable = pointsAbove(steps, errors, floor);
+    std::ranges::reverse(usable);  // largest h first
     std::vector<double> orders;
     for (std::size_t i = 0; i + 1 < usable.size(); ++i)
         if (usable[i].first != usable[i + 1].first)

@@ -20,7 +20,7 @@ std::map<std::string, SlurmJob> jobs(std::initializer_list<SlurmJob> list) {
 }  // namespace
 
 TEST_CASE("PendingWatch: a line after the first interval, then at doubling ones; jobs waiting for others say nothing") {
-    PendingWatch watch("Slurm jobs", 0, 60);
+    PendingWatch watch("Slurm jobs", 0);  // no limit: the first line after a minute
     const auto t0 = PendingWatch::Clock::now();
     const auto at = [&](double s) { return t0 + std::chrono::milliseconds(static_cast<long long>(s * 1000)); };
     std::ostringstream out;
@@ -51,7 +51,7 @@ TEST_CASE("PendingWatch: a line after the first interval, then at doubling ones;
 }
 
 TEST_CASE("PendingWatch: --slurm-max-pending gives up with the jobs' reasons") {
-    PendingWatch watch("the Slurm check job 7", 10, 5);
+    PendingWatch watch("the Slurm check job 7", 10);  // the first line halfway to the limit
     const auto t0 = PendingWatch::Clock::now();
     std::ostringstream out;
     const auto held = jobs({{"7", "PENDING", "", "JobHeldUser"}});
