@@ -27,7 +27,7 @@ int run(int argc, char** argv) {
     app.add_option("--catalog", catalogPath, "dataset catalog YAML")->capture_default_str();
     app.add_option("--data-dir", dataDir, "where the datasets are (default: $VRI_DATA_DIR, else "
                                           "../shared/data/volumes); downloads go there too");
-    app.add_option("--only", only, "check only these datasets, comma separated")->delimiter(',');
+    vri::addListOption(app, "--only", only, "check only these datasets, comma separated");
     app.add_flag("--no-download", noDownload, "report missing datasets instead of downloading them");
     app.footer(
         "Exit status: 0 when every dataset is verified, ok or downloaded; 1 when any is MISSING or MISMATCH.\n"

@@ -172,10 +172,8 @@ int run(int argc, char** argv) {
     app.add_option("B", options.b, "second image, same size and channel count")->required();
     app.add_option("--channels", options.channels,
                    "compare only these channels, by name, comma separated (R,G,B for an image without alpha)");
-    app.add_option("--threshold", options.thresholds, "error thresholds to report, comma separated")
-        ->delimiter(',')
-        ->check(kNonNegative)
-        ->capture_default_str();
+    vri::addListOption(app, "--threshold", options.thresholds, "error thresholds to report, comma separated",
+                       kNonNegative);
     app.add_option("--json", options.json, "write all statistics as JSON to FILE; '-' prints them on stdout "
                                            "instead of the summary");
     auto* diffImage = app.add_option(
@@ -233,10 +231,8 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--histogram", options.histogram, "write per-channel error histograms as CSV "
                                                      "(bin_lo,bin_hi,R,G,B,A; bins (lo, hi], plus a zero bin)");
-    app.add_option("--histogram-range", options.histogramRange, "LO,HI: logarithmic histogram bins span this")
-        ->delimiter(',')
-        ->expected(2)
-        ->capture_default_str();
+    vri::addListOption(app, "--histogram-range", options.histogramRange, "LO,HI: logarithmic histogram bins span this",
+                       std::nullopt, 2);
     app.add_option("--bins-per-decade", options.binsPerDecade, "histogram bins per factor of ten")
         ->check(kPositive)
         ->capture_default_str();

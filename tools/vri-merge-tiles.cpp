@@ -24,8 +24,8 @@ int run(int argc, char** argv) {
     CLI::App app{"Joins the tiles of one render (vri-render or vri-reference with --region X,Y,WIDTH,HEIGHT) into "
                  "the whole image, bit for bit the untiled render's, and one stats JSON.",
                  kTool};
-    app.add_option("--tile", tileArgs, "IMAGE.exr STATS.json: one tile's image and stats (once per tile, any order)")
-        ->expected(2)
+    vri::addWordsOption(app, "--tile", tileArgs, "IMAGE.exr STATS.json", 2, 2,
+                        "one tile's image and stats (once per tile, any order)")
         ->required();
     app.add_option("-o,--output", output, "the whole image (.exr: float RGBA)")->required();
     app.add_option("--png", pngPath, "8-bit preview PNG of the whole image");
@@ -55,8 +55,6 @@ Outputs are written atomically, only once every check has passed.)");
     std::vector<vri::TileFiles> tiles;
     std::vector<vri::InputArgument> inputs;
     for (const std::vector<std::string>& t : tileArgs) {
-        // CLI11 lets the last use of an option that takes two words fall short of them.
-        if (t.size() != 2) throw vri::UsageError("--tile: expected two files, IMAGE.exr STATS.json, per tile");
         tiles.push_back({t[0], t[1]});
         inputs.insert(inputs.end(), {{"--tile", t[0]}, {"--tile", t[1]}});
     }

@@ -30,10 +30,8 @@ int run(int argc, char** argv) {
                  "interpolated voxel value, as a fraction of the difference between neighbouring voxels.",
                  kTool};
     app.add_option("--device", device, "Vulkan device: an index of vri-render --list-devices or part of a name");
-    app.add_option("--types", types, "voxel types to probe, comma separated (uint8: R8 unorm, uint16: R16 unorm, "
-                                     "float32: R32 float)")
-        ->delimiter(',')
-        ->capture_default_str();
+    vri::addListOption(app, "--types", types, "voxel types to probe, comma separated (uint8: R8 unorm, uint16: R16 "
+                                              "unorm, float32: R32 float)");
     app.add_option("-o,--output", output, "CSV of every reading: type, format, weight, read, error ('-': stdout)");
     app.add_option("--summary", summary, "Markdown table per type: reported sub-texel bits, max error, effective "
                                          "bits, distinct readings ('-': stdout)");

@@ -15,6 +15,8 @@
 namespace {
 
 constexpr const char* kTool = "vri-tabulate";
+// The most files one --row or --cell may name: a bound, so that a runaway word list is refused, not read.
+constexpr int kMostFiles = 1 << 20;
 
 struct Options {
     std::string layout;
@@ -31,12 +33,6 @@ struct Options {
 std::vector<std::filesystem::path> paths(std::vector<std::string>::const_iterator first,
                                          std::vector<std::string>::const_iterator last) {
     return {first, last};
-}
-
-// CLI11 lets the last use of an option that takes several words fall short of them.
-void requireWords(const std::vector<std::vector<std::string>>& uses, std::size_t words, const char* usage) {
-    for (const auto& use : uses)
-        if (use.size() != words) throw vri::Error(usage);
 }
 
 // An option that one layout alone takes is a mistake with another.
@@ -69,7 +65,6 @@ std::vector<vri::ConvergencePoint> convergencePoints(const Options& options) {
     if (options.points.empty()) throw vri::Error("--layout convergence needs --point SERIES H DIFF [STATS]");
     std::vector<vri::ConvergencePoint> points;
     for (const auto& point : options.points) {
-        if (point.size() != 3 && point.size() != 4) throw vri::Error("--point needs SERIES H DIFF [STATS]");
         std::optional<double> step;
         if (point[1] != "-") step = vri::parsePositive(point[1], "--point " + point[0] + ": step");
         points.push_back({point[0], step, point[2], point.size() == 4 ? point[3] : std::string()});
@@ -88,7 +83,6 @@ vri::Table buildTable(const Options& options) {
     }
     if (options.layout == "tradeoff") {
         if (options.runs.empty()) throw vri::Error("--layout tradeoff needs --run LABEL STATS DIFF");
-        requireWords(options.runs, 3, "--run needs LABEL STATS DIFF");
         std::vector<vri::TradeoffRow> rows;
         for (const auto& run : options.runs) rows.push_back({run[0], run[1], run[2]});
         vri::TradeoffOptions tradeoff;
@@ -101,15 +95,10 @@ vri::Table buildTable(const Options& options) {
     if (options.cells.empty() || options.value.empty())
         throw vri::Error("--layout matrix needs --value EXPR and --cell ROW COLUMN FILE...");
     std::vector<vri::MatrixCell> cells;
-    for (const auto& cell : options.cells) {
-        if (cell.size() < 3) throw vri::Error("--cell needs ROW COLUMN FILE...");
-        cells.push_back({cell[0], cell[1], paths(cell.begin() + 2, cell.end())});
-    }
+    for (const auto& cell : options.cells) cells.push_back({cell[0], cell[1], paths(cell.begin() + 2, cell.end())});
     vri::MatrixOptions matrix;
     matrix.value = options.value;
     matrix.precision = options.precision.value_or(2);
-    requireWords(options.columnValues, 2, "--column-value needs COLUMN EXPR");
-    requireWords(options.columnPrecisions, 2, "--column-precision needs COLUMN N");
     for (const auto& pair : options.columnValues) matrix.columnValue[pair[0]] = pair[1];
     for (const auto& pair : options.columnPrecisions)
         matrix.columnPrecision[pair[0]] = vri::parseCount(pair[1], "--column-precision " + pair[0], 0, 17);
@@ -151,33 +140,31 @@ int run(int argc, char** argv) {
     app.add_option("--precision", options.precision,
                    "decimals (default: 2 for matrix; thresholds and tradeoff's % columns have 3 significant digits)")
         ->check(vri::integerRange(0, 17));
-    app.add_option("--row", options.rows, "thresholds: LABEL FILE [FILE...]; one vri-diff JSON for all thresholds, "
-                                          "or one per threshold in threshold order")
-        ->expected(2, 1 << 20);
-    app.add_option("--thresholds", options.thresholds, "thresholds: which, comma separated (default: the first file's)")
-        ->delimiter(',');
-    app.add_option("--cell", options.cells, "matrix: ROW COLUMN FILE [FILE...]; several files give their median")
-        ->expected(3, 1 << 20);
+    vri::addWordsOption(app, "--row", options.rows, "LABEL FILE...", 2, kMostFiles,
+                        "thresholds: LABEL FILE [FILE...]; one vri-diff JSON for all thresholds, or one per threshold in "
+                        "threshold order");
+    vri::addListOption(app, "--thresholds", options.thresholds,
+                       "thresholds: which, comma separated (default: the first file's)");
+    vri::addWordsOption(app, "--cell", options.cells, "ROW COLUMN FILE...", 3, kMostFiles,
+                        "matrix: ROW COLUMN FILE [FILE...]; several files give their median");
     app.add_option("--value", options.value, "matrix: dotted JSON path of the value, e.g. stats.wall_seconds; "
                                              "'1/PATH' for its reciprocal (fps)");
-    app.add_option("--column-value", options.columnValues, "matrix: COLUMN EXPR, another value for one column")
-        ->expected(2);
-    app.add_option("--column-precision", options.columnPrecisions, "matrix: COLUMN N, other decimals for one column")
-        ->expected(2);
-    app.add_option("--run", options.runs, "tradeoff: LABEL STATS DIFF, one row: the run's vri-render stats "
-                                          "(timing.median_wall_seconds) and its vri-diff JSON against the reference")
-        ->expected(3);
-    app.add_option("--point", options.points,
-                   "convergence: SERIES H DIFF [STATS], one run of a sweep: its step h in voxels ('-' for none), its "
-                   "vri-diff JSON against the accurate reference and, for an error bound, its stats")
-        ->expected(3, 4);
+    vri::addWordsOption(app, "--column-value", options.columnValues, "COLUMN EXPR", 2, 2,
+                        "matrix: COLUMN EXPR, another value for one column");
+    vri::addWordsOption(app, "--column-precision", options.columnPrecisions, "COLUMN N", 2, 2,
+                        "matrix: COLUMN N, other decimals for one column");
+    vri::addWordsOption(app, "--run", options.runs, "LABEL STATS DIFF", 3, 3,
+                        "tradeoff: LABEL STATS DIFF, one row: the run's vri-render stats (timing.median_wall_seconds) "
+                        "and its vri-diff JSON against the reference");
+    vri::addWordsOption(app, "--point", options.points, "SERIES H DIFF [STATS]", 3, 4,
+                        "convergence: SERIES H DIFF [STATS], one run of a sweep: its step h in voxels ('-' for none), "
+                        "its vri-diff JSON against the accurate reference and, for an error bound, its stats");
     app.add_option("--points", options.pointsCsv,
                    "convergence: also write the points as CSV (series,h,error,legend: the largest error; legend "
                    "holds the max order) for a log-log plot");
-    app.add_option("--threshold", options.tradeoffThresholds,
-                   "tradeoff: the error thresholds of the % columns, comma separated (default 0.001), each one the "
-                   "diffs counted; the first is the % front's")
-        ->delimiter(',');
+    vri::addListOption(app, "--threshold", options.tradeoffThresholds,
+                       "tradeoff: the error thresholds of the % columns, comma separated (default 0.001), each one the "
+                       "diffs counted; the first is the % front's");
     app.add_option("--baseline", options.baseline,
                    "tradeoff: a run's LABEL; adds 'time ratio', every run's seconds over the baseline's");
     app.add_option("--channels", options.channels,

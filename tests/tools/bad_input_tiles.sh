@@ -48,7 +48,7 @@ PY
 M="^vri-merge-tiles: error: "
 merge=("$bin/vri-merge-tiles")
 bad 64 "${M}--tile is required \(see --help\)$" -- "${merge[@]}" -o out.exr
-bad 64 "${M}--tile: expected two files, IMAGE.exr STATS.json, per tile$" -- "${merge[@]}" --tile t1.exr -o out.exr
+bad 64 "${M}--tile: expected IMAGE\.exr STATS\.json, got 1 word \(see --help\)$" -- "${merge[@]}" --tile t1.exr -o out.exr
 bad 64 "${M}-o: 'out.png' is not an .exr file" -- "${merge[@]}" --tile t1.exr t1.json --tile t2.exr t2.json -o out.png
 bad 64 "${M}--stats: 'out.exr' is also -o's output$" -- "${merge[@]}" --tile t1.exr t1.json -o out.exr --stats out.exr
 bad 1 "${M}missing.json: no such file" -- "${merge[@]}" --tile t1.exr t1.json --tile t2.exr missing.json -o out.exr

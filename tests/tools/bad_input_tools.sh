@@ -202,6 +202,12 @@ bad 64 "^vri-tabulate: error: --row: an empty word cannot be one of its values" 
     "$bin/vri-tabulate" --layout thresholds --row -O3 '' -o table.md
 "$bin/vri-tabulate" --layout thresholds --row '[draft]' diff.json -o bracket.md
 grep -q '^| \[draft\] |' bracket.md || fail "--row '[draft]' lost its brackets: $(cat bracket.md)"
+bad 64 "^vri-tabulate: error: --cell: expected ROW COLUMN FILE\.\.\., got 2 words \(see --help\)$" -- \
+    "$bin/vri-tabulate" --layout matrix --cell A B --value stats.wall_seconds -o table.md
+# A list given twice adds up, and replaces the default.
+"$bin/vri-diff" a.exr a.exr --threshold 0.1 --threshold 0.2,0.3 --json diff2.json > /dev/null
+[[ $(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["thresholds"])' diff2.json) == \
+   "[0.1, 0.2, 0.3]" ]] || fail "--threshold twice did not add up: $(cat diff2.json)"
 bad 64 "^vri-tabulate: error: --thresholds: an empty item in '0\.01,,0\.001'" -- \
     "$bin/vri-tabulate" --layout thresholds --title -- --thresholds 0.01,,0.001 --row A diff.json -o table.md
 bad 64 "${E}--histogram-range: an empty item in '1e-6,,1'" -- \
@@ -215,7 +221,7 @@ bad 64 "${E}--diff-scale: 1e-320 puts the heat map's top at 1/K, which is not a 
 bad 64 "${E}--bins-per-decade: expected a number > 0, got '0'" -- \
     "$bin/vri-diff" a.exr a.exr --bins-per-decade 0 --histogram h.csv
 bad 64 "${E}--diff-scale requires --diff-image" -- "$bin/vri-diff" a.exr a.exr --diff-scale 2
-bad 64 "${E}logarithmic bins need 0 < lo < hi" -- "$bin/vri-diff" a.exr a.exr --histogram-range 1 0.1 --histogram h.csv
+bad 64 "${E}logarithmic bins need 0 < lo < hi" -- "$bin/vri-diff" a.exr a.exr --histogram-range 1,0.1 --histogram h.csv
 bad 64 "${E}--scale-over requires --diff-image" -- "$bin/vri-diff" a.exr a.exr --scale-over a.exr
 bad 64 "${E}--diff-scale excludes --scale-over" -- "$bin/vri-diff" a.exr a.exr --diff-image d.png --diff-scale 2 --scale-over a.exr
 bad 64 "${E}--scale-over sets the scale of a PNG heat map; --diff-image 'd\.exr' is not a \.png$" -- \

@@ -147,7 +147,7 @@ expect_failure "baseline 'riemann-h2': no row of that name" --layout tradeoff --
     --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o t1.md --csv t1.csv
 expect_failure "channels: some not in" --layout tradeoff --channels some --run riemann-h1 riemann-h1.json vs-riemann-h1.json -o t1.md
 expect_failure "baseline belongs to --layout tradeoff" --layout thresholds --baseline R --row R riemann.json -o t1.md
-expect_failure "run needs LABEL STATS DIFF" --layout tradeoff --run R riemann-h1.json -o t1.md
-expect_failure "column-value needs COLUMN EXPR" --layout matrix --value x --cell a b run1.json --column-value b -o t1.md
+expect_failure "run: expected LABEL STATS DIFF, got 2 words" --layout tradeoff --run R riemann-h1.json -o t1.md
+expect_failure "column-value: expected COLUMN EXPR, got 1 word" --layout matrix --value x --cell a b run1.json --column-value b -o t1.md
 expect_failure "layout" --layout pie --row R riemann.json -o t1.md
 echo "tabulate: all checks passed"

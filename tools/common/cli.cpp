@@ -104,82 +104,6 @@ std::string conversionMessage(const CLI::App& app, const std::string& what) {
     return name + ": " + what.substr(equals + 3) + " is outside the range of this integer option";
 }
 
-// A list option ("--threshold 0.1,0.2", items split at its delimiter) or an option of several words a use ("--cell
-// ROW COLUMN FILE..."). CLI11 would read a word in brackets given to one ("[a,b]") as a list of its own; with
-// extra arguments off it takes each word as typed, and a list option one word a use, so that the words after it
-// are the command's other arguments (vri-diff --threshold 0.1 a.exr b.exr --json d.json).
-bool isWordList(const CLI::Option& option) {
-    return option.get_delimiter() != '\0' || option.get_type_size_max() > 1;
-}
-void takeWordsAsTyped(CLI::App& app) {
-    for (CLI::Option* option : app.get_options())
-        if (isWordList(*option)) option->allow_extra_args(false);
-    for (CLI::App* group : app.get_subcommands({})) takeWordsAsTyped(*group);
-}
-
-// What CLI11 takes a word for, once an option has its least number of words (App::_recognize): "--" ends the
-// options; '-' and a character that can begin a name starts an option, but for '-' and a digit where no option is
-// so named (-1,,1 is a value); anything else is a value.
-enum class WordKind { Value, Option, EndOfOptions };
-WordKind wordKind(const CLI::App& app, std::string_view word) {
-    if (word == "--") return WordKind::EndOfOptions;
-    if (word.size() < 2 || word[0] != '-') return WordKind::Value;
-    const bool longName = word[1] == '-';
-    const char first = longName ? (word.size() > 2 ? word[2] : ' ') : word[1];
-    if (first == '-' || first == '!' || first == ' ' || first == '\n') return WordKind::Value;
-    if (!longName && std::isdigit(static_cast<unsigned char>(first)) && !app.get_option_no_throw(std::string{'-', first}))
-        return WordKind::Value;
-    return WordKind::Option;
-}
-
-// An empty value a word list's option would lose: CLI11 drops an empty item of a list ("0.1,,0.2" is two
-// thresholds, "a," one word; vri's lists are comma-separated, as parseWordList reads them) and takes an empty word
-// for its break between two uses of an option of several words (--cell A '' f.json would lose its column).
-void refuseEmptyValue(const CLI::Option& option, std::string_view word) {
-    if (option.get_delimiter() == '\0') {
-        if (word.empty()) throw CLI::ValidationError(option.get_name(), "an empty word cannot be one of its values");
-        return;
-    }
-    try {
-        parseWordList(std::string(word), option.get_name());
-    } catch (const Error& e) {
-        throw CLI::ValidationError(e.what());
-    }
-}
-
-// Refuses, before CLI11 reads them, the empty values a word list's option would lose. The words an option takes
-// are found as CLI11 finds them (App::_parse_arg): its value after '=', then its least number of words whatever
-// they look like, then, up to its most, the words that are values; a "--" that ends such a run is CLI11's too.
-void refuseEmptyValues(const CLI::App& app, int argc, char** argv) {
-    for (int i = 1; i < argc; ++i) {
-        const std::string_view word = argv[i];
-        const WordKind kind = wordKind(app, word);
-        if (kind == WordKind::EndOfOptions) return;
-        if (kind == WordKind::Value) continue;
-        const std::size_t equals = word.starts_with("--") ? word.find('=') : std::string_view::npos;
-        const CLI::Option* option = app.get_option_no_throw(std::string(word.substr(0, equals)));
-        if (!option || option->get_items_expected_max() == 0) continue;  // unknown (CLI11 says so), or a flag
-        const auto take = [&](std::string_view value) {
-            if (isWordList(*option)) refuseEmptyValue(*option, value);
-        };
-        const int least = std::min(option->get_type_size_min(), option->get_items_expected_min());
-        const bool extra = option->get_allow_extra_args();
-        std::int64_t most = option->get_items_expected_max();
-        if (!extra && most >= CLI::detail::expected_max_vector_size / 16)
-            most = std::int64_t{option->get_type_size_max()} * option->get_expected_min();
-        int taken = 0;
-        if (equals != std::string_view::npos) {
-            take(word.substr(equals + 1));
-            taken = 1;
-        }
-        for (; taken < least && i + 1 < argc; ++taken) take(argv[++i]);
-        if (taken >= most && !extra) continue;
-        for (; (taken < most || extra) && i + 1 < argc && wordKind(app, argv[i + 1]) == WordKind::Value; ++taken)
-            take(argv[++i]);
-        if (i + 1 < argc && wordKind(app, argv[i + 1]) == WordKind::EndOfOptions) ++i;
-    }
-}
-
 }  // namespace
 
 CLI::Validator integerRange(std::int64_t lo, std::int64_t hi) {
@@ -214,6 +138,89 @@ CLI::Validator numberAbove(double lo, bool orEqual) {
         bound, "lower bound");
 }
 
+namespace {
+
+// A list option's items in one word, split at single commas; an empty item is a usage error.
+std::vector<std::string> listItems(const std::string& word, const std::string& option) {
+    try {
+        return parseWordList(word, option);
+    } catch (const Error& e) {
+        throw CLI::ValidationError(e.what());
+    }
+}
+
+// The name an option's messages give: the long one of "-o,--output".
+std::string optionLabel(const std::string& names) { return names.substr(names.rfind(',') + 1); }
+
+std::string commaJoined(const std::vector<std::string>& items) {
+    std::string text;
+    for (const std::string& item : items) text += (text.empty() ? "" : ",") + item;
+    return text;
+}
+
+}  // namespace
+
+CLI::Option* addListOption(CLI::App& app, const std::string& name, std::vector<double>& items,
+                           const std::string& description, std::optional<CLI::Validator> check, std::size_t count) {
+    std::vector<std::string> defaults;
+    for (double item : items) defaults.push_back(exactNumber(item));
+    const std::string label = optionLabel(name);
+    CLI::Option* option = app.add_option(name, [&items, label, check, count](const CLI::results_t& words) {
+        std::vector<double> read;
+        for (const std::string& word : words) {
+            std::vector<std::string> texts = listItems(word, label);
+            if (count && texts.size() != count)
+                throw CLI::ValidationError(label, "expected " + std::to_string(count) +
+                                                      " numbers separated by ',', got '" + word + "'");
+            for (std::string& text : texts) {
+                const std::optional<double> number = numberFromText(text);
+                if (!number) throw CLI::ValidationError(label, "expected a number, got '" + text + "'");
+                if (check)
+                    if (const std::string why = (*check)(text); !why.empty()) throw CLI::ValidationError(label, why);
+                read.push_back(*number);
+            }
+        }
+        items = std::move(read);
+        return true;
+    }, description);
+    return option->allow_extra_args(false)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->type_name(count ? "NUMBER,NUMBER" : "NUMBER,...")
+        ->default_str(commaJoined(defaults));
+}
+
+CLI::Option* addListOption(CLI::App& app, const std::string& name, std::vector<std::string>& items,
+                           const std::string& description) {
+    const std::string defaults = commaJoined(items);
+    const std::string label = optionLabel(name);
+    CLI::Option* option = app.add_option(name, [&items, label](const CLI::results_t& words) {
+        std::vector<std::string> read;
+        for (const std::string& word : words)
+            for (std::string& item : listItems(word, label)) read.push_back(std::move(item));
+        items = std::move(read);
+        return true;
+    }, description);
+    return option->allow_extra_args(false)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->type_name("TEXT,...")->default_str(defaults);
+}
+
+CLI::Option* addWordsOption(CLI::App& app, const std::string& name, std::vector<std::vector<std::string>>& uses,
+                            const std::string& usage, int least, int most, const std::string& description) {
+    const std::string label = optionLabel(name);
+    // Triggered at each use, so that each use's words arrive on their own, exactly as typed.
+    CLI::Option* option = app.add_option(name, [&uses, label, usage, least](const CLI::results_t& words) {
+        for (const std::string& word : words)
+            if (word.empty()) throw CLI::ValidationError(label, "an empty word cannot be one of its values");
+        if (static_cast<int>(words.size()) < least)
+            throw CLI::ValidationError(label, "expected " + usage + ", got " + std::to_string(words.size()) +
+                                                  (words.size() == 1 ? " word" : " words"));
+        uses.push_back(words);
+        return true;
+    }, description);
+    return option->trigger_on_parse()->allow_extra_args(false)->expected(1, most)->type_name(usage);
+}
+
 CLI::Validator volumeInDataDir() {
     return CLI::Validator(
         [](std::string& value) -> std::string {
@@ -241,9 +248,7 @@ std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc
     app.set_version_flag("--version", [tool] { return versionText(tool); },
                          "print the version, git commit, build type and compiler, and exit");
     checkNumberText(app);
-    takeWordsAsTyped(app);
     try {
-        refuseEmptyValues(app, argc, argv);
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {  // --help, --help-all, --version
         return app.exit(e);

@@ -42,11 +42,27 @@ CLI::Validator numberAbove(double lo, bool orEqual);
 // value stays as given, and reading it says what is missing.
 CLI::Validator volumeInDataDir();
 
+// A list option ("--threshold 0.1,0.2"): one word a use, as typed (brackets too), split into items at single
+// commas by parseWordList, which refuses an empty item; the items of every use, in order, replace the default.
+// A number list reads each item as a number option's value is read (parse.h) and checks it with `check`;
+// `count`, when not 0, is the number of items the option must have. vri splits the word, not CLI11, whose list
+// parsing drops empty items.
+CLI::Option* addListOption(CLI::App& app, const std::string& name, std::vector<double>& items,
+                           const std::string& description, std::optional<CLI::Validator> check = std::nullopt,
+                           std::size_t count = 0);
+CLI::Option* addListOption(CLI::App& app, const std::string& name, std::vector<std::string>& items,
+                           const std::string& description);
+
+// An option of several words a use ("--cell ROW COLUMN FILE..."), `usage` naming them: from `least` to `most`
+// words, the first whatever it looks like and the others up to the next option; each use's words as typed,
+// one entry of `uses` a use. An empty word, which CLI11 would take for a break between uses, is refused.
+CLI::Option* addWordsOption(CLI::App& app, const std::string& name, std::vector<std::vector<std::string>>& uses,
+                            const std::string& usage, int least, int most, const std::string& description);
+
 // Parses the command line, after adding --version; a usage error becomes the one line
 // "<tool>: error: <what> (see --help)" and exit kExitUsage, --help and --version print on stdout
 // (exit 0). Returns the exit code to leave with, if any. Every number option's text is checked first in
-// parse.h's forms; a comma-separated list option takes one word a use, an option of several words takes them as
-// typed (brackets too), and an empty list item or word, which CLI11 would drop, is a usage error.
+// parse.h's forms.
 std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv);
 
 // Throws UsageError "argument N '<arg>' is not valid UTF-8 (byte B): <why>" for the first argument that is
