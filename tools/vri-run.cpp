@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -283,6 +284,14 @@ int run(const Options& options) {
                 throw vri::Error("--executor slurm: the results folder " + folder + " holds a '%', which Slurm reads as "
                                  "a pattern in the jobs' folders (%j: the job id); choose --results without '%'");
     }
+    // --check runs what its numbers need, and what another experiment of the run reads.
+    for (std::size_t e = 0; options.check && e < plans.size(); ++e) {
+        std::set<fs::path> readElsewhere;
+        for (std::size_t other = 0; other < plans.size(); ++other)
+            for (const vri::Step& step : plans[other].steps)
+                if (other != e) readElsewhere.insert(step.inputs.begin(), step.inputs.end());
+        plans[e] = vri::checkedPart(experiments[e], plans[e], readElsewhere);
+    }
     // An experiment that reads another's results runs after it (plan_waves.h).
     std::vector<std::string> names;
     for (const vri::Experiment& experiment : experiments) names.push_back(experiment.source.string());
@@ -396,7 +405,8 @@ int main(int argc, char** argv) {
     app.add_option("--slurm-node-steps", options.nodeSteps)->group("");  // what a Slurm job runs (slurm_node.h)
     app.add_option("--slurm-node-check", options.nodeCheck)->group("");
     app.add_flag("--record", options.record, "with --quick: write the reproduce: numbers to COMMITTED/<experiment>/reproduce.json");
-    app.add_flag("--check", options.check, "with --quick: compare the reproduce: numbers with the committed ones; exit 1 on a mismatch")
+    app.add_flag("--check", options.check, "with --quick: run the steps the reproduce: numbers need (an experiment without them runs whole) and "
+                 "compare the numbers with the committed ones; exit 1 on a mismatch")
         ->excludes("--record");
     app.add_option("--committed", options.committed, "the committed results root for --record and --check")
         ->capture_default_str();

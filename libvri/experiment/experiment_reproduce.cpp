@@ -82,6 +82,32 @@ void compareCells(const std::string& what, const nlohmann::json& now, const nloh
 
 }  // namespace
 
+Plan checkedPart(const Experiment& experiment, const Plan& plan, const std::set<fs::path>& readElsewhere) {
+    if (experiment.reproduce.empty()) return plan;
+    std::vector<bool> needed(plan.steps.size(), false);
+    for (std::size_t i = plan.steps.size(); i-- > 0;) {  // a step comes after those it depends on
+        const Step& step = plan.steps[i];
+        needed[i] = needed[i] ||
+                    std::any_of(experiment.reproduce.begin(), experiment.reproduce.end(),
+                                [&](const ReproduceCheck& check) { return check.of == step.id; }) ||
+                    std::any_of(step.outputs.begin(), step.outputs.end(),
+                                [&](const fs::path& out) { return readElsewhere.count(out) > 0; });
+        if (needed[i])
+            for (std::size_t d : plan.dependencies[i]) needed[d] = true;
+    }
+    Plan part{plan.resultsDir, plan.workDir, {}, {}};
+    std::vector<std::size_t> index(plan.steps.size());
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+        if (!needed[i]) continue;
+        index[i] = part.steps.size();
+        part.steps.push_back(plan.steps[i]);
+        std::vector<std::size_t> dependencies;
+        for (std::size_t d : plan.dependencies[i]) dependencies.push_back(index[d]);
+        part.dependencies.push_back(std::move(dependencies));
+    }
+    return part;
+}
+
 nlohmann::json measureReproduceMetrics(const Experiment& experiment, const Plan& plan) {
     nlohmann::json measured = nlohmann::json::object();
     for (const ReproduceCheck& check : experiment.reproduce) {
