@@ -15,9 +15,6 @@
 #include <vector>
 
 #include "common/cli.h"
-#include "libvri/render/diff_verdict.h"
-#include "libvri/render/pixel_mask_for.h"
-#include "libvri/render/image_compare_json.h"
 #include "libvri/core/heat_map.h"
 #include "libvri/core/image_compare.h"
 #include "libvri/core/image_metrics.h"
@@ -25,6 +22,10 @@
 #include "libvri/core/pixel_mask.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
+#include "libvri/render/diff_verdict.h"
+#include "libvri/render/image_compare_json.h"
+#include "libvri/render/pixel_mask_for.h"
+#include "libvri/render/tool_flags.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/format.h"
 #include "libvri/util/json_file.h"
@@ -172,65 +173,68 @@ int run(int argc, char** argv) {
     app.add_option("B", options.b, "second image, same size and channel count")->required();
     app.add_option("--channels", options.channels,
                    "compare only these channels, by name, comma separated (R,G,B for an image without alpha)");
-    vri::addListOption(app, "--threshold", options.thresholds, "error thresholds to report, comma separated",
-                       kNonNegative);
-    app.add_option("--json", options.json, "write all statistics as JSON to FILE; '-' prints them on stdout "
-                                           "instead of the summary");
+    vri::addListOption(app, vri::diff_flag::threshold, options.thresholds,
+                       "error thresholds to report, comma separated", kNonNegative);
+    app.add_option(vri::diff_flag::json, options.json,
+                   "write all statistics as JSON to FILE; '-' prints them on stdout "
+                   "instead of the summary");
     auto* diffImage = app.add_option(
-        "--diff-image", options.diffImage,
+        vri::diff_flag::diffImage, options.diffImage,
         "write the difference image: .exr the per-channel |A - B| (exact); .png a heat map of the largest |A - B| over "
         "the channels (viridis, dark blue 0 to yellow at the top of the scale) with a colour bar below it, numbered "
         "at quarters of the scale; the JSON gives the scale (heat_map.top)");
-    auto* diffScale = app.add_option(
-        "--diff-scale", options.diffScale, "EXR: multiply the difference image by K; PNG: the heat map's scale "
-                                           "runs to 1/K (default: to the largest difference)")
-        ->check(kPositive)
-        ->needs(diffImage)
-        ->capture_default_str();
-    app.add_option("--scale-over", options.scaleOver,
-                   "IMAGE (repeatable): a PNG heat map's scale runs to the largest |A - X| over B and each such image X "
-                   "(A's size and channels): one scale for a set of comparisons against A, as the other comparisons "
-                   "of the set give it")
+    auto* diffScale = app.add_option(vri::diff_flag::diffScale, options.diffScale,
+                                     "EXR: multiply the difference image by K; PNG: the heat map's scale "
+                                     "runs to 1/K (default: to the largest difference)")
+                          ->check(kPositive)
+                          ->needs(diffImage)
+                          ->capture_default_str();
+    app.add_option(
+           vri::diff_flag::scaleOver, options.scaleOver,
+           "IMAGE (repeatable): a PNG heat map's scale runs to the largest |A - X| over B and each such image X "
+           "(A's size and channels): one scale for a set of comparisons against A, as the other comparisons "
+           "of the set give it")
         ->allow_extra_args(false)
         ->needs(diffImage)
         ->excludes(diffScale);
-    app.add_option("--heat-scale", options.heatScale,
+    app.add_option(vri::diff_flag::heatScale, options.heatScale,
                    "a PNG heat map's colours: linear from 0 to the top, or log: the DECADES decades below the top "
                    "(log is log:3), for a set whose errors span orders of magnitude")
         ->needs(diffImage)
         ->capture_default_str();
-    app.add_option("--heat-top", options.heatTop,
+    app.add_option(vri::diff_flag::heatTop, options.heatTop,
                    "a PNG heat map's top when --diff-scale and --scale-from do not set it: max, the largest error of B "
                    "and the --scale-over images, or pN, the Nth percentile of their pixels' errors (those --mask keeps "
                    "and that are not 0), so that one outlier cannot darken every map; pixels above it show in magenta")
         ->needs(diffImage)
         ->excludes(diffScale)
         ->capture_default_str();
-    app.add_flag("--heat-signed", options.signedMaps,
+    app.add_flag(vri::diff_flag::heatSigned, options.signedMaps,
                  "a PNG shows B - A per channel, side by side, blue below 0, red above, on one linear scale")
         ->needs(diffImage)
-        ->excludes("--heat-scale");
+        ->excludes(vri::diff_flag::heatScale);
     app.add_option("--title", options.title,
                    "the title line above a PNG heat map (default: B vs A, the value shown and its scale)")
         ->needs(diffImage);
-    app.add_option("--scale-from", options.scaleFrom,
+    app.add_option(vri::diff_flag::scaleFrom, options.scaleFrom,
                    "JSON: a PNG heat map's scale is the one another vri-diff's --json recorded (its heat_map.top): the "
                    "set's scale computed once, by the comparison of the set that takes --scale-over")
         ->needs(diffImage)
         ->excludes(diffScale)
-        ->excludes("--scale-over");
+        ->excludes(vri::diff_flag::scaleOver);
     app.add_flag("--hdr-flip", options.hdrFlip,
                  "also HDR-FLIP (tone mapped over the exposures of the reference's hit pixels); LDR-FLIP is always "
                  "computed for R, G, B");
     app.add_option("--layers", options.layers,
                    "write FILE.exr with three layers, reference.*, test.* and error.* (|A - B|), to flip between in tev "
                    "or another EXR viewer");
-    app.add_option("--mask", options.mask,
+    app.add_option(vri::diff_flag::mask, options.mask,
                    "which pixels every statistic counts: all (default), hit (alpha > 0 in either image), alpha>T, "
                    "or a mask image (its first channel's non-zero pixels)")
         ->capture_default_str();
-    app.add_option("--histogram", options.histogram, "write per-channel error histograms as CSV "
-                                                     "(bin_lo,bin_hi,R,G,B,A; bins (lo, hi], plus a zero bin)");
+    app.add_option(vri::diff_flag::histogram, options.histogram,
+                   "write per-channel error histograms as CSV "
+                   "(bin_lo,bin_hi,R,G,B,A; bins (lo, hi], plus a zero bin)");
     vri::addListOption(app, "--histogram-range", options.histogramRange, "LO,HI: logarithmic histogram bins span this",
                        std::nullopt, 2);
     app.add_option("--bins-per-decade", options.binsPerDecade, "histogram bins per factor of ten")
@@ -242,13 +246,15 @@ int run(int argc, char** argv) {
     app.add_flag("--per-pixel", options.limits.perPixel,
                  "--failpercent and --warnpercent count pixels with any channel above the limit, as OpenImageIO's "
                  "idiff does, instead of pixel-channels (pixels x channels)");
-    app.add_option("--failpercent", options.limits.failPercent, "fail when more than this % of pixel-channels is above --fail")
+    app.add_option(vri::diff_flag::failPercent, options.limits.failPercent,
+                   "fail when more than this % of pixel-channels is above --fail")
         ->check(vri::numberRange(0.0, 100.0))
         ->capture_default_str();
     app.add_option("--warn", options.limits.warn, "warning threshold on the absolute error")
         ->check(kNonNegative)
         ->capture_default_str();
-    app.add_option("--warnpercent", options.limits.warnPercent, "warn when more than this % of pixel-channels is above --warn")
+    app.add_option(vri::diff_flag::warnPercent, options.limits.warnPercent,
+                   "warn when more than this % of pixel-channels is above --warn")
         ->check(vri::numberRange(0.0, 100.0))
         ->capture_default_str();
     app.footer(
@@ -276,7 +282,8 @@ int run(int argc, char** argv) {
         }
     }
 
-    for (const char* output : {"--json", "--diff-image", "--histogram", "--layers", "--title"})
+    for (const char* output :
+         {vri::diff_flag::json, vri::diff_flag::diffImage, vri::diff_flag::histogram, "--layers", "--title"})
         if (app.count(output) > 0 && app[output]->as<std::string>().empty())
             return exitWith(vri::kExitUsage, vri::Error(std::string(output) + ": expected " +
                                                         (std::string(output) == "--title" ? "a title" : "a file name") +
@@ -285,8 +292,8 @@ int run(int argc, char** argv) {
         return exitWith(vri::kExitUsage,
                         vri::Error("--diff-scale: " + vri::exactNumber(options.diffScale) +
                                    " puts the heat map's top at 1/K, which is not a finite number"));
-    for (const auto& [option, given] : {std::pair{"--scale-over", !options.scaleOver.empty()},
-                                        std::pair{"--scale-from", !options.scaleFrom.empty()}})
+    for (const auto& [option, given] : {std::pair{vri::diff_flag::scaleOver, !options.scaleOver.empty()},
+                                        std::pair{vri::diff_flag::scaleFrom, !options.scaleFrom.empty()}})
         if (given && !isPng(options.diffImage))
             return exitWith(vri::kExitUsage, vri::Error(std::string(option) +
                                                         " sets the scale of a PNG heat map; --diff-image '" +
@@ -309,19 +316,20 @@ int run(int argc, char** argv) {
     if (!percentile)
         return exitWith(vri::kExitUsage, vri::Error("--heat-top: expected max or pN with N in (0, 100], got '" +
                                                     options.heatTop + "'"));
-    for (const auto& [option, given] : {std::pair{"--heat-top", options.heatTop != "max"},
-                                        std::pair{"--heat-signed", options.signedMaps},
-                                        std::pair{"--title", !options.title.empty()}})
+    for (const auto& [option, given] :
+         {std::pair{vri::diff_flag::heatTop, options.heatTop != "max"},
+          std::pair{vri::diff_flag::heatSigned, options.signedMaps}, std::pair{"--title", !options.title.empty()}})
         if (given && !isPng(options.diffImage))
             return exitWith(vri::kExitUsage, vri::Error(std::string(option) + " is a PNG heat map's; --diff-image '" +
                                                         options.diffImage + "' is not a .png"));
-    const std::vector<vri::OutputArgument> outputs{
-        {"--json", options.json}, {"--diff-image", options.diffImage}, {"--histogram", options.histogram},
-        {"--layers", options.layers}};
+    const std::vector<vri::OutputArgument> outputs{{vri::diff_flag::json, options.json},
+                                                   {vri::diff_flag::diffImage, options.diffImage},
+                                                   {vri::diff_flag::histogram, options.histogram},
+                                                   {"--layers", options.layers}};
     vri::requireDistinctOutputs(outputs);
     std::vector<vri::InputArgument> inputs{{"A", options.a}, {"B", options.b}};
-    for (const std::string& x : options.scaleOver) inputs.push_back({"--scale-over", x});
-    if (!options.scaleFrom.empty()) inputs.push_back({"--scale-from", options.scaleFrom});
+    for (const std::string& x : options.scaleOver) inputs.push_back({vri::diff_flag::scaleOver, x});
+    if (!options.scaleFrom.empty()) inputs.push_back({vri::diff_flag::scaleFrom, options.scaleFrom});
     vri::requireOutputsApartFromInputs(outputs, inputs);
     if (!options.json.empty()) vri::requireUtf8Arguments(argc, argv);
     // A file that cannot be read or written is guardedMain's failure, exit 1.
@@ -375,7 +383,7 @@ int run(int argc, char** argv) {
         }
         if (diffScale->count() > 0) {
             heatTop = 1.0 / options.diffScale;
-            topFrom = "--diff-scale";
+            topFrom = vri::diff_flag::diffScale;
         } else if (!options.scaleFrom.empty()) {  // the set's top, and the rule that set it
             try {
                 const nlohmann::json other = vri::readJsonFile(options.scaleFrom);

@@ -7,9 +7,10 @@
 
 #include "common/cli.h"
 #include "common/preview_options.h"
-#include "libvri/render/tile_merge.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
+#include "libvri/render/tile_merge.h"
+#include "libvri/render/tool_flags.h"
 #include "libvri/util/atomic_file.h"
 
 namespace {
@@ -24,13 +25,14 @@ int run(int argc, char** argv) {
     CLI::App app{"Joins the tiles of one render (vri-render or vri-reference with --region X,Y,WIDTH,HEIGHT) into "
                  "the whole image, bit for bit the untiled render's, and one stats JSON.",
                  kTool};
-    vri::addWordsOption(app, "--tile", tileArgs, "IMAGE.exr STATS.json", 2, 2,
+    vri::addWordsOption(app, vri::merge_flag::tile, tileArgs, "IMAGE.exr STATS.json", 2, 2,
                         "one tile's image and stats (once per tile, any order)")
         ->required();
     app.add_option("-o,--output", output, "the whole image (.exr: float RGBA)")->required();
-    app.add_option("--png", pngPath, "8-bit preview PNG of the whole image");
+    app.add_option(vri::render_flag::png, pngPath, "8-bit preview PNG of the whole image");
     preview.addTo(app);
-    app.add_option("--stats", statsPath, "the combined statistics and provenance as JSON ('-' for stdout)");
+    app.add_option(vri::render_flag::stats, statsPath,
+                   "the combined statistics and provenance as JSON ('-' for stdout)");
     app.footer(R"(Examples:
   vri-reference --volume bonsai_256x256x256_uint8.raw --tf experiments/tf/bonsai.yaml --size 800x600 \
                 --region 0,0,800,300 -o top.exr --stats top.json
@@ -49,14 +51,15 @@ Outputs are written atomically, only once every check has passed.)");
 
     vri::requireUtf8Arguments(argc, argv);
     vri::requireExrOutput({"-o", output});
-    const std::vector<vri::OutputArgument> outputs{{"-o", output}, {"--png", pngPath}, {"--stats", statsPath}};
+    const std::vector<vri::OutputArgument> outputs{
+        {"-o", output}, {vri::render_flag::png, pngPath}, {vri::render_flag::stats, statsPath}};
     vri::requireDistinctOutputs(outputs);
     const vri::PngOptions png = preview.get();
     std::vector<vri::TileFiles> tiles;
     std::vector<vri::InputArgument> inputs;
     for (const std::vector<std::string>& t : tileArgs) {
         tiles.push_back({t[0], t[1]});
-        inputs.insert(inputs.end(), {{"--tile", t[0]}, {"--tile", t[1]}});
+        inputs.insert(inputs.end(), {{vri::merge_flag::tile, t[0]}, {vri::merge_flag::tile, t[1]}});
     }
     vri::requireOutputsApartFromInputs(outputs, inputs);
     vri::MergedTiles merged = vri::mergeTiles(tiles);

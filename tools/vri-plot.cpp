@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/cli.h"
+#include "libvri/render/tool_flags.h"
 #include "libvri/report/plot.h"
 
 namespace {
@@ -21,7 +22,7 @@ int run(int argc, char** argv) {
                  kTool};
     app.add_option("SPEC", specPath, "figure spec (YAML)")->required();
     app.add_option("-o,--output", output, "the figure, FIG.png (FIG.svg and FIG.gp are written beside it)")->required();
-    app.add_option("--data-dir", dataDir, "where relative data paths start (default: the spec's folder)")
+    app.add_option(vri::plot_flag::dataDir, dataDir, "where relative data paths start (default: the spec's folder)")
         ->check(CLI::ExistingDirectory);
     app.add_flag("--script-only", scriptOnly, "write FIG.gp only (no gnuplot needed)");
     app.footer(

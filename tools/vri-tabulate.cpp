@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/cli.h"
+#include "libvri/render/tool_flags.h"
 #include "libvri/report/convergence_table.h"
 #include "libvri/report/table.h"
 #include "libvri/util/atomic_file.h"
@@ -42,18 +43,18 @@ void requireLayoutOptions(const Options& options) {
         const char* layout;
         bool given;
     } owned[] = {
-        {"--row", "thresholds", !options.rows.empty()},
+        {vri::tabulate_flag::row, "thresholds", !options.rows.empty()},
         {"--thresholds", "thresholds", !options.thresholds.empty()},
-        {"--cell", "matrix", !options.cells.empty()},
-        {"--value", "matrix", !options.value.empty()},
+        {vri::tabulate_flag::cell, "matrix", !options.cells.empty()},
+        {vri::tabulate_flag::value, "matrix", !options.value.empty()},
         {"--column-value", "matrix", !options.columnValues.empty()},
         {"--column-precision", "matrix", !options.columnPrecisions.empty()},
-        {"--run", "tradeoff", !options.runs.empty()},
-        {"--threshold", "tradeoff", !options.tradeoffThresholds.empty()},
-        {"--baseline", "tradeoff", !options.baseline.empty()},
-        {"--channels", "tradeoff", !options.channels.empty()},
-        {"--point", "convergence", !options.points.empty()},
-        {"--points", "convergence", !options.pointsCsv.empty()},
+        {vri::tabulate_flag::run, "tradeoff", !options.runs.empty()},
+        {vri::tabulate_flag::threshold, "tradeoff", !options.tradeoffThresholds.empty()},
+        {vri::tabulate_flag::baseline, "tradeoff", !options.baseline.empty()},
+        {vri::tabulate_flag::channels, "tradeoff", !options.channels.empty()},
+        {vri::tabulate_flag::point, "convergence", !options.points.empty()},
+        {vri::tabulate_flag::points, "convergence", !options.pointsCsv.empty()},
     };
     for (const auto& o : owned)
         if (o.given && options.layout != o.layout)
@@ -112,10 +113,10 @@ std::vector<vri::InputArgument> inputFiles(const Options& options) {
         for (const auto& words : groups)
             for (std::size_t i = first; i < words.size(); ++i) inputs.push_back({option, words[i]});
     };
-    add("--row", options.rows, 1);
-    add("--cell", options.cells, 2);
-    add("--run", options.runs, 1);
-    add("--point", options.points, 2);
+    add(vri::tabulate_flag::row, options.rows, 1);
+    add(vri::tabulate_flag::cell, options.cells, 2);
+    add(vri::tabulate_flag::run, options.runs, 1);
+    add(vri::tabulate_flag::point, options.points, 2);
     return inputs;
 }
 
@@ -124,7 +125,7 @@ int run(int argc, char** argv) {
     CLI::App app{"Builds a paper table from the JSON files vri-diff (--json) and vri-render (--stats) write: "
                  "Markdown, and CSV on request. Rows and columns keep the order given.",
                  kTool};
-    app.add_option("--layout", options.layout,
+    app.add_option(vri::tabulate_flag::layout, options.layout,
                    "thresholds: % of rays above each threshold per channel (paper B Tables I, II, VI); "
                    "matrix: one value per row and column (Tables III-V); "
                    "tradeoff: per run its seconds per frame against its errors, with the Pareto front flagged; "
@@ -133,41 +134,43 @@ int run(int argc, char** argv) {
         ->required()
         ->check(CLI::IsMember({"thresholds", "matrix", "tradeoff", "convergence"}));
     app.add_option("-o,--output", options.markdown, "Markdown table ('-' for stdout)")->required();
-    app.add_option("--csv", options.csv, "also write the table as CSV");
-    app.add_option("--title", options.title, "caption printed above the Markdown table");
+    app.add_option(vri::tabulate_flag::csv, options.csv, "also write the table as CSV");
+    app.add_option(vri::tabulate_flag::title, options.title, "caption printed above the Markdown table");
     app.add_option("--row-header", options.rowHeader,
                    "heading of the label column (default: Method; run for tradeoff)");
-    app.add_option("--precision", options.precision,
+    app.add_option(vri::tabulate_flag::precision, options.precision,
                    "decimals (default: 2 for matrix; thresholds and tradeoff's % columns have 3 significant digits)")
         ->check(vri::integerRange(0, 17));
-    vri::addWordsOption(app, "--row", options.rows, "LABEL FILE...", 2, kMostFiles,
-                        "thresholds: LABEL FILE [FILE...]; one vri-diff JSON for all thresholds, or one per threshold in "
-                        "threshold order");
+    vri::addWordsOption(
+        app, vri::tabulate_flag::row, options.rows, "LABEL FILE...", 2, kMostFiles,
+        "thresholds: LABEL FILE [FILE...]; one vri-diff JSON for all thresholds, or one per threshold in "
+        "threshold order");
     vri::addListOption(app, "--thresholds", options.thresholds,
                        "thresholds: which, comma separated (default: the first file's)");
-    vri::addWordsOption(app, "--cell", options.cells, "ROW COLUMN FILE...", 3, kMostFiles,
+    vri::addWordsOption(app, vri::tabulate_flag::cell, options.cells, "ROW COLUMN FILE...", 3, kMostFiles,
                         "matrix: ROW COLUMN FILE [FILE...]; several files give their median");
-    app.add_option("--value", options.value, "matrix: dotted JSON path of the value, e.g. stats.wall_seconds; "
-                                             "'1/PATH' for its reciprocal (fps)");
+    app.add_option(vri::tabulate_flag::value, options.value,
+                   "matrix: dotted JSON path of the value, e.g. stats.wall_seconds; "
+                   "'1/PATH' for its reciprocal (fps)");
     vri::addWordsOption(app, "--column-value", options.columnValues, "COLUMN EXPR", 2, 2,
                         "matrix: COLUMN EXPR, another value for one column");
     vri::addWordsOption(app, "--column-precision", options.columnPrecisions, "COLUMN N", 2, 2,
                         "matrix: COLUMN N, other decimals for one column");
-    vri::addWordsOption(app, "--run", options.runs, "LABEL STATS DIFF", 3, 3,
+    vri::addWordsOption(app, vri::tabulate_flag::run, options.runs, "LABEL STATS DIFF", 3, 3,
                         "tradeoff: LABEL STATS DIFF, one row: the run's vri-render stats (timing.median_wall_seconds) "
                         "and its vri-diff JSON against the reference");
-    vri::addWordsOption(app, "--point", options.points, "SERIES H DIFF [STATS]", 3, 4,
+    vri::addWordsOption(app, vri::tabulate_flag::point, options.points, "SERIES H DIFF [STATS]", 3, 4,
                         "convergence: SERIES H DIFF [STATS], one run of a sweep: its step h in voxels ('-' for none), "
                         "its vri-diff JSON against the accurate reference and, for an error bound, its stats");
-    app.add_option("--points", options.pointsCsv,
+    app.add_option(vri::tabulate_flag::points, options.pointsCsv,
                    "convergence: also write the points as CSV (series,h,error,legend: the largest error; legend "
                    "holds the max order) for a log-log plot");
-    vri::addListOption(app, "--threshold", options.tradeoffThresholds,
+    vri::addListOption(app, vri::tabulate_flag::threshold, options.tradeoffThresholds,
                        "tradeoff: the error thresholds of the % columns, comma separated (default 0.001), each one the "
                        "diffs counted; the first is the % front's");
-    app.add_option("--baseline", options.baseline,
+    app.add_option(vri::tabulate_flag::baseline, options.baseline,
                    "tradeoff: a run's LABEL; adds 'time ratio', every run's seconds over the baseline's");
-    app.add_option("--channels", options.channels,
+    app.add_option(vri::tabulate_flag::channels, options.channels,
                    "tradeoff: all (default: % and max per channel and the worst) or worst (the worst channel only)")
         ->check(CLI::IsMember({"all", "worst"}));
     app.footer(
@@ -195,8 +198,9 @@ int run(int argc, char** argv) {
         "      -o orders.md --points orders-points.csv");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
-    const std::vector<vri::OutputArgument> outputs{
-        {"-o", options.markdown}, {"--csv", options.csv}, {"--points", options.pointsCsv}};
+    const std::vector<vri::OutputArgument> outputs{{"-o", options.markdown},
+                                                   {vri::tabulate_flag::csv, options.csv},
+                                                   {vri::tabulate_flag::points, options.pointsCsv}};
     vri::requireDistinctOutputs(outputs);
     vri::requireOutputsApartFromInputs(outputs, inputFiles(options));
     vri::Table table = buildTable(options);

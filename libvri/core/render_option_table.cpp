@@ -278,7 +278,7 @@ const RenderOptionRow kRows[] = {
          if (!r.exact) s.push_back({"skip_empty_space", r.options.skipEmptySpace});
      }},
     // Command line only: an experiment asks for tiles (`tiles:`), and its planner writes the regions.
-    {"--region", "", "", OptionValueKind::Text,
+    {kRegionFlag, "", "", OptionValueKind::Text,
      "render only the pixels X,Y,WIDTH,HEIGHT of the --size image (x right, y down from the top row), each bit for bit "
      "as in the whole image; the outputs hold the region (vri-merge-tiles joins them)",
      "", "", kBothTools, kBothBackends,

@@ -29,6 +29,10 @@ inline constexpr int kMaxFrames = 1000;
 // limit, together they could ask for two million (hours of a test blob, days at 800 x 600) without a word.
 inline constexpr long long kMaxRenderedFrames = 10000;
 
+// --region's spelling, which the experiment planner writes into a tile's command (the row has no key: a
+// region is the planner's, never an experiment file's).
+inline constexpr const char* kRegionFlag = "--region";
+
 // The tools that render: vri-render (every method, either backend) and vri-reference (the exact
 // method, or paper B's reference: Riemann, entry placement, double, a 0.01-voxel step).
 enum class RenderTool : unsigned { Render = 1, Reference = 2 };

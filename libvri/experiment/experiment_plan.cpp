@@ -6,8 +6,11 @@
 #include <map>
 
 #include "libvri/core/pixel_mask.h"
+#include "libvri/core/render_option_table.h"
+#include "libvri/core/scene_flags.h"
 #include "libvri/io/plot_data_files.h"
 #include "libvri/io/provenance.h"
+#include "libvri/render/tool_flags.h"
 #include "libvri/util/error.h"
 
 namespace vri {
@@ -74,8 +77,9 @@ private:
     static void rendererCommand(Step& step, const std::vector<std::string>& command, const std::string& name,
                                 const std::string& image, const std::string& timeout, const std::vector<fs::path>& files) {
         if (command.empty()) return;
-        step.arguments.insert(step.arguments.end(), {"--renderer-image", image, "--renderer-name", name});
-        if (!timeout.empty()) step.arguments.insert(step.arguments.end(), {"--timeout", timeout});
+        step.arguments.insert(step.arguments.end(),
+                              {outside_flag::rendererImage, image, outside_flag::rendererName, name});
+        if (!timeout.empty()) step.arguments.insert(step.arguments.end(), {outside_flag::timeout, timeout});
         step.arguments.push_back("--");
         step.arguments.insert(step.arguments.end(), command.begin(), command.end());
         step.inputs.insert(step.inputs.end(), files.begin(), files.end());
@@ -95,7 +99,7 @@ void Planner::sceneOptions(Step& step, const SceneSpec& scene) const {
     step.parameters.emplace_back("scene", scene.name);
     if (!scene.dataset.empty()) step.parameters.emplace_back("dataset", scene.dataset);
     for (const ToolOption& o : scene.options) {
-        const bool isFile = o.first == "--volume" || o.first == "--tf";
+        const bool isFile = o.first == scene_flag::volume || o.first == scene_flag::tf;
         if (isFile)
             input(step, o.first, o.second);
         else
@@ -116,10 +120,10 @@ void Planner::addRender(const RunSpec& run) {
         return;
     }
     output(step, "-o", renderImage(plan_, run.id));
-    output(step, "--png", result(run.id + ".png"));
-    output(step, "--stats", result(run.id + ".json"));
+    output(step, render_flag::png, result(run.id + ".png"));
+    output(step, render_flag::stats, result(run.id + ".json"));
     if (std::ranges::any_of(run.parameters, [](auto& kv) { return kv.first == "log_ray"; }))
-        output(step, "--log", result(run.id + "-ray.csv"));
+        output(step, render_flag::log, result(run.id + "-ray.csv"));
     rendererCommand(step, run.command, run.rendererName, run.rendererImage, run.rendererTimeout, run.commandFiles);
     plan_.steps.push_back(std::move(step));
 }
@@ -135,20 +139,21 @@ void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& r
         Step tile = render;
         tile.id = run.id + ".tile-" + std::to_string(k + 1);
         tile.pixels = static_cast<std::uint64_t>(bands[k].width) * static_cast<std::uint64_t>(bands[k].height);
-        tile.arguments.insert(tile.arguments.end(), {"--region", bands[k].text()});
+        tile.arguments.insert(tile.arguments.end(), {kRegionFlag, bands[k].text()});
         tile.parameters.emplace_back("region", bands[k].text());
         output(tile, "-o", result(tile.id + ".exr"));
-        output(tile, "--stats", result(tile.id + ".json"));
-        merge.arguments.push_back("--tile");
+        output(tile, render_flag::stats, result(tile.id + ".json"));
+        merge.arguments.push_back(merge_flag::tile);
         input(merge, "", result(tile.id + ".exr"));
         input(merge, "", result(tile.id + ".json"));
         plan_.steps.push_back(std::move(tile));
     }
     for (const ToolOption& o : scene.options)  // the preview's looks, made from the whole image
-        if (o.first == "--png-invert" || o.first == "--png-exposure" || o.first == "--background") option(merge, o);
+        if (o.first == scene_flag::pngInvert || o.first == scene_flag::pngExposure || o.first == scene_flag::background)
+            option(merge, o);
     output(merge, "-o", renderImage(plan_, run.id));
-    output(merge, "--png", result(run.id + ".png"));
-    output(merge, "--stats", result(run.id + ".json"));
+    output(merge, render_flag::png, result(run.id + ".png"));
+    output(merge, render_flag::stats, result(run.id + ".json"));
     plan_.steps.push_back(std::move(merge));
 }
 
@@ -156,15 +161,15 @@ void Planner::addDiff(const ComparisonSpec& c) {
     Step step{c.id, "diff", "vri-diff", {}, {}, {}, {{"reference", c.reference}, {"run", c.run}}};
     input(step, "", renderImage(plan_, c.reference));
     input(step, "", renderImage(plan_, c.run));
-    step.arguments.insert(step.arguments.end(), {"--threshold", commaList(c.thresholds)});
+    step.arguments.insert(step.arguments.end(), {diff_flag::threshold, commaList(c.thresholds)});
     // Measure only: a difference is the result here, not a failure of the step.
-    step.arguments.insert(step.arguments.end(), {"--failpercent", "100", "--warnpercent", "100"});
-    output(step, "--json", result(c.id + ".json"));
-    if (!c.diffImage.empty()) output(step, "--diff-image", result(c.id + "." + c.diffImage));
-    if (!c.diffScale.empty()) step.arguments.insert(step.arguments.end(), {"--diff-scale", c.diffScale});
-    if (!c.heatScale.empty()) step.arguments.insert(step.arguments.end(), {"--heat-scale", c.heatScale});
-    if (!c.heatTop.empty()) step.arguments.insert(step.arguments.end(), {"--heat-top", c.heatTop});
-    if (c.heatSigned) step.arguments.push_back("--heat-signed");
+    step.arguments.insert(step.arguments.end(), {diff_flag::failPercent, "100", diff_flag::warnPercent, "100"});
+    output(step, diff_flag::json, result(c.id + ".json"));
+    if (!c.diffImage.empty()) output(step, diff_flag::diffImage, result(c.id + "." + c.diffImage));
+    if (!c.diffScale.empty()) step.arguments.insert(step.arguments.end(), {diff_flag::diffScale, c.diffScale});
+    if (!c.heatScale.empty()) step.arguments.insert(step.arguments.end(), {diff_flag::heatScale, c.heatScale});
+    if (!c.heatTop.empty()) step.arguments.insert(step.arguments.end(), {diff_flag::heatTop, c.heatTop});
+    if (c.heatSigned) step.arguments.push_back(diff_flag::heatSigned);
     // One scale for the set, computed once: the set's first comparison takes the largest error over every run
     // (--scale-over), the others read it from its JSON (--scale-from); each reading every image would cost the
     // square of the set's size in image reads (56 Bonsai maps of paper-b-cpu: 3,136 reads, 116 s).
@@ -172,16 +177,19 @@ void Planner::addDiff(const ComparisonSpec& c) {
         const auto first = std::ranges::find_if(experiment_.comparisons, [&](auto& o) { return o.group == c.group; });
         if (first->id == c.id) {
             for (const ComparisonSpec& other : experiment_.comparisons)
-                if (other.group == c.group && other.id != c.id) input(step, "--scale-over", renderImage(plan_, other.run));
+                if (other.group == c.group && other.id != c.id)
+                    input(step, diff_flag::scaleOver, renderImage(plan_, other.run));
         } else {
-            input(step, "--scale-from", result(first->id + ".json"));
+            input(step, diff_flag::scaleFrom, result(first->id + ".json"));
         }
     }
     if (!c.mask.empty()) {
-        if (parseMaskSpec(c.mask).kind == MaskSpec::Kind::Image) input(step, "--mask", c.mask);
-        else step.arguments.insert(step.arguments.end(), {"--mask", c.mask});
+        if (parseMaskSpec(c.mask).kind == MaskSpec::Kind::Image)
+            input(step, diff_flag::mask, c.mask);
+        else
+            step.arguments.insert(step.arguments.end(), {diff_flag::mask, c.mask});
     }
-    if (c.histogram) output(step, "--histogram", result(c.id + "-histogram.csv"));
+    if (c.histogram) output(step, diff_flag::histogram, result(c.id + "-histogram.csv"));
     plan_.steps.push_back(std::move(step));
 }
 
@@ -212,35 +220,38 @@ std::pair<std::string, std::string> convergenceSeries(const RunSpec& run) {
 void Planner::addTable(const TableSpec& table) {
     Step step{"table-" + table.name, "table", "vri-tabulate", {}, {}, {}, {{"table", table.name}}};
     if (table.layout == "convergence") {
-        step.arguments = {"--layout", table.layout, "--title", table.title};
+        step.arguments = {tabulate_flag::layout, table.layout, tabulate_flag::title, table.title};
         for (const std::string& group : table.comparisons)
             for (const ComparisonSpec& c : experiment_.comparisons)
                 if (c.group == group) {
                     const auto [series, h] = convergenceSeries(experiment_.run(c.run));
-                    step.arguments.insert(step.arguments.end(), {"--point", series, h});
+                    step.arguments.insert(step.arguments.end(), {tabulate_flag::point, series, h});
                     input(step, "", result(c.id + ".json"));
                     input(step, "", result(c.run + ".json"));  // an error bound, where the run has one
                 }
-        output(step, "--points", result(table.name + "-points.csv"));
+        output(step, tabulate_flag::points, result(table.name + "-points.csv"));
     } else if (table.layout != "matrix") {
         const bool tradeoff = table.layout == "tradeoff";
-        step.arguments = {"--layout", table.layout, "--title", table.title};
+        step.arguments = {tabulate_flag::layout, table.layout, tabulate_flag::title, table.title};
         if (tradeoff) {
-            step.arguments.insert(step.arguments.end(), {"--threshold", commaList(table.thresholds)});
-            if (!table.baseline.empty()) step.arguments.insert(step.arguments.end(), {"--baseline", table.baseline});
-            if (table.channels != "all") step.arguments.insert(step.arguments.end(), {"--channels", table.channels});
+            step.arguments.insert(step.arguments.end(), {tabulate_flag::threshold, commaList(table.thresholds)});
+            if (!table.baseline.empty())
+                step.arguments.insert(step.arguments.end(), {tabulate_flag::baseline, table.baseline});
+            if (table.channels != "all")
+                step.arguments.insert(step.arguments.end(), {tabulate_flag::channels, table.channels});
         }
         if (table.rows.empty()) {  // one row per compared run
             for (const std::string& group : table.comparisons)
                 for (const ComparisonSpec& c : experiment_.comparisons)
                     if (c.group == group) {
-                        step.arguments.insert(step.arguments.end(), {tradeoff ? "--run" : "--row", c.run});
+                        step.arguments.insert(step.arguments.end(),
+                                              {tradeoff ? tabulate_flag::run : tabulate_flag::row, c.run});
                         if (tradeoff) input(step, "", result(c.run + ".json"));  // its time: the run's stats
                         input(step, "", result(c.id + ".json"));
                     }
         }
         for (const auto& [label, runs] : table.rows) {  // the reader checked that each run is compared once
-            step.arguments.insert(step.arguments.end(), {"--row", label});
+            step.arguments.insert(step.arguments.end(), {tabulate_flag::row, label});
             for (const std::string& run : runs) {
                 const auto c = std::ranges::find_if(experiment_.comparisons, [&](const ComparisonSpec& x) {
                     return x.run == run && std::ranges::count(table.comparisons, x.group) > 0;
@@ -249,20 +260,23 @@ void Planner::addTable(const TableSpec& table) {
             }
         }
     } else {
-        step.arguments = {"--layout", "matrix", "--title", table.title, "--value", table.value};
+        step.arguments = {tabulate_flag::layout, "matrix",   tabulate_flag::title, table.title,
+                          tabulate_flag::value,  table.value};
         for (const std::string& run : table.runs) {
             const std::string& scene = experiment_.run(run).scene;
             const bool prefixed = run.starts_with(scene + "-");
             if (table.byScene)
-                step.arguments.insert(step.arguments.end(), {"--cell", prefixed ? run.substr(scene.size() + 1) : run, scene});
+                step.arguments.insert(step.arguments.end(),
+                                      {tabulate_flag::cell, prefixed ? run.substr(scene.size() + 1) : run, scene});
             else
-                step.arguments.insert(step.arguments.end(), {"--cell", run, table.column});
+                step.arguments.insert(step.arguments.end(), {tabulate_flag::cell, run, table.column});
             input(step, "", result(run + ".json"));
         }
     }
-    if (!table.precision.empty()) step.arguments.insert(step.arguments.end(), {"--precision", table.precision});
+    if (!table.precision.empty())
+        step.arguments.insert(step.arguments.end(), {tabulate_flag::precision, table.precision});
     output(step, "-o", result(table.name + ".md"));
-    output(step, "--csv", result(table.name + ".csv"));
+    output(step, tabulate_flag::csv, result(table.name + ".csv"));
     plan_.steps.push_back(std::move(step));
 }
 
@@ -270,7 +284,7 @@ void Planner::addFigure(const FigureSpec& figure) {
     Step step{"figure-" + figure.name, "figure", "vri-plot", {}, {}, {}, {{"figure", figure.name}}};
     input(step, "", figure.spec);
     // The spec names its data relative to --data-dir, so one spec serves full and quick results alike.
-    step.arguments.insert(step.arguments.end(), {"--data-dir", show(plan_.resultsDir)});
+    step.arguments.insert(step.arguments.end(), {plot_flag::dataDir, show(plan_.resultsDir)});
     for (const std::string& file : figure.data) {
         const fs::path path = result(file);
         if (!written(path))

@@ -15,13 +15,14 @@
 #include "libvri/experiment/experiment_plan.h"
 #include "libvri/experiment/experiment_spec.h"
 
+#include "libvri/core/heat_map.h"
+#include "libvri/core/pixel_mask.h"
+#include "libvri/core/scene_flags.h"
 #include "libvri/experiment/experiment_keys.h"
 #include "libvri/experiment/timing_defaults.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
 #include "libvri/io/yaml_util.h"
-#include "libvri/core/heat_map.h"
-#include "libvri/core/pixel_mask.h"
 #include "libvri/render/outside_renderer.h"
 #include "libvri/render/stats_schema.h"
 #include "libvri/util/checked_size.h"
@@ -287,15 +288,15 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
                         (std::getenv("VRI_DATA_DIR") ? "set" : "not set: ../shared/data/volumes") +
                         "; make data downloads them)");
         scene.files.push_back(file);
-        scene.options.emplace_back("--volume", file.string());
+        scene.options.emplace_back(scene_flag::volume, file.string());
         if (info.header.empty()) {
             const RawLayout layout = rawLayout(info);
             // Exactly as the catalog has them: a spacing printed to 6 digits would be another volume.
             const auto join = [](auto v) { return exactNumber(v.x) + "," + exactNumber(v.y) + "," + exactNumber(v.z); };
-            scene.options.emplace_back("--dims", join(layout.dims));
-            scene.options.emplace_back("--type", std::string(voxelTypeName(layout.type)));
-            scene.options.emplace_back("--byte-order", layout.order == ByteOrder::Big ? "big" : "little");
-            scene.options.emplace_back("--spacing", join(layout.spacing));
+            scene.options.emplace_back(scene_flag::dims, join(layout.dims));
+            scene.options.emplace_back(scene_flag::type, std::string(voxelTypeName(layout.type)));
+            scene.options.emplace_back(scene_flag::byteOrder, layout.order == ByteOrder::Big ? "big" : "little");
+            scene.options.emplace_back(scene_flag::spacing, join(layout.spacing));
         }
     } else if (const YAML::Node n = node["volume"]) {
         const fs::path path = text(n, "volume");
@@ -306,36 +307,37 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
                                                   " ($VRI_DATA_DIR" + (std::getenv("VRI_DATA_DIR") ? "" : ", not set") + ")"
                                             : ""));
         scene.files.push_back(*file);
-        scene.options.emplace_back("--volume", scene.files.back().string());
+        scene.options.emplace_back(scene_flag::volume, scene.files.back().string());
     } else {
         const std::string field = text(node["field"], "field");
         if (field != "linear") throw Error(at(node["field"]) + ": unknown analytic field '" + field + "' (expected linear)");
-        scene.options.emplace_back("--field", field);
+        scene.options.emplace_back(scene_flag::field, field);
         if (const YAML::Node dims = node["field_dims"]) {
             const std::string d = vec3(dims, "field_dims");
             for (const YAML::Node& v : dims)
                 if (double x = v.as<double>(); x != std::floor(x) || x < 2)
                     throw Error(at(v) + ": field_dims must be whole numbers >= 2");
-            scene.options.emplace_back("--field-dims", d);
+            scene.options.emplace_back(scene_flag::fieldDims, d);
         }
-        if (node["as_grid"] && flag(node["as_grid"], "as_grid")) scene.options.emplace_back("--field-as-grid", "");
+        if (node["as_grid"] && flag(node["as_grid"], "as_grid"))
+            scene.options.emplace_back(scene_flag::fieldAsGrid, "");
     }
     if ((node["field_dims"] || node["as_grid"]) && !node["field"])
         throw Error(at(node) + ": field_dims and as_grid apply to analytic fields only");
 
     if (const YAML::Node convention = node["convention"]) {
         parseGridConvention(text(convention, "convention"), at(convention) + ": convention");
-        scene.options.emplace_back("--convention", convention.Scalar());
+        scene.options.emplace_back(scene_flag::convention, convention.Scalar());
     } else {  // written into the commands all the same, so that a command read alone says it
         const std::string name(gridConventionName(kDefaultConvention));
-        scene.options.emplace_back("--convention", name);
+        scene.options.emplace_back(scene_flag::convention, name);
         defaults_.push_back(what + ": convention " + name + ", the tools' default");
     }
 
     const YAML::Node tf = required(node, "tf", what);
     scene.files.push_back(existingFile(tf, "tf"));
     loadTransferFunction(scene.files.back());  // its own errors carry its own file:line:col
-    scene.options.emplace_back("--tf", scene.files.back().string());
+    scene.options.emplace_back(scene_flag::tf, scene.files.back().string());
 
     if (const YAML::Node size = node["size"]) {
         if (!size.IsSequence() || size.size() != 2) throw Error(at(size) + ": size must be [width, height]");
@@ -345,40 +347,43 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
             if (x != std::floor(x) || x < 1 || x > 65536) throw Error(at(size[i]) + ": size must be whole numbers in 1..65536");
             wh[i] = static_cast<int>(x);  // not as<int>(): YAML's int reads neither 099 nor 1e2, which toDouble takes
         }
-        scene.options.emplace_back("--size", std::to_string(wh[0]) + "x" + std::to_string(wh[1]));
+        scene.options.emplace_back(scene_flag::size, std::to_string(wh[0]) + "x" + std::to_string(wh[1]));
         scene.width = wh[0];
         scene.height = wh[1];
     }
     if (const YAML::Node camera = node["camera"]) {
         yaml::requireMap(camera, source_, "camera");
         yaml::requireKeys(camera, source_, kCameraKeys);
-        for (const char* key : {"eye", "target", "up"})
-            if (camera[key]) scene.options.emplace_back(std::string("--") + key, vec3(camera[key], key));
+        for (const auto& [key, flag] :
+             {std::pair{"eye", scene_flag::eye}, {"target", scene_flag::target}, {"up", scene_flag::up}})
+            if (camera[key]) scene.options.emplace_back(flag, vec3(camera[key], key));
         if (const YAML::Node fov = camera["fov"]) {
             const std::string f = number(fov, "fov");
             if (double x = fov.as<double>(); !(x > 0 && x < 180)) throw Error(at(fov) + ": fov must be in (0, 180) degrees");
-            scene.options.emplace_back("--fov", f);
+            scene.options.emplace_back(scene_flag::fov, f);
         }
         if (const YAML::Node zoom = camera["zoom"]) {
             const std::string z = number(zoom, "zoom");
             if (!(zoom.as<double>() >= 1)) throw Error(at(zoom) + ": zoom must be a factor >= 1");
-            scene.options.emplace_back("--zoom", z);
+            scene.options.emplace_back(scene_flag::zoom, z);
         }
         if (const YAML::Node centre = camera["zoom_centre"]) {
             if (!centre.IsSequence() || centre.size() != 2)
                 throw Error(at(centre) + ": zoom_centre must be [x, y], pixels of the full frame");
-            scene.options.emplace_back("--zoom-centre", number(centre[0], "zoom_centre") + "," + number(centre[1], "zoom_centre"));
+            scene.options.emplace_back(scene_flag::zoomCentre,
+                                       number(centre[0], "zoom_centre") + "," + number(centre[1], "zoom_centre"));
         }
     }
     if (const YAML::Node png = node["png"]) {
         yaml::requireMap(png, source_, "png");
         yaml::requireKeys(png, source_, kPngKeys);
-        if (png["invert"] && flag(png["invert"], "png.invert")) scene.options.emplace_back("--png-invert", "");
+        if (png["invert"] && flag(png["invert"], "png.invert")) scene.options.emplace_back(scene_flag::pngInvert, "");
         if (const YAML::Node e = png["exposure"]) {
             parsePositive(number(e, "png.exposure"), at(e) + ": png.exposure");
-            scene.options.emplace_back("--png-exposure", e.Scalar());
+            scene.options.emplace_back(scene_flag::pngExposure, e.Scalar());
         }
-        if (png["background"]) scene.options.emplace_back("--background", vec3(png["background"], "png.background"));
+        if (png["background"])
+            scene.options.emplace_back(scene_flag::background, vec3(png["background"], "png.background"));
     }
     return scene;
 }

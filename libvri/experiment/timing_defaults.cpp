@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "libvri/core/render_option_table.h"
+
 namespace vri {
 
 namespace {
@@ -29,6 +31,7 @@ const std::string* optionValue(const RunSpec& run, const std::string& flag) {
 }  // namespace
 
 void applyTimingDefaults(Experiment& experiment) {
+    const std::string warmUpFlag(findRenderOption("warm_up")->flag()), repeatFlag(findRenderOption("repeat")->flag());
     std::set<std::string> done;
     for (const TableSpec& table : experiment.tables) {
         std::vector<std::string> oneFrame;  // the table's runs timed on one frame
@@ -37,18 +40,19 @@ void applyTimingDefaults(Experiment& experiment) {
             if (run == experiment.runs.end()) continue;
             if (done.insert(id).second) {
                 std::string filled;
-                if (!optionValue(*run, "--warm-up")) {
-                    run->options.emplace_back("--warm-up", std::to_string(kTimedWarmUp));
+                if (!optionValue(*run, warmUpFlag)) {
+                    run->options.emplace_back(warmUpFlag, std::to_string(kTimedWarmUp));
                     filled += "warm_up " + std::to_string(kTimedWarmUp);
                 }
-                if (!optionValue(*run, "--repeat")) {
-                    run->options.emplace_back("--repeat", std::to_string(kTimedFrames));
+                if (!optionValue(*run, repeatFlag)) {
+                    run->options.emplace_back(repeatFlag, std::to_string(kTimedFrames));
                     filled += (filled.empty() ? "" : " and ") + std::string("repeat ") + std::to_string(kTimedFrames);
                 }
                 if (!filled.empty())
                     experiment.defaults.push_back("run '" + id + "': " + filled + ", as its time is tabulated");
             }
-            if (const std::string* repeat = optionValue(*run, "--repeat"); repeat && *repeat == "1") oneFrame.push_back(id);
+            if (const std::string* repeat = optionValue(*run, repeatFlag); repeat && *repeat == "1")
+                oneFrame.push_back(id);
         }
         if (!oneFrame.empty())
             experiment.warnings.push_back(

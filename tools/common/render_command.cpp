@@ -21,6 +21,7 @@
 #include "libvri/render/render_json.h"
 #include "libvri/render/scene_card.h"
 #include "libvri/render/stats_schema.h"
+#include "libvri/render/tool_flags.h"
 #include "libvri/render/verification.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/format.h"
@@ -97,9 +98,10 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
         app_.add_flag("--list-devices")
             ->description("list the Vulkan devices (index, name, type, API version) and exit");
         CLI::Option* logRay = byFlag.at("--log-ray");
-        CLI::Option* log = groups.at("adaptive")
-                               ->add_option("--log", logPath_, "CSV of the logged ray's tries (with --log-ray)")
-                               ->needs(logRay);
+        CLI::Option* log =
+            groups.at("adaptive")
+                ->add_option(render_flag::log, logPath_, "CSV of the logged ray's tries (with --log-ray)")
+                ->needs(logRay);
         logRay->needs(log);
     }
     timing_.addTo(app_);
@@ -128,16 +130,16 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
                       "exit 0 when a finding fails too (the report is the result, as in make experiments)");
     }
     if (mode_ != Mode::Vri) {
-        app_.add_option("--renderer-image", rendererImage_,
+        app_.add_option(outside_flag::rendererImage, rendererImage_,
                         "what the renderer writes at {output}: exr (RGBA float), png (8 or 16 bit RGBA) or f32 (raw "
                         "little-endian float32 RGBA, row 0 at the top)")
             ->capture_default_str();
         app_.add_flag("--keep-work", keepWork_, "keep the folder with the card, the voxels and the renderer's files");
-        app_.add_option("--timeout", timeout_,
+        app_.add_option(outside_flag::timeout, timeout_,
                         "seconds a run of the renderer may take; past them it is stopped (SIGTERM, SIGKILL 2 s "
                         "later) and this is an error (default: no limit)")
             ->check(numberAbove(0.0, false));
-        app_.add_option("--renderer-name", rendererName_,
+        app_.add_option(outside_flag::rendererName, rendererName_,
                         "what the records and charts call the renderer when its stats name none (default: the "
                         "program's file name)");
         app_.add_option("command", rendererCommand_,
@@ -153,12 +155,12 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
                     "with --describe: also write the volume's voxels as headerless little-endian raw (x fastest), "
                     "which the card names and hashes")
         ->needs(describe);
-    app_.add_option("--png", pngPath_, "8-bit preview PNG");
+    app_.add_option(render_flag::png, pngPath_, "8-bit preview PNG");
     preview_.addTo(app_);
     app_.add_option("--error-image", errorImagePath_,
                     "exact: per-pixel error bounds as float RGBA OpenEXR, each bounding the EXR's float32 value (the "
                     "double's bound plus its float32 rounding, rounded up)");
-    app_.add_option("--stats", statsPath_, "write statistics and provenance as JSON ('-' for stdout)");
+    app_.add_option(render_flag::stats, statsPath_, "write statistics and provenance as JSON ('-' for stdout)");
     app_.add_flag("--allow-nonfinite", allowNonFinite_,
                   "write an image whose pixels overflowed to NaN or infinity (with a warning; the stats count them) "
                   "instead of failing");
@@ -214,7 +216,7 @@ int RenderCommand::describe() {
     const std::vector<OutputArgument> outputs{{"--describe", describePath_}, {"--describe-voxels", voxelsPath_}};
     requireDistinctOutputs(outputs);
     requireOutputsApartFromInputs(outputs, scene_.inputs());
-    for (const char* renderOnly : {"-o", "--png", "--error-image", "--stats", "--log"})
+    for (const char* renderOnly : {"-o", render_flag::png, "--error-image", render_flag::stats, render_flag::log})
         if (given(renderOnly))
             throw UsageError(std::string(renderOnly) + ": --describe renders nothing, so it writes no " + renderOnly);
     if (mode_ != Mode::Vri)
@@ -252,10 +254,11 @@ int RenderCommand::runOutside() {
     requireRendererCommand();
     if (output_.empty()) throw UsageError("--output is required");
     requireExrOutput({"-o", output_});
-    const std::vector<OutputArgument> outputs{{"-o", output_}, {"--png", pngPath_}, {"--stats", statsPath_}};
+    const std::vector<OutputArgument> outputs{
+        {"-o", output_}, {render_flag::png, pngPath_}, {render_flag::stats, statsPath_}};
     requireDistinctOutputs(outputs);
     requireOutputsApartFromInputs(outputs, scene_.inputs());
-    for (const char* vriOnly : {"--error-image", "--log"})
+    for (const char* vriOnly : {"--error-image", render_flag::log})
         if (given(vriOnly)) throw UsageError(std::string(vriOnly) + ": vri's own renders only");
     const RenderRequest request = this->request();
     const PngOptions png = preview_.get();
@@ -310,7 +313,7 @@ int RenderCommand::runVerify() {
         {"--report", reportPath_}, {"--json", jsonPath_}, {"--junit", junitPath_}};
     requireDistinctOutputs(outputs);
     requireOutputsApartFromInputs(outputs, scene_.inputs());
-    for (const char* vriOnly : {"--error-image", "--log", "--png", "--stats"})
+    for (const char* vriOnly : {"--error-image", render_flag::log, render_flag::png, render_flag::stats})
         if (given(vriOnly)) throw UsageError(std::string(vriOnly) + ": vri-verify writes --report, --json, --junit");
     VerificationOptions options;
     options.steps = parsePositiveList(steps_, "--steps");
@@ -365,10 +368,10 @@ int RenderCommand::run() {
         requireExrOutput({"-o", output_});
         if (!errorImagePath_.empty()) requireExrOutput({"--error-image", errorImagePath_});
         const std::vector<OutputArgument> outputs{{"-o", output_},
-                                                  {"--png", pngPath_},
+                                                  {render_flag::png, pngPath_},
                                                   {"--error-image", errorImagePath_},
-                                                  {"--stats", statsPath_},
-                                                  {"--log", logPath_}};
+                                                  {render_flag::stats, statsPath_},
+                                                  {render_flag::log, logPath_}};
         requireDistinctOutputs(outputs);
         requireOutputsApartFromInputs(outputs, scene_.inputs());
         // Every option is checked before the render, so that a mistake never leaves some outputs written.

@@ -5,6 +5,7 @@
 
 #include "common/cli.h"
 #include "libvri/core/analytic_field.h"
+#include "libvri/core/scene_flags.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/render/camera_request.h"
 #include "libvri/util/error.h"
@@ -15,39 +16,42 @@ namespace vri {
 
 void SceneOptions::addTo(CLI::App& app) {
     auto* input = app.add_option_group("input", "what to render (one of)");
-    CLI::Option* volume = input->add_option("--volume", volumePath_,
-                                            "volume file: .raw, .nhdr, .dat, .vdb (a bare name also in $VRI_DATA_DIR)")
+    CLI::Option* volume = input
+                              ->add_option(scene_flag::volume, volumePath_,
+                                           "volume file: .raw, .nhdr, .dat, .vdb (a bare name also in $VRI_DATA_DIR)")
                               ->transform(volumeInDataDir());
-    input->add_option("--field", field_, "analytic field: linear (paper A's f = (x + 1.5) / 3)");
+    input->add_option(scene_flag::field, field_, "analytic field: linear (paper A's f = (x + 1.5) / 3)");
     input->require_option(1);
     raw_.addTo(app);
-    app.add_option("--range", range_, "raw value range lo,hi that maps to s = 0..1 (default: the type's range, "
-                                      "or min..max for float)");
+    app.add_option(scene_flag::range, range_,
+                   "raw value range lo,hi that maps to s = 0..1 (default: the type's range, "
+                   "or min..max for float)");
     // A volume file brings its own grid: the field's options would be silently ignored with it.
-    app.add_option("--field-dims", fieldDims_, "the grid an analytic field stands for, X,Y,Z")
+    app.add_option(scene_flag::fieldDims, fieldDims_, "the grid an analytic field stands for, X,Y,Z")
         ->capture_default_str()
         ->excludes(volume);
-    app.add_flag("--field-as-grid", fieldAsGrid_, "sample the analytic field onto that grid and render the grid")
+    app.add_flag(scene_flag::fieldAsGrid, fieldAsGrid_, "sample the analytic field onto that grid and render the grid")
         ->excludes(volume);
-    app.add_option("--convention", convention_, "grid convention: cell (texture style) or node (dim - 1)")
+    app.add_option(scene_flag::convention, convention_, "grid convention: cell (texture style) or node (dim - 1)")
         ->capture_default_str();
-    app.add_option("--tf", tfPath_, "transfer function YAML")->required();
-    app.add_option("--size", size_, "image size WIDTHxHEIGHT")->capture_default_str();
-    app.add_option("--eye", eye_, "camera position X,Y,Z (default: in front of the box, +z)");
-    app.add_option("--target", target_, "point looked at X,Y,Z (default: box centre)");
-    app.add_option("--up", up_, "up vector X,Y,Z")->capture_default_str();
-    app.add_option("--fov", fov_, "vertical field of view, degrees")->capture_default_str();
-    app.add_option("--zoom", zoom_, "close-up: magnify the frame this many times about --zoom-centre")
+    app.add_option(scene_flag::tf, tfPath_, "transfer function YAML")->required();
+    app.add_option(scene_flag::size, size_, "image size WIDTHxHEIGHT")->capture_default_str();
+    app.add_option(scene_flag::eye, eye_, "camera position X,Y,Z (default: in front of the box, +z)");
+    app.add_option(scene_flag::target, target_, "point looked at X,Y,Z (default: box centre)");
+    app.add_option(scene_flag::up, up_, "up vector X,Y,Z")->capture_default_str();
+    app.add_option(scene_flag::fov, fov_, "vertical field of view, degrees")->capture_default_str();
+    app.add_option(scene_flag::zoom, zoom_, "close-up: magnify the frame this many times about --zoom-centre")
         ->capture_default_str();
-    app.add_option("--zoom-centre", zoomCentre_, "the point zoomed into, X,Y in pixels of the full frame "
-                                                 "(default: the image centre)");
+    app.add_option(scene_flag::zoomCentre, zoomCentre_,
+                   "the point zoomed into, X,Y in pixels of the full frame "
+                   "(default: the image centre)");
 }
 
-glm::ivec2 SceneOptions::imageSize() const { return parseSize(size_, "--size"); }
+glm::ivec2 SceneOptions::imageSize() const { return parseSize(size_, scene_flag::size); }
 
 std::vector<InputArgument> SceneOptions::inputs() const {
-    std::vector<InputArgument> files = volumeInputArguments("--volume", volumePath_);
-    files.push_back({"--tf", tfPath_});
+    std::vector<InputArgument> files = volumeInputArguments(scene_flag::volume, volumePath_);
+    files.push_back({scene_flag::tf, tfPath_});
     return files;
 }
 
@@ -56,7 +60,7 @@ SceneSetup SceneOptions::load() const {
     // The camera checks these too; here, before the volume is read, with the option's name.
     if (!validFieldOfView(fov_)) throw Error("--fov: expected degrees in (0, 180), got " + exactNumber(fov_));
     if (!validZoom(zoom_)) throw Error("--zoom: expected a finite factor >= 1, got " + exactNumber(zoom_));
-    const GridConvention conv = parseGridConvention(convention_, "--convention");
+    const GridConvention conv = parseGridConvention(convention_, scene_flag::convention);
 
     nlohmann::json inputs = nlohmann::json::array();
     std::shared_ptr<Volume> volume;
@@ -71,7 +75,7 @@ SceneSetup SceneOptions::load() const {
     } else {
         if (field_ != "linear") throw Error("--field: unknown analytic field '" + field_ + "' (expected linear)");
         linear.emplace();
-        linear->dims = parseDims(fieldDims_, "--field-dims");
+        linear->dims = parseDims(fieldDims_, scene_flag::fieldDims);
         if (fieldAsGrid_) {
             volume = std::make_shared<Volume>(sampleOntoGrid(*linear, conv));
             linear.reset();
@@ -79,7 +83,7 @@ SceneSetup SceneOptions::load() const {
     }
     if (!range_.empty()) {
         if (!volume && !sparse) throw Error("--range applies to volumes only");
-        const glm::dvec2 r = parseRange(range_, "--range");
+        const glm::dvec2 r = parseRange(range_, scene_flag::range);
         (sparse ? sparse->range : volume->range) = ValueRange{r.x, r.y};
     }
     Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse};
@@ -89,10 +93,10 @@ SceneSetup SceneOptions::load() const {
     camera.size = imageSize;
     camera.fov = fov_;
     camera.zoom = zoom_;
-    if (!target_.empty()) camera.target = parseVec3(target_, "--target");
-    if (!eye_.empty()) camera.eye = parseVec3(eye_, "--eye");
-    camera.up = parseVec3(up_, "--up");
-    if (!zoomCentre_.empty()) camera.zoomCentre = parseVec2(zoomCentre_, "--zoom-centre");
+    if (!target_.empty()) camera.target = parseVec3(target_, scene_flag::target);
+    if (!eye_.empty()) camera.eye = parseVec3(eye_, scene_flag::eye);
+    camera.up = parseVec3(up_, scene_flag::up);
+    if (!zoomCentre_.empty()) camera.zoomCentre = parseVec2(zoomCentre_, scene_flag::zoomCentre);
     const CameraSpec spec = camera.spec(scene.box());
     return {std::move(scene), spec, std::move(inputs)};
 }
