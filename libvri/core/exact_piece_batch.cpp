@@ -10,10 +10,14 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <limits>
+
 HWY_BEFORE_NAMESPACE();
 namespace vri {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 using D = hn::ScalableTag<double>;
 using V = hn::Vec<D>;
@@ -63,9 +67,11 @@ void FormPieceCubics(PieceBatch& b, int count, const PieceFrame& f) {
             dw[a] = wB - wA;
         }
         Poly x[4], y[2], s;
+        V corner[8];
+        for (int k = 0; k < 8; ++k) corner[k] = hn::Load(d, b.corner[k] + j);
         for (int i = 0; i < 4; ++i) {  // (dy, dz) = (i & 1, i >> 1)
-            const Poly a = {hn::Load(d, b.corner[2 * i] + j), zero, zero, zero};
-            const Poly c = {hn::Load(d, b.corner[2 * i + 1] + j), zero, zero, zero};
+            const Poly a = {corner[2 * i], zero, zero, zero};
+            const Poly c = {corner[2 * i + 1], zero, zero, zero};
             lerp(a, c, w0[0], dw[0], x[i]);
         }
         for (int i = 0; i < 2; ++i) lerp(x[2 * i], x[2 * i + 1], w0[1], dw[1], y[i]);
@@ -78,6 +84,23 @@ void FormPieceCubics(PieceBatch& b, int count, const PieceFrame& f) {
         const V magnitude = hn::Load(d, b.magnitude + j);
         const V scale = hn::Abs(c0) + hn::Abs(c1) + hn::Abs(c2) + hn::Abs(c3) + (magnitude + loScale) * invRange;
         hn::Store(scale, d, b.sScale + j);
+        // The corners that weigh on the piece: along an axis the ray does not move along, whose weight is
+        // then exactly the model's, constant, those on its far side weigh nothing where it is 0, and those on
+        // its near side where it is 1. Where the ones that weigh hold one value and the cubic is that value's
+        // scalar, constant, the cubic is the model's scalar exactly. (Where the ray moves along an axis, a
+        // weight that rounds to 0 at both ends of a piece may not be 0 between them: all its corners weigh.)
+        V lowest = hn::Set(d, kInfinity), highest = hn::Set(d, -kInfinity);
+        for (int k = 0; k < 8; ++k) {
+            auto weighs = hn::Eq(zero, zero);  // all true
+            for (int a = 0; a < 3; ++a)
+                if (!f.varies[a] || f.delta[a] == 0.0)
+                    weighs = hn::AndNot(hn::Eq(w0[a], (k >> a & 1) ? zero : one), weighs);
+            lowest = hn::Min(lowest, hn::IfThenElse(weighs, corner[k], hn::Set(d, kInfinity)));
+            highest = hn::Max(highest, hn::IfThenElse(weighs, corner[k], hn::Set(d, -kInfinity)));
+        }
+        const auto exact = hn::And(hn::And(hn::Eq(lowest, highest), hn::Eq(c0, (lowest - lo) * invRange)),
+                                   hn::And(hn::And(hn::Eq(c1, zero), hn::Eq(c2, zero)), hn::Eq(c3, zero)));
+        hn::Store(hn::IfThenElseZero(exact, one), d, b.exact + j);
     }
 }
 

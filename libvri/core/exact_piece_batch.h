@@ -31,6 +31,9 @@ struct PieceBatch {
     // piece, and the sScale that bounds the magnitudes whose rounding went into it.
     alignas(64) double c[4][kCapacity];
     alignas(64) double sScale[kCapacity];
+    // 1 where the cubic is the model's scalar exactly (exact_reference.h): every corner that weighs on the
+    // piece holds one value v, and the cubic came out as the constant (v - lo) * r with no rounding; else 0.
+    alignas(64) double exact[kCapacity];
 };
 
 // Forms the cubics of pieces [0, count); entries from count up to the next whole vector are overwritten

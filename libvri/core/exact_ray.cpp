@@ -212,12 +212,19 @@ bool ExactRay::invisible(double s0, double s1) const {
 void ExactRay::begin() {
     queued_ = 0;
     opticalDepth_ = depthError_ = lengthWalked_ = 0.0;
+    wholeWindow_ = false;
     colour_ = quadratureError_ = roundingError_ = {};
 }
 
-void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
+void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact) {
     if (!(length > 0.0)) return;
     lengthWalked_ += length;
+    if (exact) {  // the model's scalar, constant: its TF segment is known, with no window at any level
+        const double value = s.c[0];
+        if (!invisible(value, value))
+            integrateSubPiece(length, s, 0.0, 1.0, sScale, WrongSide{}, countAtMost(levels_, value));
+        return;
+    }
     double ends[4] = {0.0}, values[4];
     // Where s' = c1 + 2 c2 x + 3 c3 x^2 cannot vanish on [0, 1], |c1| > |2 c2| + |3 c3| (with room for
     // the rounding of that test), s is monotone on the piece: no critical points to solve for, as on most
@@ -284,8 +291,12 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale) {
 // wrong side. Around an end the place is a window: with d0 = |s'| there and |s''| <= M2 = 2|c2| + 6|c3|,
 // s' keeps its sign and |s'| >= d0 / 2 over w = 2 (r + 3 eps) / d0 (r the end's distance from the level)
 // when M2 w <= d0 / 2, so s has left the level by more than 2 eps at the window's far side (checked), and
-// beyond it until the next critical point or end (checked as well). Where that cannot be shown (s nearly
-// tangent to the level, or constant on it), and around a critical point, the whole sub-piece.
+// beyond it until the next critical point or end (checked as well). Where the slope shows no window (s
+// leaving the level slowly, as from a cell face whose corners all sit on it), s is still monotone up to
+// the nearest critical point: if it is clear of the level there, the window ends where bisection finds it
+// clear. Where neither shows one (s nearly tangent to the level all along, or constant on it but not known
+// exactly), and around a critical point within 2 eps of a level, the whole sub-piece (counted per ray:
+// wholeSubPieceWindow). A piece whose cubic is the model's scalar itself has no window (addPiece).
 // On such a place |s - L| <= 4 eps, so the value used there (the segment's v + m (s - s_A)) and the TF's
 // differ per channel by at most the jump at L plus 8 eps times the steeper slope beside it, and the TF's
 // value is at most the larger value at L plus that (levels closer than 8 eps: the TF's largest value).
@@ -304,13 +315,21 @@ ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a,
         const double level = levels_[i];
         const bool above = side == 0;
         auto near = [&](double value) { return !((above ? value - level : level - value) > 2.0 * eps); };
+        // From each end, s is monotone up to the nearest critical point inside the sub-piece (or the other end).
+        double afterA = b, beforeB = a;
+        for (int k = 1; k < parts; ++k)
+            if (ends[k] > a && ends[k] < b) {
+                afterA = std::min(afterA, ends[k]);
+                beforeB = std::max(beforeB, ends[k]);
+            }
         double width = 0.0;
-        if (near(sa)) width += wrongSideWidth(s, a, sa, b, level, above, eps);
-        if (near(sb)) width += wrongSideWidth(s, b, sb, a, level, above, eps);
+        if (near(sa)) width += wrongSideWidth(s, a, sa, b, afterA, level, above, eps);
+        if (near(sb)) width += wrongSideWidth(s, b, sb, a, beforeB, level, above, eps);
         for (int k = 1; k < parts; ++k)
             if (ends[k] > a && ends[k] < b && near(s(ends[k]))) width = b - a;
         width = std::min(width, b - a);
         if (width == 0.0) continue;
+        r.whole = r.whole || width == b - a;
         const LevelStep& step = steps_[i];
         const bool apart = step.gap > 8.0 * eps;
         double change[4], high[4];
@@ -337,15 +356,27 @@ double ExactRay::wrongSideEps(double sScale) { return 48.0 * kUnit * sScale; }
 
 // The window around `at`, where s is sAt, (towards `into`) in which s may be on the wrong side of `level`
 // (above: s must exceed it), or the whole distance to `into` where no window can be shown (see wrongSide).
-double ExactRay::wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above,
-                                double eps) const {
+double ExactRay::wrongSideWidth(const Cubic& s, double at, double sAt, double into, double monotoneTo, double level,
+                                bool above, double eps) const {
     const double span = std::abs(into - at);
+    const auto beyond = [&](double x) {  // s at x is clear of the level, on the right side
+        const double v = s(x);
+        return (above ? v - level : level - v) > 2.0 * eps;
+    };
     const double d0 = std::abs(s.derivative(at)), r = std::abs(sAt - level);
     const double curvature = 2.0 * std::abs(s.c[2]) + 6.0 * std::abs(s.c[3]);
     const double w = 2.0 * (r + 3.0 * eps) / d0;
-    if (!(w < span) || !(curvature * w <= 0.5 * d0)) return span;
-    const double far = s(into > at ? at + w : at - w);
-    return (above ? far - level : level - far) > 2.0 * eps ? w : span;
+    if (w < span && curvature * w <= 0.5 * d0 && beyond(into > at ? at + w : at - w)) return w;
+    // No window from the slope (s leaves the level slowly, as from a cell face whose corners all sit on it):
+    // on the stretch to `monotoneTo` the computed s is monotone, so where it is clear of the level it stays
+    // clear up to there; bisect for that place.
+    if (!beyond(monotoneTo)) return span;
+    double inside = at, clear = monotoneTo;
+    for (int i = 0; i < 64 && std::abs(clear - inside) > 0x1p-52 * span; ++i) {
+        const double middle = 0.5 * (inside + clear);
+        (beyond(middle) ? clear : inside) = middle;
+    }
+    return std::abs(clear - at);
 }
 
 // Error analysis. The result is exact for the model (trilinear field, piecewise-linear TF, along the
@@ -380,6 +411,7 @@ void ExactRay::integrateSubPiece(double length, const Cubic& s, double a, double
     // colour by wrong.colour plus what the true emission there, at most C_high tau_high, may see of the
     // depth's uncertainty (the sum of the sub-piece covers the used emission's).
     depthError_ += wrong.depth;
+    wholeWindow_ = wholeWindow_ || wrong.whole;
     std::array<double, 3> wrongColour = wrong.colour;
     for (int c = 0; c < 3; ++c) wrongColour[c] += wrong.seen[c] * depthError_;
     // The TF segment the sub-piece lies in: that of the `below` levels <= s at its middle.

@@ -30,8 +30,11 @@ public:
     void begin();  // starts a new ray
     // The next piece, front to back: `length` world units over which s = cubic(sigma), sigma in
     // [0, 1] from the piece's start to its end. `sScale` bounds the magnitudes whose rounding went
-    // into the cubic's coefficients (see the error analysis in exact_ray.cpp).
-    void addPiece(double length, const Cubic& s, double sScale);
+    // into the cubic's coefficients (see the error analysis in exact_ray.cpp). `exact`: the cubic is the
+    // model's scalar itself, a constant, as on a cell whose eight corners hold one value (the corners'
+    // scalars are the model's, exact_reference.h): no rounding puts it on the wrong side of a TF point,
+    // and one at its value counts from that value on (right-continuous), as every method reads the TF.
+    void addPiece(double length, const Cubic& s, double sScale, bool exact);
     // True once what the rest of the ray, `remainingLength` world units, could still add is at most
     // the tolerance in every channel: the transparency T times the largest colour (g = C tau adds at
     // most C_max T; g = C at most C_max T times the length), and T to alpha. finish() adds that to the
@@ -54,6 +57,11 @@ public:
     bool invisible(double s0, double s1) const;
 
     std::uint64_t subPieces = 0, quadratureIntervals = 0, quadratureNodes = 0;  // counted over all rays
+    // Whether this ray (since begin()) had a sub-piece bounded as if all of it might lie beyond its TF
+    // segment: s within rounding of a TF point all along it as far as the window analysis could show
+    // (nearly tangent to the level, constant on it but not known exactly, a critical point on it, or a
+    // sub-piece shorter than the window). Where many rays did, their bounds may be loose there.
+    bool wholeSubPieceWindow() const { return wholeWindow_; }
 
 private:
     static constexpr double kOpaqueDepth = 41.588830833596716;  // 60 ln 2
@@ -88,6 +96,7 @@ private:
         double depth = 0.0;
         std::array<double, 3> colour{};
         std::array<double, 3> seen{};  // the width times the TF's largest emission there
+        bool whole = false;            // the whole sub-piece counted
     };
 
     // Gap g of the levels, level g - 1 <= s < level g (gap 0 below the first, the last from the last on):
@@ -103,7 +112,10 @@ private:
     // `below`: the levels <= s at the sub-piece's middle.
     WrongSide wrongSide(double length, const Cubic& s, double a, double b, double sScale, int parts,
                         const double* ends, std::size_t below) const;
-    double wrongSideWidth(const Cubic& s, double at, double sAt, double into, double level, bool above, double eps) const;
+    // The window from the sub-piece's end `at` towards `into` where s may be beyond `level`; s is monotone from
+    // `at` to `monotoneTo` (the nearest critical point inside, or `into`).
+    double wrongSideWidth(const Cubic& s, double at, double sAt, double into, double monotoneTo, double level,
+                          bool above, double eps) const;
     void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale, const WrongSide& wrong,
                            std::size_t below);
     SubPiece setUp(const Cubic& local, double ell, double sScale, const Segment& segment, bool withColour) const;
@@ -135,6 +147,7 @@ private:
     double opticalDepth_ = 0.0, depthError_ = 0.0;
     double lengthWalked_ = 0.0;  // of the pieces given to addPiece: the rest of the ray's segment has g = 0
     std::array<double, 3> colour_{}, quadratureError_{}, roundingError_{};
+    bool wholeWindow_ = false;  // see wholeSubPieceWindow()
 
     // From kGaussTolerance up: the sub-pieces waiting for their Gauss rules, with what the ray needs of
     // each once they are done (the optical depth has already moved past them).

@@ -113,7 +113,7 @@ public:
                 if (const int j = queue.lane[e]; j >= 0) {
                     ++counts.visible;
                     ray.addPiece((b.phiB[j] - b.phiA[j]) * length, Cubic{{b.c[0][j], b.c[1][j], b.c[2][j], b.c[3][j]}},
-                                 b.sScale[j]);
+                                 b.sScale[j], b.exact[j] != 0.0);
                 }
                 if (ray.done((1.0 - queue.phiB[e]) * length)) return (1.0 - queue.phiB[e]) * length;
             }
@@ -295,7 +295,8 @@ private:
 };
 
 struct Counters {
-    std::atomic<std::uint64_t> raysHit{0}, pieces{0}, visible{0}, subPieces{0}, intervals{0}, nodes{0}, opaque{0};
+    std::atomic<std::uint64_t> raysHit{0}, pieces{0}, visible{0}, subPieces{0}, intervals{0}, nodes{0}, opaque{0},
+        wholeWindow{0};
 };
 
 // Calls walk(uEntry, uExit, length, ray, counts, queue) -> length left out, for every pixel's ray that
@@ -312,7 +313,7 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
         ExactRay ray(scene.transferFunction, opt.tolerance);
         PieceCounts counts;
         WalkQueue queue;
-        std::uint64_t hit = 0, opaque = 0;
+        std::uint64_t hit = 0, opaque = 0, wholeWindow = 0;
         for (int ty = tiles.rows().begin(); ty < tiles.rows().end(); ++ty)
             for (int tx = tiles.cols().begin(); tx < tiles.cols().end(); ++tx) {
                 for (int iy = ty * tile; iy < std::min((ty + 1) * tile, area.height); ++iy)
@@ -326,6 +327,7 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
                         ray.begin();
                         const double left = walk(entry, exit, segment->tFar - segment->tNear, ray, counts, queue);
                         if (left > 0.0) ++opaque;
+                        wholeWindow += ray.wholeSubPieceWindow();
                         const std::size_t at = (static_cast<std::size_t>(iy) * out.width + ix) * 4;
                         ray.finish(left, &out.values[at], &out.bounds[at]);
                     }
@@ -333,6 +335,7 @@ void traceRays(const Scene& scene, const Camera& camera, const ExactReferenceOpt
             }
         counters.raysHit += hit;
         counters.opaque += opaque;
+        counters.wholeWindow += wholeWindow;
         counters.pieces += counts.pieces;
         counters.visible += counts.visible;
         counters.subPieces += ray.subPieces;
@@ -428,7 +431,7 @@ void renderExactReference(const Scene& scene, const Camera& camera, const ExactR
             ++counts.pieces;
             ++counts.visible;
             const Cubic s{{a.x, b.x - a.x, 0.0, 0.0}};
-            ray.addPiece(length, s, std::abs(a.x) + 2.0 * std::abs(b.x - a.x));
+            ray.addPiece(length, s, std::abs(a.x) + 2.0 * std::abs(b.x - a.x), false);
             return 0.0;
         }, out, counters);
     }
@@ -452,6 +455,7 @@ void renderExactReference(const Scene& scene, const Camera& camera, const ExactR
     st.quadratureIntervals = counters.intervals;
     st.quadratureNodes = counters.nodes;
     st.raysOpaque = counters.opaque;
+    st.raysWholeSubPieceWindow = counters.wholeWindow;
     // The arena's concurrency ignores a tbb::global_control limit; the limit is what the workers get.
     st.threads = static_cast<int>(std::min<std::size_t>(
         tbb::this_task_arena::max_concurrency(),

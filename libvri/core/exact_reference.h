@@ -9,6 +9,13 @@
 // bound, from bounds on the integrand's derivatives (gauss_error_bound.h), reaches the tolerance, and
 // where none does by adaptive Gauss-Kronrod (7-15) quadrature. Paper B's own reference, a Riemann sum
 // with a 0.01-voxel step, is render() with those options.
+//
+// The model it is exact for, stated so that every method means the same scene: voxel i's scalar is
+// s_i = (v_i - lo) * r in double, r = 1 / (hi - lo) in double (lo..hi the normalisation range), as every
+// renderer of vri computes it; between voxels the trilinear interpolant of the s_i; at a TF point where the
+// TF jumps, the value from the point on (right-continuous), as TransferFunction::operator() reads it. A cell
+// whose eight corners hold one value is therefore known exactly, and a TF point placed at that value (as TF
+// editors for 8-bit data place them) costs its bound nothing.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -51,6 +58,9 @@ struct ExactReferenceStats {
     std::uint64_t quadratureIntervals = 0;  // intervals integrated (sub-pieces plus subdivisions)
     std::uint64_t quadratureNodes = 0;    // integrand evaluations of the Gauss-Kronrod rules (7 or 15 each)
     std::uint64_t raysOpaque = 0;         // rays ended early: what was left could add at most the tolerance
+    // Rays with a sub-piece whose bound counted all of it as possibly beyond its TF segment (ExactRay::
+    // wholeSubPieceWindow): s within rounding of a TF point along it, as far as could be shown.
+    std::uint64_t raysWholeSubPieceWindow = 0;
     double seconds = 0.0;       // the frame's own work, without setupSeconds unless reused
     double setupSeconds = 0.0;  // building the empty space (exact_empty_space.h), this frame or an earlier one
     bool setupReused = false;   // the empty space came from an earlier frame (occupancy_cache.h)

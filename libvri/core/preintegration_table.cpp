@@ -20,7 +20,7 @@ namespace {
 SegmentIntegral<double> integrateSegment(ExactRay& ray, double length, double front, double back, double delta) {
     ray.begin();
     const Cubic s{{front, back - front + 4.0 * delta, -4.0 * delta, 0.0}};
-    ray.addPiece(length, s, std::abs(front) + std::abs(back) + 4.0 * std::abs(delta));
+    ray.addPiece(length, s, std::abs(front) + std::abs(back) + 4.0 * std::abs(delta), false);
     double value[4], bound[4];
     ray.finish(0.0, value, bound);
     return {value[0], value[1], value[2], ray.opticalDepth()};

@@ -11,6 +11,7 @@ nlohmann::json toJson(const ExactReferenceStats& s) {
     // The batched Gauss rules' Highway target; null where the tolerance keeps them scalar.
     put(record, simdTarget, s.simdTarget.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.simdTarget));
     put(record, raysOpaque, s.raysOpaque);
+    put(record, raysWholeSubPieceWindow, s.raysWholeSubPieceWindow);
     put(record, pieces, s.pieces);
     put(record, piecesVisible, s.piecesVisible);
     put(record, subPieces, s.subPieces);

@@ -23,7 +23,7 @@ std::span<const StatsField> statsSchema() {
         preintSize, preintOrder, preintSegmentLength, preintErrorColour, preintErrorAlpha, preintPointsChecked,
         preintCheckedDeltas,
         outOfRangePixels, outOfRangeAbove, outOfRangeBelow, outOfRangeMax, outOfRangeMin,
-        raysOpaque, pieces, piecesVisible, subPieces, quadratureIntervals, quadratureNodes,
+        raysOpaque, raysWholeSubPieceWindow, pieces, piecesVisible, subPieces, quadratureIntervals, quadratureNodes,
         errorBoundChannels, errorBoundMax, errorBoundMean, errorBoundAppliesTo, errorBoundRoundingMax,
         errorBoundStoredMax, errorBoundErrorImage,
         quantisation,

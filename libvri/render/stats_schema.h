@@ -86,6 +86,7 @@ inline constexpr StatsField outOfRangeMax{"/stats/out_of_range_pixels/max", Tile
 inline constexpr StatsField outOfRangeMin{"/stats/out_of_range_pixels/min", TileRule::Min};
 // The exact method's (exact_reference_json.cpp).
 inline constexpr StatsField raysOpaque{"/stats/rays_opaque", TileRule::Sum};
+inline constexpr StatsField raysWholeSubPieceWindow{"/stats/rays_whole_sub_piece_window", TileRule::Sum};
 inline constexpr StatsField pieces{"/stats/pieces", TileRule::Sum};
 inline constexpr StatsField piecesVisible{"/stats/pieces_visible", TileRule::Sum};
 inline constexpr StatsField subPieces{"/stats/sub_pieces", TileRule::Sum};

@@ -84,6 +84,34 @@ PY
 # A zoom centre on the frame's right edge is on the pilot's too (scaled without rounding past it).
 "$bin/vri-render" --volume blob_8x8x8_uint8.raw --tf tf.yaml --size 169x128 -q --method exact --zoom 2 --zoom-centre 169,64 --max-error 1e-6 -o zoom-edge.exr ||
     fail "--max-error with a zoom centre on the frame's edge"
+# TF points where an 8-bit volume's constant regions sit (a pulse 1e-9 wide from raw value 1, a jump at 3,
+# spelled k/255 as a TF file holds them): a cell whose corners hold one value is exact, and a ray leaving a
+# face whose corners sit on a point has a window found by bisection, so the largest bound, about 0.72 when
+# such pieces counted whole, is some 3e-6 (what rays leaving those faces slowly leave uncertain): --max-error
+# 1e-5 is within reach, and few rays need a whole-sub-piece window.
+/usr/bin/python3 - <<'PY'
+import random
+random.seed(11)
+blocks = [random.choice([0, 1, 3, 100]) for _ in range(64)]
+voxels = bytes(blocks[x // 3 + 4 * (y // 3) + 16 * (z // 3)] for z in range(12) for y in range(12) for x in range(12))
+open("blocks_12x12x12_uint8.raw", "wb").write(voxels)
+a, b = repr(1 / 255), repr(1 / 255 + 1e-9)
+open("points.yaml", "w").write(f"""points:
+  - [0.0, 0.0, 0.0, 0.0, 0.0]
+  - [{a}, 0.0, 0.0, 0.0, 0.0]
+  - [{a}, 0.9, 0.5, 0.2, 0.3]
+  - [{b}, 0.3, 0.6, 1.0, 0.3]
+  - [{b}, 0.0, 0.0, 0.0, 0.0]
+  - [{repr(3 / 255)}, 0.0, 0.0, 0.0, 0.0]
+  - [{repr(3 / 255)}, 1.0, 0.4, 0.7, 0.5]
+  - [1.0, 0.5, 1.0, 0.1, 0.5]
+""")
+PY
+"$bin/vri-render" --volume blocks_12x12x12_uint8.raw --tf points.yaml --size 40x30 --eye 4.5,4.5,40 --target 4.5,4.5,0 \
+    --fov 20 -q --method exact --max-error 1e-5 -o points.exr --stats points.json || fail "--max-error 1e-5 with TF points at data values"
+[ "$(stat points.json 'max(s["error_bound"]["max"]) <= 1e-5')" = True ] || fail "bound $(stat points.json 's["error_bound"]')"
+[ "$(stat points.json '10 * s["rays_whole_sub_piece_window"] < s["rays_hit"]')" = True ] ||
+    fail "rays with a whole-sub-piece window: $(stat points.json 's["rays_whole_sub_piece_window"]') of $(stat points.json 's["rays_hit"]')"
 if "$bin/vri-render" "${blob[@]}" --method riemann --max-error 1e-3 -o bad.exr 2> bad.txt; then fail "--max-error with riemann"; fi
 grep -q "^vri-render: error: --max-error applies to --method exact only" bad.txt || fail "$(cat bad.txt)"
 echo "render_exact: all checks passed"

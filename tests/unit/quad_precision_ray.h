@@ -4,12 +4,12 @@
 // what vri makes of a pixel (camera, clipRay, Box::toTexture: entry and exit in texture coordinates and the
 // length in world units; in a volume the line entry + phi delta of voxel-index coordinates that the exact
 // method forms from them in double, the ray it integrates along); from there everything is redone in
-// 113-bit arithmetic: the cell faces the ray
-// crosses, the trilinear interpolant along each cell piece (a cubic, from the corner values and the
-// weights), where it crosses each transfer-function point (bisection to the last bit), the optical depth
-// (the exact quartic) and the emission integral (Gauss-Legendre 10 against 20 on intervals across which
-// the depth grows by at most 1/4, bisected until they agree to 1e-26 of the value, or 1e-30). Its own
-// error is some 1e-25 of the values, far below any bound in double.
+// 113-bit arithmetic: the cell faces the ray crosses, the trilinear interpolant along each cell piece (a
+// cubic, from the corners' scalars as the model defines them, exact_reference.h, and the weights), where it
+// crosses each transfer-function point (bisection to the last bit), the optical depth (the exact quartic) and
+// the emission integral (Gauss-Legendre 10 against 20 on intervals across which the depth grows by at most
+// 1/4, bisected until they agree to 1e-26 of the value, or 1e-30). Its own error is some 1e-25 of the values,
+// far below any bound in double.
 #include <quadmath.h>
 
 #include <algorithm>
@@ -100,8 +100,9 @@ private:
             }
         }
         std::sort(cuts.begin(), cuts.end());
+        // The model's voxel scalars (exact_reference.h): (v - lo) * r in double, r = 1 / (hi - lo) in double.
         const ValueRange range = v.normalisationRange();
-        const Quad lo = range.lo, width = Quad(range.hi) - Quad(range.lo);
+        const double r = range.hi > range.lo ? 1.0 / (range.hi - range.lo) : 0.0;
         for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
             const Quad phiA = cuts[i], phiB = cuts[i + 1];
             if (!(phiB > phiA)) continue;
@@ -122,26 +123,34 @@ private:
                     w1[a] = (phiB - phiA) * dx[a];
                 }
             }
-            Poly s = {0, 0, 0, 0};
+            Quad corners[8];
             for (int k = 0; k < 8; ++k) {
                 int at[3];
                 for (int a = 0; a < 3; ++a) at[a] = std::min(base[a] + (k >> a & 1), v.dims[a] - 1);
-                const Quad corner = voxel(v, at[0], at[1], at[2]);
-                Poly product = {corner, 0, 0, 0};
+                corners[k] = (voxel(v, at[0], at[1], at[2]) - range.lo) * r;
+            }
+            // Eight equal corners: the interpolant is that value exactly, not within the rounding of the sum
+            // below, which could put a cell sitting on a TF point beside it.
+            if (std::all_of(corners, corners + 8, [&](Quad c) { return c == corners[0]; })) {
+                piece((phiB - phiA) * length, {corners[0], 0, 0, 0});
+                if (opaque()) return;
+                continue;
+            }
+            Poly s = {0, 0, 0, 0};
+            for (int k = 0; k < 8; ++k) {
+                Poly product = {corners[k], 0, 0, 0};
                 for (int a = 0; a < 3; ++a) {  // times w or 1 - w
                     const Quad c0 = (k >> a & 1) ? w0[a] : 1 - w0[a], c1 = (k >> a & 1) ? w1[a] : -w1[a];
                     for (int d = 3; d >= 0; --d) product[d] = product[d] * c0 + (d > 0 ? product[d - 1] * c1 : 0);
                 }
                 for (int d = 0; d < 4; ++d) s[d] += product[d];
             }
-            s[0] -= lo;
-            for (Quad& c : s) c /= width;
             piece((phiB - phiA) * length, s);
             if (opaque()) return;
         }
     }
 
-    static Quad voxel(const Volume& v, int x, int y, int z) {
+    static double voxel(const Volume& v, int x, int y, int z) {
         const std::size_t i = v.index(x, y, z);
         switch (v.type) {
             case VoxelType::UInt8: return v.data<std::uint8_t>()[i];
