@@ -221,8 +221,16 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact
     lengthWalked_ += length;
     if (exact) {  // the model's scalar, constant: its TF segment is known, with no window at any level
         const double value = s.c[0];
-        if (!invisible(value, value))
-            integrateSubPiece(length, s, 0.0, 1.0, sScale, WrongSide{}, countAtMost(levels_, value));
+        if (invisible(value, value)) return;
+        // But for the piece's ends: a cell face placed by rounding may move by 2 u of the piece either way, and
+        // the scalar just beyond it, in the next cell, may lie on a level's other side where the value is on it.
+        WrongSide faces;
+        const std::size_t below = countAtMost(levels_, value);
+        const double eps = wrongSideEps(sScale);
+        for (const std::size_t i : {below - 1, below})
+            if (i < levels_.size() && std::abs(value - levels_[i]) <= 2.0 * eps)
+                addWindow(faces, length * 4.0 * kUnit, i, eps);
+        integrateSubPiece(length, s, 0.0, 1.0, sScale, faces, below);
         return;
     }
     double ends[4] = {0.0}, values[4];
@@ -330,25 +338,31 @@ ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a,
         width = std::min(width, b - a);
         if (width == 0.0) continue;
         r.whole = r.whole || width == b - a;
-        const LevelStep& step = steps_[i];
-        const bool apart = step.gap > 8.0 * eps;
-        double change[4], high[4];
-        for (int k = 0; k < 4; ++k) {
-            change[k] = apart ? step.jump[k] + 8.0 * eps * step.slope[k] : channelMax_[k];
-            high[k] = apart ? step.high[k] + 8.0 * eps * step.slope[k] : channelMax_[k];
-        }
-        const double span = length * width;
-        r.depth += span * change[0];
-        for (int c = 0; c < 3; ++c) {
-            const double dg = emission_ == EmissionModel::ColourTimesExtinction
-                                  ? change[c + 1] * (high[0] + change[0]) + (high[c + 1] + change[c + 1]) * change[0]
-                                  : change[c + 1];
-            r.colour[c] += span * dg;
-            r.seen[c] += span * (emission_ == EmissionModel::ColourTimesExtinction ? (high[c + 1] + change[c + 1]) * (high[0] + change[0])
-                                                                                   : high[c + 1] + change[c + 1]);
-        }
+        addWindow(r, length * width, i, eps);
     }
     return r;
+}
+
+// What a width `span` (world units) of a piece beside level i, where s may lie on the level's other side,
+// adds to the optical depth's and the colour's uncertainty (see wrongSide).
+void ExactRay::addWindow(WrongSide& r, double span, std::size_t i, double eps) const {
+    const LevelStep& step = steps_[i];
+    const bool apart = step.gap > 8.0 * eps;
+    double change[4], high[4];
+    for (int k = 0; k < 4; ++k) {
+        change[k] = apart ? step.jump[k] + 8.0 * eps * step.slope[k] : channelMax_[k];
+        high[k] = apart ? step.high[k] + 8.0 * eps * step.slope[k] : channelMax_[k];
+    }
+    const bool colourTimesExtinction = emission_ == EmissionModel::ColourTimesExtinction;
+    r.depth += span * change[0];
+    for (int c = 0; c < 3; ++c) {
+        const double dg = colourTimesExtinction
+                              ? change[c + 1] * (high[0] + change[0]) + (high[c + 1] + change[c + 1]) * change[0]
+                              : change[c + 1];
+        r.colour[c] += span * dg;
+        r.seen[c] += span * (colourTimesExtinction ? (high[c + 1] + change[c + 1]) * (high[0] + change[0])
+                                                   : high[c + 1] + change[c + 1]);
+    }
 }
 
 // eps = 48 u sScale: see above.

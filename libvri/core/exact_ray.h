@@ -116,6 +116,8 @@ private:
     // `at` to `monotoneTo` (the nearest critical point inside, or `into`).
     double wrongSideWidth(const Cubic& s, double at, double sAt, double into, double monotoneTo, double level,
                           bool above, double eps) const;
+    // What `span` world units beside level i where s may be on its other side add to `r`.
+    void addWindow(WrongSide& r, double span, std::size_t level, double eps) const;
     void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale, const WrongSide& wrong,
                            std::size_t below);
     SubPiece setUp(const Cubic& local, double ell, double sScale, const Segment& segment, bool withColour) const;

@@ -34,6 +34,9 @@ struct Plan {
     std::filesystem::path workDir;     // commands are run from here; their relative paths start here
     std::vector<Step> steps;           // in an order where every step comes after those it depends on
     std::vector<std::vector<std::size_t>> dependencies;  // per step: the steps that write its inputs
+    // Empty for a whole plan; else what part of the experiment's steps it holds and why (checkedPart), which
+    // the manifest and the gallery say.
+    std::string part = {};
 
     const Step& step(const std::string& id) const;
     // How the commands name `file`: relative to workDir when the two share more than the root, else absolute.

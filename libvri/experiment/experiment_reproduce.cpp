@@ -105,6 +105,8 @@ Plan checkedPart(const Experiment& experiment, const Plan& plan, const std::set<
         for (std::size_t d : plan.dependencies[i]) dependencies.push_back(index[d]);
         part.dependencies.push_back(std::move(dependencies));
     }
+    part.part = std::to_string(part.steps.size()) + " of its " + std::to_string(plan.steps.size()) +
+                " steps: those its reproduce: numbers need (vri-run --check)";
     return part;
 }
 

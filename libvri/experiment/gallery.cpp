@@ -90,6 +90,8 @@ std::string gallerySection(const fs::path& path, std::map<std::string, std::stri
            << ", manifest [" << dir << "/manifest.json](" << dir << "/manifest.json); from nothing its "
            << m.at("steps").size() << (m.at("steps").size() == 1 ? " step takes " : " steps take ")
            << secondsText(manifestSeconds(m)) << ".\n";
+        if (m.contains("part"))  // a run of part of the experiment: its outputs are not all here
+            md << "\n**Only part of the experiment ran here:** " << m.at("part").get<std::string>() << ".\n";
     });
     return md.str();
 }

@@ -138,6 +138,7 @@ void writeManifest(const Experiment& experiment, const Plan& plan, const std::ve
         {"steps", steps}};
     // Only where the file left something out, so that a complete file's manifest is as it was.
     if (!experiment.defaults.empty()) manifest["experiment"]["defaults"] = experiment.defaults;
+    if (!plan.part.empty()) manifest["part"] = plan.part;
     writeTextFile(plan.resultsDir / "manifest.json", manifest.dump(2) + "\n");
 }
 

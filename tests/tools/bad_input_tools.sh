@@ -204,6 +204,12 @@ bad 64 "^vri-tabulate: error: --row: an empty word cannot be one of its values" 
 grep -q '^| \[draft\] |' bracket.md || fail "--row '[draft]' lost its brackets: $(cat bracket.md)"
 bad 64 "^vri-tabulate: error: --cell: expected ROW COLUMN FILE\.\.\., got 2 words \(see --help\)$" -- \
     "$bin/vri-tabulate" --layout matrix --cell A B --value stats.wall_seconds -o table.md
+# Nothing after '=' is refused, not read from the next word; a list of a fixed count is given once.
+bad 64 "${E}--threshold: nothing after '=' \(give the value after '=' or as the next word\) \(see --help\)$" -- \
+    "$bin/vri-diff" a.exr a.exr --threshold= --json diff2.json
+bad 64 "^vri-tabulate: error: --row: nothing after '='" -- "$bin/vri-tabulate" --layout thresholds --row= A diff.json -o table.md
+bad 64 "${E}--histogram-range: expected 2 numbers separated by ',', once, got '1e-6,1' among 2 uses" -- \
+    "$bin/vri-diff" a.exr a.exr --histogram-range 1e-6,1 --histogram-range 1e-3,1 --histogram h.csv
 # A list given twice adds up, and replaces the default.
 "$bin/vri-diff" a.exr a.exr --threshold 0.1 --threshold 0.2,0.3 --json diff2.json > /dev/null
 [[ $(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["thresholds"])' diff2.json) == \

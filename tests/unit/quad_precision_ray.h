@@ -129,10 +129,21 @@ private:
                 for (int a = 0; a < 3; ++a) at[a] = std::min(base[a] + (k >> a & 1), v.dims[a] - 1);
                 corners[k] = (voxel(v, at[0], at[1], at[2]) - range.lo) * r;
             }
-            // Eight equal corners: the interpolant is that value exactly, not within the rounding of the sum
-            // below, which could put a cell sitting on a TF point beside it.
-            if (std::all_of(corners, corners + 8, [&](Quad c) { return c == corners[0]; })) {
-                piece((phiB - phiA) * length, {corners[0], 0, 0, 0});
+            // The corners that weigh on the piece (a weight of exactly 0 or 1 all along an axis leaves out the
+            // far or the near ones) holding one value: the interpolant is that value exactly, not within the
+            // rounding of the sum below, which could put a cell sitting on a TF point beside it.
+            std::optional<Quad> one;
+            bool constant = true;
+            for (int k = 0; k < 8 && constant; ++k) {
+                bool weighs = true;
+                for (int a = 0; a < 3; ++a)
+                    if (w1[a] == 0 && w0[a] == ((k >> a & 1) ? 0 : 1)) weighs = false;
+                if (!weighs) continue;
+                constant = !one || *one == corners[k];
+                one = corners[k];
+            }
+            if (constant) {
+                piece((phiB - phiA) * length, {*one, 0, 0, 0});
                 if (opaque()) return;
                 continue;
             }

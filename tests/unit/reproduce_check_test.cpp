@@ -34,6 +34,7 @@ TEST_CASE("reproduce check: a plan shrinks to the checked steps, what they read 
     const vri::Plan part = vri::checkedPart(experiment, plan, {});
     CHECK(ids(part) == std::vector<std::string>{"a", "diff"});
     CHECK(part.dependencies == std::vector<std::vector<std::size_t>>{{}, {0}});  // renumbered
+    CHECK(part.part == "2 of its 5 steps: those its reproduce: numbers need (vri-run --check)");  // the manifest says so
 
     const vri::Plan shared = vri::checkedPart(experiment, plan, {"/r/table"});
     CHECK(ids(shared) == std::vector<std::string>{"a", "b", "diff", "table"});

@@ -104,6 +104,20 @@ std::string conversionMessage(const CLI::App& app, const std::string& what) {
     return name + ": " + what.substr(equals + 3) + " is outside the range of this integer option";
 }
 
+// "--name=" with nothing after '=': CLI11 would take the next word for the value, whatever it is ("--row= A"
+// read as "--row A", "--threshold= --json" as a threshold "--json"). Refused for an option that takes values,
+// up to the "--" that ends the options.
+void refuseEmptyAfterEquals(const CLI::App& app, int argc, char** argv) {
+    for (int i = 1; i < argc && std::string_view(argv[i]) != "--"; ++i) {
+        const std::string_view word = argv[i];
+        if (!word.starts_with("--") || !word.ends_with('=')) continue;
+        const CLI::Option* option = app.get_option_no_throw(std::string(word.substr(0, word.size() - 1)));
+        if (option && option->get_items_expected_max() > 0)
+            throw CLI::ValidationError(option->get_name(), "nothing after '=' (give the value after '=' or as the "
+                                                           "next word)");
+    }
+}
+
 }  // namespace
 
 CLI::Validator integerRange(std::int64_t lo, std::int64_t hi) {
@@ -169,9 +183,10 @@ CLI::Option* addListOption(CLI::App& app, const std::string& name, std::vector<d
         std::vector<double> read;
         for (const std::string& word : words) {
             std::vector<std::string> texts = listItems(word, label);
-            if (count && texts.size() != count)
+            if (count && (texts.size() != count || words.size() > 1))
                 throw CLI::ValidationError(label, "expected " + std::to_string(count) +
-                                                      " numbers separated by ',', got '" + word + "'");
+                                                      " numbers separated by ',', once, got '" + word + "'" +
+                                                      (words.size() > 1 ? " among " + std::to_string(words.size()) + " uses" : ""));
             for (std::string& text : texts) {
                 const std::optional<double> number = numberFromText(text);
                 if (!number) throw CLI::ValidationError(label, "expected a number, got '" + text + "'");
@@ -249,6 +264,7 @@ std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc
                          "print the version, git commit, build type and compiler, and exit");
     checkNumberText(app);
     try {
+        refuseEmptyAfterEquals(app, argc, argv);
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {  // --help, --help-all, --version
         return app.exit(e);

@@ -45,7 +45,7 @@ CLI::Validator volumeInDataDir();
 // A list option ("--threshold 0.1,0.2"): one word a use, as typed (brackets too), split into items at single
 // commas by parseWordList, which refuses an empty item; the items of every use, in order, replace the default.
 // A number list reads each item as a number option's value is read (parse.h) and checks it with `check`;
-// `count`, when not 0, is the number of items the option must have. vri splits the word, not CLI11, whose list
+// `count`, when not 0, is the number of items the option must have, given once. vri splits the word, not CLI11, whose list
 // parsing drops empty items.
 CLI::Option* addListOption(CLI::App& app, const std::string& name, std::vector<double>& items,
                            const std::string& description, std::optional<CLI::Validator> check = std::nullopt,
@@ -62,7 +62,7 @@ CLI::Option* addWordsOption(CLI::App& app, const std::string& name, std::vector<
 // Parses the command line, after adding --version; a usage error becomes the one line
 // "<tool>: error: <what> (see --help)" and exit kExitUsage, --help and --version print on stdout
 // (exit 0). Returns the exit code to leave with, if any. Every number option's text is checked first in
-// parse.h's forms.
+// parse.h's forms, and "--name=" with nothing after '=' is refused (CLI11 would take the next word).
 std::optional<int> parseArguments(CLI::App& app, std::string_view tool, int argc, char** argv);
 
 // Throws UsageError "argument N '<arg>' is not valid UTF-8 (byte B): <why>" for the first argument that is
