@@ -1,7 +1,10 @@
 // The starting study vri-run --new writes.
 #include "libvri/experiment/new_study.h"
 
+#include <exception>
+#include <filesystem>
 #include <string>
+#include <system_error>
 #include <utility>
 
 #include "libvri/experiment/experiment_spec.h"
@@ -92,17 +95,27 @@ std::vector<fs::path> writeNewStudy(const fs::path& path) {
     if (name.ends_with(".yaml")) name.resize(name.size() - 5);
     if (!isSafeName(name)) throw Error("--new: '" + name + "' must be " + std::string(kSafeName));
     const fs::path dir = path.parent_path();
+    // The transfer function and the plot first, the experiment that names them last: a study's file is never
+    // there without its parts.
     const std::vector<std::pair<fs::path, std::string>> files{
-        {dir / (name + ".yaml"), named(kExperiment, name)},
         {dir / (name + "-tf.yaml"), named(kTransferFunction, name)},
-        {dir / (name + "-plot.yaml"), named(kPlot, name)}};
-    for (const auto& [file, text] : files)
-        if (fs::exists(file) || fs::is_symlink(file))
+        {dir / (name + "-plot.yaml"), named(kPlot, name)},
+        {dir / (name + ".yaml"), named(kExperiment, name)}};
+    for (auto it = files.rbegin(); it != files.rend(); ++it)  // the experiment's name first
+        if (const fs::path& file = it->first; fs::exists(file) || fs::is_symlink(file))
             throw Error("--new: " + file.string() + " exists (choose another name; nothing was written)");
     std::vector<fs::path> written;
-    for (const auto& [file, text] : files) {
-        writeTextFile(file, text);
-        written.push_back(file);
+    try {
+        for (const auto& [file, text] : files) {
+            writeTextFile(file, text);
+            written.push_back(file);
+        }
+    } catch (const std::exception& e) {  // a full disk: what was written goes, so that no part of a study is left
+        for (const fs::path& file : written) {
+            std::error_code ignored;
+            fs::remove(file, ignored);
+        }
+        throw Error("--new: " + std::string(e.what()) + " (nothing of the study was kept)");
     }
     return written;
 }
