@@ -184,15 +184,20 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
     for (const fs::path& file : files) check.files.emplace_back(file, fs::file_size(file));
     fs::create_directories(folder);
     const fs::path checkFile = folder / (token + ".json"), script = folder / (token + ".sh"), out = folder / (token + ".out");
-    writeNodeCheck(checkFile, check);
-    writeJobScript(script);
     // Only this check's files go, and its job's output stays when the check fails: the evidence.
     const auto removeOwnFiles = [&](bool keepOutput) {
-        for (const fs::path& f : {checkFile, script, check.report}) fs::remove(f);
-        if (!keepOutput) fs::remove(out);
         std::error_code ec;
+        for (const fs::path& f : {checkFile, script, check.report}) fs::remove(f, ec);
+        if (!keepOutput) fs::remove(out, ec);
         fs::remove(folder, ec);  // only when empty: another run's check may be there
     };
+    try {  // a full disk leaves neither half of the check behind
+        writeNodeCheck(checkFile, check);
+        writeJobScript(script);
+    } catch (...) {
+        removeOwnFiles(false);
+        throw;
+    }
     std::vector<std::string> arguments{"--job-name=vri:check", "--chdir=" + folder.string(), "--output=" + out.filename().string(),
                                        "--cpus-per-task=1", "--mem=256M", "--time=10"};
     arguments.insert(arguments.end(), options.slurm.sbatchArguments.begin(), options.slurm.sbatchArguments.end());

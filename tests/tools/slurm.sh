@@ -63,6 +63,13 @@ same_outputs() {  # same_outputs DIR-A DIR-B
     done
 }
 same_outputs local/small res/small
+# A full disk while the node check is written (a file size limit below the check's list of tools and inputs):
+# one line, and no part of the check left in the results root.
+if bash -c 'ulimit -f 2 && exec "$@"' limited "${slurm[@]}" --results res-full exp.yaml 2> full.txt; then
+    fail "the Slurm run wrote past the limit"
+fi
+grep -q "^vri-run: error: .*/res-full/\.slurm-check/[0-9a-f]*\.json: cannot write: File too large$" full.txt || { cat full.txt; fail "the full disk was not named"; }
+[ ! -e res-full/.slurm-check ] || fail "the node check's files were left: $(ls -A res-full/.slurm-check)"
 # The tiled exact image is the untiled one, bit for bit, on both executors.
 for dir in local res; do
     "$bin/vri-diff" $dir/small/exact.exr $dir/small/exact-tiled.exr --fail 0 > /dev/null || fail "$dir: the tiled image differs from the untiled one"
