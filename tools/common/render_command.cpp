@@ -16,6 +16,7 @@
 #include "libvri/io/adaptive_log_csv.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
+#include "libvri/render/outside_record.h"
 #include "libvri/render/outside_renderer.h"
 #include "libvri/render/render_job.h"
 #include "libvri/render/render_json.h"
@@ -277,24 +278,8 @@ int RenderCommand::runOutside() {
     OutsideRun run = runOutsideRenderer({rendererCommand_, rendererImage_, rendererName_, timeout_}, card, work.path());
     if (keepWork_) std::cerr << name_ << ": kept the work folder " << work.path().string() << '\n';
 
-    const NonFinitePixels nonfinite = findNonFinitePixels(run.image);
-    if (nonfinite.count > 0 && !allowNonFinite_)
-        throw Error("the renderer's image: " + nonfinite.describe() + " (--allow-nonfinite to keep it)");
-    nlohmann::json record = provenanceRecord(name_, commandLine(argc_, argv_), setup, request);
-    record["inputs"].push_back(run.renderer["executable"]);
-    record["renderer"] = run.renderer;
-    put(record, stats_field::backend, "outside");
-    put(record, stats_field::rays, static_cast<std::uint64_t>(run.image.width) * run.image.height);
-    put(record, stats_field::quantisation, run.quantisation);
-    put(record, stats_field::nonfinitePixels, nonfinite.count);
-    putOutOfRange(record, findOutOfRangePixels(run.image));
-    record["timing"] = frameTimingRecord(0, run.wallSeconds);
-    put(record, stats_field::timed, run.timed);
-    // The renderer's command as given, placeholders and all: the work folder is a fresh name each run, and the
-    // image's bytes must not depend on it (the stats keep the words as run).
-    const ImageMetadata metadata = {{"vri:command", record["command"]["shell"].get<std::string>()},
-                                    {"vri:options", record["options"].dump()},
-                                    {"vri:renderer", run.renderer["command"].dump()}};
+    const auto [record, metadata] =
+        outsideRecord(run, name_, commandLine(argc_, argv_), setup, request, allowNonFinite_);
     OutputSet files;
     files.add(output_, encodeExr(output_, run.image, metadata));
     if (!pngPath_.empty()) files.add(pngPath_, encodePng(pngPath_, run.image, png));
