@@ -1,10 +1,8 @@
 // The starting study vri-run --new writes.
 #include "libvri/experiment/new_study.h"
 
-#include <exception>
 #include <filesystem>
 #include <string>
-#include <system_error>
 #include <utility>
 
 #include "libvri/experiment/experiment_spec.h"
@@ -104,18 +102,18 @@ std::vector<fs::path> writeNewStudy(const fs::path& path) {
     for (auto it = files.rbegin(); it != files.rend(); ++it)  // the experiment's name first
         if (const fs::path& file = it->first; fs::exists(file) || fs::is_symlink(file))
             throw Error("--new: " + file.string() + " exists (choose another name; nothing was written)");
+    // Every file staged beside its target before any is renamed into place (writeTogether): a full disk fails
+    // while staging and places none, and nothing is removed that another writer may have put there since.
+    OutputSet study;
     std::vector<fs::path> written;
+    for (const auto& [file, text] : files) {
+        study.add(file, text);
+        written.push_back(file);
+    }
     try {
-        for (const auto& [file, text] : files) {
-            writeTextFile(file, text);
-            written.push_back(file);
-        }
-    } catch (const std::exception& e) {  // a full disk: what was written goes, so that no part of a study is left
-        for (const fs::path& file : written) {
-            std::error_code ignored;
-            fs::remove(file, ignored);
-        }
-        throw Error("--new: " + std::string(e.what()) + " (nothing of the study was kept)");
+        study.write();
+    } catch (const Error& e) {
+        throw Error("--new: " + std::string(e.what()) + " (nothing of the study was written)");
     }
     return written;
 }

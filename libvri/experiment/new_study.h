@@ -9,8 +9,8 @@
 namespace vri {
 
 // Writes the files beside `path` (its folder, NAME its file name without .yaml, a safe name), the
-// experiment last, and returns them in the order written; refuses, writing nothing, when NAME is not a safe
-// name or one of them exists, and removes what it wrote when a write fails (a full disk).
+// experiment last, and returns them in that order; refuses, writing nothing, when NAME is not a safe name or
+// one of them exists, and places none of them when a write fails (a full disk).
 std::vector<std::filesystem::path> writeNewStudy(const std::filesystem::path& path);
 
 }  // namespace vri

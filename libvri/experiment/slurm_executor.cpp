@@ -185,11 +185,16 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
     fs::create_directories(folder);
     const fs::path checkFile = folder / (token + ".json"), script = folder / (token + ".sh"), out = folder / (token + ".out");
     // Only this check's files go, and its job's output stays when the check fails: the evidence.
+    // Returns what could not be removed (a failure beside another error is not the one to report).
     const auto removeOwnFiles = [&](bool keepOutput) {
+        std::string left;
+        for (const fs::path& f : {checkFile, script, check.report, out}) {
+            std::error_code ec;
+            if ((f != out || !keepOutput) && !fs::remove(f, ec) && ec) left += " " + f.string() + " (" + ec.message() + ")";
+        }
         std::error_code ec;
-        for (const fs::path& f : {checkFile, script, check.report}) fs::remove(f, ec);
-        if (!keepOutput) fs::remove(out, ec);
-        fs::remove(folder, ec);  // only when empty: another run's check may be there
+        if (!fs::is_symlink(folder, ec)) fs::remove(folder, ec);  // only when empty: another run's check may be there
+        return left;
     };
     try {  // a full disk leaves neither half of the check behind
         writeNodeCheck(checkFile, check);
@@ -242,7 +247,8 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
         removeOwnFiles(true);
         throw;
     }
-    removeOwnFiles(false);
+    if (const std::string left = removeOwnFiles(false); !left.empty())
+        std::cerr << "vri-run: warning: the Slurm check's files could not be removed:" << left << '\n';
 }
 
 // One plan's part of a batch: its steps, its jobs and what became of them.

@@ -43,10 +43,11 @@ grep -q "^vri-run: error: --new: expected a study's name (NAME.yaml is written),
 if vri-run --new "a b" 2> bad.txt; then fail "--new took an unsafe name"; fi
 grep -q "^vri-run: error: --new: 'a b' must be letters" bad.txt || fail "$(cat bad.txt)"
 [ ! -e "a b.yaml" ] || fail "--new wrote an unsafe name"
-# A full disk (a file size limit of 1 KB: the TF and the plot fit, the experiment does not) leaves no part.
+# A full disk (a file size limit of 1 KB: the TF and the plot fit, the experiment does not) places no part.
 if bash -c 'ulimit -f 1 && exec "$@"' limited vri-run --new helium 2> full.txt; then fail "--new wrote past the limit"; fi
 [ "$(wc -l < full.txt)" -eq 1 ] &&
-    grep -q "^vri-run: error: --new: helium.yaml: cannot write: File too large (nothing of the study was kept)$" full.txt ||
+    grep -q "^vri-run: error: --new: .*helium.yaml: cannot write: File too large (nothing of the study was written)$" full.txt ||
     fail "$(cat full.txt)"
 for f in helium.yaml helium-tf.yaml helium-plot.yaml; do [ ! -e "$f" ] || fail "--new left $f on a full disk"; done
+[ -z "$(ls -A | grep -F '.helium')" ] || fail "--new left temporary files: $(ls -A | grep -F '.helium')"
 echo "new study: written, $steps steps ran with progress lines, table and chart made, rerun cached"
