@@ -17,8 +17,6 @@ namespace vri {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
 using D = hn::ScalableTag<double>;
 using V = hn::Vec<D>;
 using Poly = V[4];
@@ -49,7 +47,8 @@ void FormPieceCubics(PieceBatch& b, int count, const PieceFrame& f) {
         for (int a = 0; a < 3; ++a) b.cell[a][j] = 0.0;
         b.phiA[j] = b.phiB[j] = b.magnitude[j] = 0.0;
     }
-    const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0), infinity = hn::Set(d, std::numeric_limits<double>::infinity()),
+            negativeInfinity = hn::Set(d, -std::numeric_limits<double>::infinity());
     const V lo = hn::Set(d, f.lo), invRange = hn::Set(d, f.invRange);
     const V loScale = hn::Abs(lo);
     for (int j = 0; j < padded; j += lanes) {
@@ -89,14 +88,14 @@ void FormPieceCubics(PieceBatch& b, int count, const PieceFrame& f) {
         // its near side where it is 1. Where the ones that weigh hold one value and the cubic is that value's
         // scalar, constant, the cubic is the model's scalar exactly. (Where the ray moves along an axis, a
         // weight that rounds to 0 at both ends of a piece may not be 0 between them: all its corners weigh.)
-        V lowest = hn::Set(d, kInfinity), highest = hn::Set(d, -kInfinity);
+        V lowest = infinity, highest = negativeInfinity;
         for (int k = 0; k < 8; ++k) {
             auto weighs = hn::Eq(zero, zero);  // all true
             for (int a = 0; a < 3; ++a)
                 if (!f.varies[a] || f.delta[a] == 0.0)
                     weighs = hn::AndNot(hn::Eq(w0[a], (k >> a & 1) ? zero : one), weighs);
-            lowest = hn::Min(lowest, hn::IfThenElse(weighs, corner[k], hn::Set(d, kInfinity)));
-            highest = hn::Max(highest, hn::IfThenElse(weighs, corner[k], hn::Set(d, -kInfinity)));
+            lowest = hn::Min(lowest, hn::IfThenElse(weighs, corner[k], infinity));
+            highest = hn::Max(highest, hn::IfThenElse(weighs, corner[k], negativeInfinity));
         }
         const auto exact = hn::And(hn::And(hn::Eq(lowest, highest), hn::Eq(c0, (lowest - lo) * invRange)),
                                    hn::And(hn::And(hn::Eq(c1, zero), hn::Eq(c2, zero)), hn::Eq(c3, zero)));

@@ -316,6 +316,13 @@ ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a,
     WrongSide r;
     const double eps = wrongSideEps(sScale);
     const double sa = s(a), sb = s(b);
+    // From each end, s is monotone up to the nearest critical point inside the sub-piece (or the other end).
+    double afterA = b, beforeB = a;
+    for (int k = 1; k < parts; ++k)
+        if (ends[k] > a && ends[k] < b) {
+            afterA = std::min(afterA, ends[k]);
+            beforeB = std::max(beforeB, ends[k]);
+        }
     for (int side = 0; side < 2; ++side) {
         // Side 0: the level under the segment (s must stay above it); side 1: the level over it.
         if (side == 0 ? below == 0 : below == levels_.size()) continue;
@@ -323,13 +330,6 @@ ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a,
         const double level = levels_[i];
         const bool above = side == 0;
         auto near = [&](double value) { return !((above ? value - level : level - value) > 2.0 * eps); };
-        // From each end, s is monotone up to the nearest critical point inside the sub-piece (or the other end).
-        double afterA = b, beforeB = a;
-        for (int k = 1; k < parts; ++k)
-            if (ends[k] > a && ends[k] < b) {
-                afterA = std::min(afterA, ends[k]);
-                beforeB = std::max(beforeB, ends[k]);
-            }
         double width = 0.0;
         if (near(sa)) width += wrongSideWidth(s, a, sa, b, afterA, level, above, eps);
         if (near(sb)) width += wrongSideWidth(s, b, sb, a, beforeB, level, above, eps);
