@@ -93,19 +93,20 @@ fuzz: deps-fuzz $(FUZZ_BUILD)/build.ninja
 # experiment costs"; `make estimate` prices each experiment from its last manifest).
 EXPERIMENTS ?= $(filter-out experiments/datasets.yaml,$(wildcard experiments/*.yaml))
 
-# Only steps whose inputs changed run again; results/README.md is the gallery of all of them.
+# Only steps whose inputs changed run again; results/README.md is the gallery of all of them. Renders run
+# alone; diffs, tables and figures up to $(JOBS) at once.
 experiments: build
-	$(BUILD)/bin/vri-run --results results --gallery results $(EXPERIMENTS)
+	$(BUILD)/bin/vri-run --jobs $(JOBS) --results results --gallery results $(EXPERIMENTS)
 
 bench: build
-	$(BUILD)/bin/vri-run --results results --gallery results experiments/bench.yaml
+	$(BUILD)/bin/vri-run --jobs $(JOBS) --results results --gallery results experiments/bench.yaml
 
 estimate: build
 	$(BUILD)/bin/vri-run --estimate --results results $(EXPERIMENTS)
 
 # The same at reduced sizes (each file's quick: block), into $(BUILD)/experiments-quick.
 experiments-quick: build
-	$(BUILD)/bin/vri-run --quick --results $(BUILD)/experiments-quick --gallery $(BUILD)/experiments-quick $(EXPERIMENTS)
+	$(BUILD)/bin/vri-run --jobs $(JOBS) --quick --results $(BUILD)/experiments-quick --gallery $(BUILD)/experiments-quick $(EXPERIMENTS)
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(NOVULKAN_BUILD)

@@ -263,7 +263,9 @@ const RenderOptionRow kRows[] = {
      },
      [](const RenderRequest& r) { return std::string(interpolationName(r.interpolation)); }, noSetting},
     {"--warm-up", "warm_up", "w", OptionValueKind::Count,
-     "render N untimed frames first (at most 1000: caches, clocks, a GPU's pipelines)", "", "", kBothTools, kBothBackends,
+     "render N untimed frames first, one jittered frame each with --frames (at most 1000: caches, clocks, a GPU's "
+     "pipelines)",
+     "", "", kBothTools, kBothBackends,
      [](const std::string& text, const std::string& where, RenderRequest& r) {
          r.warmUp = parseCount(text, where, 0, kMaxFrames);
      },
@@ -391,9 +393,10 @@ void finishRenderRequest(RenderRequest& r) {
         if ((row(flag).backends & (1u << unsigned(r.backend))) == 0)
             throw Error(std::string(flag) + ": needs --backend " + (r.backend == Backend::Cpu ? "vulkan" : "cpu"));
     if (r.backend == Backend::Vulkan && !r.wasGiven("--precision")) r.options.precision = Precision::Float;
-    const long long rendered = static_cast<long long>(r.warmUp + r.repeat) * r.options.frames;
+    // A warm-up frame is one jittered frame (RenderJob::warmUpFrame); a timed one averages --frames of them.
+    const long long rendered = r.warmUp + static_cast<long long>(r.repeat) * r.options.frames;
     if (rendered > kMaxRenderedFrames)
-        throw Error("(--warm-up " + std::to_string(r.warmUp) + " + --repeat " + std::to_string(r.repeat) + ") x --frames " +
+        throw Error("--warm-up " + std::to_string(r.warmUp) + " + --repeat " + std::to_string(r.repeat) + " x --frames " +
                     std::to_string(r.options.frames) + " asks for " + std::to_string(rendered) +
                     " frames; at most " + std::to_string(kMaxRenderedFrames) + " in one run");
 }

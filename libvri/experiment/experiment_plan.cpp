@@ -115,6 +115,7 @@ void Planner::addRender(const RunSpec& run) {
     for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
+    step.alone = run.tiles == 1;
     if (run.tiles > 1) {
         addTiles(run, scene, step);
         return;
@@ -195,6 +196,7 @@ void Planner::addDiff(const ComparisonSpec& c) {
 
 void Planner::addCommand(const CommandSpec& command) {
     Step step{command.name, "command", command.tool, {}, {}, {}, {{"command", command.name}}};
+    step.alone = true;
     if (!command.scene.empty()) sceneOptions(step, experiment_.scene(command.scene));
     for (const ToolOption& o : command.options) option(step, o);
     step.threads = command.threads;

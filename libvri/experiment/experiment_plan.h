@@ -27,6 +27,11 @@ struct Step {
     // renders (of its region, for a tile; 0: none).
     int threads = 0;
     std::uint64_t pixels = 0;
+
+    // Whether the local executor runs the step alone: an untiled render or a command times itself or the
+    // program it runs, and a neighbour would take cores from it. Tiles, merges, diffs, tables and figures
+    // may run side by side (vri-run --jobs).
+    bool alone = false;
 };
 
 struct Plan {

@@ -1,4 +1,5 @@
-// vri-run's local executor: steps as child processes, up to --jobs at once; and the choice of executor.
+// vri-run's local executor: steps as child processes, up to --jobs at once (a step that times itself alone:
+// Step::alone); and the choice of executor.
 #include "libvri/experiment/experiment_run.h"
 
 #include <chrono>
@@ -30,6 +31,7 @@ private:
         std::size_t step;
         Clock::time_point start;
         std::optional<double> loadBefore;
+        std::vector<std::string> beside;  // the steps that ran while it ran
     };
 
     bool startReady();  // starts or settles every step whose dependencies are settled; false when nothing changed
@@ -39,25 +41,44 @@ private:
     StepLedger ledger_;
     std::string host_;
     std::vector<bool> started_;
+    std::vector<bool> mustRun_;  // ready, and needsRun said it must run
     std::map<pid_t, Child> running_;
 };
 
 bool LocalScheduler::startReady() {
     const Plan& plan = ledger_.plan();
+    const auto aloneRunning = [&] {
+        for (const auto& [pid, child] : running_)
+            if (plan.steps[child.step].alone) return true;
+        return false;
+    };
     bool changed = false;
     for (std::size_t i = 0; i < plan.steps.size() && !ledger_.hasFailure(); ++i) {
         if (started_[i] || static_cast<int>(running_.size()) >= options_.jobs) continue;
         bool ready = true;
         for (std::size_t d : plan.dependencies[i]) ready = ready && ledger_.settled(d);
         if (!ready) continue;
-        changed = true;
-        started_[i] = true;
-        if (!ledger_.needsRun(i)) continue;
+        if (!mustRun_[i]) {  // needsRun settles a step that need not run; it is asked once a step
+            if (!ledger_.needsRun(i)) {
+                started_[i] = changed = true;
+                continue;
+            }
+            mustRun_[i] = true;
+        }
+        // A step that runs alone waits for the machine to empty, and nothing after it in plan order starts
+        // meanwhile, so that it is not starved; nothing starts beside it.
+        if (aloneRunning() || (plan.steps[i].alone && !running_.empty())) break;
+        started_[i] = changed = true;
         const std::vector<std::string> words = ledger_.prepare(i);
         ledger_.started(i);
+        Child child{i, Clock::now(), loadAverage(), {}};
+        for (auto& [pid, other] : running_) {
+            other.beside.push_back(plan.steps[i].id);
+            child.beside.push_back(plan.steps[other.step].id);
+        }
         running_[startProcess(ledger_.program(i), words,
                               {.in = "/dev/null", .out = ledger_.logPath(i), .err = {}, .errToOut = true})] =
-            Child{i, Clock::now(), loadAverage()};
+            std::move(child);
     }
     return changed;
 }
@@ -71,13 +92,14 @@ void LocalScheduler::finish(pid_t pid, const ExitStatus& status) {
     if (status.ok())
         ledger_.succeeded(child.step, seconds,
                           {.executor = "local", .node = host_, .jobId = {}, .jobState = {},
-                           .loadBefore = child.loadBefore, .loadAfter = loadAverage()});
+                           .loadBefore = child.loadBefore, .loadAfter = loadAverage(), .beside = child.beside});
     else
         ledger_.failed(child.step, "failed (" + status.describe() + ")", seconds);
 }
 
 std::vector<StepOutcome> LocalScheduler::run() {
     started_.assign(ledger_.size(), false);
+    mustRun_.assign(ledger_.size(), false);
     for (;;) {
         while (startReady()) {
         }

@@ -423,7 +423,7 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
                                         // where squeue has forgotten the job.
                                         {.executor = "slurm", .node = state.node.empty() ? status->node : state.node,
                                          .jobId = job.id, .jobState = state.state,
-                                         .loadBefore = std::nullopt, .loadAfter = std::nullopt});
+                                         .loadBefore = std::nullopt, .loadAfter = std::nullopt, .beside = {}});
         } else if (status) {
             const ExitStatus exit{status->exited, status->code, status->signal};
             ledger_.failed(i, "failed (" + exit.describe() + ") in " + where, status->wallSeconds);

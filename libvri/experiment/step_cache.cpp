@@ -39,6 +39,7 @@ StepExecution executionFromJson(const nlohmann::json& j) {
         e.loadBefore = j.at("load_average").at("before").get<double>();
         e.loadAfter = j.at("load_average").at("after").get<double>();
     }
+    if (j.contains("beside")) e.beside = j.at("beside").get<std::vector<std::string>>();
     return e;
 }
 
@@ -50,6 +51,7 @@ nlohmann::json toJson(const StepExecution& execution) {
     if (!execution.jobState.empty()) j["job_state"] = execution.jobState;
     if (execution.loadBefore && execution.loadAfter)
         j["load_average"] = {{"before", *execution.loadBefore}, {"after", *execution.loadAfter}};
+    if (!execution.beside.empty()) j["beside"] = execution.beside;
     return j;
 }
 
@@ -101,7 +103,7 @@ std::optional<StepRecord> readRecord(const fs::path& path) {
                           j.at("wall_seconds").get<double>(),     j.at("ran_utc").get<std::string>(),
                           // A record written before records said where steps ran: every step ran locally then.
                           j.contains("execution") ? executionFromJson(j.at("execution"))
-                                                  : StepExecution{"local", "unknown", "", "", std::nullopt, std::nullopt}};
+                                                  : StepExecution{"local", "unknown", "", "", std::nullopt, std::nullopt, {}}};
     } catch (const nlohmann::json::exception&) {
         return std::nullopt;  // a damaged record is no record: the step runs again
     }

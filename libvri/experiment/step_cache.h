@@ -50,6 +50,9 @@ struct StepExecution {
     // The node's 1-minute load average when the step started and when it ended (local executor): a time
     // measured beside other work says so.
     std::optional<double> loadBefore, loadAfter;
+    // The steps of its plan that ran while it ran (local executor, --jobs above 1): never beside a step
+    // that runs alone (Step::alone).
+    std::vector<std::string> beside;
 };
 nlohmann::json toJson(const StepExecution& execution);
 

@@ -63,6 +63,16 @@ RenderFrame RenderJob::frame() {
     return f;
 }
 
+RenderFrame RenderJob::warmUpFrame() {
+    if (request_.exact || request_.options.frames == 1) return frame();
+    RenderOptions one = request_.options;
+    one.frames = 1;
+    RenderFrame f;
+    f.image = backend_.render(setup_.scene, camera_, one, &f.stats);
+    f.seconds = f.stats.seconds;
+    return f;
+}
+
 RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
     RenderResult result{std::move(first.image),
                         std::move(first.bounds),

@@ -64,8 +64,11 @@ public:
     // --max-error: searches the exact method's tolerance (max_error_search.h); its accepted render becomes
     // the next frame. Nothing to do without --max-error.
     void searchTolerance();
-    // Renders one frame.
+    // Renders one frame: the image the request asks for (with --frames N, the mean of N jittered frames).
     RenderFrame frame();
+    // An untimed frame before the timed ones: as frame(), but one jittered frame where --frames asks for
+    // several; it warms what a frame of them warms (caches, threads, clocks) at a frame's price.
+    RenderFrame warmUpFrame();
     // The image and its record from the first frame, with the timing record of every frame
     // (frameTimingRecord()); throws vri::Error on non-finite pixels unless the context allows them.
     RenderResult finish(RenderFrame first, nlohmann::json timing);

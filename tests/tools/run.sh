@@ -52,6 +52,18 @@ cmp hand/small/vs-corner-red-riemann-entry.png auto/small/vs-corner-red-riemann-
 grep -q '"percent"' auto/small/vs-corner-blue-riemann-entry.json
 grep -q '"wall_seconds"' auto/small/manifest.json
 grep -q "vri-render" auto/small/manifest.json
+# --jobs 3: a render or a command ran alone, whatever ran beside what (the manifest says, per step).
+/usr/bin/python3 - auto/small/manifest.json <<'PY'
+import json, sys
+steps = json.load(open(sys.argv[1]))["steps"]
+kind = {s["id"]: s["kind"] for s in steps}
+for s in steps:
+    beside = s["execution"].get("beside", [])
+    if s["kind"] in ("render", "command") and beside:
+        sys.exit(f"{s['id']} ran beside {beside}")
+    if any(kind[b] in ("render", "command") for b in beside):
+        sys.exit(f"{s['id']} ran beside a render or command: {beside}")
+PY
 
 # Nothing changed: nothing runs.
 "$bin/vri-run" --results auto exp.yaml 2> second.txt

@@ -5,7 +5,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <filesystem>
+#include <malloc.h>
 #include <new>
 #include <vector>
 
@@ -283,6 +285,12 @@ void requireUtf8Arguments(int argc, char** argv, std::string_view why) {
         if (const auto at = firstInvalidUtf8(argv[i]))
             throw UsageError("argument " + std::to_string(i) + " '" + escapeInvalidUtf8(argv[i]) +
                              "' is not valid UTF-8 (byte " + std::to_string(*at) + "): " + std::string(why));
+}
+
+void retainFreedMemory() {
+    constexpr int kMmapThreshold = 32 << 20;  // glibc's largest: below it a block comes from the heap
+    mallopt(M_MMAP_THRESHOLD, kMmapThreshold);
+    mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());  // the heap's top is never given back
 }
 
 std::string describeUnexpected(const std::exception& e) {

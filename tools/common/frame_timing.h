@@ -28,11 +28,11 @@ public:
     // a line per frame on stderr ("<tool>: frame 2 of 5: 0.41 s"): progress, and each frame's time in a log.
     void setFrames(int warmUp, int repeat, std::string tool, bool quiet);
 
-    // frame() returns a result with `image` (vri::Image) and `seconds` (its wall time). Runs the
-    // warm-up frames untimed, then the timed ones; returns the first result and every wall time.
-    template <class Frame>
-    auto run(const Frame& frame) const {
-        for (int i = 0; i < warmUp_; ++i) report("warm-up frame", i, warmUp_, frame().seconds);
+    // frame() and warmUpFrame() return a result with `image` (vri::Image) and `seconds` (its wall time).
+    // Runs the warm-up frames untimed, then the timed ones; returns the first result and every wall time.
+    template <class Frame, class WarmUpFrame>
+    auto run(const Frame& frame, const WarmUpFrame& warmUpFrame) const {
+        for (int i = 0; i < warmUp_; ++i) report("warm-up frame", i, warmUp_, warmUpFrame().seconds);
         const std::optional<CpuSample> before = sampleCpu();
         auto first = frame();
         report("frame", 0, repeat_, first.seconds);

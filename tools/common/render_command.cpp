@@ -377,7 +377,7 @@ int RenderCommand::run() {
         RenderJob job(std::move(request), scene_.load(),
                       {name_, commandLine(argc_, argv_), !errorImagePath_.empty(), allowNonFinite_});
         job.searchTolerance();
-        auto [frame, wallSeconds] = timing_.run([&] { return job.frame(); });
+        auto [frame, wallSeconds] = timing_.run([&] { return job.frame(); }, [&] { return job.warmUpFrame(); });
         const RenderResult result = job.finish(std::move(frame), timing_.toJson(wallSeconds));
         for (const std::string& warning : result.warnings) std::cerr << name_ << ": warning: " << warning << '\n';
         const Image& image = result.image;
