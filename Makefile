@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 VRI_DATA_DIR ?= $(if $(wildcard ../shared/data/volumes),$(abspath ../shared/data/volumes),$(abspath data))
 export VRI_DATA_DIR
 
-.PHONY: all deps deps-fuzz build test test-full test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench estimate clean
+.PHONY: all deps deps-fuzz build test test-full test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench bricks-memory estimate clean
 
 all: build
 
@@ -100,6 +100,10 @@ experiments: build
 
 bench: build
 	$(BUILD)/bin/vri-run --jobs $(JOBS) --results results --gallery results experiments/bench.yaml
+
+# Peak memory of a synthetic 1024^3 volume rendered whole and as 2 x 2 x 2 bricks (docs/conventions/bricks.md).
+bricks-memory: build
+	scripts/brick-memory.sh $(BUILD) 1024 2
 
 estimate: build
 	$(BUILD)/bin/vri-run --estimate --results results $(EXPERIMENTS)

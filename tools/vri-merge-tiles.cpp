@@ -1,5 +1,6 @@
 // vri-merge-tiles: the tiles of one render (vri-render or vri-reference run with --region) joined into
-// the untiled render's image, bit for bit, and one stats record combined field by field.
+// the untiled render's image, bit for bit, and one stats record combined field by field; or the layers of
+// a brick grid's bricks (vri-render --bricks --brick) joined into the whole volume's image.
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -9,6 +10,7 @@
 #include "common/preview_options.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/provenance.h"
+#include "libvri/render/layer_merge.h"
 #include "libvri/render/tile_merge.h"
 #include "libvri/render/tool_flags.h"
 #include "libvri/util/atomic_file.h"
@@ -18,16 +20,19 @@ namespace {
 constexpr const char* kTool = "vri-merge-tiles";
 
 int run(int argc, char** argv) {
-    std::vector<std::vector<std::string>> tileArgs;
+    std::vector<std::vector<std::string>> tileArgs, layerArgs;
     std::string output, pngPath, statsPath;
     vri::PreviewOptions preview;
 
     CLI::App app{"Joins the tiles of one render (vri-render or vri-reference with --region X,Y,WIDTH,HEIGHT) into "
                  "the whole image, bit for bit the untiled render's, and one stats JSON.",
                  kTool};
-    vri::addWordsOption(app, vri::merge_flag::tile, tileArgs, "IMAGE.exr STATS.json", 2, 2,
-                        "one tile's image and stats (once per tile, any order)")
-        ->required();
+    auto* parts = app.add_option_group("parts", "what to join (one of)");
+    vri::addWordsOption(*parts, vri::merge_flag::tile, tileArgs, "IMAGE.exr STATS.json", 2, 2,
+                        "one tile's image and stats (once per tile, any order)");
+    vri::addWordsOption(*parts, vri::merge_flag::layer, layerArgs, "IMAGE.exr STATS.json", 2, 2,
+                        "one brick's layer and stats (vri-render --bricks --brick; once per brick, any order)");
+    parts->require_option(1);
     app.add_option("-o,--output", output, "the whole image (.exr: float RGBA)")->required();
     app.add_option(vri::render_flag::png, pngPath, "8-bit preview PNG of the whole image");
     preview.addTo(app);
@@ -39,6 +44,9 @@ int run(int argc, char** argv) {
   vri-reference --volume bonsai_256x256x256_uint8.raw --tf experiments/tf/bonsai.yaml --size 800x600 \
                 --region 0,300,800,300 -o bottom.exr --stats bottom.json
   vri-merge-tiles --tile top.exr top.json --tile bottom.exr bottom.json -o bonsai.exr --stats bonsai.json
+  for b in 0,0,0 1,0,0; do vri-render --volume bonsai_256x256x256_uint8.raw --tf experiments/tf/bonsai.yaml \
+      --bricks 2,1,1 --brick $b -o layer-$b.exr --stats layer-$b.json; done
+  vri-merge-tiles --layer layer-0,0,0.exr layer-0,0,0.json --layer layer-1,0,0.exr layer-1,0,0.json -o bonsai.exr
 
 The tiles must share tool, build, inputs, scene, transfer function, camera and render options, each image
 must be its stats' region, and the regions must cover the camera's image exactly once; else one error
@@ -46,7 +54,10 @@ line, exit 1. The stats combine the tiles' fields: counts and seconds summed (fr
 k of every tile, one after another; the median recomputed), maxima and minima kept, mean error bounds
 weighted by pixels, properties such as the backend kept when every tile agrees. A field that cannot be
 combined is null and named in "not_combined"; "tiles" lists each tile's files, region and command.
-Outputs are written atomically, only once every check has passed.)");
+Layers must be every brick of one grid once, of one render otherwise; they are joined front to back per
+pixel in the order of each ray's bricks, whatever the order given, and the image differs from the unbricked
+render by at most the bound the stats' "join" gives (docs/conventions/bricks.md). Outputs are written
+atomically, only once every check has passed.)");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
 
     vri::requireUtf8Arguments(argc, argv);
@@ -55,14 +66,23 @@ Outputs are written atomically, only once every check has passed.)");
         {"-o", output}, {vri::render_flag::png, pngPath}, {vri::render_flag::stats, statsPath}};
     vri::requireDistinctOutputs(outputs);
     const vri::PngOptions png = preview.get();
-    std::vector<vri::TileFiles> tiles;
     std::vector<vri::InputArgument> inputs;
-    for (const std::vector<std::string>& t : tileArgs) {
-        tiles.push_back({t[0], t[1]});
+    for (const std::vector<std::string>& t : tileArgs)
         inputs.insert(inputs.end(), {{vri::merge_flag::tile, t[0]}, {vri::merge_flag::tile, t[1]}});
-    }
+    for (const std::vector<std::string>& l : layerArgs)
+        inputs.insert(inputs.end(), {{vri::merge_flag::layer, l[0]}, {vri::merge_flag::layer, l[1]}});
     vri::requireOutputsApartFromInputs(outputs, inputs);
-    vri::MergedTiles merged = vri::mergeTiles(tiles);
+    vri::MergedTiles merged;
+    if (!tileArgs.empty()) {
+        std::vector<vri::TileFiles> tiles;
+        for (const std::vector<std::string>& t : tileArgs) tiles.push_back({t[0], t[1]});
+        merged = vri::mergeTiles(tiles);
+    } else {
+        std::vector<vri::LayerFiles> layers;
+        for (const std::vector<std::string>& l : layerArgs) layers.push_back({l[0], l[1]});
+        vri::MergedLayers joined = vri::mergeLayers(layers);
+        merged = {std::move(joined.image), std::move(joined.record), std::move(joined.metadata)};
+    }
 
     nlohmann::json& record = merged.record;
     record["command"] = vri::commandLine(argc, argv);

@@ -14,6 +14,8 @@
 #include <glm/vector_relational.hpp>
 #include <glm/geometric.hpp>
 
+#include "libvri/core/brick_layers.h"
+#include "libvri/core/brick_sampler.h"
 #include "libvri/core/early_termination.h"
 #include "libvri/core/fixed_step_ray.h"
 #include "libvri/core/frame_average.h"
@@ -29,14 +31,13 @@ namespace vri {
 
 namespace {
 
-struct Counters {
+struct RenderCounters {
     std::atomic<std::uint64_t> raysHit{0}, samplesPlaced{0}, samplesEvaluated{0}, raysTerminated{0};
     std::mutex mutex;  // guards the rest
     AdaptiveCounts adaptive;
     SimpsonRange simpsonRange;
     double terminationLeftOut = 0.0;
 };
-
 
 // Paper A's fixed-step placements, each sample standing for a segment of the ray (Riemann, composite).
 template <class Real, class Sampler>
@@ -168,7 +169,8 @@ AdaptiveResult<Real> integrateSimpson(const TextureRay<Real>& ray, const Sampler
 // Calls renderTile(x0, y0, x1, y1, counts, adaptive, range) for every tile of `area` (pixels of the
 // camera's image), in parallel, and adds up what the tiles counted.
 template <class RenderTile>
-void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& counters, const RenderTile& renderTile) {
+void forEachTile(const RenderOptions& opt, const PixelRegion& area, RenderCounters& counters,
+                 const RenderTile& renderTile) {
     const int tile = opt.tileSize;
     const int tilesX = (area.width + tile - 1) / tile, tilesY = (area.height + tile - 1) / tile;
     Progress progress("render", static_cast<std::uint64_t>(tilesX) * tilesY, opt.progress);
@@ -197,7 +199,7 @@ void forEachTile(const RenderOptions& opt, const PixelRegion& area, Counters& co
 
 template <class Real, class Sampler>
 void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* occupancy, const GridIndexing& indexMap,
-                const Camera& camera, const RenderOptions& opt, Image& image, Counters& counters,
+                const Camera& camera, const RenderOptions& opt, Image& image, RenderCounters& counters,
                 std::vector<AdaptiveTry>* rayLog, const PreintegrationTable* table) {
     using Vec = glm::vec<3, Real>;
     const Box box = scene.box();
@@ -244,10 +246,53 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
     });
 }
 
+// One brick's layer (brick_layers.h): each ray's samples in the brick's run (brick_sampler.h), summed from
+// transmittance 1 exactly as marchSamples sums them, and the run's place along the ray. Nothing is skipped
+// as empty space (a brick has no grid of its own), which changes no bit.
+template <class Real, class Sampler>
+void renderBrickLayer(const Scene& scene, const Sampler& sample, const Camera& camera, const RenderOptions& opt,
+                      Image& image, RenderCounters& counters) {
+    using Vec = glm::vec<3, Real>;
+    const BrickVolume& brick = *scene.brick;
+    const Box box = scene.box();
+    const Vec dims(scene.dims());
+    const Vec eyeU(box.toTexture(camera.eye()));
+    const TransferFunction& tf = scene.transferFunction;
+    const EmissionModel emission = tf.emission();
+    const PixelRegion area = renderedRegion(opt.region, camera);
+    const auto layerPixel = [&](int px, int py, MarchCounts& counts) {
+        float* out = &image.at(px - area.x, py - area.y, 0);
+        const auto clipped = pixelRay<Real>(camera, box, px, py);
+        if (!clipped) return;
+        if (clipped->worldLength > 0) ++counts.raysHit;
+        const std::optional<Real> jitter =
+            opt.jitter ? std::optional<Real>(static_cast<Real>(jitterFraction(px, py, opt.seed))) : std::nullopt;
+        const FixedStepSamples<Real> march(*clipped, opt, eyeU, dims, jitter);
+        const BrickSamples run = brickSamples(brick.grid, brick.brick, sample.layout(), march.du, march.schedule.count,
+                                              [&](std::int64_t k) { return march.position(k); });
+        RayAccumulator<Real> acc;
+        std::size_t segment = 0;  // the transfer function's last bracket
+        for (std::int64_t k = run.begin; k < run.end; ++k)
+            acc.add(opt.integrator, emission, tf(sample(march.position(k)), segment), march.dx);
+        counts.samplesPlaced += static_cast<std::uint64_t>(run.end - run.begin);
+        counts.samplesEvaluated += static_cast<std::uint64_t>(run.end - run.begin);
+        out[0] = static_cast<float>(acc.r);
+        out[1] = static_cast<float>(acc.g);
+        out[2] = static_cast<float>(acc.b);
+        out[3] = static_cast<float>(acc.alpha());
+        out[4] = static_cast<float>(run.order);
+    };
+    forEachTile(opt, area, counters,
+                [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&, SimpsonRange&) {
+                    for (int py = y0; py < y1; ++py)
+                        for (int px = x0; px < x1; ++px) layerPixel(px, py, counts);
+                });
+}
+
 // setupSpent: what building empty-space structures took in this call (the rest was reused).
 template <class Real>
 void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& opt, Image& image,
-                 Counters& counters, RenderStats& stats, OccupancyCache& cache, double& setupSpent) {
+                 RenderCounters& counters, RenderStats& stats, OccupancyCache& cache, double& setupSpent) {
     std::vector<AdaptiveTry>* log = opt.logPixel ? &stats.rayLog : nullptr;
     const PreintegrationTable* lookup = nullptr;  // the table of --method preintegrated, kept across frames
     if (opt.integrator == Integrator::Preintegrated) {
@@ -259,6 +304,13 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         stats.setupSeconds += entry.buildSeconds;
         stats.setupReused = entry.reused;
         if (!entry.reused) setupSpent += entry.buildSeconds;
+    }
+    if (scene.brick) {
+        dispatchVoxelType(scene.brick->voxels.type, [&](auto voxel) {
+            const BrickGridSampler<decltype(voxel), Real> sampler(*scene.brick, scene.convention);
+            renderBrickLayer<Real>(scene, sampler, camera, opt, image, counters);
+        });
+        return;
     }
     if (!scene.volume && !scene.sparse) {
         renderWith<Real>(scene, LinearFieldSampler<Real>{}, nullptr, GridIndexing{}, camera, opt, image, counters,
@@ -333,8 +385,8 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
             return render(scene, camera, frame, frameStats, cache);
         });
     const PixelRegion area = renderedRegion(options.region, camera);
-    Image image(area.width, area.height);
-    Counters counters;
+    Image image = scene.brick ? brickLayerImage(area.width, area.height) : Image(area.width, area.height);
+    RenderCounters counters;
     counters.simpsonRange.limit = simpsonStepDepthLimit(simpsonParameters(options).accepted);
     RenderStats local;
     OccupancyCache once;  // without a cache, this frame builds its own grid

@@ -10,6 +10,7 @@
 #include "libvri/core/early_termination.h"
 #include "libvri/core/simd_march.h"
 #include "libvri/core/simd_target.h"
+#include "libvri/core/brick_volume.h"
 #include "libvri/core/sparse_volume.h"
 #include "libvri/util/csv.h"
 #include "libvri/util/error.h"
@@ -58,10 +59,13 @@ void parseEarlyTermination(const std::string& text, const std::string& what, Ren
 
 Box Scene::box() const {
     if (sparse) return gridBox(sparse->dims, sparse->spacing, sparse->origin, convention);
+    if (brick) return gridBox(brick->dims, brick->spacing, brick->origin, convention);
     return volume ? volumeBox(*volume, convention) : field->box;
 }
 
-glm::dvec3 Scene::dims() const { return glm::dvec3(sparse ? sparse->dims : volume ? volume->dims : field->dims); }
+glm::dvec3 Scene::dims() const {
+    return glm::dvec3(sparse ? sparse->dims : brick ? brick->dims : volume ? volume->dims : field->dims);
+}
 
 PixelRegion renderedRegion(const std::optional<PixelRegion>& region, const Camera& camera) {
     if (region && !region->inside(camera.width(), camera.height()))
@@ -81,12 +85,30 @@ AdaptiveParameters simpsonParameters(const RenderOptions& opt) {
     return p;
 }
 
+void requireBrickable(const RenderOptions& options) {
+    if (options.integrator != Integrator::Riemann && options.integrator != Integrator::Composite)
+        throw Error("--brick: renders riemann and composite (a brick sums the fixed steps it owns), not " +
+                    std::string(integratorName(options.integrator)));
+    if (options.precision != Precision::Double)
+        throw Error(
+            "--brick: renders in double (a float sum's grouping would move the joined image by more "
+            "than a useful bound, brick_layers.h)");
+    if (options.earlyTermination > 0.0 || options.terminationBound > 0.0)
+        throw Error(
+            "--brick: early termination needs the transmittance in front of the brick, which a brick "
+            "does not know");
+    if (options.frames > 1)
+        throw Error("--brick: one frame (the mean of frames is taken of joined images, not of layers)");
+}
+
 void validateRender(const Scene& scene, const Camera& camera, const RenderOptions& options) {
     if (!(options.samplingRate > 0.0) || !std::isfinite(options.samplingRate))
         throw Error("sampling rate must be positive and finite (step h = 1 / rate > 0), got " +
                     std::to_string(options.samplingRate));
     if (options.tileSize < 1) throw Error("tile size must be at least 1");
-    if (!scene.volume && !scene.sparse && !scene.field) throw Error("scene has neither a volume nor an analytic field");
+    if (!scene.volume && !scene.sparse && !scene.brick && !scene.field)
+        throw Error("scene has neither a volume nor an analytic field");
+    if (scene.brick) requireBrickable(options);
     // A named target where the packets cannot run would be recorded as asked for and never run (with "on"
     // the scalar path runs, and the stats say so).
     if (options.simd && !options.simdTarget.empty() && packetMethod(options) && !PacketScene::supports(scene, options))

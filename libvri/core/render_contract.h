@@ -25,6 +25,7 @@
 namespace vri {
 
 class SparseVolume;  // sparse_volume.h
+struct BrickVolume;  // brick_volume.h
 
 enum class Precision { Double, Float };
 std::string_view precisionName(Precision p);  // "double", "float"
@@ -51,6 +52,10 @@ struct Scene {
     // renders it, bitwise as the dense volume (the packet engine, the exact method and Vulkan read dense
     // volumes only: the SIMD option falls back to the scalar path, the others refuse it).
     std::shared_ptr<const SparseVolume> sparse = nullptr;
+    // Set instead of `volume` for one brick of a dense volume (brick_volume.h): the box, the rays and the
+    // samples are the whole volume's, and the CPU's scalar path sums the samples the brick owns into a
+    // layer (brick_layers.h), in double, for Riemann and composite. Nothing else renders a brick.
+    std::shared_ptr<const BrickVolume> brick = nullptr;
 
     Box box() const;
     glm::dvec3 dims() const;  // the grid resolution paper A's placements use
@@ -135,6 +140,8 @@ struct RenderStats {
 // region that is not inside the image.
 PixelRegion renderedRegion(const std::optional<PixelRegion>& region, const Camera& camera);
 
+// Throws vri::Error "--brick: ..." unless a brick can render with these options (Scene::brick).
+void requireBrickable(const RenderOptions& options);
 // Throws vri::Error on options render() cannot honour (see render()); shared with the Vulkan backend.
 void validateRender(const Scene& scene, const Camera& camera, const RenderOptions& options);
 // The parameters the Simpson methods run with: uniform Simpson's h0 = h_min = h_max = 1 / samplingRate,

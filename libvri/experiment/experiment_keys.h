@@ -37,7 +37,7 @@ inline constexpr std::array<std::string_view, 4> kReproduceCheckKeys{"of", "metr
 inline constexpr std::array<std::string_view, 8> kQuickKeys{"title", "scenes", "methods", "references", "comparisons", "commands", "tables", "figures"};
 
 // The keys of a methods: or references: entry that are not render options.
-inline constexpr std::array<std::string_view, 3> kMethodKeysBesideOptions{"scenes", "tiles", "renderer"};
+inline constexpr std::array<std::string_view, 4> kMethodKeysBesideOptions{"scenes", "tiles", "bricks", "renderer"};
 
 // Every key, as (where, key): each section's above, then the methods' (the render option table's keys too).
 std::vector<std::pair<std::string_view, std::string_view>> experimentKeys();

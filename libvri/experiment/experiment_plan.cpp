@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 
+#include "libvri/core/brick_grid.h"
 #include "libvri/core/pixel_mask.h"
 #include "libvri/core/render_option_table.h"
 #include "libvri/core/scene_flags.h"
@@ -50,6 +51,7 @@ public:
     // A scene's options, its volume and transfer function as inputs (a render, or a command with a scene).
     void sceneOptions(Step& step, const SceneSpec& scene) const;
     void addTiles(const RunSpec& run, const SceneSpec& scene, const Step& render);
+    void addBricks(const RunSpec& run, const SceneSpec& scene, const Step& render);
     void addDiff(const ComparisonSpec& comparison);
     void addCommand(const CommandSpec& command);
     void addTable(const TableSpec& table);
@@ -115,9 +117,13 @@ void Planner::addRender(const RunSpec& run) {
     for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
-    step.alone = run.tiles == 1;
+    step.alone = run.tiles == 1 && run.bricks == glm::ivec3(1);
     if (run.tiles > 1) {
         addTiles(run, scene, step);
+        return;
+    }
+    if (run.bricks != glm::ivec3(1)) {
+        addBricks(run, scene, step);
         return;
     }
     output(step, "-o", renderImage(plan_, run.id));
@@ -149,6 +155,38 @@ void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& r
         input(merge, "", result(tile.id + ".json"));
         plan_.steps.push_back(std::move(tile));
     }
+    for (const ToolOption& o : scene.options)  // the preview's looks, made from the whole image
+        if (o.first == scene_flag::pngInvert || o.first == scene_flag::pngExposure || o.first == scene_flag::background)
+            option(merge, o);
+    output(merge, "-o", renderImage(plan_, run.id));
+    output(merge, render_flag::png, result(run.id + ".png"));
+    output(merge, render_flag::stats, result(run.id + ".json"));
+    plan_.steps.push_back(std::move(merge));
+}
+
+// The run's volume as bricks: one step per brick (the render's command with --bricks and --brick) writing
+// its layer, then vri-merge-tiles --layer writing the files the unbricked step writes.
+void Planner::addBricks(const RunSpec& run, const SceneSpec& scene, const Step& render) {
+    Step merge{run.id, "render", "vri-merge-tiles", {}, {}, {}, render.parameters};
+    const std::string grid = brickText(run.bricks);
+    merge.parameters.emplace_back("bricks", grid);
+    merge.pixels = render.pixels;
+    for (int z = 0; z < run.bricks.z; ++z)
+        for (int y = 0; y < run.bricks.y; ++y)
+            for (int x = 0; x < run.bricks.x; ++x) {
+                const std::string index = brickText({x, y, z});
+                Step brick = render;
+                brick.id = run.id + ".brick-" + std::to_string(x) + "-" + std::to_string(y) + "-" + std::to_string(z);
+                brick.arguments.insert(brick.arguments.end(), {scene_flag::bricks, grid, scene_flag::brick, index});
+                brick.parameters.emplace_back("brick", index);
+                brick.volumeParts = run.bricks.x * run.bricks.y * run.bricks.z;
+                output(brick, "-o", result(brick.id + ".exr"));
+                output(brick, render_flag::stats, result(brick.id + ".json"));
+                merge.arguments.push_back(merge_flag::layer);
+                input(merge, "", result(brick.id + ".exr"));
+                input(merge, "", result(brick.id + ".json"));
+                plan_.steps.push_back(std::move(brick));
+            }
     for (const ToolOption& o : scene.options)  // the preview's looks, made from the whole image
         if (o.first == scene_flag::pngInvert || o.first == scene_flag::pngExposure || o.first == scene_flag::background)
             option(merge, o);

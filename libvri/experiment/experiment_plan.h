@@ -27,6 +27,8 @@ struct Step {
     // renders (of its region, for a tile; 0: none).
     int threads = 0;
     std::uint64_t pixels = 0;
+    // The bricks its volume is cut into, of which the step reads one (`bricks:`); 1 for the whole volume.
+    int volumeParts = 1;
 
     // Whether the local executor runs the step alone: an untiled render or a command times itself or the
     // program it runs, and a neighbour would take cores from it. Tiles, merges, diffs, tables and figures

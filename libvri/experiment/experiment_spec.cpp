@@ -8,7 +8,9 @@
 #include <optional>
 #include <set>
 
+#include "libvri/core/brick_grid.h"
 #include "libvri/core/grid_convention.h"
+#include "libvri/core/render_contract.h"
 #include "libvri/core/render_option_table.h"
 #include "libvri/core/transfer_function.h"
 #include "libvri/experiment/datasets.h"
@@ -449,6 +451,8 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
         bool hasMethod = false;
         int tiles = 1;
         std::string tilesAt;  // file:line:col of `tiles:`
+        glm::ivec3 bricks{1, 1, 1};
+        std::string bricksAt;                // file:line:col of `bricks:`
         const Renderer* renderer = nullptr;  // `renderer: NAME`: an outside renderer's run (vri-outside)
         std::string rendererName;
         for (const auto& kv : entry) {
@@ -471,6 +475,20 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     throw Error(at(kv.second) + ": tiles must be a whole number in 1.." + std::to_string(kMaxTiles) +
                                 ", got " + n);
                 tiles = static_cast<int>(x);  // 099 and 1e1 are numbers to as<double>, not to as<int>
+                continue;
+            }
+            if (key == "bricks") {  // how the run is computed, not what: never in the id
+                bricksAt = at(kv.second);
+                if (!kv.second.IsSequence() || kv.second.size() != 3)
+                    throw Error(at(kv.second) + ": bricks must be a list of three whole numbers [NX, NY, NZ]");
+                for (std::size_t a = 0; a < 3; ++a) {
+                    const std::string n = number(kv.second[a], "bricks");
+                    const double x = kv.second[a].as<double>();
+                    if (x != std::floor(x) || x < 1 || x > BrickGrid::kMaxPerAxis)
+                        throw Error(at(kv.second[a]) + ": bricks must be whole numbers in 1.." +
+                                    std::to_string(BrickGrid::kMaxPerAxis) + ", got " + n);
+                    bricks[static_cast<int>(a)] = static_cast<int>(x);
+                }
                 continue;
             }
             if (key == "scenes") {
@@ -591,7 +609,25 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                         throw Error(tiled + "more tiles than the " + std::to_string(rows) + " rows of scene '" + scene +
                                     "' (a tile is a band of whole rows)");
                 }
+                if (bricks != glm::ivec3(1)) {
+                    const std::string bricked = bricksAt + ": bricks: ";
+                    if (renderer || exact)
+                        throw Error(bricked + "method " + methodName + " (" + run.tool +
+                                    ") renders whole volumes only");
+                    if (tiles > 1) throw Error(bricked + "a bricked run renders each brick untiled (no tiles:)");
+                    if (request.clamp) throw Error(bricked + "clamp clamps the joined image, not a brick's layer");
+                    const SceneSpec& s = experiment.scene(scene);
+                    if (std::none_of(s.options.begin(), s.options.end(),
+                                     [](auto& o) { return o.first == scene_flag::volume; }))
+                        throw Error(bricked + "scene '" + scene + "' is an analytic field, not a volume to cut");
+                    try {
+                        requireBrickable(request.options);
+                    } catch (const Error& e) {
+                        throw Error(bricked + e.what());
+                    }
+                }
                 run.tiles = tiles;
+                run.bricks = bricks;
                 if (!isSafeName(run.id))  // a swept value is part of the id
                     throw Error(at(entry) + ": " + section + " entry '" + prefix +
                                 "': a swept value does not fit in a run id (" + std::string(kSafeName) + ")");

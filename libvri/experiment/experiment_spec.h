@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 namespace vri {
 
 // One command-line option of a tool: {"--step", "0.5"}; an empty value is a flag ("--png-invert").
@@ -52,6 +54,10 @@ struct RunSpec {
     // `tiles: N`: the image rendered as N bands of rows, one step each (--region), then merged by
     // vri-merge-tiles into the files the untiled run writes (experiment_plan.h). Not part of the id.
     int tiles = 1;
+    // `bricks: [NX, NY, NZ]`: the volume cut into a grid of bricks, each brick's layer a step of its own
+    // (--bricks, --brick), then joined by vri-merge-tiles --layer into the files the unbricked run writes,
+    // within the stated bound (docs/conventions/bricks.md). Not part of the id.
+    glm::ivec3 bricks{1, 1, 1};
     // `renderer: NAME` (tool vri-outside): the renderer's command after --, with its placeholders, what it
     // writes at {output}, and the files the command names (its executable first), whose digests key the cache.
     std::vector<std::string> command;

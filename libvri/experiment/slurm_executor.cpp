@@ -14,6 +14,7 @@
 #include <random>
 #include <set>
 
+#include "libvri/experiment/poll_interval.h"
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_jobs.h"
 #include "libvri/experiment/slurm_node.h"
@@ -541,13 +542,19 @@ void SlurmBatch::run() {
     try {
         auto lastAnswer = slurm_detail::Clock::now();
         PendingWatch pending("Slurm jobs", impl_->options.slurm.maxPendingSeconds);
+        PollInterval interval(poll);
+        std::map<std::string, std::string> seen;  // job id -> state at the last look
         for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty(); ids = impl_->unendedIds()) {
             if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt) + ": cancelled Slurm jobs " + slurm_detail::jobList(ids));
-            slurm_detail::pause(poll);
+            slurm_detail::pause(interval.seconds());
             std::map<std::string, SlurmJob> states;
             try {
                 states = queryJobs(ids);
                 lastAnswer = slurm_detail::Clock::now();
+                std::map<std::string, std::string> now;
+                for (const auto& [id, job] : states) now[id] = job.state;
+                interval.looked(now != seen);
+                seen = std::move(now);
             } catch (const Error& e) {
                 if (std::chrono::duration<double>(slurm_detail::Clock::now() - lastAnswer).count() < slurm_detail::kSqueueOutageSeconds) continue;
                 throw Error(std::string(e.what()) + " for " + std::to_string(int(slurm_detail::kSqueueOutageSeconds)) +

@@ -292,6 +292,80 @@ Volume readRaw(const fs::path& path, const RawLayout& layout) {
     return volume;
 }
 
+namespace {
+
+// A raw file checked against its layout: its voxel bytes and where they start.
+std::uint64_t checkedRawFile(const fs::path& path, const RawLayout& layout) {
+    detail::requireRegularFile(path);
+    requireValidLayout(path, layout);
+    const std::optional<std::uint64_t> voxelBytes =
+        checkedProduct({std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y), std::uint64_t(layout.dims.z),
+                        voxelSize(layout.type)});
+    const std::string layoutText = dimsText(layout.dims) + " " + std::string(voxelTypeName(layout.type));
+    if (!voxelBytes || *voxelBytes > std::numeric_limits<std::uint64_t>::max() - layout.headerBytes)
+        throw Error(path.string() + ": " + layoutText + " needs more than 2^64 bytes");
+    const std::uintmax_t fileBytes = fs::file_size(path);
+    if (fileBytes != *voxelBytes + layout.headerBytes)
+        throw Error(path.string() + ": file is " + std::to_string(fileBytes) + " bytes, expected " +
+                    std::to_string(*voxelBytes + layout.headerBytes) + " for " + layoutText);
+    return *voxelBytes;
+}
+
+}  // namespace
+
+Volume readRawBox(const fs::path& path, const RawLayout& layout, const VoxelBox& box) {
+    checkedRawFile(path, layout);
+    for (int a = 0; a < 3; ++a)
+        if (box.lo[a] < 0 || box.hi[a] > layout.dims[a] || box.lo[a] >= box.hi[a])
+            throw Error(path.string() + ": the box of voxels " + dimsText(box.lo) + " to " + dimsText(box.hi) +
+                        " is not inside " + dimsText(layout.dims));
+    Volume volume(box.size(), layout.type);  // checks the box's bytes against the limit
+    volume.spacing = layout.spacing;
+    std::ifstream in(path, std::ios::binary);
+    const std::size_t size = voxelSize(layout.type);
+    const std::size_t rowBytes = static_cast<std::size_t>(box.size().x) * size;
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+        for (int y = box.lo.y; y < box.hi.y; ++y) {
+            const std::uint64_t voxel = (static_cast<std::uint64_t>(z) * layout.dims.y + y) * layout.dims.x + box.lo.x;
+            in.seekg(static_cast<std::streamoff>(layout.headerBytes + voxel * size));
+            const std::size_t at = volume.index(0, y - box.lo.y, z - box.lo.z) * size;
+            in.read(reinterpret_cast<char*>(volume.bytes.data() + at), static_cast<std::streamsize>(rowBytes));
+            if (!in) throw Error(path.string() + ": read failed");
+        }
+    if (layout.order != nativeByteOrder()) reverseEachVoxel(volume.bytes, size);
+    return volume;
+}
+
+ValueRange rawValueRange(const fs::path& path, const RawLayout& layout) {
+    const std::uint64_t voxelBytes = checkedRawFile(path, layout);
+    const std::size_t size = voxelSize(layout.type);
+    constexpr std::size_t kChunkVoxels = std::size_t(1) << 20;
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(layout.headerBytes));
+    ValueRange range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    Volume chunk;
+    chunk.type = layout.type;
+    for (std::uint64_t done = 0; done < voxelBytes;) {
+        const std::size_t voxels =
+            static_cast<std::size_t>(std::min<std::uint64_t>(kChunkVoxels, (voxelBytes - done) / size));
+        chunk.dims = glm::ivec3(static_cast<int>(voxels), 1, 1);
+        chunk.bytes.resize(voxels * size);
+        in.read(reinterpret_cast<char*>(chunk.bytes.data()), static_cast<std::streamsize>(chunk.bytes.size()));
+        if (!in) throw Error(path.string() + ": read failed");
+        if (layout.order != nativeByteOrder()) reverseEachVoxel(chunk.bytes, size);
+        for (std::size_t i = 0; i < voxels; ++i) {
+            const double v = chunk.value(static_cast<int>(i), 0, 0);
+            if (!std::isfinite(v))
+                throw Error(path.string() + ": voxel " + std::to_string(done / size + i) + " is " + exactNumber(v) +
+                            " (expected finite values)");
+            range.lo = std::min(range.lo, v);
+            range.hi = std::max(range.hi, v);
+        }
+        done += voxels * size;
+    }
+    return range;
+}
+
 void writeRaw(const fs::path& path, const Volume& volume, ByteOrder order) {
     std::vector<std::byte> swapped;
     writeTextFile(path, detail::rawBytes(path, volume, order, swapped));
@@ -311,12 +385,16 @@ std::optional<RawLayout> layoutFromFileName(const fs::path& path) {
     return layout;
 }
 
+bool describesItsLayout(const fs::path& path) {
+    const std::string extension = detail::toLower(path.extension().string());
+    return extension == ".nhdr" || extension == ".nrrd" || extension == ".dat" || extension == ".vdb" ||
+           extension == ".mhd" || extension == ".mha" || extension == ".tif" || extension == ".tiff";
+}
+
 Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayout) {
     detail::requireRegularFile(path);
     const std::string extension = detail::toLower(path.extension().string());
-    const bool describesItself = extension == ".nhdr" || extension == ".nrrd" || extension == ".dat" ||
-                                 extension == ".vdb" || extension == ".mhd" || extension == ".mha" ||
-                                 extension == ".tif" || extension == ".tiff";
+    const bool describesItself = describesItsLayout(path);
     if (describesItself && rawLayout)
         throw Error(path.string() + ": dims and voxel type are for raw files; a " + extension +
                     " file describes its own layout");

@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "libvri/core/brick_grid.h"
 #include "libvri/core/sparse_volume.h"
 #include "libvri/core/volume.h"
 #include "libvri/core/voxel_type.h"
@@ -29,6 +30,12 @@ struct RawLayout {
 
 // Reads a raw file whose size must be exactly headerBytes + voxel count * voxel size.
 Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
+// The voxels [box.lo, box.hi) of a raw file whose size must be as readRaw's, read row by row from their
+// offsets: the memory is the box's, whatever the file's size (a brick, core/brick_volume.h).
+Volume readRawBox(const std::filesystem::path& path, const RawLayout& layout, const VoxelBox& box);
+// The min..max of a raw file's voxels, read a chunk at a time; throws vri::Error naming the file at a
+// NaN or an infinity (float), as requireUsableValues would on the whole volume.
+ValueRange rawValueRange(const std::filesystem::path& path, const RawLayout& layout);
 // Writes the voxels only (no header), atomically.
 void writeRaw(const std::filesystem::path& path, const Volume& volume, ByteOrder order = ByteOrder::Little);
 
@@ -54,6 +61,9 @@ struct LoadedVolume {
     std::shared_ptr<SparseVolume> sparse;
 };
 
+// True for the formats whose files say their own layout (by extension: .nhdr/.nrrd, .dat, .vdb, .mhd/.mha,
+// .tif/.tiff); any other file is raw.
+bool describesItsLayout(const std::filesystem::path& path);
 // Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb, .mhd/.mha, .tif/.tiff;
 // anything
 // else is raw, laid out by `rawLayout` if given, else by layoutFromFileName.

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "libvri/core/brick_volume.h"
 #include "libvri/io/volume_io.h"
 
 namespace vri {
@@ -30,5 +31,12 @@ Volume readVolume(const std::filesystem::path& input, const VolumeReadOptions& o
 // bricks when sparse; any other format is read dense and, for Sparse, converted (SparseVolume::fromDense,
 // the dense copy freed once converted), for Auto kept dense.
 LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOptions& options, VolumeStorage storage);
+
+// One brick of the volume (core/brick_volume.h) of a `counts` grid. A raw file is read by its rows of the
+// brick's stored box alone, so that the memory is the brick's; any other format is read whole and cut. The
+// normalisation range is `range` when given, else the type's for integers, else (float) the whole file's
+// min..max: a raw file's streamed a chunk at a time. Throws vri::Error naming the option or file at fault.
+BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,
+                      glm::ivec3 brick, const std::optional<ValueRange>& range);
 
 }  // namespace vri

@@ -22,6 +22,11 @@ const RenderRequest& checkedAgainstScene(const RenderRequest& request, const Sce
         throw Error(std::string(request.exact ? "--method exact" : "--backend vulkan") +
                     " renders dense volumes only, and the volume is kept sparse (--storage sparse, or auto for a "
                     ".vdb too large to unpack): use --storage dense");
+    if (scene.brick && request.clamp)
+        throw Error("--clamp: clamps the joined image, not a brick's layer (vri-merge-tiles --layer)");
+    if (scene.brick && (request.exact || request.backend == Backend::Vulkan))
+        throw Error(std::string(request.exact ? "--method exact" : "--backend vulkan") +
+                    ": not for a brick yet (--bricks renders riemann and composite on the CPU)");
     return request;
 }
 
@@ -96,7 +101,9 @@ RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
     }
     if (stats.simpsonRange && stats.simpsonRange->pixelsBeyond > 0)
         result.warnings.push_back(stats.simpsonRange->describe(stats.rays));
-    const OutOfRangePixels outOfRange = findOutOfRangePixels(result.image);  // what the method returned
+    // What the method returned; of a brick's layer, its colour and alpha (not its place along the rays).
+    const OutOfRangePixels outOfRange = findOutOfRangePixels(
+        setup_.scene.brick ? selectChannels(result.image, {"R", "G", "B", "A"}, "the layer") : result.image);
     if (request_.clamp) clampToUnitRange(result.image);
 
     nlohmann::json record = provenanceRecord(context_.tool, context_.command, setup_, request_);

@@ -325,6 +325,7 @@ nlohmann::json sceneCard(const SceneSetup& setup, const RenderRequest& request,
         throw Error(
             "--describe: the volume is kept sparse (--storage sparse, or auto for a .vdb too large to unpack), "
             "and a scene card describes dense voxels: use --storage dense");
+    if (scene.brick) throw Error("--describe: a scene card describes the whole volume: leave out --bricks and --brick");
     const Box box = scene.box();
     Json card = {
         {"format", "vri-scene-card"},
@@ -362,6 +363,8 @@ nlohmann::json sceneCard(const SceneSetup& setup, const RenderRequest& request,
 }
 
 std::string sceneCardVoxelBytes(const SceneSetup& setup) {
+    if (setup.scene.brick)
+        throw Error("--describe-voxels: a scene card describes the whole volume: leave out --bricks and --brick");
     if (!setup.scene.volume) throw Error("--describe-voxels: the scene is an analytic field, which has no voxels");
     static_assert(std::endian::native == std::endian::little, "the card's voxels are little-endian");
     const std::vector<std::byte>& bytes = setup.scene.volume->bytes;

@@ -20,6 +20,7 @@ inline constexpr const char* timeout = "--timeout";
 
 namespace merge_flag {
 inline constexpr const char* tile = "--tile";
+inline constexpr const char* layer = "--layer";
 }  // namespace merge_flag
 
 namespace diff_flag {

@@ -98,6 +98,15 @@ glm::ivec3 parseDims(const std::string& text, const std::string& what) {
     return v;
 }
 
+glm::ivec3 parseIndex3(const std::string& text, const std::string& what) {
+    const auto parts = split(text, ',');
+    glm::ivec3 v;
+    bool ok = parts.size() == 3;
+    for (int i = 0; ok && i < 3; ++i) ok = parseNumber(parts[i], v[i]) && v[i] >= 0 && v[i] <= 1000000000;
+    if (!ok) throw Error(what + ": expected three whole numbers I,J,K from 0, got '" + text + "'");
+    return v;
+}
+
 glm::dvec2 parseRange(const std::string& text, const std::string& what) {
     const auto parts = split(text, ',');
     glm::dvec2 v;

@@ -20,6 +20,8 @@ glm::dvec2 parseVec2(const std::string& text, const std::string& what);
 glm::dvec3 parseVec3(const std::string& text, const std::string& what);
 // "x,y,z" -> integer dims; throws vri::Error naming `what` unless all three are integers in [1, 1e9].
 glm::ivec3 parseDims(const std::string& text, const std::string& what);
+// "i,j,k" -> three integers in [0, 1e9]; throws vri::Error naming `what` otherwise.
+glm::ivec3 parseIndex3(const std::string& text, const std::string& what);
 // "lo,hi" -> pair; throws vri::Error naming `what` unless both are finite, hi > lo and hi - lo is finite.
 glm::dvec2 parseRange(const std::string& text, const std::string& what);
 // "WxH" -> (W, H); throws vri::Error naming `what` unless both are positive decimal integers.

@@ -47,7 +47,8 @@ for key, value in (("rays", 1e308), ("wall_seconds", -5)):
 PY
 M="^vri-merge-tiles: error: "
 merge=("$bin/vri-merge-tiles")
-bad 64 "${M}--tile is required \(see --help\)$" -- "${merge[@]}" -o out.exr
+bad 64 "${M}Exactly 1 option from \[--tile,--layer\] is required \(" -- "${merge[@]}" -o out.exr
+bad 64 "${M}Exactly 1 option from \[--tile,--layer\] is required and 2 were given" -- "${merge[@]}" --tile t1.exr t1.json --layer t2.exr t2.json -o out.exr
 bad 64 "${M}--tile: expected IMAGE\.exr STATS\.json, got 1 word \(see --help\)$" -- "${merge[@]}" --tile t1.exr -o out.exr
 bad 64 "${M}-o: 'out.png' is not an .exr file" -- "${merge[@]}" --tile t1.exr t1.json --tile t2.exr t2.json -o out.png
 bad 64 "${M}--stats: 'out.exr' is also -o's output$" -- "${merge[@]}" --tile t1.exr t1.json -o out.exr --stats out.exr

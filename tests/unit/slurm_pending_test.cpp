@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "libvri/experiment/poll_interval.h"
 #include "libvri/experiment/slurm_pending.h"
 #include "libvri/util/error.h"
 
@@ -62,4 +63,20 @@ TEST_CASE("PendingWatch: --slurm-max-pending gives up with the jobs' reasons") {
                          "the Slurm check job 7: 1 job pending (squeue's reason: JobHeldUser) for 10.0 s, none running: "
                          "gave up after --slurm-max-pending 10 s",
                          Error);
+}
+
+TEST_CASE("the wait between two looks at the jobs grows while nothing changes and is short again on a change") {
+    PollInterval interval(1.0);
+    CHECK(interval.seconds() == 1.0);
+    interval.looked(false);
+    CHECK(interval.seconds() == 1.5);
+    interval.looked(false);
+    CHECK(interval.seconds() == 2.25);
+    for (int i = 0; i < 20; ++i) interval.looked(false);
+    CHECK(interval.seconds() == PollInterval::kLongest);
+    interval.looked(true);
+    CHECK(interval.seconds() == 1.0);
+    PollInterval slow(60.0);  // a --slurm-poll above the longest is kept
+    slow.looked(false);
+    CHECK(slow.seconds() == 60.0);
 }

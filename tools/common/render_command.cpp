@@ -96,6 +96,7 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
     for (const TableOption& t : tableOptions_)
         if (!t.row->excludes.empty()) t.option->excludes(byFlag.at(t.row->excludes));
     if (tool_ == RenderTool::Render && mode_ == Mode::Vri) {
+        scene_.addBrickOptions(app_);
         app_.add_flag("--list-devices")
             ->description("list the Vulkan devices (index, name, type, API version) and exit");
         CLI::Option* logRay = byFlag.at("--log-ray");

@@ -5,6 +5,7 @@
 
 #include "common/cli.h"
 #include "libvri/core/analytic_field.h"
+#include "libvri/core/brick_volume.h"
 #include "libvri/core/scene_flags.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/render/camera_request.h"
@@ -47,6 +48,15 @@ void SceneOptions::addTo(CLI::App& app) {
                    "(default: the image centre)");
 }
 
+void SceneOptions::addBrickOptions(CLI::App& app) {
+    CLI::Option* bricks = app.add_option(scene_flag::bricks, bricks_,
+                                         "cut the volume into a grid of NX,NY,NZ bricks and render one (--brick): "
+                                         "a layer for vri-merge-tiles --layer (docs/conventions/bricks.md)");
+    app.add_option(scene_flag::brick, brick_, "the brick I,J,K of --bricks to read and render, from 0,0,0")
+        ->needs(bricks);
+    bricks->needs(app.get_option(scene_flag::brick));
+}
+
 glm::ivec2 SceneOptions::imageSize() const { return parseSize(size_, scene_flag::size); }
 
 std::vector<InputArgument> SceneOptions::inputs() const {
@@ -66,7 +76,20 @@ SceneSetup SceneOptions::load() const {
     std::shared_ptr<Volume> volume;
     std::shared_ptr<SparseVolume> sparse;
     std::optional<LinearField> linear;
-    if (!volumePath_.empty()) {
+    std::shared_ptr<BrickVolume> brick;
+    if (!bricks_.empty()) {
+        if (volumePath_.empty()) throw Error("--bricks: cuts a volume file (--volume), not an analytic field");
+        if (raw_.storage() == VolumeStorage::Sparse) throw Error("--bricks: cuts dense volumes, not --storage sparse");
+        std::optional<ValueRange> range;
+        if (!range_.empty()) {
+            const glm::dvec2 r = parseRange(range_, scene_flag::range);
+            range = ValueRange{r.x, r.y};
+        }
+        brick =
+            std::make_shared<BrickVolume>(readBrick(volumePath_, raw_.options(), parseDims(bricks_, scene_flag::bricks),
+                                                    parseIndex3(brick_, scene_flag::brick), range));
+        inputs.push_back({{"path", volumePath_}, {"sha512", sha512File(volumePath_)}});
+    } else if (!volumePath_.empty()) {
         raw_.storage();  // checked before the volume is read
         LoadedVolume loaded = raw_.load(volumePath_);
         volume = std::move(loaded.dense);
@@ -81,12 +104,12 @@ SceneSetup SceneOptions::load() const {
             linear.reset();
         }
     }
-    if (!range_.empty()) {
+    if (!range_.empty() && !brick) {
         if (!volume && !sparse) throw Error("--range applies to volumes only");
         const glm::dvec2 r = parseRange(range_, scene_flag::range);
         (sparse ? sparse->range : volume->range) = ValueRange{r.x, r.y};
     }
-    Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse};
+    Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse, brick};
     inputs.push_back({{"path", tfPath_}, {"sha512", sha512File(tfPath_)}});
 
     CameraRequest camera;

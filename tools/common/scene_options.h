@@ -22,6 +22,8 @@ public:
     // --field-as-grid, --convention, --tf (required), --size, --eye, --target, --up, --fov, --zoom
     // and --zoom-centre to `app`.
     void addTo(CLI::App& app);
+    // Adds --bricks and --brick (vri-render's: one brick's layer, docs/conventions/bricks.md).
+    void addBrickOptions(CLI::App& app);
     // Checks the options, reads the volume and the transfer function and frames the camera; throws
     // vri::Error naming the option or file that is wrong. The cheap checks come before any reading.
     SceneSetup load() const;
@@ -31,7 +33,7 @@ public:
     glm::ivec2 imageSize() const;
 
 private:
-    std::string volumePath_, field_, tfPath_, range_, fieldDims_ = "5,5,5";
+    std::string volumePath_, field_, tfPath_, range_, fieldDims_ = "5,5,5", bricks_, brick_;
     RawInputOptions raw_;
     std::string convention_ = std::string(gridConventionName(kDefaultConvention)), size_ = "800x600", eye_, target_, up_ = "0,1,0", zoomCentre_;
     double fov_ = 30.0, zoom_ = 1.0;

@@ -1,0 +1,138 @@
+#!/usr/bin/env bash
+# A volume as bricks (issue 49): vri-render --bricks --brick reads only a brick's stored box of a raw file
+# and renders its layer; vri-merge-tiles --layer joins every brick's layer into the unbricked render's image
+# within the bound its stats give, the same bits in any order and for tiles of the layers; a float volume's
+# range is the whole file's; what a brick cannot do is refused naming the option.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+bin=${VRI_BIN:?}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_scene
+
+# 24x20x16 voxels of noise, as uint8 and as float32 (values from -1 to 2: the range is the data's).
+/usr/bin/python3 - <<'PY'
+import random, struct
+random.seed(3)
+values = [random.randrange(256) for _ in range(24 * 20 * 16)]
+open("noise_24x20x16_uint8.raw", "wb").write(bytes(values))
+open("noise_24x20x16_float32.raw", "wb").write(b"".join(struct.pack("<f", v / 85.0 - 1.0) for v in values))
+PY
+
+# joined VOLUME NX,NY,NZ ARGS...: the unbricked render and every brick's layer, joined forwards and backwards;
+# checks the join against the whole within its bound and the two joins bit for bit.
+joined() {
+  local volume=$1 grid=$2
+  shift 2
+  local scene=(--volume "$volume" --tf tf.yaml --size 37x29 --eye 60,-40,50 -q "$@")
+  "$bin/vri-render" "${scene[@]}" -o whole.exr --stats whole.json
+  local forward=() backward=() nx ny nz
+  IFS=, read -r nx ny nz <<< "$grid"
+  rm -f layer-*
+  for ((z = 0; z < nz; ++z)); do for ((y = 0; y < ny; ++y)); do for ((x = 0; x < nx; ++x)); do
+    "$bin/vri-render" "${scene[@]}" --bricks "$grid" --brick "$x,$y,$z" -o "layer-$x-$y-$z.exr" \
+      --stats "layer-$x-$y-$z.json"
+    forward+=(--layer "layer-$x-$y-$z.exr" "layer-$x-$y-$z.json")
+    backward=(--layer "layer-$x-$y-$z.exr" "layer-$x-$y-$z.json" "${backward[@]}")
+  done; done; done
+  "$bin/vri-merge-tiles" "${forward[@]}" -o joined.exr --stats joined.json --png joined.png
+  "$bin/vri-merge-tiles" "${backward[@]}" -o backward.exr
+  /usr/bin/python3 - "$volume" "$grid" <<'PY' || fail "$volume as $grid bricks $*"
+import json, sys
+import numpy as np
+import OpenImageIO as oiio
+def pixels(path):
+    return oiio.ImageBuf(path).get_pixels(oiio.FLOAT)
+whole, joined, backward = pixels("whole.exr"), pixels("joined.exr"), pixels("backward.exr")
+assert joined.shape == whole.shape, (joined.shape, whole.shape)
+assert np.array_equal(joined.view(np.uint32), backward.view(np.uint32)), "the order of the layers moved a bit"
+record = json.load(open("joined.json"))
+bound = record["join"]["bound_max"]
+worst = float(np.abs(joined.astype(np.float64) - whole).max())
+assert 0 < bound < 1e-5, bound
+assert worst <= bound, (worst, bound)
+assert record["scene"]["storage"] == "bricks" and len(record["layers"]) == eval(sys.argv[2].replace(",", "*"))
+layer, unbricked = json.load(open("layer-0-0-0.json")), json.load(open("whole.json"))
+lo, hi = layer["scene"]["brick"]["stored_lo"], layer["scene"]["brick"]["stored_hi"]
+size = 4 if "float32" in sys.argv[1] else 1
+assert layer["scene"]["volume_bytes"] == (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) * size
+if sys.argv[2] != "1,1,1":
+    assert layer["scene"]["volume_bytes"] < unbricked["scene"]["volume_bytes"], "a brick kept the whole volume"
+assert layer["scene"]["normalisation_range"] == unbricked["scene"]["normalisation_range"], "the range is the whole's"
+PY
+}
+
+joined noise_24x20x16_uint8.raw 3,2,2 --method riemann --step 0.5
+joined noise_24x20x16_uint8.raw 1,1,1 --method composite --step 0.7 --convention node
+joined noise_24x20x16_uint8.raw 2,3,1 --method riemann --step 0.3 --jitter --seed 5
+joined noise_24x20x16_float32.raw 2,2,2 --method composite --step 0.5
+joined blob_8x8x8_uint8.raw 2,2,2 --method riemann --step 0.25
+
+# A brick's layer in tiles: the tiles merged give the layer, bit for bit.
+scene=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --bricks 2,2,1 --brick 1,0,0)
+"$bin/vri-render" "${scene[@]}" -o layer.exr --stats layer.json
+"$bin/vri-render" "${scene[@]}" --region 0,0,37,12 -o top.exr --stats top.json
+"$bin/vri-render" "${scene[@]}" --region 0,12,37,17 -o bottom.exr --stats bottom.json
+/usr/bin/python3 - <<'PY' || fail "a layer's tiles are not the layer"
+import numpy as np
+import OpenImageIO as oiio
+layer = oiio.ImageBuf("layer.exr").get_pixels(oiio.FLOAT)
+tiles = np.concatenate([oiio.ImageBuf(f).get_pixels(oiio.FLOAT) for f in ("top.exr", "bottom.exr")])
+assert layer.shape[2] == 5 and np.array_equal(layer.view(np.uint32), tiles.view(np.uint32))
+PY
+
+# Refusals: one line naming the option, exit 1 (64 for usage).
+expect() {
+  local code=$1 pattern=$2
+  shift 2
+  set +e
+  "$@" > out.txt 2> err.txt
+  local rc=$?
+  set -e
+  [ "$rc" -eq "$code" ] || fail "$* exited $rc, expected $code: $(cat err.txt)"
+  grep -Eq "$pattern" err.txt || fail "$* said: $(cat err.txt) (expected $pattern)"
+  [ "$(wc -l < err.txt)" -eq 1 ] || fail "$* said more than one line: $(cat err.txt)"
+}
+base=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 8x6 -q -o x.exr)
+expect 64 "brick" "$bin/vri-render" "${base[@]}" --bricks 2,2,2
+expect 1 "^vri-render: error: --brick: brick 2,0,0 is not in the 2,2,2 grid" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 2,0,0
+expect 1 "^vri-render: error: bricks: expected 1 to 16 bricks along z" "$bin/vri-render" "${base[@]}" --bricks 2,2,17 --brick 0,0,0
+expect 1 "^vri-render: error: --brick: renders riemann and composite" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 0,0,0 --method coupled
+expect 1 "^vri-render: error: --brick: renders in double" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 0,0,0 --precision float
+expect 1 "^vri-render: error: --method exact: not for a brick yet" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 0,0,0 --method exact
+expect 1 "^vri-render: error: --bricks: cuts dense volumes" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 0,0,0 --storage sparse
+expect 1 "^vri-render: error: --clamp: clamps the joined image" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 0,0,0 --clamp
+joined blob_8x8x8_uint8.raw 2,1,1 --method riemann
+expect 1 "^vri-merge-tiles: error: --layer: no layer of brick 1,0,0 of the 2,1,1 grid" \
+  "$bin/vri-merge-tiles" --layer layer-0-0-0.exr layer-0-0-0.json -o y.exr
+expect 1 "^vri-merge-tiles: error: .*layer-1-0-0.json: brick 1,0,0 is given twice" \
+  "$bin/vri-merge-tiles" --layer layer-0-0-0.exr layer-0-0-0.json --layer layer-1-0-0.exr layer-1-0-0.json \
+  --layer layer-1-0-0.exr layer-1-0-0.json -o y.exr
+expect 1 "^vri-merge-tiles: error: whole.json: not a brick's stats" \
+  "$bin/vri-merge-tiles" --layer whole.exr whole.json -o y.exr
+[ ! -e y.exr ] || fail "a refused join wrote its output"
+# An experiment's `bricks:`: a step per brick, the join writing the run's files, compared as any run.
+cat > bricked.yaml <<'YAML'
+name: bricked
+title: A volume as bricks
+paper: {paper: A, item: none, says: a test}
+scenes:
+  noise: {volume: noise_24x20x16_uint8.raw, convention: cell, tf: tf.yaml, size: [37, 29],
+          camera: {eye: [60, -40, 50], target: [12, 10, 8], up: [0, 0, 1]}}
+methods:
+  whole: {method: riemann, step: 0.5}
+  bricked: {method: riemann, step: 0.5, bricks: [2, 1, 2]}
+comparisons:
+  vs-whole: {reference: whole, thresholds: [1e-5]}
+YAML
+"$bin/vri-run" --jobs 2 --results runs bricked.yaml 2> run.txt || fail "vri-run with bricks: $(cat run.txt)"
+grep -q "vri-run: bricked: 7 steps, 7 ran" run.txt || fail "the bricked experiment's steps: $(cat run.txt)"
+/usr/bin/python3 - <<'PY' || fail "the bricked run against the whole"
+import glob, json
+[path] = glob.glob("runs/bricked/vs-whole-*.json")
+diff = json.load(open(path))
+worst = max(c["max_abs"] for c in diff["channels"])
+bound = json.load(open("runs/bricked/bricked.json"))["join"]["bound_max"]
+assert worst <= bound, (worst, bound)
+PY
+sed 's/bricks: \[2, 1, 2\]}/bricks: [2, 1, 2], precision: float}/' bricked.yaml > floaty.yaml
+expect 1 "floaty\.yaml:[0-9]+:[0-9]+: bricks: --brick: renders in double" "$bin/vri-run" --dry-run --results runs floaty.yaml
+echo "bricks: ok"
+
