@@ -11,180 +11,173 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3587,14.2
-0.4236,10
-0.5585,6.21
-0.81,5.14
-1.553,2.9
+0.3485,14.2
+0.4217,10
+0.5497,6.21
+0.7866,5.14
+1.515,2.9
 EOD
 $series1_2 << EOD
-0.05042,14.2
-0.06063,10
-0.07713,6.21
-0.1315,5.14
-0.214,2.9
+0.05185,14.2
+0.07017,10
+0.08641,6.21
+0.1224,5.14
+0.2177,2.9
 EOD
 $series1_3 << EOD
-0.02111,15
-0.03231,2.85
-0.05093,1.26
+0.01924,15
+0.02932,2.85
+0.05371,1.26
 EOD
 $series1_4 << EOD
-0.5758,1.61
-0.5692,1.61
-0.5676,1.61
+0.6497,1.61
+0.6735,1.61
+0.6187,1.61
 EOD
 $series1_5 << EOD
-0.6114,1.58
-0.6145,1.58
-0.698,1.58
+0.6077,1.58
+0.6174,1.58
+0.6346,1.58
 EOD
 $series1_6 << EOD
-0.1941,18.9
-0.3361,4.13
-0.6146,1.69
+0.1998,18.9
+0.3664,4.13
+0.6669,1.69
 EOD
 $series1_7 << EOD
-0.2563,6.75
-0.4637,1.88
-0.8795,0.14
+0.2738,6.75
+0.5125,1.88
+0.7977,0.14
 EOD
 $series1_8 << EOD
-0.3516,14.1
-0.4257,10.1
-0.5384,6.22
-0.813,5.14
-1.495,2.9
+0.362,14.1
+0.4465,10.1
+0.568,6.22
+0.8854,5.14
+1.601,2.9
 EOD
 $series1_9 << EOD
-1.398,14.1
-1.69,9.99
-2.198,6.16
-3.147,5.13
-6.103,2.9
+1.487,14.1
+1.807,9.99
+2.299,6.16
+3.459,5.13
+6.807,2.9
 EOD
 $series1_10 << EOD
-0.8431,0.05797491983658468
-0.8644,0.05797491983658468
-0.8745,0.05797491983658468
-0.8727,0.05797491983658468
+1.019,0.05797491983658468
+0.9796,0.05797491983658468
+0.9902,0.05797491983658468
+1.013,0.05797491983658468
 EOD
 $series1_11 << EOD
-0.9715,0.05797491983658468
-0.9654,0.05797491983658468
+0.09688,25.2
+0.17,26
+0.2925,26.8
+0.3736,26.9
+0.9945,27.4
+1.661,27.5
 EOD
 $series1_12 << EOD
-0.06936,25.2
-0.1282,26
-0.1982,26.8
-0.3485,26.9
-0.7932,27.4
-1.901,27.5
-EOD
-$series1_13 << EOD
-0.1105,17.8
-0.1918,16.9
-0.3579,17
+0.1216,17.8
+0.2232,16.9
+0.4405,17
 EOD
 $pareto1 << EOD
-0.02111,15
-0.03231,2.85
-0.05093,1.26
-0.8431,0.05797491983658468
+0.01924,15
+0.02932,2.85
+0.05371,1.26
+0.7977,0.14
+0.9796,0.05797491983658468
 EOD
 $series2_1 << EOD
-0.3587,0.04754
-0.4236,0.03703
-0.5585,0.02677
-0.81,0.01692
-1.553,0.008352
+0.3485,0.04754
+0.4217,0.03703
+0.5497,0.02677
+0.7866,0.01692
+1.515,0.008352
 EOD
 $series2_2 << EOD
-0.05042,0.04754
-0.06063,0.03703
-0.07713,0.02677
-0.1315,0.01692
-0.214,0.008352
+0.05185,0.04754
+0.07017,0.03703
+0.08641,0.02677
+0.1224,0.01692
+0.2177,0.008352
 EOD
 $series2_3 << EOD
-0.02111,0.223
-0.03231,0.05481
-0.05093,0.02029
+0.01924,0.223
+0.02932,0.05481
+0.05371,0.02029
 EOD
 $series2_4 << EOD
-0.5758,0.03639
-0.5692,0.03639
-0.5676,0.03639
+0.6497,0.03639
+0.6735,0.03639
+0.6187,0.03639
 EOD
 $series2_5 << EOD
-0.6114,0.0364
-0.6145,0.0364
-0.698,0.0364
+0.6077,0.0364
+0.6174,0.0364
+0.6346,0.0364
 EOD
 $series2_6 << EOD
-0.1941,0.2196
-0.3361,0.06813
-0.6146,0.01726
+0.1998,0.2196
+0.3664,0.06813
+0.6669,0.01726
 EOD
 $series2_7 << EOD
-0.2563,0.2016
-0.4637,0.03801
-0.8795,0.007789
+0.2738,0.2016
+0.5125,0.03801
+0.7977,0.007789
 EOD
 $series2_8 << EOD
-0.3516,0.04855
-0.4257,0.03697
-0.5384,0.02721
-0.813,0.0167
-1.495,0.008275
+0.362,0.04855
+0.4465,0.03697
+0.568,0.02721
+0.8854,0.0167
+1.601,0.008275
 EOD
 $series2_9 << EOD
-1.398,0.04535
-1.69,0.03444
-2.198,0.02558
-3.147,0.0168
-6.103,0.008052
+1.487,0.04535
+1.807,0.03444
+2.299,0.02558
+3.459,0.0168
+6.807,0.008052
 EOD
 $series2_10 << EOD
-0.8431,1.076e-05
-0.8644,2.325e-06
-0.8745,0.0002756
-0.8727,7.749e-07
+1.019,1.076e-05
+0.9796,2.325e-06
+0.9902,0.0002756
+1.013,7.749e-07
 EOD
 $series2_11 << EOD
-0.9715,0.0002756
-0.9654,7.749e-07
+0.09688,0.1418
+0.17,0.04936
+0.2925,0.05017
+0.3736,0.05409
+0.9945,0.05721
+1.661,0.08155
 EOD
 $series2_12 << EOD
-0.06936,0.1418
-0.1282,0.04936
-0.1982,0.05017
-0.3485,0.05409
-0.7932,0.05721
-1.901,0.08155
-EOD
-$series2_13 << EOD
-0.1105,0.1497
-0.1918,0.0476
-0.3579,0.01615
+0.1216,0.1497
+0.2232,0.0476
+0.4405,0.01615
 EOD
 $pareto2 << EOD
-0.02111,0.223
-0.03231,0.05481
-0.05042,0.04754
-0.05093,0.02029
-0.1315,0.01692
-0.214,0.008352
-0.8431,1.076e-05
-0.8644,2.325e-06
-0.8727,7.749e-07
+0.01924,0.223
+0.02932,0.05481
+0.05185,0.04754
+0.05371,0.02029
+0.1224,0.01692
+0.2177,0.008352
+0.7977,0.007789
+0.9796,2.325e-06
+1.013,7.749e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1700,888 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,872 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1700,888 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,872 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'BluntFin: seconds per frame against error (accurate reference)'
@@ -196,7 +189,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.015025361343543472:8.574458014972214] noextend
+    set xrange [0.013529446409216725:9.68012112533895] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -209,7 +202,7 @@ do for [format in "png svg"] {
     set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
     set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
     set yrange [0.04910145847312393:37.750696895600605] noextend
-    set bmargin 18
+    set bmargin 17
     unset key
     set size noratio
     unset label
@@ -223,9 +216,8 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
-         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -235,14 +227,14 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.015025361343543472:8.574458014972214] noextend
+    set xrange [0.013529446409216725:9.68012112533895] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [3.645038407136952e-07:0.4740764861672071] noextend
     set key below vertical maxcols 1
-    set bmargin 18
+    set bmargin 17
     set size noratio
     unset label
     plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
@@ -255,9 +247,8 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
-         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

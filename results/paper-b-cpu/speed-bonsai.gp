@@ -11,202 +11,192 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.5107,27
-0.5955,26.5
-0.7546,25.7
-1.061,23.4
-1.94,16.4
+0.5085,27
+0.6109,26.5
+0.7478,25.7
+1.032,23.4
+1.885,16.4
 EOD
 $series1_2 << EOD
-0.07119,27
-0.08771,26.5
-0.1018,25.7
-0.1389,23.4
-0.2576,16.4
+0.06972,27
+0.07836,26.5
+0.1096,25.7
+0.1449,23.4
+0.256,16.4
 EOD
 $series1_3 << EOD
-0.03075,27.4
-0.04781,21.8
-0.07626,11.3
+0.02817,27.4
+0.04609,21.8
+0.06895,11.3
 EOD
 $series1_4 << EOD
-1.395,14.7
-1.413,14.7
-1.369,14.2
+1.489,14.7
+1.529,14.7
+1.486,14.2
 EOD
 $series1_5 << EOD
-1.398,12.5
 1.379,12.5
-1.393,12.3
+1.37,12.5
+1.416,12.3
 EOD
 $series1_6 << EOD
-0.3261,28.2
-0.5172,24
-0.8262,11.8
+0.3904,28.2
+0.5402,24
+0.8854,11.8
 EOD
 $series1_7 << EOD
-0.4279,22.5
-0.7178,11.4
-1.538,7.35
+0.5084,22.5
+0.7751,11.4
+1.251,7.35
 EOD
 $series1_8 << EOD
-0.5116,27.1
-0.6142,26.6
-0.7412,25.7
-1.045,23.4
-1.903,16.4
+0.5187,27.1
+0.6447,26.6
+0.8003,25.7
+1.156,23.4
+1.985,16.4
 EOD
 $series1_9 << EOD
-2.053,26.9
-2.424,26.4
-3.066,25.6
-4.164,23.2
-7.565,16.1
+2.15,26.9
+2.657,26.4
+3.469,25.6
+5.053,23.2
+8.61,16.1
 EOD
 $series1_10 << EOD
-0.4861,5.4121676920605655
-0.5199,5.4121676920605655
-0.4474,5.4121676920605655
-0.4975,5.4121676920605655
+0.6128,5.4121676920605655
+0.5701,5.4121676920605655
+0.5014,5.4121676920605655
+0.5436,5.4121676920605655
 EOD
 $series1_11 << EOD
-0.4828,5.4121676920605655
-0.544,5.4121676920605655
+0.1377,29.9
+0.1581,29.9
+0.2987,29.9
+0.543,29.9
+0.9069,29.8
+1.807,29.9
 EOD
 $series1_12 << EOD
-0.1289,29.9
-0.1474,29.9
-0.2204,29.9
-0.3748,29.9
-0.8364,29.8
-1.875,29.9
+0.3139,28.3
+0.6098,27.4
+1.206,27.1
 EOD
 $series1_13 << EOD
-0.3629,28.3
-0.5999,27.4
-1.212,27.1
+0.9907,29.3
+1.926,29.2
 EOD
 $series1_14 << EOD
-1.061,29.3
-2.039,29.2
+1.008,26.6
+2.126,25.6
 EOD
 $series1_15 << EOD
-1.106,26.6
-2.003,25.6
-EOD
-$series1_16 << EOD
-0.6288,31.7
+0.6235,31.7
 EOD
 $pareto1 << EOD
-0.03075,27.4
-0.04781,21.8
-0.07626,11.3
-0.4474,5.4121676920605655
+0.02817,27.4
+0.04609,21.8
+0.06895,11.3
+0.5014,5.4121676920605655
 EOD
 $series2_1 << EOD
-0.5107,0.1074
-0.5955,0.09284
-0.7546,0.05965
-1.061,0.03929
-1.94,0.01856
+0.5085,0.1074
+0.6109,0.09284
+0.7478,0.05965
+1.032,0.03929
+1.885,0.01856
 EOD
 $series2_2 << EOD
-0.07119,0.1074
-0.08771,0.09284
-0.1018,0.05965
-0.1389,0.03929
-0.2576,0.01856
+0.06972,0.1074
+0.07836,0.09284
+0.1096,0.05965
+0.1449,0.03929
+0.256,0.01856
 EOD
 $series2_3 << EOD
-0.03075,0.2766
-0.04781,0.1414
-0.07626,0.05138
+0.02817,0.2766
+0.04609,0.1414
+0.06895,0.05138
 EOD
 $series2_4 << EOD
-1.395,0.04547
-1.413,0.04547
-1.369,0.04005
+1.489,0.04547
+1.529,0.04547
+1.486,0.04005
 EOD
 $series2_5 << EOD
-1.398,0.03886
 1.379,0.03886
-1.393,0.03609
+1.37,0.03886
+1.416,0.03609
 EOD
 $series2_6 << EOD
-0.3261,0.2483
-0.5172,0.1241
-0.8262,0.04762
+0.3904,0.2483
+0.5402,0.1241
+0.8854,0.04762
 EOD
 $series2_7 << EOD
-0.4279,0.2206
-0.7178,0.1108
-1.538,0.04851
+0.5084,0.2206
+0.7751,0.1108
+1.251,0.04851
 EOD
 $series2_8 << EOD
-0.5116,0.1169
-0.6142,0.08383
-0.7412,0.05987
-1.045,0.0394
-1.903,0.01886
+0.5187,0.1169
+0.6447,0.08383
+0.8003,0.05987
+1.156,0.0394
+1.985,0.01886
 EOD
 $series2_9 << EOD
-2.053,0.1069
-2.424,0.07774
-3.066,0.05721
-4.164,0.03938
-7.565,0.01874
+2.15,0.1069
+2.657,0.07774
+3.469,0.05721
+5.053,0.03938
+8.61,0.01874
 EOD
 $series2_10 << EOD
-0.4861,7.778e-06
-0.5199,7.898e-07
-0.4474,0.0004849
-0.4975,2.533e-07
+0.6128,7.778e-06
+0.5701,7.898e-07
+0.5014,0.0004849
+0.5436,2.533e-07
 EOD
 $series2_11 << EOD
-0.4828,0.0004849
-0.544,2.533e-07
+0.1377,0.4228
+0.1581,0.402
+0.2987,0.3922
+0.543,0.9932
+0.9069,0.9938
+1.807,0.9938
 EOD
 $series2_12 << EOD
-0.1289,0.4228
-0.1474,0.402
-0.2204,0.3922
-0.3748,0.9932
-0.8364,0.9938
-1.875,0.9938
+0.3139,0.4893
+0.6098,0.3752
+1.206,0.3207
 EOD
 $series2_13 << EOD
-0.3629,0.4893
-0.5999,0.3752
-1.212,0.3207
+0.9907,1
+1.926,1
 EOD
 $series2_14 << EOD
-1.061,1
-2.039,1
+1.008,0.1706
+2.126,0.08825
 EOD
 $series2_15 << EOD
-1.106,0.1706
-2.003,0.08825
-EOD
-$series2_16 << EOD
-0.6288,1
+0.6235,1
 EOD
 $pareto2 << EOD
-0.03075,0.2766
-0.04781,0.1414
-0.07119,0.1074
-0.07626,0.05138
-0.1389,0.03929
-0.2576,0.01856
-0.4474,0.0004849
-0.4861,7.778e-06
-0.4975,2.533e-07
+0.02817,0.2766
+0.04609,0.1414
+0.06895,0.05138
+0.1449,0.03929
+0.256,0.01856
+0.5014,0.0004849
+0.5436,2.533e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1700,936 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,920 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1700,936 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,920 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Bonsai: seconds per frame against error (accurate reference)'
@@ -217,8 +207,8 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
-    set xrange [0.022099746466069086:10.526082294978343] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
+    set xrange [0.019983606470414614:12.13713352287445] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -231,7 +221,7 @@ do for [format in "png svg"] {
     set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
     set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
     set yrange [5.153835841380764:36.455] noextend
-    set bmargin 21
+    set bmargin 20
     unset key
     set size noratio
     unset label
@@ -245,12 +235,11 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
-         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
-         $series1_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
-         $series1_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
-         $series1_16 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_13 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
+         $series1_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
+         $series1_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -259,15 +248,15 @@ do for [format in "png svg"] {
     set xlabel 'seconds per frame'
     set logscale x
     set format x '%g'
-    set xtics (0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
-    set xrange [0.022099746466069086:10.526082294978343] noextend
+    set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10)
+    set xrange [0.019983606470414614:12.13713352287445] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [1.0182473797170501e-07:2.4876076781104692] noextend
     set key below vertical maxcols 1
-    set bmargin 21
+    set bmargin 20
     set size noratio
     unset label
     plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
@@ -280,12 +269,11 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
-         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
-         $series2_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
-         $series2_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
-         $series2_16 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_13 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
+         $series2_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
+         $series2_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

@@ -11,200 +11,193 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.4837,23.1
-0.5738,20.9
-0.6618,17.1
-0.9025,10.7
-1.67,9.26
+0.462,23.1
+0.5497,20.9
+0.7177,17.1
+0.9514,10.7
+1.788,9.26
 EOD
 $series1_2 << EOD
-0.05531,23.1
-0.0652,20.9
-0.09074,17.1
-0.1292,10.7
-0.2226,9.26
+0.05814,23.1
+0.09862,20.9
+0.08412,17.1
+0.1204,10.7
+0.2265,9.26
 EOD
 $series1_3 << EOD
-0.02409,22.8
-0.03514,13.3
-0.06376,7.55
+0.02378,22.8
+0.03801,13.3
+0.08526,7.55
 EOD
 $series1_4 << EOD
-1.083,7.09
-1.047,7.09
-1.058,7.08
+1.049,7.09
+1.061,7.09
+1.059,7.08
 EOD
 $series1_5 << EOD
-1.112,6.69
-1.14,6.69
-1.153,6.69
+1.186,6.69
+1.209,6.69
+1.156,6.69
 EOD
 $series1_6 << EOD
-0.3031,27.3
-0.4073,22.9
-0.6764,7.79
+0.2893,27.3
+0.4431,22.9
+0.7346,7.79
 EOD
 $series1_7 << EOD
-0.3994,14.3
-0.5564,6.09
-0.9949,1.61
+0.3797,14.3
+0.6066,6.09
+1.085,1.61
 EOD
 $series1_8 << EOD
-0.4413,23.1
-0.5158,20.8
-0.6443,17.1
-0.8802,10.7
-1.625,9.26
+0.4581,23.1
+0.5393,20.8
+0.6674,17.1
+0.9439,10.7
+1.693,9.26
 EOD
 $series1_9 << EOD
-1.759,23.2
-2.068,20.8
-2.619,16.9
-3.656,10.3
-6.672,9.26
+1.949,23.2
+2.3,20.8
+2.883,16.9
+3.735,10.3
+6.734,9.26
 EOD
 $series1_10 << EOD
-0.9455,0.9907135287412148
-0.932,0.9907135287412148
-0.94,0.9907135287412148
-0.9323,0.9907135287412148
+1.096,0.9907135287412148
+1.031,0.9907135287412148
+1.066,0.9907135287412148
+1.216,0.9907135287412148
 EOD
 $series1_11 << EOD
-1.088,0.9907135287412148
-1.052,0.9907135287412148
+0.09812,25.2
+0.2144,25.4
+0.2924,26.7
+0.4196,27.8
+0.9408,28.4
+1.825,28.6
 EOD
 $series1_12 << EOD
-0.09559,25.2
-0.154,25.4
-0.2504,26.7
-0.5061,27.8
-1.116,28.4
-2.024,28.6
+0.2121,24.5
+0.422,23.6
+0.8042,24.1
 EOD
 $series1_13 << EOD
-0.258,24.5
-0.474,23.6
-0.8682,24.1
+0.7243,26.7
+1.35,26.7
 EOD
 $series1_14 << EOD
-0.6888,26.7
-1.298,26.7
+0.9047,20.8
+1.367,18
 EOD
 $series1_15 << EOD
-0.7143,20.8
-1.444,18
-EOD
-$series1_16 << EOD
-0.7166,29.5
+0.9128,29.5
 EOD
 $pareto1 << EOD
-0.02409,22.8
-0.03514,13.3
-0.06376,7.55
-0.5564,6.09
-0.932,0.9907135287412148
+0.02378,22.8
+0.03801,13.3
+0.08526,7.55
+0.6066,6.09
+1.031,0.9907135287412148
 EOD
 $series2_1 << EOD
-0.4837,0.06248
-0.5738,0.04992
-0.6618,0.03695
-0.9025,0.02473
-1.67,0.01212
+0.462,0.06248
+0.5497,0.04992
+0.7177,0.03695
+0.9514,0.02473
+1.788,0.01212
 EOD
 $series2_2 << EOD
-0.05531,0.06248
-0.0652,0.04992
-0.09074,0.03695
-0.1292,0.02473
-0.2226,0.01212
+0.05814,0.06248
+0.09862,0.04992
+0.08412,0.03695
+0.1204,0.02473
+0.2265,0.01212
 EOD
 $series2_3 << EOD
-0.02409,0.1125
-0.03514,0.04035
-0.06376,0.0149
+0.02378,0.1125
+0.03801,0.04035
+0.08526,0.0149
 EOD
 $series2_4 << EOD
-1.083,0.02604
-1.047,0.02604
-1.058,0.02124
+1.049,0.02604
+1.061,0.02604
+1.059,0.02124
 EOD
 $series2_5 << EOD
-1.112,0.02591
-1.14,0.02591
-1.153,0.02103
+1.186,0.02591
+1.209,0.02591
+1.156,0.02103
 EOD
 $series2_6 << EOD
-0.3031,0.1469
-0.4073,0.04854
-0.6764,0.01691
+0.2893,0.1469
+0.4431,0.04854
+0.7346,0.01691
 EOD
 $series2_7 << EOD
-0.3994,0.1116
-0.5564,0.03518
-0.9949,0.01408
+0.3797,0.1116
+0.6066,0.03518
+1.085,0.01408
 EOD
 $series2_8 << EOD
-0.4413,0.06325
-0.5158,0.0497
-0.6443,0.03759
-0.8802,0.02473
-1.625,0.01216
+0.4581,0.06325
+0.5393,0.0497
+0.6674,0.03759
+0.9439,0.02473
+1.693,0.01216
 EOD
 $series2_9 << EOD
-1.759,0.06274
-2.068,0.04945
-2.619,0.03726
-3.656,0.02451
-6.672,0.01216
+1.949,0.06274
+2.3,0.04945
+2.883,0.03726
+3.735,0.02451
+6.734,0.01216
 EOD
 $series2_10 << EOD
-0.9455,1.296e-05
-0.932,1.431e-06
-0.94,0.000348
-0.9323,1.788e-07
+1.096,1.296e-05
+1.031,1.431e-06
+1.066,0.000348
+1.216,1.788e-07
 EOD
 $series2_11 << EOD
-1.088,0.000348
-1.052,1.788e-07
+0.09812,0.1676
+0.2144,0.1323
+0.2924,0.131
+0.4196,0.1349
+0.9408,0.131
+1.825,0.1252
 EOD
 $series2_12 << EOD
-0.09559,0.1676
-0.154,0.1323
-0.2504,0.131
-0.5061,0.1349
-1.116,0.131
-2.024,0.1252
+0.2121,0.1495
+0.422,0.1113
+0.8042,0.09071
 EOD
 $series2_13 << EOD
-0.258,0.1495
-0.474,0.1113
-0.8682,0.09071
+0.7243,0.5464
+1.35,0.5477
 EOD
 $series2_14 << EOD
-0.6888,0.5464
-1.298,0.5477
+0.9047,0.04932
+1.367,0.02025
 EOD
 $series2_15 << EOD
-0.7143,0.04932
-1.444,0.02025
-EOD
-$series2_16 << EOD
-0.7166,0.8896
+0.9128,0.8896
 EOD
 $pareto2 << EOD
-0.02409,0.1125
-0.03514,0.04035
-0.06376,0.0149
-0.2226,0.01212
-0.932,1.431e-06
-0.9323,1.788e-07
+0.02378,0.1125
+0.03801,0.04035
+0.08412,0.03695
+0.08526,0.0149
+0.2265,0.01212
+1.031,1.431e-06
+1.216,1.788e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1700,936 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,920 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1700,936 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,920 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Engine: seconds per frame against error (accurate reference)'
@@ -216,7 +209,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.017190624173137593:9.349775690585888] noextend
+    set xrange [0.01694681835868728:9.449237999173564] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -229,7 +222,7 @@ do for [format in "png svg"] {
     set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
     set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
     set yrange [0.9040935763143167:35.12382335865151] noextend
-    set bmargin 21
+    set bmargin 20
     unset key
     set size noratio
     unset label
@@ -243,12 +236,11 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
-         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
-         $series1_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
-         $series1_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
-         $series1_16 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_13 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
+         $series1_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
+         $series1_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -258,14 +250,14 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.017190624173137593:9.349775690585888] noextend
+    set xrange [0.01694681835868728:9.449237999173564] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [7.088557700954801e-08:2.2439047082677366] noextend
     set key below vertical maxcols 1
-    set bmargin 21
+    set bmargin 20
     set size noratio
     unset label
     plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
@@ -278,12 +270,11 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
-         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
-         $series2_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
-         $series2_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
-         $series2_16 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_13 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#d4a017' title 'three.js (SwiftShader), h1 to h0.5', \
+         $series2_14 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#7a4a1e' title 'vtk.js (SwiftShader), h1 to h0.5', \
+         $series2_15 using 1:2 with linespoints lw 1.5 pt 11 ps 1.2 lc rgb '#e377c2' title 'NiiVue (SwiftShader)', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output

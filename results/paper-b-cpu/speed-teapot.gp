@@ -11,179 +11,170 @@ while (i > 0 && script_dir[i:i] ne "/") { i = i - 1 }
 cd (i > 0 ? script_dir[1:i] : ".")
 set datafile separator comma
 $series1_1 << EOD
-0.3958,25.1
-0.4572,25
-0.5494,24.8
-0.7806,23.2
-1.401,6.98
+0.3888,25.1
+0.4473,25
+0.5455,24.8
+0.7431,23.2
+1.47,6.98
 EOD
 $series1_2 << EOD
-0.06451,25.1
-0.05119,25
-0.07198,24.8
-0.08591,23.2
-0.1576,6.98
+0.04443,25.1
+0.05155,25
+0.06664,24.8
+0.08284,23.2
+0.1446,6.98
 EOD
 $series1_3 << EOD
-0.0246,21.7
-0.02869,14.8
-0.04537,3.01
+0.02253,21.7
+0.04109,14.8
+0.04866,3.01
 EOD
 $series1_4 << EOD
-1.218,7.88
-1.235,7.88
-1.229,7.82
+1.268,7.88
+1.245,7.88
+1.246,7.82
 EOD
 $series1_5 << EOD
-1.278,6.08
-1.273,6.08
-1.259,6.02
+1.255,6.08
+1.285,6.08
+1.401,6.02
 EOD
 $series1_6 << EOD
-0.302,25.2
-0.3792,20.9
-0.5543,7.48
+0.2807,25.2
+0.3859,20.9
+0.6214,7.48
 EOD
 $series1_7 << EOD
-0.3576,10.5
-0.5075,1.58
-0.7916,0.291
+0.3623,10.5
+0.525,1.58
+0.8506,0.291
 EOD
 $series1_8 << EOD
-0.3935,25
-0.4543,25
-0.5523,24.8
-0.751,23.2
-1.342,6.99
+0.439,25
+0.5301,25
+0.6756,24.8
+0.8697,23.2
+1.465,6.99
 EOD
 $series1_9 << EOD
-1.572,25.1
-1.803,25
-2.194,24.8
-2.982,23.7
-5.409,7
+1.686,25.1
+2.077,25
+2.482,24.8
+3.29,23.7
+5.603,7
 EOD
 $series1_10 << EOD
-0.4599,0.13709488532160133
-0.4581,0.13709488532160133
-0.4548,0.13709488532160133
-0.4785,0.13709488532160133
+0.5264,0.13709488532160133
+0.5192,0.13709488532160133
+0.5099,0.13709488532160133
+0.4921,0.13709488532160133
 EOD
 $series1_11 << EOD
-0.5117,0.13709488532160133
-0.5023,0.13709488532160133
+0.1453,23.7
+0.1779,23.2
+0.3535,24.8
+0.4588,25.7
+1.353,26.3
+2.281,26.4
 EOD
 $series1_12 << EOD
-0.1022,23.7
-0.1836,23.2
-0.3037,24.8
-0.4074,25.7
-1.054,26.3
-1.985,26.4
-EOD
-$series1_13 << EOD
-0.3224,22.9
-0.6585,21
-1.26,21.1
+0.3575,22.9
+0.6438,21
+1.284,21.1
 EOD
 $pareto1 << EOD
-0.0246,21.7
-0.02869,14.8
-0.04537,3.01
-0.4548,0.13709488532160133
+0.02253,21.7
+0.04109,14.8
+0.04866,3.01
+0.4921,0.13709488532160133
 EOD
 $series2_1 << EOD
-0.3958,0.157
-0.4572,0.12
-0.5494,0.09271
-0.7806,0.05941
-1.401,0.02978
+0.3888,0.157
+0.4473,0.12
+0.5455,0.09271
+0.7431,0.05941
+1.47,0.02978
 EOD
 $series2_2 << EOD
-0.06451,0.157
-0.05119,0.12
-0.07198,0.09271
-0.08591,0.05941
-0.1576,0.02978
+0.04443,0.157
+0.05155,0.12
+0.06664,0.09271
+0.08284,0.05941
+0.1446,0.02978
 EOD
 $series2_3 << EOD
-0.0246,0.368
-0.02869,0.2132
-0.04537,0.08404
+0.02253,0.368
+0.04109,0.2132
+0.04866,0.08404
 EOD
 $series2_4 << EOD
-1.218,0.1037
-1.235,0.09117
-1.229,0.1109
+1.268,0.1037
+1.245,0.09117
+1.246,0.1109
 EOD
 $series2_5 << EOD
-1.278,0.1033
-1.273,0.09043
-1.259,0.1111
+1.255,0.1033
+1.285,0.09043
+1.401,0.1111
 EOD
 $series2_6 << EOD
-0.302,0.4111
-0.3792,0.219
-0.5543,0.1099
+0.2807,0.4111
+0.3859,0.219
+0.6214,0.1099
 EOD
 $series2_7 << EOD
-0.3576,0.4697
-0.5075,0.1776
-0.7916,0.1013
+0.3623,0.4697
+0.525,0.1776
+0.8506,0.1013
 EOD
 $series2_8 << EOD
-0.3935,0.1648
-0.4543,0.1217
-0.5523,0.09084
-0.751,0.06025
-1.342,0.02988
+0.439,0.1648
+0.5301,0.1217
+0.6756,0.09084
+0.8697,0.06025
+1.465,0.02988
 EOD
 $series2_9 << EOD
-1.572,0.1546
-1.803,0.1197
-2.194,0.08799
-2.982,0.05886
-5.409,0.02946
+1.686,0.1546
+2.077,0.1197
+2.482,0.08799
+3.29,0.05886
+5.603,0.02946
 EOD
 $series2_10 << EOD
-0.4599,1.377e-05
-0.4581,8.941e-07
-0.4548,0.0006485
-0.4785,2.384e-07
+0.5264,1.377e-05
+0.5192,8.941e-07
+0.5099,0.0006485
+0.4921,2.384e-07
 EOD
 $series2_11 << EOD
-0.5117,0.0006485
-0.5023,2.384e-07
+0.1453,0.3875
+0.1779,0.1806
+0.3535,0.1303
+0.4588,0.1326
+1.353,0.1342
+2.281,0.2229
 EOD
 $series2_12 << EOD
-0.1022,0.3875
-0.1836,0.1806
-0.3037,0.1303
-0.4074,0.1326
-1.054,0.1342
-1.985,0.2229
-EOD
-$series2_13 << EOD
-0.3224,0.354
-0.6585,0.2112
-1.26,0.08796
+0.3575,0.354
+0.6438,0.2112
+1.284,0.08796
 EOD
 $pareto2 << EOD
-0.0246,0.368
-0.02869,0.2132
-0.04537,0.08404
-0.08591,0.05941
-0.1576,0.02978
-0.4548,0.0006485
-0.4581,8.941e-07
-0.4785,2.384e-07
+0.02253,0.368
+0.04109,0.2132
+0.04443,0.157
+0.04866,0.08404
+0.08284,0.05941
+0.1446,0.02978
+0.4921,2.384e-07
 EOD
 do for [format in "png svg"] {
     if (format eq "png") {
-        set terminal pngcairo size 1700,888 noenhanced font "sans,10"
+        set terminal pngcairo size 1700,872 noenhanced font "sans,10"
         set output png_out
     } else {
-        set terminal svg size 1700,888 noenhanced font "sans,10" background "white"
+        set terminal svg size 1700,872 noenhanced font "sans,10" background "white"
         set output svg_out
     }
     set multiplot layout 1,2 title 'Teapot: seconds per frame against error (accurate reference)'
@@ -195,7 +186,7 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.017799352118567407:7.475631647356248] noextend
+    set xrange [0.01618160612635713:7.801178017451762] noextend
     set ylabel '% of rays (0 on the grey band below the break)'
     set logscale y
     set format y '%g'
@@ -208,7 +199,7 @@ do for [format in "png svg"] {
     set arrow from graph 0.988, graph 0.04 to graph 1.012, graph 0.060000000000000005 nohead lw 1 lc rgb 'black' front
     set arrow from graph 0.988, graph 0.1 to graph 1.012, graph 0.12 nohead lw 1 lc rgb 'black' front
     set yrange [0.11896805097580683:34.59924190176551] noextend
-    set bmargin 18
+    set bmargin 17
     unset key
     set size noratio
     unset label
@@ -222,9 +213,8 @@ do for [format in "png svg"] {
          $series1_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series1_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
          $series1_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
-         $series1_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
-         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series1_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series1_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series1_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto1 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     # panel 2
     set title 'max |error| (any channel)'
@@ -234,14 +224,14 @@ do for [format in "png svg"] {
     set logscale x
     set format x '%g'
     set xtics (0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5)
-    set xrange [0.017799352118567407:7.475631647356248] noextend
+    set xrange [0.01618160612635713:7.801178017451762] noextend
     set ylabel 'max |error|'
     set logscale y
     set format y '%g'
     set ytics autofreq
     set yrange [9.991608125696326e-08:1.120705281785621] noextend
     set key below vertical maxcols 1
-    set bmargin 18
+    set bmargin 17
     set size noratio
     unset label
     plot $series2_1 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#1f4e9c' title 'riemann double, h0.5 to h0.1', \
@@ -254,9 +244,8 @@ do for [format in "png svg"] {
          $series2_8 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#8a9bb0' title 'riemann double, jittered, h0.5 to h0.1', \
          $series2_9 using 1:2 with linespoints lw 1.5 pt 7 ps 1.2 lc rgb '#4a5a70' title 'riemann double, jittered, mean of 4 frames, h0.5 to h0.1', \
          $series2_10 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#000000' title 'exact, quadrature-tol1e-6 to bound-maxerr1e-6-simd-on', \
-         $series2_11 using 1:2 with linespoints lw 1.5 pt 2 ps 1.2 lc rgb '#909090' title 'exact AVX2, maxerr0.00196-simd-AVX2 to maxerr1e-6-simd-AVX2', \
-         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
-         $series2_13 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
+         $series2_11 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#2a9d3a' title 'VTK fixed point (CPU), h2 to fine-h0.05', \
+         $series2_12 using 1:2 with linespoints lw 1.5 pt 9 ps 1.2 lc rgb '#c0392b' title 'VTK OpenGL (llvmpipe), h2 to h0.5', \
          $pareto2 using 1:2 with linespoints dt 2 lw 1 pt 6 ps 2 lc rgb 'black' title 'Pareto front'
     unset multiplot
     unset output
