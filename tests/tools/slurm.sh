@@ -4,8 +4,9 @@
 # when steps ran; a tiled render merges bitwise into the untiled image on both executors; dependencies
 # respected (no diff starts before its renders end); a job cancelled with scancel fails its step and its
 # dependents with the job's id and state, and a rerun completes; SIGTERM to vri-run cancels its jobs and
-# leaves no partial output; bundled steps share jobs; a results folder or a tool the compute node does
-# not see as vri-run does is refused before anything is submitted.
+# leaves no partial output; bundled steps share jobs; a volume's bricks each run in a job of their own and
+# join as locally; a results folder or a tool the compute node does not see as vri-run does is refused
+# before anything is submitted.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_cluster.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 bin=${VRI_BIN:?}
@@ -74,6 +75,29 @@ grep -q "^vri-run: error: .*/res-full/\.slurm-check/[0-9a-f]*\.json: cannot writ
 for dir in local res; do
     "$bin/vri-diff" $dir/small/exact.exr $dir/small/exact-tiled.exr --fail 0 > /dev/null || fail "$dir: the tiled image differs from the untiled one"
 done
+# A volume as bricks (issue 49): each brick a job of its own, the join's image bitwise the local run's and
+# within its bound of the unbricked image.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/blob.sh" && write_blob_volume
+cat > bricks.yaml <<'YAML'
+name: bricks
+title: A volume as bricks on the test cluster
+paper: {paper: A, item: none, says: a test}
+scenes:
+  blob: {volume: blob_8x8x8_uint8.raw, convention: cell, tf: tf.yaml, size: [31, 23],
+         camera: {eye: [20, -14, 17], target: [4, 4, 4], up: [0, 0, 1]}}
+methods:
+  whole: {method: riemann, step: 0.5}
+  bricked: {method: riemann, step: 0.5, bricks: [2, 2, 2]}
+YAML
+"$bin/vri-run" --results local bricks.yaml 2> bricks-local.txt || { cat bricks-local.txt; fail "the local bricked run failed"; }
+"${slurm[@]}" --results res bricks.yaml 2> bricks-slurm.txt || { cat bricks-slurm.txt; fail "the Slurm bricked run failed"; }
+"$bin/vri-diff" local/bricks/bricked.exr res/bricks/bricked.exr --fail 0 > /dev/null || fail "the joined bricks differ between executors"
+"$python" - res/bricks <<'PY' || fail "the bricks on Slurm"
+import json, sys
+steps = json.load(open(sys.argv[1] + "/manifest.json"))["steps"]
+jobs = [s["execution"]["job_id"] for s in steps if ".brick-" in s["id"]]
+assert len(jobs) == 8 and len(set(jobs)) == 8, ("each brick a job of its own", jobs)
+PY
 # Manifests: equal but for hosts, job ids, times (the stats files hold the frame times, so their digests
 # differ too) and the executor; every Slurm step names its job.
 "$python" - local/small/manifest.json res/small/manifest.json <<'PY' || fail "the manifests differ beyond where and when"
