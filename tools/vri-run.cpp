@@ -308,9 +308,23 @@ int run(const Options& options) {
         }
         reproduced = runOnSlurm(options, waveExperiments, wavePlans, runOptions, hasher, resultsRoot) && reproduced;
     }
+    // --dry-run --executor slurm: the jobs and their sbatch commands, wave by wave; nothing submitted or written.
+    const bool describeSlurm = options.dryRun && runOptions.executor == vri::Executor::Slurm;
+    for (std::size_t w = 0; describeSlurm && w < waves.size(); ++w) {
+        if (waves.size() > 1)
+            std::cout << "# wave " << w + 1 << " of " << waves.size()
+                      << (w == 0 ? "" : ": submitted once the wave before has ended (it reads that wave's outputs)")
+                      << '\n';
+        vri::RunOptions dry = runOptions;
+        dry.slurm.dryRun = true;
+        vri::SlurmBatch batch(dry, hasher);
+        for (std::size_t e : waves[w])
+            batch.add(plans[e], vri::stepPrices(plans[e], plans[e].resultsDir / "manifest.json"));
+        batch.describe(std::cout);
+    }
     std::vector<std::size_t> order;
     for (const std::vector<std::size_t>& wave : waves) order.insert(order.end(), wave.begin(), wave.end());
-    for (std::size_t k = 0; !onSlurm && k < order.size(); ++k) {
+    for (std::size_t k = 0; !onSlurm && !describeSlurm && k < order.size(); ++k) {
         const std::size_t e = order[k];
         const vri::Experiment& experiment = experiments[e];
         const vri::Plan& plan = plans[e];
@@ -360,7 +374,10 @@ int main(int argc, char** argv) {
                  kTool};
     app.add_option("EXPERIMENT", options.experiments, "experiment YAML files (schema: experiments/README.md)");
     app.add_flag("--quick", options.quick, "apply each file's quick: overrides (small sizes, fewer sweep values)");
-    app.add_flag("--dry-run", options.dryRun, "print the commands, one per line, runnable from here; run nothing");
+    app.add_flag(
+        "--dry-run", options.dryRun,
+        "print the commands, one per line, runnable from here (with --executor slurm: the jobs, their steps and "
+        "sbatch commands); run nothing");
     app.add_flag("--estimate", options.estimate,
                  "print what each experiment costs from nothing, its steps priced by the wall times of the last "
                  "manifest in the results root; run nothing")

@@ -23,6 +23,8 @@ struct SlurmOptions {
     double pollSeconds = 1;     // how often squeue is asked
     // --slurm-max-pending: give up once no job has run this long while some pend for the cluster (0: never).
     double maxPendingSeconds = 0;
+    // --dry-run: the jobs are described (SlurmBatch::describe), never submitted; nothing in the queue is touched.
+    bool dryRun = false;
     // Whether a job has checked that the nodes share this host's files (slurm_executor.h): once a
     // vri-run, before its first submitted job. Shared by the copies of these options.
     std::shared_ptr<bool> nodesChecked = std::make_shared<bool>(false);

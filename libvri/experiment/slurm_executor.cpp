@@ -19,6 +19,7 @@
 #include "libvri/experiment/slurm_jobs.h"
 #include "libvri/experiment/slurm_node.h"
 #include "libvri/experiment/slurm_pending.h"
+#include "libvri/experiment/step_costs.h"
 #include "libvri/experiment/step_ledger.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/error.h"
@@ -260,7 +261,11 @@ public:
           slurmDir_(plan.resultsDir / ".steps" / "slurm") {}
 
     // Settles the steps the cache vouches for and cuts the others into jobs; how many steps will run.
-    std::size_t prepare();
+    // With `lookForOrphans`, first cancels the jobs an earlier vri-run on these results left in the queue.
+    std::size_t prepare(bool lookForOrphans = true);
+    // The jobs as submitAll() would submit them, without submitting or writing anything: a line per job
+    // naming its steps, then its sbatch command, a job it waits for named "<job K>".
+    void describe(std::ostream& out) const;
     const Plan& plan() const { return plan_; }
     // Submits the jobs, each after those it depends on. A failure leaves the jobs submitted so far in
     // unendedIds() for the caller to cancel.
@@ -280,6 +285,8 @@ private:
 
     std::vector<std::size_t> stepsToRun();
     void submit(std::size_t j);
+    // sbatch's arguments for job j, the jobs it waits for given by `dependencyIds`.
+    std::vector<std::string> sbatchArguments(std::size_t j, const std::vector<std::string>& dependencyIds) const;
     void ended(std::size_t j, const SlurmJob& state);
     void abandonDependents(std::size_t j);
     // A run's job files carry a token of their own: a job of an earlier run still alive (one scancel
@@ -332,15 +339,30 @@ void SlurmRun::submit(std::size_t j) {
     for (std::size_t i : job.bundle.steps) {
         const std::vector<std::string> words = ledger_.prepare(i);
         fs::remove(statusPath(i));
-        steps.steps.push_back({plan_.steps[i].id, fs::absolute(ledger_.program(i)), words, fs::absolute(ledger_.logPath(i)),
-                               fs::absolute(statusPath(i))});
-        for (std::size_t d : plan_.dependencies[i])
-            if (const auto found = jobOfStep_.find(d); found != jobOfStep_.end() && found->second != j)
-                job.dependsOn.insert(found->second);
+        steps.steps.push_back({plan_.steps[i].id, fs::absolute(ledger_.program(i)), words,
+                               fs::absolute(ledger_.logPath(i)), fs::absolute(statusPath(i))});
     }
-    const std::string stem = jobStem(j);
-    writeNodeSteps(slurmDir_ / (stem + ".json"), steps);
+    writeNodeSteps(slurmDir_ / (jobStem(j) + ".json"), steps);
+    std::vector<std::string> dependencyIds;
+    for (std::size_t d : job.dependsOn) dependencyIds.push_back(jobs_[d].id);
+    const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus);
+    try {
+        job.id = submitJob(sbatchArguments(j, dependencyIds));
+    } catch (const Error& e) {
+        // What vri-run asked for and where each comes from: a cluster's limits are met by changing those.
+        throw Error(
+            "step '" + plan_.steps[job.bundle.steps.front()].id + "': " + e.what() +
+            " (the job asked --cpus-per-task=" + std::to_string(resources.cpus) +
+            ": --slurm-cpus or the step's threads; --mem=" + std::to_string(resources.memoryMiB) +
+            "M: from its inputs and pixels" +
+            (resources.minutes ? "; --time=" + std::to_string(*resources.minutes) + ": from its last run's time" : "") +
+            "; a --slurm-arg=--mem=... or --slurm-arg=--time=... overrides them for every job)");
+    }
+}
 
+std::vector<std::string> SlurmRun::sbatchArguments(std::size_t j, const std::vector<std::string>& dependencyIds) const {
+    const Job& job = jobs_[j];
+    const std::string stem = jobStem(j);
     const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus);
     std::vector<std::string> arguments{"--job-name=" + jobName(plan_, job.bundle),
                                        "--chdir=" + slurmDir_.string(),
@@ -348,23 +370,29 @@ void SlurmRun::submit(std::size_t j) {
                                        "--cpus-per-task=" + std::to_string(resources.cpus),
                                        "--mem=" + std::to_string(resources.memoryMiB) + "M"};
     if (resources.minutes) arguments.push_back("--time=" + std::to_string(*resources.minutes));
-    if (!job.dependsOn.empty()) {
+    if (!dependencyIds.empty()) {
         std::string after = "--dependency=afterok";
-        for (std::size_t d : job.dependsOn) after += ":" + jobs_[d].id;
+        for (const std::string& id : dependencyIds) after += ":" + id;
         arguments.insert(arguments.end(), {after, "--kill-on-invalid-dep=yes"});
     }
     arguments.insert(arguments.end(), options_.slurm.sbatchArguments.begin(), options_.slurm.sbatchArguments.end());
     arguments.insert(arguments.end(), {(slurmDir_ / "vri-job.sh").string(), fs::absolute(options_.toolDir / "vri-run").string(),
                                        "--slurm-node-steps", (slurmDir_ / (stem + ".json")).string()});
-    try {
-        job.id = submitJob(arguments);
-    } catch (const Error& e) {
-        // What vri-run asked for and where each comes from: a cluster's limits are met by changing those.
-        throw Error("step '" + plan_.steps[job.bundle.steps.front()].id + "': " + e.what() + " (the job asked --cpus-per-task=" +
-                    std::to_string(resources.cpus) + ": --slurm-cpus or the step's threads; --mem=" +
-                    std::to_string(resources.memoryMiB) + "M: from its inputs and pixels" +
-                    (resources.minutes ? "; --time=" + std::to_string(*resources.minutes) + ": from its last run's time" : "") +
-                    "; a --slurm-arg=--mem=... or --slurm-arg=--time=... overrides them for every job)");
+    return arguments;
+}
+
+void SlurmRun::describe(std::ostream& out) const {
+    const std::string name = plan_.resultsDir.filename().string();
+    for (std::size_t j = 0; j < jobs_.size(); ++j) {
+        const Job& job = jobs_[j];
+        out << "# " << name << ": job " << j + 1 << " of " << jobs_.size() << ":";
+        for (std::size_t i : job.bundle.steps) out << " " << plan_.steps[i].id;
+        out << (job.bundle.priced ? " (about " + secondsText(job.bundle.seconds) + ")" : " (not priced yet)") << "\n";
+        std::vector<std::string> dependencyIds;
+        for (std::size_t d : job.dependsOn) dependencyIds.push_back("<job " + std::to_string(d + 1) + ">");
+        std::vector<std::string> words{"sbatch", "--parsable"};
+        for (std::string& w : sbatchArguments(j, dependencyIds)) words.push_back(std::move(w));
+        out << shellCommand(words) << "\n";
     }
 }
 
@@ -454,27 +482,32 @@ void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
     }
 }
 
-std::size_t SlurmRun::prepare() {
+std::size_t SlurmRun::prepare(bool lookForOrphans) {
     // Jobs of an earlier run on these results that it could not cancel (killed with SIGKILL) would run its
     // steps beside this run's and could write an output after the cache was read or this run recorded it:
     // they go before anything else.
     const std::string name = plan_.resultsDir.filename().string();
-    try {
-        if (const std::vector<std::string> orphans = unendedJobsIn(slurmDir_); !orphans.empty()) {
-            std::cerr << "vri-run: " << name << ": cancelling Slurm jobs " << jobList(orphans)
-                      << " of an earlier vri-run on this results folder, still in the queue\n";
-            cancelAndWait(orphans, options_.slurm.pollSeconds);
+    if (lookForOrphans) try {
+            if (const std::vector<std::string> orphans = unendedJobsIn(slurmDir_); !orphans.empty()) {
+                std::cerr << "vri-run: " << name << ": cancelling Slurm jobs " << jobList(orphans)
+                          << " of an earlier vri-run on this results folder, still in the queue\n";
+                cancelAndWait(orphans, options_.slurm.pollSeconds);
+            }
+        } catch (const Error& e) {  // a run that submits nothing needs no controller
+            std::cerr << "vri-run: warning: " << name << ": " << e.what()
+                      << ": the jobs of an earlier vri-run killed with SIGKILL were not looked for\n";
         }
-    } catch (const Error& e) {  // a run that submits nothing needs no controller
-        std::cerr << "vri-run: warning: " << name << ": " << e.what()
-                  << ": the jobs of an earlier vri-run killed with SIGKILL were not looked for\n";
-    }
     const std::vector<std::size_t> steps = stepsToRun();
     stepCount_ = steps.size();
     for (JobBundle& bundle : bundleSteps(plan_, steps, options_.prices, options_.slurm.bundleSeconds)) {
         for (std::size_t i : bundle.steps) jobOfStep_[i] = jobs_.size();
         jobs_.push_back({std::move(bundle), "", false, {}});
     }
+    for (std::size_t j = 0; j < jobs_.size(); ++j)  // the jobs a job waits for: those writing its inputs
+        for (std::size_t i : jobs_[j].bundle.steps)
+            for (std::size_t d : plan_.dependencies[i])
+                if (const auto found = jobOfStep_.find(d); found != jobOfStep_.end() && found->second != j)
+                    jobs_[j].dependsOn.insert(found->second);
     return stepCount_;
 }
 
@@ -517,8 +550,13 @@ SlurmBatch::~SlurmBatch() = default;
 std::size_t SlurmBatch::add(const Plan& plan, std::vector<std::optional<double>> prices) {
     RunOptions options = impl_->options;
     options.prices = std::move(prices);
+    const bool dryRun = options.slurm.dryRun;
     impl_->runs.push_back(std::make_unique<slurm_detail::SlurmRun>(plan, std::move(options), impl_->hasher));
-    return impl_->runs.back()->prepare();
+    return impl_->runs.back()->prepare(!dryRun);
+}
+
+void SlurmBatch::describe(std::ostream& out) {
+    for (const auto& r : impl_->runs) r->describe(out);
 }
 
 void SlurmBatch::checkNodes() {

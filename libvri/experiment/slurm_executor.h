@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <ostream>
 #include <vector>
 
 #include "libvri/experiment/experiment_run.h"
@@ -42,6 +43,9 @@ public:
     // Takes a plan (kept by reference) with its steps' prices, settles what the cache vouches for and
     // cuts the rest into jobs: how many of its steps will run.
     std::size_t add(const Plan& plan, std::vector<std::optional<double>> prices);
+    // The jobs of every plan added as run() would submit them, and their sbatch commands (SlurmRun::describe),
+    // on `out`: vri-run --dry-run --executor slurm. Submits, cancels and writes nothing.
+    void describe(std::ostream& out);
     // The node check, once a vri-run (options.slurm.nodesChecked), over every plan added.
     void checkNodes();
     // Submits every plan's jobs, then waits for them all. A plan's failed step fails that plan

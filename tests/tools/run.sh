@@ -43,6 +43,13 @@ summary() { grep "vri-run: small:" "$1"; }
 [ "$(wc -l < commands.sh)" -eq 7 ] || { echo "expected 7 commands"; cat commands.sh; exit 1; }
 grep -q -- "vri-rays2d --convention node --rates 1,4 -o hand/small/rays.csv --errors hand/small/errors.md" commands.sh
 [ ! -e hand ] || { echo "--dry-run wrote something"; exit 1; }
+# On Slurm: each job's steps and its sbatch command, a job it waits for named; nothing submitted or written.
+"$bin/vri-run" --dry-run --executor slurm --results hand exp.yaml > jobs.txt
+[ "$(grep -c '^sbatch --parsable --job-name=vri:small:' jobs.txt)" -eq "$(grep -c '^# small: job ' jobs.txt)" ] ||
+  { echo "a job without its sbatch line"; cat jobs.txt; exit 1; }
+grep -q "^# small: job [0-9]* of [0-9]*: vs-corner-red-riemann-entry" jobs.txt || { cat jobs.txt; exit 1; }
+grep -q "'--dependency=afterok:<job [0-9]*>:<job [0-9]*>" jobs.txt || { echo "no dependency named"; cat jobs.txt; exit 1; }
+[ ! -e hand ] || { echo "--dry-run --executor slurm wrote something"; exit 1; }
 bash -e commands.sh > /dev/null
 "$bin/vri-run" --jobs 3 --results auto exp.yaml 2> first.txt
 summary first.txt | grep -q "7 steps, 7 ran, 0 cached" || { cat first.txt; exit 1; }
