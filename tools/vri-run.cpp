@@ -29,6 +29,7 @@
 #include "libvri/experiment/plan_waves.h"
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_executor.h"
+#include "libvri/experiment/slurm_profile.h"
 #include "libvri/experiment/slurm_node.h"
 #include "libvri/experiment/step_cache.h"
 #include "libvri/experiment/step_costs.h"
@@ -54,6 +55,7 @@ struct Options {
     std::vector<std::string> slurmArguments;
     double slurmBundle = 60, slurmPoll = 1, slurmMaxPending = 0;
     int slurmCpus = 2;
+    bool slurmCpusGiven = false;       // on the command line, over a site profile's
     std::string nodeSteps, nodeCheck;  // inside a Slurm job (hidden)
     std::string newStudy;
 };
@@ -61,10 +63,17 @@ struct Options {
 // The environment variable a site sets its sbatch options in (README "On a cluster").
 constexpr const char* kSiteSlurmArguments = "VRI_SLURM_ARGS";
 
-// sbatch's options for the steps' jobs: the site's (VRI_SLURM_ARGS, words separated by blanks), then
-// the command line's, so that the command line wins.
+// sbatch's options for the steps' jobs: the site profile's (slurm_profile.h), the site's (VRI_SLURM_ARGS,
+// words separated by blanks), then the command line's, so that the command line wins.
 vri::SlurmOptions slurmOptions(const Options& options) {
     vri::SlurmOptions slurm;
+    std::optional<int> profileCpus;
+    if (const std::optional<fs::path> path = vri::slurmProfilePath()) {
+        vri::SlurmProfile profile = vri::readSlurmProfile(*path);
+        slurm.sbatchArguments = std::move(profile.sbatchArguments);
+        slurm.kinds = std::move(profile.kinds);
+        profileCpus = profile.cpus;
+    }
     if (const char* site = std::getenv(kSiteSlurmArguments)) {
         std::istringstream words(site);
         for (std::string word; words >> word;) {
@@ -79,7 +88,7 @@ vri::SlurmOptions slurmOptions(const Options& options) {
         slurm.sbatchArguments.push_back(word);
     }
     slurm.bundleSeconds = options.slurmBundle;
-    slurm.cpus = options.slurmCpus;
+    slurm.cpus = options.slurmCpusGiven || !profileCpus ? options.slurmCpus : *profileCpus;
     slurm.pollSeconds = options.slurmPoll;
     slurm.maxPendingSeconds = options.slurmMaxPending;
     return slurm;
@@ -452,6 +461,7 @@ is submitted at once, ordered by the cluster
 (--dependency=afterok). $VRI_SLURM_ARGS holds a site's sbatch options (blank-separated words). Ctrl-C or
 SIGTERM cancels the submitted jobs. README "On a cluster" has the details.)");
     if (auto exitCode = vri::parseArguments(app, kTool, argc, argv)) return *exitCode;
+    options.slurmCpusGiven = app.count("--slurm-cpus") > 0;
     return vri::guardedMain(kTool, [&] {
         if (!options.nodeSteps.empty()) return vri::runNodeSteps(options.nodeSteps);
         if (!options.nodeCheck.empty()) return vri::runNodeCheck(options.nodeCheck);

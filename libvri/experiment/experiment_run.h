@@ -3,12 +3,14 @@
 // those the step cache vouches for. Where the processes run is the executor's choice: vri-run's own
 // children, up to `jobs` at once (local), or jobs of a Slurm cluster (slurm_executor.h).
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "libvri/experiment/experiment_plan.h"
+#include "libvri/experiment/slurm_profile.h"
 #include "libvri/experiment/step_cache.h"
 
 namespace vri {
@@ -23,6 +25,8 @@ struct SlurmOptions {
     double pollSeconds = 1;     // how often squeue is asked
     // --slurm-max-pending: give up once no job has run this long while some pend for the cluster (0: never).
     double maxPendingSeconds = 0;
+    // A site profile's resources per kind of step (slurm_profile.h), in place of the estimates.
+    std::map<std::string, StepKindResources> kinds;
     // --dry-run: the jobs are described (SlurmBatch::describe), never submitted; nothing in the queue is touched.
     bool dryRun = false;
     // Whether a job has checked that the nodes share this host's files (slurm_executor.h): once a

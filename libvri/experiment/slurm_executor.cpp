@@ -345,7 +345,7 @@ void SlurmRun::submit(std::size_t j) {
     writeNodeSteps(slurmDir_ / (jobStem(j) + ".json"), steps);
     std::vector<std::string> dependencyIds;
     for (std::size_t d : job.dependsOn) dependencyIds.push_back(jobs_[d].id);
-    const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus);
+    const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
     try {
         job.id = submitJob(sbatchArguments(j, dependencyIds));
     } catch (const Error& e) {
@@ -363,7 +363,7 @@ void SlurmRun::submit(std::size_t j) {
 std::vector<std::string> SlurmRun::sbatchArguments(std::size_t j, const std::vector<std::string>& dependencyIds) const {
     const Job& job = jobs_[j];
     const std::string stem = jobStem(j);
-    const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus);
+    const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
     std::vector<std::string> arguments{"--job-name=" + jobName(plan_, job.bundle),
                                        "--chdir=" + slurmDir_.string(),
                                        "--output=" + stem + ".out",  // relative to --chdir: no '%' of a path is read as a pattern

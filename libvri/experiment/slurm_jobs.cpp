@@ -73,13 +73,24 @@ std::vector<JobBundle> bundleSteps(const Plan& plan, const std::vector<std::size
     return bundles;
 }
 
-JobResources jobResources(const Plan& plan, const JobBundle& bundle, int defaultCpus) {
+JobResources jobResources(const Plan& plan, const JobBundle& bundle, int defaultCpus,
+                          const std::map<std::string, StepKindResources>& kinds) {
     JobResources resources;
+    long long kindMinutes = 0;
+    bool everyKindTimed = true;
     for (std::size_t i : bundle.steps) {
-        resources.cpus = std::max(resources.cpus, stepCpus(plan.steps[i], defaultCpus));
-        resources.memoryMiB = std::max(resources.memoryMiB, stepMemoryMiB(plan.steps[i]));
+        const Step& step = plan.steps[i];
+        const auto found = kinds.find(slurmStepKind(step));
+        const StepKindResources site = found == kinds.end() ? StepKindResources{} : found->second;
+        resources.cpus = std::max(resources.cpus, site.cpus.value_or(stepCpus(step, defaultCpus)));
+        resources.memoryMiB = std::max(resources.memoryMiB, site.memoryMiB.value_or(stepMemoryMiB(step)));
+        everyKindTimed = everyKindTimed && site.minutes;
+        kindMinutes += site.minutes.value_or(0);
     }
-    if (bundle.priced) resources.minutes = static_cast<long long>(std::ceil((3 * bundle.seconds + 600) / 60));
+    if (everyKindTimed && !bundle.steps.empty())
+        resources.minutes = kindMinutes;
+    else if (bundle.priced)
+        resources.minutes = static_cast<long long>(std::ceil((3 * bundle.seconds + 600) / 60));
     return resources;
 }
 

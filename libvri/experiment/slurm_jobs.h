@@ -2,11 +2,13 @@
 // How the steps of a plan that must run become Slurm jobs: which steps share a job (bundles) and
 // what each job asks the cluster for. Pure functions of the plan and the last manifest's prices.
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "libvri/experiment/experiment_plan.h"
+#include "libvri/experiment/slurm_profile.h"
 
 namespace vri {
 
@@ -39,7 +41,10 @@ struct JobResources {
 // its largest step's. Time: three times the bundle's price plus 10 minutes, rounded up to whole
 // minutes: the price may have been measured on more cores than the job gets, and a job past its
 // time loses all its work while one that asks too much only waits a little longer.
-JobResources jobResources(const Plan& plan, const JobBundle& bundle, int defaultCpus);
+// A site profile's `kinds` (slurm_profile.h) replace a step's CPUs and memory where they set them, and the
+// time of a job whose every step's kind sets one, by the sum of those times.
+JobResources jobResources(const Plan& plan, const JobBundle& bundle, int defaultCpus,
+                          const std::map<std::string, StepKindResources>& kinds = {});
 
 // The job's name: "vri:<experiment>:<first step>" (+N for the other steps of a bundle).
 std::string jobName(const Plan& plan, const JobBundle& bundle);

@@ -50,6 +50,29 @@ grep -q -- "vri-rays2d --convention node --rates 1,4 -o hand/small/rays.csv --er
 grep -q "^# small: job [0-9]* of [0-9]*: vs-corner-red-riemann-entry" jobs.txt || { cat jobs.txt; exit 1; }
 grep -q "'--dependency=afterok:<job [0-9]*>:<job [0-9]*>" jobs.txt || { echo "no dependency named"; cat jobs.txt; exit 1; }
 [ ! -e hand ] || { echo "--dry-run --executor slurm wrote something"; exit 1; }
+# A site profile: its options on every job, its kinds' resources on their steps' jobs, the command line's last.
+cat > profile.yaml <<'YAML'
+account: proj123
+qos: long
+args: [--exclusive]
+cpus: 3
+kinds:
+  render: {cpus: 6, mem: 2G, time: 45}
+  diff: {mem: 700M}
+YAML
+VRI_SLURM_PROFILE=profile.yaml "$bin/vri-run" --dry-run --executor slurm --slurm-arg=--qos=short --results hand exp.yaml > jobs.txt
+grep "^sbatch" jobs.txt | grep -v -- "--account=proj123 --qos=long --exclusive --qos=short" && { echo "a job without the profile's options, then the command line's"; cat jobs.txt; exit 1; }
+grep "vri:small:red-riemann-entry " jobs.txt | grep -q -- "--cpus-per-task=6 --mem=2048M --time=45" || { cat jobs.txt; exit 1; }
+grep "vri:small:vs-corner-red" jobs.txt | grep -q -- "--cpus-per-task=1 --mem=700M " || { cat jobs.txt; exit 1; }
+grep "vri:small:rays" jobs.txt | grep -q -- "--cpus-per-task=3 " || { echo "the profile's cpus"; cat jobs.txt; exit 1; }
+VRI_SLURM_PROFILE=profile.yaml "$bin/vri-run" --dry-run --executor slurm --slurm-cpus 2 --results hand exp.yaml > jobs.txt
+grep "vri:small:rays" jobs.txt | grep -q -- "--cpus-per-task=2 " || { echo "--slurm-cpus over the profile's"; cat jobs.txt; exit 1; }
+printf 'kinds:\n  renders: {cpus: 2}\n' > bad-profile.yaml
+set +e; VRI_SLURM_PROFILE=bad-profile.yaml "$bin/vri-run" --dry-run --executor slurm --results hand exp.yaml 2> bad.txt; rc=$?; set -e
+[ "$rc" -eq 1 ] && grep -q "^vri-run: error: bad-profile.yaml:2:3: unknown kind of step 'renders'" bad.txt || { cat bad.txt; exit 1; }
+printf 'args: [--output=x]\n' > bad-profile.yaml
+set +e; VRI_SLURM_PROFILE=bad-profile.yaml "$bin/vri-run" --dry-run --executor slurm --results hand exp.yaml 2> bad.txt; rc=$?; set -e
+[ "$rc" -eq 1 ] && grep -q "^vri-run: error: bad-profile.yaml:1:8: .*--output" bad.txt || { cat bad.txt; exit 1; }
 bash -e commands.sh > /dev/null
 "$bin/vri-run" --jobs 3 --results auto exp.yaml 2> first.txt
 summary first.txt | grep -q "7 steps, 7 ran, 0 cached" || { cat first.txt; exit 1; }

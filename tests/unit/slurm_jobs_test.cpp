@@ -66,6 +66,23 @@ TEST_CASE("jobResources: threads, memory from the image size, time from the pric
     CHECK(vri::jobResources(plan, {{3}, 0, false}, 4).cpus == 4);  // 0, all cores: the default
 }
 
+TEST_CASE("jobResources: a site profile's kinds replace the estimates where they set them") {
+    vri::Plan plan{"/r/exp", "/r", {}, {}};
+    plan.steps = {planStep("a", "render", 1000 * 1000, 3), planStep("b", "diff"), planStep("c", "table")};
+    const std::map<std::string, vri::StepKindResources> kinds{{"render", {8, 4096, 120}}, {"diff", {{}, 700, 5}}};
+    const vri::JobResources a = vri::jobResources(plan, {{0}, 90, true}, 2, kinds);
+    CHECK(a.cpus == 8);
+    CHECK(a.memoryMiB == 4096);
+    CHECK(a.minutes == 120);
+    const vri::JobResources b = vri::jobResources(plan, {{1}, 1, true}, 2, kinds);
+    CHECK(b.cpus == 1);  // the estimate, where the kind sets none
+    CHECK(b.memoryMiB == 700);
+    CHECK(b.minutes == 5);
+    CHECK(vri::jobResources(plan, {{0, 1}, 91, true}, 2, kinds).minutes == 125);  // every kind timed: the sum
+    CHECK(vri::jobResources(plan, {{1, 2}, 2, true}, 2, kinds).minutes == 11);    // the table's: the estimate
+    CHECK(vri::jobResources(plan, {{1, 2}, 2, true}, 2, kinds).memoryMiB == 700);
+}
+
 TEST_CASE("parseSqueue reads squeue's fields and refuses what is not a job line") {
     const auto jobs = vri::parseSqueue("12|COMPLETED by 0|node1|None|\n"
                                        "13|FAILED|node2|NonZeroExitCode|\n"
