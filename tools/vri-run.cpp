@@ -54,6 +54,7 @@ struct Options {
     std::string slurmPartition, slurmAccount;
     std::vector<std::string> slurmArguments;
     double slurmBundle = 60, slurmPoll = 1, slurmMaxPending = 0;
+    int slurmMaxJobs = 0;
     int slurmCpus = 2;
     bool slurmCpusGiven = false;       // on the command line, over a site profile's
     std::string nodeSteps, nodeCheck;  // inside a Slurm job (hidden)
@@ -91,6 +92,7 @@ vri::SlurmOptions slurmOptions(const Options& options) {
     slurm.cpus = options.slurmCpusGiven || !profileCpus ? options.slurmCpus : *profileCpus;
     slurm.pollSeconds = options.slurmPoll;
     slurm.maxPendingSeconds = options.slurmMaxPending;
+    slurm.maxJobs = static_cast<std::size_t>(options.slurmMaxJobs);
     return slurm;
 }
 
@@ -419,6 +421,10 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--slurm-poll", options.slurmPoll, "seconds between two looks at the jobs (squeue), 0.1 to 600")
         ->check(vri::numberRange(0.1, 600.0))
+        ->capture_default_str();
+    app.add_option("--slurm-max-jobs", options.slurmMaxJobs,
+                   "at most N jobs in the queue at once, the next submitted as one ends (0: every job at once)")
+        ->check(vri::integerRange(0, 100000))
         ->capture_default_str();
     app.add_option("--slurm-max-pending", options.slurmMaxPending,
                    "give up (cancelling every job) once no job has run for SECONDS while some pend for the cluster "

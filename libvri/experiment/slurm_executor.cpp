@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <random>
@@ -263,13 +264,16 @@ public:
     // Settles the steps the cache vouches for and cuts the others into jobs; how many steps will run.
     // With `lookForOrphans`, first cancels the jobs an earlier vri-run on these results left in the queue.
     std::size_t prepare(bool lookForOrphans = true);
-    // The jobs as submitAll() would submit them, without submitting or writing anything: a line per job
+    // The jobs as submitMore() would submit them, without submitting or writing anything: a line per job
     // naming its steps, then its sbatch command, a job it waits for named "<job K>".
     void describe(std::ostream& out) const;
     const Plan& plan() const { return plan_; }
-    // Submits the jobs, each after those it depends on. A failure leaves the jobs submitted so far in
-    // unendedIds() for the caller to cancel.
-    void submitAll();
+    // Submits the jobs in order, each after those it depends on, while fewer than `slots` of the batch's
+    // jobs are in the queue (slots is what is left of --slurm-max-jobs; unlimited without it). A failure
+    // leaves the jobs submitted so far in unendedIds() for the caller to cancel.
+    void submitMore(std::size_t& slots);
+    // Jobs not submitted yet (--slurm-max-jobs), an abandoned one not counted.
+    std::size_t unsubmitted() const;
     std::vector<std::string> unendedIds() const;
     // Settles the steps of every job that squeue shows ended (or no longer knows).
     void update(const std::map<std::string, SlurmJob>& states);
@@ -305,6 +309,7 @@ private:
     std::size_t stepCount_ = 0;
     std::vector<Job> jobs_;
     std::map<std::size_t, std::size_t> jobOfStep_;
+    std::size_t next_ = 0;  // the first job not submitted yet
 };
 
 std::vector<std::size_t> SlurmRun::stepsToRun() {
@@ -343,8 +348,11 @@ void SlurmRun::submit(std::size_t j) {
                                fs::absolute(ledger_.logPath(i)), fs::absolute(statusPath(i))});
     }
     writeNodeSteps(slurmDir_ / (jobStem(j) + ".json"), steps);
+    // A job it waits for that has ended, ended well (else this one was abandoned): only those still queued
+    // are named, since Slurm forgets a job a while after it ends and then refuses a dependency on it.
     std::vector<std::string> dependencyIds;
-    for (std::size_t d : job.dependsOn) dependencyIds.push_back(jobs_[d].id);
+    for (std::size_t d : job.dependsOn)
+        if (!jobs_[d].ended) dependencyIds.push_back(jobs_[d].id);
     const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
     try {
         job.id = submitJob(sbatchArguments(j, dependencyIds));
@@ -412,8 +420,9 @@ void SlurmRun::abandonDependents(std::size_t failed) {
         Job& job = jobs_[j];
         for (std::size_t d : job.dependsOn) downstream[j] = downstream[j] || downstream[d];
         if (!downstream[j] || job.ended) continue;
-        // Slurm cancels it too (--kill-on-invalid-dep); saying so here does not depend on that.
-        cancel.push_back(job.id);
+        // Slurm cancels it too (--kill-on-invalid-dep); saying so here does not depend on that. A job not
+        // submitted yet (--slurm-max-jobs) never will be.
+        if (!job.id.empty()) cancel.push_back(job.id);
         job.ended = true;
         for (std::size_t i : job.bundle.steps)
             if (!ledger_.settled(i)) ledger_.abandoned(i, "a step it depends on failed (Slurm job " + jobs_[failed].id + ")");
@@ -511,21 +520,40 @@ std::size_t SlurmRun::prepare(bool lookForOrphans) {
     return stepCount_;
 }
 
-void SlurmRun::submitAll() {
-    if (jobs_.empty()) return;
-    requireOwnFolder(slurmDir_.parent_path());  // never a recursive delete through a link
-    requireOwnFolder(slurmDir_);
-    fs::create_directories(slurmDir_);
-    pruneJobFiles(slurmDir_, kKeptRuns - 1);
-    writeJobScript(slurmDir_ / "vri-job.sh");
-    for (std::size_t j = 0; j < jobs_.size(); ++j) {
-        if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + " while submitting");
-        submit(j);
+void SlurmRun::submitMore(std::size_t& slots) {
+    if (next_ >= jobs_.size() || slots == 0) return;
+    const bool first = next_ == 0;
+    if (first) {
+        requireOwnFolder(slurmDir_.parent_path());  // never a recursive delete through a link
+        requireOwnFolder(slurmDir_);
+        fs::create_directories(slurmDir_);
+        pruneJobFiles(slurmDir_, kKeptRuns - 1);
+        writeJobScript(slurmDir_ / "vri-job.sh");
     }
     std::vector<std::string> ids;
-    for (const Job& job : jobs_) ids.push_back(job.id);
-    std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": " << stepCount_ << " steps in Slurm jobs "
-              << jobList(ids) << "\n";
+    for (; next_ < jobs_.size() && slots > 0; ++next_) {
+        if (jobs_[next_].ended) continue;  // abandoned before it was submitted
+        if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + " while submitting");
+        submit(next_);
+        ids.push_back(jobs_[next_].id);
+        --slots;
+    }
+    if (ids.empty()) return;
+    const std::string name = plan_.resultsDir.filename().string();
+    if (first)
+        std::cerr << "vri-run: " << name << ": " << stepCount_ << " steps in Slurm jobs " << jobList(ids)
+                  << (unsubmitted() > 0 ? ", " + std::to_string(unsubmitted()) + " more as these end (--slurm-max-jobs)"
+                                        : "")
+                  << "\n";
+    else if (!options_.quiet)
+        std::cerr << "vri-run: " << name << ": submitted Slurm jobs " << jobList(ids) << ", " << unsubmitted()
+                  << " to come\n";
+}
+
+std::size_t SlurmRun::unsubmitted() const {
+    std::size_t n = 0;
+    for (std::size_t j = next_; j < jobs_.size(); ++j) n += !jobs_[j].ended;
+    return n;
 }
 
 }  // namespace slurm_detail
@@ -541,6 +569,16 @@ struct SlurmBatch::Impl {
         for (const auto& run : runs)
             for (std::string& id : run->unendedIds()) ids.push_back(std::move(id));
         return ids;
+    }
+    // Submits what --slurm-max-jobs lets in beside the jobs in the queue, plan by plan in order.
+    void submitMore() {
+        const std::size_t cap = options.slurm.maxJobs;
+        std::size_t queued = unendedIds().size();
+        std::size_t slots = cap == 0 ? std::numeric_limits<std::size_t>::max() : cap > queued ? cap - queued : 0;
+        for (const auto& r : runs) r->submitMore(slots);
+    }
+    bool anyUnsubmitted() const {
+        return std::ranges::any_of(runs, [](const auto& r) { return r->unsubmitted() > 0; });
     }
 };
 
@@ -570,7 +608,7 @@ void SlurmBatch::checkNodes() {
 void SlurmBatch::run() {
     const double poll = impl_->options.slurm.pollSeconds;
     try {
-        for (const auto& r : impl_->runs) r->submitAll();
+        impl_->submitMore();
     } catch (const std::exception& e) {
         const std::vector<std::string> submitted = impl_->unendedIds();
         slurm_detail::cancelAndWait(submitted, poll);
@@ -582,7 +620,8 @@ void SlurmBatch::run() {
         PendingWatch pending("Slurm jobs", impl_->options.slurm.maxPendingSeconds);
         PollInterval interval(poll);
         std::map<std::string, std::string> seen;  // job id -> state at the last look
-        for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty(); ids = impl_->unendedIds()) {
+        for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty() || impl_->anyUnsubmitted();
+             ids = impl_->unendedIds()) {
             if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt) + ": cancelled Slurm jobs " + slurm_detail::jobList(ids));
             slurm_detail::pause(interval.seconds());
             std::map<std::string, SlurmJob> states;
@@ -599,6 +638,7 @@ void SlurmBatch::run() {
                             " s; cancelled Slurm jobs " + slurm_detail::jobList(ids));
             }
             for (const auto& r : impl_->runs) r->update(states);
+            impl_->submitMore();
             try {
                 pending.update(states, std::cerr, slurm_detail::Clock::now());
             } catch (const Error& e) {

@@ -98,6 +98,12 @@ steps = json.load(open(sys.argv[1] + "/manifest.json"))["steps"]
 jobs = [s["execution"]["job_id"] for s in steps if ".brick-" in s["id"]]
 assert len(jobs) == 8 and len(set(jobs)) == 8, ("each brick a job of its own", jobs)
 PY
+# --slurm-max-jobs 2: two jobs at a time, the next submitted as one ends; the same images.
+"${slurm[@]}" --slurm-max-jobs 2 --results capped bricks.yaml 2> capped.txt || { cat capped.txt; fail "the capped Slurm run failed"; }
+grep -q "steps in Slurm jobs [0-9-]* (2 jobs), [0-9]* more as these end (--slurm-max-jobs)$" capped.txt ||
+    { cat capped.txt; fail "the capped run did not say it held jobs back"; }
+grep -q "submitted Slurm jobs" capped.txt || { cat capped.txt; fail "the capped run submitted no job later"; }
+"$bin/vri-diff" local/bricks/bricked.exr capped/bricks/bricked.exr --fail 0 > /dev/null || fail "the capped run's image differs"
 # Manifests: equal but for hosts, job ids, times (the stats files hold the frame times, so their digests
 # differ too) and the executor; every Slurm step names its job.
 "$python" - local/small/manifest.json res/small/manifest.json <<'PY' || fail "the manifests differ beyond where and when"
