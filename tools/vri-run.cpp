@@ -400,7 +400,11 @@ int main(int argc, char** argv) {
     app.add_option("--results", options.results, "results root (default: results, with --quick build/experiments-quick)");
     app.add_flag("--allow-dirty", options.allowDirty,
                  "write into the work tree's results/ even when its tracked files differ from the commit");
-    app.add_option("--jobs", options.jobs, "steps run at once (1 to 64); a render or command runs alone, so that its time is its own")->check(vri::integerRange(1, 64))->capture_default_str();
+    app.add_option("--jobs", options.jobs,
+                   "steps run at once (1 to 64); an untiled, unbricked render or a command runs alone, so that its "
+                   "time is its own")
+        ->check(vri::integerRange(1, 64))
+        ->capture_default_str();
     app.add_option("--executor", options.executor,
                    "where steps run: local (child processes, up to --jobs at once) or slurm (a batch job per step or "
                    "bundle of small steps, ordered by the cluster; README \"On a cluster\")")

@@ -14,9 +14,9 @@ std::uint64_t VoxelBox::voxelCount() const {
 BrickGrid::BrickGrid(glm::ivec3 dims, glm::ivec3 counts) : dims_(dims), counts_(counts) {
     const char* axes = "xyz";
     for (int a = 0; a < 3; ++a) {
-        if (dims[a] < 1) throw Error(std::string("bricks: the volume has no voxels along ") + axes[a]);
+        if (dims[a] < 1) throw Error(std::string("--bricks: the volume has no voxels along ") + axes[a]);
         if (counts[a] < 1 || counts[a] > kMaxPerAxis || counts[a] > dims[a])
-            throw Error(std::string("bricks: expected 1 to ") + std::to_string(std::min(kMaxPerAxis, dims[a])) +
+            throw Error(std::string("--bricks: expected 1 to ") + std::to_string(std::min(kMaxPerAxis, dims[a])) +
                         " bricks along " + axes[a] + " (the volume has " + std::to_string(dims[a]) +
                         " voxels there), got " + std::to_string(counts[a]));
     }

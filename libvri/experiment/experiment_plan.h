@@ -30,9 +30,9 @@ struct Step {
     // The bricks its volume is cut into, of which the step reads one (`bricks:`); 1 for the whole volume.
     int volumeParts = 1;
 
-    // Whether the local executor runs the step alone: an untiled render or a command times itself or the
-    // program it runs, and a neighbour would take cores from it. Tiles, merges, diffs, tables and figures
-    // may run side by side (vri-run --jobs).
+    // Whether the local executor runs the step alone: an untiled, unbricked render or a command times itself
+    // or the program it runs, and a neighbour would take cores from it. Tiles, bricks, merges, diffs, tables
+    // and figures may run side by side (vri-run --jobs).
     bool alone = false;
 };
 

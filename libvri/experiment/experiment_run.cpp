@@ -52,13 +52,16 @@ bool LocalScheduler::startReady() {
             if (plan.steps[child.step].alone) return true;
         return false;
     };
+    // Beside a step that runs alone nothing starts, and nothing is checked against the cache (which hashes
+    // inputs and outputs): its time is its own.
+    if (aloneRunning()) return false;
     bool changed = false;
     for (std::size_t i = 0; i < plan.steps.size() && !ledger_.hasFailure(); ++i) {
         if (started_[i] || static_cast<int>(running_.size()) >= options_.jobs) continue;
         bool ready = true;
         for (std::size_t d : plan.dependencies[i]) ready = ready && ledger_.settled(d);
         if (!ready) continue;
-        if (!mustRun_[i]) {  // needsRun settles a step that need not run; it is asked once a step
+        if (!mustRun_[i]) {  // asked once a step, since needsRun settles a step that need not run
             if (!ledger_.needsRun(i)) {
                 started_[i] = changed = true;
                 continue;
@@ -66,8 +69,8 @@ bool LocalScheduler::startReady() {
             mustRun_[i] = true;
         }
         // A step that runs alone waits for the machine to empty, and nothing after it in plan order starts
-        // meanwhile, so that it is not starved; nothing starts beside it.
-        if (aloneRunning() || (plan.steps[i].alone && !running_.empty())) break;
+        // meanwhile, so that it is not starved.
+        if (plan.steps[i].alone && !running_.empty()) break;
         started_[i] = changed = true;
         const std::vector<std::string> words = ledger_.prepare(i);
         ledger_.started(i);
@@ -79,6 +82,7 @@ bool LocalScheduler::startReady() {
         running_[startProcess(ledger_.program(i), words,
                               {.in = "/dev/null", .out = ledger_.logPath(i), .err = {}, .errToOut = true})] =
             std::move(child);
+        if (plan.steps[i].alone) break;
     }
     return changed;
 }

@@ -364,6 +364,9 @@ void SlurmRun::submit(std::size_t j) {
             ": --slurm-cpus or the step's threads; --mem=" + std::to_string(resources.memoryMiB) +
             "M: from its inputs and pixels" +
             (resources.minutes ? "; --time=" + std::to_string(*resources.minutes) + ": from its last run's time" : "") +
+            (options_.slurm.kinds.count(slurmStepKind(plan_.steps[job.bundle.steps.front()]))
+                 ? "; or the site profile's kind " + slurmStepKind(plan_.steps[job.bundle.steps.front()])
+                 : "") +
             "; a --slurm-arg=--mem=... or --slurm-arg=--time=... overrides them for every job)");
     }
 }
@@ -638,7 +641,12 @@ void SlurmBatch::run() {
                             " s; cancelled Slurm jobs " + slurm_detail::jobList(ids));
             }
             for (const auto& r : impl_->runs) r->update(states);
-            impl_->submitMore();
+            try {
+                impl_->submitMore();
+            } catch (const Error& e) {
+                throw Error(std::string(e.what()) + "; cancelled Slurm jobs " +
+                            slurm_detail::jobList(impl_->unendedIds()));
+            }
             try {
                 pending.update(states, std::cerr, slurm_detail::Clock::now());
             } catch (const Error& e) {

@@ -82,7 +82,9 @@ JobResources jobResources(const Plan& plan, const JobBundle& bundle, int default
         const Step& step = plan.steps[i];
         const auto found = kinds.find(slurmStepKind(step));
         const StepKindResources site = found == kinds.end() ? StepKindResources{} : found->second;
-        resources.cpus = std::max(resources.cpus, site.cpus.value_or(stepCpus(step, defaultCpus)));
+        // A step's own --threads is what it runs on: no profile changes it.
+        resources.cpus =
+            std::max(resources.cpus, step.threads > 0 ? step.threads : site.cpus.value_or(stepCpus(step, defaultCpus)));
         resources.memoryMiB = std::max(resources.memoryMiB, site.memoryMiB.value_or(stepMemoryMiB(step)));
         everyKindTimed = everyKindTimed && site.minutes;
         kindMinutes += site.minutes.value_or(0);

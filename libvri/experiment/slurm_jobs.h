@@ -41,7 +41,8 @@ struct JobResources {
 // its largest step's. Time: three times the bundle's price plus 10 minutes, rounded up to whole
 // minutes: the price may have been measured on more cores than the job gets, and a job past its
 // time loses all its work while one that asks too much only waits a little longer.
-// A site profile's `kinds` (slurm_profile.h) replace a step's CPUs and memory where they set them, and the
+// A site profile's `kinds` (slurm_profile.h) replace a step's CPUs (unless it sets --threads) and memory
+// where they set them, and the
 // time of a job whose every step's kind sets one, by the sum of those times.
 JobResources jobResources(const Plan& plan, const JobBundle& bundle, int defaultCpus,
                           const std::map<std::string, StepKindResources>& kinds = {});

@@ -1,6 +1,7 @@
 #include "libvri/experiment/slurm_profile.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -27,14 +28,15 @@ long long wholeNumber(const YAML::Node& node, const std::string& source, std::st
 long long mebibytes(const YAML::Node& node, const std::string& source) {
     std::string text = yaml::toString(node, source, "mem");
     long long scale = 1;
-    if (!text.empty() && (text.back() == 'G' || text.back() == 'M')) {
-        scale = text.back() == 'G' ? 1024 : 1;
+    if (!text.empty() && std::string_view("GgMm").find(text.back()) != std::string_view::npos) {
+        scale = text.back() == 'G' || text.back() == 'g' ? 1024 : 1;
         text.pop_back();
     }
     char* end = nullptr;
-    const long long n = std::strtoll(text.c_str(), &end, 10);
+    const bool digits = !text.empty() && std::isdigit(static_cast<unsigned char>(text.front()));  // no blank, no sign
+    const long long n = digits ? std::strtoll(text.c_str(), &end, 10) : 0;
     constexpr long long kMostMiB = 1LL << 40;  // a mebibyte count sbatch takes, well within 64 bits once scaled
-    if (text.empty() || *end != '\0' || n < 1 || n > kMostMiB / scale)
+    if (!digits || *end != '\0' || n < 1 || n > kMostMiB / scale)
         throw Error(yaml::where(source, node) + ": mem: expected mebibytes as N, NM or NG, got '" + node.Scalar() +
                     "'");
     return n * scale;

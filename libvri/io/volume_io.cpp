@@ -355,9 +355,12 @@ ValueRange rawValueRange(const fs::path& path, const RawLayout& layout) {
         if (layout.order != nativeByteOrder()) reverseEachVoxel(chunk.bytes, size);
         for (std::size_t i = 0; i < voxels; ++i) {
             const double v = chunk.value(static_cast<int>(i), 0, 0);
-            if (!std::isfinite(v))
-                throw Error(path.string() + ": voxel " + std::to_string(done / size + i) + " is " + exactNumber(v) +
-                            " (expected finite values)");
+            if (!std::isfinite(v)) {
+                const std::uint64_t index = done / size + i, rows = index / static_cast<std::uint64_t>(layout.dims.x);
+                const glm::ivec3 at{static_cast<int>(index % layout.dims.x), static_cast<int>(rows % layout.dims.y),
+                                    static_cast<int>(rows / layout.dims.y)};
+                throw Error(nonFiniteVoxel(at, v, path.string()));
+            }
             range.lo = std::min(range.lo, v);
             range.hi = std::max(range.hi, v);
         }

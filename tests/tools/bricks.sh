@@ -93,7 +93,7 @@ expect() {
 base=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 8x6 -q -o x.exr)
 expect 64 "brick" "$bin/vri-render" "${base[@]}" --bricks 2,2,2
 expect 1 "^vri-render: error: --brick: brick 2,0,0 is not in the 2,2,2 grid" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 2,0,0
-expect 1 "^vri-render: error: bricks: expected 1 to 16 bricks along z" "$bin/vri-render" "${base[@]}" --bricks 2,2,17 --brick 0,0,0
+expect 1 "^vri-render: error: --bricks: expected 1 to 16 bricks along z" "$bin/vri-render" "${base[@]}" --bricks 2,2,17 --brick 0,0,0
 expect 1 "^vri-render: error: --brick: renders riemann and composite" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 0,0,0 --method coupled
 expect 1 "^vri-render: error: --brick: renders in double" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 0,0,0 --precision float
 expect 1 "^vri-render: error: --method exact: not for a brick yet" "$bin/vri-render" "${base[@]}" --bricks 2,2,2 --brick 0,0,0 --method exact

@@ -91,7 +91,7 @@ TEST_CASE("a brick grid splits each axis into bricks a voxel apart at most and s
     CHECK(grid.storedBox({1, 1, 0}) == VoxelBox{{2, 2, 0}, {8, 7, 1}});
     CHECK(grid.storedBox({2, 1, 0}) == VoxelBox{{5, 2, 0}, {10, 7, 1}});
     CHECK_THROWS_WITH_AS(BrickGrid({10, 7, 1}, {3, 2, 2}),
-                         "bricks: expected 1 to 1 bricks along z (the volume has 1 voxels there), got 2", Error);
+                         "--bricks: expected 1 to 1 bricks along z (the volume has 1 voxels there), got 2", Error);
     CHECK_THROWS_WITH_AS(grid.requireBrick({3, 0, 0}, "--brick"),
                          "--brick: brick 3,0,0 is not in the 3,2,1 grid (expected 0 <= I,J,K < the counts)", Error);
 }

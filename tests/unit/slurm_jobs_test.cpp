@@ -68,10 +68,12 @@ TEST_CASE("jobResources: threads, memory from the image size, time from the pric
 
 TEST_CASE("jobResources: a site profile's kinds replace the estimates where they set them") {
     vri::Plan plan{"/r/exp", "/r", {}, {}};
-    plan.steps = {planStep("a", "render", 1000 * 1000, 3), planStep("b", "diff"), planStep("c", "table")};
+    plan.steps = {planStep("a", "render", 1000 * 1000, 3), planStep("b", "diff"), planStep("c", "table"),
+                  planStep("d", "render", 100)};
     const std::map<std::string, vri::StepKindResources> kinds{{"render", {8, 4096, 120}}, {"diff", {{}, 700, 5}}};
     const vri::JobResources a = vri::jobResources(plan, {{0}, 90, true}, 2, kinds);
-    CHECK(a.cpus == 8);
+    CHECK(a.cpus == 3);  // its own --threads: no profile changes what it runs on
+    CHECK(vri::jobResources(plan, {{3}, 1, true}, 2, kinds).cpus == 8);
     CHECK(a.memoryMiB == 4096);
     CHECK(a.minutes == 120);
     const vri::JobResources b = vri::jobResources(plan, {{1}, 1, true}, 2, kinds);
