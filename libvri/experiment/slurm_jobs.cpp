@@ -16,10 +16,11 @@ namespace {
 // A render or a command may run for hours: without a price it is never bundled.
 bool mayBeLong(const Step& step) { return step.kind == "render" || step.kind == "command"; }
 
-// A tile of a render: the tiles of one image run side by side, each in a job of its own, priced or not
-// (bundled, they would run one after another, and tiling would buy nothing on a cluster).
-bool isTile(const Step& step) {
-    return std::ranges::any_of(step.parameters, [](const auto& p) { return p.first == "region"; });
+// A tile or a brick of a render: the parts of one image run side by side, each in a job of its own, priced
+// or not (bundled, they would run one after another, and the split would buy nothing on a cluster).
+bool isRenderPart(const Step& step) {
+    const std::string kind = slurmStepKind(step);
+    return kind == "tile" || kind == "brick";
 }
 
 int stepCpus(const Step& step, int defaultCpus) {
@@ -36,9 +37,12 @@ long long stepMemoryMiB(const Step& step) {
         std::error_code ec;
         const std::uintmax_t size = fs::file_size(input, ec);
         // A brick of a raw file reads its share and a ghost voxel each side, (w + 3)^3 / w^3 of the share
-        // for bricks w voxels wide: at most 2.6 times it from w = 8 on. Other formats are read whole.
+        // for bricks w voxels wide: at most 2.6 times it from w = 8 on, asked as 3 times. Narrower bricks
+        // (8 times the share at w = 3) stay within the 8 bytes asked a voxel byte, of which a brick uses
+        // about 1.5; bricks under 3 voxels wide come from volumes of at most 192 voxels an axis (64 bricks),
+        // which the 256 MiB base holds. Other formats are read whole.
         const bool share = step.volumeParts > 1 && !describesItsLayout(input);
-        if (!ec) bytes += 8.0 * static_cast<double>(size) * (share ? 3.0 / step.volumeParts : 1.0);
+        if (!ec) bytes += 8.0 * static_cast<double>(size) * (share ? std::min(1.0, 3.0 / step.volumeParts) : 1.0);
     }
     bytes += 64.0 * static_cast<double>(step.pixels);
     return static_cast<long long>(std::ceil(std::min(bytes, 1e18) / kMiB));
@@ -56,7 +60,7 @@ std::vector<JobBundle> bundleSteps(const Plan& plan, const std::vector<std::size
     };
     for (std::size_t i : steps) {
         const std::optional<double> price = i < prices.size() ? prices[i] : std::nullopt;
-        const bool alone = isTile(plan.steps[i]) || plan.steps[i].volumeParts > 1 ||
+        const bool alone = isRenderPart(plan.steps[i]) ||
                            (price ? *price >= bundleSeconds : mayBeLong(plan.steps[i]) || bundleSeconds <= 0);
         if (alone) {
             // Bundles stay contiguous in plan order, so that no job waits for one submitted after it.
