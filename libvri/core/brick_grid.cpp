@@ -42,8 +42,8 @@ int BrickGrid::brickAlong(int axis, double x) const {
 VoxelBox BrickGrid::storedBox(glm::ivec3 brick) const {
     VoxelBox box;
     for (int a = 0; a < 3; ++a) {
-        box.lo[a] = std::max(start(a, brick[a]) - 1, 0);
-        box.hi[a] = std::min(start(a, brick[a] + 1) + 2, dims_[a]);
+        box.lo[a] = start(a, brick[a]);
+        box.hi[a] = std::min(start(a, brick[a] + 1) + 1, dims_[a]);
     }
     return box;
 }

@@ -9,10 +9,9 @@
 // the whole ray (t_k = t_0 + k h from the whole volume's entry), so a brick's samples are bitwise the whole
 // render's; only the sums are split (brick_layers.h joins them).
 //
-// A brick reads the voxels [start(b) - 1, start(b + 1) + 1] along each axis, clamped to the volume: a
-// sample it owns has its cell's corners at start(b) .. start(b + 1), and the one voxel more on each side
-// holds the cells of samples that rounding puts an ulp across a plane (brick_sampler.h keeps them in the
-// brick they follow).
+// A brick reads the voxels [start(b), start(b + 1)] along each axis (clamped to the volume): a sample it
+// owns has its cell's lower corner at start(b) .. start(b + 1) - 1 (the first brick's clamped to 0, the
+// last's to the volume's last cell), so the one voxel past its own, its ghost layer, completes every cell.
 #include <cstdint>
 #include <string>
 
@@ -44,7 +43,7 @@ public:
     int start(int axis, int b) const;
     // The brick along `axis` that owns continuous voxel index x.
     int brickAlong(int axis, double x) const;
-    // The voxels a brick reads: its own, the ghost voxel on each side, clamped to the volume.
+    // The voxels a brick reads: its own and the ghost layer above them, clamped to the volume.
     VoxelBox storedBox(glm::ivec3 brick) const;
     // Throws vri::Error "<what>: brick I,J,K is not in the NX,NY,NZ grid" unless 0 <= brick < counts.
     void requireBrick(glm::ivec3 brick, const std::string& what) const;

@@ -34,7 +34,8 @@ public:
         std::int64_t local = 0;
         for (int a = 0; a < 3; ++a) {
             const int i = c.i[a] - lo_[a];
-            // brickSamples (below) keeps a brick's samples within one voxel of its planes: never reached.
+            // A brick's samples lie in its own box (brickSamples, below), their cells in the stored one:
+            // never reached.
             if (i < 0 || i > maxLocal_[a])
                 throw Error("bricks: a sample's cell lies outside its brick's stored voxels");
             local += i * stride_[a];
@@ -58,38 +59,40 @@ struct BrickSamples {
 };
 
 // Sample k lies at position(k) (texture coordinates) and the ray moves by `du` per unit of its parameter.
-// Along each axis the brick a sample belongs to is made monotone along the ray (the largest so far where
-// the ray goes up the axis, the smallest where it goes down): in exact arithmetic it already is, and
-// rounding an ulp back across a plane must not split a brick's samples in two. The brick index triple so
-// never returns to a value it left, each brick's samples are one run of k, and the runs follow the order
-// sum over a of sign(du_a) b_a, which grows by at least one from brick to brick. A ray walks its samples'
-// positions from the first up to the end of its run in `brick` (not their scalars).
+// Along each axis a sample's continuous voxel index x_a(k) is monotone in k: t(k) = tStart + k tIncr, then
+// entry + t du, then x scale - offset, each step a correctly rounded monotone function of the one before (no
+// contraction: -ffp-contract=off), so the brick index along the axis is monotone too. The samples a brick
+// owns along one axis are therefore one run of k, found by bisection, and its run is where the three axes'
+// runs meet: the brick index triple never returns to a value it left, and the runs follow the order
+// sum over a of sign(du_a) b_a, which grows by at least one from brick to brick. A ray costs a brick
+// O(log count) positions, not a walk.
 template <class Real, class Position>
 BrickSamples brickSamples(const BrickGrid& grid, glm::ivec3 brick, const GridSamplerLayout<Real>& layout,
                           const glm::vec<3, Real>& du, std::int64_t count, const Position& position) {
-    BrickSamples run{count, count, 0};
-    int sign[3];
+    BrickSamples run{0, count, 0};
     for (int a = 0; a < 3; ++a) {
-        sign[a] = du[a] < Real(0) ? -1 : 1;
-        run.order += sign[a] * brick[a];
+        const int sign = du[a] < Real(0) ? -1 : 1;
+        run.order += sign * brick[a];
+        // The brick along axis a of sample k, counted in the direction the ray goes: monotone non-decreasing.
+        const auto along = [&](std::int64_t k) {
+            const Real x = position(k)[a] * layout.scale[a] - layout.offset[a];  // as GridSamplerLayout::cell
+            return sign * grid.brickAlong(a, static_cast<double>(x));
+        };
+        const auto firstAbove = [&](int level) {  // the first k whose brick is past `level`, count if none
+            std::int64_t lo = 0, hi = count;
+            while (lo < hi) {
+                const std::int64_t mid = lo + (hi - lo) / 2;
+                if (along(mid) > level)
+                    hi = mid;
+                else
+                    lo = mid + 1;
+            }
+            return lo;
+        };
+        run.begin = std::max(run.begin, firstAbove(sign * brick[a] - 1));
+        run.end = std::min(run.end, firstAbove(sign * brick[a]));
     }
-    glm::ivec3 owner{0};
-    for (std::int64_t k = 0; k < count; ++k) {
-        const glm::vec<3, Real> x = position(k) * layout.scale - layout.offset;  // as GridSamplerLayout::cell
-        bool beyond = false;
-        for (int a = 0; a < 3; ++a) {
-            const int b = grid.brickAlong(a, static_cast<double>(x[a]));
-            owner[a] = k == 0 ? b : sign[a] > 0 ? std::max(owner[a], b) : std::min(owner[a], b);
-            beyond = beyond || sign[a] * (owner[a] - brick[a]) > 0;
-        }
-        if (owner == brick) {
-            if (run.begin == count) run.begin = k;
-            run.end = k + 1;
-        } else if (beyond) {
-            break;  // past the brick along some axis: it never returns
-        }
-    }
-    if (run.begin == count) run.begin = run.end = 0;
+    if (run.begin >= run.end) run.begin = run.end = 0;
     return run;
 }
 

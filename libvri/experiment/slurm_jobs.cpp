@@ -36,11 +36,10 @@ long long stepMemoryMiB(const Step& step) {
     for (const fs::path& input : step.inputs) {
         std::error_code ec;
         const std::uintmax_t size = fs::file_size(input, ec);
-        // A brick of a raw file reads its share and a ghost voxel each side, (w + 3)^3 / w^3 of the share
-        // for bricks w voxels wide: at most 2.6 times it from w = 8 on, asked as 3 times. Narrower bricks
-        // (8 times the share at w = 3) stay within the 8 bytes asked a voxel byte, of which a brick uses
-        // about 1.5; bricks under 3 voxels wide come from volumes of at most 192 voxels an axis (64 bricks),
-        // which the 256 MiB base holds. Other formats are read whole.
+        // A brick of a raw file reads its share and a ghost layer, (w + 1)^3 / w^3 of the share for bricks w
+        // voxels wide: at most 2.4 times it from w = 3 on, asked as 3 times. Narrower bricks (8 times the
+        // share at w = 1) stay within the 8 bytes asked a voxel byte, of which a brick uses about 1.5. Other
+        // formats are read whole.
         const bool share = step.volumeParts > 1 && !describesItsLayout(input);
         if (!ec) bytes += 8.0 * static_cast<double>(size) * (share ? std::min(1.0, 3.0 / step.volumeParts) : 1.0);
     }

@@ -75,7 +75,7 @@ double largestDifference(const Image& a, const Image& b) {
 
 }  // namespace
 
-TEST_CASE("a brick grid splits each axis into bricks a voxel apart at most and stores a ghost voxel each side") {
+TEST_CASE("a brick grid splits each axis into bricks a voxel apart at most and stores a ghost voxel above") {
     const BrickGrid grid({10, 7, 1}, {3, 2, 1});
     CHECK(grid.start(0, 0) == 0);
     CHECK(grid.start(0, 1) == 3);
@@ -87,9 +87,9 @@ TEST_CASE("a brick grid splits each axis into bricks a voxel apart at most and s
     CHECK(grid.brickAlong(0, 9.5) == 2);
     CHECK(grid.brickAlong(1, 2.999) == 0);
     CHECK(grid.brickAlong(1, 3.0) == 1);
-    CHECK(grid.storedBox({0, 0, 0}) == VoxelBox{{0, 0, 0}, {5, 5, 1}});
-    CHECK(grid.storedBox({1, 1, 0}) == VoxelBox{{2, 2, 0}, {8, 7, 1}});
-    CHECK(grid.storedBox({2, 1, 0}) == VoxelBox{{5, 2, 0}, {10, 7, 1}});
+    CHECK(grid.storedBox({0, 0, 0}) == VoxelBox{{0, 0, 0}, {4, 4, 1}});
+    CHECK(grid.storedBox({1, 1, 0}) == VoxelBox{{3, 3, 0}, {7, 7, 1}});
+    CHECK(grid.storedBox({2, 1, 0}) == VoxelBox{{6, 3, 0}, {10, 7, 1}});
     CHECK_THROWS_WITH_AS(BrickGrid({10, 7, 1}, {3, 2, 2}),
                          "--bricks: expected 1 to 1 bricks along z (the volume has 1 voxels there), got 2", Error);
     CHECK_THROWS_WITH_AS(grid.requireBrick({3, 0, 0}, "--brick"),
