@@ -1,55 +1,13 @@
 #pragma once
-// GridSampler for a BrickVolume: the cell and weights of the whole volume (GridSamplerLayout of its
-// dims), read from the brick's stored box, so that every sample the brick owns is bitwise the whole
-// volume's; and the samples of one ray that a brick owns.
+// The samples of one ray that a brick owns, and GridSampler for a BrickVolume: the cell and weights of the
+// whole volume (GridSamplerLayout of its dims), read from the brick's stored box, so that every sample the
+// brick owns is bitwise the whole volume's.
 #include <cstdint>
 
 #include "libvri/core/brick_volume.h"
 #include "libvri/core/grid_sampler.h"
-#include "libvri/util/error.h"
 
 namespace vri {
-
-template <class T, class Real>
-class BrickGridSampler {
-public:
-    using Vec = glm::vec<3, Real>;
-
-    BrickGridSampler(const BrickVolume& brick, GridConvention convention)
-        : data_(brick.voxels.data<T>()), lo_(brick.stored.lo), g_(brick.dims, *brick.voxels.range, convention) {
-        const glm::ivec3 s = brick.stored.size();
-        const std::int64_t strides[3] = {1, s.x, std::int64_t(s.x) * s.y};
-        for (int a = 0; a < 3; ++a) {
-            stride_[a] = g_.stride[a] == 0 ? 0 : strides[a];
-            // The highest lower corner whose stencil the stored box holds (the corner itself where the
-            // whole volume has one layer along the axis, both taps reading it).
-            maxLocal_[a] = s[a] - (g_.stride[a] == 0 ? 1 : 2);
-        }
-    }
-
-    const GridSamplerLayout<Real>& layout() const { return g_; }
-
-    Real operator()(const Vec& u) const {
-        const auto c = g_.cell(u);
-        std::int64_t local = 0;
-        for (int a = 0; a < 3; ++a) {
-            const int i = c.i[a] - lo_[a];
-            // A brick's samples lie in its own box (brickSamples, below), their cells in the stored one:
-            // never reached.
-            if (i < 0 || i > maxLocal_[a])
-                throw Error("bricks: a sample's cell lies outside its brick's stored voxels");
-            local += i * stride_[a];
-        }
-        return g_.interpolate(data_ + local, stride_, c.w);
-    }
-
-private:
-    const T* data_;
-    glm::ivec3 lo_;
-    GridSamplerLayout<Real> g_;
-    std::int64_t stride_[3];
-    int maxLocal_[3];
-};
 
 // The samples k in [begin, end) of one ray that a brick owns, and where its sum goes among the ray's
 // bricks: `order` increases along the ray (brick_layers.h composites by it).
@@ -95,5 +53,48 @@ BrickSamples brickSamples(const BrickGrid& grid, glm::ivec3 brick, const GridSam
     if (run.begin >= run.end) run.begin = run.end = 0;
     return run;
 }
+
+template <class T, class Real>
+class BrickGridSampler {
+public:
+    using Vec = glm::vec<3, Real>;
+
+    // Reads only the cells of the samples the brick owns (ownedSamples), which lie in its stored box
+    // (brick_grid.h): sampling elsewhere reads outside its voxels.
+    BrickGridSampler(const BrickVolume& brick, GridConvention convention)
+        : brick_(brick), data_(brick.voxels.data<T>()), g_(brick.dims(), *brick.voxels.range, convention) {
+        const glm::ivec3 s = brick.voxels.dims;
+        const std::int64_t strides[3] = {1, s.x, std::int64_t(s.x) * s.y};
+        for (int a = 0; a < 3; ++a) stride_[a] = g_.stride[a] == 0 ? 0 : strides[a];
+        const glm::ivec3 lo = brick.stored().lo;
+        origin_ = lo.x * stride_[0] + lo.y * stride_[1] + lo.z * stride_[2];
+    }
+
+    const GridSamplerLayout<Real>& layout() const { return g_; }
+
+    Real operator()(const Vec& u) const {
+        const auto c = g_.cell(u);
+        const std::int64_t local = c.i[0] * stride_[0] + c.i[1] * stride_[1] + c.i[2] * stride_[2] - origin_;
+        return g_.interpolate(data_ + local, stride_, c.w);
+    }
+
+    // The samples of a ray the brick owns (brickSamples, below).
+    template <class Position>
+    BrickSamples ownedSamples(const Vec& du, std::int64_t count, const Position& position) const {
+        return brickSamples(brick_.grid, brick_.brick, g_, du, count, position);
+    }
+
+private:
+    const BrickVolume& brick_;
+    const T* data_;
+    GridSamplerLayout<Real> g_;
+    std::int64_t stride_[3];
+    std::int64_t origin_;  // the stored box's first voxel, at the brick's strides
+};
+
+template <class Sampler>
+inline constexpr bool kIsBrickSampler = false;
+template <class T, class Real>
+inline constexpr bool kIsBrickSampler<BrickGridSampler<T, Real>> = true;
 
 }  // namespace vri

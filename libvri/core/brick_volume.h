@@ -14,12 +14,12 @@ namespace vri {
 struct BrickVolume {
     BrickGrid grid;
     glm::ivec3 brick{0};  // which brick of the grid
-    VoxelBox stored;      // grid.storedBox(brick)
-    // The stored box's voxels (dims = stored.size()); `range` always set: the whole volume's normalisation
-    // range, since a brick's own min..max would move a float volume's scalars.
+    // The voxels of its stored box, with the whole volume's spacing, origin and normalisation range (always
+    // set: a brick's own min..max would move a float volume's scalars); the box they stand in is the whole's.
     Volume voxels;
-    glm::ivec3 dims{0};  // the whole volume's
-    glm::dvec3 spacing{1.0}, origin{0.0};
+
+    glm::ivec3 dims() const { return grid.dims(); }  // the whole volume's
+    VoxelBox stored() const { return grid.storedBox(brick); }
 };
 
 // The brick of an in-memory volume (a copy of its stored box): for volumes no reader cuts while reading.

@@ -39,31 +39,43 @@ struct RenderCounters {
     double terminationLeftOut = 0.0;
 };
 
-// Paper A's fixed-step placements, each sample standing for a segment of the ray (Riemann, composite).
+// Paper A's fixed-step placements, each sample standing for a segment of the ray (Riemann, composite). With
+// a brick's sampler, the run of samples the brick owns, summed from transmittance 1 (a layer, brick_layers.h),
+// and its place among the ray's bricks in `brickPlace`.
 template <class Real, class Sampler>
 RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sample, const OccupancyGrid* occupancy,
-                                  const GridIndexing& indexMap, const glm::vec<3, Real>& eyeU, const glm::vec<3, Real>& dims,
-                                  const TransferFunction& tf, const RenderOptions& opt,
-                                  const TerminationRule& termination, std::optional<Real> jitter, MarchCounts& counts) {
+                                  const GridIndexing& indexMap, const glm::vec<3, Real>& eyeU,
+                                  const glm::vec<3, Real>& dims, const TransferFunction& tf, const RenderOptions& opt,
+                                  const TerminationRule& termination, std::optional<Real> jitter, MarchCounts& counts,
+                                  int* brickPlace = nullptr) {
     RayAccumulator<Real> acc;
     const EmissionModel emission = tf.emission();
     FixedStepRay<Real> march(ray, opt, eyeU, dims, indexMap, jitter);
     const std::int64_t count = march.schedule.count;
+    std::int64_t k = 0, end = count;
+    if constexpr (kIsBrickSampler<Sampler>) {
+        const BrickSamples run =
+            sample.ownedSamples(march.du, count, [&](std::int64_t i) { return march.position(i); });
+        k = run.begin;
+        end = run.end;
+        *brickPlace = run.order;
+    }
+    const std::int64_t first = k;
     const Real ert = termination.threshold<Real>(march.dx, count);
     std::size_t segment = 0;  // the transfer function's last bracket
-    std::int64_t k = 0;
-    while (k < count) {
+    while (k < end) {
         if (occupancy && march.mayBeEmpty(k)) {
             k = march.skipEmpty(*occupancy, k);
-            if (k == count) break;
+            if (k >= end) break;
         }
         acc.add(opt.integrator, emission, tf(sample(march.position(k)), segment), march.dx);
         ++counts.samplesEvaluated;
         ++k;
         if (acc.transparency < ert) break;
     }
-    counts.samplesPlaced += static_cast<std::uint64_t>(k);
-    if (k < count) counts.terminated(termination.leftOut(acc.transparency, march.dx, count));
+    k = std::min(k, end);
+    counts.samplesPlaced += static_cast<std::uint64_t>(k - first);
+    if (k < end) counts.terminated(termination.leftOut(acc.transparency, march.dx, count));
     return acc;
 }
 
@@ -233,60 +245,19 @@ void renderWith(const Scene& scene, const Sampler& sample, const OccupancyGrid* 
                     const std::optional<Real> jitter =
                         opt.jitter ? std::optional<Real>(static_cast<Real>(jitterFraction(px, py, opt.seed)))
                                    : std::nullopt;
+                    int brickPlace = 0;
                     const RayAccumulator<Real> acc =
                         table ? marchSegments(ray, sample, occupancy, indexMap, eyeU, dims, *table, opt, jitter, counts)
-                              : marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt, termination,
-                                             jitter, counts);
+                              : marchSamples(ray, sample, occupancy, indexMap, eyeU, dims, tf, opt, termination, jitter,
+                                             counts, &brickPlace);
                     out[0] = static_cast<float>(acc.r);
                     out[1] = static_cast<float>(acc.g);
                     out[2] = static_cast<float>(acc.b);
                     out[3] = static_cast<float>(acc.alpha());
+                    if constexpr (kIsBrickSampler<Sampler>) out[4] = static_cast<float>(brickPlace);
                 }
             }
     });
-}
-
-// One brick's layer (brick_layers.h): each ray's samples in the brick's run (brick_sampler.h), summed from
-// transmittance 1 exactly as marchSamples sums them, and the run's place along the ray. Nothing is skipped
-// as empty space (a brick has no grid of its own), which changes no bit.
-template <class Real, class Sampler>
-void renderBrickLayer(const Scene& scene, const Sampler& sample, const Camera& camera, const RenderOptions& opt,
-                      Image& image, RenderCounters& counters) {
-    using Vec = glm::vec<3, Real>;
-    const BrickVolume& brick = *scene.brick;
-    const Box box = scene.box();
-    const Vec dims(scene.dims());
-    const Vec eyeU(box.toTexture(camera.eye()));
-    const TransferFunction& tf = scene.transferFunction;
-    const EmissionModel emission = tf.emission();
-    const PixelRegion area = renderedRegion(opt.region, camera);
-    const auto layerPixel = [&](int px, int py, MarchCounts& counts) {
-        float* out = &image.at(px - area.x, py - area.y, 0);
-        const auto clipped = pixelRay<Real>(camera, box, px, py);
-        if (!clipped) return;
-        if (clipped->worldLength > 0) ++counts.raysHit;
-        const std::optional<Real> jitter =
-            opt.jitter ? std::optional<Real>(static_cast<Real>(jitterFraction(px, py, opt.seed))) : std::nullopt;
-        const FixedStepSamples<Real> march(*clipped, opt, eyeU, dims, jitter);
-        const BrickSamples run = brickSamples(brick.grid, brick.brick, sample.layout(), march.du, march.schedule.count,
-                                              [&](std::int64_t k) { return march.position(k); });
-        RayAccumulator<Real> acc;
-        std::size_t segment = 0;  // the transfer function's last bracket
-        for (std::int64_t k = run.begin; k < run.end; ++k)
-            acc.add(opt.integrator, emission, tf(sample(march.position(k)), segment), march.dx);
-        counts.samplesPlaced += static_cast<std::uint64_t>(run.end - run.begin);
-        counts.samplesEvaluated += static_cast<std::uint64_t>(run.end - run.begin);
-        out[0] = static_cast<float>(acc.r);
-        out[1] = static_cast<float>(acc.g);
-        out[2] = static_cast<float>(acc.b);
-        out[3] = static_cast<float>(acc.alpha());
-        out[4] = static_cast<float>(run.order);
-    };
-    forEachTile(opt, area, counters,
-                [&](int x0, int y0, int x1, int y1, MarchCounts& counts, AdaptiveCounts&, SimpsonRange&) {
-                    for (int py = y0; py < y1; ++py)
-                        for (int px = x0; px < x1; ++px) layerPixel(px, py, counts);
-                });
 }
 
 // setupSpent: what building empty-space structures took in this call (the rest was reused).
@@ -305,10 +276,11 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
         stats.setupReused = entry.reused;
         if (!entry.reused) setupSpent += entry.buildSeconds;
     }
-    if (scene.brick) {
+    if (scene.brick) {  // a layer: no empty space skipped (the brick has no grid of its own), no bit changed
         dispatchVoxelType(scene.brick->voxels.type, [&](auto voxel) {
             const BrickGridSampler<decltype(voxel), Real> sampler(*scene.brick, scene.convention);
-            renderBrickLayer<Real>(scene, sampler, camera, opt, image, counters);
+            renderWith<Real>(scene, sampler, nullptr, GridIndexing(scene.brick->dims(), scene.convention), camera, opt,
+                             image, counters, nullptr, nullptr);
         });
         return;
     }

@@ -59,12 +59,12 @@ void parseEarlyTermination(const std::string& text, const std::string& what, Ren
 
 Box Scene::box() const {
     if (sparse) return gridBox(sparse->dims, sparse->spacing, sparse->origin, convention);
-    if (brick) return gridBox(brick->dims, brick->spacing, brick->origin, convention);
+    if (brick) return gridBox(brick->dims(), brick->voxels.spacing, brick->voxels.origin, convention);
     return volume ? volumeBox(*volume, convention) : field->box;
 }
 
 glm::dvec3 Scene::dims() const {
-    return glm::dvec3(sparse ? sparse->dims : brick ? brick->dims : volume ? volume->dims : field->dims);
+    return glm::dvec3(sparse ? sparse->dims : brick ? brick->dims() : volume ? volume->dims : field->dims);
 }
 
 PixelRegion renderedRegion(const std::optional<PixelRegion>& region, const Camera& camera) {

@@ -83,26 +83,53 @@ std::string_view rawBytes(const fs::path& path, const Volume& volume, ByteOrder 
     return {reinterpret_cast<const char*>(bytes->data()), bytes->size()};
 }
 
-Volume readVoxelData(const fs::path& path, const VoxelData& data) {
+namespace {
+
+// Where `data`'s voxels lie in `path` and how many bytes they take, checked before anything is allocated, so
+// that a mistyped --dims or header is an error, not a huge allocation.
+struct StoredVoxels {
+    std::uint64_t bytes;
+    std::uintmax_t offset, fileBytes;
+    std::string layoutText;  // "DxHxW type", for messages
+};
+
+StoredVoxels storedVoxels(const fs::path& path, const VoxelData& data) {
     requireRegularFile(path);
-    const std::string layoutText = dimsText(data.dims) + " " + std::string(storedTypeName(data.type));
-    // Checked before allocating, so that a mistyped --dims or header is an error, not a huge allocation.
-    const std::optional<std::uint64_t> voxelBytes =
-        checkedProduct({std::uint64_t(data.dims.x), std::uint64_t(data.dims.y), std::uint64_t(data.dims.z),
-                        storedSize(data.type)});
-    if (!voxelBytes) throw Error(path.string() + ": " + layoutText + " needs more than 2^64 bytes");
-    const std::uintmax_t fileBytes = fs::file_size(path);
+    StoredVoxels s{0, 0, fs::file_size(path), dimsText(data.dims) + " " + std::string(storedTypeName(data.type))};
+    const std::optional<std::uint64_t> bytes = checkedProduct(
+        {std::uint64_t(data.dims.x), std::uint64_t(data.dims.y), std::uint64_t(data.dims.z), storedSize(data.type)});
+    if (!bytes) throw Error(path.string() + ": " + s.layoutText + " needs more than 2^64 bytes");
+    s.bytes = *bytes;
     // The data as the last bytes: whatever precedes them is header (none when the file is too short, and
-    // the size check below names both sizes).
-    const std::uintmax_t offset = data.offset.value_or(fileBytes - std::min<std::uintmax_t>(fileBytes, *voxelBytes));
-    const std::string after = offset > 0 ? " after a " + std::to_string(offset) + "-byte header" : "";
+    // the size check names both sizes).
+    s.offset = data.offset.value_or(s.fileBytes - std::min<std::uintmax_t>(s.fileBytes, s.bytes));
+    return s;
+}
+
+// Uncompressed voxels: the file holds exactly the header and them.
+void requireExactSize(const fs::path& path, const StoredVoxels& s) {
+    if (s.bytes > std::numeric_limits<std::uintmax_t>::max() - s.offset)
+        throw Error(path.string() + ": header of " + std::to_string(s.offset) + " bytes is too large");
+    if (s.fileBytes != s.bytes + s.offset)
+        throw Error(path.string() + ": file is " + std::to_string(s.fileBytes) + " bytes, expected " +
+                    std::to_string(s.bytes + s.offset) + " for " + s.layoutText +
+                    (s.offset > 0 ? " after a " + std::to_string(s.offset) + "-byte header" : ""));
+}
+
+}  // namespace
+
+Volume readVoxelData(const fs::path& path, const VoxelData& data) {
+    const StoredVoxels stored = storedVoxels(path, data);
+    const std::uintmax_t fileBytes = stored.fileBytes, offset = stored.offset;
+    const std::string& layoutText = stored.layoutText;
     if (data.gzip) {
         if (offset > fileBytes)
             throw Error(path.string() + ": file is " + std::to_string(fileBytes) + " bytes, its compressed data start at byte " +
                         std::to_string(offset));
-        checkedUnpackedBytes(path.string() + ": " + layoutText, {*voxelBytes}, fileBytes - offset, "compressed data",
+        checkedUnpackedBytes(path.string() + ": " + layoutText, {stored.bytes}, fileBytes - offset, "compressed data",
                              kPlausibleCompressedExpansion);
-        std::vector<std::byte> bytes = inflateFile(path, offset, *voxelBytes, path.string() + ": gzip data of " + layoutText);
+        std::vector<std::byte> bytes =
+            inflateFile(path, offset, stored.bytes, path.string() + ": gzip data of " + layoutText);
         const VoxelType volumeType = volumeTypeFor(data.type);
         if (storedTypeOf(volumeType) == data.type) {  // kept as stored: the inflated bytes become the volume
             Volume volume;
@@ -116,12 +143,7 @@ Volume readVoxelData(const fs::path& path, const VoxelData& data) {
         return decodeVoxels(path.string(), data.dims, data.type, data.order,
                             {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
     }
-    constexpr std::uintmax_t kMax = std::numeric_limits<std::uintmax_t>::max();
-    if (*voxelBytes > kMax - offset)
-        throw Error(path.string() + ": header of " + std::to_string(offset) + " bytes is too large");
-    if (fileBytes != *voxelBytes + offset)
-        throw Error(path.string() + ": file is " + std::to_string(fileBytes) + " bytes, expected " +
-                    std::to_string(*voxelBytes + offset) + " for " + layoutText + after);
+    requireExactSize(path, stored);
 
     std::ifstream in(path, std::ios::binary);
     in.seekg(static_cast<std::streamoff>(offset));
@@ -134,7 +156,7 @@ Volume readVoxelData(const fs::path& path, const VoxelData& data) {
         return volume;
     }
     const std::string what = path.string() + ": " + layoutText;
-    const std::size_t size = checkedBytes(what, {*voxelBytes});
+    const std::size_t size = checkedBytes(what, {stored.bytes});
     std::string bytes;
     allocateOrExplain(what, size, [&] { bytes.resize(size); });
     in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -294,21 +316,14 @@ Volume readRaw(const fs::path& path, const RawLayout& layout) {
 
 namespace {
 
-// A raw file checked against its layout: its voxel bytes and where they start.
+// A raw file checked against its layout as readRaw checks it: its voxel bytes.
 std::uint64_t checkedRawFile(const fs::path& path, const RawLayout& layout) {
     detail::requireRegularFile(path);
     requireValidLayout(path, layout);
-    const std::optional<std::uint64_t> voxelBytes =
-        checkedProduct({std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y), std::uint64_t(layout.dims.z),
-                        voxelSize(layout.type)});
-    const std::string layoutText = dimsText(layout.dims) + " " + std::string(voxelTypeName(layout.type));
-    if (!voxelBytes || *voxelBytes > std::numeric_limits<std::uint64_t>::max() - layout.headerBytes)
-        throw Error(path.string() + ": " + layoutText + " needs more than 2^64 bytes");
-    const std::uintmax_t fileBytes = fs::file_size(path);
-    if (fileBytes != *voxelBytes + layout.headerBytes)
-        throw Error(path.string() + ": file is " + std::to_string(fileBytes) + " bytes, expected " +
-                    std::to_string(*voxelBytes + layout.headerBytes) + " for " + layoutText);
-    return *voxelBytes;
+    const detail::StoredVoxels stored = detail::storedVoxels(
+        path, {layout.dims, detail::storedTypeOf(layout.type), layout.order, layout.headerBytes, false});
+    detail::requireExactSize(path, stored);
+    return stored.bytes;
 }
 
 }  // namespace
@@ -394,23 +409,31 @@ bool describesItsLayout(const fs::path& path) {
            extension == ".mhd" || extension == ".mha" || extension == ".tif" || extension == ".tiff";
 }
 
+std::optional<RawLayout> rawLayoutOf(const fs::path& path, const std::optional<RawLayout>& requested) {
+    if (describesItsLayout(path)) {
+        if (requested)
+            throw Error(path.string() + ": dims and voxel type are for raw files; a " +
+                        detail::toLower(path.extension().string()) + " file describes its own layout");
+        return std::nullopt;
+    }
+    if (requested) return requested;
+    if (const auto named = layoutFromFileName(path)) return named;
+    throw Error(path.string() +
+                ": raw file of unknown layout: give its dims and voxel type (--dims X,Y,Z "
+                "--type uint8|uint16|float32) or name it NAME_XxYxZ_TYPE.raw");
+}
+
 Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayout) {
     detail::requireRegularFile(path);
     const std::string extension = detail::toLower(path.extension().string());
-    const bool describesItself = describesItsLayout(path);
-    if (describesItself && rawLayout)
-        throw Error(path.string() + ": dims and voxel type are for raw files; a " + extension +
-                    " file describes its own layout");
+    const std::optional<RawLayout> raw = rawLayoutOf(path, rawLayout);
     const auto read = [&] {
+        if (raw) return readRaw(path, *raw);
         if (extension == ".nhdr" || extension == ".nrrd") return detail::readNrrd(path);
         if (extension == ".dat") return detail::readInviwoDat(path);
         if (extension == ".mhd" || extension == ".mha") return detail::readMetaImage(path);
         if (extension == ".tif" || extension == ".tiff") return detail::readTiffStack(path);
-        if (extension == ".vdb") return readVdb(path);
-        if (rawLayout) return readRaw(path, *rawLayout);
-        if (const auto named = layoutFromFileName(path)) return readRaw(path, *named);
-        throw Error(path.string() + ": raw file of unknown layout: give its dims and voxel type (--dims X,Y,Z "
-                    "--type uint8|uint16|float32) or name it NAME_XxYxZ_TYPE.raw");
+        return readVdb(path);
     };
     Volume volume = detail::namingFileIfOutOfMemory(path, read);
     requireUsableValues(volume, path.string());

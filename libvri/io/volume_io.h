@@ -64,6 +64,10 @@ struct LoadedVolume {
 // True for the formats whose files say their own layout (by extension: .nhdr/.nrrd, .dat, .vdb, .mhd/.mha,
 // .tif/.tiff); any other file is raw.
 bool describesItsLayout(const std::filesystem::path& path);
+// The layout a raw file is read with: `requested`, else its name's (layoutFromFileName); nullopt for a file
+// that describes its own layout. Throws vri::Error naming the file for a layout given to such a file, or a
+// raw file whose layout is neither given nor in its name.
+std::optional<RawLayout> rawLayoutOf(const std::filesystem::path& path, const std::optional<RawLayout>& requested);
 // Reads any supported format, chosen by extension: .nhdr/.nrrd, .dat (Inviwo), .vdb, .mhd/.mha, .tif/.tiff;
 // anything
 // else is raw, laid out by `rawLayout` if given, else by layoutFromFileName.

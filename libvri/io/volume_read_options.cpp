@@ -76,11 +76,7 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
 BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,
                       glm::ivec3 brick, const std::optional<ValueRange>& range) {
     if (options.grid) throw Error("--brick: reads dense volumes (raw, NRRD, ...), not a .vdb grid");
-    std::optional<RawLayout> layout = requestedRawLayout(input, options);
-    if (layout && describesItsLayout(input))
-        throw Error(input.string() + ": dims and voxel type are for raw files; a " + input.extension().string() +
-                    " file describes its own layout");
-    if (!layout && !describesItsLayout(input)) layout = layoutFromFileName(input);
+    const std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options));
     if (!layout) {  // a format that describes itself: read whole, then cut
         Volume whole = readVolume(input, options);
         if (range) whole.range = *range;
@@ -89,17 +85,11 @@ BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOption
     }
     const BrickGrid grid(layout->dims, counts);
     grid.requireBrick(brick, "--brick");
-    BrickVolume b;
-    b.grid = grid;
-    b.brick = brick;
-    b.stored = grid.storedBox(brick);
-    b.dims = layout->dims;
-    b.voxels = readRawBox(input, *layout, b.stored);
+    BrickVolume b{grid, brick, readRawBox(input, *layout, grid.storedBox(brick))};
     b.voxels.range = range ? range : fixedNormalisationRange(layout->type, std::nullopt);
     if (!b.voxels.range) b.voxels.range = rawValueRange(input, *layout);
     overrideSpacing(b.voxels, options);
     requireUsableValues(b.voxels, input.string());
-    b.spacing = b.voxels.spacing;
     return b;
 }
 

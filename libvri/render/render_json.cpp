@@ -127,17 +127,18 @@ nlohmann::json describeScene(const Scene& scene) {
     } else if (scene.brick) {
         const BrickVolume& b = *scene.brick;
         const ValueRange r = *b.voxels.range;
+        const VoxelBox stored = b.stored();
         const auto triple = [](glm::ivec3 v) { return nlohmann::json::array({v.x, v.y, v.z}); };
         j["kind"] = "volume";
         j["voxel_type"] = voxelTypeName(b.voxels.type);
-        j["spacing"] = vec(b.spacing);
+        j["spacing"] = vec(b.voxels.spacing);
         j["normalisation_range"] = {r.lo, r.hi};
         j["storage"] = "brick";
         j["volume_bytes"] = b.voxels.byteCount();  // the brick's stored box
         j["brick"] = {{"grid", triple(b.grid.counts())},
                       {"index", triple(b.brick)},
-                      {"stored_lo", triple(b.stored.lo)},
-                      {"stored_hi", triple(b.stored.hi)}};
+                      {"stored_lo", triple(stored.lo)},
+                      {"stored_hi", triple(stored.hi)}};
     } else {
         j["kind"] = "analytic";
         j["field"] = "linear: f = (x - box_lo.x) / (box_hi.x - box_lo.x)";
