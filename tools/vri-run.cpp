@@ -423,7 +423,9 @@ int main(int argc, char** argv) {
     app.add_option("--slurm-cpus", options.slurmCpus, "CPUs a render or command asks for when it sets no --threads (1 to 1024)")
         ->check(vri::integerRange(1, 1024))
         ->capture_default_str();
-    app.add_option("--slurm-poll", options.slurmPoll, "seconds between two looks at the jobs (squeue), 0.1 to 600")
+    app.add_option("--slurm-poll", options.slurmPoll,
+                   "seconds between two looks at the jobs (squeue) while their states change, 0.1 to 600 (up to 10 s "
+                   "while none changes)")
         ->check(vri::numberRange(0.1, 600.0))
         ->capture_default_str();
     app.add_option("--slurm-max-jobs", options.slurmMaxJobs,

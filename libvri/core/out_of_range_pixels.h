@@ -19,6 +19,8 @@ struct OutOfRangePixels {
     float max = 0.0f, min = 0.0f;
 };
 
+// Counts the channels named R, G, B and A (a render's colour and alpha), not others such as a brick layer's
+// brick_order.
 OutOfRangePixels findOutOfRangePixels(const Image& image);
 // Clamps every channel to [0, 1] (--clamp); NaN stays NaN.
 void clampToUnitRange(Image& image);

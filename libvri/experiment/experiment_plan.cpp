@@ -52,6 +52,17 @@ public:
     void sceneOptions(Step& step, const SceneSpec& scene) const;
     void addTiles(const RunSpec& run, const SceneSpec& scene, const Step& render);
     void addBricks(const RunSpec& run, const SceneSpec& scene, const Step& render);
+    // One part of a split run (a tile or a brick): what its step adds to the render's.
+    struct RunPart {
+        std::string suffix;                             // of the run's id: ".tile-1", ".brick-0-1-0"
+        std::vector<std::string> arguments;             // --region X,Y,W,H; --bricks G --brick I,J,K
+        std::pair<std::string, std::string> parameter;  // what the part stands for, for the manifest
+        std::uint64_t pixels;                           // it renders
+        int volumeParts;                                // Step::volumeParts
+    };
+    // A step per part, then the vri-merge-tiles step (`mergeFlag` per part) writing the unsplit run's files.
+    void addSplit(const RunSpec& run, const SceneSpec& scene, const Step& render, const char* mergeFlag,
+                  const std::pair<std::string, std::string>& mergeParameter, const std::vector<RunPart>& parts);
     void addDiff(const ComparisonSpec& comparison);
     void addCommand(const CommandSpec& command);
     void addTable(const TableSpec& table);
@@ -138,55 +149,52 @@ void Planner::addRender(const RunSpec& run) {
 // The run's image as tiles: one step per band of rows (the render's command with --region), then
 // vri-merge-tiles writing the files the untiled step writes, so that everything downstream reads the same.
 void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& render) {
-    Step merge{run.id, "render", "vri-merge-tiles", {}, {}, {}, render.parameters};
-    merge.parameters.emplace_back("tiles", std::to_string(run.tiles));
-    merge.pixels = render.pixels;  // it holds the whole image (and reads every tile's)
+    std::vector<RunPart> parts;
     const std::vector<PixelRegion> bands = rowBands(scene.width, scene.height, run.tiles);
-    for (std::size_t k = 0; k < bands.size(); ++k) {
-        Step tile = render;
-        tile.id = run.id + ".tile-" + std::to_string(k + 1);
-        tile.pixels = static_cast<std::uint64_t>(bands[k].width) * static_cast<std::uint64_t>(bands[k].height);
-        tile.arguments.insert(tile.arguments.end(), {kRegionFlag, bands[k].text()});
-        tile.parameters.emplace_back("region", bands[k].text());
-        output(tile, "-o", result(tile.id + ".exr"));
-        output(tile, render_flag::stats, result(tile.id + ".json"));
-        merge.arguments.push_back(merge_flag::tile);
-        input(merge, "", result(tile.id + ".exr"));
-        input(merge, "", result(tile.id + ".json"));
-        plan_.steps.push_back(std::move(tile));
-    }
-    for (const ToolOption& o : scene.options)  // the preview's looks, made from the whole image
-        if (o.first == scene_flag::pngInvert || o.first == scene_flag::pngExposure || o.first == scene_flag::background)
-            option(merge, o);
-    output(merge, "-o", renderImage(plan_, run.id));
-    output(merge, render_flag::png, result(run.id + ".png"));
-    output(merge, render_flag::stats, result(run.id + ".json"));
-    plan_.steps.push_back(std::move(merge));
+    for (std::size_t k = 0; k < bands.size(); ++k)
+        parts.push_back({".tile-" + std::to_string(k + 1),
+                         {kRegionFlag, bands[k].text()},
+                         {"region", bands[k].text()},
+                         static_cast<std::uint64_t>(bands[k].width) * static_cast<std::uint64_t>(bands[k].height),
+                         1});
+    addSplit(run, scene, render, merge_flag::tile, {"tiles", std::to_string(run.tiles)}, parts);
 }
 
 // The run's volume as bricks: one step per brick (the render's command with --bricks and --brick) writing
 // its layer, then vri-merge-tiles --layer writing the files the unbricked step writes.
 void Planner::addBricks(const RunSpec& run, const SceneSpec& scene, const Step& render) {
-    Step merge{run.id, "render", "vri-merge-tiles", {}, {}, {}, render.parameters};
+    std::vector<RunPart> parts;
     const std::string grid = brickText(run.bricks);
-    merge.parameters.emplace_back("bricks", grid);
-    merge.pixels = render.pixels;
     for (int z = 0; z < run.bricks.z; ++z)
         for (int y = 0; y < run.bricks.y; ++y)
-            for (int x = 0; x < run.bricks.x; ++x) {
-                const std::string index = brickText({x, y, z});
-                Step brick = render;
-                brick.id = run.id + ".brick-" + std::to_string(x) + "-" + std::to_string(y) + "-" + std::to_string(z);
-                brick.arguments.insert(brick.arguments.end(), {scene_flag::bricks, grid, scene_flag::brick, index});
-                brick.parameters.emplace_back("brick", index);
-                brick.volumeParts = run.bricks.x * run.bricks.y * run.bricks.z;
-                output(brick, "-o", result(brick.id + ".exr"));
-                output(brick, render_flag::stats, result(brick.id + ".json"));
-                merge.arguments.push_back(merge_flag::layer);
-                input(merge, "", result(brick.id + ".exr"));
-                input(merge, "", result(brick.id + ".json"));
-                plan_.steps.push_back(std::move(brick));
-            }
+            for (int x = 0; x < run.bricks.x; ++x)
+                parts.push_back({".brick-" + std::to_string(x) + "-" + std::to_string(y) + "-" + std::to_string(z),
+                                 {scene_flag::bricks, grid, scene_flag::brick, brickText({x, y, z})},
+                                 {"brick", brickText({x, y, z})},
+                                 render.pixels,
+                                 run.bricks.x * run.bricks.y * run.bricks.z});
+    addSplit(run, scene, render, merge_flag::layer, {"bricks", grid}, parts);
+}
+
+void Planner::addSplit(const RunSpec& run, const SceneSpec& scene, const Step& render, const char* mergeFlag,
+                       const std::pair<std::string, std::string>& mergeParameter, const std::vector<RunPart>& parts) {
+    Step merge{run.id, "render", "vri-merge-tiles", {}, {}, {}, render.parameters};
+    merge.parameters.push_back(mergeParameter);
+    merge.pixels = render.pixels;  // it holds the whole image (and reads every part's)
+    for (const RunPart& part : parts) {
+        Step step = render;
+        step.id = run.id + part.suffix;
+        step.pixels = part.pixels;
+        step.volumeParts = part.volumeParts;
+        step.arguments.insert(step.arguments.end(), part.arguments.begin(), part.arguments.end());
+        step.parameters.push_back(part.parameter);
+        output(step, "-o", result(step.id + ".exr"));
+        output(step, render_flag::stats, result(step.id + ".json"));
+        merge.arguments.push_back(mergeFlag);
+        input(merge, "", result(step.id + ".exr"));
+        input(merge, "", result(step.id + ".json"));
+        plan_.steps.push_back(std::move(step));
+    }
     for (const ToolOption& o : scene.options)  // the preview's looks, made from the whole image
         if (o.first == scene_flag::pngInvert || o.first == scene_flag::pngExposure || o.first == scene_flag::background)
             option(merge, o);

@@ -344,11 +344,8 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
     if (const YAML::Node size = node["size"]) {
         if (!size.IsSequence() || size.size() != 2) throw Error(at(size) + ": size must be [width, height]");
         int wh[2];
-        for (std::size_t i = 0; i < 2; ++i) {
-            const double x = yaml::toDouble(size[i], source_, "size");
-            if (x != std::floor(x) || x < 1 || x > 65536) throw Error(at(size[i]) + ": size must be whole numbers in 1..65536");
-            wh[i] = static_cast<int>(x);  // not as<int>(): YAML's int reads neither 099 nor 1e2, which toDouble takes
-        }
+        for (std::size_t i = 0; i < 2; ++i)
+            wh[i] = static_cast<int>(yaml::toWholeNumber(size[i], source_, "size", 1, 65536));
         scene.options.emplace_back(scene_flag::size, std::to_string(wh[0]) + "x" + std::to_string(wh[1]));
         scene.width = wh[0];
         scene.height = wh[1];
@@ -469,26 +466,16 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
             }
             if (key == "tiles") {  // how the run is computed, not what: one value, never in the id
                 tilesAt = at(kv.second);
-                const std::string n = number(kv.second, "tiles");
-                const double x = kv.second.as<double>();
-                if (x != std::floor(x) || x < 1 || x > kMaxTiles)
-                    throw Error(at(kv.second) + ": tiles must be a whole number in 1.." + std::to_string(kMaxTiles) +
-                                ", got " + n);
-                tiles = static_cast<int>(x);  // 099 and 1e1 are numbers to as<double>, not to as<int>
+                tiles = static_cast<int>(yaml::toWholeNumber(kv.second, source_, "tiles", 1, kMaxTiles));
                 continue;
             }
             if (key == "bricks") {  // how the run is computed, not what: never in the id
                 bricksAt = at(kv.second);
                 if (!kv.second.IsSequence() || kv.second.size() != 3)
                     throw Error(at(kv.second) + ": bricks must be a list of three whole numbers [NX, NY, NZ]");
-                for (std::size_t a = 0; a < 3; ++a) {
-                    const std::string n = number(kv.second[a], "bricks");
-                    const double x = kv.second[a].as<double>();
-                    if (x != std::floor(x) || x < 1 || x > BrickGrid::kMaxPerAxis)
-                        throw Error(at(kv.second[a]) + ": bricks must be whole numbers in 1.." +
-                                    std::to_string(BrickGrid::kMaxPerAxis) + ", got " + n);
-                    bricks[static_cast<int>(a)] = static_cast<int>(x);
-                }
+                for (std::size_t a = 0; a < 3; ++a)
+                    bricks[static_cast<int>(a)] = static_cast<int>(
+                        yaml::toWholeNumber(kv.second[a], source_, "bricks", 1, BrickGrid::kMaxPerAxis));
                 continue;
             }
             if (key == "scenes") {

@@ -261,9 +261,9 @@ public:
         : plan_(plan), options_(std::move(options)), ledger_(plan, options_, hasher),
           slurmDir_(plan.resultsDir / ".steps" / "slurm") {}
 
-    // Settles the steps the cache vouches for and cuts the others into jobs; how many steps will run.
-    // With `lookForOrphans`, first cancels the jobs an earlier vri-run on these results left in the queue.
-    std::size_t prepare(bool lookForOrphans = true);
+    // Settles the steps the cache vouches for and cuts the others into jobs; how many steps will run. Unless
+    // --dry-run, first cancels the jobs an earlier vri-run on these results left in the queue.
+    std::size_t prepare();
     // The jobs as submitMore() would submit them, without submitting or writing anything: a line per job
     // naming its steps, then its sbatch command, a job it waits for named "<job K>".
     void describe(std::ostream& out) const;
@@ -353,20 +353,19 @@ void SlurmRun::submit(std::size_t j) {
     std::vector<std::string> dependencyIds;
     for (std::size_t d : job.dependsOn)
         if (!jobs_[d].ended) dependencyIds.push_back(jobs_[d].id);
-    const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
     try {
         job.id = submitJob(sbatchArguments(j, dependencyIds));
     } catch (const Error& e) {
         // What vri-run asked for and where each comes from: a cluster's limits are met by changing those.
+        const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
+        const std::string kind = slurmStepKind(plan_.steps[job.bundle.steps.front()]);
         throw Error(
             "step '" + plan_.steps[job.bundle.steps.front()].id + "': " + e.what() +
             " (the job asked --cpus-per-task=" + std::to_string(resources.cpus) +
             ": --slurm-cpus or the step's threads; --mem=" + std::to_string(resources.memoryMiB) +
             "M: from its inputs and pixels" +
             (resources.minutes ? "; --time=" + std::to_string(*resources.minutes) + ": from its last run's time" : "") +
-            (options_.slurm.kinds.count(slurmStepKind(plan_.steps[job.bundle.steps.front()]))
-                 ? "; or the site profile's kind " + slurmStepKind(plan_.steps[job.bundle.steps.front()])
-                 : "") +
+            (options_.slurm.kinds.count(kind) ? "; or the site profile's kind " + kind : "") +
             "; a --slurm-arg=--mem=... or --slurm-arg=--time=... overrides them for every job)");
     }
 }
@@ -494,12 +493,12 @@ void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
     }
 }
 
-std::size_t SlurmRun::prepare(bool lookForOrphans) {
+std::size_t SlurmRun::prepare() {
     // Jobs of an earlier run on these results that it could not cancel (killed with SIGKILL) would run its
     // steps beside this run's and could write an output after the cache was read or this run recorded it:
     // they go before anything else.
     const std::string name = plan_.resultsDir.filename().string();
-    if (lookForOrphans) try {
+    if (!options_.slurm.dryRun) try {
             if (const std::vector<std::string> orphans = unendedJobsIn(slurmDir_); !orphans.empty()) {
                 std::cerr << "vri-run: " << name << ": cancelling Slurm jobs " << jobList(orphans)
                           << " of an earlier vri-run on this results folder, still in the queue\n";
@@ -591,9 +590,8 @@ SlurmBatch::~SlurmBatch() = default;
 std::size_t SlurmBatch::add(const Plan& plan, std::vector<std::optional<double>> prices) {
     RunOptions options = impl_->options;
     options.prices = std::move(prices);
-    const bool dryRun = options.slurm.dryRun;
     impl_->runs.push_back(std::make_unique<slurm_detail::SlurmRun>(plan, std::move(options), impl_->hasher));
-    return impl_->runs.back()->prepare(!dryRun);
+    return impl_->runs.back()->prepare();
 }
 
 void SlurmBatch::describe(std::ostream& out) {

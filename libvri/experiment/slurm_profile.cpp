@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cstdlib>
 
 #include "libvri/experiment/slurm_commands.h"
@@ -14,15 +13,6 @@ namespace vri {
 namespace fs = std::filesystem;
 
 namespace {
-
-// A whole number in [1, most].
-long long wholeNumber(const YAML::Node& node, const std::string& source, std::string_view what, double most) {
-    const double x = yaml::toDouble(node, source, what);
-    if (x != std::floor(x) || x < 1 || x > most)
-        throw Error(yaml::where(source, node) + ": " + std::string(what) + ": expected a whole number from 1 to " +
-                    std::to_string(static_cast<long long>(most)) + ", got '" + node.Scalar() + "'");
-    return static_cast<long long>(x);
-}
 
 // "512M", "4G" or a number of MiB.
 long long mebibytes(const YAML::Node& node, const std::string& source) {
@@ -46,9 +36,9 @@ StepKindResources kindResources(const YAML::Node& node, const std::string& sourc
     yaml::requireMap(node, source, "a kind");
     yaml::requireKeys(node, source, {"cpus", "mem", "time"});
     StepKindResources r;
-    if (node["cpus"]) r.cpus = static_cast<int>(wholeNumber(node["cpus"], source, "cpus", 4096));
+    if (node["cpus"]) r.cpus = static_cast<int>(yaml::toWholeNumber(node["cpus"], source, "cpus", 1, 1024));
     if (node["mem"]) r.memoryMiB = mebibytes(node["mem"], source);
-    if (node["time"]) r.minutes = wholeNumber(node["time"], source, "time", 525600);  // a year of minutes
+    if (node["time"]) r.minutes = yaml::toWholeNumber(node["time"], source, "time", 1, 525600);  // a year of minutes
     return r;
 }
 
@@ -75,7 +65,7 @@ SlurmProfile readSlurmProfile(const fs::path& path) {
             checkSiteSbatchOption(word, yaml::where(source, value));
             profile.sbatchArguments.push_back(word);
         }
-    if (root["cpus"]) profile.cpus = static_cast<int>(wholeNumber(root["cpus"], source, "cpus", 4096));
+    if (root["cpus"]) profile.cpus = static_cast<int>(yaml::toWholeNumber(root["cpus"], source, "cpus", 1, 1024));
     if (const YAML::Node args = root["args"]) {
         if (!args.IsSequence()) throw Error(yaml::where(source, args) + ": args: expected a list of sbatch options");
         for (const YAML::Node& arg : args) {

@@ -1,5 +1,7 @@
 #include "libvri/io/yaml_util.h"
 
+#include <cmath>
+
 #include <map>
 #include <optional>
 #include <sstream>
@@ -150,6 +152,15 @@ double toDouble(const YAML::Node& node, const std::string& source, std::string_v
     } catch (const YAML::Exception&) {
     }
     throw Error(where(source, node) + ": " + std::string(what) + " must be a number");
+}
+
+long long toWholeNumber(const YAML::Node& node, const std::string& source, std::string_view what, long long lo,
+                        long long hi) {
+    const double x = toDouble(node, source, what);
+    if (x != std::floor(x) || x < static_cast<double>(lo) || x > static_cast<double>(hi))
+        throw Error(where(source, node) + ": " + std::string(what) + " must be a whole number in " +
+                    std::to_string(lo) + ".." + std::to_string(hi) + ", got " + node.Scalar());
+    return static_cast<long long>(x);
 }
 
 bool toBool(const YAML::Node& node, const std::string& source, std::string_view what) {

@@ -34,6 +34,10 @@ inline void requireKeys(const YAML::Node& map, const std::string& source, std::i
 void requireMap(const YAML::Node& node, const std::string& source, std::string_view what);
 
 double toDouble(const YAML::Node& node, const std::string& source, std::string_view what);
+// A whole number in [lo, hi], as toDouble reads it (so 099 and 1e1 too, which YAML's int does not take); throws
+// "source:line:column: <what> must be a whole number in LO..HI, got <text>" otherwise.
+long long toWholeNumber(const YAML::Node& node, const std::string& source, std::string_view what, long long lo,
+                        long long hi);
 bool toBool(const YAML::Node& node, const std::string& source, std::string_view what);
 std::string toString(const YAML::Node& node, const std::string& source, std::string_view what);
 

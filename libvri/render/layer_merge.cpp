@@ -98,9 +98,7 @@ MergedLayers mergeLayers(const std::vector<LayerFiles>& files) {
 
     MergedLayers out{std::move(joined.image), first.record, readImageMetadata(files.front().image)};
     nlohmann::json& record = out.record;
-    nlohmann::json& scene = record["scene"];
-    scene.erase("brick");
-    scene.erase("volume_bytes");
+    nlohmann::json& scene = record["scene"] = comparable(first.record, "scene");
     scene["storage"] = "bricks";
     // Each brick's counts and times are its own layer's: the join adds none of them up.
     record.erase("stats");

@@ -49,22 +49,24 @@ void RenderJob::searchTolerance() {
 }
 
 RenderFrame RenderJob::frame() {
-    const Scene& scene = setup_.scene;
+    if (!request_.exact) return methodFrame(request_.options);
+    // The search's accepted render is the first frame at the tolerance it found: not rendered again.
+    const ExactReference& ref = search_ && search_->accepted
+                                    ? *std::exchange(search_->accepted, nullptr)
+                                    : backend_.renderExact(setup_.scene, camera_, request_.exactOptions());
     RenderFrame f;
-    if (request_.exact) {
-        // The search's accepted render is the first frame at the tolerance it found: not rendered again.
-        const ExactReference& ref = search_ && search_->accepted
-                                        ? *std::exchange(search_->accepted, nullptr)
-                                        : backend_.renderExact(scene, camera_, request_.exactOptions());
-        f.image = ref.image();
-        if (context_.wantBounds) f.bounds = ref.boundImage();
-        f.exactStats = ref.stats;
-        f.seconds = ref.stats.seconds;
-        f.stats.nonfinite = findNonFinitePixels(f.image);
-    } else {
-        f.image = backend_.render(scene, camera_, request_.options, &f.stats);
-        f.seconds = f.stats.seconds;
-    }
+    f.image = ref.image();
+    if (context_.wantBounds) f.bounds = ref.boundImage();
+    f.exactStats = ref.stats;
+    f.seconds = ref.stats.seconds;
+    f.stats.nonfinite = findNonFinitePixels(f.image);
+    return f;
+}
+
+RenderFrame RenderJob::methodFrame(const RenderOptions& options) {
+    RenderFrame f;
+    f.image = backend_.render(setup_.scene, camera_, options, &f.stats);
+    f.seconds = f.stats.seconds;
     return f;
 }
 
@@ -72,10 +74,7 @@ RenderFrame RenderJob::warmUpFrame() {
     if (request_.exact || request_.options.frames == 1) return frame();
     RenderOptions one = request_.options;
     one.frames = 1;
-    RenderFrame f;
-    f.image = backend_.render(setup_.scene, camera_, one, &f.stats);
-    f.seconds = f.stats.seconds;
-    return f;
+    return methodFrame(one);
 }
 
 RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
@@ -101,9 +100,7 @@ RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
     }
     if (stats.simpsonRange && stats.simpsonRange->pixelsBeyond > 0)
         result.warnings.push_back(stats.simpsonRange->describe(stats.rays));
-    // What the method returned; of a brick's layer, its colour and alpha (not its place along the rays).
-    const OutOfRangePixels outOfRange = findOutOfRangePixels(
-        setup_.scene.brick ? selectChannels(result.image, {"R", "G", "B", "A"}, "the layer") : result.image);
+    const OutOfRangePixels outOfRange = findOutOfRangePixels(result.image);  // what the method returned
     if (request_.clamp) clampToUnitRange(result.image);
 
     nlohmann::json record = provenanceRecord(context_.tool, context_.command, setup_, request_);

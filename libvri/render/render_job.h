@@ -77,6 +77,8 @@ public:
     const SceneSetup& setup() const { return setup_; }
 
 private:
+    RenderFrame methodFrame(const RenderOptions& options);  // a frame of a method other than exact
+
     RenderRequest request_;
     SceneSetup setup_;
     RenderJobContext context_;

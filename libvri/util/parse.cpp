@@ -89,22 +89,26 @@ glm::dvec3 parseVec3(const std::string& text, const std::string& what) {
     return finiteVector<3>(text, what + ": expected three numbers x,y,z, got '" + text + "'");
 }
 
-glm::ivec3 parseDims(const std::string& text, const std::string& what) {
+namespace {
+
+// "a,b,c" -> three integers in [least, 1e9]; throws "<what>: expected <expected>, got '<text>'" otherwise.
+glm::ivec3 parseIntegerTriple(const std::string& text, const std::string& what, int least, const char* expected) {
     const auto parts = split(text, ',');
     glm::ivec3 v;
     bool ok = parts.size() == 3;
-    for (int i = 0; ok && i < 3; ++i) ok = parseNumber(parts[i], v[i]) && v[i] >= 1 && v[i] <= 1000000000;
-    if (!ok) throw Error(what + ": expected three positive integers X,Y,Z, got '" + text + "'");
+    for (int i = 0; ok && i < 3; ++i) ok = parseNumber(parts[i], v[i]) && v[i] >= least && v[i] <= 1000000000;
+    if (!ok) throw Error(what + ": expected " + expected + ", got '" + text + "'");
     return v;
 }
 
+}  // namespace
+
+glm::ivec3 parseDims(const std::string& text, const std::string& what) {
+    return parseIntegerTriple(text, what, 1, "three positive integers X,Y,Z");
+}
+
 glm::ivec3 parseIndex3(const std::string& text, const std::string& what) {
-    const auto parts = split(text, ',');
-    glm::ivec3 v;
-    bool ok = parts.size() == 3;
-    for (int i = 0; ok && i < 3; ++i) ok = parseNumber(parts[i], v[i]) && v[i] >= 0 && v[i] <= 1000000000;
-    if (!ok) throw Error(what + ": expected three whole numbers I,J,K from 0, got '" + text + "'");
-    return v;
+    return parseIntegerTriple(text, what, 0, "three whole numbers I,J,K from 0");
 }
 
 glm::dvec2 parseRange(const std::string& text, const std::string& what) {

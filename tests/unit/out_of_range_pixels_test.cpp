@@ -24,6 +24,15 @@ TEST_CASE("out-of-range pixels: counted per pixel and per channel, with the extr
     CHECK(none.min == 0.0f);
 }
 
+TEST_CASE("out-of-range pixels: colour and alpha only, not a brick layer's place along the rays") {
+    vri::Image layer(1, 1, 5);
+    layer.channelNames[4] = "brick_order";
+    const float values[] = {0.5f, 0.25f, 0.125f, 0.75f, 3.0f};
+    std::copy(std::begin(values), std::end(values), layer.pixels.begin());
+    CHECK(vri::findOutOfRangePixels(layer).pixels == 0);
+    CHECK(vri::findOutOfRangePixels(layer).max == 0.75f);
+}
+
 TEST_CASE("clampToUnitRange: every channel into [0, 1], NaN left as it is") {
     vri::Image image(2, 1);
     const float values[] = {1.5f, -0.25f, 0.5f, 1.0f, 0.0f, std::numeric_limits<float>::quiet_NaN(), 2.0f, 0.75f};

@@ -77,24 +77,22 @@ SceneSetup SceneOptions::load() const {
     std::shared_ptr<SparseVolume> sparse;
     std::optional<LinearField> linear;
     std::shared_ptr<BrickVolume> brick;
+    std::optional<ValueRange> range;
+    if (!range_.empty()) {
+        const glm::dvec2 r = parseRange(range_, scene_flag::range);
+        range = ValueRange{r.x, r.y};
+    }
     if (!bricks_.empty()) {
         if (volumePath_.empty()) throw Error("--bricks: cuts a volume file (--volume), not an analytic field");
         if (raw_.storage() == VolumeStorage::Sparse) throw Error("--bricks: cuts dense volumes, not --storage sparse");
-        std::optional<ValueRange> range;
-        if (!range_.empty()) {
-            const glm::dvec2 r = parseRange(range_, scene_flag::range);
-            range = ValueRange{r.x, r.y};
-        }
         brick =
             std::make_shared<BrickVolume>(readBrick(volumePath_, raw_.options(), parseDims(bricks_, scene_flag::bricks),
                                                     parseIndex3(brick_, scene_flag::brick), range));
-        inputs.push_back({{"path", volumePath_}, {"sha512", sha512File(volumePath_)}});
     } else if (!volumePath_.empty()) {
         raw_.storage();  // checked before the volume is read
         LoadedVolume loaded = raw_.load(volumePath_);
         volume = std::move(loaded.dense);
         sparse = std::move(loaded.sparse);
-        inputs.push_back({{"path", volumePath_}, {"sha512", sha512File(volumePath_)}});
     } else {
         if (field_ != "linear") throw Error("--field: unknown analytic field '" + field_ + "' (expected linear)");
         linear.emplace();
@@ -104,11 +102,11 @@ SceneSetup SceneOptions::load() const {
             linear.reset();
         }
     }
-    if (!range_.empty() && !brick) {
+    if (range && !brick) {  // a brick takes it as it is read: its own voxels' min..max is not the volume's
         if (!volume && !sparse) throw Error("--range applies to volumes only");
-        const glm::dvec2 r = parseRange(range_, scene_flag::range);
-        (sparse ? sparse->range : volume->range) = ValueRange{r.x, r.y};
+        (sparse ? sparse->range : volume->range) = *range;
     }
+    if (!volumePath_.empty()) inputs.push_back({{"path", volumePath_}, {"sha512", sha512File(volumePath_)}});
     Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse, brick};
     inputs.push_back({{"path", tfPath_}, {"sha512", sha512File(tfPath_)}});
 
