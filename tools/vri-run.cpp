@@ -53,7 +53,7 @@ struct Options {
     std::string executor = "local";
     std::string slurmPartition, slurmAccount;
     std::vector<std::string> slurmArguments;
-    double slurmBundle = 60, slurmPoll = 1, slurmMaxPending = 0;
+    double slurmBundle = 60, slurmPoll = 1, slurmMaxPending = 0, slurmMaxOutage = 120;
     int slurmMaxJobs = 0;
     int slurmCpus = 2;
     bool slurmCpusGiven = false;       // on the command line, over a site profile's
@@ -92,6 +92,7 @@ vri::SlurmOptions slurmOptions(const Options& options) {
     slurm.cpus = options.slurmCpusGiven || !profileCpus ? options.slurmCpus : *profileCpus;
     slurm.pollSeconds = options.slurmPoll;
     slurm.maxPendingSeconds = options.slurmMaxPending;
+    slurm.maxOutageSeconds = options.slurmMaxOutage;
     slurm.maxJobs = static_cast<std::size_t>(options.slurmMaxJobs);
     return slurm;
 }
@@ -435,6 +436,11 @@ int main(int argc, char** argv) {
     app.add_option("--slurm-max-pending", options.slurmMaxPending,
                    "give up (cancelling every job) once no job has run for SECONDS while some pend for the cluster "
                    "(a partition down, a drained node, a hold); 0: wait; a line says why they pend after a minute")
+        ->check(vri::numberRange(0.0, 1e7))
+        ->capture_default_str();
+    app.add_option("--slurm-max-outage", options.slurmMaxOutage,
+                   "give up (cancelling every job) once squeue has failed for SECONDS in a row (a controller "
+                   "restarting or out of reach); the jobs run on meanwhile")
         ->check(vri::numberRange(0.0, 1e7))
         ->capture_default_str();
     app.add_option("--new", options.newStudy,

@@ -25,6 +25,9 @@ struct SlurmOptions {
     double pollSeconds = 1;     // how often squeue is asked
     // --slurm-max-pending: give up once no job has run this long while some pend for the cluster (0: never).
     double maxPendingSeconds = 0;
+    // --slurm-max-outage: how long squeue may fail in a row (a controller restarting or out of reach) before
+    // vri-run gives up and cancels its jobs.
+    double maxOutageSeconds = 120;
     // --slurm-max-jobs: at most this many of the run's jobs in the queue at once, the next submitted as one
     // ends (0: all at once).
     std::size_t maxJobs = 0;

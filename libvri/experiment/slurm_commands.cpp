@@ -236,16 +236,19 @@ std::vector<std::string> unendedJobsIn(const std::filesystem::path& workDir) {
     return parseUnendedIn(output, workDir.string());
 }
 
-void cancelJobs(const std::vector<std::string>& jobIds) {
-    if (jobIds.empty()) return;
+std::string cancelJobs(const std::vector<std::string>& jobIds) {
+    if (jobIds.empty()) return {};
     std::vector<std::string> words{"scancel"};
     words.insert(words.end(), jobIds.begin(), jobIds.end());
     try {
         // Within the time limit, but not stopped by the signal: cancelling is what a stopped vri-run does last.
-        captureProcess(slurmProgram("scancel"), words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true},
-                       kLastClientLimits);
-    } catch (const Error&) {
-        // scancel is missing, cannot start or does not answer: nothing more can be done for these jobs from here.
+        const auto [status, output] =
+            captureProcess(slurmProgram("scancel"), words, {.in = "/dev/null", .out = {}, .err = {}, .errToOut = true},
+                           kLastClientLimits);
+        if (status.ok()) return {};
+        return "scancel failed (" + status.describe() + "): " + printableShort(firstErrorLine(output));
+    } catch (const Error& e) {  // scancel is missing, cannot start or does not answer
+        return e.what();
     }
 }
 

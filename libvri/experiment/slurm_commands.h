@@ -66,7 +66,8 @@ std::vector<std::string> unendedJobsIn(const std::filesystem::path& workDir);
 // The lines of `squeue --Format=JobID:|,State:|,WorkDir:` (the directory last, whatever it holds): the ids of
 // jobs not ended in `workDir`.
 std::vector<std::string> parseUnendedIn(const std::string& output, const std::string& workDir);
-// scancel for these jobs; errors are ignored (a job may have ended meanwhile).
-void cancelJobs(const std::vector<std::string>& jobIds);
+// scancel for these jobs: "" when scancel succeeded, else what went wrong ("scancel failed (exit status 1):
+// its first error line"); a job that ended meanwhile also fails it, so only squeue tells whether the jobs ended.
+std::string cancelJobs(const std::vector<std::string>& jobIds);
 
 }  // namespace vri

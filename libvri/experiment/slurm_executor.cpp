@@ -24,6 +24,7 @@
 #include "libvri/experiment/step_ledger.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/error.h"
+#include "libvri/util/format.h"
 #include "libvri/util/own_folder.h"
 #include "libvri/util/process.h"
 
@@ -36,10 +37,8 @@ namespace slurm_detail {
 
 using Clock = std::chrono::steady_clock;
 
-// How long a file a finished job wrote may take to show here (a network file system's attribute cache),
-// and how long squeue may fail in a row before vri-run gives up and cancels its jobs.
+// How long a file a finished job wrote may take to show here (a network file system's attribute cache).
 constexpr double kSharedFileDelaySeconds = 30;
-constexpr double kSqueueOutageSeconds = 120;
 // After scancel, how long vri-run waits for its jobs to end before it stops waiting.
 constexpr double kCancelWaitSeconds = 60;
 // The state of a job squeue has forgotten (it ended long ago: MinJobAge).
@@ -107,9 +106,25 @@ void writeJobScript(const fs::path& script) {
     writeTextFile(script, "#!/bin/sh\n# vri-run's Slurm job: runs its arguments as one command.\nexec \"$@\"\n");
 }
 
-// Cancels `jobs` and waits until squeue shows them ended (or no longer knows them), at most kCancelWaitSeconds.
-void cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
-    cancelJobs(jobs);
+// Cancels `jobs`, waits until squeue shows them ended (or no longer knows them), at most kCancelWaitSeconds,
+// and says what became of them, to end an error message: "cancelled Slurm jobs 4-6 (3 jobs)", or, where
+// scancel failed and squeue cannot show them ended (the controller does not answer), that they may still
+// run and how to cancel them. scancel is asked again while squeue shows them running.
+struct CancelOutcome {
+    bool cancelled;
+    std::string said;
+};
+CancelOutcome cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
+    if (jobs.empty()) return {true, "no Slurm job was left to cancel"};
+    const CancelOutcome cancelled{true, "cancelled Slurm jobs " + jobList(jobs)};
+    std::string refused = cancelJobs(jobs);
+    const auto couldNot = [&] {
+        std::string command = "scancel";
+        for (const std::string& id : jobs) command += ' ' + id;
+        return CancelOutcome{false, "could not cancel Slurm jobs " + jobList(jobs) + " (" + refused +
+                                        "): they may still run; cancel them with '" + command +
+                                        "' once the controller answers"};
+    };
     const auto start = Clock::now();
     bool said = false;  // a wait longer than a few seconds says what it waits for
     for (double waited = 0; waited < kCancelWaitSeconds; waited = std::chrono::duration<double>(Clock::now() - start).count()) {
@@ -122,17 +137,20 @@ void cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
         try {
             states = queryJobs(jobs, false);  // after a signal too: that is when this wait matters
         } catch (const Error&) {
-            return;  // the controller does not answer: scancel has been asked, nothing more to do
+            // The controller does not answer: what scancel said is all there is to go by.
+            return refused.empty() ? cancelled : couldNot();
         }
         bool running = false;
         try {
             for (const auto& [id, job] : states) running = running || !isFinalJobState(job.state);
         } catch (const Error&) {
-            return;  // a state this vri-run does not know: scancel has been asked, and this wait is cleanup
+            return cancelled;  // a state this vri-run does not know: scancel has been asked, and this wait is cleanup
         }
-        if (!running) return;
+        if (!running) return cancelled;
+        if (!refused.empty()) refused = cancelJobs(jobs);
         pause(pollSeconds);
     }
+    return refused.empty() ? cancelled : couldNot();
 }
 
 // The job files of the runs before this one kept beside it: the output of a job an error message named stays
@@ -218,14 +236,10 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
         PendingWatch pending("the Slurm check job " + id, options.slurm.maxPendingSeconds);
         try {
             for (;;) {
-                if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + ": cancelled the Slurm check job " + id);
+                if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt));
                 pause(options.slurm.pollSeconds);
                 const std::map<std::string, SlurmJob> states = queryJobs({id});
-                try {
-                    pending.update(states, std::cerr, Clock::now());
-                } catch (const Error& e) {
-                    throw Error(std::string(e.what()) + "; cancelled it");
-                }
+                pending.update(states, std::cerr, Clock::now());
                 const auto found = states.find(id);
                 if (found == states.end()) break;
                 if (isFinalJobState(found->second.state)) {
@@ -233,9 +247,8 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
                     break;
                 }
             }
-        } catch (...) {
-            cancelAndWait({id}, options.slurm.pollSeconds);
-            throw;
+        } catch (const std::exception& e) {
+            throw Error(std::string(e.what()) + "; " + cancelAndWait({id}, options.slurm.pollSeconds).said);
         }
         // A check that completed wrote its report, which a shared file system may show late.
         const auto start = Clock::now();
@@ -502,7 +515,9 @@ std::size_t SlurmRun::prepare() {
             if (const std::vector<std::string> orphans = unendedJobsIn(slurmDir_); !orphans.empty()) {
                 std::cerr << "vri-run: " << name << ": cancelling Slurm jobs " << jobList(orphans)
                           << " of an earlier vri-run on this results folder, still in the queue\n";
-                cancelAndWait(orphans, options_.slurm.pollSeconds);
+                if (const CancelOutcome outcome = cancelAndWait(orphans, options_.slurm.pollSeconds);
+                    !outcome.cancelled)
+                    std::cerr << "vri-run: warning: " << name << ": " << outcome.said << '\n';
             }
         } catch (const Error& e) {  // a run that submits nothing needs no controller
             std::cerr << "vri-run: warning: " << name << ": " << e.what()
@@ -608,54 +623,54 @@ void SlurmBatch::checkNodes() {
 
 void SlurmBatch::run() {
     const double poll = impl_->options.slurm.pollSeconds;
-    try {
-        impl_->submitMore();
-    } catch (const std::exception& e) {
-        const std::vector<std::string> submitted = impl_->unendedIds();
-        slurm_detail::cancelAndWait(submitted, poll);
-        throw Error(std::string(e.what()) +
-                    (submitted.empty() ? "" : "; cancelled the Slurm jobs submitted before: " + slurm_detail::jobList(submitted)));
-    }
+    const double maxOutage = impl_->options.slurm.maxOutageSeconds;
+    // Whatever stops the submission or the watch (an interrupt, squeue failing past --slurm-max-outage, a
+    // record that cannot be written), no job of this batch is left behind, and the message says so.
     try {
         auto lastAnswer = slurm_detail::Clock::now();
+        bool failing = false;  // squeue failed at the last look
+        impl_->submitMore();
         PendingWatch pending("Slurm jobs", impl_->options.slurm.maxPendingSeconds);
         PollInterval interval(poll);
         std::map<std::string, std::string> seen;  // job id -> state at the last look
         for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty() || impl_->anyUnsubmitted();
              ids = impl_->unendedIds()) {
-            if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt) + ": cancelled Slurm jobs " + slurm_detail::jobList(ids));
+            if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt));
             slurm_detail::pause(interval.seconds());
             std::map<std::string, SlurmJob> states;
             try {
                 states = queryJobs(ids);
-                lastAnswer = slurm_detail::Clock::now();
-                std::map<std::string, std::string> now;
-                for (const auto& [id, job] : states) now[id] = job.state;
-                interval.looked(now != seen);
-                seen = std::move(now);
             } catch (const Error& e) {
-                if (std::chrono::duration<double>(slurm_detail::Clock::now() - lastAnswer).count() < slurm_detail::kSqueueOutageSeconds) continue;
-                throw Error(std::string(e.what()) + " for " + std::to_string(int(slurm_detail::kSqueueOutageSeconds)) +
-                            " s; cancelled Slurm jobs " + slurm_detail::jobList(ids));
+                if (gSlurmInterrupt) continue;  // squeue stopped by the signal: the loop's first line stops the run
+                // A controller restarting or out of reach for a while: the jobs run on without it.
+                const double silent = std::chrono::duration<double>(slurm_detail::Clock::now() - lastAnswer).count();
+                if (silent >= maxOutage)
+                    throw Error(std::string(e.what()) + "; no answer for " + secondsText(silent) +
+                                " (--slurm-max-outage " + exactNumber(maxOutage) + " s)");
+                if (!failing)
+                    std::cerr << "vri-run: " << e.what() << "; asking again for up to " << exactNumber(maxOutage)
+                              << " s (--slurm-max-outage) while the jobs run on\n";
+                failing = true;
+                continue;
             }
+            const auto now = slurm_detail::Clock::now();
+            if (failing)
+                std::cerr << "vri-run: squeue answers again after "
+                          << secondsText(std::chrono::duration<double>(now - lastAnswer).count()) << '\n';
+            failing = false;
+            lastAnswer = now;
+            std::map<std::string, std::string> states_now;
+            for (const auto& [id, job] : states) states_now[id] = job.state;
+            interval.looked(states_now != seen);
+            seen = std::move(states_now);
             for (const auto& r : impl_->runs) r->update(states);
-            try {
-                impl_->submitMore();
-            } catch (const Error& e) {
-                throw Error(std::string(e.what()) + "; cancelled Slurm jobs " +
-                            slurm_detail::jobList(impl_->unendedIds()));
-            }
-            try {
-                pending.update(states, std::cerr, slurm_detail::Clock::now());
-            } catch (const Error& e) {
-                throw Error(std::string(e.what()) + "; cancelled Slurm jobs " + slurm_detail::jobList(ids));
-            }
+            impl_->submitMore();
+            pending.update(states, std::cerr, now);
         }
-    } catch (...) {
-        // Whatever stops the watch (an interrupt, squeue failing for minutes, a record that cannot be
-        // written), no job of this batch is left behind.
-        slurm_detail::cancelAndWait(impl_->unendedIds(), poll);
-        throw;
+    } catch (const std::exception& e) {
+        const std::vector<std::string> unended = impl_->unendedIds();
+        if (unended.empty()) throw;
+        throw Error(std::string(e.what()) + "; " + slurm_detail::cancelAndWait(unended, poll).said);
     }
 }
 

@@ -239,7 +239,7 @@ no_partial_outputs
 start_slow terminated.txt
 kill -TERM "$run"
 if wait "$run"; then fail "vri-run exited 0 after SIGTERM"; fi
-grep -q "interrupted by SIGTERM: cancelled Slurm jobs [0-9,-]* ([0-9]* jobs\?)" terminated.txt || { cat terminated.txt; fail "SIGTERM did not say what it cancelled"; }
+grep -q "interrupted by SIGTERM; cancelled Slurm jobs [0-9,-]* ([0-9]* jobs\?)" terminated.txt || { cat terminated.txt; fail "SIGTERM did not say what it cancelled"; }
 [ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "jobs are left after SIGTERM"; }
 no_partial_outputs
 
@@ -250,7 +250,7 @@ if "${slurm[@]}" --slurm-arg=--begin=now+1hour --slurm-max-pending 3 --results p
 fi
 grep -q "^vri-run: the Slurm check job [0-9]*: 1 job pending (squeue's reason: BeginTime) for [0-9.]* s, none running$" pending.txt ||
     { cat pending.txt; fail "no line saying why the job pends"; }
-grep -q "^vri-run: error: the Slurm check job [0-9]*: 1 job pending (squeue's reason: BeginTime) for [0-9.]* s, none running: gave up after --slurm-max-pending 3 s; cancelled it$" pending.txt ||
+grep -q "^vri-run: error: the Slurm check job [0-9]*: 1 job pending (squeue's reason: BeginTime) for [0-9.]* s, none running: gave up after --slurm-max-pending 3 s; cancelled Slurm jobs [0-9]* (1 job)$" pending.txt ||
     { cat pending.txt; fail "--slurm-max-pending did not give up with the reason"; }
 [ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "a job is left after giving up"; }
 

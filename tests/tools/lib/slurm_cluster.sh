@@ -4,7 +4,9 @@
 # stopped by the pids they wrote when the test exits. One setting departs from Slurm's defaults:
 # batch_sched_delay=0 starts a job as soon as the node is free instead of up to 3 s later, which halves
 # the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s).
-#   start_slurm_cluster DIR   exits 77 (skip) with one line when the daemons cannot start here
+#   start_slurm_cluster DIR [MESSAGE_TIMEOUT]   exits 77 (skip) with one line when the daemons cannot start
+#       here; MESSAGE_TIMEOUT (seconds, Slurm's 10 by default) bounds how long a client waits for the controller
+#   stop_slurmctld / restart_slurmctld   the controller killed (by its pid) and started again on its saved state
 
 slurm_daemon_pids=()
 
@@ -27,7 +29,7 @@ slurm_daemon_pid() {
 }
 
 start_slurm_cluster() {
-    local dir=$1 program
+    local dir=$1 message_timeout=${2:-10} program
     for program in munged slurmctld slurmd sbatch squeue scancel; do
         command -v "$program" > /dev/null || { echo "SKIP: $program is not installed (make deps installs slurm-wlm and munge)"; exit 77; }
     done
@@ -72,6 +74,7 @@ SchedulerType=sched/backfill
 SelectType=select/cons_tres
 SelectTypeParameters=CR_Core_Memory
 MpiDefault=none
+MessageTimeout=$message_timeout
 ReturnToService=2
 MinJobAge=3600
 SchedulerParameters=batch_sched_delay=0
@@ -80,6 +83,7 @@ NodeName=$node NodeAddr=127.0.0.1 NodeHostname=$node CPUs=$(nproc) RealMemory=$m
 PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 EOF
     export SLURM_CONF=$dir/slurm.conf
+    slurm_dir=$dir
     slurmctld -i > "$dir/log/slurmctld.out" 2>&1 || { echo "SKIP: slurmctld cannot start here (see $dir/log)"; exit 77; }
     slurm_daemon_pid "$dir/slurmctld.pid" slurmctld
     slurmd -N "$node" > "$dir/log/slurmd.out" 2>&1 || { echo "SKIP: slurmd cannot start here (see $dir/log)"; exit 77; }
@@ -90,4 +94,24 @@ EOF
     done
     echo "SKIP: the test cluster's node did not come up (see $dir/log)"
     exit 77
+}
+
+# The controller's pid, stopped with SIGTERM and waited for; it is no longer stopped at exit.
+stop_slurmctld() {
+    local pid k
+    pid=$(cat "$slurm_dir/slurmctld.pid")
+    kill "$pid"
+    for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    ! kill -0 "$pid" 2>/dev/null || { echo "FAIL: slurmctld $pid did not stop"; exit 1; }
+    for k in "${!slurm_daemon_pids[@]}"; do [ "${slurm_daemon_pids[$k]}" = "$pid" ] && unset 'slurm_daemon_pids[k]'; done
+    rm -f "$slurm_dir/slurmctld.pid"
+}
+
+# The controller started again on its saved state (its jobs kept), waited for until squeue answers.
+restart_slurmctld() {
+    slurmctld -i >> "$slurm_dir/log/slurmctld.out" 2>&1 || { echo "FAIL: slurmctld did not start again (see $slurm_dir/log)"; exit 1; }
+    slurm_daemon_pid "$slurm_dir/slurmctld.pid" slurmctld
+    for _ in $(seq 150); do squeue > /dev/null 2>&1 && return 0; sleep 0.2; done
+    echo "FAIL: the restarted slurmctld does not answer (see $slurm_dir/log)"
+    exit 1
 }

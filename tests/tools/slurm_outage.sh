@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# vri-run --executor slurm while the test cluster's controller does not answer (tests/tools/lib/slurm_cluster.sh,
+# its clients waiting at most 3 s a message): paused (SIGSTOP) until squeue fails, vri-run says so, asks
+# again and completes once the controller answers, its outputs those of a local run; stopped for longer than
+# --slurm-max-outage, vri-run gives up with one line saying that it could not cancel its job, which may
+# still run, and how to cancel it, and a rerun once the controller is back completes; SIGTERM while squeue
+# waits on a paused controller stops vri-run all the same, saying the same of its job.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_cluster.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
+bin=${VRI_BIN:?}
+start_slurm_cluster "$PWD/cluster" 3
+
+cat > tf.yaml <<'YAML'
+points:
+  - [0.0, 0.0, 0.0, 0.0, 0.0]
+  - [0.5, 0.9, 0.3, 0.1, 2.0]
+  - [1.0, 0.2, 0.4, 1.0, 0.8]
+YAML
+# A render of several seconds and a diff that needs it.
+cat > slow.yaml <<'YAML'
+name: slow
+title: One slow render and a diff that needs it
+paper: {paper: A, item: Fig. 4, says: a test}
+scenes:
+  cube: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [64, 48]}
+methods:
+  riemann: {placement: [entry-exit-corner], rate: [2, 200000]}
+comparisons:
+  vs-fine: {reference: riemann-entry-exit-corner-r200000}
+YAML
+"$bin/vri-run" --results local slow.yaml 2> local.txt || { cat local.txt; fail "the local run failed"; }
+slow_job=vri:slow:riemann-entry-exit-corner-r200000
+
+# Starts the study on Slurm in the background ($run, its stderr in $1, more options after) and waits until
+# the slow render's job runs ($job).
+start_slow() {
+    local log=$1
+    shift
+    "$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-bundle 0 "$@" --results res slow.yaml 2> "$log" &
+    run=$!
+    job=
+    for _ in $(seq 600); do
+        job=$(squeue --noheader --states=RUNNING --name="$slow_job" --format=%i 2>/dev/null || true)
+        [ -n "$job" ] && grep -q "steps in Slurm jobs" "$log" && return 0
+        sleep 0.1
+    done
+    kill "$run"
+    cat "$log"
+    fail "the slow render's job never ran"
+}
+# Waits (at most a minute) until FILE has a line matching PATTERN.
+wait_for_line() {
+    for _ in $(seq 600); do
+        grep -q "$2" "$1" && return 0
+        sleep 0.1
+    done
+    cat "$1"
+    fail "no line matching '$2' in $1"
+}
+same_images() {
+    "$bin/vri-diff" local/slow/riemann-entry-exit-corner-r200000.exr res/slow/riemann-entry-exit-corner-r200000.exr --fail 0 > /dev/null ||
+        fail "the Slurm run's image differs from the local one"
+}
+controller=$(cat cluster/slurmctld.pid)
+
+# The controller paused until squeue fails: vri-run says so and asks again, then goes on.
+start_slow paused.txt
+kill -STOP "$controller"
+wait_for_line paused.txt "^vri-run: squeue failed (.*; asking again for up to 120 s (--slurm-max-outage) while the jobs run on$"
+kill -CONT "$controller"
+wait "$run" || { cat paused.txt; fail "vri-run failed after the controller answered again"; }
+grep -q "^vri-run: squeue answers again after [0-9.]* s$" paused.txt || { cat paused.txt; fail "no line saying squeue answers again"; }
+[ -e res/slow/manifest.json ] || fail "the run after a pause wrote no manifest"
+same_images
+
+# The controller stopped past --slurm-max-outage: one error line says the job could not be cancelled and how
+# to cancel it; nothing is recorded for the run.
+rm -rf res
+start_slow stopped.txt --slurm-max-outage 1
+stop_slurmctld
+if wait "$run"; then fail "vri-run succeeded although the controller was gone"; fi
+errors=$(grep -c "error" stopped.txt || true)
+[ "$errors" -eq 1 ] || { cat stopped.txt; fail "$errors error lines, not one"; }
+grep -q "^vri-run: error: squeue failed (.*; no answer for [0-9.]* s (--slurm-max-outage 1 s); could not cancel Slurm jobs [0-9,-]* ([0-9]* jobs\?) (.*): they may still run; cancel them with 'scancel [0-9 ]*' once the controller answers$" stopped.txt ||
+    { cat stopped.txt; fail "the give-up line does not say that the jobs could not be cancelled"; }
+[ ! -e res/slow/manifest.json ] || fail "a run that gave up wrote a manifest"
+# Back again, the controller still knows the job; a rerun cancels it if it still runs and completes.
+restart_slurmctld
+[ -n "$(squeue --noheader --states=all --jobs="$job" --format=%i 2>/dev/null)" ] || fail "the restarted controller lost job $job"
+"$bin/vri-run" --executor slurm --slurm-poll 0.2 --results res slow.yaml 2> rerun.txt || { cat rerun.txt; fail "the rerun failed"; }
+same_images
+
+# SIGTERM while squeue waits on a paused controller: vri-run stops and says it could not cancel its job.
+rm -rf res
+controller=$(cat cluster/slurmctld.pid)
+start_slow terminated.txt
+kill -STOP "$controller"
+kill -TERM "$run"
+if wait "$run"; then kill -CONT "$controller"; fail "vri-run exited 0 after SIGTERM"; fi
+kill -CONT "$controller"
+! grep -q "asking again" terminated.txt || { cat terminated.txt; fail "squeue stopped by the signal was taken for an outage"; }
+grep -q "^vri-run: error: interrupted by SIGTERM; could not cancel Slurm jobs [0-9,-]* ([0-9]* jobs\?) (.*): they may still run; cancel them with 'scancel [0-9 ]*' once the controller answers$" terminated.txt ||
+    { cat terminated.txt; fail "SIGTERM on a paused controller did not say the jobs could not be cancelled"; }
+scancel "$job"
+for _ in $(seq 300); do
+    [ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] && break
+    sleep 0.2
+done
+[ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "jobs are left"; }
+echo "slurm_outage: OK"
