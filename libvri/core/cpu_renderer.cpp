@@ -37,6 +37,8 @@ struct RenderCounters {
     AdaptiveCounts adaptive;
     SimpsonRange simpsonRange;
     double terminationLeftOut = 0.0;
+    double largestDelta = 0.0;
+    std::array<std::uint64_t, PreintegrationTable::kMaxDeltaLevels + 1> lookupsBeyond{};
 };
 
 // Paper A's fixed-step placements, each sample standing for a segment of the ray (Riemann, composite). With
@@ -125,7 +127,16 @@ RayAccumulator<Real> marchSegments(const TextureRay<Real>& ray, const Sampler& s
         if (!haveFront) front = sample(march.segmentStart(k));
         const Real back = sample(march.segmentStart(k + 1));
         const Real delta = secondOrder ? sample(march.position(k)) - Real(0.5) * (front + back) : Real(0);
-        acc.addSegment(table(front, back, delta), lengthRatio);
+        const SegmentIntegral<Real> value = table(front, back, delta);
+        acc.addSegment(value, lengthRatio);
+        if (secondOrder && (value.r != 0 || value.g != 0 || value.b != 0 || value.depth != 0)) {
+            const Real size = std::abs(delta);
+            counts.largestDelta = std::max(counts.largestDelta, static_cast<double>(size));
+            ++counts.lookupsBeyond[0];
+            const std::vector<double>& levels = table.checkedDeltas();
+            for (std::size_t level = 0; level < levels.size() && size > static_cast<Real>(levels[level]); ++level)
+                ++counts.lookupsBeyond[level + 1];
+        }
         front = back;
         haveFront = true;
         ++lookedUp;
@@ -202,6 +213,9 @@ void forEachTile(const RenderOptions& opt, const PixelRegion& area, RenderCounte
         counters.raysTerminated += counts.raysTerminated;
         const std::lock_guard lock(counters.mutex);
         counters.terminationLeftOut = std::max(counters.terminationLeftOut, counts.terminationLeftOut);
+        counters.largestDelta = std::max(counters.largestDelta, counts.largestDelta);
+        for (std::size_t level = 0; level < counts.lookupsBeyond.size(); ++level)
+            counters.lookupsBeyond[level] += counts.lookupsBeyond[level];
         if (isSimpson(opt.integrator)) {
             counters.adaptive += adaptive;
             counters.simpsonRange.merge(range);
@@ -377,6 +391,17 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     local.samplesEvaluated = counters.samplesEvaluated;
     local.raysTerminated = counters.raysTerminated;
     local.terminationLeftOut = counters.terminationLeftOut;
+    if (local.preintegration && local.preintegration->order == 2) {
+        // The lookups that added something per range of |delta|: (level k - 1, level k] of the checked deltas
+        // ([0, 0] first), the last past them all.
+        RenderStats::Preintegration& p = *local.preintegration;
+        p.largestDelta = counters.largestDelta;
+        const std::size_t levels = p.error.deltas.size();
+        p.lookupsByDelta.assign(levels + 1, 0);
+        for (std::size_t k = 0; k < levels; ++k)
+            p.lookupsByDelta[k] = counters.lookupsBeyond[k] - counters.lookupsBeyond[k + 1];
+        p.lookupsByDelta[levels] = counters.lookupsBeyond[levels];
+    }
     if (isSimpson(options.integrator)) {
         local.adaptive = counters.adaptive;
         local.simpsonRange = counters.simpsonRange;

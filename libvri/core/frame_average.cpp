@@ -1,5 +1,6 @@
 #include "libvri/core/frame_average.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace vri {
@@ -25,6 +26,14 @@ Image averageFrames(const RenderOptions& options, RenderStats* stats,
         total.samplesPlaced += frame.samplesPlaced;
         total.samplesEvaluated += frame.samplesEvaluated;
         total.raysTerminated += frame.raysTerminated;
+        total.terminationLeftOut = std::max(total.terminationLeftOut, frame.terminationLeftOut);
+        if (total.preintegration && total.preintegration->largestDelta && frame.preintegration &&
+            frame.preintegration->largestDelta) {
+            total.preintegration->largestDelta =
+                std::max(*total.preintegration->largestDelta, *frame.preintegration->largestDelta);
+            for (std::size_t k = 0; k < total.preintegration->lookupsByDelta.size(); ++k)
+                total.preintegration->lookupsByDelta[k] += frame.preintegration->lookupsByDelta.at(k);
+        }
         total.seconds += frame.seconds;
         total.setupSeconds += frame.setupSeconds;
         total.setupReused = total.setupReused && frame.setupReused;

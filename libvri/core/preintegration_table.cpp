@@ -68,6 +68,13 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, double segm
     upper_[3] = depthMax;
     for (int c = 0; c < 4; ++c) upperFloat_[c] = static_cast<float>(upper_[c]);
     findZeroRuns();
+    deltaLevels_ = {0.0};
+    if (order == 2) {
+        const int cells = size - 1;
+        for (const double k : kCheckedDeltas)
+            if (k > 0 && k < cells - 1) deltaLevels_.push_back(k / cells);
+        deltaLevels_.push_back(1.0 - 1.0 / cells);
+    }
 }
 
 // A run [p, q] of indices whose every pair (i, j) in [p, q]^2 has all four values (and slopes) exactly 0,
@@ -126,6 +133,17 @@ SegmentIntegral<double> PreintegrationTable::direct(const TransferFunction& tf, 
     return integrateSegment(ray, segmentLength, front, back, delta);
 }
 
+std::pair<double, double> PreintegrationError::upTo(double largestDelta) const {
+    if (deltas.empty()) return {colour, alpha};
+    double c = 0.0, a = 0.0;
+    for (std::size_t k = 0; k < deltas.size(); ++k) {
+        c = std::max(c, colourByDelta[k]);
+        a = std::max(a, alphaByDelta[k]);
+        if (deltas[k] >= largestDelta) break;
+    }
+    return {c, a};
+}
+
 PreintegrationError PreintegrationTable::check(const TransferFunction& tf) const {
     constexpr int kMaxChecked = 64;  // per axis: 4096 points, a fraction of the table's own cost
     const int cells = size_ - 1;
@@ -140,33 +158,47 @@ PreintegrationError PreintegrationTable::check(const TransferFunction& tf) const
     std::sort(cell.begin(), cell.end());
     cell.erase(std::unique(cell.begin(), cell.end()), cell.end());
     const int checked = static_cast<int>(cell.size());
-    std::vector<double> deltas{0.0};
-    if (order_ == 2)
-        for (const double k : kCheckedDeltas)
-            if (k > 0) deltas.insert(deltas.end(), {k * spacing, -k * spacing});
-    std::vector<PreintegrationError> rows(checked);
+    std::vector<double> deltas = deltaLevels_;  // each checked with both signs
+    const std::size_t levels = deltas.size();
+    struct Row {
+        std::vector<double> colour, alpha;
+        int points = 0;
+    };
+    std::vector<Row> rows(checked, Row{std::vector<double>(levels, 0.0), std::vector<double>(levels, 0.0), 0});
     tbb::parallel_for(tbb::blocked_range<int>(0, checked), [&](const tbb::blocked_range<int>& range) {
         ExactRay ray(tf, kEntryTolerance);
         for (int a = range.begin(); a < range.end(); ++a)
             for (int b = 0; b < checked; ++b)
-                for (const double delta : deltas) {
-                    const double front = (cell[a] + 0.5) * spacing, back = (cell[b] + 0.5) * spacing;
-                    const SegmentIntegral<double> want = integrateSegment(ray, length_, front, back, delta);
-                    const SegmentIntegral<double> got = (*this)(front, back, delta);
-                    PreintegrationError& e = rows[a];
-                    e.colour = std::max({e.colour, std::abs(got.r - want.r), std::abs(got.g - want.g),
-                                         std::abs(got.b - want.b)});
-                    e.alpha = std::max(e.alpha, std::abs(std::expm1(-got.depth) - std::expm1(-want.depth)));
-                    ++e.points;
-                }
+                for (std::size_t level = 0; level < levels; ++level)
+                    for (const double sign : {1.0, -1.0}) {
+                        const double front = (cell[a] + 0.5) * spacing, back = (cell[b] + 0.5) * spacing;
+                        const double delta = sign * deltas[level], middle = 0.5 * (front + back) + delta;
+                        if (middle < 0.0 || middle > 1.0 || (level == 0 && sign < 0)) continue;
+                        const SegmentIntegral<double> want = integrateSegment(ray, length_, front, back, delta);
+                        const SegmentIntegral<double> got = (*this)(front, back, delta);
+                        Row& e = rows[a];
+                        e.colour[level] = std::max({e.colour[level], std::abs(got.r - want.r), std::abs(got.g - want.g),
+                                                    std::abs(got.b - want.b)});
+                        e.alpha[level] =
+                            std::max(e.alpha[level], std::abs(std::expm1(-got.depth) - std::expm1(-want.depth)));
+                        ++e.points;
+                    }
     });
     PreintegrationError total;
-    for (const double delta : deltas)
-        if (order_ == 2 && delta >= 0) total.deltas.push_back(delta);
-    for (const PreintegrationError& e : rows) {
-        total.colour = std::max(total.colour, e.colour);
-        total.alpha = std::max(total.alpha, e.alpha);
+    std::vector<double> colour(levels, 0.0), alpha(levels, 0.0);
+    for (const Row& e : rows) {
+        for (std::size_t level = 0; level < levels; ++level) {
+            colour[level] = std::max(colour[level], e.colour[level]);
+            alpha[level] = std::max(alpha[level], e.alpha[level]);
+        }
         total.points += e.points;
+    }
+    total.colour = *std::max_element(colour.begin(), colour.end());
+    total.alpha = *std::max_element(alpha.begin(), alpha.end());
+    if (order_ == 2) {
+        total.deltas = std::move(deltas);
+        total.colourByDelta = std::move(colour);
+        total.alphaByDelta = std::move(alpha);
     }
     return total;
 }

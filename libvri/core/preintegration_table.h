@@ -13,6 +13,7 @@
 // to `kEntryTolerance`, not a Riemann sum. The lookup interpolates bilinearly between entries; what that
 // costs is measured against the same direct evaluation (check()) and reported in the stats.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "libvri/core/transfer_function.h"
@@ -30,7 +31,13 @@ struct PreintegrationError {
     double colour = 0.0;  // max over R, G, B of |lookup - direct|
     double alpha = 0.0;   // |1 - exp(-depth) looked up - the direct alpha|
     int points = 0;       // how many (front, back[, delta]) were compared
-    std::vector<double> deltas;  // the midpoint deviations |delta| they were compared at (order 2), in scalar units
+    // Order 2: the midpoint deviations |delta| compared at, in scalar units, ascending, and the largest
+    // errors found at each (both signs); colour and alpha above are the largest over all of them.
+    std::vector<double> deltas, colourByDelta, alphaByDelta;
+
+    // The largest errors found at the deviations up to the first checked one at or above `largestDelta`
+    // (all of them past the last): what the check says of a render whose lookups asked deviations up to it.
+    std::pair<double, double> upTo(double largestDelta) const;
 };
 
 class PreintegrationTable {
@@ -104,15 +111,22 @@ public:
     // quadratic through front, the midpoint front/2 + back/2 + delta and back.
     static SegmentIntegral<double> direct(const TransferFunction& tf, double segmentLength, double front, double back,
                                           double delta);
-    // The midpoint deviations order 2 is checked at, in table spacings (each with both signs): a quarter, where
-    // the slope's expansion is close, up to four, where a segment across a sharp bend of the data asks for it
-    // and the first-order expansion in delta drifts (an outside audit found 4x the error reported from +-1/4
-    // alone at 2.5 spacings).
-    static constexpr double kCheckedDeltas[] = {0.0, 0.25, 1.0, 4.0};
+    // The midpoint deviations order 2 is checked at, in table spacings (each with both signs), and then the
+    // whole range a render can ask (delta = +-1 in scalar units, the midpoint at one end of [0, 1] and the
+    // ends at the other): a quarter, where the slope's expansion is close, through the deviations of a
+    // segment across a sharp bend of the data, where the first-order expansion in delta drifts (an outside
+    // audit found 4x the error reported from +-1/4 alone at 2.5 spacings), to a segment across a whole
+    // feature thinner than the step, where it no longer means anything.
+    static constexpr double kCheckedDeltas[] = {0.0, 0.25, 1.0, 4.0, 16.0, 64.0};
+    static constexpr int kMaxDeltaLevels = 8;
+    // The |delta| check() compares at, in scalar units, ascending: 0 and, for order 2, kCheckedDeltas' below
+    // the whole range and the largest a checked cell centre admits (1 - spacing); at most kMaxDeltaLevels.
+    const std::vector<double>& checkedDeltas() const { return deltaLevels_; }
 
     // Lookups in double against direct() at the centres of the table's cells (per axis at most 64 evenly
     // spread and those of the transfer function's points), with delta = 0 and, for order 2, each of
-    // kCheckedDeltas: a measured largest error over those points, not a bound; `deltas` says where.
+    // kCheckedDeltas and the whole range, where the midpoint's scalar lies in [0, 1] as a render's does: a
+    // measured largest error over those points, not a bound; `deltas` says where.
     PreintegrationError check(const TransferFunction& tf) const;
 
     // True when every lookup whose front and back scalars lie in [s0, s1] is exactly 0 in all four values
@@ -148,6 +162,7 @@ private:
     // Per index, the run of zero entries it belongs to (findZeroRuns), -1 for none.
     std::vector<int> zeroRun_;
     void findZeroRuns();
+    std::vector<double> deltaLevels_;
 };
 
 template <>

@@ -123,6 +123,10 @@ struct RenderStats {
         int size = 0, order = 0;
         double segmentLength = 0.0;
         PreintegrationError error;
+        // Order 2 on the CPU: the largest |delta| the render's lookups asked (scalar units); the Vulkan
+        // backend does not count it.
+        std::optional<double> largestDelta;
+        std::vector<std::uint64_t> lookupsByDelta;  // the lookups per range of |delta| (render_json.cpp)
     };
     std::optional<Preintegration> preintegration;
     std::vector<AdaptiveTry> rayLog;  // the tries along RenderOptions::logPixel's ray

@@ -877,6 +877,10 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
     HWY_ALIGN std::int32_t count[kMaxLanes];
     int pixel[kMaxLanes];
     std::uint64_t lookedUp = 0;  // segments looked up, of all lanes
+    VF largestDelta = hn::Zero(df);  // order 2: the largest |delta| a lane's lookup asked, and the checked
+    std::size_t deltaLevels = 0;     // deltas (PreintegrationTable::checkedDeltas) it is counted against
+    VF deltaLevel[PreintegrationTable::kMaxDeltaLevels];
+    for (const double level : table.checkedDeltas()) deltaLevel[deltaLevels++] = hn::Set(df, static_cast<float>(level));
     const auto stencilAt = [&](VF t, MF valid, const VF (&e)[3], const VF (&d)[3]) {
         VF u[3];
         for (int a = 0; a < 3; ++a)
@@ -987,9 +991,11 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
             VF v[4];
             const TableLookup l = lookupAt(table, front, back);
             interpolateTable(values, l, table.size(), v);
+            VF deltaSize = hn::Zero(df);
             if (secondOrder) {
                 const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, k), step));
                 const VF delta = hn::Sub(scalarAt(t, looking, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
+                deltaSize = hn::Abs(delta);
                 VF slope[4];
                 interpolateTable(slopes, l, table.size(), slope);
                 for (int c = 0; c < 4; ++c)  // kept within [0, upperBound] as PreintegrationTable::operator() keeps it
@@ -999,6 +1005,13 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
             const MF adds = hn::AndNot(hn::And(hn::And(hn::Eq(v[3], zero), hn::Eq(v[0], zero)),
                                                hn::And(hn::Eq(v[1], zero), hn::Eq(v[2], zero))),
                                        looking);
+            if (secondOrder) {
+                largestDelta = hn::Max(largestDelta, hn::IfThenElseZero(adds, deltaSize));
+                counts.lookupsBeyond[0] += hn::CountTrue(df, adds);
+                for (std::size_t level = 0; level < deltaLevels; ++level)
+                    counts.lookupsBeyond[level + 1] +=
+                        hn::CountTrue(df, hn::And(adds, hn::Gt(deltaSize, deltaLevel[level])));
+            }
             if (!hn::AllFalse(df, adds)) {
                 const VF depth = hn::Mul(v[3], lengthRatio);
                 // A segment of the table's length (lengthRatio 1, every segment of an equally spaced volume under
@@ -1033,6 +1046,8 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
         }
     }
     counts.samplesEvaluated += lookedUp;
+    counts.largestDelta =
+        std::max(counts.largestDelta, static_cast<double>(hn::GetLane(hn::MaxOfLanes(df, largestDelta))));
 }
 
 template <class T>

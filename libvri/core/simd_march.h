@@ -10,6 +10,7 @@
 // (StencilBricks, occupancy_grid.h): in each step a lane in an empty brick jumps to the samples
 // leaving the cube of empty bricks around it, while the others evaluate their samples.
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,6 +33,12 @@ struct MarchCounts {
     std::uint64_t raysHit = 0, samplesPlaced = 0, samplesEvaluated = 0;
     std::uint64_t raysTerminated = 0;  // rays ended early with samples left (early_termination.h)
     double terminationLeftOut = 0.0;   // the most those samples could have added to a channel
+    // Second-order pre-integration, of the lookups whose value is not exactly 0 (those that add to a pixel:
+    // a segment in the table's empty space is not looked up by every path): the largest |delta|, and how
+    // many there were [0] and how many asked more than each of the table's checked deltas [k + 1]
+    // (PreintegrationTable::checkedDeltas).
+    double largestDelta = 0.0;
+    std::array<std::uint64_t, PreintegrationTable::kMaxDeltaLevels + 1> lookupsBeyond{};
 
     // A ray ended early, leaving out samples that could have added at most `leftOut` to a channel.
     void terminated(double leftOut) {

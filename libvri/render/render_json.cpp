@@ -65,7 +65,18 @@ nlohmann::json toJson(const RenderStats& s) {
         put(record, preintErrorColour, p.error.colour);
         put(record, preintErrorAlpha, p.error.alpha);
         put(record, preintPointsChecked, p.error.points);
-        put(record, preintCheckedDeltas, p.error.deltas);
+        if (p.order == 2) {
+            put(record, preintCheckedDeltas, p.error.deltas);
+            put(record, preintErrorColourByDelta, p.error.colourByDelta);
+            put(record, preintErrorAlphaByDelta, p.error.alphaByDelta);
+        }
+        if (p.largestDelta) {
+            const auto [colour, alpha] = p.error.upTo(*p.largestDelta);
+            put(record, preintLargestDelta, *p.largestDelta);
+            put(record, preintLookupsByDelta, p.lookupsByDelta);
+            put(record, preintErrorColourUsed, colour);
+            put(record, preintErrorAlphaUsed, alpha);
+        }
     }
     put(record, nonfinitePixels, s.nonfinite.count);
     if (s.nonfinite.count > 0) put(record, firstNonfinitePixel, {s.nonfinite.firstX, s.nonfinite.firstY});

@@ -78,6 +78,14 @@ inline constexpr StatsField preintErrorColour{"/stats/preintegration/table_error
 inline constexpr StatsField preintErrorAlpha{"/stats/preintegration/table_error_alpha", TileRule::Same};
 inline constexpr StatsField preintPointsChecked{"/stats/preintegration/table_points_checked", TileRule::Same};
 inline constexpr StatsField preintCheckedDeltas{"/stats/preintegration/table_checked_deltas", TileRule::Same};
+inline constexpr StatsField preintErrorColourByDelta{"/stats/preintegration/table_error_colour_by_delta",
+                                                     TileRule::Same};
+inline constexpr StatsField preintErrorAlphaByDelta{"/stats/preintegration/table_error_alpha_by_delta", TileRule::Same};
+// Order 2 on the CPU: the largest |delta| the render asked, and the errors checked up to it (upTo).
+inline constexpr StatsField preintLargestDelta{"/stats/preintegration/largest_delta", TileRule::Max};
+inline constexpr StatsField preintLookupsByDelta{"/stats/preintegration/lookups_by_delta", TileRule::Sum};
+inline constexpr StatsField preintErrorColourUsed{"/stats/preintegration/table_error_colour_used", TileRule::Max};
+inline constexpr StatsField preintErrorAlphaUsed{"/stats/preintegration/table_error_alpha_used", TileRule::Max};
 // Values outside [0, 1] as the method returned them (out_of_range_pixels.h).
 inline constexpr StatsField outOfRangePixels{"/stats/out_of_range_pixels/pixels", TileRule::Sum};
 inline constexpr StatsField outOfRangeAbove{"/stats/out_of_range_pixels/channels_above_1", TileRule::Sum};

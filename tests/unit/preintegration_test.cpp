@@ -99,11 +99,14 @@ TEST_CASE("preintegration table: order 2 follows a quadratic scalar that order 1
         CHECK(firstError > 1e-4);                     // the midpoint moved the integral
         CHECK(secondError < firstError / 20.0);       // the derivative table follows it
     }
-    // Over the cells at deviations up to four spacings, the first-order expansion in delta drifts: the measured
-    // error grows past what interpolation costs at delta = 0 (the check reports it, where +-1/4 alone hid it).
+    // Over the cells at growing deviations, the first-order expansion in delta drifts: the measured error
+    // grows past what interpolation costs at delta = 0 (the check reports it, where +-1/4 alone hid it).
     const PreintegrationError e = second.check(tf), flat = first.check(tf);
-    CHECK(e.points == 7 * 64 * 64);  // delta 0, +-1/4, +-1 and +-4 spacings
+    REQUIRE(e.deltas.size() == 7);  // 0, 1/4, 1, 4, 16 and 64 spacings, 1 - a spacing
+    CHECK(e.points > 7 * 64 * 64);  // more than at 0, +-1/4, +-1 and +-4 spacings alone
     CHECK(e.colour > flat.colour);
+    CHECK(e.colourByDelta[4] > 4 * e.colourByDelta[1]);
+    CHECK(e.colourByDelta[0] == doctest::Approx(flat.colour).epsilon(0.5));
 }
 
 TEST_CASE("preintegration table: sizes and orders outside their ranges are refused") {
@@ -199,23 +202,50 @@ TEST_CASE("preintegration table: its own empty space is where every lookup is ex
     }
 }
 
-TEST_CASE("preintegration table: order 2's measured error covers midpoint deviations up to four spacings") {
+TEST_CASE("preintegration table: order 2's measured error covers every midpoint deviation a render can ask") {
     const TransferFunction tf = jumpingTransferFunction();
     const PreintegrationTable table(tf, 1.0, 64, 2);
     const PreintegrationError e = table.check(tf);
     const double spacing = 1.0 / 63;
-    REQUIRE(e.deltas.size() == 4);
-    CHECK(e.deltas[0] == 0.0);
-    CHECK(e.deltas[3] == doctest::Approx(4 * spacing));
-    // A lookup at a checked cell centre and four spacings' deviation is within what the check reports.
-    for (const double front : {10.5 * spacing, 30.5 * spacing})
-        for (const double back : {12.5 * spacing, 44.5 * spacing})
-            for (const double delta : {4 * spacing, -4 * spacing}) {
-                const SegmentIntegral<double> got = table(front, back, delta);
-                const SegmentIntegral<double> want = PreintegrationTable::direct(tf, 1.0, front, back, delta);
-                CHECK(std::max({std::abs(got.r - want.r), std::abs(got.g - want.g), std::abs(got.b - want.b)}) <=
-                      e.colour + 1e-12);
-            }
+    // 0, 1/4, 1, 4 and 16 spacings (64 is past the range of 63), then the largest a cell centre admits.
+    const std::vector<double> want{0.0, 0.25 * spacing, spacing, 4 * spacing, 16 * spacing, 1.0 - spacing};
+    REQUIRE(e.deltas.size() == want.size());
+    for (std::size_t k = 0; k < want.size(); ++k) CHECK(e.deltas[k] == doctest::Approx(want[k]));
+    CHECK(e.deltas == table.checkedDeltas());
+    REQUIRE(e.colourByDelta.size() == e.deltas.size());
+    REQUIRE(e.alphaByDelta.size() == e.deltas.size());
+    CHECK(e.colour == *std::max_element(e.colourByDelta.begin(), e.colourByDelta.end()));
+    CHECK(e.alpha == *std::max_element(e.alphaByDelta.begin(), e.alphaByDelta.end()));
+    // Every cell is checked at 63 cells: a lookup at any cell centre and checked deviation, the midpoint in
+    // [0, 1], is within what the check reports for that deviation.
+    int compared = 0;
+    for (int a = 0; a < 63; a += 5)
+        for (int b = 0; b < 63; b += 7)
+            for (std::size_t level = 0; level < e.deltas.size(); ++level)
+                for (const double sign : {1.0, -1.0}) {
+                    const double front = (a + 0.5) * spacing, back = (b + 0.5) * spacing,
+                                 delta = sign * e.deltas[level];
+                    const double middle = 0.5 * (front + back) + delta;
+                    if (middle < 0.0 || middle > 1.0) continue;
+                    const SegmentIntegral<double> got = table(front, back, delta);
+                    const SegmentIntegral<double> direct = PreintegrationTable::direct(tf, 1.0, front, back, delta);
+                    INFO("front ", front, " back ", back, " delta ", delta);
+                    CHECK(std::max({std::abs(got.r - direct.r), std::abs(got.g - direct.g),
+                                    std::abs(got.b - direct.b)}) <= e.colourByDelta[level] + 1e-12);
+                    CHECK(std::abs(std::expm1(-got.depth) - std::expm1(-direct.depth)) <=
+                          e.alphaByDelta[level] + 1e-12);
+                    ++compared;
+                }
+    CHECK(compared > 500);
+    // What a render's largest deviation reads: the errors up to the first checked deviation that covers it.
+    const auto upTo = [&](std::size_t last) {
+        return std::make_pair(*std::max_element(e.colourByDelta.begin(), e.colourByDelta.begin() + last + 1),
+                              *std::max_element(e.alphaByDelta.begin(), e.alphaByDelta.begin() + last + 1));
+    };
+    CHECK(e.upTo(0.0) == upTo(0));
+    CHECK(e.upTo(spacing) == upTo(2));
+    CHECK(e.upTo(2 * spacing) == upTo(3));
+    CHECK(e.upTo(2.0) == upTo(5));
     // Order 1 has no deviation to check.
     CHECK(PreintegrationTable(tf, 1.0, 64, 1).check(tf).deltas.empty());
 }

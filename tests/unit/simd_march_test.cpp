@@ -200,6 +200,17 @@ TEST_CASE("pre-integration on packets equals the scalar float path bit for bit: 
                         const Image scalar = render(scene, camera, opt, &scalarStats);
                         CHECK(test::sameBits(skipping, scalar));
                         if (rate > 1) CHECK(skippingStats.samplesEvaluated < scalarStats.samplesEvaluated);
+                        // Order 2's deviations are counted over the lookups that add something, the same
+                        // whether empty space is skipped or not.
+                        REQUIRE(scalarStats.preintegration);
+                        const RenderStats::Preintegration& scalarDeltas = *scalarStats.preintegration;
+                        CHECK(scalarDeltas.largestDelta.has_value() == (order == 2));
+                        if (order == 2) {
+                            CHECK(*scalarDeltas.largestDelta > 0.0);
+                            CHECK(scalarDeltas.lookupsByDelta.size() == scalarDeltas.error.deltas.size() + 1);
+                            CHECK(skippingStats.preintegration->lookupsByDelta == scalarDeltas.lookupsByDelta);
+                            CHECK(skippingStats.preintegration->largestDelta == scalarDeltas.largestDelta);
+                        }
                         CHECK(*std::max_element(scalar.pixels.begin(), scalar.pixels.end()) > 0.05f);
                         opt.simd = true;
                         for (std::int64_t target : targets)
@@ -218,6 +229,8 @@ TEST_CASE("pre-integration on packets equals the scalar float path bit for bit: 
                                 else if (rate > 1) CHECK(stats.samplesEvaluated < scalarStats.samplesEvaluated);
                                 else CHECK(stats.samplesEvaluated <= scalarStats.samplesEvaluated);
                                 CHECK(stats.raysHit == scalarStats.raysHit);
+                                CHECK(stats.preintegration->largestDelta == scalarDeltas.largestDelta);
+                                CHECK(stats.preintegration->lookupsByDelta == scalarDeltas.lookupsByDelta);
                             }
                         opt.skipEmptySpace = false;
                         hwy::SetSupportedTargetsForTest(0);
