@@ -440,7 +440,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--slurm-max-outage", options.slurmMaxOutage,
                    "give up (cancelling every job) once squeue has failed for SECONDS in a row (a controller "
-                   "restarting or out of reach); the jobs run on meanwhile")
+                   "restarting or out of reach); the jobs run on meanwhile; 0: at the first failure")
         ->check(vri::numberRange(0.0, 1e7))
         ->capture_default_str();
     app.add_option("--new", options.newStudy,

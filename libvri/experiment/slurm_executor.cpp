@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -108,22 +109,29 @@ void writeJobScript(const fs::path& script) {
 
 // Cancels `jobs`, waits until squeue shows them ended (or no longer knows them), at most kCancelWaitSeconds,
 // and says what became of them, to end an error message: "cancelled Slurm jobs 4-6 (3 jobs)", or, where
-// scancel failed and squeue cannot show them ended (the controller does not answer), that they may still
-// run and how to cancel them. scancel is asked again while squeue shows them running.
+// scancel failed and squeue cannot show them ended, that they may still run and how to cancel them. scancel
+// is asked again while squeue shows them running.
 struct CancelOutcome {
     bool cancelled;
     std::string said;
 };
+// An error message holds at most printable.h's limit: a longer scancel command goes on a line of its own.
+constexpr std::size_t kInlineCommandBytes = 400;
 CancelOutcome cancelAndWait(const std::vector<std::string>& jobs, double pollSeconds) {
     if (jobs.empty()) return {true, "no Slurm job was left to cancel"};
     const CancelOutcome cancelled{true, "cancelled Slurm jobs " + jobList(jobs)};
     std::string refused = cancelJobs(jobs);
-    const auto couldNot = [&] {
+    const auto couldNot = [&](bool controllerSilent) {
         std::string command = "scancel";
         for (const std::string& id : jobs) command += ' ' + id;
+        std::string how = "'" + command + "'";
+        if (command.size() > kInlineCommandBytes) {
+            std::cerr << "vri-run: " << command << '\n';
+            how = "the scancel command on the line above";
+        }
         return CancelOutcome{false, "could not cancel Slurm jobs " + jobList(jobs) + " (" + refused +
-                                        "): they may still run; cancel them with '" + command +
-                                        "' once the controller answers"};
+                                        "): they may still run; cancel them with " + how +
+                                        (controllerSilent ? " once the controller answers" : "")};
     };
     const auto start = Clock::now();
     bool said = false;  // a wait longer than a few seconds says what it waits for
@@ -138,19 +146,85 @@ CancelOutcome cancelAndWait(const std::vector<std::string>& jobs, double pollSec
             states = queryJobs(jobs, false);  // after a signal too: that is when this wait matters
         } catch (const Error&) {
             // The controller does not answer: what scancel said is all there is to go by.
-            return refused.empty() ? cancelled : couldNot();
+            return refused.empty() ? cancelled : couldNot(true);
         }
         bool running = false;
         try {
             for (const auto& [id, job] : states) running = running || !isFinalJobState(job.state);
         } catch (const Error&) {
-            return cancelled;  // a state this vri-run does not know: scancel has been asked, and this wait is cleanup
+            // A state this vri-run does not know: only scancel's answer tells.
+            return refused.empty() ? cancelled : couldNot(false);
         }
         if (!running) return cancelled;
         if (!refused.empty()) refused = cancelJobs(jobs);
         pause(pollSeconds);
     }
-    return refused.empty() ? cancelled : couldNot();
+    return refused.empty() ? cancelled : couldNot(false);
+}
+
+// Runs `watch`; whatever stops it, `unended()` (the jobs still to end then) are cancelled and the error says
+// what became of them: a vri::Error is thrown again with the outcome appended, anything else (out of memory,
+// a file system error) is rethrown as it is, the outcome on a line of its own.
+template <class Unended, class Watch>
+void cancelOnFailure(double pollSeconds, const Unended& unended, const Watch& watch) {
+    try {
+        watch();
+    } catch (const Error& e) {
+        const std::vector<std::string> jobs = unended();
+        if (jobs.empty()) throw;
+        throw Error(std::string(e.what()) + "; " + cancelAndWait(jobs, pollSeconds).said);
+    } catch (...) {
+        if (const std::vector<std::string> jobs = unended(); !jobs.empty())
+            std::cerr << "vri-run: " << cancelAndWait(jobs, pollSeconds).said << '\n';
+        throw;
+    }
+}
+
+// How long squeue has failed in a row, against --slurm-max-outage: a controller restarting or out of reach
+// for a while does not stop the run (its jobs run on without it); one line says squeue fails, another when it
+// answers again. The clock starts when the first failing look was asked.
+class SqueueOutage {
+public:
+    explicit SqueueOutage(double maxSeconds) : maxSeconds_(maxSeconds) {}
+
+    // squeue, asked at `asked`, failed with `e`: rethrown past the limit, else said once.
+    void failed(const Error& e, Clock::time_point asked) {
+        if (!since_) since_ = asked;
+        const double silent = std::chrono::duration<double>(Clock::now() - *since_).count();
+        if (silent >= maxSeconds_)
+            throw Error(std::string(e.what()) + "; no answer for " + secondsText(silent) + " (--slurm-max-outage " +
+                        exactNumber(maxSeconds_) + " s)");
+        if (!said_)
+            std::cerr << "vri-run: " << e.what() << "; asking again for up to " << exactNumber(maxSeconds_)
+                      << " s (--slurm-max-outage) while the jobs run on\n";
+        said_ = true;
+    }
+    void answered() {
+        if (said_)
+            std::cerr << "vri-run: squeue answers again after "
+                      << secondsText(std::chrono::duration<double>(Clock::now() - *since_).count()) << '\n';
+        since_.reset();
+        said_ = false;
+    }
+
+private:
+    double maxSeconds_;
+    std::optional<Clock::time_point> since_;
+    bool said_ = false;
+};
+
+// The jobs' states, or nullopt while squeue fails within the outage allowed; a signal that stopped squeue
+// gives nullopt too, for the caller's first line to stop the run.
+std::optional<std::map<std::string, SlurmJob>> lookAtJobs(const std::vector<std::string>& ids, SqueueOutage& outage) {
+    const auto asked = Clock::now();
+    try {
+        std::map<std::string, SlurmJob> states = queryJobs(ids);
+        outage.answered();
+        return states;
+    } catch (const Error& e) {
+        if (!gSlurmInterrupt) outage.failed(e, asked);
+        return std::nullopt;
+    }
 }
 
 // The job files of the runs before this one kept beside it: the output of a job an error message named stays
@@ -234,22 +308,24 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
     try {
         const std::string id = submitJob(arguments);
         PendingWatch pending("the Slurm check job " + id, options.slurm.maxPendingSeconds);
-        try {
+        SqueueOutage outage(options.slurm.maxOutageSeconds);
+        bool ended = false;
+        const auto unended = [&] { return ended ? std::vector<std::string>{} : std::vector<std::string>{id}; };
+        cancelOnFailure(options.slurm.pollSeconds, unended, [&] {
             for (;;) {
                 if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt));
                 pause(options.slurm.pollSeconds);
-                const std::map<std::string, SlurmJob> states = queryJobs({id});
-                pending.update(states, std::cerr, Clock::now());
-                const auto found = states.find(id);
-                if (found == states.end()) break;
-                if (isFinalJobState(found->second.state)) {
-                    completed = found->second.state == "COMPLETED";
-                    break;
+                const std::optional<std::map<std::string, SlurmJob>> states = lookAtJobs({id}, outage);
+                if (!states) continue;
+                pending.update(*states, std::cerr, Clock::now());
+                const auto found = states->find(id);
+                if (found == states->end() || isFinalJobState(found->second.state)) {
+                    completed = found == states->end() || found->second.state == "COMPLETED";
+                    ended = true;
+                    return;
                 }
             }
-        } catch (const std::exception& e) {
-            throw Error(std::string(e.what()) + "; " + cancelAndWait({id}, options.slurm.pollSeconds).said);
-        }
+        });
         // A check that completed wrote its report, which a shared file system may show late.
         const auto start = Clock::now();
         while (completed && !fs::exists(check.report) && !gSlurmInterrupt &&
@@ -511,18 +587,19 @@ std::size_t SlurmRun::prepare() {
     // steps beside this run's and could write an output after the cache was read or this run recorded it:
     // they go before anything else.
     const std::string name = plan_.resultsDir.filename().string();
+    std::vector<std::string> orphans;
     if (!options_.slurm.dryRun) try {
-            if (const std::vector<std::string> orphans = unendedJobsIn(slurmDir_); !orphans.empty()) {
-                std::cerr << "vri-run: " << name << ": cancelling Slurm jobs " << jobList(orphans)
-                          << " of an earlier vri-run on this results folder, still in the queue\n";
-                if (const CancelOutcome outcome = cancelAndWait(orphans, options_.slurm.pollSeconds);
-                    !outcome.cancelled)
-                    std::cerr << "vri-run: warning: " << name << ": " << outcome.said << '\n';
-            }
+            orphans = unendedJobsIn(slurmDir_);
         } catch (const Error& e) {  // a run that submits nothing needs no controller
             std::cerr << "vri-run: warning: " << name << ": " << e.what()
                       << ": the jobs of an earlier vri-run killed with SIGKILL were not looked for\n";
         }
+    if (!orphans.empty()) {
+        std::cerr << "vri-run: " << name << ": cancelling Slurm jobs " << jobList(orphans)
+                  << " of an earlier vri-run on this results folder, still in the queue\n";
+        if (const CancelOutcome outcome = cancelAndWait(orphans, options_.slurm.pollSeconds); !outcome.cancelled)
+            throw Error(name + ": " + outcome.said + "; nothing was submitted beside them");
+    }
     const std::vector<std::size_t> steps = stepsToRun();
     stepCount_ = steps.size();
     for (JobBundle& bundle : bundleSteps(plan_, steps, options_.prices, options_.slurm.bundleSeconds)) {
@@ -623,55 +700,31 @@ void SlurmBatch::checkNodes() {
 
 void SlurmBatch::run() {
     const double poll = impl_->options.slurm.pollSeconds;
-    const double maxOutage = impl_->options.slurm.maxOutageSeconds;
     // Whatever stops the submission or the watch (an interrupt, squeue failing past --slurm-max-outage, a
     // record that cannot be written), no job of this batch is left behind, and the message says so.
-    try {
-        auto lastAnswer = slurm_detail::Clock::now();
-        bool failing = false;  // squeue failed at the last look
-        impl_->submitMore();
-        PendingWatch pending("Slurm jobs", impl_->options.slurm.maxPendingSeconds);
-        PollInterval interval(poll);
-        std::map<std::string, std::string> seen;  // job id -> state at the last look
-        for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty() || impl_->anyUnsubmitted();
-             ids = impl_->unendedIds()) {
-            if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt));
-            slurm_detail::pause(interval.seconds());
-            std::map<std::string, SlurmJob> states;
-            try {
-                states = queryJobs(ids);
-            } catch (const Error& e) {
-                if (gSlurmInterrupt) continue;  // squeue stopped by the signal: the loop's first line stops the run
-                // A controller restarting or out of reach for a while: the jobs run on without it.
-                const double silent = std::chrono::duration<double>(slurm_detail::Clock::now() - lastAnswer).count();
-                if (silent >= maxOutage)
-                    throw Error(std::string(e.what()) + "; no answer for " + secondsText(silent) +
-                                " (--slurm-max-outage " + exactNumber(maxOutage) + " s)");
-                if (!failing)
-                    std::cerr << "vri-run: " << e.what() << "; asking again for up to " << exactNumber(maxOutage)
-                              << " s (--slurm-max-outage) while the jobs run on\n";
-                failing = true;
-                continue;
-            }
-            const auto now = slurm_detail::Clock::now();
-            if (failing)
-                std::cerr << "vri-run: squeue answers again after "
-                          << secondsText(std::chrono::duration<double>(now - lastAnswer).count()) << '\n';
-            failing = false;
-            lastAnswer = now;
-            std::map<std::string, std::string> states_now;
-            for (const auto& [id, job] : states) states_now[id] = job.state;
-            interval.looked(states_now != seen);
-            seen = std::move(states_now);
-            for (const auto& r : impl_->runs) r->update(states);
+    slurm_detail::cancelOnFailure(
+        poll, [&] { return impl_->unendedIds(); },
+        [&] {
             impl_->submitMore();
-            pending.update(states, std::cerr, now);
-        }
-    } catch (const std::exception& e) {
-        const std::vector<std::string> unended = impl_->unendedIds();
-        if (unended.empty()) throw;
-        throw Error(std::string(e.what()) + "; " + slurm_detail::cancelAndWait(unended, poll).said);
-    }
+            PendingWatch pending("Slurm jobs", impl_->options.slurm.maxPendingSeconds);
+            slurm_detail::SqueueOutage outage(impl_->options.slurm.maxOutageSeconds);
+            PollInterval interval(poll);
+            std::map<std::string, std::string> seen;  // job id -> state at the last look
+            for (std::vector<std::string> ids = impl_->unendedIds(); !ids.empty() || impl_->anyUnsubmitted();
+                 ids = impl_->unendedIds()) {
+                if (gSlurmInterrupt) throw Error("interrupted by " + slurm_detail::signalName(gSlurmInterrupt));
+                slurm_detail::pause(interval.seconds());
+                const std::optional<std::map<std::string, SlurmJob>> states = slurm_detail::lookAtJobs(ids, outage);
+                if (!states) continue;
+                std::map<std::string, std::string> now;
+                for (const auto& [id, job] : *states) now[id] = job.state;
+                interval.looked(now != seen);
+                seen = std::move(now);
+                for (const auto& r : impl_->runs) r->update(*states);
+                impl_->submitMore();
+                pending.update(*states, std::cerr, slurm_detail::Clock::now());
+            }
+        });
 }
 
 std::vector<StepOutcome> SlurmBatch::result(std::size_t k) const { return impl_->runs.at(k)->result(); }

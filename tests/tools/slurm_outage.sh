@@ -62,6 +62,14 @@ same_images() {
         fail "the Slurm run's image differs from the local one"
 }
 controller=$(cat cluster/slurmctld.pid)
+run=
+# A failed check leaves neither the controller paused nor vri-run running (the cluster's own trap then stops the daemons).
+leave() {
+    kill -CONT "$(cat cluster/slurmctld.pid 2>/dev/null)" 2>/dev/null || true
+    [ -z "$run" ] || kill "$run" 2>/dev/null || true
+    stop_slurm_cluster
+}
+trap leave EXIT
 
 # The controller paused until squeue fails: vri-run says so and asks again, then goes on.
 start_slow paused.txt
@@ -79,7 +87,7 @@ rm -rf res
 start_slow stopped.txt --slurm-max-outage 1
 stop_slurmctld
 if wait "$run"; then fail "vri-run succeeded although the controller was gone"; fi
-errors=$(grep -c "error" stopped.txt || true)
+errors=$(grep -c "^vri-run: error:" stopped.txt || true)
 [ "$errors" -eq 1 ] || { cat stopped.txt; fail "$errors error lines, not one"; }
 grep -q "^vri-run: error: squeue failed (.*; no answer for [0-9.]* s (--slurm-max-outage 1 s); could not cancel Slurm jobs [0-9,-]* ([0-9]* jobs\?) (.*): they may still run; cancel them with 'scancel [0-9 ]*' once the controller answers$" stopped.txt ||
     { cat stopped.txt; fail "the give-up line does not say that the jobs could not be cancelled"; }
