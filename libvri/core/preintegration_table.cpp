@@ -70,10 +70,13 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, double segm
     findZeroRuns();
     deltaLevels_ = {0.0};
     if (order == 2) {
-        const int cells = size - 1;
-        for (const double k : kCheckedDeltas)
-            if (k > 0 && k < cells - 1) deltaLevels_.push_back(k / cells);
-        deltaLevels_.push_back(1.0 - 1.0 / cells);
+        const double widest = 1.0 - spacing;
+        for (const double k : kCheckedSpacings) deltaLevels_.push_back(k * spacing);
+        for (const double f : kCheckedFractions) deltaLevels_.push_back(f);
+        std::erase_if(deltaLevels_, [&](double d) { return d >= widest; });
+        deltaLevels_.push_back(widest);
+        std::sort(deltaLevels_.begin(), deltaLevels_.end());
+        deltaLevels_.erase(std::unique(deltaLevels_.begin(), deltaLevels_.end()), deltaLevels_.end());
     }
 }
 
@@ -150,7 +153,8 @@ PreintegrationError PreintegrationTable::check(const TransferFunction& tf) const
     const double spacing = 1.0 / cells;
     // The cells checked per axis: kMaxChecked spread evenly, and those holding a transfer-function point
     // (up to kMaxChecked of them), where the integral has a kink that interpolation resolves worst.
-    std::vector<int> cell;
+    // The last cell too, where the largest deviations below 0 are asked.
+    std::vector<int> cell{cells - 1};
     for (int a = 0; a < std::min(cells, kMaxChecked); ++a) cell.push_back(a * cells / std::min(cells, kMaxChecked));
     int points = 0;
     for (const TransferFunctionPoint& p : tf.points())

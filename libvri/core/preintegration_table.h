@@ -111,16 +111,17 @@ public:
     // quadratic through front, the midpoint front/2 + back/2 + delta and back.
     static SegmentIntegral<double> direct(const TransferFunction& tf, double segmentLength, double front, double back,
                                           double delta);
-    // The midpoint deviations order 2 is checked at, in table spacings (each with both signs), and then the
-    // whole range a render can ask (delta = +-1 in scalar units, the midpoint at one end of [0, 1] and the
-    // ends at the other): a quarter, where the slope's expansion is close, through the deviations of a
-    // segment across a sharp bend of the data, where the first-order expansion in delta drifts (an outside
-    // audit found 4x the error reported from +-1/4 alone at 2.5 spacings), to a segment across a whole
-    // feature thinner than the step, where it no longer means anything.
-    static constexpr double kCheckedDeltas[] = {0.0, 0.25, 1.0, 4.0, 16.0, 64.0};
-    static constexpr int kMaxDeltaLevels = 8;
-    // The |delta| check() compares at, in scalar units, ascending: 0 and, for order 2, kCheckedDeltas' below
-    // the whole range and the largest a checked cell centre admits (1 - spacing); at most kMaxDeltaLevels.
+    // The midpoint deviations order 2 is checked at (each with both signs): in table spacings, from a quarter,
+    // where the slope's expansion is close, through those of a segment across a sharp bend of the data, where
+    // the first-order expansion in delta drifts (an outside audit found 4x the error reported from +-1/4
+    // alone at 2.5 spacings); then in scalar units, up to a segment across a whole feature thinner than the
+    // step, where it no longer means anything; last the largest a cell centre admits (1 - a spacing: the
+    // midpoint at one end of [0, 1], the ends at the other).
+    static constexpr double kCheckedSpacings[] = {0.25, 1.0, 4.0, 16.0};
+    static constexpr double kCheckedFractions[] = {0.125, 0.25, 0.5};
+    static constexpr int kMaxDeltaLevels = 9;
+    // The |delta| check() compares at, in scalar units, ascending and each once: 0 and, for order 2, the
+    // above below 1 - a spacing and then that; at most kMaxDeltaLevels.
     const std::vector<double>& checkedDeltas() const { return deltaLevels_; }
 
     // Lookups in double against direct() at the centres of the table's cells (per axis at most 64 evenly

@@ -837,6 +837,31 @@ HWY_INLINE TableLookup lookupAt(const PreintegrationTable& table, VF front, VF b
 HWY_INLINE void interpolateTable(const float* v, const TableLookup& l, int size, VF (&out)[4]) {
     const DF df;
     const DI di;
+#if HWY_TARGET <= HWY_AVX2
+    // An entry's four floats are 16 bytes: R and G, and B and depth, are one 64-bit word each, so a corner of
+    // the lanes' cells is gathered as two words a lane (half as many elements as float by float, which is what
+    // a gather's cost follows) and split into channels. The same values, interpolated as below.
+    const hn::Repartition<std::int64_t, DF> dw;
+    const hn::Half<DI> dh;
+    const auto* words = reinterpret_cast<const std::int64_t*>(v);
+    const VI first = hn::ShiftRight<1>(l.at);  // the entry's first word
+    const auto corner = [&](int offset, int pair, VF& even, VF& odd) {
+        const VI at = hn::Add(first, hn::Set(di, offset + pair));
+        const VF low = hn::BitCast(df, hn::GatherIndex(dw, words, hn::PromoteTo(dw, hn::LowerHalf(dh, at))));
+        const VF high = hn::BitCast(df, hn::GatherIndex(dw, words, hn::PromoteTo(dw, hn::UpperHalf(dh, at))));
+        even = hn::ConcatEven(df, high, low);
+        odd = hn::ConcatOdd(df, high, low);
+    };
+    for (int pair = 0; pair < 2; ++pair) {
+        VF a[4], b[4];  // channels 2 pair and 2 pair + 1 at the corners (i, j), (i, j + 1), (i + 1, j), (i + 1, j + 1)
+        corner(0, pair, a[0], b[0]);
+        corner(2, pair, a[1], b[1]);
+        corner(size * 2, pair, a[2], b[2]);
+        corner(size * 2 + 2, pair, a[3], b[3]);
+        out[2 * pair] = lerp(lerp(a[0], a[1], l.fj), lerp(a[2], a[3], l.fj), l.fi);
+        out[2 * pair + 1] = lerp(lerp(b[0], b[1], l.fj), lerp(b[2], b[3], l.fj), l.fi);
+    }
+#else
     const VI right = hn::Set(di, 4), down = hn::Set(di, size * 4), both = hn::Set(di, size * 4 + 4);
     for (int c = 0; c < 4; ++c) {
         const VI at = hn::Add(l.at, hn::Set(di, c));
@@ -844,6 +869,7 @@ HWY_INLINE void interpolateTable(const float* v, const TableLookup& l, int size,
         const VF far = lerp(hn::GatherIndex(df, v, hn::Add(at, down)), hn::GatherIndex(df, v, hn::Add(at, both)), l.fj);
         out[c] = lerp(near, far, l.fi);
     }
+#endif
 }
 
 // Pre-integration (cpu_renderer.cpp's marchSegments) on packets: each lane looks up its segments in order,

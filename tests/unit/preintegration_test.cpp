@@ -102,7 +102,7 @@ TEST_CASE("preintegration table: order 2 follows a quadratic scalar that order 1
     // Over the cells at growing deviations, the first-order expansion in delta drifts: the measured error
     // grows past what interpolation costs at delta = 0 (the check reports it, where +-1/4 alone hid it).
     const PreintegrationError e = second.check(tf), flat = first.check(tf);
-    REQUIRE(e.deltas.size() == 7);  // 0, 1/4, 1, 4, 16 and 64 spacings, 1 - a spacing
+    REQUIRE(e.deltas.size() == 8);  // 0, 1/4, 1 and 4 spacings, 1/8 (16 spacings), 1/4, 1/2, 1 - a spacing
     CHECK(e.points > 7 * 64 * 64);  // more than at 0, +-1/4, +-1 and +-4 spacings alone
     CHECK(e.colour > flat.colour);
     CHECK(e.colourByDelta[4] > 4 * e.colourByDelta[1]);
@@ -207,8 +207,9 @@ TEST_CASE("preintegration table: order 2's measured error covers every midpoint 
     const PreintegrationTable table(tf, 1.0, 64, 2);
     const PreintegrationError e = table.check(tf);
     const double spacing = 1.0 / 63;
-    // 0, 1/4, 1, 4 and 16 spacings (64 is past the range of 63), then the largest a cell centre admits.
-    const std::vector<double> want{0.0, 0.25 * spacing, spacing, 4 * spacing, 16 * spacing, 1.0 - spacing};
+    // 0, 1/4, 1, 4 and 16 spacings, 1/8, 1/4 and 1/2, then the largest a cell centre admits, ascending.
+    const std::vector<double> want{0.0,  0.25 * spacing, spacing, 4 * spacing,  0.125,
+                                   0.25, 16 * spacing,   0.5,     1.0 - spacing};
     REQUIRE(e.deltas.size() == want.size());
     for (std::size_t k = 0; k < want.size(); ++k) CHECK(e.deltas[k] == doctest::Approx(want[k]));
     CHECK(e.deltas == table.checkedDeltas());
@@ -245,7 +246,10 @@ TEST_CASE("preintegration table: order 2's measured error covers every midpoint 
     CHECK(e.upTo(0.0) == upTo(0));
     CHECK(e.upTo(spacing) == upTo(2));
     CHECK(e.upTo(2 * spacing) == upTo(3));
-    CHECK(e.upTo(2.0) == upTo(5));
+    CHECK(e.upTo(2.0) == upTo(want.size() - 1));
+    // A table of one cell checks delta = 0 and its widest deviation, 0 too: once.
+    const PreintegrationTable two(tf, 1.0, 2, 2);
+    CHECK(two.checkedDeltas() == std::vector<double>{0.0});
     // Order 1 has no deviation to check.
     CHECK(PreintegrationTable(tf, 1.0, 64, 1).check(tf).deltas.empty());
 }

@@ -35,7 +35,12 @@ json everyWrittenField() {
     render.voxelLoads = "gather";
     render.adaptive = AdaptiveCounts{};
     render.simpsonRange = SimpsonRange{};
-    render.preintegration = RenderStats::Preintegration{};
+    render.preintegration = RenderStats::Preintegration{};  // order 2 on the CPU: every field
+    render.preintegration->order = 2;
+    render.preintegration->error.deltas = {0.0, 0.25};
+    render.preintegration->error.colourByDelta = render.preintegration->error.alphaByDelta = {0.0, 0.0};
+    render.preintegration->largestDelta = 0.1;
+    render.preintegration->lookupsByDelta = {1, 2, 0};
     render.nonfinite.count = 1;
     json record = {{"stats", toJson(render)}, {"timing", frameTimingRecord(1, {1.0, 2.0})}};
     putOutOfRange(record, OutOfRangePixels{});
