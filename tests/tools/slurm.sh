@@ -193,35 +193,10 @@ done
 same_outputs local/small res/small
 
 # A slow render (about 15 s) and a diff that needs it.
-cat > slow.yaml <<'YAML'
-name: slow
-title: One slow render and a diff that needs it
-paper: {paper: A, item: Fig. 4, says: a test}
-scenes:
-  cube: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [64, 48]}
-methods:
-  riemann: {placement: [entry-exit-corner], rate: [2, 400000]}
-comparisons:
-  vs-fine: {reference: riemann-entry-exit-corner-r400000}
-YAML
-slow_job=vri:slow:riemann-entry-exit-corner-r400000
-# Starts the slow study on Slurm in the background ($run) and waits until the slow render's job runs ($job).
-start_slow() {
-    "${slurm[@]}" --slurm-bundle 0 --results res slow.yaml 2> "$1" &
-    run=$!
-    job=
-    for _ in $(seq 600); do
-        job=$(squeue --noheader --states=RUNNING --name="$slow_job" --format=%i 2>/dev/null || true)
-        # Every job submitted, and the slow one running.
-        [ -n "$job" ] && grep -q "steps in Slurm jobs" "$1" && return 0
-        sleep 0.1
-    done
-    kill "$run"
-    cat "$1"
-    fail "the slow render's job never ran"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_slow_study.sh"
+write_slow_study 400000
 no_partial_outputs() {
-    ! ls res/slow/riemann-entry-exit-corner-r400000.* > /dev/null 2>&1 || fail "the cancelled render left an output"
+    ! ls res/slow/"$slow_step".* > /dev/null 2>&1 || fail "the cancelled render left an output"
     [ -z "$(find res/slow -name '*.tmp.*')" ] || fail "a temporary file was left: $(find res/slow -name '*.tmp.*')"
 }
 
@@ -229,7 +204,7 @@ no_partial_outputs() {
 start_slow cancelled.txt
 scancel "$job"
 if wait "$run"; then fail "vri-run succeeded although its job was cancelled"; fi
-grep -q "step 'riemann-entry-exit-corner-r400000' failed: Slurm job $job CANCELLED" cancelled.txt ||
+grep -q "step '$slow_step' failed: Slurm job $job CANCELLED" cancelled.txt ||
     { cat cancelled.txt; fail "no line naming the cancelled job and its state"; }
 [ ! -e res/slow/vs-fine-riemann-entry-exit-corner-r2.json ] || fail "the diff ran although its render was cancelled"
 [ ! -e res/slow/manifest.json ] || fail "a failed run wrote a manifest"

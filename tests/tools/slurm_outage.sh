@@ -17,37 +17,10 @@ points:
   - [1.0, 0.2, 0.4, 1.0, 0.8]
 YAML
 # A render of several seconds and a diff that needs it.
-cat > slow.yaml <<'YAML'
-name: slow
-title: One slow render and a diff that needs it
-paper: {paper: A, item: Fig. 4, says: a test}
-scenes:
-  cube: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [64, 48]}
-methods:
-  riemann: {placement: [entry-exit-corner], rate: [2, 200000]}
-comparisons:
-  vs-fine: {reference: riemann-entry-exit-corner-r200000}
-YAML
+source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_slow_study.sh"
+write_slow_study 200000
 "$bin/vri-run" --results local slow.yaml 2> local.txt || { cat local.txt; fail "the local run failed"; }
-slow_job=vri:slow:riemann-entry-exit-corner-r200000
 
-# Starts the study on Slurm in the background ($run, its stderr in $1, more options after) and waits until
-# the slow render's job runs ($job).
-start_slow() {
-    local log=$1
-    shift
-    "$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-bundle 0 "$@" --results res slow.yaml 2> "$log" &
-    run=$!
-    job=
-    for _ in $(seq 600); do
-        job=$(squeue --noheader --states=RUNNING --name="$slow_job" --format=%i 2>/dev/null || true)
-        [ -n "$job" ] && grep -q "steps in Slurm jobs" "$log" && return 0
-        sleep 0.1
-    done
-    kill "$run"
-    cat "$log"
-    fail "the slow render's job never ran"
-}
 # Waits (at most a minute) until FILE has a line matching PATTERN.
 wait_for_line() {
     for _ in $(seq 600); do
@@ -58,7 +31,7 @@ wait_for_line() {
     fail "no line matching '$2' in $1"
 }
 same_images() {
-    "$bin/vri-diff" local/slow/riemann-entry-exit-corner-r200000.exr res/slow/riemann-entry-exit-corner-r200000.exr --fail 0 > /dev/null ||
+    "$bin/vri-diff" "local/slow/$slow_step.exr" "res/slow/$slow_step.exr" --fail 0 > /dev/null ||
         fail "the Slurm run's image differs from the local one"
 }
 controller=$(cat cluster/slurmctld.pid)

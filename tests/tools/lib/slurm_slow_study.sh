@@ -1,0 +1,38 @@
+# Sourced by the Slurm tests after scratch.sh: a study of one slow render and a diff that needs it, started on
+# the test cluster in the background until the slow render's job runs.
+#   write_slow_study RATE   slow.yaml (reading tf.yaml beside it), the render at RATE samples per voxel;
+#                           sets slow_step and slow_job (the step's Slurm job name)
+#   start_slow LOG [OPTION...]   vri-run --executor slurm, a job per step, on slow.yaml into res in the
+#                           background ($run), its stderr in LOG; waits until every job is submitted and the
+#                           slow render's runs ($job)
+write_slow_study() {
+    slow_step=riemann-entry-exit-corner-r$1
+    slow_job=vri:slow:$slow_step
+    cat > slow.yaml <<YAML
+name: slow
+title: One slow render and a diff that needs it
+paper: {paper: A, item: Fig. 4, says: a test}
+scenes:
+  cube: {field: linear, field_dims: [5, 5, 5], convention: node, tf: tf.yaml, size: [64, 48]}
+methods:
+  riemann: {placement: [entry-exit-corner], rate: [2, $1]}
+comparisons:
+  vs-fine: {reference: $slow_step}
+YAML
+}
+
+start_slow() {
+    local log=$1
+    shift
+    "$VRI_BIN/vri-run" --executor slurm --slurm-poll 0.2 --slurm-bundle 0 "$@" --results res slow.yaml 2> "$log" &
+    run=$!
+    job=
+    for _ in $(seq 600); do
+        job=$(squeue --noheader --states=RUNNING --name="$slow_job" --format=%i 2>/dev/null || true)
+        [ -n "$job" ] && grep -q "steps in Slurm jobs" "$log" && return 0
+        sleep 0.1
+    done
+    kill "$run"
+    cat "$log"
+    fail "the slow render's job never ran"
+}
