@@ -54,6 +54,7 @@ struct Options {
     std::string slurmPartition, slurmAccount;
     std::vector<std::string> slurmArguments;
     double slurmBundle = 60, slurmPoll = 1, slurmMaxPending = 0, slurmMaxOutage = 120;
+    int slurmRetries = 0;
     int slurmMaxJobs = 0;
     int slurmCpus = 2;
     bool slurmCpusGiven = false;       // on the command line, over a site profile's
@@ -93,6 +94,7 @@ vri::SlurmOptions slurmOptions(const Options& options) {
     slurm.pollSeconds = options.slurmPoll;
     slurm.maxPendingSeconds = options.slurmMaxPending;
     slurm.maxOutageSeconds = options.slurmMaxOutage;
+    slurm.retries = options.slurmRetries;
     slurm.maxJobs = static_cast<std::size_t>(options.slurmMaxJobs);
     return slurm;
 }
@@ -437,6 +439,12 @@ int main(int argc, char** argv) {
                    "give up (cancelling every job) once no job has run for SECONDS while some pend for the cluster "
                    "(a partition down, a drained node, a hold); 0: wait; a line says why they pend after a minute")
         ->check(vri::numberRange(0.0, 1e7))
+        ->capture_default_str();
+    app.add_option(
+           "--slurm-retries", options.slurmRetries,
+           "submit a job again up to N times when it ends NODE_FAIL, PREEMPTED or BOOT_FAIL, TIMEOUT (its --time "
+           "doubled) or OUT_OF_MEMORY (its --mem doubled); 0 to 10")
+        ->check(vri::integerRange(0, 10))
         ->capture_default_str();
     app.add_option("--slurm-max-outage", options.slurmMaxOutage,
                    "give up (cancelling every job) once squeue has failed for SECONDS in a row (a controller "

@@ -285,7 +285,10 @@ void renderScene(const Scene& scene, const Camera& camera, const RenderOptions& 
                                                 preintegrationSegmentLength(scene, opt), opt.preintegrationSize,
                                                 opt.preintegrationOrder);
         lookup = &entry.structure.table;
-        stats.preintegration = {lookup->size(), lookup->order(), lookup->segmentLength(), entry.structure.error};
+        stats.preintegration = RenderStats::Preintegration{.size = lookup->size(),
+                                                           .order = lookup->order(),
+                                                           .segmentLength = lookup->segmentLength(),
+                                                           .error = entry.structure.error};
         stats.setupSeconds += entry.buildSeconds;
         stats.setupReused = entry.reused;
         if (!entry.reused) setupSpent += entry.buildSeconds;

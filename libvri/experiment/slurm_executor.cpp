@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -40,6 +41,8 @@ using Clock = std::chrono::steady_clock;
 
 // How long a file a finished job wrote may take to show here (a network file system's attribute cache).
 constexpr double kSharedFileDelaySeconds = 30;
+// --slurm-retries: what a retry after TIMEOUT multiplies the job's --time by, after OUT_OF_MEMORY its --mem.
+constexpr double kRetryFactor = 2.0;
 // After scancel, how long vri-run waits for its jobs to end before it stops waiting.
 constexpr double kCancelWaitSeconds = 60;
 // The state of a job squeue has forgotten (it ended long ago: MinJobAge).
@@ -374,6 +377,10 @@ private:
         std::string id;
         bool ended = false;
         std::set<std::size_t> dependsOn;  // indices of jobs
+        // --slurm-retries: the attempts before this one ("job 12 NODE_FAIL on n3"), and the factors its
+        // time and memory were raised by after TIMEOUT and OUT_OF_MEMORY.
+        std::vector<std::string> earlierAttempts;
+        double timeScale = 1.0, memoryScale = 1.0;
     };
 
     std::vector<std::size_t> stepsToRun();
@@ -381,10 +388,20 @@ private:
     // sbatch's arguments for job j, the jobs it waits for given by `dependencyIds`.
     std::vector<std::string> sbatchArguments(std::size_t j, const std::vector<std::string>& dependencyIds) const;
     void ended(std::size_t j, const SlurmJob& state);
+    // Job j ended as --slurm-retries retries: submitted again (first in submitMore), with the jobs after it
+    // that Slurm would cancel for their dependency on it cancelled and submitted again after it.
+    void retry(std::size_t j, const SlurmJob& state, const std::string& raised);
+    // What a retry of `job` after it ended in `state` raises ("" for nothing), or nullopt where it is not
+    // retried: --slurm-retries used up, a state a retry does not mend, a TIMEOUT with no --time to raise.
+    std::optional<std::string> retryRaises(const std::string& state, const Job& job) const;
     void abandonDependents(std::size_t j);
     // A run's job files carry a token of their own: a job of an earlier run still alive (one scancel
     // could not stop in time) finds its own files gone, and never reads this run's.
-    std::string jobStem(std::size_t j) const { return "job-" + token_ + "-" + std::to_string(j); }
+    // An attempt after the first has files of its own: the output an error message named stays.
+    std::string jobStem(std::size_t j) const {
+        const std::size_t attempt = jobs_[j].earlierAttempts.size();
+        return "job-" + token_ + "-" + std::to_string(j) + (attempt > 0 ? "-" + std::to_string(attempt + 1) : "");
+    }
     fs::path statusPath(std::size_t i) const {
         fs::path status = ledger_.logPath(i);
         return status.replace_extension(".status.json");
@@ -399,6 +416,7 @@ private:
     std::vector<Job> jobs_;
     std::map<std::size_t, std::size_t> jobOfStep_;
     std::size_t next_ = 0;  // the first job not submitted yet
+    std::set<std::size_t> again_;  // jobs to submit again (retry), before those from next_
 };
 
 std::vector<std::size_t> SlurmRun::stepsToRun() {
@@ -462,7 +480,10 @@ void SlurmRun::submit(std::size_t j) {
 std::vector<std::string> SlurmRun::sbatchArguments(std::size_t j, const std::vector<std::string>& dependencyIds) const {
     const Job& job = jobs_[j];
     const std::string stem = jobStem(j);
-    const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
+    JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
+    resources.memoryMiB = static_cast<long long>(std::ceil(static_cast<double>(resources.memoryMiB) * job.memoryScale));
+    if (resources.minutes)
+        resources.minutes = static_cast<long long>(std::ceil(static_cast<double>(*resources.minutes) * job.timeScale));
     std::vector<std::string> arguments{"--job-name=" + jobName(plan_, job.bundle),
                                        "--chdir=" + slurmDir_.string(),
                                        "--output=" + stem + ".out",  // relative to --chdir: no '%' of a path is read as a pattern
@@ -550,9 +571,14 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
             failed = !ledger_.succeeded(i, status->wallSeconds,
                                         // Slurm's name for the node, which sinfo and scontrol take; the host's own
                                         // where squeue has forgotten the job.
-                                        {.executor = "slurm", .node = state.node.empty() ? status->node : state.node,
-                                         .jobId = job.id, .jobState = state.state,
-                                         .loadBefore = std::nullopt, .loadAfter = std::nullopt, .beside = {}});
+                                        {.executor = "slurm",
+                                         .node = state.node.empty() ? status->node : state.node,
+                                         .jobId = job.id,
+                                         .jobState = state.state,
+                                         .loadBefore = std::nullopt,
+                                         .loadAfter = std::nullopt,
+                                         .beside = {},
+                                         .earlierAttempts = job.earlierAttempts});
         } else if (status) {
             const ExitStatus exit{status->exited, status->code, status->signal};
             ledger_.failed(i, "failed (" + exit.describe() + ") in " + where, status->wallSeconds);
@@ -560,14 +586,64 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
         } else if (state.reason == "DependencyNeverSatisfied") {
             ledger_.abandoned(i, "a step it depends on failed (" + where + ")");
             failed = true;
+        } else if (const std::optional<std::string> raised = retryRaises(state.state, job); raised) {
+            retry(j, state, *raised);  // the steps not settled yet run again
+            return;
         } else {
-            ledger_.failed(i, "failed: " + where + (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") +
-                                  "; the job's output: " + (slurmDir_ / (jobStem(j) + ".out")).string(),
+            const bool timeNotRaised = state.state == "TIMEOUT" && options_.slurm.retries > 0 &&
+                                       job.earlierAttempts.size() < static_cast<std::size_t>(options_.slurm.retries);
+            ledger_.failed(i,
+                           "failed: " + where +
+                               (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") +
+                               (job.earlierAttempts.empty()
+                                    ? ""
+                                    : " after " + std::to_string(job.earlierAttempts.size() + 1) + " attempts") +
+                               (timeNotRaised ? "; not retried: vri-run asked no --time it could raise" : "") +
+                               "; the job's output: " + (slurmDir_ / (jobStem(j) + ".out")).string(),
                            0);
             failed = true;
         }
     }
     if (failed) abandonDependents(j);
+}
+
+std::optional<std::string> SlurmRun::retryRaises(const std::string& state, const Job& job) const {
+    if (gSlurmInterrupt || job.earlierAttempts.size() >= static_cast<std::size_t>(options_.slurm.retries))
+        return std::nullopt;
+    if (state == "NODE_FAIL" || state == "PREEMPTED" || state == "BOOT_FAIL") return std::string();
+    if (state == "OUT_OF_MEMORY") return "--mem x" + exactNumber(kRetryFactor);
+    const bool timed = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds).minutes.has_value();
+    if (state == "TIMEOUT" && timed) return "--time x" + exactNumber(kRetryFactor);
+    return std::nullopt;
+}
+
+void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& raised) {
+    Job& job = jobs_[j];
+    const std::string attempt = "job " + job.id + " " + state.state + (state.node.empty() ? "" : " on " + state.node);
+    job.earlierAttempts.push_back(attempt);
+    if (state.state == "TIMEOUT") job.timeScale *= kRetryFactor;
+    if (state.state == "OUT_OF_MEMORY") job.memoryScale *= kRetryFactor;
+    std::erase_if(job.bundle.steps, [&](std::size_t i) { return ledger_.settled(i); });
+    // The jobs after it that wait for it were submitted with a dependency on the id that ended: Slurm
+    // cancels them (--kill-on-invalid-dep). They are cancelled here and submitted again after it.
+    std::vector<bool> downstream(jobs_.size(), false);
+    downstream[j] = true;
+    std::vector<std::string> cancel;
+    for (std::size_t k = j + 1; k < jobs_.size(); ++k) {
+        for (std::size_t d : jobs_[k].dependsOn) downstream[k] = downstream[k] || downstream[d];
+        if (!downstream[k] || jobs_[k].ended || jobs_[k].id.empty()) continue;
+        cancel.push_back(jobs_[k].id);
+        jobs_[k].id.clear();
+        again_.insert(k);
+    }
+    cancelJobs(cancel);  // a failure leaves them to Slurm, which cancels them for their dependency
+    job.id.clear();
+    job.ended = false;
+    again_.insert(j);
+    std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": step '"
+              << plan_.steps[job.bundle.steps.front()].id << "': Slurm " << attempt << "; retrying (attempt "
+              << job.earlierAttempts.size() + 1 << " of " << options_.slurm.retries + 1
+              << (raised.empty() ? "" : ", " + raised) << ")\n";
 }
 
 void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
@@ -615,7 +691,7 @@ std::size_t SlurmRun::prepare() {
 }
 
 void SlurmRun::submitMore(std::size_t& slots) {
-    if (next_ >= jobs_.size() || slots == 0) return;
+    if ((next_ >= jobs_.size() && again_.empty()) || slots == 0) return;
     const bool first = next_ == 0;
     if (first) {
         requireOwnFolder(slurmDir_.parent_path());  // never a recursive delete through a link
@@ -625,6 +701,13 @@ void SlurmRun::submitMore(std::size_t& slots) {
         writeJobScript(slurmDir_ / "vri-job.sh");
     }
     std::vector<std::string> ids;
+    while (!again_.empty() && slots > 0) {  // retried jobs and those waiting for them, in order
+        const std::size_t j = *again_.begin();
+        again_.erase(again_.begin());
+        submit(j);
+        ids.push_back(jobs_[j].id);
+        --slots;
+    }
     for (; next_ < jobs_.size() && slots > 0; ++next_) {
         if (jobs_[next_].ended) continue;  // abandoned before it was submitted
         if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + " while submitting");
@@ -645,7 +728,7 @@ void SlurmRun::submitMore(std::size_t& slots) {
 }
 
 std::size_t SlurmRun::unsubmitted() const {
-    std::size_t n = 0;
+    std::size_t n = again_.size();
     for (std::size_t j = next_; j < jobs_.size(); ++j) n += !jobs_[j].ended;
     return n;
 }

@@ -40,6 +40,7 @@ StepExecution executionFromJson(const nlohmann::json& j) {
         e.loadAfter = j.at("load_average").at("after").get<double>();
     }
     if (j.contains("beside")) e.beside = j.at("beside").get<std::vector<std::string>>();
+    if (j.contains("earlier_attempts")) e.earlierAttempts = j.at("earlier_attempts").get<std::vector<std::string>>();
     return e;
 }
 
@@ -52,6 +53,7 @@ nlohmann::json toJson(const StepExecution& execution) {
     if (execution.loadBefore && execution.loadAfter)
         j["load_average"] = {{"before", *execution.loadBefore}, {"after", *execution.loadAfter}};
     if (!execution.beside.empty()) j["beside"] = execution.beside;
+    if (!execution.earlierAttempts.empty()) j["earlier_attempts"] = execution.earlierAttempts;
     return j;
 }
 

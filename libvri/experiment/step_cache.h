@@ -53,6 +53,8 @@ struct StepExecution {
     // The steps of its plan that ran while it ran (local executor, --jobs above 1): never beside a step
     // that runs alone (Step::alone).
     std::vector<std::string> beside;
+    // Slurm, --slurm-retries: the attempts before the one that ran it ("job 12 NODE_FAIL on n3").
+    std::vector<std::string> earlierAttempts;
 };
 nlohmann::json toJson(const StepExecution& execution);
 

@@ -250,7 +250,10 @@ Image VulkanRenderer::render(const Scene& scene, const Camera& camera, const Ren
     if (preintegrated) {
         table.emplace(scene.transferFunction, preintegrationSegmentLength(scene, options), options.preintegrationSize,
                       options.preintegrationOrder);
-        local.preintegration = {table->size(), table->order(), table->segmentLength(), table->check(scene.transferFunction)};
+        local.preintegration = RenderStats::Preintegration{.size = table->size(),
+                                                           .order = table->order(),
+                                                           .segmentLength = table->segmentLength(),
+                                                           .error = table->check(scene.transferFunction)};
     }
     {
         const std::size_t entries = table ? std::size_t(table->size()) * table->size() * 4 : 1;

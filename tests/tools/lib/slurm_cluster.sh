@@ -6,7 +6,7 @@
 # the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s).
 #   start_slurm_cluster DIR [MESSAGE_TIMEOUT]   exits 77 (skip) with one line when the daemons cannot start
 #       here; MESSAGE_TIMEOUT (seconds, Slurm's 10 by default) bounds how long a client waits for the controller
-#   stop_slurmctld / restart_slurmctld   the controller killed (by its pid) and started again on its saved state
+#   stop_slurmctld / restart_slurmctld   the controller stopped (by its pid) and started again on its saved state
 
 slurm_daemon_pids=()
 

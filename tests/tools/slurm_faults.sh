@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# vri-run --executor slurm while the test cluster's controller does not answer (tests/tools/lib/slurm_cluster.sh,
-# its clients waiting at most 3 s a message): paused (SIGSTOP) until squeue fails, vri-run says so, asks
-# again and completes once the controller answers, its outputs those of a local run; stopped for longer than
-# --slurm-max-outage, vri-run gives up with one line saying that it could not cancel its job, which may
-# still run, and how to cancel it, and a rerun once the controller is back completes; SIGTERM while squeue
-# waits on a paused controller stops vri-run all the same, saying the same of its job.
+# vri-run --executor slurm when the test cluster fails under it (tests/tools/lib/slurm_cluster.sh, its clients
+# waiting at most 3 s a message). The controller: paused (SIGSTOP) until squeue fails, vri-run says so, asks
+# again and completes once it answers, its outputs those of a local run; stopped for longer than
+# --slurm-max-outage, vri-run gives up with one line saying that it could not cancel its job, which may still
+# run, and how to cancel it, and a rerun once the controller is back completes; SIGTERM while squeue waits on
+# a paused controller stops vri-run all the same, saying the same of its job. The node: set DOWN under a
+# running job, which ends NODE_FAIL (requeueing off): --slurm-retries 1 submits it again, the run completes
+# with the local image and the manifest names the attempt before; without retries one line names the job.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_cluster.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 bin=${VRI_BIN:?}
@@ -88,4 +90,30 @@ for _ in $(seq 300); do
     sleep 0.2
 done
 [ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "jobs are left"; }
-echo "slurm_outage: OK"
+
+# The node fails under a job (scontrol sets it DOWN: Slurm kills the job's processes and ends it NODE_FAIL,
+# requeueing off), and --slurm-retries 1 submits it again, which runs once the node is back (at once here:
+# its slurmd answers, and ReturnToService=2 takes it back).
+sed -i 's/^ReturnToService=2$/ReturnToService=2\nJobRequeue=0/' cluster/slurm.conf
+scontrol reconfigure
+rm -rf res
+start_slow retried.txt --slurm-retries 1
+failed_job=$job
+scontrol update NodeName=vri-test-node State=DOWN Reason=vri-test
+wait_for_line retried.txt "^vri-run: slow: step '$slow_step': Slurm job $failed_job NODE_FAIL on vri-test-node; retrying (attempt 2 of 2)$"
+wait "$run" || { cat retried.txt; fail "the retried run failed"; }
+same_images
+/usr/bin/python3 - "$slow_step" "job $failed_job NODE_FAIL on vri-test-node" <<'PY' || fail "the manifest does not name the attempt before"
+import json, sys
+steps = {s["id"]: s for s in json.load(open("res/slow/manifest.json"))["steps"]}
+attempts = steps[sys.argv[1]]["execution"].get("earlier_attempts")
+sys.exit(0 if attempts == [sys.argv[2]] else 1)
+PY
+# Without retries the same failure ends the run, one line naming the job and its state.
+rm -rf res
+start_slow failed.txt
+scontrol update NodeName=vri-test-node State=DOWN Reason=vri-test
+if wait "$run"; then fail "vri-run succeeded although its job failed with its node"; fi
+grep -q "^vri-run: error: .*step '$slow_step' failed: Slurm job $job NODE_FAIL on vri-test-node (NodeDown)" failed.txt ||
+    { cat failed.txt; fail "no line naming the job that failed with its node"; }
+echo "slurm_faults: OK"
