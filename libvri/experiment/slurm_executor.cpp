@@ -402,10 +402,16 @@ private:
         const std::size_t attempt = jobs_[j].earlierAttempts.size();
         return "job-" + token_ + "-" + std::to_string(j) + (attempt > 0 ? "-" + std::to_string(attempt + 1) : "");
     }
+    // Step i's status file for its job's current attempt: a process of an earlier attempt still alive (a
+    // node cut off, not dead) writes its own.
     fs::path statusPath(std::size_t i) const {
         fs::path status = ledger_.logPath(i);
-        return status.replace_extension(".status.json");
+        const std::size_t attempt = jobs_[jobOfStep_.at(i)].earlierAttempts.size();
+        return status.replace_extension(attempt > 0 ? ".status-" + std::to_string(attempt + 1) + ".json"
+                                                    : ".status.json");
     }
+    // Job j's resources as its attempt asks them: raised after TIMEOUT and OUT_OF_MEMORY (retry).
+    JobResources resourcesOf(std::size_t j) const;
 
     const Plan& plan_;
     RunOptions options_;  // before ledger_, which keeps a reference
@@ -464,13 +470,13 @@ void SlurmRun::submit(std::size_t j) {
         job.id = submitJob(sbatchArguments(j, dependencyIds));
     } catch (const Error& e) {
         // What vri-run asked for and where each comes from: a cluster's limits are met by changing those.
-        const JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
+        const JobResources resources = resourcesOf(j);
         const std::string kind = slurmStepKind(plan_.steps[job.bundle.steps.front()]);
         throw Error(
             "step '" + plan_.steps[job.bundle.steps.front()].id + "': " + e.what() +
             " (the job asked --cpus-per-task=" + std::to_string(resources.cpus) +
             ": --slurm-cpus or the step's threads; --mem=" + std::to_string(resources.memoryMiB) +
-            "M: from its inputs and pixels" +
+            "M: from its inputs and pixels" + (job.earlierAttempts.empty() ? "" : ", raised for its retry") +
             (resources.minutes ? "; --time=" + std::to_string(*resources.minutes) + ": from its last run's time" : "") +
             (options_.slurm.kinds.count(kind) ? "; or the site profile's kind " + kind : "") +
             "; a --slurm-arg=--mem=... or --slurm-arg=--time=... overrides them for every job)");
@@ -480,10 +486,7 @@ void SlurmRun::submit(std::size_t j) {
 std::vector<std::string> SlurmRun::sbatchArguments(std::size_t j, const std::vector<std::string>& dependencyIds) const {
     const Job& job = jobs_[j];
     const std::string stem = jobStem(j);
-    JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
-    resources.memoryMiB = static_cast<long long>(std::ceil(static_cast<double>(resources.memoryMiB) * job.memoryScale));
-    if (resources.minutes)
-        resources.minutes = static_cast<long long>(std::ceil(static_cast<double>(*resources.minutes) * job.timeScale));
+    const JobResources resources = resourcesOf(j);
     std::vector<std::string> arguments{"--job-name=" + jobName(plan_, job.bundle),
                                        "--chdir=" + slurmDir_.string(),
                                        "--output=" + stem + ".out",  // relative to --chdir: no '%' of a path is read as a pattern
@@ -536,6 +539,7 @@ void SlurmRun::abandonDependents(std::size_t failed) {
         // submitted yet (--slurm-max-jobs) never will be.
         if (!job.id.empty()) cancel.push_back(job.id);
         job.ended = true;
+        again_.erase(j);
         for (std::size_t i : job.bundle.steps)
             if (!ledger_.settled(i)) ledger_.abandoned(i, "a step it depends on failed (Slurm job " + jobs_[failed].id + ")");
     }
@@ -579,6 +583,12 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
                                          .loadAfter = std::nullopt,
                                          .beside = {},
                                          .earlierAttempts = job.earlierAttempts});
+        } else if (const std::optional<std::string> raised =
+                       status && !status->exited ? retryRaises(state.state, job) : std::nullopt;
+                   raised) {
+            retry(j, state,
+                  *raised);  // killed with its job (out of memory, out of time): the steps not settled run again
+            return;
         } else if (status) {
             const ExitStatus exit{status->exited, status->code, status->signal};
             ledger_.failed(i, "failed (" + exit.describe() + ") in " + where, status->wallSeconds);
@@ -607,13 +617,28 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
     if (failed) abandonDependents(j);
 }
 
+JobResources SlurmRun::resourcesOf(std::size_t j) const {
+    const Job& job = jobs_[j];
+    JobResources resources = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds);
+    resources.memoryMiB = static_cast<long long>(std::ceil(static_cast<double>(resources.memoryMiB) * job.memoryScale));
+    if (resources.minutes)
+        resources.minutes = static_cast<long long>(std::ceil(static_cast<double>(*resources.minutes) * job.timeScale));
+    return resources;
+}
+
 std::optional<std::string> SlurmRun::retryRaises(const std::string& state, const Job& job) const {
     if (gSlurmInterrupt || job.earlierAttempts.size() >= static_cast<std::size_t>(options_.slurm.retries))
         return std::nullopt;
     if (state == "NODE_FAIL" || state == "PREEMPTED" || state == "BOOT_FAIL") return std::string();
-    if (state == "OUT_OF_MEMORY") return "--mem x" + exactNumber(kRetryFactor);
+    // A limit the user's sbatch options set wins over vri-run's (they come after it): raising it is out of reach.
+    const auto userSets = [&](const std::string& option) {
+        return std::ranges::any_of(options_.slurm.sbatchArguments,
+                                   [&](const std::string& w) { return w.starts_with(option); });
+    };
+    if (state == "OUT_OF_MEMORY" && !userSets("--mem")) return "--mem x" + exactNumber(kRetryFactor);
     const bool timed = jobResources(plan_, job.bundle, options_.slurm.cpus, options_.slurm.kinds).minutes.has_value();
-    if (state == "TIMEOUT" && timed) return "--time x" + exactNumber(kRetryFactor);
+    if (state == "TIMEOUT" && timed && !userSets("--time") && !userSets("-t"))
+        return "--time x" + exactNumber(kRetryFactor);
     return std::nullopt;
 }
 
@@ -704,7 +729,17 @@ void SlurmRun::submitMore(std::size_t& slots) {
     while (!again_.empty() && slots > 0) {  // retried jobs and those waiting for them, in order
         const std::size_t j = *again_.begin();
         again_.erase(again_.begin());
-        submit(j);
+        if (jobs_[j].ended) continue;  // abandoned meanwhile
+        if (gSlurmInterrupt) throw Error("interrupted by " + signalName(gSlurmInterrupt) + " while submitting");
+        try {
+            submit(j);
+        } catch (const Error& e) {  // raised past what the cluster takes: this job fails, the run goes on
+            jobs_[j].ended = true;
+            for (std::size_t i : jobs_[j].bundle.steps)
+                if (!ledger_.settled(i)) ledger_.failed(i, std::string("could not be submitted again: ") + e.what(), 0);
+            abandonDependents(j);
+            continue;
+        }
         ids.push_back(jobs_[j].id);
         --slots;
     }
@@ -728,7 +763,8 @@ void SlurmRun::submitMore(std::size_t& slots) {
 }
 
 std::size_t SlurmRun::unsubmitted() const {
-    std::size_t n = again_.size();
+    std::size_t n = 0;
+    for (std::size_t j : again_) n += !jobs_[j].ended;
     for (std::size_t j = next_; j < jobs_.size(); ++j) n += !jobs_[j].ended;
     return n;
 }
