@@ -22,6 +22,7 @@
 #include "scoped_environment.h"
 #include "test_camera.h"
 #include "libvri/core/cpu_renderer.h"
+#include "libvri/core/occupancy_cache.h"
 #include "libvri/core/simd_march.h"
 #include "libvri/core/simd_target.h"
 #include "libvri/util/error.h"
@@ -173,6 +174,8 @@ TEST_CASE("pre-integration on packets equals the scalar float path bit for bit: 
         for (EmissionModel emission : {EmissionModel::ColourTimesExtinction, EmissionModel::Colour}) {
             const Scene scene{testVolume(type), std::nullopt, GridConvention::CellCentred,
                               testTransferFunction(emission, 9)};
+            // The table and its check built once per order and step, not for every render of them.
+            OccupancyCache cache;
             for (int order : {1, 2})
                 for (Placement placement : {Placement::EyeAlign, Placement::EntryAlign, Placement::EntryExitAlign,
                                             Placement::EntryExitAlignCorner})
@@ -194,10 +197,10 @@ TEST_CASE("pre-integration on packets equals the scalar float path bit for bit: 
                         // Both paths skip the table's empty space (each with its own bricks): the same bits as
                         // looking every segment up, and fewer lookups.
                         RenderStats skippingStats;
-                        const Image skipping = render(scene, camera, opt, &skippingStats);
+                        const Image skipping = render(scene, camera, opt, &skippingStats, &cache);
                         opt.skipEmptySpace = false;
                         RenderStats scalarStats;
-                        const Image scalar = render(scene, camera, opt, &scalarStats);
+                        const Image scalar = render(scene, camera, opt, &scalarStats, &cache);
                         CHECK(test::sameBits(skipping, scalar));
                         if (rate > 1) CHECK(skippingStats.samplesEvaluated < scalarStats.samplesEvaluated);
                         // Order 2's deviations are counted over the lookups that add something, the same
@@ -218,7 +221,7 @@ TEST_CASE("pre-integration on packets equals the scalar float path bit for bit: 
                                 hwy::SetSupportedTargetsForTest(target);
                                 opt.skipEmptySpace = skip;
                                 RenderStats stats;
-                                const Image packets = render(scene, camera, opt, &stats);
+                                const Image packets = render(scene, camera, opt, &stats, &cache);
                                 INFO(hwy::TargetName(target), " ", voxelTypeName(type), " order ", order, " ",
                                      placementName(placement), " jitter ", jitter, " rate ", rate, " skip ", skip);
                                 CHECK(stats.simdTarget == hwy::TargetName(target));
