@@ -111,6 +111,7 @@ RayAccumulator<Real> marchSegments(const TextureRay<Real>& ray, const Sampler& s
     ends.schedule = boundaries;
     const Real lengthRatio = march.dx / static_cast<Real>(table.segmentLength());
     const bool secondOrder = table.order() == 2;
+    const std::vector<double>& levels = table.checkedDeltas();  // order 2's deviations, counted (MarchCounts)
     std::int64_t k = 0, lookedUp = 0;
     bool haveFront = false;
     Real front{};
@@ -133,7 +134,6 @@ RayAccumulator<Real> marchSegments(const TextureRay<Real>& ray, const Sampler& s
             const Real size = std::abs(delta);
             counts.largestDelta = std::max(counts.largestDelta, static_cast<double>(size));
             ++counts.lookupsBeyond[0];
-            const std::vector<double>& levels = table.checkedDeltas();
             for (std::size_t level = 0; level < levels.size() && size > static_cast<Real>(levels[level]); ++level)
                 ++counts.lookupsBeyond[level + 1];
         }

@@ -1034,9 +1034,12 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
             if (secondOrder) {
                 largestDelta = hn::Max(largestDelta, hn::IfThenElseZero(adds, deltaSize));
                 counts.lookupsBeyond[0] += hn::CountTrue(df, adds);
-                for (std::size_t level = 0; level < deltaLevels; ++level)
-                    counts.lookupsBeyond[level + 1] +=
-                        hn::CountTrue(df, hn::And(adds, hn::Gt(deltaSize, deltaLevel[level])));
+                // The levels ascend: past the first no lane exceeds, none does (most deviations stop at a spacing).
+                for (std::size_t level = 0; level < deltaLevels; ++level) {
+                    const MF beyond = hn::And(adds, hn::Gt(deltaSize, deltaLevel[level]));
+                    if (hn::AllFalse(df, beyond)) break;
+                    counts.lookupsBeyond[level + 1] += hn::CountTrue(df, beyond);
+                }
             }
             if (!hn::AllFalse(df, adds)) {
                 const VF depth = hn::Mul(v[3], lengthRatio);

@@ -395,6 +395,8 @@ private:
     // retried: --slurm-retries used up, a state a retry does not mend, a TIMEOUT with no --time to raise.
     std::optional<std::string> retryRaises(const std::string& state, const Job& job) const;
     void abandonDependents(std::size_t j);
+    // The jobs not ended that wait for job j, directly or through others, in order.
+    std::vector<std::size_t> waitingFor(std::size_t j) const;
     // A run's job files carry a token of their own: a job of an earlier run still alive (one scancel
     // could not stop in time) finds its own files gone, and never reads this run's.
     // An attempt after the first has files of its own: the output an error message named stays.
@@ -526,15 +528,22 @@ std::vector<std::string> SlurmRun::unendedIds() const {
     return ids;
 }
 
-void SlurmRun::abandonDependents(std::size_t failed) {
-    // Jobs depend only on jobs before them: one pass finds everything downstream of `failed`.
+std::vector<std::size_t> SlurmRun::waitingFor(std::size_t j) const {
+    // Jobs depend only on jobs before them: one pass finds everything downstream of j.
     std::vector<bool> downstream(jobs_.size(), false);
-    downstream[failed] = true;
+    downstream[j] = true;
+    std::vector<std::size_t> waiting;
+    for (std::size_t k = j + 1; k < jobs_.size(); ++k) {
+        for (std::size_t d : jobs_[k].dependsOn) downstream[k] = downstream[k] || downstream[d];
+        if (downstream[k] && !jobs_[k].ended) waiting.push_back(k);
+    }
+    return waiting;
+}
+
+void SlurmRun::abandonDependents(std::size_t failed) {
     std::vector<std::string> cancel;
-    for (std::size_t j = failed + 1; j < jobs_.size(); ++j) {
+    for (std::size_t j : waitingFor(failed)) {
         Job& job = jobs_[j];
-        for (std::size_t d : job.dependsOn) downstream[j] = downstream[j] || downstream[d];
-        if (!downstream[j] || job.ended) continue;
         // Slurm cancels it too (--kill-on-invalid-dep); saying so here does not depend on that. A job not
         // submitted yet (--slurm-max-jobs) never will be.
         if (!job.id.empty()) cancel.push_back(job.id);
@@ -651,12 +660,9 @@ void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& ra
     std::erase_if(job.bundle.steps, [&](std::size_t i) { return ledger_.settled(i); });
     // The jobs after it that wait for it were submitted with a dependency on the id that ended: Slurm
     // cancels them (--kill-on-invalid-dep). They are cancelled here and submitted again after it.
-    std::vector<bool> downstream(jobs_.size(), false);
-    downstream[j] = true;
     std::vector<std::string> cancel;
-    for (std::size_t k = j + 1; k < jobs_.size(); ++k) {
-        for (std::size_t d : jobs_[k].dependsOn) downstream[k] = downstream[k] || downstream[d];
-        if (!downstream[k] || jobs_[k].ended || jobs_[k].id.empty()) continue;
+    for (std::size_t k : waitingFor(j)) {
+        if (jobs_[k].id.empty()) continue;  // not submitted yet: it names the new id when it is
         cancel.push_back(jobs_[k].id);
         jobs_[k].id.clear();
         again_.insert(k);

@@ -13,12 +13,9 @@ bin=${VRI_BIN:?}
 python=/usr/bin/python3
 start_slurm_cluster "$PWD/cluster"
 
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.5, 0.9, 0.3, 0.1, 2.0]
-  - [1.0, 0.2, 0.4, 1.0, 0.8]
-YAML
+# tf.yaml, and slow.yaml for the cases of a slow render (about 15 s) and a diff that needs it, further down.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_slow_study.sh"
+write_slow_study 400000
 # Two placements and the exact method on the linear field, a diff of each against the corner placement,
 # a table of the diffs: every kind of step and a dependency between them.
 # An outside renderer (the scene card's example, through vri-outside) runs on the nodes like vri's own steps.
@@ -192,9 +189,7 @@ done
     { cat bundled.txt; fail "two tiles shared a job"; }
 same_outputs local/small res/small
 
-# A slow render (about 15 s) and a diff that needs it.
-source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_slow_study.sh"
-write_slow_study 400000
+# The slow study (write_slow_study above).
 no_partial_outputs() {
     ! ls res/slow/"$slow_step".* > /dev/null 2>&1 || fail "the cancelled render left an output"
     [ -z "$(find res/slow -name '*.tmp.*')" ] || fail "a temporary file was left: $(find res/slow -name '*.tmp.*')"

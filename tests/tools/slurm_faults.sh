@@ -12,13 +12,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 bin=${VRI_BIN:?}
 start_slurm_cluster "$PWD/cluster" 3
 
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.5, 0.9, 0.3, 0.1, 2.0]
-  - [1.0, 0.2, 0.4, 1.0, 0.8]
-YAML
-# A render of several seconds and a diff that needs it.
+# A render of several seconds and a diff that needs it (and tf.yaml, which it reads).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_slow_study.sh"
 write_slow_study 200000
 "$bin/vri-run" --results local slow.yaml 2> local.txt || { cat local.txt; fail "the local run failed"; }

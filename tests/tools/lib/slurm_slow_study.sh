@@ -1,13 +1,19 @@
 # Sourced by the Slurm tests after scratch.sh: a study of one slow render and a diff that needs it, started on
 # the test cluster in the background until the slow render's job runs.
-#   write_slow_study RATE   slow.yaml (reading tf.yaml beside it), the render at RATE samples per voxel;
-#                           sets slow_step and slow_job (the step's Slurm job name)
+#   write_slow_study RATE   tf.yaml and slow.yaml, the render at RATE samples per voxel; sets slow_step and
+#                           slow_job (the step's Slurm job name)
 #   start_slow LOG [OPTION...]   vri-run --executor slurm, a job per step, on slow.yaml into res in the
 #                           background ($run), its stderr in LOG; waits until every job is submitted and the
 #                           slow render's runs ($job)
 write_slow_study() {
     slow_step=riemann-entry-exit-corner-r$1
     slow_job=vri:slow:$slow_step
+    cat > tf.yaml <<'YAML'
+points:
+  - [0.0, 0.0, 0.0, 0.0, 0.0]
+  - [0.5, 0.9, 0.3, 0.1, 2.0]
+  - [1.0, 0.2, 0.4, 1.0, 0.8]
+YAML
     cat > slow.yaml <<YAML
 name: slow
 title: One slow render and a diff that needs it
