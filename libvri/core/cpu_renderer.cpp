@@ -75,7 +75,6 @@ RayAccumulator<Real> marchSamples(const TextureRay<Real>& ray, const Sampler& sa
         ++k;
         if (acc.transparency < ert) break;
     }
-    k = std::min(k, end);
     counts.samplesPlaced += static_cast<std::uint64_t>(k - first);
     if (k < end) counts.terminated(termination.leftOut(acc.transparency, march.dx, count));
     return acc;

@@ -13,6 +13,7 @@
 // to `kEntryTolerance`, not a Riemann sum. The lookup interpolates bilinearly between entries; what that
 // costs is measured against the same direct evaluation (check()) and reported in the stats.
 #include <cstdint>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -119,7 +120,8 @@ public:
     // midpoint at one end of [0, 1], the ends at the other).
     static constexpr double kCheckedSpacings[] = {0.25, 1.0, 4.0, 16.0};
     static constexpr double kCheckedFractions[] = {0.125, 0.25, 0.5};
-    static constexpr int kMaxDeltaLevels = 9;
+    // 0, the spacings and fractions, and the widest: what the counters of a render's deviations are sized by.
+    static constexpr int kMaxDeltaLevels = 2 + std::size(kCheckedSpacings) + std::size(kCheckedFractions);
     // The |delta| check() compares at, in scalar units, ascending and each once: 0 and, for order 2, the
     // above below 1 - a spacing and then that; at most kMaxDeltaLevels.
     const std::vector<double>& checkedDeltas() const { return deltaLevels_; }
