@@ -32,13 +32,10 @@ namespace vri {
 namespace {
 
 struct RenderCounters {
-    std::atomic<std::uint64_t> raysHit{0}, samplesPlaced{0}, samplesEvaluated{0}, raysTerminated{0};
     std::mutex mutex;  // guards the rest
+    MarchCounts march;  // the adaptive methods' points included in its samples
     AdaptiveCounts adaptive;
     SimpsonRange simpsonRange;
-    double terminationLeftOut = 0.0;
-    double largestDelta = 0.0;
-    std::array<std::uint64_t, PreintegrationTable::kMaxDeltaLevels + 1> lookupsBeyond{};
 };
 
 // Paper A's fixed-step placements, each sample standing for a segment of the ray (Riemann, composite). With
@@ -127,9 +124,7 @@ RayAccumulator<Real> marchSegments(const TextureRay<Real>& ray, const Sampler& s
         if (!haveFront) front = sample(march.segmentStart(k));
         const Real back = sample(march.segmentStart(k + 1));
         const Real delta = secondOrder ? sample(march.position(k)) - Real(0.5) * (front + back) : Real(0);
-        const SegmentIntegral<Real> value = table(front, back, delta);
-        acc.addSegment(value, lengthRatio);
-        if (secondOrder && (value.r != 0 || value.g != 0 || value.b != 0 || value.depth != 0)) {
+        if (acc.addSegment(table(front, back, delta), lengthRatio) && secondOrder) {
             const Real size = std::abs(delta);
             counts.largestDelta = std::max(counts.largestDelta, static_cast<double>(size));
             ++counts.lookupsBeyond[0];
@@ -206,15 +201,10 @@ void forEachTile(const RenderOptions& opt, const PixelRegion& area, RenderCounte
                            area.y + std::min((ty + 1) * tile, area.height), counts, adaptive, range);
                 progress.advance(1);
             }
-        counters.raysHit += counts.raysHit;
-        counters.samplesPlaced += counts.samplesPlaced + adaptive.pointsUsed;
-        counters.samplesEvaluated += counts.samplesEvaluated + adaptive.pointsEvaluated;
-        counters.raysTerminated += counts.raysTerminated;
+        counts.samplesPlaced += adaptive.pointsUsed;
+        counts.samplesEvaluated += adaptive.pointsEvaluated;
         const std::lock_guard lock(counters.mutex);
-        counters.terminationLeftOut = std::max(counters.terminationLeftOut, counts.terminationLeftOut);
-        counters.largestDelta = std::max(counters.largestDelta, counts.largestDelta);
-        for (std::size_t level = 0; level < counts.lookupsBeyond.size(); ++level)
-            counters.lookupsBeyond[level] += counts.lookupsBeyond[level];
+        counters.march.merge(counts);
         if (isSimpson(opt.integrator)) {
             counters.adaptive += adaptive;
             counters.simpsonRange.merge(range);
@@ -388,21 +378,22 @@ Image render(const Scene& scene, const Camera& camera, const RenderOptions& opti
     // The frame's own work: what this call spent building empty-space structures is setup, reported on its own.
     local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - setupSpent;
     local.rays = static_cast<std::uint64_t>(image.width) * image.height;
-    local.raysHit = counters.raysHit;
-    local.samplesPlaced = counters.samplesPlaced;
-    local.samplesEvaluated = counters.samplesEvaluated;
-    local.raysTerminated = counters.raysTerminated;
-    local.terminationLeftOut = counters.terminationLeftOut;
+    const MarchCounts& counts = counters.march;
+    local.raysHit = counts.raysHit;
+    local.samplesPlaced = counts.samplesPlaced;
+    local.samplesEvaluated = counts.samplesEvaluated;
+    local.raysTerminated = counts.raysTerminated;
+    local.terminationLeftOut = counts.terminationLeftOut;
     if (local.preintegration && local.preintegration->order == 2) {
         // The lookups that added something per range of |delta|: (level k - 1, level k] of the checked deltas
         // ([0, 0] first), the last past them all.
         RenderStats::Preintegration& p = *local.preintegration;
-        p.largestDelta = counters.largestDelta;
+        p.largestDelta = counts.largestDelta;
         const std::size_t levels = p.error.deltas.size();
         p.lookupsByDelta.assign(levels + 1, 0);
         for (std::size_t k = 0; k < levels; ++k)
-            p.lookupsByDelta[k] = counters.lookupsBeyond[k] - counters.lookupsBeyond[k + 1];
-        p.lookupsByDelta[levels] = counters.lookupsBeyond[levels];
+            p.lookupsByDelta[k] = counts.lookupsBeyond[k] - counts.lookupsBeyond[k + 1];
+        p.lookupsByDelta[levels] = counts.lookupsBeyond[levels];
     }
     if (isSimpson(options.integrator)) {
         local.adaptive = counters.adaptive;

@@ -73,8 +73,9 @@ struct RayAccumulator {
     // ratio of the alphas, as opacity correction does, which is exact for a ratio of 1 (every segment of
     // Entry and Eye Align on a volume of equal spacings, up to rounding) and for a constant transfer
     // function, and otherwise off by O((ratio - 1) L^2) of the segment's colour.
-    void addSegment(const SegmentIntegral<Real>& v, Real lengthRatio) {
-        if (v.depth == Real(0) && v.r == Real(0) && v.g == Real(0) && v.b == Real(0)) return;
+    // False for a segment exactly 0 in all four, which adds nothing.
+    bool addSegment(const SegmentIntegral<Real>& v, Real lengthRatio) {
+        if (v.depth == Real(0) && v.r == Real(0) && v.g == Real(0) && v.b == Real(0)) return false;
         const Real depth = v.depth * lengthRatio;
         Real scale = lengthRatio;  // no extinction: the colour grows with the length
         if (lengthRatio == Real(1)) scale = Real(1);
@@ -84,6 +85,7 @@ struct RayAccumulator {
         g += w * v.g;
         b += w * v.b;
         transparency *= exponential(-depth);
+        return true;
     }
     Real alpha() const { return Real(1) - transparency; }
 };

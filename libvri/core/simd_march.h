@@ -45,6 +45,17 @@ struct MarchCounts {
         ++raysTerminated;
         terminationLeftOut = std::max(terminationLeftOut, leftOut);
     }
+    // Another part's counts (a tile's, a thread's) added in.
+    void merge(const MarchCounts& o) {
+        raysHit += o.raysHit;
+        samplesPlaced += o.samplesPlaced;
+        samplesEvaluated += o.samplesEvaluated;
+        raysTerminated += o.raysTerminated;
+        terminationLeftOut = std::max(terminationLeftOut, o.terminationLeftOut);
+        largestDelta = std::max(largestDelta, o.largestDelta);
+        for (std::size_t level = 0; level < lookupsBeyond.size(); ++level)
+            lookupsBeyond[level] += o.lookupsBeyond[level];
+    }
 };
 
 // A scene as the packet engine reads it, built once per render.
