@@ -31,13 +31,20 @@ $(BUILD)/build.ninja: | deps
 build: deps $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
 
+# ctest with one CPU slot a job (tests/CMakeLists.txt, "CPU slots"): JOBS CPU-bound tests at once, and the
+# tests that mostly wait on a cluster beside them. $(1): the build folder.
+CTEST = printf '{"version":{"major":1,"minor":0},"local":[{"cpus":[{"id":"0","slots":%d}]}]}\n' $(JOBS) \
+          >$(1)/ctest-cpu-slots.json && \
+        ctest --test-dir $(1) --output-on-failure -j $$(($(JOBS) + 2)) --resource-spec-file $(abspath $(1))/ctest-cpu-slots.json
+
 test: build
-	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	$(call CTEST,$(BUILD))
 
 # Every test at full size: the exact bound's adversarial suites run all their transfer functions, not the
 # quick tier's third (docs/testing.md, "Tiers").
+test-full: export VRI_TEST_TIER = full
 test-full: build
-	VRI_TEST_TIER=full ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	$(call CTEST,$(BUILD))
 
 # The tools, libraries, headers, vriConfig.cmake and vri.pc under PREFIX (README, "Using vri as a library").
 PREFIX ?= /usr/local
@@ -52,7 +59,7 @@ $(NOVULKAN_BUILD)/build.ninja: | deps
 
 test-no-vulkan: deps $(NOVULKAN_BUILD)/build.ninja
 	cmake --build $(NOVULKAN_BUILD) -j $(JOBS)
-	ctest --test-dir $(NOVULKAN_BUILD) --output-on-failure -j $(JOBS)
+	$(call CTEST,$(NOVULKAN_BUILD))
 
 # Every test again, built with ASan + UBSan (float-to-integer casts included); the first report fails
 # its test. About 30 min on 2 cores, so not part of .ci/run (README, Testing).
