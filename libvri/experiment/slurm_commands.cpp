@@ -23,8 +23,8 @@ std::string trimmedField(std::string s) {
 }
 
 // squeue's fields, '|' after each (no field holds one): the format squeueArguments asks for.
-constexpr const char* kSqueueFormat = "JobID:|,State:|,NodeList:|,Reason:|";
-constexpr std::size_t kSqueueFields = 4;
+constexpr const char* kSqueueFormat = "JobID:|,State:|,NodeList:|,Reason:|,RestartCnt:|";
+constexpr std::size_t kSqueueFields = 5;
 
 std::filesystem::path slurmProgram(const std::string& name) {
     const auto program = findProgram(name);
@@ -60,6 +60,20 @@ bool isFinalJobState(const std::string& state) {
                 "', which vri-run does not know (neither one a job leaves nor one it ends in)");
 }
 
+std::optional<std::string> memoryLimitKill(const std::string& text) {
+    std::istringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        const std::size_t step = line.find("StepId=");
+        const std::size_t what = line.find(" exceeded memory limit (");
+        if (step == std::string::npos || what == std::string::npos || what < step) continue;
+        const std::size_t end = line.find(')', what);
+        if (end == std::string::npos) continue;
+        return printable(line.substr(step, end + 1 - step));
+    }
+    return std::nullopt;
+}
+
 std::vector<std::string> squeueArguments(const std::vector<std::string>& jobIds) {
     std::string list;
     for (const std::string& id : jobIds) list += (list.empty() ? "" : ",") + id;
@@ -80,8 +94,15 @@ std::map<std::string, SlurmJob> parseSqueue(const std::string& output) {
         for (std::string& f : fields) f = trimmedField(f);
         if (fields.size() != kSqueueFields || fields[0].empty() || fields[1].empty())
             throw Error("squeue printed a line vri-run cannot read: " + printableShort(line));
+        // Slurm counts restarts in 16 bits; more digits are no count of its.
+        const std::string& restarts = fields[4];
+        if (restarts.empty() || restarts.size() > 5 ||
+            !std::all_of(restarts.begin(), restarts.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            throw Error("squeue printed a line vri-run cannot read (restart count '" + printableShort(restarts, 40) +
+                        "'): " + printableShort(line));
         // The state is its first word, should a Slurm version say more ("CANCELLED by 0", as sacct does).
-        jobs[fields[0]] = {fields[0], fields[1].substr(0, fields[1].find(' ')), fields[2], fields[3]};
+        jobs[fields[0]] = {fields[0], fields[1].substr(0, fields[1].find(' ')), fields[2], fields[3],
+                           std::stoi(restarts)};
     }
     return jobs;
 }

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ struct SlurmJob {
     std::string state;   // PENDING, RUNNING, COMPLETED, FAILED, TIMEOUT, CANCELLED, ...
     std::string node;    // the node list, empty while pending
     std::string reason;  // why it waits or ended: None, Dependency, DependencyNeverSatisfied, NonZeroExitCode, ...
+    int restarts = 0;    // how often Slurm requeued it (after its node failed, or preempted): squeue's RestartCnt
 };
 
 // True for a state a job does not leave: COMPLETED, FAILED, TIMEOUT, CANCELLED, PREEMPTED (not
@@ -23,6 +25,12 @@ struct SlurmJob {
 // (PENDING, RUNNING, COMPLETING, whose epilog still runs, SUSPENDED, REQUEUED, ...). Any other is a
 // vri::Error naming it: counted as running, it would be waited on for ever.
 bool isFinalJobState(const std::string& state);
+
+// What slurmstepd wrote into a job's output (`text`) when it killed the job for exceeding its memory: the
+// first "exceeded memory limit (USED > LIMIT)" line from "StepId=" on, or nullopt. Where memory is enforced
+// by jobacct_gather (JobAcctGatherParams=OverMemoryKill, no cgroups) Slurm then ends the job FAILED
+// (JobLaunchFailure), not OUT_OF_MEMORY, and this line is the only sign of the cause.
+std::optional<std::string> memoryLimitKill(const std::string& text);
 
 // squeue's arguments for these jobs, in every state it still knows them (--states=all), one line each.
 std::vector<std::string> squeueArguments(const std::vector<std::string>& jobIds);

@@ -26,6 +26,7 @@
 #include "libvri/experiment/step_ledger.h"
 #include "libvri/util/atomic_file.h"
 #include "libvri/util/error.h"
+#include "libvri/util/file_text.h"
 #include "libvri/util/format.h"
 #include "libvri/util/own_folder.h"
 #include "libvri/util/process.h"
@@ -381,16 +382,22 @@ private:
         // time and memory were raised by after TIMEOUT and OUT_OF_MEMORY.
         std::vector<std::string> earlierAttempts;
         double timeScale = 1.0, memoryScale = 1.0;
+        int restarts = 0;  // how often Slurm requeued its current id, as last said
+        // The manifest's earlier attempts: vri-run's and Slurm's requeues ("job 12 requeued by Slurm (restart
+        // 1)"), in order. Only vri-run's count as attempts: they have files of their own.
+        std::vector<std::string> history;
     };
 
     std::vector<std::size_t> stepsToRun();
     void submit(std::size_t j);
     // sbatch's arguments for job j, the jobs it waits for given by `dependencyIds`.
     std::vector<std::string> sbatchArguments(std::size_t j, const std::vector<std::string>& dependencyIds) const;
-    void ended(std::size_t j, const SlurmJob& state);
+    void ended(std::size_t j, const SlurmJob& reported);
     // Job j ended as --slurm-retries retries: submitted again (first in submitMore), with the jobs after it
     // that Slurm would cancel for their dependency on it cancelled and submitted again after it.
     void retry(std::size_t j, const SlurmJob& state, const std::string& raised);
+    // Job j's restart count rose: Slurm requeued it to run again under its id.
+    void requeued(std::size_t j, const SlurmJob& state);
     // What a retry of `job` after it ended in `state` raises ("" for nothing), or nullopt where it is not
     // retried: --slurm-retries used up, a state a retry does not mend, a TIMEOUT with no --time to raise.
     std::optional<std::string> retryRaises(const std::string& state, const Job& job) const;
@@ -470,6 +477,7 @@ void SlurmRun::submit(std::size_t j) {
         if (!jobs_[d].ended) dependencyIds.push_back(jobs_[d].id);
     try {
         job.id = submitJob(sbatchArguments(j, dependencyIds));
+        job.restarts = 0;
     } catch (const Error& e) {
         // What vri-run asked for and where each comes from: a cluster's limits are met by changing those.
         const JobResources resources = resourcesOf(j);
@@ -555,9 +563,17 @@ void SlurmRun::abandonDependents(std::size_t failed) {
     cancelJobs(cancel);
 }
 
-void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
+void SlurmRun::ended(std::size_t j, const SlurmJob& reported) {
     Job& job = jobs_[j];
     job.ended = true;
+    // A job killed for its memory by jobacct_gather ends FAILED (JobLaunchFailure): its output says why.
+    SlurmJob state = reported;
+    if (state.state == "FAILED")
+        if (const std::optional<std::string> text = tryReadFileText(slurmDir_ / (jobStem(j) + ".out")))
+            if (std::optional<std::string> kill = memoryLimitKill(*text)) {
+                state.state = "OUT_OF_MEMORY";
+                state.reason = "slurmstepd: " + *kill;
+            }
     // A job that completed or failed wrote a status file for every step it ran (one squeue no longer
     // knows ended long ago); a shared file system may show them late. A job killed (cancelled, timed
     // out, preempted, out of memory) left none for the step it killed: nothing to wait for.
@@ -591,7 +607,7 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& state) {
                                          .loadBefore = std::nullopt,
                                          .loadAfter = std::nullopt,
                                          .beside = {},
-                                         .earlierAttempts = job.earlierAttempts});
+                                         .earlierAttempts = job.history});
         } else if (const std::optional<std::string> raised =
                        status && !status->exited ? retryRaises(state.state, job) : std::nullopt;
                    raised) {
@@ -651,10 +667,24 @@ std::optional<std::string> SlurmRun::retryRaises(const std::string& state, const
     return std::nullopt;
 }
 
+// Slurm ran job j again under its id (JobRequeue, or --requeue: its node failed, or it was preempted): its
+// steps start over, which vri-run says, and the manifest lists as an attempt before.
+void SlurmRun::requeued(std::size_t j, const SlurmJob& state) {
+    Job& job = jobs_[j];
+    for (int restart = job.restarts + 1; restart <= state.restarts; ++restart)
+        job.history.push_back("job " + job.id + " requeued by Slurm (restart " + std::to_string(restart) + ")");
+    job.restarts = state.restarts;
+    std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": step '"
+              << plan_.steps[job.bundle.steps.front()].id << "': Slurm requeued job " << job.id << " (restart "
+              << state.restarts << "): it runs again under its id, now " << state.state
+              << (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") << "\n";
+}
+
 void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& raised) {
     Job& job = jobs_[j];
     const std::string attempt = "job " + job.id + " " + state.state + (state.node.empty() ? "" : " on " + state.node);
     job.earlierAttempts.push_back(attempt);
+    job.history.push_back(attempt);
     if (state.state == "TIMEOUT") job.timeScale *= kRetryFactor;
     if (state.state == "OUT_OF_MEMORY") job.memoryScale *= kRetryFactor;
     std::erase_if(job.bundle.steps, [&](std::size_t i) { return ledger_.settled(i); });
@@ -681,6 +711,7 @@ void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
     for (std::size_t j = 0; j < jobs_.size(); ++j) {
         if (jobs_[j].ended || jobs_[j].id.empty()) continue;
         const auto found = states.find(jobs_[j].id);
+        if (found != states.end() && found->second.restarts > jobs_[j].restarts) requeued(j, found->second);
         // A job squeue has forgotten ended long enough ago; its status files say how.
         if (found == states.end())
             ended(j, {jobs_[j].id, kForgotten, "", "no longer known to squeue"});

@@ -46,6 +46,7 @@ StepKindResources kindResources(const YAML::Node& node, const std::string& sourc
 
 std::string slurmStepKind(const Step& step) {
     if (step.tool == "vri-merge-tiles") return "merge";
+    if (step.tool == "vri-outside" || step.tool == "vri-verify") return "outside";
     for (const auto& [key, value] : step.parameters) {
         if (key == "region") return "tile";
         if (key == "brick") return "brick";

@@ -36,10 +36,11 @@ struct SlurmProfile {
 };
 
 // The kinds a profile may name.
-inline constexpr const char* kSlurmStepKinds[] = {"render", "tile",  "brick",  "merge",
+inline constexpr const char* kSlurmStepKinds[] = {"render", "tile",  "brick",  "merge",  "outside",
                                                   "diff",   "table", "figure", "command"};
 
-// The profile's kind of a step: merge (vri-merge-tiles), tile (--region), brick (--brick), or the step's kind.
+// The profile's kind of a step: merge (vri-merge-tiles), outside (vri-outside and vri-verify, which run a
+// renderer of someone else's), tile (--region), brick (--brick), or the step's kind.
 std::string slurmStepKind(const Step& step);
 
 // Reads a profile; throws vri::Error "<file>:line:col: ..." on an unknown key, a kind not listed, a value

@@ -7,6 +7,9 @@
 # a paused controller stops vri-run all the same, saying the same of its job. The node: set DOWN under a
 # running job, which ends NODE_FAIL (requeueing off): --slurm-retries 1 submits it again, the run completes
 # with the local image and the manifest names the attempt before; without retries one line names the job.
+# A job Slurm requeues after its node failed: one line says so, and the manifest names the requeue.
+# Memory: a render's job over the --mem a site profile gives it is killed by the cluster's enforcement; one line
+# says OUT_OF_MEMORY with slurmstepd's words, and --slurm-retries doubles --mem until it fits.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_cluster.sh"
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
 bin=${VRI_BIN:?}
@@ -85,6 +88,26 @@ for _ in $(seq 300); do
 done
 [ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "jobs are left"; }
 
+# The node fails under a job that Slurm requeues (its JobRequeue=1 default): the job pends under its id, a line
+# says so at once, and it runs again (let go at once here: Slurm holds a requeued job back a while); the run
+# completes with the local image, and the manifest names the requeue as an attempt before.
+rm -rf res
+start_slow requeued.txt
+requeued_job=$job
+scontrol update NodeName=vri-test-node State=DOWN Reason=vri-test
+wait_for_line requeued.txt "^vri-run: slow: step '$slow_step': Slurm requeued job $requeued_job (restart 1): it runs again under its id, now [A-Z_]*"
+for _ in $(seq 100); do
+    scontrol update JobId="$requeued_job" StartTime=now 2>/dev/null && break
+    sleep 0.2
+done
+wait "$run" || { cat requeued.txt; fail "the requeued run failed"; }
+same_images
+/usr/bin/python3 - "$slow_step" "job $requeued_job requeued by Slurm (restart 1)" <<'PY' || fail "the manifest does not name the requeue"
+import json, sys
+steps = {s["id"]: s for s in json.load(open("res/slow/manifest.json"))["steps"]}
+sys.exit(0 if steps[sys.argv[1]]["execution"].get("earlier_attempts") == [sys.argv[2]] else 1)
+PY
+
 # The node fails under a job (scontrol sets it DOWN: Slurm kills the job's processes and ends it NODE_FAIL,
 # requeueing off), and --slurm-retries 1 submits it again, which runs once the node is back (at once here:
 # its slurmd answers, and ReturnToService=2 takes it back).
@@ -110,4 +133,30 @@ scontrol update NodeName=vri-test-node State=DOWN Reason=vri-test
 if wait "$run"; then fail "vri-run succeeded although its job failed with its node"; fi
 grep -q "^vri-run: error: .*step '$slow_step' failed: Slurm job $job NODE_FAIL on vri-test-node (NodeDown)" failed.txt ||
     { cat failed.txt; fail "no line naming the job that failed with its node"; }
+
+# Memory: a job over its --mem is killed by the cluster's enforcement (jobacct_gather's OverMemoryKill, which ends
+# it FAILED (JobLaunchFailure), the cause only in its output). A site profile asks 16 MiB for a render, which the
+# slow render's job exceeds (it holds some 80 MiB here): without retries one line names the job, OUT_OF_MEMORY
+# and slurmstepd's words; with --slurm-retries 3 it is submitted again with --mem doubled until it fits (by
+# 128 MiB), and the run completes with the local image, the manifest naming each attempt before.
+printf 'kinds:\n  render: {mem: 16M}\n' > small-renders.yaml
+rm -rf res
+if VRI_SLURM_PROFILE=$PWD/small-renders.yaml "$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-bundle 0 \
+        --results res slow.yaml 2> oom.txt; then
+    fail "vri-run succeeded although its render's job exceeded its memory"
+fi
+grep -q "^vri-run: error: .*step '$slow_step' failed: Slurm job [0-9]* OUT_OF_MEMORY on vri-test-node (slurmstepd: StepId=[0-9]*[.]batch exceeded memory limit ([0-9]* > 16777216)); the job's output: " oom.txt ||
+    { cat oom.txt; fail "no line naming the job killed for its memory"; }
+rm -rf res
+VRI_SLURM_PROFILE=$PWD/small-renders.yaml "$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-bundle 0 --slurm-retries 3 \
+    --results res slow.yaml 2> oom-retried.txt || { cat oom-retried.txt; fail "the run retried for memory failed"; }
+grep -q "^vri-run: slow: step '$slow_step': Slurm job [0-9]* OUT_OF_MEMORY on vri-test-node; retrying (attempt 2 of 4, --mem x2)$" oom-retried.txt ||
+    { cat oom-retried.txt; fail "no line saying the job killed for its memory is retried with --mem doubled"; }
+same_images
+/usr/bin/python3 - "$slow_step" <<'PY' || fail "the manifest does not name the attempts killed for their memory"
+import json, re, sys
+steps = {s["id"]: s for s in json.load(open("res/slow/manifest.json"))["steps"]}
+attempts = steps[sys.argv[1]]["execution"].get("earlier_attempts", [])
+sys.exit(0 if attempts and all(re.fullmatch(r"job \d+ OUT_OF_MEMORY on vri-test-node", a) for a in attempts) else 1)
+PY
 echo "slurm_faults: OK"

@@ -4,6 +4,7 @@
 
 #include "libvri/experiment/slurm_commands.h"
 #include "libvri/experiment/slurm_jobs.h"
+#include "libvri/experiment/slurm_profile.h"
 #include "libvri/util/error.h"
 
 namespace {
@@ -85,13 +86,28 @@ TEST_CASE("jobResources: a site profile's kinds replace the estimates where they
     CHECK(vri::jobResources(plan, {{1, 2}, 2, true}, 2, kinds).memoryMiB == 700);
 }
 
+TEST_CASE("jobResources: a renderer of someone else's asks at least 2 GiB, unless the profile's outside kind says") {
+    vri::Plan plan{"/r/exp", "/r", {}, {}};
+    plan.steps = {planStep("a", "command", 40 * 30), planStep("b", "command", 40 * 30)};
+    plan.steps[0].tool = "vri-outside";
+    plan.steps[1].tool = "vri-verify";
+    for (std::size_t i : {0, 1}) {
+        CHECK(vri::slurmStepKind(plan.steps[i]) == "outside");
+        CHECK(vri::jobResources(plan, {{i}, 1, true}, 2).memoryMiB == 2048);
+    }
+    const std::map<std::string, vri::StepKindResources> kinds{{"outside", {{}, 6144, {}}}};
+    CHECK(vri::jobResources(plan, {{0}, 1, true}, 2, kinds).memoryMiB == 6144);
+}
+
 TEST_CASE("parseSqueue reads squeue's fields and refuses what is not a job line") {
-    const auto jobs = vri::parseSqueue("12|COMPLETED by 0|node1|None|\n"
-                                       "13|FAILED|node2|NonZeroExitCode|\n"
-                                       "14|CANCELLED||DependencyNeverSatisfied|\n"
-                                       "15_3|RUNNING|node[1-2]|None|\n"
-                                       "\n");
-    REQUIRE(jobs.size() == 4);
+    const auto jobs = vri::parseSqueue(
+        "12|COMPLETED by 0|node1|None|0|\n"
+        "13|FAILED|node2|NonZeroExitCode|0|\n"
+        "14|CANCELLED||DependencyNeverSatisfied|0|\n"
+        "15_3|RUNNING|node[1-2]|None|0|\n"
+        "16|PENDING||BeginTime|2     |\n"
+        "\n");
+    REQUIRE(jobs.size() == 5);
     CHECK(jobs.at("12").state == "COMPLETED");
     CHECK(jobs.at("12").node == "node1");
     CHECK(jobs.at("13").reason == "NonZeroExitCode");
@@ -99,9 +115,15 @@ TEST_CASE("parseSqueue reads squeue's fields and refuses what is not a job line"
     CHECK(jobs.at("14").node.empty());
     CHECK(jobs.at("14").reason == "DependencyNeverSatisfied");
     CHECK(jobs.at("15_3").node == "node[1-2]");
+    CHECK(jobs.at("15_3").restarts == 0);
+    CHECK(jobs.at("16").restarts == 2);  // requeued twice
     CHECK_THROWS_AS(vri::parseSqueue("12|COMPLETED|n\n"), vri::Error);
+    CHECK_THROWS_AS(vri::parseSqueue("12|COMPLETED|n|None|\n"), vri::Error);  // the four fields of an older format
+    CHECK_THROWS_WITH_AS(vri::parseSqueue("12|PENDING||BeginTime|-1|\n"), doctest::Contains("restart count '-1'"),
+                         vri::Error);
+    CHECK_THROWS_AS(vri::parseSqueue("12|PENDING||BeginTime|123456|\n"), vri::Error);
     CHECK_THROWS_AS(vri::parseSqueue("squeue: warning: something\n"), vri::Error);
-    CHECK_THROWS_AS(vri::parseSqueue("|RUNNING|n|None|\n"), vri::Error);
+    CHECK_THROWS_AS(vri::parseSqueue("|RUNNING|n|None|0|\n"), vri::Error);
     // A line of 50 MB becomes a message of a few hundred bytes (issue 48, class 6).
     try {
         vri::parseSqueue(std::string(50 << 20, 'x') + "\n");
@@ -158,6 +180,21 @@ TEST_CASE("parseSbatchJobId takes --parsable's id, with or without the cluster")
     CHECK_THROWS_AS(vri::parseSbatchJobId("4294967296\n"), vri::Error);
     CHECK_THROWS_WITH_AS(vri::parseSbatchJobId("sbatch: error: Batch job submission failed\n"),
                          doctest::Contains("sbatch: error: Batch job submission failed"), vri::Error);
+}
+
+TEST_CASE("memoryLimitKill finds slurmstepd's line in a job's output, and nothing in a job's own words") {
+    // As Slurm 22.05's jobacct_gather (OverMemoryKill) wrote it on the test cluster.
+    const std::string killed =
+        "vri-render: progress ...\n"
+        "slurmstepd-vri-test-node: error: StepId=3.batch exceeded memory limit (77053952 > "
+        "16777216), being killed\n"
+        "slurmstepd-vri-test-node: error: Exceeded job memory limit\n"
+        "slurmstepd-vri-test-node: error: *** JOB 3 ON vri-test-node CANCELLED AT "
+        "2026-12-07T08:27:19 ***\n";
+    CHECK(vri::memoryLimitKill(killed) == "StepId=3.batch exceeded memory limit (77053952 > 16777216)");
+    CHECK_FALSE(vri::memoryLimitKill("vri-render: error: exceeded memory limit (a tool's own words)\n"));
+    CHECK_FALSE(vri::memoryLimitKill("slurmstepd: error: StepId=3.batch exceeded memory limit (unclosed\n"));
+    CHECK_FALSE(vri::memoryLimitKill(""));
 }
 
 TEST_CASE("parseUnendedIn: the jobs not ended in one working directory, whatever its name holds") {

@@ -3,7 +3,9 @@
 # client commands at it. Nothing of the machine's own Slurm or munge is read or touched. The daemons are
 # stopped by the pids they wrote when the test exits. One setting departs from Slurm's defaults:
 # batch_sched_delay=0 starts a job as soon as the node is free instead of up to 3 s later, which halves
-# the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s).
+# the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s). Memory is enforced as
+# a site without cgroups enforces it: jobacct_gather/linux reads each job's resident memory every second and
+# kills a job over its --mem (OverMemoryKill), which Slurm then ends FAILED with the cause in its output.
 #   start_slurm_cluster DIR [MESSAGE_TIMEOUT]   exits 77 (skip) with one line when the daemons cannot start
 #       here; MESSAGE_TIMEOUT (seconds, Slurm's 10 by default) bounds how long a client waits for the controller
 #   stop_slurmctld / restart_slurmctld   the controller stopped (by its pid) and started again on its saved state
@@ -67,7 +69,9 @@ SlurmctldLogFile=$dir/log/slurmctld.log
 SlurmdLogFile=$dir/log/slurmd.log
 ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
-JobAcctGatherType=jobacct_gather/none
+JobAcctGatherType=jobacct_gather/linux
+JobAcctGatherFrequency=task=1
+JobAcctGatherParams=OverMemoryKill
 AccountingStorageType=accounting_storage/none
 JobCompType=jobcomp/none
 SchedulerType=sched/backfill
