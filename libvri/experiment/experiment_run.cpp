@@ -95,8 +95,15 @@ void LocalScheduler::finish(pid_t pid, const ExitStatus& status) {
     const double seconds = std::chrono::duration<double>(Clock::now() - child.start).count();
     if (status.ok())
         ledger_.succeeded(child.step, seconds,
-                          {.executor = "local", .node = host_, .jobId = {}, .jobState = {},
-                           .loadBefore = child.loadBefore, .loadAfter = loadAverage(), .beside = child.beside});
+                          {.executor = "local",
+                           .node = host_,
+                           .jobId = {},
+                           .jobState = {},
+                           .loadBefore = child.loadBefore,
+                           .loadAfter = loadAverage(),
+                           .beside = child.beside,
+                           .earlierAttempts = {},
+                           .peakRssMiB = peakRssMiB(status.peakRssKiB)});
     else
         ledger_.failed(child.step, "failed (" + status.describe() + ")", seconds);
 }

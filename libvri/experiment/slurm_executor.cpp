@@ -607,7 +607,8 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& reported) {
                                          .loadBefore = std::nullopt,
                                          .loadAfter = std::nullopt,
                                          .beside = {},
-                                         .earlierAttempts = job.history});
+                                         .earlierAttempts = job.history,
+                                         .peakRssMiB = peakRssMiB(status->peakRssKiB)});
         } else if (const std::optional<std::string> raised =
                        status && !status->exited ? retryRaises(state.state, job) : std::nullopt;
                    raised) {

@@ -57,9 +57,10 @@ std::optional<NodeStepStatus> readNodeStepStatus(const fs::path& file) {
     if (!fs::is_regular_file(file)) return std::nullopt;
     const nlohmann::json j = readJsonFile(file);
     return readingJsonOf(file, [&] {
-        return NodeStepStatus{j.at("exited").get<bool>(),         j.at("code").get<int>(),
-                              j.at("signal").get<int>(),          j.at("wall_seconds").get<double>(),
-                              j.at("node").get<std::string>(),    j.at("job_id").get<std::string>()};
+        return NodeStepStatus{
+            j.at("exited").get<bool>(),           j.at("code").get<int>(),         j.at("signal").get<int>(),
+            j.at("wall_seconds").get<double>(),   j.at("node").get<std::string>(), j.at("job_id").get<std::string>(),
+            j.at("peak_rss_kib").get<long long>()};
     });
 }
 
@@ -84,7 +85,8 @@ int runNodeSteps(const fs::path& file) {
                                 {"started_epoch", started},
                                 {"ended_epoch", epoch()},
                                 {"node", node},
-                                {"job_id", jobId}});
+                                {"job_id", jobId},
+                                {"peak_rss_kib", status.peakRssKiB}});
         if (!status.ok()) return 1;  // the steps after it may need its outputs: vri-run reports the failure
     }
     return 0;

@@ -36,6 +36,7 @@ struct NodeStepStatus {
     double wallSeconds = 0;
     std::string node;   // the host it ran on
     std::string jobId;  // $SLURM_JOB_ID
+    long long peakRssKiB = 0;  // the step's largest resident memory (ExitStatus::peakRssKiB)
 };
 // nullopt while there is no such file (or not yet a whole one).
 std::optional<NodeStepStatus> readNodeStepStatus(const std::filesystem::path& file);

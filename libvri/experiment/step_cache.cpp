@@ -41,6 +41,7 @@ StepExecution executionFromJson(const nlohmann::json& j) {
     }
     if (j.contains("beside")) e.beside = j.at("beside").get<std::vector<std::string>>();
     if (j.contains("earlier_attempts")) e.earlierAttempts = j.at("earlier_attempts").get<std::vector<std::string>>();
+    if (j.contains("peak_rss_mib")) e.peakRssMiB = j.at("peak_rss_mib").get<double>();
     return e;
 }
 
@@ -54,7 +55,13 @@ nlohmann::json toJson(const StepExecution& execution) {
         j["load_average"] = {{"before", *execution.loadBefore}, {"after", *execution.loadAfter}};
     if (!execution.beside.empty()) j["beside"] = execution.beside;
     if (!execution.earlierAttempts.empty()) j["earlier_attempts"] = execution.earlierAttempts;
+    if (execution.peakRssMiB) j["peak_rss_mib"] = *execution.peakRssMiB;
     return j;
+}
+
+std::optional<double> peakRssMiB(long long kib) {
+    if (kib <= 0) return std::nullopt;
+    return std::round(static_cast<double>(kib) / 1024.0 * 10.0) / 10.0;
 }
 
 nlohmann::json toJson(const std::vector<FileDigest>& files) {

@@ -55,8 +55,12 @@ struct StepExecution {
     std::vector<std::string> beside;
     // Slurm, --slurm-retries: the attempts before the one that ran it ("job 12 NODE_FAIL on n3").
     std::vector<std::string> earlierAttempts;
+    // The step's largest resident memory (its process's, wait4's ru_maxrss), in MiB; where known.
+    std::optional<double> peakRssMiB;
 };
 nlohmann::json toJson(const StepExecution& execution);
+// A peak resident memory in KiB (ExitStatus::peakRssKiB) as a record holds it: MiB to 0.1; nullopt for 0, not known.
+std::optional<double> peakRssMiB(long long kib);
 
 // What a successful run of a step left behind.
 struct StepRecord {

@@ -80,9 +80,9 @@ pid_t spawn(const fs::path& program, const std::vector<std::string>& words, cons
 
 }  // namespace
 
-ExitStatus ExitStatus::fromWaitStatus(int status) {
-    if (WIFEXITED(status)) return {true, WEXITSTATUS(status), 0};
-    return {false, 0, WIFSIGNALED(status) ? WTERMSIG(status) : 0};
+ExitStatus ExitStatus::fromWaitStatus(int status, const struct rusage& usage) {
+    if (WIFEXITED(status)) return {true, WEXITSTATUS(status), 0, usage.ru_maxrss};
+    return {false, 0, WIFSIGNALED(status) ? WTERMSIG(status) : 0, usage.ru_maxrss};
 }
 
 std::string ExitStatus::describe() const {
@@ -115,17 +115,19 @@ pid_t startProcess(const fs::path& program, const std::vector<std::string>& word
 
 ExitStatus waitProcess(pid_t pid) {
     int status = 0;
-    while (::waitpid(pid, &status, 0) < 0)
+    struct rusage usage {};
+    while (::wait4(pid, &status, 0, &usage) < 0)
         if (errno != EINTR) throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
-    return ExitStatus::fromWaitStatus(status);
+    return ExitStatus::fromWaitStatus(status, usage);
 }
 
 std::pair<pid_t, ExitStatus> waitAnyProcess() {
     int status = 0;
+    struct rusage usage {};
     pid_t pid = 0;
-    while ((pid = ::waitpid(-1, &status, 0)) < 0)
+    while ((pid = ::wait4(-1, &status, 0, &usage)) < 0)
         if (errno != EINTR) throw Error(std::string("waiting for a child process: ") + std::strerror(errno));
-    return {pid, ExitStatus::fromWaitStatus(status)};
+    return {pid, ExitStatus::fromWaitStatus(status, usage)};
 }
 
 ExitStatus runProcess(const fs::path& program, const std::vector<std::string>& words, const ProcessStreams& streams) {
@@ -140,8 +142,9 @@ ExitStatus stopProcess(pid_t pid) {
     ::kill(pid, SIGTERM);
     for (int i = 0; i < 100; ++i) {
         int status = 0;
-        const pid_t done = ::waitpid(pid, &status, WNOHANG);
-        if (done == pid) return ExitStatus::fromWaitStatus(status);
+        struct rusage usage {};
+        const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
+        if (done == pid) return ExitStatus::fromWaitStatus(status, usage);
         if (done < 0 && errno != EINTR) throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
@@ -160,9 +163,10 @@ ExitStatus runProcessWithin(const fs::path& program, const std::vector<std::stri
     const auto start = Clock::now();
     const auto waited = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     int status = 0;
+    struct rusage usage {};
     for (;;) {
-        const pid_t done = ::waitpid(pid, &status, WNOHANG);
-        if (done == pid) return ExitStatus::fromWaitStatus(status);
+        const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
+        if (done == pid) return ExitStatus::fromWaitStatus(status, usage);
         if (done < 0 && errno != EINTR)
             throw Error("waiting for process " + std::to_string(pid) + ": " + std::strerror(errno));
         if (waited() >= seconds) {
@@ -225,8 +229,9 @@ std::pair<ExitStatus, std::string> captureProcess(const fs::path& program, const
     // Its output closed, it may still run (a client that closes stdout and hangs): waited for within the limits.
     while (why.empty()) {
         int status = 0;
-        const pid_t done = ::waitpid(pid, &status, WNOHANG);
-        if (done == pid) return {ExitStatus::fromWaitStatus(status), std::move(output)};
+        struct rusage usage {};
+        const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
+        if (done == pid) return {ExitStatus::fromWaitStatus(status, usage), std::move(output)};
         if (done < 0 && errno != EINTR) throw Error("waiting for " + name + ": " + std::strerror(errno));
         why = overLimit();
         if (why.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));

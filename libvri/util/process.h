@@ -2,6 +2,7 @@
 // Starting other programs (gnuplot, git, curl, the tools of an experiment's steps) with an argument
 // vector and posix_spawn: no shell ever reads a word, so no character of a name or path can run as
 // code. Standard streams are inherited unless redirected to a file.
+#include <sys/resource.h>
 #include <sys/types.h>
 
 #include <csignal>
@@ -26,8 +27,10 @@ struct ExitStatus {
     bool exited = false;  // by exit(): `code` holds its status; else killed by `signal`
     int code = 0;
     int signal = 0;
+    // The largest resident set of the child, or of a process it waited for (wait4's ru_maxrss), in KiB.
+    long long peakRssKiB = 0;
 
-    static ExitStatus fromWaitStatus(int status);
+    static ExitStatus fromWaitStatus(int status, const struct rusage& usage);
     bool ok() const { return exited && code == 0; }
     std::string describe() const;  // "exit status 3", "signal 9"
 };

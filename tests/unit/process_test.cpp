@@ -70,6 +70,27 @@ TEST_CASE("process: redirections and exit statuses") {
         Error);
 }
 
+TEST_CASE("process: a child's peak resident memory comes back with its status") {
+    const auto python = findProgram("python3");
+    REQUIRE(python);
+    // 64 MiB touched (bytearray zero-fills it): the peak holds it, and the interpreter besides.
+    const std::vector<std::string> allocate{"python3", "-c", "b = bytearray(64 << 20)"};
+    const ExitStatus big = runProcess(*python, allocate);
+    CHECK(big.ok());
+    CHECK(big.peakRssKiB >= 64 * 1024);
+    const ExitStatus small = runProcess(*python, {"python3", "-c", "pass"});
+    CHECK(small.peakRssKiB > 0);
+    CHECK(small.peakRssKiB < big.peakRssKiB - 32 * 1024);
+    // The same through the waits that poll: within a time limit, and any child.
+    bool timedOut = true;
+    CHECK(runProcessWithin(*python, allocate, 60, timedOut).peakRssKiB >= 64 * 1024);
+    CHECK_FALSE(timedOut);
+    const pid_t pid = startProcess(*python, allocate);
+    const auto [which, status] = waitAnyProcess();
+    CHECK(which == pid);
+    CHECK(status.peakRssKiB >= 64 * 1024);
+}
+
 TEST_CASE("process: a captured program is stopped at its time and size limits, and by a signal flag") {
     using Clock = std::chrono::steady_clock;
     const auto seconds = [](Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); };
