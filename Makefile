@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 VRI_DATA_DIR ?= $(if $(wildcard ../shared/data/volumes),$(abspath ../shared/data/volumes),$(abspath data))
 export VRI_DATA_DIR
 
-.PHONY: all deps deps-fuzz build test test-full test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench bricks-memory estimate clean
+.PHONY: all deps deps-fuzz build test test-full test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench bricks-memory bricks-slurm estimate clean
 
 all: build
 
@@ -113,6 +113,12 @@ bench: build
 # Peak memory of a synthetic 1024^3 volume rendered whole and as 2 x 2 x 2 bricks (docs/conventions/bricks.md).
 bricks-memory: build
 	scripts/brick-memory.sh $(BUILD) 1024 2
+
+# A synthetic 2048^3 volume (8 GiB) as 2 x 2 x 2 bricks through a Slurm test cluster of this machine that
+# enforces memory, each brick's job given 2 GiB, against the whole volume rendered locally (about 11 GiB of
+# this machine's memory); needs root (docs/conventions/bricks.md).
+bricks-slurm: build
+	scripts/brick-memory-slurm.sh $(BUILD) 2048 2 2048
 
 estimate: build
 	$(BUILD)/bin/vri-run --estimate --results results $(EXPERIMENTS)

@@ -7,25 +7,12 @@
 #   scripts/brick-memory.sh [BUILD] [N] [B] [SCRATCH]     (make bricks-memory: build 1024 2)
 set -euo pipefail
 build=${1:-build} n=${2:-1024} b=${3:-2} scratch=${4:-$build/bricks-memory}
-bin=$(cd "$build/bin" && pwd)
+bin=$(cd "$build/bin" && pwd) repo=$(pwd)
 mkdir -p "$scratch" && cd "$scratch"
 volume=blobs_${n}x${n}x${n}_uint8.raw
 if [ ! -f "$volume" ]; then
   echo "brick-memory: writing $volume ($((n * n * n / 1048576)) MiB)" >&2
-  /usr/bin/python3 - "$n" "$volume" <<'PY'
-import sys
-import numpy as np
-n, path = int(sys.argv[1]), sys.argv[2]
-axis = (np.arange(n, dtype=np.float32) + 0.5) / n
-y, x = np.meshgrid(axis, axis, indexing="ij")
-with open(path + ".part", "wb") as out:
-    for k in range(n):  # a slab at a time: the script's memory is one slice
-        z = axis[k]
-        v = 0.5 + 0.25 * np.sin(9 * x) * np.cos(7 * y) + 0.25 * np.sin(11 * z + 5 * x * y)
-        out.write(np.clip(v * 255, 0, 255).astype(np.uint8).tobytes())
-import os
-os.replace(path + ".part", path)
-PY
+  /usr/bin/python3 "$repo/scripts/blob-volume.py" "$n" "$volume"
 fi
 cat > tf.yaml <<'YAML'
 points:
