@@ -56,6 +56,11 @@ import OpenImageIO as oiio
 n, limit = int(sys.argv[1]), int(sys.argv[2])
 mib = 1 << 20
 steps = json.load(open("slurm/bricked/manifest.json"))["steps"]
+manifest = json.load(open("slurm/bricked/manifest.json"))
+machine = manifest["machine"]
+print(f"vri built from {manifest['build']['git_commit']}, run {manifest['steps'][0]['ran_utc']} on "
+      f"{machine['cpu_model']}, {machine['logical_cores']} cores, {machine['memory_bytes'] / (1 << 30):.1f} GiB; "
+      "the test cluster's one slurmd on this machine.\n")
 print(f"A {n}^3 uint8 volume ({n ** 3 / mib:.0f} MiB), each brick's Slurm job limited to {limit} MiB "
       "(jobacct_gather's OverMemoryKill):\n")
 print("| step | job | volume bytes held (MiB) | layer image (MiB) | peak RSS (MiB) | peak / held | seconds |")

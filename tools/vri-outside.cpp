@@ -1,5 +1,5 @@
 // vri-outside: another renderer's image of a vri scene, through the scene card, as a run of vri's own.
-#include "common/render_command.h"
+#include "common/render_main.h"
 
 namespace {
 
@@ -25,4 +25,4 @@ else the whole command's wall time ("timed": "process").)"};
 
 }  // namespace
 
-int main(int argc, char** argv) { return vri::RenderCommand::outsideFromArgs(kHelp, argc, argv).run(); }
+int main(int argc, char** argv) { return vri::outsideMain(kHelp, argc, argv); }

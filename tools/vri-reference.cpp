@@ -1,6 +1,6 @@
 // vri-reference: the reference image of a scene, solved accurately with a bound on its error, or as
 // paper B computed its reference (a Riemann sum with a 0.01-voxel step).
-#include "common/render_command.h"
+#include "common/render_main.h"
 
 namespace {
 
@@ -26,6 +26,4 @@ riemann: vri-render's Riemann sum, entry placement, double precision, --step in 
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    return vri::RenderCommand::fromArgs(vri::RenderTool::Reference, kHelp, argc, argv).run();
-}
+int main(int argc, char** argv) { return vri::renderMain(vri::RenderTool::Reference, kHelp, argc, argv); }

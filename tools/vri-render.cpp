@@ -1,5 +1,5 @@
 // vri-render: renders one image of a volume or analytic field with the CPU raycaster or the Vulkan backend.
-#include "common/render_command.h"
+#include "common/render_main.h"
 
 namespace {
 
@@ -39,6 +39,4 @@ h_min (2^22 in float precision, where a shorter step would no longer advance the
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    return vri::RenderCommand::fromArgs(vri::RenderTool::Render, kHelp, argc, argv).run();
-}
+int main(int argc, char** argv) { return vri::renderMain(vri::RenderTool::Render, kHelp, argc, argv); }

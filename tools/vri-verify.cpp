@@ -1,5 +1,5 @@
 // vri-verify: a renderer's verification report against vri's certified reference, for a CI job.
-#include "common/render_command.h"
+#include "common/render_main.h"
 
 namespace {
 
@@ -23,4 +23,4 @@ what is wrong), 1 the renderer could not be run or wrote no image, 64 a usage er
 
 }  // namespace
 
-int main(int argc, char** argv) { return vri::RenderCommand::verifyFromArgs(kHelp, argc, argv).run(); }
+int main(int argc, char** argv) { return vri::verifyMain(kHelp, argc, argv); }

@@ -408,4 +408,16 @@ int RenderCommand::run() {
     });
 }
 
+int renderMain(RenderTool tool, const RenderCommandHelp& help, int argc, char** argv) {
+    return RenderCommand::fromArgs(tool, help, argc, argv).run();
+}
+
+int outsideMain(const RenderCommandHelp& help, int argc, char** argv) {
+    return RenderCommand::outsideFromArgs(help, argc, argv).run();
+}
+
+int verifyMain(const RenderCommandHelp& help, int argc, char** argv) {
+    return RenderCommand::verifyFromArgs(help, argc, argv).run();
+}
+
 }  // namespace vri

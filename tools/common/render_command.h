@@ -2,9 +2,8 @@
 // The command lines of the tools that take a scene and the render option table (render_option_table.h):
 // vri-render and vri-reference (RenderJob, render_job.h), vri-outside (an outside renderer on the scene
 // card, outside_renderer.h) and vri-verify (verification.h). This file reads and checks options and
-// writes files; the work is the render layer's. A tool's main() is
-//     return vri::RenderCommand::fromArgs(vri::RenderTool::Render, help, argc, argv).run();
-// in the spirit of GDAL's GDALTranslate(..., GDALTranslateOptionsNew(argv)).
+// writes files; the work is the render layer's. A tool's main() calls its function in render_main.h, in the
+// spirit of GDAL's GDALTranslate(..., GDALTranslateOptionsNew(argv)).
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,16 +14,11 @@
 
 #include "common/frame_timing.h"
 #include "common/preview_options.h"
+#include "common/render_main.h"
 #include "common/scene_options.h"
 #include "libvri/core/render_option_table.h"
 
 namespace vri {
-
-// What --help says about a tool beyond its options.
-struct RenderCommandHelp {
-    std::string_view description;
-    std::string_view footer;  // examples and notes
-};
 
 class RenderCommand {
 public:
