@@ -114,8 +114,8 @@ bench: build
 bricks-memory: build
 	scripts/brick-memory.sh $(BUILD) 1024 2
 
-# A synthetic 2048^3 volume (8 GiB) as 2 x 2 x 2 bricks through a Slurm test cluster of this machine that
-# enforces memory, each brick's job given 2 GiB, against the whole volume rendered locally (about 11 GiB of
+# A synthetic 2048^3 volume (8 GiB) as 2 x 2 x 2 bricks through a two-node Slurm test cluster of this machine
+# that enforces memory, each brick's job given 2 GiB, against the whole volume rendered locally (about 11 GiB of
 # this machine's memory); needs root (docs/conventions/bricks.md).
 bricks-slurm: build
 	scripts/brick-memory-slurm.sh $(BUILD) 2048 2 2048

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A volume larger than a Slurm job may hold, rendered as bricks through vri-run --executor slurm on a test
-# cluster of this machine (tests/tools/lib/slurm_cluster.sh: one slurmd, memory enforced by jobacct_gather's
-# OverMemoryKill), each brick's job given LIMIT MiB by a site profile, less than the whole volume: writes a
+# cluster of this machine (tests/tools/lib/slurm_cluster.sh: two slurmd of one core each, memory enforced by
+# jobacct_gather's OverMemoryKill), each brick's job given LIMIT MiB by a site profile, less than the whole
+# volume: writes a
 # synthetic N^3 uint8 volume (scripts/blob-volume.py, never committed), renders it whole with the local
 # executor (this machine's memory) and as B x B x B bricks on the cluster, and prints a Markdown table of each
 # job's peak resident memory (the manifest's peak_rss_mib) against what it holds (its brick with the ghost
@@ -43,12 +44,12 @@ done
 printf 'kinds:\n  brick: {mem: %dM}\n' "$limit" > profile.yaml
 
 echo "brick-memory-slurm: the whole volume with the local executor" >&2
-rm -rf local slurm
+rm -rf local slurm cluster
 "$bin/vri-run" --results local whole.yaml
 source "$repo/tests/tools/lib/slurm_cluster.sh"
-start_slurm_cluster "$PWD/cluster"
+start_slurm_cluster "$PWD/cluster" 10 2
 echo "brick-memory-slurm: $((b * b * b)) bricks on the test cluster, each job given $limit MiB" >&2
-VRI_SLURM_PROFILE=$PWD/profile.yaml "$bin/vri-run" --executor slurm --slurm-poll 1 --results slurm bricked.yaml
+VRI_SLURM_PROFILE=$PWD/profile.yaml "$bin/vri-run" --executor slurm --slurm-cpus 1 --slurm-poll 1 --results slurm bricked.yaml
 /usr/bin/python3 - "$n" "$limit" <<'PY'
 import json, sys
 import numpy as np
@@ -60,11 +61,11 @@ manifest = json.load(open("slurm/bricked/manifest.json"))
 machine = manifest["machine"]
 print(f"vri built from {manifest['build']['git_commit']}, run {manifest['steps'][0]['ran_utc']} on "
       f"{machine['cpu_model']}, {machine['logical_cores']} cores, {machine['memory_bytes'] / (1 << 30):.1f} GiB; "
-      "the test cluster's one slurmd on this machine.\n")
+      "the test cluster's two slurmd (one core each) on this machine.\n")
 print(f"A {n}^3 uint8 volume ({n ** 3 / mib:.0f} MiB), each brick's Slurm job limited to {limit} MiB "
       "(jobacct_gather's OverMemoryKill):\n")
-print("| step | job | volume bytes held (MiB) | layer image (MiB) | peak RSS (MiB) | peak / held | seconds |")
-print("|---|---|--:|--:|--:|--:|--:|")
+print("| step | job | node | volume bytes held (MiB) | layer image (MiB) | peak RSS (MiB) | peak / held | seconds |")
+print("|---|---|---|--:|--:|--:|--:|--:|")
 worst = 0.0
 for s in steps:
     e = s["execution"]
@@ -76,10 +77,11 @@ for s in steps:
         image = d["camera"]["width"] * d["camera"]["height"] * 16 / mib  # premultiplied colour and transmittance
         worst = max(worst, e["peak_rss_mib"] / (held + image))
     ratio = f"{e['peak_rss_mib'] / (held + image):.2f}" if held else ""
-    print(f"| {s['id']} | {e['job_id']} | {held:.0f} | {image:.0f} | {e['peak_rss_mib']:.0f} | {ratio} | "
+    print(f"| {s['id']} | {e['job_id']} | {e['node']} | {held:.0f} | {image:.0f} | {e['peak_rss_mib']:.0f} | {ratio} | "
           f"{s['wall_seconds']:.1f} |")
 whole = json.load(open("local/whole/manifest.json"))["steps"][0]
-print(f"| whole volume, local executor | | | | {whole['execution']['peak_rss_mib']:.0f} | | {whole['wall_seconds']:.1f} |")
+print(f"| whole volume, local executor | | {whole['execution']['node']} | | | {whole['execution']['peak_rss_mib']:.0f} | | "
+      f"{whole['wall_seconds']:.1f} |")
 a = oiio.ImageBuf("local/whole/render.exr").get_pixels(oiio.FLOAT).astype(np.float64)
 j = oiio.ImageBuf("slurm/bricked/render.exr").get_pixels(oiio.FLOAT).astype(np.float64)
 joined = json.load(open("slurm/bricked/render.json"))

@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <optional>
 
 #include "libvri/core/brick_grid.h"
 #include "libvri/core/pixel_mask.h"
 #include "libvri/core/render_option_table.h"
 #include "libvri/core/scene_flags.h"
 #include "libvri/io/plot_data_files.h"
+#include "libvri/io/volume_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/render/tool_flags.h"
 #include "libvri/util/error.h"
@@ -59,6 +61,7 @@ public:
         std::pair<std::string, std::string> parameter;  // what the part stands for, for the manifest
         std::uint64_t pixels;                           // it renders
         int volumeParts;                                // Step::volumeParts
+        std::uint64_t volumeBytes;                      // Step::volumeBytes
     };
     // A step per part, then the vri-merge-tiles step (`mergeFlag` per part) writing the unsplit run's files.
     void addSplit(const RunSpec& run, const SceneSpec& scene, const Step& render, const char* mergeFlag,
@@ -156,7 +159,8 @@ void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& r
                          {kRegionFlag, bands[k].text()},
                          {"region", bands[k].text()},
                          static_cast<std::uint64_t>(bands[k].width) * static_cast<std::uint64_t>(bands[k].height),
-                         1});
+                         1,
+                         0});
     addSplit(run, scene, render, merge_flag::tile, {"tiles", std::to_string(run.tiles)}, parts);
 }
 
@@ -165,6 +169,20 @@ void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& r
 void Planner::addBricks(const RunSpec& run, const SceneSpec& scene, const Step& render) {
     std::vector<RunPart> parts;
     const std::string grid = brickText(run.bricks);
+    // Where the volume is a raw file laid out by its name (no --dims given), each brick's stored box.
+    std::optional<RawLayout> layout;
+    std::optional<BrickGrid> bricks;
+    const auto volume = std::ranges::find(scene.options, std::string(scene_flag::volume), &ToolOption::first);
+    const bool layoutGiven =
+        std::ranges::any_of(scene.options, [](const ToolOption& o) { return o.first == scene_flag::dims; });
+    if (volume != scene.options.end() && !layoutGiven && !describesItsLayout(volume->second)) try {
+            layout = layoutFromFileName(volume->second);
+            if (layout) bricks = BrickGrid(layout->dims, run.bricks);
+        } catch (const Error&) {  // vri-render says what is wrong with the name or the grid
+        }
+    const auto heldBytes = [&](glm::ivec3 brick) -> std::uint64_t {
+        return bricks ? bricks->storedBox(brick).voxelCount() * voxelSize(layout->type) : 0;
+    };
     for (int z = 0; z < run.bricks.z; ++z)
         for (int y = 0; y < run.bricks.y; ++y)
             for (int x = 0; x < run.bricks.x; ++x)
@@ -172,7 +190,8 @@ void Planner::addBricks(const RunSpec& run, const SceneSpec& scene, const Step& 
                                  {scene_flag::bricks, grid, scene_flag::brick, brickText({x, y, z})},
                                  {"brick", brickText({x, y, z})},
                                  render.pixels,
-                                 run.bricks.x * run.bricks.y * run.bricks.z});
+                                 run.bricks.x * run.bricks.y * run.bricks.z,
+                                 heldBytes({x, y, z})});
     addSplit(run, scene, render, merge_flag::layer, {"bricks", grid}, parts);
 }
 
@@ -186,6 +205,7 @@ void Planner::addSplit(const RunSpec& run, const SceneSpec& scene, const Step& r
         step.id = run.id + part.suffix;
         step.pixels = part.pixels;
         step.volumeParts = part.volumeParts;
+        step.volumeBytes = part.volumeBytes;
         step.arguments.insert(step.arguments.end(), part.arguments.begin(), part.arguments.end());
         step.parameters.push_back(part.parameter);
         output(step, "-o", result(step.id + ".exr"));

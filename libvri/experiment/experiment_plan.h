@@ -29,6 +29,9 @@ struct Step {
     std::uint64_t pixels = 0;
     // The bricks its volume is cut into, of which the step reads one (`bricks:`); 1 for the whole volume.
     int volumeParts = 1;
+    // The voxel bytes a brick holds (its own and the ghost layer), where the planner knows them: a raw file
+    // laid out by its name, read by offset. 0 elsewhere: the Slurm estimate then goes by the file's size.
+    std::uint64_t volumeBytes = 0;
 
     // Whether the local executor runs the step alone: an untiled, unbricked render or a command times itself
     // or the program it runs, and a neighbour would take cores from it. Tiles, bricks, merges, diffs, tables

@@ -491,6 +491,19 @@ TEST_CASE("experiment: tiles: N plans N bands with --region and a merge writing 
           "give the tolerance (eps) that an untiled max_error run records, or render untiled");
 }
 
+TEST_CASE("experiment: bricks of a raw file laid out by its name carry the bytes each brick holds") {
+    ExperimentDir d;
+    d.write("v_10x6x4_uint16.raw", std::string(10 * 6 * 4 * 2, '\0'));
+    const std::string scene =
+        "scenes: {s: {volume: v_10x6x4_uint16.raw, convention: cell, tf: a.yaml, size: [8, 5]}}\n";
+    const vri::Experiment e = d.parse(kHead + scene + "methods:\n  riemann: {bricks: [2, 1, 1]}\n");
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    // Brick 0 holds x 0..5 with the ghost layer x = 5, brick 1 x 5..9: 6 and 5 columns of 6 x 4 voxels, 2 bytes each.
+    CHECK(plan.step("riemann.brick-0-0-0").volumeBytes == 6 * 6 * 4 * 2);
+    CHECK(plan.step("riemann.brick-1-0-0").volumeBytes == 5 * 6 * 4 * 2);
+    CHECK(plan.step("riemann").volumeBytes == 0);  // the join holds layers, not voxels
+}
+
 TEST_CASE("experiment: a comparison's id writes the run's scene once and the run's id whole") {
     CHECK(vri::comparisonId("vs-exact-bonsai", "bonsai-riemann-h0.5", "bonsai") == "vs-exact-bonsai-riemann-h0.5");
     CHECK(vri::comparisonId("vs-corner", "riemann-eye", "cube") == "vs-corner-riemann-eye");

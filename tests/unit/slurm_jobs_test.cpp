@@ -86,6 +86,15 @@ TEST_CASE("jobResources: a site profile's kinds replace the estimates where they
     CHECK(vri::jobResources(plan, {{1, 2}, 2, true}, 2, kinds).memoryMiB == 700);
 }
 
+TEST_CASE("jobResources: a brick whose bytes the planner counted asks 1.5 times them, not its file's share") {
+    vri::Plan plan{"/r/exp", "/r", {}, {}};
+    plan.steps = {planStep("a.brick-0-0-0", "render", 1920 * 1080)};
+    plan.steps[0].volumeParts = 8;
+    plan.steps[0].volumeBytes = std::uint64_t(1) << 30;  // a 1024^3 uint8 brick (of a 2048^3 volume)
+    // 256 MiB + 1.5 GiB + 64 bytes a pixel (126.6 MiB), rounded up.
+    CHECK(vri::jobResources(plan, {{0}, 1, true}, 2).memoryMiB == 256 + 1536 + 127);
+}
+
 TEST_CASE("jobResources: a renderer of someone else's asks at least 2 GiB, unless the profile's outside kind says") {
     vri::Plan plan{"/r/exp", "/r", {}, {}};
     plan.steps = {planStep("a", "command", 40 * 30), planStep("b", "command", 40 * 30)};

@@ -6,8 +6,10 @@
 # the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s). Memory is enforced as
 # a site without cgroups enforces it: jobacct_gather/linux reads each job's resident memory every second and
 # kills a job over its --mem (OverMemoryKill), which Slurm then ends FAILED with the cause in its output.
-#   start_slurm_cluster DIR [MESSAGE_TIMEOUT]   exits 77 (skip) with one line when the daemons cannot start
-#       here; MESSAGE_TIMEOUT (seconds, Slurm's 10 by default) bounds how long a client waits for the controller
+#   start_slurm_cluster DIR [MESSAGE_TIMEOUT] [NODES]   exits 77 (skip) with one line when the daemons cannot
+#       start here; MESSAGE_TIMEOUT (seconds, Slurm's 10 by default) bounds how long a client waits for the
+#       controller; NODES 1 (vri-test-node, every core of this machine) or 2 (vri-test-node1 and 2, two slurmd
+#       on ports of their own, the cores and memory shared between them)
 #   stop_slurmctld / restart_slurmctld   the controller stopped (by its pid) and started again on its saved state
 
 slurm_daemon_pids=()
@@ -31,7 +33,7 @@ slurm_daemon_pid() {
 }
 
 start_slurm_cluster() {
-    local dir=$1 message_timeout=${2:-10} program
+    local dir=$1 message_timeout=${2:-10} nodes=${3:-1} program
     for program in munged slurmctld slurmd sbatch squeue scancel; do
         command -v "$program" > /dev/null || { echo "SKIP: $program is not installed (make deps installs slurm-wlm and munge)"; exit 77; }
     done
@@ -46,27 +48,31 @@ start_slurm_cluster() {
         || { echo "SKIP: munged cannot start here (see $dir/log/munged.log)"; exit 77; }
     slurm_daemon_pid "$dir/munge/munged.pid" munged
 
-    # Two ports no other service of this machine listens on, from a range above the usual ones.
-    local port node=vri-test-node
-    port=$(( 20000 + (RANDOM % 20000) * 2 ))
-    while ss -ltn 2>/dev/null | grep -qE ":($port|$((port + 1)))\b"; do port=$((port + 2)); done
-    local memory=$(( $(awk '/^MemTotal:/ {print $2}' /proc/meminfo) / 1024 - 512 ))
+    # Ports no other service of this machine listens on (the controller's, then a slurmd's each), from a range
+    # above the usual ones.
+    local port names=() k
+    [ "$nodes" = 1 ] || [ "$nodes" = 2 ] || { echo "FAIL: start_slurm_cluster: NODES is 1 or 2, not $nodes"; exit 1; }
+    port=$(( 20000 + (RANDOM % 10000) * 4 ))
+    while ss -ltn 2>/dev/null | grep -qE ":($port|$((port + 1))|$((port + 2)))\b"; do port=$((port + 4)); done
+    local memory=$(( ($(awk '/^MemTotal:/ {print $2}' /proc/meminfo) / 1024 - 512) / nodes ))
+    local cpus=$(( $(nproc) / nodes ))
+    [ "$cpus" -ge 1 ] || { echo "SKIP: $nodes nodes need $nodes cores"; exit 77; }
+    if [ "$nodes" = 1 ]; then names=(vri-test-node); else names=(vri-test-node1 vri-test-node2); fi
     cat > "$dir/slurm.conf" <<EOF
 ClusterName=vritest
 SlurmctldHost=localhost(127.0.0.1)
 SlurmctldPort=$port
-SlurmdPort=$((port + 1))
 SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
 AuthInfo=socket=$dir/munge/socket
 CredType=cred/munge
 StateSaveLocation=$dir/state
-SlurmdSpoolDir=$dir/spool
+SlurmdSpoolDir=$dir/spool/%n
 SlurmctldPidFile=$dir/slurmctld.pid
-SlurmdPidFile=$dir/slurmd.pid
+SlurmdPidFile=$dir/slurmd-%n.pid
 SlurmctldLogFile=$dir/log/slurmctld.log
-SlurmdLogFile=$dir/log/slurmd.log
+SlurmdLogFile=$dir/log/slurmd-%n.log
 ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 JobAcctGatherType=jobacct_gather/linux
@@ -83,17 +89,23 @@ ReturnToService=2
 MinJobAge=3600
 SchedulerParameters=batch_sched_delay=0
 PropagateResourceLimits=NONE
-NodeName=$node NodeAddr=127.0.0.1 NodeHostname=$node CPUs=$(nproc) RealMemory=$memory State=UNKNOWN
-PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 EOF
+    for k in "${!names[@]}"; do
+        echo "NodeName=${names[k]} NodeAddr=127.0.0.1 NodeHostname=${names[k]} Port=$((port + 1 + k)) CPUs=$cpus RealMemory=$memory State=UNKNOWN" >> "$dir/slurm.conf"
+        mkdir -p "$dir/spool/${names[k]}"
+    done
+    echo "PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP" >> "$dir/slurm.conf"
     export SLURM_CONF=$dir/slurm.conf
     slurm_dir=$dir
     slurmctld -i > "$dir/log/slurmctld.out" 2>&1 || { echo "SKIP: slurmctld cannot start here (see $dir/log)"; exit 77; }
     slurm_daemon_pid "$dir/slurmctld.pid" slurmctld
-    slurmd -N "$node" > "$dir/log/slurmd.out" 2>&1 || { echo "SKIP: slurmd cannot start here (see $dir/log)"; exit 77; }
-    slurm_daemon_pid "$dir/slurmd.pid" slurmd
+    for k in "${!names[@]}"; do
+        slurmd -N "${names[k]}" > "$dir/log/slurmd-${names[k]}.out" 2>&1 || { echo "SKIP: slurmd cannot start here (see $dir/log)"; exit 77; }
+        slurm_daemon_pid "$dir/slurmd-${names[k]}.pid" slurmd
+    done
     for _ in $(seq 100); do
-        [ "$(sinfo --noheader --format=%T 2>/dev/null)" = idle ] && return 0
+        [ "$(sinfo --noheader --Node --format=%T 2>/dev/null | sort -u)" = idle ] &&
+            [ "$(sinfo --noheader --Node --format=%N 2>/dev/null | wc -l)" = "$nodes" ] && return 0
         sleep 0.2
     done
     echo "SKIP: the test cluster's node did not come up (see $dir/log)"
