@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <limits>
 
 #include "libvri/core/cpu_renderer.h"
@@ -214,12 +215,25 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
         } else {
             FrameMoments theirs, mineFrames;
             OutsideRun run;
+            const auto seeded = [&](int k) {
+                RenderRequest r = request;
+                r.options.seed = base.options.seed + static_cast<std::uint32_t>(k);  // wraps, as vri's frames do
+                return r;
+            };
+            // The renderer's runs, options.rendererJobs at a time, each in its seed's folder; kept in seed order.
+            std::vector<OutsideRun> seedRuns(static_cast<std::size_t>(options.seeds));
+            for (int first = 0; first < options.seeds; first += options.rendererJobs) {
+                std::vector<std::future<OutsideRun>> batch;
+                for (int k = first; k < std::min(options.seeds, first + options.rendererJobs); ++k)
+                    batch.push_back(std::async(std::launch::async, [&, k] {
+                        return runOnCard(renderer, setup, seeded(k), stepDir / ("seed-" + std::to_string(k + 1)));
+                    }));
+                for (std::size_t b = 0; b < batch.size(); ++b) seedRuns[first + b] = batch[b].get();
+            }
             for (int k = 0; k < options.seeds; ++k) {
-                RenderRequest seeded = request;
-                seeded.options.seed = base.options.seed + static_cast<std::uint32_t>(k);  // wraps, as vri's frames do
-                OutsideRun one = runOnCard(renderer, setup, seeded, stepDir / ("seed-" + std::to_string(k + 1)));
+                OutsideRun one = std::move(seedRuns[static_cast<std::size_t>(k)]);
                 theirs.add(one.image);
-                mineFrames.add(render(scene, camera, seeded.options));
+                mineFrames.add(render(scene, camera, seeded(k).options));
                 const std::vector<double> seconds = std::move(run.wallSeconds);
                 run = std::move(one);
                 run.wallSeconds.insert(run.wallSeconds.begin(), seconds.begin(), seconds.end());

@@ -121,6 +121,10 @@ RenderCommand::RenderCommand(RenderTool tool, const RenderCommandHelp& help, int
                         "(16 or more)")
             ->capture_default_str()
             ->check(integerRange(1, 4096));
+        app_.add_option("--renderer-jobs", rendererJobs_,
+                        "with --seeds: run the renderer on this many seeds' cards at once, each its own process")
+            ->capture_default_str()
+            ->check(integerRange(1, 64));
         app_.add_option("--reference-tolerance", referenceTolerance_,
                         "the exact reference's quadrature tolerance (its error bound is in the report)")
             ->capture_default_str()
@@ -310,6 +314,7 @@ int RenderCommand::runVerify() {
         throw UsageError("--method: vri-verify sweeps the step of a fixed-step method (riemann, composite)");
     if (request.wasGiven("--placement")) options.placement = request.options.placement;
     options.seeds = seeds_;
+    options.rendererJobs = rendererJobs_;
     if (seeds_ > 1 && !request.options.jitter)
         throw UsageError("--seeds: tests a jittered renderer; give --jitter (and --seed for the first seed)");
     if (request.options.jitter && seeds_ < 2)

@@ -83,7 +83,7 @@ private:
     std::string rendererImage_ = "exr", rendererName_;
     std::string steps_ = "2,1,0.5,0.25,0.125", reportPath_, jsonPath_, junitPath_;  // vri-verify
     double minOrder_ = 0.75, referenceTolerance_ = 1e-9, timeout_ = 0.0;
-    int seeds_ = 1;  // vri-verify --seeds
+    int seeds_ = 1, rendererJobs_ = 1;  // vri-verify --seeds, --renderer-jobs
     std::optional<int> exitCode_;  // set when parsing ended the command
 };
 
