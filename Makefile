@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 VRI_DATA_DIR ?= $(if $(wildcard ../shared/data/volumes),$(abspath ../shared/data/volumes),$(abspath data))
 export VRI_DATA_DIR
 
-.PHONY: all deps deps-fuzz build test test-full test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench bricks-memory bricks-slurm estimate clean
+.PHONY: all deps deps-fuzz build test test-full test-slurm-timeout test-no-vulkan test-sanitize fuzz install experiments experiments-quick bench bricks-memory bricks-slurm estimate clean
 
 all: build
 
@@ -39,6 +39,11 @@ CTEST = printf '{"version":{"major":1,"minor":0},"local":[{"cpus":[{"id":"0","sl
 
 test: build
 	$(call CTEST,$(BUILD))
+
+# vri-run's retry after TIMEOUT on a real Slurm cluster (tests/long/slurm_timeout.sh): Slurm's smallest time
+# limit is a minute, so it waits about 4 minutes and is not part of `make test`; needs root.
+test-slurm-timeout: build
+	VRI_BIN=$(abspath $(BUILD))/bin VRI_SOURCE=$(CURDIR) VRI_SCRATCH=$(abspath $(BUILD))/slurm-timeout tests/long/slurm_timeout.sh
 
 # Every test at full size: the exact bound's adversarial suites run all their transfer functions, not the
 # quick tier's third (docs/testing.md, "Tiers").
