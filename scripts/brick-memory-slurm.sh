@@ -11,7 +11,11 @@
 #   scripts/brick-memory-slurm.sh [BUILD] [N] [B] [LIMIT_MIB] [SCRATCH]   (make bricks-slurm: build 2048 2 2048)
 set -euo pipefail
 build=${1:-build} n=${2:-2048} b=${3:-2} limit=${4:-2048} scratch=${5:-$build/bricks-slurm}
-bin=$(cd "$build/bin" && pwd) repo=$(pwd)
+for value in "$n" "$b" "$limit"; do  # whole numbers before any arithmetic or YAML sees them
+  [[ $value =~ ^[1-9][0-9]{0,5}$ ]] || { echo "brick-memory-slurm: N, B and LIMIT_MIB are whole numbers, got '$value'" >&2; exit 64; }
+done
+repo=$(cd "$(dirname "$0")/.." && pwd)
+bin=$(cd "$build/bin" && pwd)
 mkdir -p "$scratch" && cd "$scratch"
 fail() { echo "brick-memory-slurm: $*" >&2; exit 1; }
 volume=blobs_${n}x${n}x${n}_uint8.raw
@@ -50,15 +54,14 @@ source "$repo/tests/tools/lib/slurm_cluster.sh"
 start_slurm_cluster "$PWD/cluster" 10 2
 echo "brick-memory-slurm: $((b * b * b)) bricks on the test cluster, each job given $limit MiB" >&2
 VRI_SLURM_PROFILE=$PWD/profile.yaml "$bin/vri-run" --executor slurm --slurm-cpus 1 --slurm-poll 1 --results slurm bricked.yaml
-/usr/bin/python3 - "$n" "$limit" <<'PY'
+/usr/bin/python3 - "$n" "$limit" "$b" <<'PY'
 import json, sys
 import numpy as np
 import OpenImageIO as oiio
 n, limit = int(sys.argv[1]), int(sys.argv[2])
 mib = 1 << 20
-steps = json.load(open("slurm/bricked/manifest.json"))["steps"]
 manifest = json.load(open("slurm/bricked/manifest.json"))
-machine = manifest["machine"]
+steps, machine = manifest["steps"], manifest["machine"]
 print(f"vri built from {manifest['build']['git_commit']}, run {manifest['steps'][0]['ran_utc']} on "
       f"{machine['cpu_model']}, {machine['logical_cores']} cores, {machine['memory_bytes'] / (1 << 30):.1f} GiB; "
       "the test cluster's two slurmd (one core each) on this machine.\n")
@@ -89,5 +92,6 @@ bound = joined["join"]["bound_max"]
 diff = float(np.abs(a - j).max())
 print(f"\nJoined against whole: largest difference {diff:.3g}, the join's bound {bound:.3g}, pixels that differ "
       f"{int(np.any(a != j, axis=2).sum())} of {a.shape[0] * a.shape[1]}; largest peak / held {worst:.2f}")
-sys.exit(0 if diff <= bound and worst <= 1.3 else 1)
+bricks = sum(".brick-" in s["id"] for s in steps)
+sys.exit(0 if diff <= bound and bricks == int(sys.argv[3]) ** 3 and worst <= 1.3 else 1)
 PY

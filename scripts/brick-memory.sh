@@ -7,7 +7,11 @@
 #   scripts/brick-memory.sh [BUILD] [N] [B] [SCRATCH]     (make bricks-memory: build 1024 2)
 set -euo pipefail
 build=${1:-build} n=${2:-1024} b=${3:-2} scratch=${4:-$build/bricks-memory}
-bin=$(cd "$build/bin" && pwd) repo=$(pwd)
+for value in "$n" "$b"; do  # whole numbers before any arithmetic sees them
+  [[ $value =~ ^[1-9][0-9]{0,5}$ ]] || { echo "brick-memory: N and B are whole numbers, got '$value'" >&2; exit 64; }
+done
+repo=$(cd "$(dirname "$0")/.." && pwd)
+bin=$(cd "$build/bin" && pwd)
 mkdir -p "$scratch" && cd "$scratch"
 volume=blobs_${n}x${n}x${n}_uint8.raw
 if [ ! -f "$volume" ]; then

@@ -11,7 +11,6 @@
 #include "libvri/core/render_option_table.h"
 #include "libvri/core/scene_flags.h"
 #include "libvri/io/plot_data_files.h"
-#include "libvri/io/volume_io.h"
 #include "libvri/io/provenance.h"
 #include "libvri/render/tool_flags.h"
 #include "libvri/util/error.h"
@@ -169,19 +168,14 @@ void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& r
 void Planner::addBricks(const RunSpec& run, const SceneSpec& scene, const Step& render) {
     std::vector<RunPart> parts;
     const std::string grid = brickText(run.bricks);
-    // Where the volume is a raw file laid out by its name (no --dims given), each brick's stored box.
-    std::optional<RawLayout> layout;
+    // Where the volume is a raw file of a known layout (read by offset), each brick's stored box.
     std::optional<BrickGrid> bricks;
-    const auto volume = std::ranges::find(scene.options, std::string(scene_flag::volume), &ToolOption::first);
-    const bool layoutGiven =
-        std::ranges::any_of(scene.options, [](const ToolOption& o) { return o.first == scene_flag::dims; });
-    if (volume != scene.options.end() && !layoutGiven && !describesItsLayout(volume->second)) try {
-            layout = layoutFromFileName(volume->second);
-            if (layout) bricks = BrickGrid(layout->dims, run.bricks);
-        } catch (const Error&) {  // vri-render says what is wrong with the name or the grid
+    if (scene.rawLayout) try {
+            bricks = BrickGrid(scene.rawLayout->dims, run.bricks);
+        } catch (const Error&) {  // a grid finer than the volume: vri-render says so
         }
     const auto heldBytes = [&](glm::ivec3 brick) -> std::uint64_t {
-        return bricks ? bricks->storedBox(brick).voxelCount() * voxelSize(layout->type) : 0;
+        return bricks ? bricks->storedBox(brick).voxelCount() * voxelSize(scene.rawLayout->type) : 0;
     };
     for (int z = 0; z < run.bricks.z; ++z)
         for (int y = 0; y < run.bricks.y; ++y)

@@ -293,6 +293,7 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
         scene.options.emplace_back(scene_flag::volume, file.string());
         if (info.header.empty()) {
             const RawLayout layout = rawLayout(info);
+            scene.rawLayout = layout;
             // Exactly as the catalog has them: a spacing printed to 6 digits would be another volume.
             const auto join = [](auto v) { return exactNumber(v.x) + "," + exactNumber(v.y) + "," + exactNumber(v.z); };
             scene.options.emplace_back(scene_flag::dims, join(layout.dims));
@@ -310,6 +311,10 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
                                             : ""));
         scene.files.push_back(*file);
         scene.options.emplace_back(scene_flag::volume, scene.files.back().string());
+        if (!describesItsLayout(*file)) try {
+                scene.rawLayout = layoutFromFileName(*file);
+            } catch (const Error&) {  // a type vri does not read: vri-render says so
+            }
     } else {
         const std::string field = text(node["field"], "field");
         if (field != "linear") throw Error(at(node["field"]) + ": unknown analytic field '" + field + "' (expected linear)");

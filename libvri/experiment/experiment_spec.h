@@ -6,12 +6,15 @@
 // ("0.5", not 0.500000), so that the commands a reader sees are the ones the file reads.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
+
+#include "libvri/io/volume_io.h"
 
 namespace vri {
 
@@ -35,6 +38,9 @@ struct SceneSpec {
     std::vector<std::filesystem::path> files;  // volume and transfer function, absolute: hashed for the cache
     ToolOptions options;                    // vri-render's scene options, paths as absolute paths
     int width = 800, height = 600;          // the images' size: `size:`, else vri-render's default --size
+    // How its volume's voxels lie in a raw file: the catalog's, or a `volume:` file's name's (the Open SciVis
+    // convention); none for a file that describes itself, an analytic field, or a name vri-render will refuse.
+    std::optional<RawLayout> rawLayout;
 };
 
 // The most runs the sweeps of one experiment file may expand to (the largest of experiments/ has

@@ -57,10 +57,10 @@ std::optional<NodeStepStatus> readNodeStepStatus(const fs::path& file) {
     if (!fs::is_regular_file(file)) return std::nullopt;
     const nlohmann::json j = readJsonFile(file);
     return readingJsonOf(file, [&] {
-        return NodeStepStatus{
-            j.at("exited").get<bool>(),           j.at("code").get<int>(),         j.at("signal").get<int>(),
-            j.at("wall_seconds").get<double>(),   j.at("node").get<std::string>(), j.at("job_id").get<std::string>(),
-            j.at("peak_rss_kib").get<long long>()};
+        return NodeStepStatus{j.at("exited").get<bool>(),      j.at("code").get<int>(),
+                              j.at("signal").get<int>(),       j.at("wall_seconds").get<double>(),
+                              j.at("node").get<std::string>(), j.at("job_id").get<std::string>(),
+                              j.value("peak_rss_kib", 0LL)};  // 0: a status of a runner before it
     });
 }
 

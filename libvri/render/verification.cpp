@@ -200,6 +200,9 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
 
     // The sweep: the renderer's images, and vri's own at every step; with seeds, each the mean of the frames.
     const bool jittered = options.seeds > 1;
+    if (options.rendererJobs < 1)
+        throw Error("the renderer's runs at once (--renderer-jobs): expected at least 1, got " +
+                    std::to_string(options.rendererJobs));
     std::vector<OutsideRun> runs;
     std::vector<double> ours;
     std::vector<FrameMoments> theirFrames, ourFrames;
@@ -221,6 +224,7 @@ VerificationReport verifyRenderer(const OutsideRenderer& renderer, const SceneSe
                 return r;
             };
             // The renderer's runs, options.rendererJobs at a time, each in its seed's folder; kept in seed order.
+            // A run that fails is reported once the others of its batch have ended (the lowest seed's first).
             std::vector<OutsideRun> seedRuns(static_cast<std::size_t>(options.seeds));
             for (int first = 0; first < options.seeds; first += options.rendererJobs) {
                 std::vector<std::future<OutsideRun>> batch;

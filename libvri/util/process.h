@@ -22,7 +22,7 @@ struct ProcessStreams {
     bool errToOut = false;      // stderr joins stdout (the same file, or the same captured text)
 };
 
-// How a child ended, from waitpid's status.
+// How a child ended, from wait4's status and resource usage.
 struct ExitStatus {
     bool exited = false;  // by exit(): `code` holds its status; else killed by `signal`
     int code = 0;

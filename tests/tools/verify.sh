@@ -53,9 +53,13 @@ PY
 steps=2,1,0.5
 verify 0 "pass: jitter: its frames are distributed as the card's jittered Riemann sum's" none --jitter --seeds 12
 verify 0 "pass: jitter: .*smallest p (0\.[1-9]|1 )" jitter-other-seeds --jitter --seeds 12 --seed 40
-# --renderer-jobs: the same 12 runs five at a time (batches of 5, 5 and 2), the same report but for times.
+# --renderer-jobs 2: the same 12 runs two at a time (each seed's run waits for its partner's, 40 and 41, ...,
+# and fails alone), the same report but for times.
 cp jitter-other-seeds.json other-seeds-one-at-a-time.json
-verify 0 "pass: jitter: .*smallest p (0\.[1-9]|1 )" jitter-other-seeds --jitter --seeds 12 --seed 40 --renderer-jobs 5
+mkdir pairs
+VRI_TEST_PAIRED_RUNS=$PWD/pairs verify 0 "pass: jitter: .*smallest p (0\.[1-9]|1 )" jitter-other-seeds --jitter --seeds 12 \
+  --seed 40 --renderer-jobs 2
+[ "$(ls pairs | wc -l)" -eq 36 ] || fail "$(ls pairs | wc -l) paired runs, not 12 seeds at 3 steps"
 "$python" - other-seeds-one-at-a-time.json jitter-other-seeds.json <<'PY'
 import json, sys
 def timeless(x):
@@ -63,7 +67,7 @@ def timeless(x):
         return {k: timeless(v) for k, v in x.items() if "second" not in k and k not in ("command", "argv")}
     return [timeless(v) for v in x] if isinstance(x, list) else x
 one, five = (timeless(json.load(open(f))) for f in sys.argv[1:])
-assert one == five, "--renderer-jobs 5 changed the report"
+assert one == five, "--renderer-jobs 2 changed the report"
 PY
 verify 3 "FAIL: jitter: the 12 frames of every card are identical: the renderer does not jitter, or does not take the card's seed" \
   jitter-ignores-seed --jitter --seeds 12

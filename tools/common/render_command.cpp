@@ -315,6 +315,8 @@ int RenderCommand::runVerify() {
     if (request.wasGiven("--placement")) options.placement = request.options.placement;
     options.seeds = seeds_;
     options.rendererJobs = rendererJobs_;
+    if (rendererJobs_ > 1 && seeds_ < 2)
+        throw UsageError("--renderer-jobs: runs the cards of several seeds at once; give --seeds N (and --jitter)");
     if (seeds_ > 1 && !request.options.jitter)
         throw UsageError("--seeds: tests a jittered renderer; give --jitter (and --seed for the first seed)");
     if (request.options.jitter && seeds_ < 2)
