@@ -24,13 +24,7 @@ if [ ! -f "$volume" ]; then
   /usr/bin/python3 "$repo/scripts/blob-volume.py" "$n" "$volume"
 fi
 (( limit * 1048576 < n * n * n )) || fail "a brick job's limit of $limit MiB holds the whole volume: nothing to show"
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.55, 0.0, 0.0, 0.0, 0.0]
-  - [0.7, 1.0, 0.6, 0.2, 0.02]
-  - [1.0, 1.0, 1.0, 1.0, 0.05]
-YAML
+cp "$repo/experiments/tf/blobs.yaml" tf.yaml
 for what in whole bricked; do
   method="{method: riemann, step: 1}"
   [ "$what" = whole ] || method="{method: riemann, step: 1, bricks: [$b, $b, $b]}"

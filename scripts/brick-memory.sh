@@ -18,13 +18,7 @@ if [ ! -f "$volume" ]; then
   echo "brick-memory: writing $volume ($((n * n * n / 1048576)) MiB)" >&2
   /usr/bin/python3 "$repo/scripts/blob-volume.py" "$n" "$volume"
 fi
-cat > tf.yaml <<'YAML'
-points:
-  - [0.0, 0.0, 0.0, 0.0, 0.0]
-  - [0.55, 0.0, 0.0, 0.0, 0.0]
-  - [0.7, 1.0, 0.6, 0.2, 0.02]
-  - [1.0, 1.0, 1.0, 1.0, 0.05]
-YAML
+cp "$repo/experiments/tf/blobs.yaml" tf.yaml
 scene=(--volume "$volume" --tf tf.yaml --size 960x540 --method riemann --step 1 --no-skip-empty -q)
 peak() { /usr/bin/time -f %M -o rss.txt "$@" && cat rss.txt; }   # KiB
 echo "| render | volume bytes held | peak RSS (MiB) | peak / held | seconds |"
