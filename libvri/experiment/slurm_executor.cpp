@@ -567,13 +567,18 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& reported) {
     Job& job = jobs_[j];
     job.ended = true;
     // A job killed for its memory by jobacct_gather ends FAILED (JobLaunchFailure): its output says why.
+    // Looked at now and again after the wait for late status files below (a shared file system may show
+    // the output late too).
     SlurmJob state = reported;
-    if (state.state == "FAILED")
+    const auto killedForMemory = [&] {
+        if (state.state != "FAILED") return;
         if (const std::optional<std::string> text = tryReadFileText(slurmDir_ / (jobStem(j) + ".out")))
             if (std::optional<std::string> kill = memoryLimitKill(*text)) {
                 state.state = "OUT_OF_MEMORY";
                 state.reason = "slurmstepd: " + *kill;
             }
+    };
+    killedForMemory();
     // A job that completed or failed wrote a status file for every step it ran (one squeue no longer
     // knows ended long ago); a shared file system may show them late. A job killed (cancelled, timed
     // out, preempted, out of memory) left none for the step it killed: nothing to wait for.
@@ -593,6 +598,7 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& reported) {
             pause(0.2);
             status = statusOf(i);
         }
+        if (!status && !failed) killedForMemory();
         const std::string where = "Slurm job " + job.id + " " + state.state + (state.node.empty() ? "" : " on " + state.node);
         if (failed) {
             ledger_.abandoned(i, "an earlier step of its " + where + " failed");
