@@ -378,13 +378,13 @@ private:
         std::string id;
         bool ended = false;
         std::set<std::size_t> dependsOn;  // indices of jobs
-        // --slurm-retries: the attempts before this one ("job 12 NODE_FAIL on n3"), and the factors its
-        // time and memory were raised by after TIMEOUT and OUT_OF_MEMORY.
-        std::vector<std::string> earlierAttempts;
+        // --slurm-retries: how often vri-run submitted it again (each attempt has files of its own), and the
+        // factors its time and memory were raised by after TIMEOUT and OUT_OF_MEMORY.
+        std::size_t retries = 0;
         double timeScale = 1.0, memoryScale = 1.0;
         int restarts = 0;  // how often Slurm requeued its current id, as last said
-        // The manifest's earlier attempts: vri-run's and Slurm's requeues ("job 12 requeued by Slurm (restart
-        // 1)"), in order. Only vri-run's count as attempts: they have files of their own.
+        // The manifest's earlier attempts, vri-run's retries and Slurm's requeues in order ("job 12 NODE_FAIL
+        // on n3", "job 12 requeued by Slurm (restart 1)").
         std::vector<std::string> history;
     };
 
@@ -408,14 +408,14 @@ private:
     // could not stop in time) finds its own files gone, and never reads this run's.
     // An attempt after the first has files of its own: the output an error message named stays.
     std::string jobStem(std::size_t j) const {
-        const std::size_t attempt = jobs_[j].earlierAttempts.size();
+        const std::size_t attempt = jobs_[j].retries;
         return "job-" + token_ + "-" + std::to_string(j) + (attempt > 0 ? "-" + std::to_string(attempt + 1) : "");
     }
     // Step i's status file for its job's current attempt: a process of an earlier attempt still alive (a
     // node cut off, not dead) writes its own.
     fs::path statusPath(std::size_t i) const {
         fs::path status = ledger_.logPath(i);
-        const std::size_t attempt = jobs_[jobOfStep_.at(i)].earlierAttempts.size();
+        const std::size_t attempt = jobs_[jobOfStep_.at(i)].retries;
         return status.replace_extension(attempt > 0 ? ".status-" + std::to_string(attempt + 1) + ".json"
                                                     : ".status.json");
     }
@@ -486,7 +486,7 @@ void SlurmRun::submit(std::size_t j) {
             "step '" + plan_.steps[job.bundle.steps.front()].id + "': " + e.what() +
             " (the job asked --cpus-per-task=" + std::to_string(resources.cpus) +
             ": --slurm-cpus or the step's threads; --mem=" + std::to_string(resources.memoryMiB) +
-            "M: from its inputs and pixels" + (job.earlierAttempts.empty() ? "" : ", raised for its retry") +
+            "M: from its inputs and pixels" + (job.retries == 0 ? "" : ", raised for its retry") +
             (resources.minutes ? "; --time=" + std::to_string(*resources.minutes) + ": from its last run's time" : "") +
             (options_.slurm.kinds.count(kind) ? "; or the site profile's kind " + kind : "") +
             "; a --slurm-arg=--mem=... or --slurm-arg=--time=... overrides them for every job)");
@@ -633,13 +633,11 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& reported) {
             return;
         } else {
             const bool timeNotRaised = state.state == "TIMEOUT" && options_.slurm.retries > 0 &&
-                                       job.earlierAttempts.size() < static_cast<std::size_t>(options_.slurm.retries);
+                                       job.retries < static_cast<std::size_t>(options_.slurm.retries);
             ledger_.failed(i,
                            "failed: " + where +
                                (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") +
-                               (job.earlierAttempts.empty()
-                                    ? ""
-                                    : " after " + std::to_string(job.earlierAttempts.size() + 1) + " attempts") +
+                               (job.retries == 0 ? "" : " after " + std::to_string(job.retries + 1) + " attempts") +
                                (timeNotRaised ? "; not retried: vri-run asked no --time it could raise" : "") +
                                "; the job's output: " + (slurmDir_ / (jobStem(j) + ".out")).string(),
                            0);
@@ -659,8 +657,7 @@ JobResources SlurmRun::resourcesOf(std::size_t j) const {
 }
 
 std::optional<std::string> SlurmRun::retryRaises(const std::string& state, const Job& job) const {
-    if (gSlurmInterrupt || job.earlierAttempts.size() >= static_cast<std::size_t>(options_.slurm.retries))
-        return std::nullopt;
+    if (gSlurmInterrupt || job.retries >= static_cast<std::size_t>(options_.slurm.retries)) return std::nullopt;
     if (state == "NODE_FAIL" || state == "PREEMPTED" || state == "BOOT_FAIL") return std::string();
     // A limit the user's sbatch options set wins over vri-run's (they come after it): raising it is out of reach.
     const auto userSets = [&](const std::string& option) {
@@ -690,7 +687,7 @@ void SlurmRun::requeued(std::size_t j, const SlurmJob& state) {
 void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& raised) {
     Job& job = jobs_[j];
     const std::string attempt = "job " + job.id + " " + state.state + (state.node.empty() ? "" : " on " + state.node);
-    job.earlierAttempts.push_back(attempt);
+    ++job.retries;
     job.history.push_back(attempt);
     if (state.state == "TIMEOUT") job.timeScale *= kRetryFactor;
     if (state.state == "OUT_OF_MEMORY") job.memoryScale *= kRetryFactor;
@@ -710,8 +707,8 @@ void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& ra
     again_.insert(j);
     std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": step '"
               << plan_.steps[job.bundle.steps.front()].id << "': Slurm " << attempt << "; retrying (attempt "
-              << job.earlierAttempts.size() + 1 << " of " << options_.slurm.retries + 1
-              << (raised.empty() ? "" : ", " + raised) << ")\n";
+              << job.retries + 1 << " of " << options_.slurm.retries + 1 << (raised.empty() ? "" : ", " + raised)
+              << ")\n";
 }
 
 void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {

@@ -33,22 +33,21 @@ int stepCpus(const Step& step, int defaultCpus) {
 long long stepMemoryMiB(const Step& step) {
     constexpr double kMiB = 1 << 20;
     double bytes = 256 * kMiB;
-    if (step.volumeBytes > 0) {
-        // A brick whose voxels the planner counted: it holds them as read (1.05 times them at its peak with
-        // its layer image, for 2048^3 in 2 x 2 x 2 bricks; results/bricks-slurm.md), asked as 1.5 times them.
-        bytes += 1.5 * static_cast<double>(step.volumeBytes) + 64.0 * static_cast<double>(step.pixels);
-        return static_cast<long long>(std::ceil(std::min(bytes, 1e18) / kMiB));
-    }
-    for (const fs::path& input : step.inputs) {
-        std::error_code ec;
-        const std::uintmax_t size = fs::file_size(input, ec);
-        // A brick of a raw file reads its share and a ghost layer, (w + 1)^3 / w^3 of the share for bricks w
-        // voxels wide: at most 2.4 times it from w = 3 on, asked as 3 times. Narrower bricks (8 times the
-        // share at w = 1) stay within the 8 bytes asked a voxel byte, of which a brick uses about 1.5. Other
-        // formats are read whole.
-        const bool share = step.volumeParts > 1 && !describesItsLayout(input);
-        if (!ec) bytes += 8.0 * static_cast<double>(size) * (share ? std::min(1.0, 3.0 / step.volumeParts) : 1.0);
-    }
+    // A brick whose voxels the planner counted holds them as read (1.05 times them at its peak with its layer
+    // image, for 2048^3 in 2 x 2 x 2 bricks; results/bricks-slurm.md): asked as 1.5 times them.
+    if (step.volumeBytes > 0)
+        bytes += 1.5 * static_cast<double>(step.volumeBytes);
+    else
+        for (const fs::path& input : step.inputs) {
+            std::error_code ec;
+            const std::uintmax_t size = fs::file_size(input, ec);
+            // A brick of a raw file reads its share and a ghost layer, (w + 1)^3 / w^3 of the share for bricks w
+            // voxels wide: at most 2.4 times it from w = 3 on, asked as 3 times. Narrower bricks (8 times the
+            // share at w = 1) stay within the 8 bytes asked a voxel byte, of which a brick uses about 1.5. Other
+            // formats are read whole.
+            const bool share = step.volumeParts > 1 && !describesItsLayout(input);
+            if (!ec) bytes += 8.0 * static_cast<double>(size) * (share ? std::min(1.0, 3.0 / step.volumeParts) : 1.0);
+        }
     bytes += 64.0 * static_cast<double>(step.pixels);
     // A renderer of someone else's holds what vri cannot estimate, a browser's processes among them: three.js in
     // headless Chromium held 1.1 GiB at 40 x 30 pixels (the sum of its processes' resident memory, which
