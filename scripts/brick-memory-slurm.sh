@@ -45,7 +45,8 @@ echo "brick-memory-slurm: the whole volume with the local executor" >&2
 rm -rf local slurm cluster
 "$bin/vri-run" --results local whole.yaml
 source "$repo/tests/tools/lib/slurm_cluster.sh"
-start_slurm_cluster "$PWD/cluster" 10 2
+# The bricks of a large volume take minutes a pair on one core each: the cluster's watchdog waits an hour.
+VRI_SLURM_TEST_LIMIT=${VRI_SLURM_TEST_LIMIT:-3600} start_slurm_cluster "$PWD/cluster" 10 2
 echo "brick-memory-slurm: $((b * b * b)) bricks on the test cluster, each job given $limit MiB" >&2
 VRI_SLURM_PROFILE=$PWD/profile.yaml "$bin/vri-run" --executor slurm --slurm-cpus 1 --slurm-poll 1 --results slurm bricked.yaml
 /usr/bin/python3 - "$n" "$limit" "$b" <<'PY'

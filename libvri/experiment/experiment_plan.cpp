@@ -13,6 +13,7 @@
 #include "libvri/io/plot_data_files.h"
 #include "libvri/io/provenance.h"
 #include "libvri/render/tool_flags.h"
+#include "libvri/util/checked_size.h"
 #include "libvri/util/error.h"
 
 namespace vri {
@@ -127,6 +128,13 @@ void Planner::addRender(const RunSpec& run) {
     Step step{run.id, "render", run.tool, {}, {}, {}, {}};
     sceneOptions(step, scene);
     step.pixels = static_cast<std::uint64_t>(scene.width) * static_cast<std::uint64_t>(scene.height);
+    if (scene.rawLayout) {  // a tile loads the whole volume too; a brick replaces this with its own box
+        const glm::ivec3 d = scene.rawLayout->dims;
+        step.volumeBytes =
+            checkedProduct({static_cast<std::uint64_t>(std::max(d.x, 0)), static_cast<std::uint64_t>(std::max(d.y, 0)),
+                            static_cast<std::uint64_t>(std::max(d.z, 0)), voxelSize(scene.rawLayout->type)})
+                .value_or(0);
+    }
     for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
@@ -159,7 +167,7 @@ void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& r
                          {"region", bands[k].text()},
                          static_cast<std::uint64_t>(bands[k].width) * static_cast<std::uint64_t>(bands[k].height),
                          1,
-                         0});
+                         render.volumeBytes});
     addSplit(run, scene, render, merge_flag::tile, {"tiles", std::to_string(run.tiles)}, parts);
 }
 

@@ -29,8 +29,9 @@ struct Step {
     std::uint64_t pixels = 0;
     // The bricks its volume is cut into, of which the step reads one (`bricks:`); 1 for the whole volume.
     int volumeParts = 1;
-    // The voxel bytes a brick holds (its own and the ghost layer), where the planner knows them: a raw file
-    // laid out by its name, read by offset. 0 elsewhere: the Slurm estimate then goes by the file's size.
+    // The voxel bytes the step holds, where the planner knows the volume's layout (the dataset catalog's, or
+    // a raw file's name): the whole volume's for a render or a tile, a brick's own and its ghost layer's
+    // for a brick (read by offset). 0 elsewhere: the Slurm estimate then goes by the files' sizes.
     std::uint64_t volumeBytes = 0;
 
     // Whether the local executor runs the step alone: an untiled, unbricked render or a command times itself

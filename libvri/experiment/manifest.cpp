@@ -27,11 +27,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The first line `git -C dir ARGS...` prints, or "" when it cannot run (no git, not a work tree).
+// The first line `git -C dir ARGS...` prints, or "" when it cannot run (no git, not a work tree). Without
+// optional locks: `git status` would otherwise refresh the user's index and write it, where vri-run only reads.
 std::string firstLineOfGit(const fs::path& dir, std::vector<std::string> args) {
     const auto git = findProgram("git");
     if (!git) return "";
-    std::vector<std::string> words{"git", "-C", dir.string()};
+    std::vector<std::string> words{"git", "--no-optional-locks", "-C", dir.string()};
     words.insert(words.end(), std::make_move_iterator(args.begin()), std::make_move_iterator(args.end()));
     try {
         auto [status, output] =

@@ -33,10 +33,12 @@ int stepCpus(const Step& step, int defaultCpus) {
 long long stepMemoryMiB(const Step& step) {
     constexpr double kMiB = 1 << 20;
     double bytes = 256 * kMiB;
-    // A brick whose voxels the planner counted holds them as read (1.05 times them at its peak with its layer
-    // image, for 2048^3 in 2 x 2 x 2 bricks; results/bricks-slurm.md): asked as 1.5 times them.
+    // Voxels the planner counted. A brick holds them as read (1.05 times them at its peak with its layer image,
+    // for 2048^3 in 2 x 2 x 2 bricks; results/bricks-slurm.md): asked as 1.5 times them. A whole volume peaked
+    // at 1.3 times its bytes (uint8, 1024^3 and 2048^3, double), 1.7 (float, with its skipping grids) and 1.1
+    // (Vulkan, the host's copy freed once uploaded): asked as 2 times them.
     if (step.volumeBytes > 0)
-        bytes += 1.5 * static_cast<double>(step.volumeBytes);
+        bytes += (step.volumeParts > 1 ? 1.5 : 2.0) * static_cast<double>(step.volumeBytes);
     else
         for (const fs::path& input : step.inputs) {
             std::error_code ec;

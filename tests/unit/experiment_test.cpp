@@ -496,6 +496,11 @@ TEST_CASE("experiment: bricks of a raw file laid out by its name carry the bytes
     d.write("v_10x6x4_uint16.raw", std::string(10 * 6 * 4 * 2, '\0'));
     const std::string scene =
         "scenes: {s: {volume: v_10x6x4_uint16.raw, convention: cell, tf: a.yaml, size: [8, 5]}}\n";
+    const vri::Experiment whole = d.parse(kHead + scene + "methods:\n  riemann: {step: 1}\n  simpson: {tiles: 2}\n");
+    const vri::Plan wholePlan = vri::planExperiment(whole, d.dir / "results" / whole.name, d.dir);
+    CHECK(wholePlan.step("riemann").volumeBytes == 10 * 6 * 4 * 2);         // the whole volume
+    CHECK(wholePlan.step("simpson.tile-1").volumeBytes == 10 * 6 * 4 * 2);  // each tile loads all of it
+    CHECK(wholePlan.step("simpson").volumeBytes == 0);                      // the merge holds images
     const vri::Experiment e = d.parse(kHead + scene + "methods:\n  riemann: {bricks: [2, 1, 1]}\n");
     const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
     // Brick 0 holds x 0..5 with the ghost layer x = 5, brick 1 x 5..9: 6 and 5 columns of 6 x 4 voxels, 2 bytes each.

@@ -95,6 +95,14 @@ TEST_CASE("jobResources: a brick whose bytes the planner counted asks 1.5 times 
     CHECK(vri::jobResources(plan, {{0}, 1, true}, 2).memoryMiB == 256 + 1536 + 127);
 }
 
+TEST_CASE("jobResources: a whole volume whose bytes the planner counted asks twice them, not 8 times its files") {
+    vri::Plan plan{"/r/exp", "/r", {}, {}};
+    plan.steps = {planStep("a", "render", 1920 * 1080)};
+    plan.steps[0].volumeBytes = std::uint64_t(8) << 30;  // a 2048^3 uint8 volume, which peaked at 10.6 GiB
+    // 256 MiB + 16 GiB + 64 bytes a pixel (126.6 MiB), rounded up.
+    CHECK(vri::jobResources(plan, {{0}, 1, true}, 2).memoryMiB == 256 + 16384 + 127);
+}
+
 TEST_CASE("jobResources: a renderer of someone else's asks at least 2 GiB, unless the profile's outside kind says") {
     vri::Plan plan{"/r/exp", "/r", {}, {}};
     plan.steps = {planStep("a", "command", 40 * 30), planStep("b", "command", 40 * 30)};

@@ -3,7 +3,9 @@
 # client commands at it. Nothing of the machine's own Slurm or munge is read or touched. The daemons are
 # stopped by the pids they wrote when the test exits. One setting departs from Slurm's defaults:
 # batch_sched_delay=0 starts a job as soon as the node is free instead of up to 3 s later, which halves
-# the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s). Memory is enforced as
+# the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s); cred_expire=20 (of 120)
+# holds a requeued job back 21 s instead of 121 (Slurm keeps it from starting until its old credential has
+# expired, and one started sooner fails with "Job credential revoked"). Memory is enforced as
 # a site without cgroups enforces it: jobacct_gather/linux reads each job's resident memory every second and
 # kills a job over its --mem (OverMemoryKill), which Slurm then ends FAILED with the cause in its output.
 #   start_slurm_cluster DIR [MESSAGE_TIMEOUT] [NODES]   exits 77 (skip) with one line when the daemons cannot
@@ -11,17 +13,32 @@
 #       controller; NODES 1 (vri-test-node, every core of this machine) or 2 (vri-test-node1 and 2, two slurmd
 #       on ports of their own, the cores and memory shared between them)
 #   stop_slurmctld / restart_slurmctld   the controller stopped (by its pid) and started again on its saved state
+# A watchdog bounds the whole test: one still running VRI_SLURM_TEST_LIMIT seconds (600 unless set) after its
+# cluster started prints what the cluster holds (squeue, sinfo, the controller's last log lines) and stops the
+# test's own processes with SIGTERM (vri-run then cancels its jobs), so that a job the cluster never starts
+# fails the test with what it waited for instead of holding ctest, and CI, for ever.
 
 slurm_daemon_pids=()
+slurm_watchdog_pid=
 
 stop_slurm_cluster() {
     local pid
+    [ -z "$slurm_watchdog_pid" ] || kill "$slurm_watchdog_pid" 2>/dev/null || true
+    slurm_watchdog_pid=
     for pid in "${slurm_daemon_pids[@]}"; do kill "$pid" 2>/dev/null || true; done
     for pid in "${slurm_daemon_pids[@]}"; do
         for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
         kill -9 "$pid" 2>/dev/null || true
     done
     slurm_daemon_pids=()
+    # A job still running when its slurmd stopped leaves its slurmstepd (a daemon of its own): those of this
+    # cluster, and only those, are known by the SLURM_CONF in their environment.
+    [ -z "${slurm_dir:-}" ] && return
+    for pid in $(pgrep -x slurmstepd); do
+        tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -qxF "SLURM_CONF=$slurm_dir/slurm.conf" &&
+            kill -9 "$pid" 2>/dev/null
+    done
+    return 0
 }
 
 # The pid a daemon wrote to FILE, waited for up to 10 s, added to those stopped at exit.
@@ -65,7 +82,7 @@ SlurmctldPort=$port
 SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
-AuthInfo=socket=$dir/munge/socket
+AuthInfo=socket=$dir/munge/socket,cred_expire=20
 CredType=cred/munge
 StateSaveLocation=$dir/state
 SlurmdSpoolDir=$dir/spool/%n
@@ -103,6 +120,7 @@ EOF
         slurmd -N "${names[k]}" > "$dir/log/slurmd-${names[k]}.out" 2>&1 || { echo "SKIP: slurmd cannot start here (see $dir/log)"; exit 77; }
         slurm_daemon_pid "$dir/slurmd-${names[k]}.pid" slurmd
     done
+    start_slurm_watchdog
     for _ in $(seq 100); do
         [ "$(sinfo --noheader --Node --format=%T 2>/dev/null | sort -u)" = idle ] &&
             [ "$(sinfo --noheader --Node --format=%N 2>/dev/null | wc -l)" = "$nodes" ] && return 0
@@ -110,6 +128,30 @@ EOF
     done
     echo "SKIP: the test cluster's node did not come up (see $dir/log)"
     exit 77
+}
+
+# The watchdog (above). It sleeps in the background so that SIGTERM from stop_slurm_cluster ends it at once,
+# its sleep included, and leaves nothing holding ctest's pipe; the test's own TERM trap makes it exit 1, which
+# runs its EXIT trap (the daemons stopped).
+start_slurm_watchdog() {
+    local limit=${VRI_SLURM_TEST_LIMIT:-600} test_pid=$$
+    [[ $limit =~ ^[0-9]+$ ]] || { echo "FAIL: VRI_SLURM_TEST_LIMIT is a whole number of seconds, not '$limit'"; exit 1; }
+    trap "echo 'FAIL: stopped by the Slurm test watchdog after $limit s'; exit 1" TERM
+    (
+        watchdog=$BASHPID
+        trap 'kill "$nap" 2>/dev/null; exit 0' TERM
+        sleep "$limit" &
+        nap=$!
+        wait "$nap"
+        echo "FAIL: the test still runs $limit s after its Slurm cluster started (VRI_SLURM_TEST_LIMIT); the cluster holds:"
+        timeout 10 squeue --states=all --format='%i %j %T %r %S %M %N' 2>&1
+        timeout 10 sinfo --Node --format='%N %T %E' 2>&1
+        tail -n 30 "$slurm_dir/log/slurmctld.log"
+        trap - TERM
+        kill -TERM $(pgrep -P "$test_pid" | grep -vx "$watchdog") 2>/dev/null
+        kill -TERM "$test_pid"
+    ) &
+    slurm_watchdog_pid=$!
 }
 
 # The controller's pid, stopped with SIGTERM and waited for; it is no longer stopped at exit.
