@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "libvri/io/exr_file.h"
+#include "libvri/io/io_module.h"
 #include "libvri/io/oiio_module.h"
 #include "libvri/io/png_file.h"
 #include "libvri/util/atomic_file.h"

@@ -1,8 +1,8 @@
 #pragma once
-// OpenImageIO as a module vri loads when a file needs it (libvri-oiio.so, libvri/io/oiio/): the image
-// formats other than OpenEXR and PNG, and TIFF stacks. Linking OpenImageIO into every tool cost each process
-// 0.7-1 s before main() (Debian's build pulls in 260 shared libraries: video, GIS, DICOM, ...), which made
-// the start-up, not the rendering, most of a quick experiment's time; renders, their previews and the
+// OpenImageIO as a module vri loads when a file needs it (libvri-oiio.so, libvri/io/oiio/; io_module.h): the
+// image formats other than OpenEXR and PNG, and TIFF stacks. Linking OpenImageIO into every tool cost each
+// process 0.7-1 s before main() (Debian's build pulls in 260 shared libraries: video, GIS, DICOM, ...), which
+// made the start-up, not the rendering, most of a quick experiment's time; renders, their previews and the
 // comparisons of renders now read and write through OpenEXR and libpng alone (exr_file.h, png_file.h).
 // Private to io/; includes no OpenImageIO header.
 #include <cstddef>
@@ -48,8 +48,5 @@ inline constexpr const char* kOiioModuleFile = "libvri-oiio.so";
 // The module, loaded on first use (once per process). Throws vri::Error "PATH: cannot <doing>: ..." naming
 // where the module was looked for when it cannot be loaded.
 const OiioModule& oiioModule(const std::filesystem::path& path, std::string_view doing);
-
-// Throws vri::Error(message) unless the module's call succeeded (an empty message).
-void requireModuleSuccess(const std::string& message);
 
 }  // namespace vri::detail

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "libvri/io/io_module.h"
 #include "libvri/io/oiio_module.h"
 #include "libvri/io/tiff_page_chain.h"
 #include "libvri/io/volume_formats.h"

@@ -16,6 +16,7 @@
 
 #include "temp_dir.h"
 #include "libvri/io/image_io.h"
+#include "libvri/io/io_module.h"
 #include "libvri/io/oiio_module.h"
 #include "libvri/util/error.h"
 

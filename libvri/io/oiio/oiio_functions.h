@@ -1,8 +1,7 @@
 #pragma once
 // The functions of the OpenImageIO module (oiio_module.h's OiioModule), one file each; only the module's
 // own sources include this.
-#include <exception>
-
+#include "libvri/io/io_module.h"
 #include "libvri/io/oiio_module.h"
 
 namespace vri::detail::oiio {
@@ -10,14 +9,7 @@ namespace vri::detail::oiio {
 // Runs `body`; what it throws becomes the returned message (nothing crosses the module's boundary).
 template <typename Body>
 std::string caught(Body&& body) {
-    try {
-        body();
-        return {};
-    } catch (const std::exception& e) {
-        return e.what();
-    } catch (...) {
-        return "unknown error in vri's OpenImageIO module";
-    }
+    return caughtMessage("OpenImageIO", std::forward<Body>(body));
 }
 
 std::string readImage(const std::filesystem::path& path, Image& image);

@@ -1,0 +1,34 @@
+#pragma once
+// Modules of vri's own that the io layer loads when a file needs them: OpenImageIO (oiio_module.h) and
+// OpenVDB (vdb_module.h). Linked into every tool, each cost every process its start-up (0.7-1 s for
+// OpenImageIO's 260 libraries, 65 ms for OpenVDB's 61,000 symbol relocations) whether it read such a file
+// or not. A module exports one versioned entry point returning its table of functions; no exception crosses
+// its boundary (each function returns "" or its one-line message). Private to io/.
+#include <exception>
+#include <string>
+
+namespace vri::detail {
+
+// The table `entry` of the module `file` (libvri-NAME.so), loaded once per process from, in order: beside
+// the binary that holds this code (a tool, the Python module, a user's program: <its folder>/../lib/vri),
+// beside the running executable, and the installed modules' folder. nullptr when none loads, `failure`
+// then saying why and where it looked.
+const void* loadModuleTable(const char* file, const char* entry, std::string& failure);
+
+// Throws vri::Error(message) unless the module's call succeeded (an empty message).
+void requireModuleSuccess(const std::string& message);
+
+// Inside a module: runs `body`; what it throws becomes the returned message.
+template <typename Body>
+std::string caughtMessage(const char* module, Body&& body) {
+    try {
+        body();
+        return {};
+    } catch (const std::exception& e) {
+        return e.what();
+    } catch (...) {
+        return std::string("unknown error in vri's ") + module + " module";
+    }
+}
+
+}  // namespace vri::detail
