@@ -1,7 +1,7 @@
 #pragma once
 // A volume kept as the 8^3 bricks that hold anything but a background value: the memory of a mostly empty
 // scene grows with its occupied bricks, not with its box (plus a 4-byte table entry per brick of the box,
-// 1/128 of a dense uint8 copy). Like OpenVDB's leaf nodes, and read from them (vdb_io.cpp).
+// 1/128 of a dense uint8 copy). Like OpenVDB's leaf nodes, and read from them (io/vdb/vdb_grids.cpp).
 //
 // Brick b holds voxels [8 b, 8 b + 8) along each axis. It is stored as a block of 9^3 voxels, x fastest:
 // the brick and a one-voxel apron on its high sides, a copy of the first voxels of the next bricks. The

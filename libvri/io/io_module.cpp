@@ -32,6 +32,8 @@ std::vector<fs::path> candidateFiles(const char* file) {
     if (!error) folders.push_back(self.parent_path());
     std::vector<fs::path> files;
     for (const fs::path& folder : folders) files.push_back(folder / VRI_MODULE_RELATIVE_DIR / file);
+    // The installed Python module, in <prefix>/lib/pythonX.Y/site-packages: two folders deeper than bin/.
+    if (!folders.empty()) files.push_back(folders.front() / ".." / ".." / VRI_MODULE_RELATIVE_DIR / file);
     files.push_back(fs::path(VRI_MODULE_INSTALL_DIR) / file);
     return files;
 }

@@ -11,7 +11,8 @@ namespace vri::detail {
 
 // The table `entry` of the module `file` (libvri-NAME.so), loaded once per process from, in order: beside
 // the binary that holds this code (a tool, the Python module, a user's program: <its folder>/../lib/vri),
-// beside the running executable, and the installed modules' folder. nullptr when none loads, `failure`
+// beside the running executable, where the installed Python module finds it (<its folder>/../../../lib/vri),
+// and the installed modules' folder. nullptr when none loads, `failure`
 // then saying why and where it looked.
 const void* loadModuleTable(const char* file, const char* entry, std::string& failure);
 
@@ -21,13 +22,14 @@ void requireModuleSuccess(const std::string& message);
 // Inside a module: runs `body`; what it throws becomes the returned message.
 template <typename Body>
 std::string caughtMessage(const char* module, Body&& body) {
+    const std::string unknown = std::string("unknown error in vri's ") + module + " module";
     try {
         body();
         return {};
     } catch (const std::exception& e) {
-        return e.what();
+        return *e.what() ? e.what() : unknown;  // "" would read as success
     } catch (...) {
-        return std::string("unknown error in vri's ") + module + " module";
+        return unknown;
     }
 }
 

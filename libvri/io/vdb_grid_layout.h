@@ -1,7 +1,7 @@
 #pragma once
-// Private to the .vdb reader: what a grid's metadata and transform mean as a vri volume. The decision
-// is made from plain values that vdb_io.cpp reads off the grid, so that it can be tested and fuzzed
-// (tests/fuzz/fuzz_vdb_metadata.cpp) without OpenVDB or a .vdb file.
+// Private to the .vdb reader: what a grid's metadata and transform mean as a vri volume. The decision is
+// made from plain values that the OpenVDB module (vdb/vdb_grids.cpp) reads off the grid, so that it can be
+// tested and fuzzed (tests/fuzz/fuzz_vdb_metadata.cpp) without OpenVDB or a .vdb file.
 #include <optional>
 #include <string>
 

@@ -94,21 +94,4 @@ if command -v vdb_print >/dev/null; then
   grep -q "density" <<<"$listing" || fail "vdb_print does not list the grid: $listing"
   grep -qi "fog" <<<"$listing" || fail "vdb_print does not see a fog volume: $listing"
 fi
-# OpenVDB is a module io loads for .vdb files (libvri/io/vdb_module.h): no tool links it (it cost every
-# process some 65 ms of start-up), and a tool without the module beside it says so in one line naming where
-# it looked (skipped where vri is installed system-wide, whose module the tool would then find).
-for tool in "$VRI_BIN"/vri-*; do
-  head -c 4 "$tool" | grep -q ELF || continue  # the peer adapters are scripts
-  if readelf -d "$tool" | grep 'NEEDED.*libopenvdb' > /dev/null; then fail "$(basename "$tool") links OpenVDB"; fi
-done
-mkdir -p alone/bin && cp "$convert" alone/bin/
-installed=$(strings "$convert" | grep -m1 '/vri$' || true)
-if [ -z "$installed" ] || [ ! -e "$installed/libvri-vdb.so" ]; then
-  rc=0
-  alone/bin/vri-convert -q a_5x4x3_uint8.vdb alone.nhdr 2> err.txt || rc=$?
-  [ "$rc" -eq 1 ] && [ "$(wc -l < err.txt)" -eq 1 ] || { cat err.txt >&2; fail "vri-convert without the module: exit $rc"; }
-  grep -q "a_5x4x3_uint8.vdb: cannot read volume: .vdb files need vri's OpenVDB module: libvri-vdb.so not found (looked for .*alone/lib.*/vri/libvri-vdb.so" err.txt ||
-    { cat err.txt >&2; fail "the message does not say what is missing and where"; }
-  alone/bin/vri-convert -q a_5x4x3_uint8.raw alone.nhdr || fail "vri-convert without the OpenVDB module cannot convert a raw file"
-fi
 echo "formats_vdb: ok"

@@ -83,6 +83,12 @@ if [ -n "$(find "$VRI_BUILD/python" -maxdepth 1 -name 'vri.*.so' 2> /dev/null)" 
 import sys, vri
 image, _ = vri.render(vri.LinearField(), vri.load_transfer_function(sys.argv[1]), vri.Camera(size=(64, 48)))
 vri.write_exr("python.exr", image)' "$tf" || fail "the installed Python module failed"
+  # A .vdb through the installed tools' and the installed Python module's OpenVDB module (lib/vri).
+  head -c 64 /dev/urandom > v_4x4x4_uint8.raw
+  "$prefix/bin/vri-convert" -q v_4x4x4_uint8.raw v.vdb || fail "the installed vri-convert cannot write a .vdb"
+  PYTHONPATH="$site" "$(cached VRI_PYTHON_INTERPRETER)" -c '
+import sys, vri
+sys.exit(0 if vri.load_volume("v.vdb") is not None else 1)' || fail "the installed Python module cannot read a .vdb"
   "$bin/vri-diff" reference.exr python.exr --fail 0 > diff.txt || fail "the installed module's image differs: $(cat diff.txt)"
   python_module=${site#"$prefix"/}
 fi

@@ -1,6 +1,8 @@
 #pragma once
 // The functions of the OpenImageIO module (oiio_module.h's OiioModule), one file each; only the module's
 // own sources include this.
+#include <utility>
+
 #include "libvri/io/io_module.h"
 #include "libvri/io/oiio_module.h"
 

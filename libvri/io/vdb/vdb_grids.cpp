@@ -380,6 +380,8 @@ std::string encodeGridFile(const fs::path& path, const Volume& volume, std::stri
             SeekableArchive().writeTo(encoded, {toGrid(volume)});
         } catch (const openvdb::Exception& e) {
             throw Error(path.string() + ": " + e.what());
+        } catch (const std::bad_alloc&) {
+            throw OutOfMemory(path.string() + ": out of memory while encoding the grid");
         }
         if (!encoded) throw Error(path.string() + ": cannot encode the grid");
         bytes = std::move(encoded).str();

@@ -25,6 +25,8 @@ test_pid=$!
     kill -KILL -- "-$test_pid" 2>/dev/null
 ) &
 timer_pid=$!
+# ctest stopped (Ctrl-C, or killed): the test's group, which no longer shares ctest's, stops with it.
+trap 'kill -TERM -- "-$test_pid" "-$timer_pid" 2>/dev/null; rm -rf -- "$marks"; exit 130' INT TERM HUP
 exec 2> /dev/null  # job control's own notes ("Terminated", "Killed") are not the test's output
 wait "$test_pid"
 status=$?

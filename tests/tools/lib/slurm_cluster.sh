@@ -25,20 +25,31 @@ stop_slurm_cluster() {
     local pid
     [ -z "$slurm_watchdog_pid" ] || kill "$slurm_watchdog_pid" 2>/dev/null || true
     slurm_watchdog_pid=
+    trap - TERM
     for pid in "${slurm_daemon_pids[@]}"; do kill "$pid" 2>/dev/null || true; done
     for pid in "${slurm_daemon_pids[@]}"; do
         for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
         kill -9 "$pid" 2>/dev/null || true
     done
     slurm_daemon_pids=()
-    # A job still running when its slurmd stopped leaves its slurmstepd (a daemon of its own): those of this
-    # cluster, and only those, are known by the SLURM_CONF in their environment.
+    # A job still running when its slurmd stopped leaves its slurmstepd (a daemon of its own) and the job's
+    # processes under it: those of this cluster, and only those, are known by the SLURM_CONF in the
+    # slurmstepd's environment.
     [ -z "${slurm_dir:-}" ] && return
     for pid in $(pgrep -x slurmstepd); do
-        tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -qxF "SLURM_CONF=$slurm_dir/slurm.conf" &&
-            kill -9 "$pid" 2>/dev/null
+        { tr '\0' '\n' < "/proc/$pid/environ"; } 2>/dev/null | grep -qxF "SLURM_CONF=$slurm_dir/slurm.conf" &&
+            kill_slurm_tree "$pid"
     done
     return 0
+}
+
+# PID and every process under it, children first stopped (SIGSTOP) so that none escapes while the tree is
+# walked, then all killed.
+kill_slurm_tree() {
+    local child
+    kill -STOP "$1" 2>/dev/null || return 0
+    for child in $(pgrep -P "$1"); do kill_slurm_tree "$child"; done
+    kill -9 "$1" 2>/dev/null || true
 }
 
 # The pid a daemon wrote to FILE, waited for up to 10 s, added to those stopped at exit.
@@ -138,6 +149,7 @@ start_slurm_watchdog() {
     [[ $limit =~ ^[0-9]+$ ]] || { echo "FAIL: VRI_SLURM_TEST_LIMIT is a whole number of seconds, not '$limit'"; exit 1; }
     trap "echo 'FAIL: stopped by the Slurm test watchdog after $limit s'; exit 1" TERM
     (
+        set +eu +o pipefail  # the test's strict mode: a failing look below must not end the watchdog
         watchdog=$BASHPID
         trap 'kill "$nap" 2>/dev/null; exit 0' TERM
         sleep "$limit" &
