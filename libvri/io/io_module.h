@@ -5,7 +5,11 @@
 // or not. A module exports one versioned entry point returning its table of functions; no exception crosses
 // its boundary (each function returns "" or its one-line message). Private to io/.
 #include <exception>
+#include <filesystem>
 #include <string>
+#include <string_view>
+
+#include "libvri/util/error.h"
 
 namespace vri::detail {
 
@@ -15,6 +19,26 @@ namespace vri::detail {
 // and the installed modules' folder. nullptr when none loads, `failure`
 // then saying why and where it looked.
 const void* loadModuleTable(const char* file, const char* entry, std::string& failure);
+
+// The table of type Table of the module `file`, loaded on first use (once per process). Throws vri::Error
+// "PATH: cannot DOING: NEEDS: <why, and where it looked>" when it cannot be loaded.
+template <class Table>
+const Table& moduleTable(const char* file, const char* entry, const std::filesystem::path& path, std::string_view doing,
+                         std::string_view needs) {
+    struct Loaded {
+        const Table* table = nullptr;
+        std::string failure;
+    };
+    static const Loaded loaded = [&] {  // thread-safe, once
+        Loaded l;
+        l.table = static_cast<const Table*>(loadModuleTable(file, entry, l.failure));
+        return l;
+    }();
+    if (!loaded.table)
+        throw Error(path.string() + ": cannot " + std::string(doing) + ": " + std::string(needs) + ": " +
+                    loaded.failure);
+    return *loaded.table;
+}
 
 // Throws vri::Error(message) unless the module's call succeeded (an empty message).
 void requireModuleSuccess(const std::string& message);

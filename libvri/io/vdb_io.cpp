@@ -16,19 +16,7 @@ namespace fs = std::filesystem;
 namespace detail {
 
 const VdbModule& vdbModule(const fs::path& path, std::string_view doing) {
-    struct Loaded {
-        const VdbModule* module = nullptr;
-        std::string failure;
-    };
-    static const Loaded loaded = [] {  // thread-safe, once
-        Loaded l;
-        l.module = static_cast<const VdbModule*>(loadModuleTable(kVdbModuleFile, kVdbModuleEntry, l.failure));
-        return l;
-    }();
-    if (!loaded.module)
-        throw Error(path.string() + ": cannot " + std::string(doing) +
-                    ": .vdb files need vri's OpenVDB module: " + loaded.failure);
-    return *loaded.module;
+    return moduleTable<VdbModule>(kVdbModuleFile, kVdbModuleEntry, path, doing, ".vdb files need vri's OpenVDB module");
 }
 
 }  // namespace detail
