@@ -32,6 +32,8 @@ cd "$VRI_SCRATCH/work"
 # Every entry with its kind, size and mode, and a regular file's inode and status-change time: a write, a
 # truncation, a replacement (a new inode) or a chmod changes them, and no program can set a ctime back. One
 # find a snapshot, where hashing every file's content took two more processes and a third of each case's time.
+# (It relies on the file system's fine timestamps: on one that keeps whole seconds, a same-size rewrite within
+# the second of the file's creation would pass unseen.)
 bad_snapshot() {
   find . -mindepth 1 \( -type f -printf '%p %y %s %m %i %C@\n' \) -o -printf '%p %y %s %m\n' | LC_ALL=C sort
 }
