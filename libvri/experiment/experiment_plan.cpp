@@ -13,7 +13,6 @@
 #include "libvri/io/plot_data_files.h"
 #include "libvri/io/provenance.h"
 #include "libvri/render/tool_flags.h"
-#include "libvri/util/checked_size.h"
 #include "libvri/util/error.h"
 
 namespace vri {
@@ -21,6 +20,12 @@ namespace vri {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The bytes of the voxels `box` of a raw file laid out as `layout`: what a step holding them stores
+// (Step::volumeBytes).
+std::uint64_t heldBytes(const RawLayout& layout, const VoxelBox& box) {
+    return box.voxelCount() * voxelSize(layout.type);
+}
 
 // `path` as a command names it when run from `workDir`: relative when the two share more than the root.
 std::string displayPath(const fs::path& path, const fs::path& workDir) {
@@ -128,13 +133,8 @@ void Planner::addRender(const RunSpec& run) {
     Step step{run.id, "render", run.tool, {}, {}, {}, {}};
     sceneOptions(step, scene);
     step.pixels = static_cast<std::uint64_t>(scene.width) * static_cast<std::uint64_t>(scene.height);
-    if (scene.rawLayout) {  // a tile loads the whole volume too; a brick replaces this with its own box
-        const glm::ivec3 d = scene.rawLayout->dims;
-        step.volumeBytes =
-            checkedProduct({static_cast<std::uint64_t>(std::max(d.x, 0)), static_cast<std::uint64_t>(std::max(d.y, 0)),
-                            static_cast<std::uint64_t>(std::max(d.z, 0)), voxelSize(scene.rawLayout->type)})
-                .value_or(0);
-    }
+    // A tile loads the whole volume too; a brick replaces this with its own box.
+    if (scene.rawLayout) step.volumeBytes = heldBytes(*scene.rawLayout, {{0, 0, 0}, scene.rawLayout->dims});
     for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
@@ -182,8 +182,8 @@ void Planner::addBricks(const RunSpec& run, const SceneSpec& scene, const Step& 
             bricks = BrickGrid(scene.rawLayout->dims, run.bricks);
         } catch (const Error&) {  // a grid finer than the volume: vri-render says so
         }
-    const auto heldBytes = [&](glm::ivec3 brick) -> std::uint64_t {
-        return bricks ? bricks->storedBox(brick).voxelCount() * voxelSize(scene.rawLayout->type) : 0;
+    const auto brickBytes = [&](glm::ivec3 brick) -> std::uint64_t {
+        return bricks ? heldBytes(*scene.rawLayout, bricks->storedBox(brick)) : 0;
     };
     for (int z = 0; z < run.bricks.z; ++z)
         for (int y = 0; y < run.bricks.y; ++y)
@@ -193,7 +193,7 @@ void Planner::addBricks(const RunSpec& run, const SceneSpec& scene, const Step& 
                                  {"brick", brickText({x, y, z})},
                                  render.pixels,
                                  run.bricks.x * run.bricks.y * run.bricks.z,
-                                 heldBytes({x, y, z})});
+                                 brickBytes({x, y, z})});
     addSplit(run, scene, render, merge_flag::layer, {"bricks", grid}, parts);
 }
 

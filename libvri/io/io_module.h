@@ -16,8 +16,7 @@ namespace vri::detail {
 // The table `entry` of the module `file` (libvri-NAME.so), loaded once per process from, in order: beside
 // the binary that holds this code (a tool, the Python module, a user's program: <its folder>/../lib/vri),
 // beside the running executable, where the installed Python module finds it (<its folder>/../../../lib/vri),
-// and the installed modules' folder. nullptr when none loads, `failure`
-// then saying why and where it looked.
+// and the installed modules' folder. nullptr when none loads, `failure` then saying why and where it looked.
 const void* loadModuleTable(const char* file, const char* entry, std::string& failure);
 
 // The table of type Table of the module `file`, loaded on first use (once per process). Throws vri::Error

@@ -1,18 +1,10 @@
 #pragma once
 // The functions of the OpenImageIO module (oiio_module.h's OiioModule), one file each; only the module's
 // own sources include this.
-#include <utility>
-
-#include "libvri/io/io_module.h"
+#include "libvri/io/io_module.h"  // caughtMessage: nothing thrown crosses the module's boundary
 #include "libvri/io/oiio_module.h"
 
 namespace vri::detail::oiio {
-
-// Runs `body`; what it throws becomes the returned message (nothing crosses the module's boundary).
-template <typename Body>
-std::string caught(Body&& body) {
-    return caughtMessage("OpenImageIO", std::forward<Body>(body));
-}
 
 std::string readImage(const std::filesystem::path& path, Image& image);
 std::string readImageMetadata(const std::filesystem::path& path, ImageMetadata& metadata);

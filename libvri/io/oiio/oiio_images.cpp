@@ -22,7 +22,7 @@ std::unique_ptr<OIIO::ImageInput> openInput(const fs::path& path) {
 }  // namespace
 
 std::string readImage(const fs::path& path, Image& image) {
-    return caught([&] {
+    return caughtMessage("OpenImageIO", [&] {
         auto in = openInput(path);
         const OIIO::ImageSpec& spec = in->spec();
         if (spec.depth > 1)
@@ -43,7 +43,7 @@ std::string readImage(const fs::path& path, Image& image) {
 }
 
 std::string readImageMetadata(const fs::path& path, ImageMetadata& metadata) {
-    return caught([&] {
+    return caughtMessage("OpenImageIO", [&] {
         auto in = openInput(path);
         for (const OIIO::ParamValue& attribute : in->spec().extra_attribs)
             if (attribute.type() == OIIO::TypeDesc::STRING)
@@ -57,7 +57,7 @@ std::string readImageMetadata(const fs::path& path, ImageMetadata& metadata) {
 // ...) are refused for that reason. has_error() is not consulted: TIFF leaves an error about its Exif
 // directory behind even when the file it writes is right; the calls' results say whether they failed.
 std::string encodeImage(const fs::path& path, const Image& image, std::string& bytes) {
-    return caught([&] {
+    return caughtMessage("OpenImageIO", [&] {
         auto out = OIIO::ImageOutput::create(path.string());
         if (!out) throw Error(path.string() + ": cannot write image: " + oneLine(OIIO::geterror()));
         if (!out->supports("ioproxy"))

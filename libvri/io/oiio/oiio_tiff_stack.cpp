@@ -33,7 +33,7 @@ StoredType pageStoredType(const fs::path& path, OIIO::TypeDesc format, OIIO::Typ
 }  // namespace
 
 std::string readTiffStack(const fs::path& path, const std::function<char*(const TiffStackShape&)>& allocate) {
-    return caught([&] {
+    return caughtMessage("OpenImageIO", [&] {
         auto in = OIIO::ImageInput::open(path.string());
         if (!in) throw Error(path.string() + ": cannot read image: " + oneLine(OIIO::geterror()));
         const OIIO::ImageSpec first = in->spec();
