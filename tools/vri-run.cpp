@@ -440,10 +440,10 @@ int main(int argc, char** argv) {
                    "(a partition down, a drained node, a hold); 0: wait; a line says why they pend after a minute")
         ->check(vri::numberRange(0.0, 1e7))
         ->capture_default_str();
-    app.add_option(
-           "--slurm-retries", options.slurmRetries,
-           "submit a job again up to N times when it ends NODE_FAIL, PREEMPTED or BOOT_FAIL, TIMEOUT (its --time "
-           "doubled) or OUT_OF_MEMORY (its --mem doubled); 0 to 10")
+    app.add_option("--slurm-retries", options.slurmRetries,
+                   "submit a job again up to N times when it ends NODE_FAIL, PREEMPTED, BOOT_FAIL or LAUNCH_FAILED, "
+                   "TIMEOUT (its --time "
+                   "doubled) or OUT_OF_MEMORY (its --mem doubled); 0 to 10")
         ->check(vri::integerRange(0, 10))
         ->capture_default_str();
     app.add_option("--slurm-max-outage", options.slurmMaxOutage,

@@ -28,8 +28,8 @@ struct SlurmOptions {
     // --slurm-max-outage: how long squeue may fail in a row (a controller restarting or out of reach) before
     // vri-run gives up and cancels its jobs.
     double maxOutageSeconds = 120;
-    // --slurm-retries: how many times a job that ended NODE_FAIL, PREEMPTED, BOOT_FAIL, TIMEOUT (with --time
-    // doubled) or OUT_OF_MEMORY (with --mem doubled) is submitted again.
+    // --slurm-retries: how many times a job that ended NODE_FAIL, PREEMPTED, BOOT_FAIL, LAUNCH_FAILED, TIMEOUT (with
+    // --time doubled) or OUT_OF_MEMORY (with --mem doubled) is submitted again.
     int retries = 0;
     // --slurm-max-jobs: at most this many of the run's jobs in the queue at once, the next submitted as one
     // ends (0: all at once).

@@ -48,6 +48,10 @@ constexpr double kRetryFactor = 2.0;
 constexpr double kCancelWaitSeconds = 60;
 // The state of a job squeue has forgotten (it ended long ago: MinJobAge).
 const std::string kForgotten = "ENDED";
+// squeue's reason for a job Slurm holds after its node could not launch it (slurmd failed to start it: a
+// prolog, the user's environment, a fork), and vri-run's state for such a job once it has cancelled it.
+const std::string kLaunchFailedReason = "launch failed requeued held";
+const std::string kLaunchFailed = "LAUNCH_FAILED";
 
 extern "C" void onInterrupt(int signal) { gSlurmInterrupt = signal; }
 
@@ -323,6 +327,10 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
                 if (!states) continue;
                 pending.update(*states, std::cerr, Clock::now());
                 const auto found = states->find(id);
+                if (found != states->end() && found->second.state == "PENDING" &&
+                    found->second.reason == kLaunchFailedReason)
+                    throw Error("the Slurm check job " + id + " could not be started on its node (squeue's reason: " +
+                                kLaunchFailedReason + "; the node's slurmd log says why)");
                 if (found == states->end() || isFinalJobState(found->second.state)) {
                     completed = found == states->end() || found->second.state == "COMPLETED";
                     ended = true;
@@ -396,8 +404,15 @@ private:
     // Job j ended as --slurm-retries retries: submitted again (first in submitMore), with the jobs after it
     // that Slurm would cancel for their dependency on it cancelled and submitted again after it.
     void retry(std::size_t j, const SlurmJob& state, const std::string& raised);
+    // The jobs after job j that wait for it were submitted with a dependency on its id, which Slurm now
+    // cancels them for (--kill-on-invalid-dep): they are cancelled here and submitted again after it.
+    void submitAgainAfter(std::size_t j);
     // Job j's restart count rose: Slurm requeued it to run again under its id.
     void requeued(std::size_t j, const SlurmJob& state);
+    // Slurm holds job j because its node could not launch it, until someone releases it (so that a broken node
+    // does not take job after job): for vri-run that attempt failed. The job is cancelled and ends
+    // LAUNCH_FAILED, which --slurm-retries submits again as after NODE_FAIL.
+    void launchFailed(std::size_t j, const SlurmJob& state);
     // What a retry of `job` after it ended in `state` raises ("" for nothing), or nullopt where it is not
     // retried: --slurm-retries used up, a state a retry does not mend, a TIMEOUT with no --time to raise.
     std::optional<std::string> retryRaises(const std::string& state, const Job& job) const;
@@ -639,12 +654,22 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& reported) {
                                (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") +
                                (job.retries == 0 ? "" : " after " + std::to_string(job.retries + 1) + " attempts") +
                                (timeNotRaised ? "; not retried: vri-run asked no --time it could raise" : "") +
-                               "; the job's output: " + (slurmDir_ / (jobStem(j) + ".out")).string(),
+                               (state.state == kLaunchFailed
+                                    ? "; its node's slurmd log says why"
+                                    : "; the job's output: " + (slurmDir_ / (jobStem(j) + ".out")).string()),
                            0);
             failed = true;
         }
     }
-    if (failed) abandonDependents(j);
+    if (failed) {
+        abandonDependents(j);
+    } else if (state.state != "COMPLETED" && state.state != kForgotten && !waitingFor(j).empty()) {
+        // Every step succeeded, yet Slurm ended the job otherwise (a scancel or a node failure that came
+        // after its last step): the jobs waiting for it would never start, though nothing they need is missing.
+        std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": Slurm job " << job.id << " ended "
+                  << state.state << " after its steps had succeeded; the jobs waiting for it are submitted again\n";
+        submitAgainAfter(j);
+    }
 }
 
 JobResources SlurmRun::resourcesOf(std::size_t j) const {
@@ -658,7 +683,8 @@ JobResources SlurmRun::resourcesOf(std::size_t j) const {
 
 std::optional<std::string> SlurmRun::retryRaises(const std::string& state, const Job& job) const {
     if (gSlurmInterrupt || job.retries >= static_cast<std::size_t>(options_.slurm.retries)) return std::nullopt;
-    if (state == "NODE_FAIL" || state == "PREEMPTED" || state == "BOOT_FAIL") return std::string();
+    if (state == "NODE_FAIL" || state == "PREEMPTED" || state == "BOOT_FAIL" || state == kLaunchFailed)
+        return std::string();
     // A limit the user's sbatch options set wins over vri-run's (they come after it): raising it is out of reach.
     const auto userSets = [&](const std::string& option) {
         return std::ranges::any_of(options_.slurm.sbatchArguments,
@@ -684,6 +710,12 @@ void SlurmRun::requeued(std::size_t j, const SlurmJob& state) {
               << (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") << "\n";
 }
 
+void SlurmRun::launchFailed(std::size_t j, const SlurmJob& state) {
+    // A scancel that fails leaves the job held: it never runs unless someone releases it.
+    cancelJobs({jobs_[j].id});
+    ended(j, {jobs_[j].id, kLaunchFailed, state.node, state.reason, state.restarts});
+}
+
 void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& raised) {
     Job& job = jobs_[j];
     const std::string attempt = "job " + job.id + " " + state.state + (state.node.empty() ? "" : " on " + state.node);
@@ -692,16 +724,7 @@ void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& ra
     if (state.state == "TIMEOUT") job.timeScale *= kRetryFactor;
     if (state.state == "OUT_OF_MEMORY") job.memoryScale *= kRetryFactor;
     std::erase_if(job.bundle.steps, [&](std::size_t i) { return ledger_.settled(i); });
-    // The jobs after it that wait for it were submitted with a dependency on the id that ended: Slurm
-    // cancels them (--kill-on-invalid-dep). They are cancelled here and submitted again after it.
-    std::vector<std::string> cancel;
-    for (std::size_t k : waitingFor(j)) {
-        if (jobs_[k].id.empty()) continue;  // not submitted yet: it names the new id when it is
-        cancel.push_back(jobs_[k].id);
-        jobs_[k].id.clear();
-        again_.insert(k);
-    }
-    cancelJobs(cancel);  // a failure leaves them to Slurm, which cancels them for their dependency
+    submitAgainAfter(j);
     job.id.clear();
     job.ended = false;
     again_.insert(j);
@@ -711,10 +734,25 @@ void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& ra
               << ")\n";
 }
 
+void SlurmRun::submitAgainAfter(std::size_t j) {
+    std::vector<std::string> cancel;
+    for (std::size_t k : waitingFor(j)) {
+        if (jobs_[k].id.empty()) continue;  // not submitted yet: it names the new id when it is
+        cancel.push_back(jobs_[k].id);
+        jobs_[k].id.clear();
+        again_.insert(k);
+    }
+    cancelJobs(cancel);  // a failure leaves them to Slurm, which cancels them for their dependency
+}
+
 void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
     for (std::size_t j = 0; j < jobs_.size(); ++j) {
         if (jobs_[j].ended || jobs_[j].id.empty()) continue;
         const auto found = states.find(jobs_[j].id);
+        if (found != states.end() && found->second.state == "PENDING" && found->second.reason == kLaunchFailedReason) {
+            launchFailed(j, found->second);
+            continue;
+        }
         if (found != states.end() && found->second.restarts > jobs_[j].restarts) requeued(j, found->second);
         // A job squeue has forgotten ended long enough ago; its status files say how.
         if (found == states.end())

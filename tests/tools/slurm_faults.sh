@@ -7,7 +7,8 @@
 # a paused controller stops vri-run all the same, saying the same of its job. The node: set DOWN under a
 # running job, which ends NODE_FAIL (requeueing off): --slurm-retries 1 submits it again, the run completes
 # with the local image and the manifest names the attempt before; without retries one line names the job.
-# A job Slurm requeues after its node failed: one line says so, and the manifest names the requeue.
+# A job Slurm requeues after its node failed: one line says so, and the manifest names the requeue. A job its
+# node cannot start (a failing prolog), which Slurm holds: cancelled as LAUNCH_FAILED, and retried.
 # Memory: a render's job over the --mem a site profile gives it is killed by the cluster's enforcement; one line
 # says OUT_OF_MEMORY with slurmstepd's words, and --slurm-retries doubles --mem until it fits.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_cluster.sh"
@@ -104,10 +105,46 @@ steps = {s["id"]: s for s in json.load(open("res/slow/manifest.json"))["steps"]}
 sys.exit(0 if steps[sys.argv[1]]["execution"].get("earlier_attempts") == [sys.argv[2]] else 1)
 PY
 
+# The node cannot start a job (its prolog fails, once, for the slow render's job while break-launch exists):
+# Slurm holds the job (squeue's reason: launch failed requeued held) and drains the node. vri-run takes that
+# attempt as failed and cancels the job, which ends LAUNCH_FAILED: without retries one line names it; with
+# --slurm-retries 1 it is submitted again and runs once the node is resumed. (Before JobRequeue=0 below: a
+# job Slurm may not requeue is cancelled when its launch fails.)
+cat > prolog.sh <<EOF
+#!/bin/sh
+[ -e "$PWD/break-launch" ] || exit 0
+SLURM_CONF="$SLURM_CONF" scontrol show job "\$SLURM_JOB_ID" | grep -q "JobName=$slow_job\$" || exit 0
+rm -f "$PWD/break-launch"
+exit 1
+EOF
+chmod +x prolog.sh
+echo "Prolog=$PWD/prolog.sh" >> cluster/slurm.conf
+scontrol reconfigure
+resume_node() { scontrol update NodeName=vri-test-node State=RESUME 2> /dev/null || true; }  # not drained: nothing to do
+rm -rf res
+touch break-launch
+if "$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-bundle 0 --results res slow.yaml 2> launch.txt; then
+    fail "vri-run succeeded although its job could not be started"
+fi
+[ ! -e break-launch ] || { cat launch.txt; fail "the prolog did not fail the slow render's job"; }
+grep -q "^vri-run: error: .*step '$slow_step' failed: Slurm job [0-9]* LAUNCH_FAILED (launch failed requeued held); its node's slurmd log says why" launch.txt ||
+    { cat launch.txt; fail "no line naming the job its node could not start"; }
+[ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "the held job is left"; }
+resume_node
+rm -rf res
+touch break-launch
+"$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-bundle 0 --slurm-retries 1 --results res slow.yaml 2> launch-retried.txt &
+run=$!
+wait_for_line launch-retried.txt "^vri-run: slow: step '$slow_step': Slurm job [0-9]* LAUNCH_FAILED; retrying (attempt 2 of 2)$"
+resume_node
+wait "$run" || { cat launch-retried.txt; fail "the run retried after a failed launch failed"; }
+run=
+same_images
+
 # The node fails under a job (scontrol sets it DOWN: Slurm kills the job's processes and ends it NODE_FAIL,
 # requeueing off), and --slurm-retries 1 submits it again, which runs once the node is back (at once here:
 # its slurmd answers, and ReturnToService=2 takes it back).
-sed -i 's/^ReturnToService=2$/ReturnToService=2\nJobRequeue=0/' cluster/slurm.conf
+sed -i -e '/^Prolog=/d' -e 's/^ReturnToService=2$/ReturnToService=2\nJobRequeue=0/' cluster/slurm.conf
 scontrol reconfigure
 rm -rf res
 start_slow retried.txt --slurm-retries 1

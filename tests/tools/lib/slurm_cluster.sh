@@ -14,7 +14,7 @@
 #       on ports of their own, the cores and memory shared between them)
 #   stop_slurmctld / restart_slurmctld   the controller stopped (by its pid) and started again on its saved state
 # A watchdog bounds the whole test: one still running VRI_SLURM_TEST_LIMIT seconds (600 unless set) after its
-# cluster started prints what the cluster holds (squeue, sinfo, the controller's last log lines) and stops the
+# cluster started prints what the cluster holds (squeue, sinfo, the daemons' last log lines) and stops the
 # test's own processes with SIGTERM (vri-run then cancels its jobs), so that a job the cluster never starts
 # fails the test with what it waited for instead of holding ctest, and CI, for ever.
 
@@ -158,7 +158,9 @@ start_slurm_watchdog() {
         echo "FAIL: the test still runs $limit s after its Slurm cluster started (VRI_SLURM_TEST_LIMIT); the cluster holds:"
         timeout 10 squeue --states=all --format='%i %j %T %r %S %M %N' 2>&1
         timeout 10 sinfo --Node --format='%N %T %E' 2>&1
-        tail -n 30 "$slurm_dir/log/slurmctld.log"
+        tail -n 20 "$slurm_dir/log/slurmctld.log"
+        local log
+        for log in "$slurm_dir"/log/slurmd-*.log; do echo "$log:"; tail -n 20 "$log"; done
         trap - TERM
         kill -TERM $(pgrep -P "$test_pid" | grep -vx "$watchdog") 2>/dev/null
         kill -TERM "$test_pid"

@@ -5,6 +5,12 @@
 #   start_slow LOG [OPTION...]   vri-run --executor slurm, a job per step, on slow.yaml into res in the
 #                           background ($run), its stderr in LOG; waits until every job is submitted and the
 #                           slow render's runs ($job)
+#   interrupt_slow LOG COMMAND   start_slow LOG, then COMMAND (a function that interrupts the run: scancel of
+#                           $job, a signal to $run), then waits for vri-run ($status, its exit status). Where
+#                           the slow render ran to its end all the same (a loaded machine delayed the
+#                           interruption past the render's seconds), its outputs are removed and the case
+#                           runs again, three times at most.
+#   clear_slow              removes the slow render's outputs, the diff's and the manifest from res
 write_slow_study() {
     slow_step=riemann-entry-exit-corner-r$1
     slow_job=vri:slow:$slow_step
@@ -41,4 +47,21 @@ start_slow() {
     kill "$run"
     cat "$log"
     fail "the slow render's job never ran"
+}
+
+clear_slow() { rm -f res/slow/"$slow_step".* res/slow/vs-fine-* res/slow/manifest.json; }
+
+interrupt_slow() {
+    local log=$1 command=$2 attempt
+    for attempt in 1 2 3; do
+        start_slow "$log"
+        "$command" || true
+        status=0
+        wait "$run" || status=$?
+        grep -q "ran vri-render $slow_step (" "$log" || return 0
+        echo "note: the slow render ran to its end before '$command' reached it (attempt $attempt)"
+        clear_slow
+    done
+    cat "$log"
+    fail "the slow render ran to its end before each of three '$command' reached it"
 }
