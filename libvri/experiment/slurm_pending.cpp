@@ -26,7 +26,9 @@ void PendingWatch::update(const std::map<std::string, SlurmJob>& states, std::os
         }
         if (job.reason == "Dependency") continue;  // waits for a job of this run
         ++pending;
-        ++reasons[printableShort(job.reason.empty() ? "no reason given" : job.reason, 60)];
+        // Whole up to twice the length of Slurm's longest ("Nodes required for job are DOWN, DRAINED or reserved
+        // for jobs in higher priority partitions", 91 bytes): the reason is what the line is for.
+        ++reasons[printableShort(job.reason.empty() ? "no reason given" : job.reason, 200)];
     }
     if (ran || pending == 0) {
         stuckSince_.reset();

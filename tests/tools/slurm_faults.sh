@@ -8,7 +8,8 @@
 # running job, which ends NODE_FAIL (requeueing off): --slurm-retries 1 submits it again, the run completes
 # with the local image and the manifest names the attempt before; without retries one line names the job.
 # A job Slurm requeues after its node failed: one line says so, and the manifest names the requeue. A job its
-# node cannot start (a failing prolog), which Slurm holds: cancelled as LAUNCH_FAILED, and retried.
+# node cannot start (a failing prolog), which Slurm holds: cancelled as LAUNCH_FAILED, and retried. A node
+# drained, and a job held: vri-run names squeue's reason and gives up after --slurm-max-pending.
 # Memory: a render's job over the --mem a site profile gives it is killed by the cluster's enforcement; one line
 # says OUT_OF_MEMORY with slurmstepd's words, and --slurm-retries doubles --mem until it fits.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/slurm_cluster.sh"
@@ -130,6 +131,28 @@ fi
 grep -q "^vri-run: error: .*step '$slow_step' failed: Slurm job [0-9]* LAUNCH_FAILED (launch failed requeued held); its node's slurmd log says why" launch.txt ||
     { cat launch.txt; fail "no line naming the job its node could not start"; }
 [ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "the held job is left"; }
+# The node stays drained: the next run's node check pends; vri-run names squeue's reason and gives up after
+# --slurm-max-pending, cancelling it. Held as well (scontrol hold, as an administrator would), the reason
+# it gives up with says so.
+if "$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-max-pending 3 --results res slow.yaml 2> drained.txt; then
+    fail "vri-run succeeded on a drained node"
+fi
+grep -q "^vri-run: error: the Slurm check job [0-9]*: 1 job pending (squeue's reason: Nodes required for job are DOWN, DRAINED or reserved for jobs in higher priority partitions) for [0-9.]* s, none running: gave up after --slurm-max-pending 3 s; cancelled Slurm jobs [0-9]* (1 job)$" drained.txt ||
+    { cat drained.txt; fail "no line naming the drained node's reason"; }
+"$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-max-pending 10 --results res slow.yaml 2> held.txt &
+run=$!
+held_job=
+for _ in $(seq 300); do
+    held_job=$(squeue --noheader --states=PENDING --name=vri:check --format=%i)
+    [ -z "$held_job" ] || break
+    sleep 0.1
+done
+scontrol hold "$held_job"
+if wait "$run"; then fail "vri-run succeeded with its node check held"; fi
+run=
+grep -q "^vri-run: error: the Slurm check job $held_job: 1 job pending (squeue's reason: JobHeldAdmin) for [0-9.]* s, none running: gave up after --slurm-max-pending 10 s; cancelled Slurm jobs $held_job (1 job)$" held.txt ||
+    { cat held.txt; fail "no line naming the held job's reason"; }
+[ -z "$(squeue --noheader --states=PENDING,RUNNING,COMPLETING --format=%i)" ] || { squeue; fail "a job is left after giving up"; }
 resume_node
 rm -rf res
 touch break-launch
