@@ -362,7 +362,7 @@ int run(const Options& options) {
     if (options.estimate) printEstimate(estimates);
     if (!options.gallery.empty()) {
         const std::vector<vri::GalleryEntry> entries = vri::galleryEntries(options.gallery);
-        for (const vri::GalleryPage& page : vri::galleryPages(entries)) {
+        for (const vri::GalleryPage& page : vri::galleryPages(entries, vri::scriptPages(options.gallery))) {
             const fs::path file = fs::path(options.gallery) / page.name;
             vri::writeTextFile(file, page.text);
             std::cerr << kTool << ": wrote " << file.string() << '\n';

@@ -18,16 +18,21 @@ for manifest in "$VRI_SOURCE"/results/*/manifest.json; do
     ln "$png" "results/$name/" 2> /dev/null || cp "$png" "results/$name/"
   done
 done
+# The pages scripts wrote (make bricks-slurm's), which the index lists after the experiments; the long sections'
+# pages copied with them are written again.
+find "$VRI_SOURCE/results" -maxdepth 1 -name '*.md' ! -name README.md -exec cp {} results/ \;
 "$bin/vri-run" --gallery results 2> /dev/null
 # README.md, the long sections' own pages, and the viewer: its index, a page per experiment, its script and style.
 for page in results/*.md results/index.html results/*/index.html results/viewer/vri-viewer.js results/viewer/vri-viewer.css; do
   cmp "$page" "$VRI_SOURCE/$page" ||
     fail "$page differs from the gallery of the committed manifests (run vri-run --gallery results): $(diff "$page" "$VRI_SOURCE/$page" | head -8)"
 done
-# The index: one row per experiment, in the papers' order (paper A's items, then paper B's, then own studies).
+# The index: one row per experiment, in the papers' order (paper A's items, then paper B's, then own studies),
+# then the script pages.
 rows=$(grep -c '^| \(Paper [AB], \|own study\)' results/README.md)
 [ "$rows" -eq "$(ls results/*/manifest.json | wc -l)" ] || fail "the index has $rows rows for $(ls results/*/manifest.json | wc -l) experiments"
-grep -o '^| \(Paper [AB]\|own study\)' results/README.md | uniq | tr '\n' ';' | grep -qx '| Paper A;| Paper B;| own study;' ||
+grep -o '^| \(Paper [AB]\|own study\|written by a script\)' results/README.md | uniq | tr '\n' ';' |
+  grep -qx '| Paper A;| Paper B;| own study;| written by a script;' ||
   fail "the index is not in the papers' order: $(grep -o '^| \(Paper [AB]\|own study\)' results/README.md | uniq | tr '\n' ' ')"
 
 # A cited cell that is not in the data.

@@ -335,11 +335,25 @@ figures:
     d.write("results/t/time.md", "| time table |\n");
     vri::FileHasher hasher;
     vri::writeManifest(e, plan, std::vector<vri::StepOutcome>(plan.steps.size()), d.dir / "bin", hasher);
-    const std::vector<vri::GalleryPage> pages = vri::galleryPages(vri::galleryEntries(d.dir / "results"));
+    // A page a script wrote is listed by its heading after the experiments; a stale page of vri-run's (its
+    // experiment gone) and one with an unsafe name are not.
+    d.write("results/bricks-slurm.md", "What a script measured\n\n# Bricks | on [a] cluster\n\nIts table.\n");
+    d.write("results/gone.md", "[Results](README.md) / gone\n## A removed experiment\n");
+    d.write("results/x(y).md", "# Unsafe\n");
+    const std::vector<vri::ScriptPage> scripts = vri::scriptPages(d.dir / "results");
+    REQUIRE(scripts.size() == 1);
+    CHECK(scripts.front().name == "bricks-slurm.md");
+    CHECK(scripts.front().title == "Bricks on a cluster");
+    const std::vector<vri::GalleryPage> pages = vri::galleryPages(vri::galleryEntries(d.dir / "results"), scripts);
     REQUIRE(pages.size() == 1);  // a short section stays on README.md
     CHECK(pages.front().name == "README.md");
     const std::string& md = pages.front().text;
     CHECK(md.find("| paper item | section | ours against the paper |") < md.find("(t/riemann.png)"));
+    CHECK(md.find("| Paper A, Fig. 4 | [") <
+          md.find("| written by a script | [Bricks on a cluster](bricks-slurm.md) | - |\n"));
+    CHECK(md.find("| written by a script | [Bricks on a cluster](bricks-slurm.md) | - |\n") <
+          md.find("(t/riemann.png)"));
+    CHECK(md.find("gone.md") == std::string::npos);
     const std::vector<std::string> order{"(t/riemann.png)", "(t/c.png)", "| command table |", "| time table |",
                                          "(t/f.png)"};
     for (std::size_t i = 0; i + 1 < order.size(); ++i) {
