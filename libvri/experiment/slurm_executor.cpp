@@ -327,10 +327,12 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
                 if (!states) continue;
                 pending.update(*states, std::cerr, Clock::now());
                 const auto found = states->find(id);
-                if (found != states->end() && found->second.state == "PENDING" &&
+                if (found != states->end() && !isFinalJobState(found->second.state) &&
                     found->second.reason == kLaunchFailedReason)
-                    throw Error("the Slurm check job " + id + " could not be started on its node (squeue's reason: " +
-                                kLaunchFailedReason + "; the node's slurmd log says why)");
+                    throw Error("the Slurm check job " + id +
+                                " could not be started on its node (squeue's reason: " + kLaunchFailedReason +
+                                "; sinfo -R says whether the node was drained for it; its output: " + out.string() +
+                                ")");
                 if (found == states->end() || isFinalJobState(found->second.state)) {
                     completed = found == states->end() || found->second.state == "COMPLETED";
                     ended = true;
@@ -391,6 +393,8 @@ private:
         std::size_t retries = 0;
         double timeScale = 1.0, memoryScale = 1.0;
         int restarts = 0;  // how often Slurm requeued its current id, as last said
+        std::string node;  // where squeue last placed its current id
+        bool launchFailed = false;  // Slurm held its current id after its node could not start it: cancelled
         // The manifest's earlier attempts, vri-run's retries and Slurm's requeues in order ("job 12 NODE_FAIL
         // on n3", "job 12 requeued by Slurm (restart 1)").
         std::vector<std::string> history;
@@ -406,13 +410,15 @@ private:
     void retry(std::size_t j, const SlurmJob& state, const std::string& raised);
     // The jobs after job j that wait for it were submitted with a dependency on its id, which Slurm now
     // cancels them for (--kill-on-invalid-dep): they are cancelled here and submitted again after it.
-    void submitAgainAfter(std::size_t j);
+    // Returns how many had been submitted.
+    std::size_t submitAgainAfter(std::size_t j);
     // Job j's restart count rose: Slurm requeued it to run again under its id.
     void requeued(std::size_t j, const SlurmJob& state);
     // Slurm holds job j because its node could not launch it, until someone releases it (so that a broken node
-    // does not take job after job): for vri-run that attempt failed. The job is cancelled and ends
-    // LAUNCH_FAILED, which --slurm-retries submits again as after NODE_FAIL.
-    void launchFailed(std::size_t j, const SlurmJob& state);
+    // does not take job after job): for vri-run that attempt failed. The job is cancelled (again at each look
+    // while squeue still shows it held) and, once squeue shows it ended, ends LAUNCH_FAILED, which
+    // --slurm-retries submits again as after NODE_FAIL.
+    void launchFailed(std::size_t j);
     // What a retry of `job` after it ended in `state` raises ("" for nothing), or nullopt where it is not
     // retried: --slurm-retries used up, a state a retry does not mend, a TIMEOUT with no --time to raise.
     std::optional<std::string> retryRaises(const std::string& state, const Job& job) const;
@@ -493,6 +499,8 @@ void SlurmRun::submit(std::size_t j) {
     try {
         job.id = submitJob(sbatchArguments(j, dependencyIds));
         job.restarts = 0;
+        job.node.clear();
+        job.launchFailed = false;
     } catch (const Error& e) {
         // What vri-run asked for and where each comes from: a cluster's limits are met by changing those.
         const JobResources resources = resourcesOf(j);
@@ -654,21 +662,20 @@ void SlurmRun::ended(std::size_t j, const SlurmJob& reported) {
                                (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") +
                                (job.retries == 0 ? "" : " after " + std::to_string(job.retries + 1) + " attempts") +
                                (timeNotRaised ? "; not retried: vri-run asked no --time it could raise" : "") +
-                               (state.state == kLaunchFailed
-                                    ? "; its node's slurmd log says why"
-                                    : "; the job's output: " + (slurmDir_ / (jobStem(j) + ".out")).string()),
+                               "; the job's output: " + (slurmDir_ / (jobStem(j) + ".out")).string(),
                            0);
             failed = true;
         }
     }
     if (failed) {
         abandonDependents(j);
-    } else if (state.state != "COMPLETED" && state.state != kForgotten && !waitingFor(j).empty()) {
+    } else if (state.state != "COMPLETED" && state.state != kForgotten) {
         // Every step succeeded, yet Slurm ended the job otherwise (a scancel or a node failure that came
         // after its last step): the jobs waiting for it would never start, though nothing they need is missing.
-        std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": Slurm job " << job.id << " ended "
-                  << state.state << " after its steps had succeeded; the jobs waiting for it are submitted again\n";
-        submitAgainAfter(j);
+        if (const std::size_t again = submitAgainAfter(j); again > 0)
+            std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": Slurm job " << job.id << " ended "
+                      << state.state << " after its steps had succeeded; the " << again
+                      << (again == 1 ? " job" : " jobs") << " waiting for it submitted again\n";
     }
 }
 
@@ -710,10 +717,16 @@ void SlurmRun::requeued(std::size_t j, const SlurmJob& state) {
               << (state.reason.empty() || state.reason == "None" ? "" : " (" + state.reason + ")") << "\n";
 }
 
-void SlurmRun::launchFailed(std::size_t j, const SlurmJob& state) {
-    // A scancel that fails leaves the job held: it never runs unless someone releases it.
-    cancelJobs({jobs_[j].id});
-    ended(j, {jobs_[j].id, kLaunchFailed, state.node, state.reason, state.restarts});
+void SlurmRun::launchFailed(std::size_t j) {
+    Job& job = jobs_[j];
+    if (!job.launchFailed)
+        std::cerr << "vri-run: " << plan_.resultsDir.filename().string() << ": step '"
+                  << plan_.steps[job.bundle.steps.front()].id << "': Slurm job " << job.id
+                  << " could not be started on " << (job.node.empty() ? "its node" : job.node)
+                  << " (squeue's reason: " << kLaunchFailedReason
+                  << "; sinfo -R says whether its node was drained for it); cancelling it\n";
+    job.launchFailed = true;
+    cancelJobs({job.id});  // one that fails is asked again at the next look
 }
 
 void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& raised) {
@@ -734,7 +747,7 @@ void SlurmRun::retry(std::size_t j, const SlurmJob& state, const std::string& ra
               << ")\n";
 }
 
-void SlurmRun::submitAgainAfter(std::size_t j) {
+std::size_t SlurmRun::submitAgainAfter(std::size_t j) {
     std::vector<std::string> cancel;
     for (std::size_t k : waitingFor(j)) {
         if (jobs_[k].id.empty()) continue;  // not submitted yet: it names the new id when it is
@@ -743,20 +756,32 @@ void SlurmRun::submitAgainAfter(std::size_t j) {
         again_.insert(k);
     }
     cancelJobs(cancel);  // a failure leaves them to Slurm, which cancels them for their dependency
+    return cancel.size();
 }
 
 void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
     for (std::size_t j = 0; j < jobs_.size(); ++j) {
         if (jobs_[j].ended || jobs_[j].id.empty()) continue;
-        const auto found = states.find(jobs_[j].id);
-        if (found != states.end() && found->second.state == "PENDING" && found->second.reason == kLaunchFailedReason) {
-            launchFailed(j, found->second);
+        Job& job = jobs_[j];
+        const auto found = states.find(job.id);
+        if (found != states.end() && !found->second.node.empty()) job.node = found->second.node;
+        // Held after a failed launch: squeue shows it PENDING, or COMPLETING while its node's epilog runs, its
+        // restart count raised by a requeue that does not run it again.
+        if (found != states.end() && !isFinalJobState(found->second.state) &&
+            found->second.reason == kLaunchFailedReason) {
+            launchFailed(j);
             continue;
         }
-        if (found != states.end() && found->second.restarts > jobs_[j].restarts) requeued(j, found->second);
+        if (job.launchFailed) {
+            if (found == states.end() || isFinalJobState(found->second.state))
+                ended(j,
+                      {job.id, kLaunchFailed, job.node, kLaunchFailedReason + ", cancelled by vri-run", job.restarts});
+            continue;
+        }
+        if (found != states.end() && found->second.restarts > job.restarts) requeued(j, found->second);
         // A job squeue has forgotten ended long enough ago; its status files say how.
         if (found == states.end())
-            ended(j, {jobs_[j].id, kForgotten, "", "no longer known to squeue"});
+            ended(j, {job.id, kForgotten, "", "no longer known to squeue"});
         else if (isFinalJobState(found->second.state))
             ended(j, found->second);
     }

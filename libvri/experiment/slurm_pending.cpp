@@ -26,8 +26,9 @@ void PendingWatch::update(const std::map<std::string, SlurmJob>& states, std::os
         }
         if (job.reason == "Dependency") continue;  // waits for a job of this run
         ++pending;
-        // Whole up to twice the length of Slurm's longest ("Nodes required for job are DOWN, DRAINED or reserved
-        // for jobs in higher priority partitions", 91 bytes): the reason is what the line is for.
+        // The reason is what the line is for: whole up to 200 bytes (a drained node's, "Nodes required for job are
+        // DOWN, DRAINED or reserved for jobs in higher priority partitions", is 91; a limit's, naming the
+        // association and its TRES, can be longer), the line itself then cut at kMaxMessageBytes.
         ++reasons[printableShort(job.reason.empty() ? "no reason given" : job.reason, 200)];
     }
     if (ran || pending == 0) {

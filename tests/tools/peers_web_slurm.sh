@@ -37,8 +37,8 @@ tables:
   errors: {title: "against the exact reference", comparisons: [vs-exact]}
 YAML
 "$bin/vri-run" --results local exp.yaml 2> local.txt || { cat local.txt; fail "the local run failed"; }
-# A node that fails under a job or cannot start one (a loaded machine) costs a retry; a job the cluster never
-# starts gives up with its reason well before the cluster's watchdog.
+# A job its node loses or cannot start (a fork failing on a loaded machine) costs a retry; a job the cluster
+# never starts (its one node drained) gives up with squeue's reason well before the cluster's watchdog.
 "$bin/vri-run" --executor slurm --slurm-poll 0.2 --slurm-bundle 0 --slurm-cpus 1 --slurm-retries 2 --slurm-max-pending 300 \
   --results slurm exp.yaml 2> slurm.txt ||
   { cat slurm.txt; fail "the Slurm run failed"; }

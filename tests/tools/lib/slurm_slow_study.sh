@@ -58,7 +58,8 @@ interrupt_slow() {
         "$command" || true
         status=0
         wait "$run" || status=$?
-        grep -q "ran vri-render $slow_step (" "$log" || return 0
+        # Its output there, or the line saying it ran, whichever vri-run got to before it stopped.
+        ! ls res/slow/"$slow_step".* > /dev/null 2>&1 && ! grep -q "ran vri-render $slow_step (" "$log" && return 0
         echo "note: the slow render ran to its end before '$command' reached it (attempt $attempt)"
         clear_slow
     done
