@@ -1,5 +1,6 @@
 # Sourced by the Slurm tests: a real single-node Slurm cluster from Debian's slurm-wlm and munge, all of
-# it in $1 (configuration, key, sockets, state, logs), on loopback ports of its own; SLURM_CONF points the
+# it in $1 (configuration, key, sockets, state, logs), on loopback ports of its own (below the range the kernel
+# gives outgoing connections, and chosen again where another cluster took them first); SLURM_CONF points the
 # client commands at it. Nothing of the machine's own Slurm or munge is read or touched. The daemons are
 # stopped by the pids they wrote when the test exits. One setting departs from Slurm's defaults:
 # batch_sched_delay=0 starts a job as soon as the node is free instead of up to 3 s later, which halves
@@ -67,7 +68,7 @@ start_slurm_cluster() {
     done
     [ "$(id -u)" -eq 0 ] || { echo "SKIP: slurmd runs jobs as their users and needs root to start"; exit 77; }
     trap stop_slurm_cluster EXIT
-    mkdir -p "$dir/munge" "$dir/state" "$dir/spool" "$dir/log"
+    mkdir -p "$dir/munge" "$dir/log"
     chmod 700 "$dir/munge"
     head -c 1024 /dev/urandom > "$dir/munge/munge.key"
     chmod 400 "$dir/munge/munge.key"
@@ -76,16 +77,48 @@ start_slurm_cluster() {
         || { echo "SKIP: munged cannot start here (see $dir/log/munged.log)"; exit 77; }
     slurm_daemon_pid "$dir/munge/munged.pid" munged
 
-    # Ports no other service of this machine listens on (the controller's, then a slurmd's each), from a range
-    # above the usual ones.
-    local port names=() k
     [ "$nodes" = 1 ] || [ "$nodes" = 2 ] || { echo "FAIL: start_slurm_cluster: NODES is 1 or 2, not $nodes"; exit 1; }
-    port=$(( 20000 + (RANDOM % 10000) * 4 ))
-    while ss -ltn 2>/dev/null | grep -qE ":($port|$((port + 1))|$((port + 2)))\b"; do port=$((port + 4)); done
     local memory=$(( ($(awk '/^MemTotal:/ {print $2}' /proc/meminfo) / 1024 - 512) / nodes ))
     local cpus=$(( $(nproc) / nodes ))
     [ "$cpus" -ge 1 ] || { echo "SKIP: $nodes nodes need $nodes cores"; exit 77; }
+    export SLURM_CONF=$dir/slurm.conf
+    slurm_dir=$dir
+    # A daemon that cannot bind its port (another cluster starting beside this one took it between the look
+    # and the bind) stops at once: the cluster starts again on other ports, three times at most.
+    local attempt log
+    for attempt in 1 2 3; do
+        start_slurm_daemons "$dir" "$message_timeout" "$nodes" "$cpus" "$memory" && break
+        grep -qs "Address already in use" "$dir"/log/*.log ||
+            { echo "SKIP: the test cluster did not come up (see $dir/log)"; exit 77; }
+        [ "$attempt" -lt 3 ] || { echo "FAIL: the test cluster found its ports taken three times (see $dir/log)"; exit 1; }
+        stop_slurm_daemons
+        rm -rf "$dir/state" "$dir/spool"
+        for log in "$dir"/log/slurm*; do mv "$log" "$log.attempt-$attempt"; done
+    done
+    start_slurm_watchdog
+}
+
+# Three ports a cluster takes (the controller's, then a slurmd's each) that no socket of this machine holds,
+# listening, connected or closing, below the kernel's range for outgoing connections (ip_local_port_range),
+# from which any client could otherwise take one while the cluster starts.
+pick_slurm_port() {
+    local low=32768 range port base=20000
+    range=$(cat /proc/sys/net/ipv4/ip_local_port_range 2> /dev/null) && low=${range%%[[:space:]]*}
+    if [ "$low" -le 10400 ]; then low=30000; elif [ "$low" -le 20400 ]; then base=10000; fi  # no room below: retries
+    port=$(( base + (RANDOM % ((low - base) / 4 - 1)) * 4 ))
+    while ss -Htan 2> /dev/null | awk '{print $4}' | grep -qE ":($port|$((port + 1))|$((port + 2)))$"; do
+        port=$((port + 4))
+    done
+    echo "$port"
+}
+
+# The controller and the slurmds of DIR's cluster on fresh ports, and a wait (at most a minute) until every
+# node is idle; false when a daemon stopped meanwhile.
+start_slurm_daemons() {
+    local dir=$1 message_timeout=$2 nodes=$3 cpus=$4 memory=$5 port names=() k
+    port=$(pick_slurm_port)
     if [ "$nodes" = 1 ]; then names=(vri-test-node); else names=(vri-test-node1 vri-test-node2); fi
+    mkdir -p "$dir/state" "$dir/spool"
     cat > "$dir/slurm.conf" <<EOF
 ClusterName=vritest
 SlurmctldHost=localhost(127.0.0.1)
@@ -123,22 +156,32 @@ EOF
         mkdir -p "$dir/spool/${names[k]}"
     done
     echo "PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP" >> "$dir/slurm.conf"
-    export SLURM_CONF=$dir/slurm.conf
-    slurm_dir=$dir
-    slurmctld -i > "$dir/log/slurmctld.out" 2>&1 || { echo "SKIP: slurmctld cannot start here (see $dir/log)"; exit 77; }
+    slurmctld -i >> "$dir/log/slurmctld.out" 2>&1 || return 1
     slurm_daemon_pid "$dir/slurmctld.pid" slurmctld
     for k in "${!names[@]}"; do
-        slurmd -N "${names[k]}" > "$dir/log/slurmd-${names[k]}.out" 2>&1 || { echo "SKIP: slurmd cannot start here (see $dir/log)"; exit 77; }
+        slurmd -N "${names[k]}" >> "$dir/log/slurmd-${names[k]}.out" 2>&1 || return 1
         slurm_daemon_pid "$dir/slurmd-${names[k]}.pid" slurmd
     done
-    start_slurm_watchdog
-    for _ in $(seq 100); do
-        [ "$(sinfo --noheader --Node --format=%T 2>/dev/null | sort -u)" = idle ] &&
-            [ "$(sinfo --noheader --Node --format=%N 2>/dev/null | wc -l)" = "$nodes" ] && return 0
+    local deadline=$((SECONDS + 60)) pid
+    while [ "$SECONDS" -lt "$deadline" ]; do
+        for pid in "${slurm_daemon_pids[@]:1}"; do kill -0 "$pid" 2> /dev/null || return 1; done
+        [ "$(timeout 10 sinfo --noheader --Node --format=%T 2>/dev/null | sort -u)" = idle ] &&
+            [ "$(timeout 10 sinfo --noheader --Node --format=%N 2>/dev/null | wc -l)" = "$nodes" ] && return 0
         sleep 0.2
     done
-    echo "SKIP: the test cluster's node did not come up (see $dir/log)"
-    exit 77
+    return 1
+}
+
+# The slurmctld and slurmds started (every daemon but munged, the first), stopped and forgotten.
+stop_slurm_daemons() {
+    local pid
+    for pid in "${slurm_daemon_pids[@]:1}"; do kill "$pid" 2> /dev/null || true; done
+    for pid in "${slurm_daemon_pids[@]:1}"; do
+        for _ in $(seq 100); do kill -0 "$pid" 2> /dev/null || break; sleep 0.1; done
+        kill -9 "$pid" 2> /dev/null || true
+    done
+    slurm_daemon_pids=("${slurm_daemon_pids[0]}")
+    rm -f "$slurm_dir"/slurmctld.pid "$slurm_dir"/slurmd-*.pid
 }
 
 # The watchdog (above). It sleeps in the background so that SIGTERM from stop_slurm_cluster ends it at once,
