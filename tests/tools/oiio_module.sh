@@ -21,7 +21,7 @@ oiiotool a.exr -o a.tif
 # A tool without the module beside it: EXR works, a TIFF is one line saying what is missing and where.
 # (Skipped where vri is installed system-wide, whose module the tool would then find.)
 mkdir -p alone/bin && cp "$VRI_BIN/vri-diff" alone/bin/
-installed=$(strings "$VRI_BIN/vri-diff" | grep -m1 '/vri$' || true)
+installed=$(strings "$VRI_BIN/vri-diff" | grep -m1 '^/.*/vri$' || true)
 if [ -n "$installed" ] && [ -e "$installed/libvri-oiio.so" ]; then echo "vri installed in $installed: skipping the missing-module case"; exit 0; fi
 alone/bin/vri-diff a.exr b.exr > /dev/null || [ $? -eq 3 ] || fail "vri-diff without the module cannot compare EXRs"
 rc=0
