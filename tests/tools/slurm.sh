@@ -119,7 +119,18 @@ for s in slurm["steps"]:
     e = s["execution"]
     assert e["executor"] == "slurm" and e["job_id"].isdigit() and e["job_state"] == "COMPLETED" and e["node"], e
 assert all(s["execution"]["executor"] == "local" for s in local["steps"])
-assert strip(local) == strip(slurm)
+# What differs, said: a key's values in both, "-" where one lacks it.
+def differences(x, y):
+    return "; ".join(f"{k}: local {x.get(k, '-')!r}, Slurm {y.get(k, '-')!r}"
+                     for k in sorted(set(x) | set(y)) if k not in x or k not in y or x[k] != y[k])
+a, b = strip(local), strip(slurm)
+if len(a["steps"]) != len(b["steps"]):
+    sys.exit(f"{len(a['steps'])} steps locally, {len(b['steps'])} on Slurm")
+for x, y in zip(a["steps"], b["steps"]):
+    if x != y:
+        sys.exit(f"step {x['id']}: {differences(x, y)}")
+if a != b:
+    sys.exit(differences(a, b))
 PY
 
 # Dependencies: with a job per step, every diff started after the renders it compares had ended.
