@@ -119,7 +119,7 @@ std::optional<fs::path> nrrdDataFile(const fs::path& path) {
     return std::nullopt;
 }
 
-Volume readNrrd(const fs::path& path) {
+NrrdVoxels nrrdVoxels(const fs::path& path) {
     requireRegularFile(path);
     const NrrdHeader header = parseNrrdHeader(path);
     const auto where = [&](const std::string& name) {
@@ -140,6 +140,7 @@ Volume readNrrd(const fs::path& path) {
         throw Error(where("dimension") + ": must be 3 (a scalar volume), got " + requiredField("dimension"));
 
     RawLayout layout;
+    NrrdVoxels result;
     const StoredType storedType = parseNrrdType(requiredField("type"), where("type"));
 
     const std::vector<double> sizes = parseNumbers(requiredField("sizes"), 3, where("sizes"));
@@ -225,31 +226,40 @@ Volume readNrrd(const fs::path& path) {
         throw Error(path.string() + ": no 'data file' field and no data after the header");
     }
 
-    Volume volume;
-    try {
-        std::optional<std::uintmax_t> offset;  // nullopt: the data are the last bytes of the file
-        if (byteSkip) {
-            const std::uintmax_t headerEnd = dataFile ? 0 : *header.dataOffset;
-            if (*byteSkip > std::numeric_limits<std::uintmax_t>::max() - headerEnd)
-                throw Error(where("byte skip") + ": " + std::to_string(*byteSkip) + " bytes is too large");
-            offset = headerEnd + *byteSkip;
-        }
-        volume = readVoxelData(dataPath, {layout.dims, storedType, layout.order, offset, gzip});
-    } catch (const Error& e) {
-        // The data file's own message, prefixed by the header that sent us there.
-        if (dataPath == path) throw;
-        throw Error(path.string() + ": data file " + e.what());
+    std::optional<std::uintmax_t> offset;  // nullopt: the data are the last bytes of the file
+    if (byteSkip) {
+        const std::uintmax_t headerEnd = dataFile ? 0 : *header.dataOffset;
+        if (*byteSkip > std::numeric_limits<std::uintmax_t>::max() - headerEnd)
+            throw Error(where("byte skip") + ": " + std::to_string(*byteSkip) + " bytes is too large");
+        offset = headerEnd + *byteSkip;
     }
-    volume.spacing = layout.spacing;
-
+    result.dataPath = dataPath;
+    result.data = {layout.dims, storedType, layout.order, offset, gzip};
+    result.spacing = layout.spacing;
     if (const std::string* origin = optionalField("space origin")) {
         const std::vector<double> o = parseVectors(*origin, 3, where("space origin"));
-        volume.origin = glm::dvec3(o[0], o[1], o[2]) - firstSampleInset * volume.spacing;
+        result.origin = glm::dvec3(o[0], o[1], o[2]) - firstSampleInset * layout.spacing;
     }
     if (const auto range = header.keyValues.find("vri_range"); range != header.keyValues.end()) {
-        volume.range = parseValueRange(range->second.value,
+        result.range = parseValueRange(range->second.value,
                                        path.string() + ":" + std::to_string(range->second.line) + ": vri_range");
     }
+    return result;
+}
+
+Volume readNrrd(const fs::path& path) {
+    const NrrdVoxels nrrd = nrrdVoxels(path);
+    Volume volume;
+    try {
+        volume = readVoxelData(nrrd.dataPath, nrrd.data);
+    } catch (const Error& e) {
+        // The data file's own message, prefixed by the header that sent us there.
+        if (nrrd.dataPath == path) throw;
+        throw Error(path.string() + ": data file " + e.what());
+    }
+    volume.spacing = nrrd.spacing;
+    if (nrrd.origin) volume.origin = *nrrd.origin;
+    if (nrrd.range) volume.range = nrrd.range;
     return volume;
 }
 

@@ -37,6 +37,18 @@ struct VoxelData {
     std::optional<std::uintmax_t> offset = 0;  // bytes before the first voxel; nullopt: the file's last bytes
     bool gzip = false;                         // deflated (gzip or zlib stream) from `offset` on
 };
+// What a NRRD header says of its voxels: where they are (its data file, or itself) and how they are stored,
+// and what it says of their place and values (absent: the reader's defaults).
+struct NrrdVoxels {
+    std::filesystem::path dataPath;
+    VoxelData data;
+    glm::dvec3 spacing{1.0, 1.0, 1.0};
+    std::optional<glm::dvec3> origin;  // vri's: the box's corner
+    std::optional<ValueRange> range;   // its vri_range key
+};
+// Parses the header of `path` (.nhdr or .nrrd) as readNrrd does, with its messages; reads no voxel.
+NrrdVoxels nrrdVoxels(const std::filesystem::path& path);
+
 // The volume (voxel types converted as stored_voxels.h says) whose voxels `data` describes in `path`.
 // Sizes are checked against the file and the byte limit before anything is allocated.
 Volume readVoxelData(const std::filesystem::path& path, const VoxelData& data);

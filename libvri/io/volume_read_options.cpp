@@ -73,11 +73,55 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
     return {nullptr, std::move(sparse)};
 }
 
+namespace {
+
+// One brick of a NRRD whose voxels lie in its data file as vri keeps them (raw encoding; uint8, uint16 or
+// float32), read as a raw file's is: its stored box alone. nullopt for any other file (not NRRD, gzip, a type
+// vri converts), which the caller reads whole.
+std::optional<BrickVolume> nrrdBrick(const std::filesystem::path& input, const VolumeReadOptions& options,
+                                     glm::ivec3 counts, glm::ivec3 brick, const std::optional<ValueRange>& range) {
+    const std::string extension = input.extension().string();
+    if (extension != ".nrrd" && extension != ".nhdr") return std::nullopt;
+    const detail::NrrdVoxels nrrd = detail::nrrdVoxels(input);
+    const VoxelType type = detail::volumeTypeFor(nrrd.data.type);
+    if (nrrd.data.gzip || detail::storedTypeOf(type) != nrrd.data.type) return std::nullopt;
+    RawLayout layout{nrrd.data.dims, type, nrrd.data.order, nrrd.spacing, 0};
+    const auto inHeader = [&](auto read) {  // the data file's message, after the header that names it
+        try {
+            return read();
+        } catch (const Error& e) {
+            if (nrrd.dataPath == input) throw;
+            throw Error(input.string() + ": data file " + e.what());
+        }
+    };
+    // The voxels as the file's last bytes: the rest is header (the size check then names both sizes).
+    std::error_code ec;
+    const std::uintmax_t fileBytes = std::filesystem::file_size(nrrd.dataPath, ec);
+    // (A product past 2^64 leaves it 0 here: the read then refuses the layout, naming the file.)
+    const std::optional<std::uint64_t> voxelBytes = checkedProduct(
+        {std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y), std::uint64_t(layout.dims.z), voxelSize(type)});
+    layout.headerBytes = static_cast<std::size_t>(
+        nrrd.data.offset.value_or(!ec && voxelBytes && fileBytes > *voxelBytes ? fileBytes - *voxelBytes : 0));
+    const BrickGrid grid(layout.dims, counts);
+    grid.requireBrick(brick, "--brick");
+    BrickVolume b{grid, brick, inHeader([&] { return readRawBox(nrrd.dataPath, layout, grid.storedBox(brick)); })};
+    if (nrrd.origin) b.voxels.origin = *nrrd.origin;
+    b.voxels.range = range ? range : nrrd.range ? nrrd.range : fixedNormalisationRange(type, std::nullopt);
+    if (!b.voxels.range) b.voxels.range = inHeader([&] { return rawValueRange(nrrd.dataPath, layout); });
+    overrideSpacing(b.voxels, options);
+    requireUsableValues(b.voxels, input.string());
+    return b;
+}
+
+}  // namespace
+
 BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,
                       glm::ivec3 brick, const std::optional<ValueRange>& range) {
     if (options.grid) throw Error("--brick: reads dense volumes (raw, NRRD, ...), not a .vdb grid");
     const std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options));
-    if (!layout) {  // a format that describes itself: read whole, then cut
+    if (!layout) {
+        if (std::optional<BrickVolume> b = nrrdBrick(input, options, counts, brick, range)) return std::move(*b);
+        // Any other format that describes itself: read whole, then cut.
         Volume whole = readVolume(input, options);
         if (range) whole.range = *range;
         requireUsableValues(whole, input.string());

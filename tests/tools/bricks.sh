@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A volume as bricks (issue 49): vri-render --bricks --brick reads only a brick's stored box of a raw file
-# and renders its layer; vri-merge-tiles --layer joins every brick's layer into the unbricked render's image
+# (or of a NRRD holding its voxels as vri keeps them) and renders its layer; vri-merge-tiles --layer joins every brick's layer into the unbricked render's image
 # within the bound its stats give, the same bits in any order and for tiles of the layers; a float volume's
 # range is the whole file's; what a brick cannot do is refused naming the option.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
@@ -64,6 +64,31 @@ joined noise_24x20x16_uint8.raw 1,1,1 --method composite --step 0.7 --convention
 joined noise_24x20x16_uint8.raw 2,3,1 --method riemann --step 0.3 --jitter --seed 5
 joined noise_24x20x16_float32.raw 2,2,2 --method composite --step 0.5
 joined blob_8x8x8_uint8.raw 2,2,2 --method riemann --step 0.25
+
+# NRRD whose voxels vri keeps as stored, detached (.nhdr) and attached (.nrrd) as vri-convert writes them: a
+# brick is read by offset as a raw file's is, its layer bit for bit the raw file's brick's. Only the brick's
+# box is read: a NaN outside it stops the whole render, not the brick's (its range given, so that nothing
+# else of the file is read for it).
+"$bin/vri-convert" noise_24x20x16_uint8.raw noise-uint8.nhdr 2> /dev/null
+"$bin/vri-convert" noise_24x20x16_float32.raw noise-float32.nrrd 2> /dev/null
+joined noise-uint8.nhdr 3,2,2 --method riemann --step 0.5
+joined noise-float32.nrrd 2,2,2 --method composite --step 0.5
+scene=(--tf tf.yaml --size 37x29 --eye 60,-40,50 -q --method riemann --step 0.5 --bricks 3,2,2 --brick 1,1,0)
+"$bin/vri-render" --volume noise_24x20x16_uint8.raw "${scene[@]}" -o raw-layer.exr
+"$bin/vri-render" --volume noise-uint8.nhdr "${scene[@]}" -o nhdr-layer.exr
+"$bin/vri-diff" raw-layer.exr nhdr-layer.exr --fail 0 > /dev/null || fail "a NRRD's brick differs from the raw file's"
+/usr/bin/python3 - <<'PY'
+import random, struct
+random.seed(3)
+values = [random.randrange(256) / 85.0 - 1.0 for _ in range(24 * 20 * 16)]
+values[-1] = float("nan")
+header = b"NRRD0004\ntype: float\ndimension: 3\nsizes: 24 20 16\nendian: little\nencoding: raw\n\n"
+open("nan.nrrd", "wb").write(header + b"".join(struct.pack("<f", v) for v in values))
+PY
+scene=(--volume nan.nrrd --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --range -1,2)
+"$bin/vri-render" "${scene[@]}" --bricks 2,2,2 --brick 0,0,0 -o nan-layer.exr || fail "a brick read a voxel outside its box"
+if "$bin/vri-render" "${scene[@]}" -o nan-whole.exr 2> nan.txt; then fail "the whole render read no NaN"; fi
+grep -q "nan.nrrd: voxel 7679 (x 23, y 19, z 15) is nan" nan.txt || { cat nan.txt; fail "the NaN was not named"; }
 
 # A brick's layer in tiles: the tiles merged give the layer, bit for bit.
 scene=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --bricks 2,2,1 --brick 1,0,0)
