@@ -80,7 +80,7 @@ namespace {
 // vri converts), which the caller reads whole.
 std::optional<BrickVolume> nrrdBrick(const std::filesystem::path& input, const VolumeReadOptions& options,
                                      glm::ivec3 counts, glm::ivec3 brick, const std::optional<ValueRange>& range) {
-    const std::string extension = input.extension().string();
+    const std::string extension = detail::toLower(input.extension().string());
     if (extension != ".nrrd" && extension != ".nhdr") return std::nullopt;
     const detail::NrrdVoxels nrrd = detail::nrrdVoxels(input);
     const VoxelType type = detail::volumeTypeFor(nrrd.data.type);

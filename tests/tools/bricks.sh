@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# A volume as bricks (issue 49): vri-render --bricks --brick reads only a brick's stored box of a raw file
-# (or of a NRRD holding its voxels as vri keeps them) and renders its layer; vri-merge-tiles --layer joins every brick's layer into the unbricked render's image
+# A volume as bricks (issue 49): vri-render --bricks --brick reads only a brick's stored box of a raw file (or
+# of a NRRD holding its voxels as vri keeps them) and renders its layer; vri-merge-tiles --layer joins every brick's layer into the unbricked render's image
 # within the bound its stats give, the same bits in any order and for tiles of the layers; a float volume's
 # range is the whole file's; what a brick cannot do is refused naming the option.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
@@ -84,6 +84,30 @@ values = [random.randrange(256) / 85.0 - 1.0 for _ in range(24 * 20 * 16)]
 values[-1] = float("nan")
 header = b"NRRD0004\ntype: float\ndimension: 3\nsizes: 24 20 16\nendian: little\nencoding: raw\n\n"
 open("nan.nrrd", "wb").write(header + b"".join(struct.pack("<f", v) for v in values))
+PY
+# Everything the header says, read by offset, is what the whole read says: a detached uint16 big-endian NRRD
+# with an origin, spacings, vri_range and its data as the last bytes of a file that begins with other bytes;
+# its brick bit for bit that of a gzip-encoded copy, which is read whole and cut.
+/usr/bin/python3 - <<'PY'
+import gzip, random, struct
+random.seed(5)
+data = b"".join(struct.pack(">H", random.randrange(4000)) for _ in range(24 * 20 * 16))
+head = ("NRRD0004\ntype: uint16\ndimension: 3\nsizes: 24 20 16\nendian: big\nspacings: 0.5 0.75 1.25\n"
+        "space origin: (3,-2,7)\n")
+open("u16.data", "wb").write(b"something before the voxels" + data)
+open("u16.nhdr", "w").write(head + "encoding: raw\nbyte skip: -1\ndata file: u16.data\nvri_range:=100 3900\n\n")
+open("u16gz.nrrd", "wb").write((head + "encoding: gzip\nvri_range:=100 3900\n\n").encode() + gzip.compress(data))
+PY
+scene=(--tf tf.yaml --size 37x29 --eye 60,-40,50 -q --method riemann --step 0.3 --bricks 2,2,2 --brick 1,0,1)
+"$bin/vri-render" --volume u16.nhdr "${scene[@]}" -o u16-layer.exr --stats u16-layer.json
+"$bin/vri-render" --volume u16gz.nrrd "${scene[@]}" -o u16gz-layer.exr --stats u16gz-layer.json
+"$bin/vri-diff" u16-layer.exr u16gz-layer.exr --fail 0 > /dev/null || fail "a NRRD brick read by offset differs from the one cut from the whole"
+/usr/bin/python3 - <<'PY' || fail "the NRRD brick's scene differs from the whole read's"
+import json
+a, b = (json.load(open(f))["scene"] for f in ("u16-layer.json", "u16gz-layer.json"))
+for key in ("normalisation_range", "volume_bytes", "brick"):
+    assert a[key] == b[key], (key, a[key], b[key])
+assert a["normalisation_range"] == [100.0, 3900.0], a["normalisation_range"]
 PY
 scene=(--volume nan.nrrd --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --range -1,2)
 "$bin/vri-render" "${scene[@]}" --bricks 2,2,2 --brick 0,0,0 -o nan-layer.exr || fail "a brick read a voxel outside its box"
