@@ -51,6 +51,11 @@ const std::string kForgotten = "ENDED";
 // squeue's reason for a job Slurm holds after its node could not launch it (slurmd failed to start it: a
 // prolog, the user's environment, a fork), and vri-run's state for such a job once it has cancelled it.
 const std::string kLaunchFailedReason = "launch failed requeued held";
+// Held after a failed launch: squeue shows it PENDING, or COMPLETING while its node's epilog runs, its restart
+// count raised by a requeue that does not run it again.
+bool heldAfterFailedLaunch(const SlurmJob& job) {
+    return !isFinalJobState(job.state) && job.reason == kLaunchFailedReason;
+}
 const std::string kLaunchFailed = "LAUNCH_FAILED";
 
 extern "C" void onInterrupt(int signal) { gSlurmInterrupt = signal; }
@@ -327,8 +332,7 @@ void checkSlurmNodes(const std::vector<const Plan*>& plans, const RunOptions& op
                 if (!states) continue;
                 pending.update(*states, std::cerr, Clock::now());
                 const auto found = states->find(id);
-                if (found != states->end() && !isFinalJobState(found->second.state) &&
-                    found->second.reason == kLaunchFailedReason)
+                if (found != states->end() && heldAfterFailedLaunch(found->second))
                     throw Error("the Slurm check job " + id +
                                 " could not be started on its node (squeue's reason: " + kLaunchFailedReason +
                                 "; sinfo -R says whether the node was drained for it; its output: " + out.string() +
@@ -765,10 +769,7 @@ void SlurmRun::update(const std::map<std::string, SlurmJob>& states) {
         Job& job = jobs_[j];
         const auto found = states.find(job.id);
         if (found != states.end() && !found->second.node.empty()) job.node = found->second.node;
-        // Held after a failed launch: squeue shows it PENDING, or COMPLETING while its node's epilog runs, its
-        // restart count raised by a requeue that does not run it again.
-        if (found != states.end() && !isFinalJobState(found->second.state) &&
-            found->second.reason == kLaunchFailedReason) {
+        if (found != states.end() && heldAfterFailedLaunch(found->second)) {
             launchFailed(j);
             continue;
         }

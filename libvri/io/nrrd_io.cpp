@@ -249,14 +249,7 @@ NrrdVoxels nrrdVoxels(const fs::path& path) {
 
 Volume readNrrd(const fs::path& path) {
     const NrrdVoxels nrrd = nrrdVoxels(path);
-    Volume volume;
-    try {
-        volume = readVoxelData(nrrd.dataPath, nrrd.data);
-    } catch (const Error& e) {
-        // The data file's own message, prefixed by the header that sent us there.
-        if (nrrd.dataPath == path) throw;
-        throw Error(path.string() + ": data file " + e.what());
-    }
+    Volume volume = namingHeader(path, nrrd.dataPath, [&] { return readVoxelData(nrrd.dataPath, nrrd.data); });
     volume.spacing = nrrd.spacing;
     if (nrrd.origin) volume.origin = *nrrd.origin;
     if (nrrd.range) volume.range = nrrd.range;

@@ -13,6 +13,7 @@
 #include "libvri/io/stored_voxels.h"
 #include "libvri/io/volume_io.h"
 #include "libvri/util/checked_size.h"
+#include "libvri/util/error.h"
 
 namespace vri::detail {
 
@@ -49,9 +50,30 @@ struct NrrdVoxels {
 // Parses the header of `path` (.nhdr or .nrrd) as readNrrd does, with its messages; reads no voxel.
 NrrdVoxels nrrdVoxels(const std::filesystem::path& path);
 
+// Where `data`'s voxels lie in `path` and how many bytes they take, checked before anything is allocated, so
+// that a mistyped --dims or header is an error, not a huge allocation.
+struct StoredVoxels {
+    std::uint64_t bytes;
+    std::uintmax_t offset, fileBytes;  // offset: data.offset, or where the file's last `bytes` begin
+    std::string layoutText;            // "DxHxW type", for messages
+};
+StoredVoxels storedVoxels(const std::filesystem::path& path, const VoxelData& data);
+
 // The volume (voxel types converted as stored_voxels.h says) whose voxels `data` describes in `path`.
 // Sizes are checked against the file and the byte limit before anything is allocated.
 Volume readVoxelData(const std::filesystem::path& path, const VoxelData& data);
+
+// Runs read(), the reading of a header's data `file`: its messages come after the header that names it,
+// "HEADER: data file FILE: ..." (none added where the header holds its own data, `file` == `header`).
+template <class Read>
+decltype(auto) namingHeader(const std::filesystem::path& header, const std::filesystem::path& file, Read&& read) {
+    try {
+        return read();
+    } catch (const Error& e) {
+        if (file == header) throw;
+        throw Error(header.string() + ": data file " + e.what());
+    }
+}
 
 // Runs read(), the reading of `path`: an OutOfMemory (checked_size.h) that does not name the file gets its
 // name in front, and a std::bad_alloc that no check explained (a library's own allocation) becomes

@@ -83,16 +83,6 @@ std::string_view rawBytes(const fs::path& path, const Volume& volume, ByteOrder 
     return {reinterpret_cast<const char*>(bytes->data()), bytes->size()};
 }
 
-namespace {
-
-// Where `data`'s voxels lie in `path` and how many bytes they take, checked before anything is allocated, so
-// that a mistyped --dims or header is an error, not a huge allocation.
-struct StoredVoxels {
-    std::uint64_t bytes;
-    std::uintmax_t offset, fileBytes;
-    std::string layoutText;  // "DxHxW type", for messages
-};
-
 StoredVoxels storedVoxels(const fs::path& path, const VoxelData& data) {
     requireRegularFile(path);
     StoredVoxels s{0, 0, fs::file_size(path), dimsText(data.dims) + " " + std::string(storedTypeName(data.type))};
@@ -105,6 +95,8 @@ StoredVoxels storedVoxels(const fs::path& path, const VoxelData& data) {
     s.offset = data.offset.value_or(s.fileBytes - std::min<std::uintmax_t>(s.fileBytes, s.bytes));
     return s;
 }
+
+namespace {
 
 // Uncompressed voxels: the file holds exactly the header and them.
 void requireExactSize(const fs::path& path, const StoredVoxels& s) {

@@ -75,42 +75,29 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
 
 namespace {
 
-// One brick of a NRRD whose voxels lie in its data file as vri keeps them (raw encoding; uint8, uint16 or
-// float32), read as a raw file's is: its stored box alone. nullopt for any other file (not NRRD, gzip, a type
-// vri converts), which the caller reads whole.
-std::optional<BrickVolume> nrrdBrick(const std::filesystem::path& input, const VolumeReadOptions& options,
-                                     glm::ivec3 counts, glm::ivec3 brick, const std::optional<ValueRange>& range) {
+// Where a volume's voxels lie as vri keeps them, so that a brick reads its box alone by offset: a raw file, or
+// the data of a NRRD stored so (raw encoding; uint8, uint16 or float32), with what its header adds. nullopt
+// for any other file (gzip, a type vri converts, another format), which is read whole.
+struct OffsetVoxels {
+    std::filesystem::path file;
+    RawLayout layout;
+    std::optional<glm::dvec3> origin;
+    std::optional<ValueRange> range;
+};
+
+std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, const VolumeReadOptions& options) {
+    if (std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options)))
+        return OffsetVoxels{input, *layout, std::nullopt, std::nullopt};
     const std::string extension = detail::toLower(input.extension().string());
     if (extension != ".nrrd" && extension != ".nhdr") return std::nullopt;
     const detail::NrrdVoxels nrrd = detail::nrrdVoxels(input);
     const VoxelType type = detail::volumeTypeFor(nrrd.data.type);
     if (nrrd.data.gzip || detail::storedTypeOf(type) != nrrd.data.type) return std::nullopt;
     RawLayout layout{nrrd.data.dims, type, nrrd.data.order, nrrd.spacing, 0};
-    const auto inHeader = [&](auto read) {  // the data file's message, after the header that names it
-        try {
-            return read();
-        } catch (const Error& e) {
-            if (nrrd.dataPath == input) throw;
-            throw Error(input.string() + ": data file " + e.what());
-        }
-    };
-    // The voxels as the file's last bytes: the rest is header (the size check then names both sizes).
-    std::error_code ec;
-    const std::uintmax_t fileBytes = std::filesystem::file_size(nrrd.dataPath, ec);
-    // (A product past 2^64 leaves it 0 here: the read then refuses the layout, naming the file.)
-    const std::optional<std::uint64_t> voxelBytes = checkedProduct(
-        {std::uint64_t(layout.dims.x), std::uint64_t(layout.dims.y), std::uint64_t(layout.dims.z), voxelSize(type)});
-    layout.headerBytes = static_cast<std::size_t>(
-        nrrd.data.offset.value_or(!ec && voxelBytes && fileBytes > *voxelBytes ? fileBytes - *voxelBytes : 0));
-    const BrickGrid grid(layout.dims, counts);
-    grid.requireBrick(brick, "--brick");
-    BrickVolume b{grid, brick, inHeader([&] { return readRawBox(nrrd.dataPath, layout, grid.storedBox(brick)); })};
-    if (nrrd.origin) b.voxels.origin = *nrrd.origin;
-    b.voxels.range = range ? range : nrrd.range ? nrrd.range : fixedNormalisationRange(type, std::nullopt);
-    if (!b.voxels.range) b.voxels.range = inHeader([&] { return rawValueRange(nrrd.dataPath, layout); });
-    overrideSpacing(b.voxels, options);
-    requireUsableValues(b.voxels, input.string());
-    return b;
+    // Where the data begin (the file's last bytes, for byte skip -1); the read checks the file's size.
+    layout.headerBytes = static_cast<std::size_t>(detail::namingHeader(
+        input, nrrd.dataPath, [&] { return detail::storedVoxels(nrrd.dataPath, nrrd.data).offset; }));
+    return OffsetVoxels{nrrd.dataPath, layout, nrrd.origin, nrrd.range};
 }
 
 }  // namespace
@@ -118,20 +105,22 @@ std::optional<BrickVolume> nrrdBrick(const std::filesystem::path& input, const V
 BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,
                       glm::ivec3 brick, const std::optional<ValueRange>& range) {
     if (options.grid) throw Error("--brick: reads dense volumes (raw, NRRD, ...), not a .vdb grid");
-    const std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options));
-    if (!layout) {
-        if (std::optional<BrickVolume> b = nrrdBrick(input, options, counts, brick, range)) return std::move(*b);
-        // Any other format that describes itself: read whole, then cut.
+    const std::optional<OffsetVoxels> source = offsetVoxels(input, options);
+    if (!source) {  // read whole, then cut
         Volume whole = readVolume(input, options);
         if (range) whole.range = *range;
         requireUsableValues(whole, input.string());
         return cutBrick(whole, BrickGrid(whole.dims, counts), brick);
     }
-    const BrickGrid grid(layout->dims, counts);
+    const auto naming = [&](auto read) { return detail::namingHeader(input, source->file, read); };
+    const BrickGrid grid(source->layout.dims, counts);
     grid.requireBrick(brick, "--brick");
-    BrickVolume b{grid, brick, readRawBox(input, *layout, grid.storedBox(brick))};
-    b.voxels.range = range ? range : fixedNormalisationRange(layout->type, std::nullopt);
-    if (!b.voxels.range) b.voxels.range = rawValueRange(input, *layout);
+    BrickVolume b{grid, brick, naming([&] { return readRawBox(source->file, source->layout, grid.storedBox(brick)); })};
+    if (source->origin) b.voxels.origin = *source->origin;
+    b.voxels.range = range           ? range
+                     : source->range ? source->range
+                                     : fixedNormalisationRange(source->layout.type, std::nullopt);
+    if (!b.voxels.range) b.voxels.range = naming([&] { return rawValueRange(source->file, source->layout); });
     overrideSpacing(b.voxels, options);
     requireUsableValues(b.voxels, input.string());
     return b;
