@@ -1,8 +1,11 @@
 # Sourced by the Slurm tests: a real single-node Slurm cluster from Debian's slurm-wlm and munge, all of
-# it in $1 (configuration, key, sockets, state, logs), on loopback ports of its own (below the range the kernel
+# it in $1 (configuration, key, state, logs), on loopback ports of its own (below the range the kernel
 # gives outgoing connections, and chosen again where another cluster took them first); SLURM_CONF points the
-# client commands at it. Nothing of the machine's own Slurm or munge is read or touched. The daemons are
-# stopped by the pids they wrote when the test exits. One setting departs from Slurm's defaults:
+# client commands at it. Nothing of the machine's own Slurm or munge is read or touched. The daemons' Unix
+# sockets (munged's, and each job step's, which Slurm names <spool>/<node>_<job>.<step>) live in a private
+# folder under /tmp, removed at exit: a socket's path holds at most 107 bytes, which a scratch folder in a
+# clone a few levels deep passes (slurmd then cannot start the job: "launch failed requeued held"). The
+# daemons are stopped by the pids they wrote when the test exits. One setting departs from Slurm's defaults:
 # batch_sched_delay=0 starts a job as soon as the node is free instead of up to 3 s later, which halves
 # the time a test of many short jobs waits (6 two-CPU jobs on two CPUs: 18 s -> 8 s); cred_expire=20 (of 120)
 # holds a requeued job back 21 s instead of 121 (Slurm keeps it from starting until its old credential has
@@ -21,6 +24,7 @@
 
 slurm_daemon_pids=()
 slurm_watchdog_pid=
+slurm_sockets=
 
 stop_slurm_cluster() {
     local pid
@@ -36,11 +40,14 @@ stop_slurm_cluster() {
     # A job still running when its slurmd stopped leaves its slurmstepd (a daemon of its own) and the job's
     # processes under it: those of this cluster, and only those, are known by the SLURM_CONF in the
     # slurmstepd's environment.
-    [ -z "${slurm_dir:-}" ] && return
-    for pid in $(pgrep -x slurmstepd); do
-        { tr '\0' '\n' < "/proc/$pid/environ"; } 2>/dev/null | grep -qxF "SLURM_CONF=$slurm_dir/slurm.conf" &&
-            kill_slurm_tree "$pid"
-    done
+    if [ -n "${slurm_dir:-}" ]; then
+        for pid in $(pgrep -x slurmstepd); do
+            { tr '\0' '\n' < "/proc/$pid/environ"; } 2>/dev/null | grep -qxF "SLURM_CONF=$slurm_dir/slurm.conf" &&
+                kill_slurm_tree "$pid"
+        done
+    fi
+    [ -z "$slurm_sockets" ] || rm -rf "$slurm_sockets"
+    slurm_sockets=
     return 0
 }
 
@@ -68,11 +75,14 @@ start_slurm_cluster() {
     done
     [ "$(id -u)" -eq 0 ] || { echo "SKIP: slurmd runs jobs as their users and needs root to start"; exit 77; }
     trap stop_slurm_cluster EXIT
+    slurm_sockets=$(mktemp -d /tmp/vri-slurm.XXXXXX) || { echo "FAIL: no private folder for the cluster's sockets in /tmp"; exit 1; }
+    local longest="$slurm_sockets/spool/vri-test-node2/vri-test-node2_67043328.4294967292"
+    [ "${#longest}" -le 107 ] || { echo "FAIL: the cluster's socket paths would pass 107 bytes ($longest)"; exit 1; }
     mkdir -p "$dir/munge" "$dir/log"
     chmod 700 "$dir/munge"
     head -c 1024 /dev/urandom > "$dir/munge/munge.key"
     chmod 400 "$dir/munge/munge.key"
-    munged --force --key-file="$dir/munge/munge.key" --socket="$dir/munge/socket" --pid-file="$dir/munge/munged.pid" \
+    munged --force --key-file="$dir/munge/munge.key" --socket="$slurm_sockets/munge" --pid-file="$dir/munge/munged.pid" \
         --log-file="$dir/log/munged.log" --seed-file="$dir/munge/seed" \
         || { echo "SKIP: munged cannot start here (see $dir/log/munged.log)"; exit 77; }
     slurm_daemon_pid "$dir/munge/munged.pid" munged
@@ -92,7 +102,7 @@ start_slurm_cluster() {
             { echo "SKIP: the test cluster did not come up (see $dir/log)"; exit 77; }
         [ "$attempt" -lt 3 ] || { echo "FAIL: the test cluster found its ports taken three times (see $dir/log)"; exit 1; }
         stop_slurm_daemons
-        rm -rf "$dir/state" "$dir/spool"
+        rm -rf "$dir/state" "$slurm_sockets/spool"
         for log in "$dir"/log/slurm*; do mv "$log" "$log.attempt-$attempt"; done
     done
     start_slurm_watchdog
@@ -118,7 +128,8 @@ start_slurm_daemons() {
     local dir=$1 message_timeout=$2 nodes=$3 cpus=$4 memory=$5 port names=() k
     port=$(pick_slurm_port)
     if [ "$nodes" = 1 ]; then names=(vri-test-node); else names=(vri-test-node1 vri-test-node2); fi
-    mkdir -p "$dir/state" "$dir/spool"
+    local spool=$slurm_sockets/spool
+    mkdir -p "$dir/state" "$spool"
     cat > "$dir/slurm.conf" <<EOF
 ClusterName=vritest
 SlurmctldHost=localhost(127.0.0.1)
@@ -126,10 +137,10 @@ SlurmctldPort=$port
 SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
-AuthInfo=socket=$dir/munge/socket,cred_expire=20
+AuthInfo=socket=$slurm_sockets/munge,cred_expire=20
 CredType=cred/munge
 StateSaveLocation=$dir/state
-SlurmdSpoolDir=$dir/spool/%n
+SlurmdSpoolDir=$spool/%n
 SlurmctldPidFile=$dir/slurmctld.pid
 SlurmdPidFile=$dir/slurmd-%n.pid
 SlurmctldLogFile=$dir/log/slurmctld.log
@@ -153,7 +164,7 @@ PropagateResourceLimits=NONE
 EOF
     for k in "${!names[@]}"; do
         echo "NodeName=${names[k]} NodeAddr=127.0.0.1 NodeHostname=${names[k]} Port=$((port + 1 + k)) CPUs=$cpus RealMemory=$memory State=UNKNOWN" >> "$dir/slurm.conf"
-        mkdir -p "$dir/spool/${names[k]}"
+        mkdir -p "$spool/${names[k]}"
     done
     echo "PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP" >> "$dir/slurm.conf"
     slurmctld -i >> "$dir/log/slurmctld.out" 2>&1 || return 1
