@@ -64,6 +64,8 @@ void FormPieceCubics(PieceBatch& b, int count, const PieceFrame& f) {
             }
             w0[a] = wA;
             dw[a] = wB - wA;
+            hn::Store(wA, d, b.w0[a] + j);
+            hn::Store(wB, d, b.w1[a] + j);
         }
         Poly x[4], y[2], s;
         V corner[8];

@@ -31,6 +31,8 @@ struct PieceBatch {
     // piece, and the sScale that bounds the magnitudes whose rounding went into it.
     alignas(64) double c[4][kCapacity];
     alignas(64) double sScale[kCapacity];
+    // The cell weights at the piece's ends, per axis: the cubic runs from w0 to w1 as trilinearAlongSegment's.
+    alignas(64) double w0[3][kCapacity], w1[3][kCapacity];
     // 1 where the cubic is the model's scalar exactly (exact_reference.h): every corner that weighs on the
     // piece holds one value v, and the cubic came out as the constant (v - lo) * r with no rounding; else 0.
     alignas(64) double exact[kCapacity];

@@ -216,7 +216,7 @@ void ExactRay::begin() {
     colour_ = quadratureError_ = roundingError_ = {};
 }
 
-void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact) {
+void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact, const PieceCell* cell) {
     if (!(length > 0.0)) return;
     lengthWalked_ += length;
     if (exact) {  // the model's scalar, constant: its TF segment is known, with no window at any level
@@ -230,7 +230,7 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact
         for (const std::size_t i : {below - 1, below})
             if (i < levels_.size() && std::abs(value - levels_[i]) <= 2.0 * eps)
                 addWindow(faces, length * 4.0 * kUnit, i, eps);
-        integrateSubPiece(length, s, 0.0, 1.0, sScale, faces, below);
+        integrateSubPiece(length, s, 0.0, 1.0, 0.0, faces, below);  // s exact: its coefficients carry no error
         return;
     }
     double ends[4] = {0.0}, values[4];
@@ -264,6 +264,18 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact
         }
     }
 
+    faceCount_ = 0;
+    if (cell) {
+        std::array<double, 8> corners;
+        for (int k = 0; k < 8; ++k) corners[k] = (cell->batch.corner[k][cell->lane] - cell->lo) * cell->invRange;
+        const glm::dvec3 w0(cell->batch.w0[0][cell->lane], cell->batch.w0[1][cell->lane],
+                            cell->batch.w0[2][cell->lane]);
+        const glm::dvec3 w1(cell->batch.w1[0][cell->lane], cell->batch.w1[1][cell->lane],
+                            cell->batch.w1[2][cell->lane]);
+        faceCount_ = constantFaces(corners, w0, w1, faces_);
+    }
+    const double eps = wrongSideEps(sScale);
+
     // Split where s crosses a transfer-function point: within a monotone part at most once per level,
     // in the order of the levels when s rises and in reverse when it falls.
     splits_.clear();
@@ -272,7 +284,17 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact
         const double a = ends[i], b = ends[i + 1], sa = values[i], sb = values[i + 1];
         const auto [countLo, countHi] = countAtMostAndBelow(levels_, std::min(sa, sb), std::max(sa, sb));
         const auto first = levels_.begin() + countLo;                    // upper_bound
-        const auto last = levels_.begin() + std::max(countLo, countHi);  // lower_bound from first
+        auto last = levels_.begin() + std::max(countLo, countHi);        // lower_bound from first
+        // A piece that rises to a level at its end, or falls from one at its start, through a face of its cell
+        // whose corners hold the level: the computed s crosses it within rounding of the face, but s stays below
+        // it but for a window that the face shows (faceWidth), which the sub-piece's wrong side then counts.
+        if (faceCount_ > 0 && last != first && ((b == 1.0 && sa < sb) || (a == 0.0 && sa > sb))) {
+            const double level = *(last - 1), at = sa < sb ? b : a, into = sa < sb ? a : b, sAt = sa < sb ? sb : sa;
+            if (std::abs(sAt - level) <= 2.0 * eps) {
+                const double regular = wrongSideWidth(s, at, sAt, into, into, level, false, eps);
+                if (faceWidth(level, at, at == 1.0 ? at - regular : at + regular, false, eps) < regular) --last;
+            }
+        }
         auto split = [&](double level) {
             splits_.push_back(std::max(solveMonotone(s, level, a, b, rootStart_), splits_.back()));
         };
@@ -304,7 +326,10 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact
 // the nearest critical point: if it is clear of the level there, the window ends where bisection finds it
 // clear. Where neither shows one (s nearly tangent to the level all along, or constant on it but not known
 // exactly), and around a critical point within 2 eps of a level, the whole sub-piece (counted per ray:
-// wholeSubPieceWindow). A piece whose cubic is the model's scalar itself has no window (addPiece).
+// wholeSubPieceWindow). A piece whose cubic is the model's scalar itself has no window (addPiece). Where
+// a face of the piece's cell holds the level's value at its four corners, s's side is that of a quadratic
+// known to its own, far smaller, rounding (faceWidth): each of these windows narrows to where that is
+// unknown, and a split within rounding of the face, where s only touches the level, is not made (addPiece).
 // On such a place |s - L| <= 4 eps, so the value used there (the segment's v + m (s - s_A)) and the TF's
 // differ per channel by at most the jump at L plus 8 eps times the steeper slope beside it, and the TF's
 // value is at most the larger value at L plus that (levels closer than 8 eps: the TF's largest value).
@@ -330,17 +355,55 @@ ExactRay::WrongSide ExactRay::wrongSide(double length, const Cubic& s, double a,
         const double level = levels_[i];
         const bool above = side == 0;
         auto near = [&](double value) { return !((above ? value - level : level - value) > 2.0 * eps); };
+        // Around an end, s's window, narrowed where a constant face of the cell shows more.
+        auto endWidth = [&](double at, double sAt, double into, double monotoneTo) {
+            const double regular = wrongSideWidth(s, at, sAt, into, monotoneTo, level, above, eps);
+            return faceCount_ == 0 || regular == 0.0
+                       ? regular
+                       : faceWidth(level, at, into > at ? at + regular : at - regular, above, eps);
+        };
         double width = 0.0;
-        if (near(sa)) width += wrongSideWidth(s, a, sa, b, afterA, level, above, eps);
-        if (near(sb)) width += wrongSideWidth(s, b, sb, a, beforeB, level, above, eps);
+        if (near(sa)) width += endWidth(a, sa, b, afterA);
+        if (near(sb)) width += endWidth(b, sb, a, beforeB);
         for (int k = 1; k < parts; ++k)
-            if (ends[k] > a && ends[k] < b && near(s(ends[k]))) width = b - a;
+            if (ends[k] > a && ends[k] < b && near(s(ends[k]))) width = faceWidth(level, a, b, above, eps);
         width = std::min(width, b - a);
         if (width == 0.0) continue;
         r.whole = r.whole || width == b - a;
         addWindow(r, length * width, i, eps);
     }
     return r;
+}
+
+// Where a face of the piece's cell holds one scalar v at the level, or just beyond it on the side s must be
+// on, s - level = F G + (v - level) with F >= 0 and zero at most at one point (constant_face.h): s is on its
+// side wherever G is. With G monotone over the stretch from `at` to `into` (no critical point inside) and
+// clear of 0 on that side by twice its rounding at one end of it, G stays clear from where bisection finds
+// it clear to that end: the window is the rest (none where G is clear at both ends, all of the stretch at
+// neither). F itself can be negative where the model's weight overshoots the face, at sigma = 1 only
+// (w0 + (w1 - w0) sigma with the difference rounded): by at most u of the piece.
+double ExactRay::faceWidth(double level, double at, double into, bool above, double eps) const {
+    const double span = std::abs(into - at), lo = std::min(at, into), hi = std::max(at, into);
+    double width = span;
+    for (int f = 0; f < faceCount_; ++f) {
+        const ConstantFace& face = faces_[f];
+        if (std::abs(face.value - level) > 2.0 * eps || (face.value != level && (face.value > level) != above))
+            continue;
+        double critical[2];
+        if (criticalPoints(face.g, lo, hi, critical) > 0) continue;
+        const double gEps = wrongSideEps(face.scale);
+        const auto clear = [&](double x) { return (above ? face.g(x) : -face.g(x)) > 2.0 * gEps; };
+        const bool clearAt = clear(at), clearInto = clear(into);
+        if (clearAt && clearInto) width = 0.0;
+        if (clearAt == clearInto) continue;
+        double inside = clearAt ? into : at, outside = clearAt ? at : into;  // G is unclear at one end only
+        for (int i = 0; i < 64 && std::abs(outside - inside) > 0x1p-52 * span; ++i) {
+            const double middle = 0.5 * (inside + outside);
+            (clear(middle) ? outside : inside) = middle;
+        }
+        width = std::min(width, std::abs(outside - (clearAt ? into : at)));
+    }
+    return width < span && hi == 1.0 ? std::min(span, width + 2.0 * kUnit) : width;
 }
 
 // What a width `span` (world units) of a piece beside level i, where s may lie on the level's other side,

@@ -7,8 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include "libvri/core/constant_face.h"
 #include "libvri/core/cubic.h"
 #include "libvri/core/exact_gauss_batch.h"
+#include "libvri/core/exact_piece_batch.h"
 #include "libvri/core/segment_kernel.h"  // outside any Highway target region: included once
 #include "libvri/core/transfer_function.h"
 
@@ -34,7 +36,14 @@ public:
     // model's scalar itself, a constant, as on a cell whose eight corners hold one value (the corners'
     // scalars are the model's, exact_reference.h): no rounding puts it on the wrong side of a TF point,
     // and one at its value counts from that value on (right-continuous), as every method reads the TF.
-    void addPiece(double length, const Cubic& s, double sScale, bool exact);
+    // `cell`: the cell the piece crosses, where the walk knows it: where s comes within rounding of a TF
+    // point, a face of the cell whose corners hold that point's value tells s's side of it (constant_face.h).
+    struct PieceCell {
+        const PieceBatch& batch;  // the piece's corners (raw values) and weights, lane `lane`
+        int lane;
+        double lo, invRange;  // the model's map from raw values to s (exact_reference.h)
+    };
+    void addPiece(double length, const Cubic& s, double sScale, bool exact, const PieceCell* cell = nullptr);
     // True once what the rest of the ray, `remainingLength` world units, could still add is at most
     // the tolerance in every channel: the transparency T times the largest colour (g = C tau adds at
     // most C_max T; g = C at most C_max T times the length), and T to alpha. finish() adds that to the
@@ -116,6 +125,9 @@ private:
     // `at` to `monotoneTo` (the nearest critical point inside, or `into`).
     double wrongSideWidth(const Cubic& s, double at, double sAt, double into, double monotoneTo, double level,
                           bool above, double eps) const;
+    // The window from `at` towards `into` (within the piece) where s may be beyond `level`, as the piece's
+    // constant faces at the level show it; |into - at| where none shows one.
+    double faceWidth(double level, double at, double into, bool above, double eps) const;
     // What `span` world units beside level i where s may be on its other side add to `r`.
     void addWindow(WrongSide& r, double span, std::size_t level, double eps) const;
     void integrateSubPiece(double length, const Cubic& s, double a, double b, double sScale, const WrongSide& wrong,
@@ -139,6 +151,8 @@ private:
     std::vector<Gap> gaps_;         // per gap: levels_.size() + 1
     std::array<double, 4> channelMax_{};  // the largest tau, R, G, B of the TF
     std::vector<double> splits_;   // scratch: a piece's split points in sigma
+    ConstantFace faces_[6];        // scratch: the faces of the piece's cell whose corners hold one scalar
+    int faceCount_ = 0;
     std::vector<std::pair<double, double>> invisibleSpans_;  // closed spans of s where the TF is zero
     // Segment i < n - 1 runs from point i to point i + 1; n - 1 and n are the constants below the first
     // point and above the last (n points).

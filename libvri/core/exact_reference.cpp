@@ -112,8 +112,9 @@ public:
                 ++counts.pieces;
                 if (const int j = queue.lane[e]; j >= 0) {
                     ++counts.visible;
+                    const ExactRay::PieceCell cell{b, j, lo_, invRange_};
                     ray.addPiece((b.phiB[j] - b.phiA[j]) * length, Cubic{{b.c[0][j], b.c[1][j], b.c[2][j], b.c[3][j]}},
-                                 b.sScale[j], b.exact[j] != 0.0);
+                                 b.sScale[j], b.exact[j] != 0.0, &cell);
                 }
                 if (ray.done((1.0 - queue.phiB[e]) * length)) return (1.0 - queue.phiB[e]) * length;
             }

@@ -30,8 +30,9 @@ struct Piece {
 // One piece as the walk formed it before the batch (exact_reference.cpp's GridWalker): the specification.
 // `exact`: the corners that weigh on the piece (along an axis the ray does not move along, a weight of 0
 // leaves out the far corners and 1 the near ones) hold one value, and the cubic is that value's scalar.
-void onePiece(const Piece& p, const PieceFrame& f, double c[4], double& sScale, bool& exact) {
-    glm::dvec3 w0(0.0), w1(0.0);
+void onePiece(const Piece& p, const PieceFrame& f, double c[4], double& sScale, bool& exact, glm::dvec3& w0,
+              glm::dvec3& w1) {
+    w0 = w1 = glm::dvec3(0.0);
     for (int a = 0; a < 3; ++a) {
         auto weight = [&](double phi) {
             return std::clamp(std::clamp(f.entry[a] + phi * f.delta[a], 0.0, f.maxCoord[a]) - p.cell[a], 0.0, 1.0);
@@ -100,14 +101,17 @@ TEST_CASE("exact piece batch: every target forms the cubics of one piece at a ti
             p.phiB = i % 11 == 0 ? 1.0 : std::min(1.0, p.phiA + 0.3 * unit(random));
             pieces.push_back(p);
         }
-        std::vector<std::array<std::uint64_t, 6>> expected;
+        using PieceBits = std::array<std::uint64_t, 12>;  // c, sScale, exact, w0, w1
+        std::vector<PieceBits> expected;
         int exactPieces = 0;
         for (const Piece& p : pieces) {
             double c[4], sScale;
             bool exact = false;
-            onePiece(p, f, c, sScale, exact);
+            glm::dvec3 w0, w1;
+            onePiece(p, f, c, sScale, exact, w0, w1);
             exactPieces += exact;
-            expected.push_back({bits(c[0]), bits(c[1]), bits(c[2]), bits(c[3]), bits(sScale), bits(exact ? 1.0 : 0.0)});
+            expected.push_back({bits(c[0]), bits(c[1]), bits(c[2]), bits(c[3]), bits(sScale), bits(exact ? 1.0 : 0.0),
+                                bits(w0.x), bits(w0.y), bits(w0.z), bits(w1.x), bits(w1.y), bits(w1.z)});
         }
         CHECK(exactPieces >= 10);  // the constant cells at least
         for (std::int64_t target : targets) {
@@ -129,8 +133,9 @@ TEST_CASE("exact piece batch: every target forms the cubics of one piece at a ti
                 for (int j = 0; j < count; ++j) {
                     CAPTURE(frameIndex);
                     CAPTURE(first + j);
-                    const std::array<std::uint64_t, 6> got = {bits(b.c[0][j]), bits(b.c[1][j]),   bits(b.c[2][j]),
-                                                              bits(b.c[3][j]), bits(b.sScale[j]), bits(b.exact[j])};
+                    const PieceBits got = {bits(b.c[0][j]),   bits(b.c[1][j]),  bits(b.c[2][j]),  bits(b.c[3][j]),
+                                           bits(b.sScale[j]), bits(b.exact[j]), bits(b.w0[0][j]), bits(b.w0[1][j]),
+                                           bits(b.w0[2][j]),  bits(b.w1[0][j]), bits(b.w1[1][j]), bits(b.w1[2][j])};
                     CHECK(got == expected[first + j]);
                 }
             }
