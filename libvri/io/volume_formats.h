@@ -67,25 +67,41 @@ Volume readVoxelData(const std::filesystem::path& path, const VoxelData& data);
 // "HEADER: data file FILE: ..." (none added where the header holds its own data, `file` == `header`).
 template <class Read>
 decltype(auto) namingHeader(const std::filesystem::path& header, const std::filesystem::path& file, Read&& read) {
-    try {
-        return read();
-    } catch (const Error& e) {
-        if (file == header) throw;
-        throw Error(header.string() + ": data file " + e.what());
-    }
-}
-
-// Runs read(), the reading of `path`: an OutOfMemory (checked_size.h) that does not name the file gets its
-// name in front, and a std::bad_alloc that no check explained (a library's own allocation) becomes
-// "PATH: out of memory while reading it".
-template <class Read>
-decltype(auto) namingFileIfOutOfMemory(const std::filesystem::path& path, Read&& read) {
+    // The data file's message, whose file it names (itself, or the one its object comes from), after the header's.
+    const auto named = [&](const Error& e) {
+        const std::string what = e.what();
+        return header.string() + ": data file " +
+               (what.starts_with(file.string() + ":") ? what : file.string() + ": " + what);
+    };
     try {
         return read();
     } catch (const OutOfMemory& e) {
-        const std::string what = e.what();
-        if (what.starts_with(path.string() + ":")) throw;
-        throw OutOfMemory(path.string() + ": " + what);
+        if (file == header) throw;
+        throw OutOfMemory(named(e));
+    } catch (const OverLimit& e) {
+        if (file == header) throw;
+        throw OverLimit(named(e));
+    } catch (const Error& e) {
+        if (file == header) throw;
+        throw Error(named(e));
+    }
+}
+
+// Runs read(), the reading of `path`: an OutOfMemory or OverLimit (checked_size.h) that does not name the file
+// gets its name in front, and a std::bad_alloc that no check explained (a library's own allocation) becomes
+// "PATH: out of memory while reading it".
+template <class Read>
+decltype(auto) namingFileIfTooLarge(const std::filesystem::path& path, Read&& read) {
+    const auto named = [&](const Error& e) { return path.string() + ": " + e.what(); };
+    const auto names = [&](const Error& e) { return std::string_view(e.what()).starts_with(path.string() + ":"); };
+    try {
+        return read();
+    } catch (const OutOfMemory& e) {
+        if (names(e)) throw;
+        throw OutOfMemory(named(e));
+    } catch (const OverLimit& e) {
+        if (names(e)) throw;
+        throw OverLimit(named(e));
     } catch (const std::bad_alloc&) {
         throw OutOfMemory(path.string() + ": out of memory while reading it");
     }

@@ -241,22 +241,37 @@ std::string nonFiniteVoxel(glm::ivec3 at, double value, const std::string& sourc
            std::to_string(at.z) + ") is " + exactNumber(value) + ": float volumes must hold finite values";
 }
 
+// The first non-finite float voxel of `volume`, whose first voxel sits at `start` in a volume of `dims` (0 and
+// its own dims, or a brick's stored box), named by its place in that volume.
+void requireFiniteVoxels(const Volume& volume, glm::ivec3 start, glm::ivec3 dims, const std::string& source) {
+    if (volume.type != VoxelType::Float32) return;
+    const float* v = volume.data<float>();
+    const std::size_t n = volume.voxelCount();
+    const auto isBad = [](float x) { return !std::isfinite(x); };
+    const std::size_t bad = static_cast<std::size_t>(std::find_if(v, v + n, isBad) - v);
+    if (bad == n) return;
+    const auto bx = static_cast<std::size_t>(volume.dims.x), by = static_cast<std::size_t>(volume.dims.y);
+    const glm::ivec3 at = start + glm::ivec3(static_cast<int>(bad % bx), static_cast<int>(bad / bx % by),
+                                             static_cast<int>(bad / bx / by));
+    const std::uint64_t index =
+        (static_cast<std::uint64_t>(at.z) * static_cast<std::uint64_t>(dims.y) + static_cast<std::uint64_t>(at.y)) *
+            static_cast<std::uint64_t>(dims.x) +
+        static_cast<std::uint64_t>(at.x);
+    throw Error(source + ": voxel " + std::to_string(index) + " (x " + std::to_string(at.x) + ", y " +
+                std::to_string(at.y) + ", z " + std::to_string(at.z) + ") is " + exactNumber(v[bad]) +
+                ": float volumes must hold finite values");
+}
+
 }  // namespace
 
 void requireUsableValues(const Volume& volume, const std::string& source) {
-    if (volume.type == VoxelType::Float32) {
-        const float* v = volume.data<float>();
-        const std::size_t n = volume.voxelCount();
-        const auto isBad = [](float x) { return !std::isfinite(x); };
-        const std::size_t bad = static_cast<std::size_t>(std::find_if(v, v + n, isBad) - v);
-        if (bad < n) {
-            const auto dx = static_cast<std::size_t>(volume.dims.x), dy = static_cast<std::size_t>(volume.dims.y);
-            throw Error(source + ": voxel " + std::to_string(bad) + " (x " + std::to_string(bad % dx) + ", y " +
-                        std::to_string(bad / dx % dy) + ", z " + std::to_string(bad / dx / dy) + ") is " +
-                        exactNumber(v[bad]) + ": float volumes must hold finite values");
-        }
-    }
+    requireFiniteVoxels(volume, glm::ivec3(0), volume.dims, source);
     requireUsableGeometry(volume.dims, volume.spacing, volume.origin, volume.range, source);
+}
+
+void requireUsableValues(const Volume& box, const VoxelBox& stored, glm::ivec3 dims, const std::string& source) {
+    requireFiniteVoxels(box, stored.lo, dims, source);
+    requireUsableGeometry(dims, box.spacing, box.origin, box.range, source);
 }
 
 void requireUsableValues(const SparseVolume& volume, const std::string& source) {
@@ -326,7 +341,8 @@ Volume readRawBox(const fs::path& path, const RawLayout& layout, const VoxelBox&
         if (box.lo[a] < 0 || box.hi[a] > layout.dims[a] || box.lo[a] >= box.hi[a])
             throw Error(path.string() + ": the box of voxels " + dimsText(box.lo) + " to " + dimsText(box.hi) +
                         " is not inside " + dimsText(layout.dims));
-    Volume volume(box.size(), layout.type);  // checks the box's bytes against the limit
+    // The box's bytes checked against the limit, the message naming the file.
+    Volume volume = detail::namingFileIfTooLarge(path, [&] { return Volume(box.size(), layout.type); });
     volume.spacing = layout.spacing;
     std::ifstream in(path, std::ios::binary);
     const std::size_t size = voxelSize(layout.type);
@@ -427,7 +443,7 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
         if (extension == ".tif" || extension == ".tiff") return detail::readTiffStack(path);
         return readVdb(path);
     };
-    Volume volume = detail::namingFileIfOutOfMemory(path, read);
+    Volume volume = detail::namingFileIfTooLarge(path, read);
     requireUsableValues(volume, path.string());
     return volume;
 }

@@ -48,6 +48,9 @@ std::optional<RawLayout> layoutFromFileName(const std::filesystem::path& path);
 // lo < hi and the box, origin + dims x spacing, stays within double's range along every axis.
 void requireUsableValues(const Volume& volume, const std::string& source);
 void requireUsableValues(const SparseVolume& volume, const std::string& source);
+// The same for the stored box of a brick of a volume of `dims` (core/brick_volume.h): a voxel named by its place
+// in the whole volume, and the whole volume's box checked, so that a brick refuses what the whole would.
+void requireUsableValues(const Volume& box, const VoxelBox& stored, glm::ivec3 dims, const std::string& source);
 
 // How a volume is kept in memory: dense (Volume), sparse (SparseVolume: the 8^3 bricks that are not all
 // background), or auto: sparse for a .vdb whose dense box would be refused (over the byte limit, or over

@@ -1,5 +1,8 @@
 #include "libvri/io/volume_read_options.h"
 
+#include <functional>
+#include <string>
+
 #include "libvri/io/volume_formats.h"
 #include "libvri/util/error.h"
 #include "libvri/util/parse.h"
@@ -34,14 +37,19 @@ std::optional<RawLayout> requestedRawLayout(const std::filesystem::path& input, 
 
 namespace {
 
-// --spacing, when given, over what the file says.
+// --spacing, when given, over what the file says, then the volume checked with it (a brick as its whole volume).
 template <class V>
-void overrideSpacing(V& volume, const VolumeReadOptions& options) {
+void overrideSpacing(V& volume, const VolumeReadOptions& options,
+                     const std::function<void(const V&, const std::string&)>& requireUsable) {
     if (options.spacing.empty()) return;
     volume.spacing = parseVec3(options.spacing, "--spacing");
     if (!(volume.spacing.x > 0 && volume.spacing.y > 0 && volume.spacing.z > 0))
         throw Error("--spacing: expected positive numbers, got '" + options.spacing + "'");
-    requireUsableValues(volume, "--spacing " + options.spacing);
+    requireUsable(volume, "--spacing " + options.spacing);
+}
+template <class V>
+void overrideSpacing(V& volume, const VolumeReadOptions& options) {
+    overrideSpacing<V>(volume, options, [](const V& v, const std::string& source) { requireUsableValues(v, source); });
 }
 
 }  // namespace
@@ -69,7 +77,7 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
     auto dense = std::make_shared<Volume>(readVolume(input, options));
     if (storage != VolumeStorage::Sparse) return {std::move(dense), nullptr};
     auto sparse = std::make_shared<SparseVolume>(
-        detail::namingFileIfOutOfMemory(input, [&] { return SparseVolume::fromDense(*dense); }));
+        detail::namingFileIfTooLarge(input, [&] { return SparseVolume::fromDense(*dense); }));
     return {nullptr, std::move(sparse)};
 }
 
@@ -121,8 +129,12 @@ BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOption
                      : source->range ? source->range
                                      : fixedNormalisationRange(source->layout.type, std::nullopt);
     if (!b.voxels.range) b.voxels.range = naming([&] { return rawValueRange(source->file, source->layout); });
-    overrideSpacing(b.voxels, options);
-    requireUsableValues(b.voxels, input.string());
+    // Checked as the whole volume would be: its box, a voxel named by its place in it.
+    const auto requireUsable = [&](const Volume& v, const std::string& source) {
+        requireUsableValues(v, grid.storedBox(brick), grid.dims(), source);
+    };
+    overrideSpacing<Volume>(b.voxels, options, requireUsable);
+    requireUsable(b.voxels, input.string());
     return b;
 }
 

@@ -29,8 +29,8 @@ double productAsDouble(std::initializer_list<std::uint64_t> factors) {
 
 [[noreturn]] void refuse(const std::string& what, const std::string& needed, std::uint64_t limit,
                          std::string_view unit, std::string_view hint = {}) {
-    throw Error(what + ": needs " + needed + " " + std::string(unit) + ", limit " + std::to_string(limit) +
-                std::string(hint));
+    throw OverLimit(what + ": needs " + needed + " " + std::string(unit) + ", limit " + std::to_string(limit) +
+                    std::string(hint));
 }
 
 }  // namespace
@@ -86,16 +86,16 @@ std::size_t checkedUnpackedBytes(const std::string& what, std::initializer_list<
     const std::uint64_t plausible =
         std::max(kAlwaysPlausibleBytes, checkedProduct({packedBytes, maxExpansion}).value_or(std::numeric_limits<std::uint64_t>::max()));
     if (bytes > plausible)
-        throw Error(what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) + " for " +
-                    std::string(packedWhat) + " of " + std::to_string(packedBytes) + " bytes (" +
-                    std::to_string(maxExpansion) + " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)");
+        throw OverLimit(what + ": needs " + std::to_string(bytes) + " bytes, limit " + std::to_string(plausible) +
+                        " for " + std::string(packedWhat) + " of " + std::to_string(packedBytes) + " bytes (" +
+                        std::to_string(maxExpansion) + " times its size or 256 MiB; set VRI_MAX_BYTES to allow more)");
     return bytes;
 }
 
 void requireWithin(const std::string& what, double amount, double limit, std::string_view unit) {
     if (amount >= 0.0 && amount <= limit) return;
-    throw Error(what + ": needs " + (std::isfinite(amount) ? amountText(amount) : "unboundedly many") + " " +
-                std::string(unit) + ", limit " + amountText(limit));
+    throw OverLimit(what + ": needs " + (std::isfinite(amount) ? amountText(amount) : "unboundedly many") + " " +
+                    std::string(unit) + ", limit " + amountText(limit));
 }
 
 }  // namespace vri

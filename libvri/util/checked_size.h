@@ -49,6 +49,13 @@ inline constexpr std::uint64_t kPlausibleSparseExpansion = 1024;
 std::size_t checkedUnpackedBytes(const std::string& what, std::initializer_list<std::uint64_t> factors,
                                  std::uint64_t packedBytes, std::string_view packedWhat, std::uint64_t maxExpansion);
 
+// A size beyond its limit, as every refusal above throws it ("<what>: needs N <unit>, limit M"): what it
+// names is the object, so a reader that knows the file puts the file's name in front.
+class OverLimit : public Error {
+public:
+    using Error::Error;
+};
+
 // A size within the limit that the machine still cannot give (VRI_MAX_BYTES above its memory, a
 // ulimit, other processes): a bare std::bad_alloc would say neither what nor how much.
 class OutOfMemory : public Error {

@@ -28,6 +28,7 @@ printf 'Rawfile: v_2x2x2_uint8.raw\nResolution: 1e30 2 2\nFormat: UINT8\n' > hug
 printf 'Rawfile: v_2x2x2_uint8.raw\nResolution: 2147483647 2147483647 2147483647\nFormat: UINT8\n' > wide.dat
 printf 'Rawfile: v_2x2x2_uint8.raw\nResolution: 2 2 2\nFormat: UINT8\x1b[2J\n' > escape.dat
 printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1e30 2 2\nencoding: raw\ndata file: v_2x2x2_uint8.raw\n' > huge.nhdr
+printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\ndata file: v_2x2x2_uint8.raw\n\n' > v.nhdr
 printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2147483647 2147483647 2147483647\nencoding: raw\nbyte skip: -1\ndata file: v_2x2x2_uint8.raw\n' > skip.nhdr
 printf 'NRRD0004\ntype: uchar\x07\ndimension: 3\nsizes: 2 2 2\nencoding: raw\ndata file: v_2x2x2_uint8.raw\n' > bell.nhdr
 printf 'points:\n  - [0.0, 0.0, 0.0, 0.0, 0.0]\npo\x1bints: 3\n' > escape-tf.yaml
@@ -52,6 +53,9 @@ bad 1 'a 2000000000x2000000000 image .*: needs about 6\.4e\+19 bytes' -- "${rend
 bad 1 '^vri-render: error: a 2097152x2097152x4194304 float32 volume: needs about 7\.38e\+19 bytes, limit 17179869184' -- "${render[@]}" --field-as-grid --field-dims 2097152,2097152,4194304
 bad 1 'a 2000x2000x2000 float32 volume: needs 32000000000 bytes, limit 17179869184' -- "${render[@]}" --field-as-grid --field-dims 2000,2000,2000
 bad 1 'a 100x100x100 float32 volume: needs 4000000 bytes, limit 1000000 \(VRI_MAX_BYTES\)$' -- env VRI_MAX_BYTES=1000000 "$bin/vri-render" --field linear --tf "$tf" -q -o out.exr --field-as-grid --field-dims 100,100,100
+# A volume file over the limit is named, and a header's data file after the header.
+bad 1 '^vri-render: error: v_2x2x2_uint8\.raw: a 2x2x2 uint8 volume: needs 8 bytes, limit 4 \(VRI_MAX_BYTES\)$' -- env VRI_MAX_BYTES=4 "$bin/vri-render" --volume v_2x2x2_uint8.raw --tf "$tf" -q -o out.exr
+bad 1 '^vri-render: error: v\.nhdr: data file v_2x2x2_uint8\.raw: a 2x2x2 uint8 volume: needs 8 bytes, limit 4 \(VRI_MAX_BYTES\)$' -- env VRI_MAX_BYTES=4 "$bin/vri-render" --volume v.nhdr --tf "$tf" -q -o out.exr
 bad 1 '^vri-render: error: VRI_MAX_BYTES: expected a positive byte count, got '"'"'16G'"'"'$' -- env VRI_MAX_BYTES=16G "$bin/vri-render" --field linear --tf "$tf" -q -o out.exr --size 8x8
 # Read dense (--storage dense): the dense box's bytes, which wrap size_t, and the plausible size for the file.
 bad 1 '^vri-convert: error: wraps\.vdb: vri_dims 4194304x4194304x1048576 \(uint8\): needs about 1\.84e\+19 bytes, limit' -- "$bin/vri-convert" --info --storage dense wraps.vdb

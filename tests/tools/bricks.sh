@@ -113,6 +113,25 @@ scene=(--volume nan.nrrd --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --range -1
 "$bin/vri-render" "${scene[@]}" --bricks 2,2,2 --brick 0,0,0 -o nan-layer.exr || fail "a brick read a voxel outside its box"
 if "$bin/vri-render" "${scene[@]}" -o nan-whole.exr 2> nan.txt; then fail "the whole render read no NaN"; fi
 grep -q "nan.nrrd: voxel 7679 (x 23, y 19, z 15) is nan" nan.txt || { cat nan.txt; fail "the NaN was not named"; }
+# A brick refuses what its whole volume refuses, in the same words: a NaN named by its place in the volume, a
+# box beyond double's range by the volume's extent (13 voxels of 1e307 fit in a double, the volume's 24 do
+# not), a box over the byte limit by its file (and by the header that names it).
+if "$bin/vri-render" "${scene[@]}" --bricks 2,2,2 --brick 1,1,1 -o nan-brick.exr 2> nan-brick.txt; then fail "the brick read no NaN"; fi
+grep -q "nan.nrrd: voxel 7679 (x 23, y 19, z 15) is nan" nan-brick.txt || fail "the brick's NaN: $(cat nan-brick.txt)"
+far=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --spacing 1e307,1,1)
+for brick in "" "--bricks 2,1,1 --brick 0,0,0"; do
+  if "$bin/vri-render" "${far[@]}" $brick -o far.exr 2> far.txt; then fail "a box beyond double's range rendered ($brick)"; fi
+  grep -qx "vri-render: error: --spacing 1e307,1,1: the box (origin 0 + 24 voxels x spacing 1e+307 along x) is beyond the range of a double" far.txt ||
+    fail "($brick) $(cat far.txt)"
+done
+for volume in noise_24x20x16_uint8.raw noise-uint8.nhdr; do
+  if VRI_MAX_BYTES=500 "$bin/vri-render" --volume "$volume" --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --bricks 3,2,2 --brick 1,1,0 \
+    -o big.exr 2> "$volume.txt"; then fail "$volume: a brick over the byte limit rendered"; fi
+done
+grep -qx "vri-render: error: noise_24x20x16_uint8.raw: a 9x10x9 uint8 volume: needs 810 bytes, limit 500 (VRI_MAX_BYTES)" \
+  noise_24x20x16_uint8.raw.txt || fail "$(cat noise_24x20x16_uint8.raw.txt)"
+grep -qx "vri-render: error: noise-uint8.nhdr: data file noise-uint8.raw: a 9x10x9 uint8 volume: needs 810 bytes, limit 500 (VRI_MAX_BYTES)" \
+  noise-uint8.nhdr.txt || fail "$(cat noise-uint8.nhdr.txt)"
 
 # A brick's layer in tiles: the tiles merged give the layer, bit for bit.
 scene=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --bricks 2,2,1 --brick 1,0,0)

@@ -367,7 +367,7 @@ std::string readGridFile(const fs::path& path, const std::optional<std::string>&
                          LoadedVolume& volume) {
     return detail::caughtMessage("OpenVDB", [&] {
         initializeOpenVdb();
-        volume = detail::namingFileIfOutOfMemory(path, [&] { return readGrid(path, gridName, storage); });
+        volume = detail::namingFileIfTooLarge(path, [&] { return readGrid(path, gridName, storage); });
     });
 }
 
