@@ -283,18 +283,25 @@ void ExactRay::addPiece(double length, const Cubic& s, double sScale, bool exact
     for (int i = 0; i < parts; ++i) {
         const double a = ends[i], b = ends[i + 1], sa = values[i], sb = values[i + 1];
         const auto [countLo, countHi] = countAtMostAndBelow(levels_, std::min(sa, sb), std::max(sa, sb));
-        const auto first = levels_.begin() + countLo;                    // upper_bound
-        auto last = levels_.begin() + std::max(countLo, countHi);        // lower_bound from first
-        // A piece that rises to a level at its end, or falls from one at its start, through a face of its cell
-        // whose corners hold the level: the computed s crosses it within rounding of the face, but s stays below
-        // it but for a window that the face shows (faceWidth), which the sub-piece's wrong side then counts.
-        if (faceCount_ > 0 && last != first && ((b == 1.0 && sa < sb) || (a == 0.0 && sa > sb))) {
-            const double level = *(last - 1), at = sa < sb ? b : a, into = sa < sb ? a : b, sAt = sa < sb ? sb : sa;
-            if (std::abs(sAt - level) <= 2.0 * eps) {
-                const double regular = wrongSideWidth(s, at, sAt, into, into, level, false, eps);
-                if (faceWidth(level, at, at == 1.0 ? at - regular : at + regular, false, eps) < regular) --last;
-            }
-        }
+        auto first = levels_.begin() + countLo;                    // upper_bound
+        auto last = levels_.begin() + std::max(countLo, countHi);  // lower_bound from first
+        // At an end of the piece on a face of its cell whose corners hold a level, the computed s may cross the
+        // level within rounding of the face where s only touches it there. The face tells (faceWidth): the split
+        // nearest that end is not made where s stays on the part's side of the level but for the face's
+        // window, which the sub-piece's wrong side then counts. `above`: the part's side is above the level.
+        const auto touchesOnly = [&](double at, double into, double sAt, double level, bool above) {
+            if (!(std::abs(sAt - level) <= 2.0 * eps)) return false;
+            const double regular = wrongSideWidth(s, at, sAt, into, into, level, above, eps);
+            const double end = at < into ? at + regular : at - regular;
+            return faceWidth(level, at, end, above, eps) < std::abs(end - at);
+        };
+        const bool rising = sa < sb;
+        if (faceCount_ > 0 && b == 1.0 && last != first &&
+            (rising ? touchesOnly(b, a, sb, *(last - 1), false) : touchesOnly(b, a, sb, *first, true)))
+            rising ? --last : ++first;
+        if (faceCount_ > 0 && a == 0.0 && last != first &&
+            (rising ? touchesOnly(a, b, sa, *first, true) : touchesOnly(a, b, sa, *(last - 1), false)))
+            rising ? ++first : --last;
         auto split = [&](double level) {
             splits_.push_back(std::max(solveMonotone(s, level, a, b, rootStart_), splits_.back()));
         };
