@@ -27,7 +27,9 @@ struct ExitStatus {
     bool exited = false;  // by exit(): `code` holds its status; else killed by `signal`
     int code = 0;
     int signal = 0;
-    // The largest resident set of the child, or of a process it waited for (wait4's ru_maxrss), in KiB.
+    // The largest resident set of the child, or of a process it waited for (wait4's ru_maxrss), in KiB. At
+    // least this process's own peak at the spawn: Linux records the memory a child shares with its parent
+    // (posix_spawn's child does until its exec) as the child's.
     long long peakRssKiB = 0;
 
     static ExitStatus fromWaitStatus(int status, const struct rusage& usage);

@@ -71,6 +71,7 @@ TEST_CASE("process: redirections and exit statuses") {
 }
 
 TEST_CASE("process: a child's peak resident memory comes back with its status") {
+    // The small child's peak is at least this process's (process.h): under ctest each case runs alone, small.
     const auto python = findProgram("python3");
     REQUIRE(python);
     // 64 MiB touched (bytearray zero-fills it): the peak holds it, and the interpreter besides.
