@@ -3,6 +3,8 @@
 #include "libvri/experiment/experiment_run.h"
 
 #include <chrono>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <optional>
 
@@ -10,6 +12,7 @@
 #include "libvri/experiment/step_ledger.h"
 #include "libvri/io/provenance.h"
 #include "libvri/util/error.h"
+#include "libvri/util/input_digest.h"
 #include "libvri/util/load_average.h"
 #include "libvri/util/process.h"
 
@@ -22,7 +25,10 @@ using Clock = std::chrono::steady_clock;
 class LocalScheduler {
 public:
     LocalScheduler(const Plan& plan, const RunOptions& options, FileHasher& hasher)
-        : options_(options), ledger_(plan, options, hasher), host_(hostName()) {}
+        : options_(options), ledger_(plan, options, hasher), host_(hostName()) {
+        // The steps it starts inherit it: one plan runs at a time here.
+        ::setenv(kInputDigestsVariable, std::filesystem::absolute(ledger_.digestRecord()).c_str(), 1);
+    }
 
     std::vector<StepOutcome> run();
 

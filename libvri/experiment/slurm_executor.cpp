@@ -487,7 +487,7 @@ std::vector<std::size_t> SlurmRun::stepsToRun() {
 
 void SlurmRun::submit(std::size_t j) {
     Job& job = jobs_[j];
-    NodeSteps steps{fs::current_path(), {}};
+    NodeSteps steps{fs::current_path(), {}, fs::absolute(ledger_.digestRecord())};
     for (std::size_t i : job.bundle.steps) {
         const std::vector<std::string> words = ledger_.prepare(i);
         fs::remove(statusPath(i));

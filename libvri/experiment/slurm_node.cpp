@@ -10,6 +10,7 @@
 
 #include "libvri/io/provenance.h"
 #include "libvri/util/atomic_file.h"
+#include "libvri/util/input_digest.h"
 #include "libvri/util/json_file.h"
 #include "libvri/util/process.h"
 #include "libvri/util/sha512.h"
@@ -37,13 +38,14 @@ void writeNodeSteps(const fs::path& file, const NodeSteps& steps) {
                         {"words", s.words},
                         {"log", s.log.string()},
                         {"status", s.status.string()}});
-    writeJson(file, {{"work_dir", steps.workDir.string()}, {"steps", list}});
+    writeJson(file,
+              {{"work_dir", steps.workDir.string()}, {"steps", list}, {"digest_record", steps.digestRecord.string()}});
 }
 
 NodeSteps readNodeSteps(const fs::path& file) {
     const nlohmann::json j = readJsonFile(file);
     return readingJsonOf(file, [&] {
-        NodeSteps steps{j.at("work_dir").get<std::string>(), {}};
+        NodeSteps steps{j.at("work_dir").get<std::string>(), {}, j.at("digest_record").get<std::string>()};
         for (const nlohmann::json& s : j.at("steps"))
             steps.steps.push_back({s.at("id").get<std::string>(), s.at("program").get<std::string>(),
                                    s.at("words").get<std::vector<std::string>>(), s.at("log").get<std::string>(),
@@ -70,6 +72,7 @@ int runNodeSteps(const fs::path& file) {
     if (::chdir(steps.workDir.c_str()) != 0)
         throw Error(steps.workDir.string() + ": cannot enter it on node " + hostName() + ": " + std::strerror(errno));
     const std::string node = hostName(), jobId = jobIdHere();
+    if (!steps.digestRecord.empty()) ::setenv(kInputDigestsVariable, steps.digestRecord.c_str(), 1);
     // Seconds since the epoch, for ordering steps across nodes (whose clocks Slurm needs in step anyway).
     const auto epoch = [] { return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count(); };
     for (const NodeStep& step : steps.steps) {

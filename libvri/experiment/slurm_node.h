@@ -22,6 +22,7 @@ struct NodeStep {
 struct NodeSteps {
     std::filesystem::path workDir;
     std::vector<NodeStep> steps;
+    std::filesystem::path digestRecord;  // VRI_INPUT_DIGESTS for the steps (input_digest.h)
 };
 
 void writeNodeSteps(const std::filesystem::path& file, const NodeSteps& steps);

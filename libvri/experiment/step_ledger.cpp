@@ -3,12 +3,14 @@
 
 #include <cstdio>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "libvri/io/provenance.h"
 #include "libvri/render/render_job.h"  // timingLoadOf
 #include "libvri/util/error.h"
 #include "libvri/util/file_text.h"
+#include "libvri/util/input_digest.h"
 #include "libvri/util/json_file.h"
 #include "libvri/util/own_folder.h"
 #include "libvri/util/printable.h"
@@ -34,6 +36,7 @@ StepLedger::StepLedger(const Plan& plan, const RunOptions& options, FileHasher& 
                 StepProgress::styleFor(options.quiet)) {
     for (const Step& step : plan.steps) programs_.push_back(options.toolDir / step.tool);
     requireOwnFolder(plan.resultsDir / ".steps");
+    digestRecord_ = plan.resultsDir / ".steps" / "input-digests.json";
 }
 
 void StepLedger::settle(std::size_t i, StepOutcome::State state, const std::string& how, const std::string& detail) {
@@ -73,6 +76,18 @@ fs::path StepLedger::logPath(std::size_t i) const {
 }
 
 std::vector<std::string> StepLedger::prepare(std::size_t i) {
+    if (!digestRecordWritten_) {  // before the first step runs (a dry run writes nothing)
+        // The source files the keys digested (a step's outputs are another's inputs, digested once it ran).
+        std::vector<std::pair<fs::path, std::string>> sources;
+        std::set<fs::path> produced, listed;
+        for (const Step& step : plan_.steps) produced.insert(step.outputs.begin(), step.outputs.end());
+        for (const Step& step : plan_.steps)
+            for (const fs::path& input : step.inputs)
+                if (!produced.contains(input) && listed.insert(input).second)
+                    sources.emplace_back(input, hasher_.digest(input));
+        writeDigestRecord(digestRecord_, sources);
+        digestRecordWritten_ = true;
+    }
     const fs::path record = recordPath(plan_, plan_.steps[i]);
     // A link in their place (to anywhere) is removed, never written through: the step's log is opened for
     // writing and truncated as the step starts.

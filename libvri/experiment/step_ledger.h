@@ -36,6 +36,9 @@ public:
     void started(std::size_t i) { progress_.started(i); }
     std::filesystem::path logPath(std::size_t i) const;  // <results>/.steps/<id>.log
     const std::filesystem::path& program(std::size_t i) const { return programs_[i]; }
+    // The record of the digests of the plan's source files (input_digest.h), <results>/.steps/input-digests.json,
+    // written as the first step is prepared: its steps take their inputs' digests from it (VRI_INPUT_DIGESTS).
+    const std::filesystem::path& digestRecord() const { return digestRecord_; }
 
     // Step i ran and exited 0: its outputs are digested, its record written, its log removed. A
     // declared output that is missing fails it instead: false then.
@@ -58,6 +61,8 @@ private:
     const Plan& plan_;
     const RunOptions& options_;
     FileHasher& hasher_;
+    std::filesystem::path digestRecord_;
+    bool digestRecordWritten_ = false;
     std::vector<StepOutcome> outcomes_;
     std::vector<bool> settled_;
     std::vector<std::string> keys_;

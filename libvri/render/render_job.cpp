@@ -139,16 +139,18 @@ RenderResult RenderJob::finish(RenderFrame first, nlohmann::json timing) {
 
 nlohmann::json provenanceRecord(const std::string& tool, const nlohmann::json& command, const SceneSetup& setup,
                                 const RenderRequest& request) {
-    return {{"tool", tool},
-            {"command", command},
-            {"time_utc", utcTimestamp()},
-            {"build", buildInfo()},
-            {"machine", machineInfo()},
-            {"inputs", setup.inputs},
-            {"scene", describeScene(setup.scene)},
-            {"transfer_function", toJson(setup.scene.transferFunction)},
-            {"camera", toJson(setup.camera)},
-            {"options", toJson(request)}};
+    nlohmann::json record = {{"tool", tool},
+                             {"command", command},
+                             {"time_utc", utcTimestamp()},
+                             {"build", buildInfo()},
+                             {"machine", machineInfo()},
+                             {"inputs", setup.inputs},
+                             {"scene", describeScene(setup.scene)},
+                             {"transfer_function", toJson(setup.scene.transferFunction)},
+                             {"camera", toJson(setup.camera)},
+                             {"options", toJson(request)}};
+    if (!setup.digestRecord.empty()) record["input_digests_from"] = setup.digestRecord.string();
+    return record;
 }
 
 MedianInterval medianInterval(std::vector<double> values) {

@@ -133,6 +133,28 @@ grep -qx "vri-render: error: noise_24x20x16_uint8.raw: a 9x10x9 uint8 volume: ne
 grep -qx "vri-render: error: noise-uint8.nhdr: data file noise-uint8.raw: a 9x10x9 uint8 volume: needs 810 bytes, limit 500 (VRI_MAX_BYTES)" \
   noise-uint8.nhdr.txt || fail "$(cat noise-uint8.nhdr.txt)"
 
+# A brick takes its volume's digest from the record its launcher made (VRI_INPUT_DIGESTS, as vri-run sets it:
+# util/input_digest.h) instead of reading the whole file, and says so; a record the file no longer fits (written
+# since: another modification time) is not used.
+/usr/bin/python3 - <<'PY'
+import json, os
+st = os.stat("noise_24x20x16_uint8.raw")
+json.dump({"files": [{"path": os.path.abspath("noise_24x20x16_uint8.raw"), "size": st.st_size,
+                      "mtime_ns": st.st_mtime_ns, "sha512": "from-the-record"}]}, open("record.json", "w"))
+PY
+brick=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --bricks 2,2,1 --brick 0,1,0)
+VRI_INPUT_DIGESTS=$PWD/record.json "$bin/vri-render" "${brick[@]}" -o recorded.exr --stats recorded.json
+touch -d "@$(($(date +%s) + 5))" noise_24x20x16_uint8.raw
+VRI_INPUT_DIGESTS=$PWD/record.json "$bin/vri-render" "${brick[@]}" -o computed.exr --stats computed.json
+/usr/bin/python3 - "$PWD/record.json" "$(sha512sum < noise_24x20x16_uint8.raw | cut -d' ' -f1)" <<'PY' || fail "the digests' record"
+import json, sys
+recorded, computed = (json.load(open(f)) for f in ("recorded.json", "computed.json"))
+assert recorded["inputs"][0]["sha512"] == "from-the-record", recorded["inputs"]
+assert recorded["input_digests_from"] == sys.argv[1], recorded.get("input_digests_from")
+assert computed["inputs"][0]["sha512"] == sys.argv[2], computed["inputs"]
+assert "input_digests_from" not in computed, computed["input_digests_from"]
+PY
+
 # A brick's layer in tiles: the tiles merged give the layer, bit for bit.
 scene=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --bricks 2,2,1 --brick 1,0,0)
 "$bin/vri-render" "${scene[@]}" -o layer.exr --stats layer.json

@@ -89,11 +89,18 @@ YAML
 "$bin/vri-run" --results local bricks.yaml 2> bricks-local.txt || { cat bricks-local.txt; fail "the local bricked run failed"; }
 "${slurm[@]}" --results res bricks.yaml 2> bricks-slurm.txt || { cat bricks-slurm.txt; fail "the Slurm bricked run failed"; }
 "$bin/vri-diff" local/bricks/bricked.exr res/bricks/bricked.exr --fail 0 > /dev/null || fail "the joined bricks differ between executors"
-"$python" - res/bricks <<'PY' || fail "the bricks on Slurm"
-import json, sys
+"$python" - res/bricks local/bricks <<'PY' || fail "the bricks on Slurm"
+import glob, json, sys
 steps = json.load(open(sys.argv[1] + "/manifest.json"))["steps"]
 jobs = [s["execution"]["job_id"] for s in steps if ".brick-" in s["id"]]
 assert len(jobs) == 8 and len(set(jobs)) == 8, ("each brick a job of its own", jobs)
+# Each brick took its volume's digest from vri-run's record (util/input_digest.h), on either executor.
+for results in sys.argv[1:]:
+    layers = glob.glob(results + "/bricked.brick-*.json")
+    assert len(layers) == 8, layers
+    for layer in layers:
+        source = json.load(open(layer)).get("input_digests_from", "")
+        assert source.endswith("/bricks/.steps/input-digests.json"), (layer, source)
 PY
 # --slurm-max-jobs 2: two jobs at a time, the next submitted as one ends; the same images.
 "${slurm[@]}" --slurm-max-jobs 2 --results capped bricks.yaml 2> capped.txt || { cat capped.txt; fail "the capped Slurm run failed"; }

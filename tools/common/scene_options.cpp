@@ -11,7 +11,7 @@
 #include "libvri/render/camera_request.h"
 #include "libvri/util/error.h"
 #include "libvri/util/format.h"
-#include "libvri/util/sha512.h"
+#include "libvri/util/input_digest.h"
 
 namespace vri {
 
@@ -106,9 +106,15 @@ SceneSetup SceneOptions::load() const {
         if (!volume && !sparse) throw Error("--range applies to volumes only");
         (sparse ? sparse->range : volume->range) = *range;
     }
-    if (!volumePath_.empty()) inputs.push_back({{"path", volumePath_}, {"sha512", sha512File(volumePath_)}});
+    std::filesystem::path digestRecord;  // where a digest came from, when vri-run recorded it (input_digest.h)
+    const auto digested = [&](const std::string& path) {
+        InputDigest digest = inputDigest(path);
+        if (!digest.record.empty()) digestRecord = digest.record;
+        return nlohmann::json{{"path", path}, {"sha512", std::move(digest.sha512)}};
+    };
+    if (!volumePath_.empty()) inputs.push_back(digested(volumePath_));
     Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse, brick};
-    inputs.push_back({{"path", tfPath_}, {"sha512", sha512File(tfPath_)}});
+    inputs.push_back(digested(tfPath_));
 
     CameraRequest camera;
     camera.size = imageSize;
@@ -119,7 +125,7 @@ SceneSetup SceneOptions::load() const {
     camera.up = parseVec3(up_, scene_flag::up);
     if (!zoomCentre_.empty()) camera.zoomCentre = parseVec2(zoomCentre_, scene_flag::zoomCentre);
     const CameraSpec spec = camera.spec(scene.box());
-    return {std::move(scene), spec, std::move(inputs)};
+    return {std::move(scene), spec, std::move(inputs), std::move(digestRecord)};
 }
 
 }  // namespace vri
