@@ -22,6 +22,7 @@
 #include "libvri/core/scene_flags.h"
 #include "libvri/experiment/experiment_keys.h"
 #include "libvri/experiment/timing_defaults.h"
+#include "libvri/io/volume_read_options.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
 #include "libvri/io/yaml_util.h"
@@ -311,10 +312,10 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
                                             : ""));
         scene.files.push_back(*file);
         scene.options.emplace_back(scene_flag::volume, scene.files.back().string());
-        if (!describesItsLayout(*file)) try {
-                scene.rawLayout = layoutFromFileName(*file);
-            } catch (const Error&) {  // a type vri does not read: vri-render says so
-            }
+        try {
+            scene.rawLayout = describesItsLayout(*file) ? offsetLayout(*file) : layoutFromFileName(*file);
+        } catch (const Error&) {  // a type vri does not read, a broken header: vri-render says so
+        }
     } else {
         const std::string field = text(node["field"], "field");
         if (field != "linear") throw Error(at(node["field"]) + ": unknown analytic field '" + field + "' (expected linear)");

@@ -38,8 +38,9 @@ struct SceneSpec {
     std::vector<std::filesystem::path> files;  // volume and transfer function, absolute: hashed for the cache
     ToolOptions options;                    // vri-render's scene options, paths as absolute paths
     int width = 800, height = 600;          // the images' size: `size:`, else vri-render's default --size
-    // How its volume's voxels lie in a raw file: the catalog's, or a `volume:` file's name's (the Open SciVis
-    // convention); none for a file that describes itself, an analytic field, or a name vri-render will refuse.
+    // How its volume's voxels lie in a raw file: the catalog's, a `volume:` file's name's (the Open SciVis
+    // convention), or a NRRD header's whose voxels a brick reads by offset (io's offsetLayout); none for another
+    // file that describes itself, an analytic field, or a name vri-render will refuse.
     std::optional<RawLayout> rawLayout;
 };
 

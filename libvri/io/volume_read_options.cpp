@@ -110,6 +110,11 @@ std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, con
 
 }  // namespace
 
+std::optional<RawLayout> offsetLayout(const std::filesystem::path& input, const VolumeReadOptions& options) {
+    if (const std::optional<OffsetVoxels> source = offsetVoxels(input, options)) return source->layout;
+    return std::nullopt;
+}
+
 BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,
                       glm::ivec3 brick, const std::optional<ValueRange>& range) {
     if (options.grid) throw Error("--brick: reads dense volumes (raw, NRRD, ...), not a .vdb grid");

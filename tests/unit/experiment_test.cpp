@@ -523,6 +523,25 @@ TEST_CASE("experiment: bricks of a raw file laid out by its name carry the bytes
     CHECK(plan.step("riemann").volumeBytes == 0);  // the join holds layers, not voxels
 }
 
+TEST_CASE("experiment: bricks of a NRRD whose voxels a brick reads by offset carry the bytes each brick holds") {
+    ExperimentDir d;
+    d.write("v.raw", std::string(10 * 6 * 4 * 2, '\0'));
+    d.write("v.nhdr",
+            "NRRD0004\ntype: uint16\ndimension: 3\nsizes: 10 6 4\nendian: little\nencoding: raw\ndata file: v.raw\n\n");
+    d.write("z.nrrd", "NRRD0004\ntype: uint16\ndimension: 3\nsizes: 10 6 4\nendian: little\nencoding: gzip\n\n");
+    const auto bricked = [&](const std::string& volume) {
+        const vri::Experiment e =
+            d.parse(kHead + "scenes: {s: {volume: " + volume +
+                    ", convention: cell, tf: a.yaml, size: [8, 5]}}\nmethods:\n  riemann: {bricks: [2, 1, 1]}\n");
+        return vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    };
+    const vri::Plan nhdr = bricked("v.nhdr");
+    CHECK(nhdr.step("riemann.brick-0-0-0").volumeBytes == 6 * 6 * 4 * 2);  // as the raw file's bricks
+    CHECK(nhdr.step("riemann.brick-1-0-0").volumeBytes == 5 * 6 * 4 * 2);
+    // A gzip-encoded NRRD is read whole for a brick: no box to size it by (the planner falls back to the file).
+    CHECK(bricked("z.nrrd").step("riemann.brick-0-0-0").volumeBytes == 0);
+}
+
 TEST_CASE("experiment: a comparison's id writes the run's scene once and the run's id whole") {
     CHECK(vri::comparisonId("vs-exact-bonsai", "bonsai-riemann-h0.5", "bonsai") == "vs-exact-bonsai-riemann-h0.5");
     CHECK(vri::comparisonId("vs-corner", "riemann-eye", "cube") == "vs-corner-riemann-eye");
