@@ -47,7 +47,7 @@ std::optional<fs::path> inviwoDatDataFile(const fs::path& path) {
     return dataFileNamedBy(path, it->second.value);
 }
 
-Volume readInviwoDat(const fs::path& path) {
+DatVoxels inviwoDatVoxels(const fs::path& path) {
     requireRegularFile(path);
     const std::map<std::string, HeaderEntry> entries = parseDat(path);
     const auto find = [&](const std::string& key) -> const HeaderEntry* {
@@ -104,22 +104,21 @@ Volume readInviwoDat(const fs::path& path) {
         }
     }
 
-    const HeaderEntry& rawFile = require("rawfile", "Rawfile");
-    const fs::path rawPath = dataFileNamedBy(path, rawFile.value);
-    Volume volume;
-    try {
-        volume = readRaw(rawPath, layout);
-    } catch (const Error& e) {
-        throw Error(path.string() + ": Rawfile " + e.what());
-    }
-
-    if (const HeaderEntry* range = find("datarange")) {
-        volume.range = parseValueRange(range->value, where(*range));
-    }
+    DatVoxels voxels{dataFileNamedBy(path, require("rawfile", "Rawfile").value), layout, std::nullopt, std::nullopt};
+    if (const HeaderEntry* range = find("datarange")) voxels.range = parseValueRange(range->value, where(*range));
     if (const HeaderEntry* offset = find("offset")) {
         const std::vector<double> o = parseNumbers(offset->value, 3, where(*offset));
-        volume.origin = {o[0], o[1], o[2]};
+        voxels.origin = glm::dvec3(o[0], o[1], o[2]);
     }
+    return voxels;
+}
+
+Volume readInviwoDat(const fs::path& path) {
+    const DatVoxels dat = inviwoDatVoxels(path);
+    Volume volume = namingHeader(
+        path, dat.rawPath, [&] { return readRaw(dat.rawPath, dat.layout); }, "Rawfile");
+    volume.range = dat.range;
+    if (dat.origin) volume.origin = *dat.origin;
     return volume;
 }
 

@@ -28,6 +28,14 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume);
 Volume readMetaImage(const std::filesystem::path& path);  // .mhd (detached) or .mha (LOCAL data)
 Volume readTiffStack(const std::filesystem::path& path);  // .tif/.tiff: one page per z slice
 Volume readInviwoDat(const std::filesystem::path& path);
+// An Inviwo .dat header: its raw file, the layout it gives it, and its DataRange and Offset; reads no voxel.
+struct DatVoxels {
+    std::filesystem::path rawPath;
+    RawLayout layout;
+    std::optional<ValueRange> range;
+    std::optional<glm::dvec3> origin;
+};
+DatVoxels inviwoDatVoxels(const std::filesystem::path& path);
 void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);
 
 // Where a header format's voxels are and how they are stored.
@@ -64,13 +72,15 @@ StoredVoxels storedVoxels(const std::filesystem::path& path, const VoxelData& da
 Volume readVoxelData(const std::filesystem::path& path, const VoxelData& data);
 
 // Runs read(), the reading of a header's data `file`: its messages come after the header that names it,
-// "HEADER: data file FILE: ..." (none added where the header holds its own data, `file` == `header`).
+// "HEADER: data file FILE: ..." (`entry`: what the header calls it; none added where the header holds its own
+// data, `file` == `header`).
 template <class Read>
-decltype(auto) namingHeader(const std::filesystem::path& header, const std::filesystem::path& file, Read&& read) {
+decltype(auto) namingHeader(const std::filesystem::path& header, const std::filesystem::path& file, Read&& read,
+                            std::string_view entry = "data file") {
     // The data file's message, whose file it names (itself, or the one its object comes from), after the header's.
     const auto named = [&](const Error& e) {
         const std::string what = e.what();
-        return header.string() + ": data file " +
+        return header.string() + ": " + std::string(entry) + " " +
                (what.starts_with(file.string() + ":") ? what : file.string() + ": " + what);
     };
     try {

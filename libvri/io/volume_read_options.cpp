@@ -83,20 +83,25 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
 
 namespace {
 
-// Where a volume's voxels lie as vri keeps them, so that a brick reads its box alone by offset: a raw file, or
-// the data of a NRRD stored so (raw encoding; uint8, uint16 or float32), with what its header adds. nullopt
-// for any other file (gzip, a type vri converts, another format), which is read whole.
+// Where a volume's voxels lie as vri keeps them, so that a brick reads its box alone by offset: a raw file, an
+// Inviwo .dat's raw file, or the data of a NRRD stored so (raw encoding; uint8, uint16 or float32), with what
+// its header adds. nullopt for any other file (gzip, a type vri converts, another format), read whole.
 struct OffsetVoxels {
     std::filesystem::path file;
     RawLayout layout;
     std::optional<glm::dvec3> origin;
     std::optional<ValueRange> range;
+    std::string_view entry = "data file";  // what the header calls its data file, for messages
 };
 
 std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, const VolumeReadOptions& options) {
     if (std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options)))
         return OffsetVoxels{input, *layout, std::nullopt, std::nullopt};
     const std::string extension = detail::toLower(input.extension().string());
+    if (extension == ".dat") {
+        detail::DatVoxels dat = detail::inviwoDatVoxels(input);
+        return OffsetVoxels{std::move(dat.rawPath), dat.layout, dat.origin, dat.range, "Rawfile"};
+    }
     if (extension != ".nrrd" && extension != ".nhdr") return std::nullopt;
     const detail::NrrdVoxels nrrd = detail::nrrdVoxels(input);
     const VoxelType type = detail::volumeTypeFor(nrrd.data.type);
@@ -125,7 +130,7 @@ BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOption
         requireUsableValues(whole, input.string());
         return cutBrick(whole, BrickGrid(whole.dims, counts), brick);
     }
-    const auto naming = [&](auto read) { return detail::namingHeader(input, source->file, read); };
+    const auto naming = [&](auto read) { return detail::namingHeader(input, source->file, read, source->entry); };
     const BrickGrid grid(source->layout.dims, counts);
     grid.requireBrick(brick, "--brick");
     BrickVolume b{grid, brick, naming([&] { return readRawBox(source->file, source->layout, grid.storedBox(brick)); })};

@@ -77,6 +77,24 @@ scene=(--tf tf.yaml --size 37x29 --eye 60,-40,50 -q --method riemann --step 0.5 
 "$bin/vri-render" --volume noise_24x20x16_uint8.raw "${scene[@]}" -o raw-layer.exr
 "$bin/vri-render" --volume noise-uint8.nhdr "${scene[@]}" -o nhdr-layer.exr
 "$bin/vri-diff" raw-layer.exr nhdr-layer.exr --fail 0 > /dev/null || fail "a NRRD's brick differs from the raw file's"
+# An Inviwo .dat's raw file is read by offset too: its brick bit for bit the raw file's, and only its box read
+# (a NaN in the last voxel, DataRange given, stops the whole render and not brick 0,0,0).
+"$bin/vri-convert" noise_24x20x16_uint8.raw noise-uint8.dat 2> /dev/null
+joined noise-uint8.dat 2,2,1 --method riemann --step 0.5
+"$bin/vri-render" --volume noise-uint8.dat "${scene[@]}" -o dat-layer.exr
+"$bin/vri-diff" raw-layer.exr dat-layer.exr --fail 0 > /dev/null || fail "a .dat's brick differs from the raw file's"
+/usr/bin/python3 - <<'PY'
+import random, struct
+random.seed(4)
+values = [random.randrange(256) / 85.0 - 1.0 for _ in range(24 * 20 * 16)]
+values[-1] = float("nan")
+open("nan-dat.raw", "wb").write(b"".join(struct.pack("<f", v) for v in values))
+open("nan.dat", "w").write("Rawfile: nan-dat.raw\nResolution: 24 20 16\nFormat: FLOAT32\nDataRange: -1 2\n")
+PY
+dat=(--volume nan.dat --tf tf.yaml --size 37x29 --eye 60,-40,50 -q)
+"$bin/vri-render" "${dat[@]}" --bricks 2,2,2 --brick 0,0,0 -o nan-dat-layer.exr || fail "a .dat brick read a voxel outside its box"
+if "$bin/vri-render" "${dat[@]}" -o nan-dat-whole.exr 2> nan-dat.txt; then fail "the whole .dat render read no NaN"; fi
+grep -q "nan.dat: voxel 7679 (x 23, y 19, z 15) is nan" nan-dat.txt || fail "the .dat's NaN: $(cat nan-dat.txt)"
 /usr/bin/python3 - <<'PY'
 import random, struct
 random.seed(3)
