@@ -39,8 +39,8 @@ struct SceneSpec {
     ToolOptions options;                    // vri-render's scene options, paths as absolute paths
     int width = 800, height = 600;          // the images' size: `size:`, else vri-render's default --size
     // How its volume's voxels lie in a raw file: the catalog's, a `volume:` file's name's (the Open SciVis
-    // convention), or a NRRD header's whose voxels a brick reads by offset (io's offsetLayout); none for another
-    // file that describes itself, an analytic field, or a name vri-render will refuse.
+    // convention), or a header's (NRRD, MetaImage, .dat) whose voxels a brick reads by offset (io's offsetLayout); none
+    // for another file that describes itself, an analytic field, or a name vri-render will refuse.
     std::optional<RawLayout> rawLayout;
 };
 

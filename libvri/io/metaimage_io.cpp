@@ -74,7 +74,7 @@ std::optional<fs::path> metaImageDataFile(const fs::path& path) {
     return dataFileNamedBy(path, value);
 }
 
-Volume readMetaImage(const fs::path& path) {
+HeaderVoxels metaImageVoxels(const fs::path& path) {
     requireRegularFile(path);
     const MetaHeader header = parseMetaHeader(path);
     const auto find = [&](const std::string& key) -> const HeaderEntry* {
@@ -156,19 +156,21 @@ Volume readMetaImage(const fs::path& path) {
         }
     }
 
-    Volume volume;
-    try {
-        volume = readVoxelData(dataPath, data);
-    } catch (const Error& e) {
-        if (dataPath == path) throw;
-        throw Error(path.string() + ": ElementDataFile " + e.what());
-    }
-    volume.spacing = spacing;
+    HeaderVoxels voxels{dataPath, data, spacing, std::nullopt, std::nullopt};
     for (const char* key : {"offset", "origin", "position"})
         if (const HeaderEntry* offset = find(key)) {
             const std::vector<double> o = parseNumbers(offset->value, 3, where(*offset));
-            volume.origin = glm::dvec3(o[0], o[1], o[2]) - 0.5 * spacing;
+            voxels.origin = glm::dvec3(o[0], o[1], o[2]) - 0.5 * spacing;
         }
+    return voxels;
+}
+
+Volume readMetaImage(const fs::path& path) {
+    const HeaderVoxels mhd = metaImageVoxels(path);
+    Volume volume = namingHeader(
+        path, mhd.dataPath, [&] { return readVoxelData(mhd.dataPath, mhd.data); }, "ElementDataFile");
+    volume.spacing = mhd.spacing;
+    if (mhd.origin) volume.origin = *mhd.origin;
     return volume;
 }
 

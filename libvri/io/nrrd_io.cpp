@@ -119,7 +119,7 @@ std::optional<fs::path> nrrdDataFile(const fs::path& path) {
     return std::nullopt;
 }
 
-NrrdVoxels nrrdVoxels(const fs::path& path) {
+HeaderVoxels nrrdVoxels(const fs::path& path) {
     requireRegularFile(path);
     const NrrdHeader header = parseNrrdHeader(path);
     const auto where = [&](const std::string& name) {
@@ -140,7 +140,7 @@ NrrdVoxels nrrdVoxels(const fs::path& path) {
         throw Error(where("dimension") + ": must be 3 (a scalar volume), got " + requiredField("dimension"));
 
     RawLayout layout;
-    NrrdVoxels result;
+    HeaderVoxels result;
     const StoredType storedType = parseNrrdType(requiredField("type"), where("type"));
 
     const std::vector<double> sizes = parseNumbers(requiredField("sizes"), 3, where("sizes"));
@@ -248,7 +248,7 @@ NrrdVoxels nrrdVoxels(const fs::path& path) {
 }
 
 Volume readNrrd(const fs::path& path) {
-    const NrrdVoxels nrrd = nrrdVoxels(path);
+    const HeaderVoxels nrrd = nrrdVoxels(path);
     Volume volume = namingHeader(path, nrrd.dataPath, [&] { return readVoxelData(nrrd.dataPath, nrrd.data); });
     volume.spacing = nrrd.spacing;
     if (nrrd.origin) volume.origin = *nrrd.origin;

@@ -46,17 +46,19 @@ struct VoxelData {
     std::optional<std::uintmax_t> offset = 0;  // bytes before the first voxel; nullopt: the file's last bytes
     bool gzip = false;                         // deflated (gzip or zlib stream) from `offset` on
 };
-// What a NRRD header says of its voxels: where they are (its data file, or itself) and how they are stored,
-// and what it says of their place and values (absent: the reader's defaults).
-struct NrrdVoxels {
+// What a header (NRRD, MetaImage) says of its voxels: where they are (its data file, or itself) and how they
+// are stored, and what it says of their place and values (absent: the reader's defaults).
+struct HeaderVoxels {
     std::filesystem::path dataPath;
     VoxelData data;
     glm::dvec3 spacing{1.0, 1.0, 1.0};
     std::optional<glm::dvec3> origin;  // vri's: the box's corner
-    std::optional<ValueRange> range;   // its vri_range key
+    std::optional<ValueRange> range;   // NRRD's vri_range key
 };
-// Parses the header of `path` (.nhdr or .nrrd) as readNrrd does, with its messages; reads no voxel.
-NrrdVoxels nrrdVoxels(const std::filesystem::path& path);
+// Parse the header of `path` (.nhdr or .nrrd; .mhd or .mha) as readNrrd and readMetaImage do, with their
+// messages; read no voxel.
+HeaderVoxels nrrdVoxels(const std::filesystem::path& path);
+HeaderVoxels metaImageVoxels(const std::filesystem::path& path);
 
 // Where `data`'s voxels lie in `path` and how many bytes they take, checked before anything is allocated, so
 // that a mistyped --dims or header is an error, not a huge allocation.

@@ -84,8 +84,9 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
 namespace {
 
 // Where a volume's voxels lie as vri keeps them, so that a brick reads its box alone by offset: a raw file, an
-// Inviwo .dat's raw file, or the data of a NRRD stored so (raw encoding; uint8, uint16 or float32), with what
-// its header adds. nullopt for any other file (gzip, a type vri converts, another format), read whole.
+// Inviwo .dat's raw file, or the data of a NRRD or MetaImage stored so (uncompressed; uint8, uint16 or
+// float32), with what its header adds. nullopt for any other file (compressed, a type vri converts, TIFF,
+// .vdb), which is read whole.
 struct OffsetVoxels {
     std::filesystem::path file;
     RawLayout layout;
@@ -102,15 +103,17 @@ std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, con
         detail::DatVoxels dat = detail::inviwoDatVoxels(input);
         return OffsetVoxels{std::move(dat.rawPath), dat.layout, dat.origin, dat.range, "Rawfile"};
     }
-    if (extension != ".nrrd" && extension != ".nhdr") return std::nullopt;
-    const detail::NrrdVoxels nrrd = detail::nrrdVoxels(input);
-    const VoxelType type = detail::volumeTypeFor(nrrd.data.type);
-    if (nrrd.data.gzip || detail::storedTypeOf(type) != nrrd.data.type) return std::nullopt;
-    RawLayout layout{nrrd.data.dims, type, nrrd.data.order, nrrd.spacing, 0};
-    // Where the data begin (the file's last bytes, for byte skip -1); the read checks the file's size.
+    const bool nrrd = extension == ".nrrd" || extension == ".nhdr", mhd = extension == ".mhd" || extension == ".mha";
+    if (!nrrd && !mhd) return std::nullopt;
+    const detail::HeaderVoxels header = nrrd ? detail::nrrdVoxels(input) : detail::metaImageVoxels(input);
+    const std::string_view entry = nrrd ? "data file" : "ElementDataFile";
+    const VoxelType type = detail::volumeTypeFor(header.data.type);
+    if (header.data.gzip || detail::storedTypeOf(type) != header.data.type) return std::nullopt;
+    RawLayout layout{header.data.dims, type, header.data.order, header.spacing, 0};
+    // Where the data begin (the file's last bytes, for a header size of -1); the read checks the file's size.
     layout.headerBytes = static_cast<std::size_t>(detail::namingHeader(
-        input, nrrd.dataPath, [&] { return detail::storedVoxels(nrrd.dataPath, nrrd.data).offset; }));
-    return OffsetVoxels{nrrd.dataPath, layout, nrrd.origin, nrrd.range};
+        input, header.dataPath, [&] { return detail::storedVoxels(header.dataPath, header.data).offset; }, entry));
+    return OffsetVoxels{header.dataPath, layout, header.origin, header.range, entry};
 }
 
 }  // namespace

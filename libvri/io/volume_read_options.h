@@ -33,14 +33,14 @@ Volume readVolume(const std::filesystem::path& input, const VolumeReadOptions& o
 LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOptions& options, VolumeStorage storage);
 
 // How a brick of `input` is read by offset (readBrick): a raw file's layout (its name's or the options'), an
-// Inviwo .dat's, or a NRRD's whose voxels vri keeps as stored; nullopt for a file a brick reads whole. Reads no
-// voxel.
+// Inviwo .dat's, or a NRRD's or MetaImage's whose voxels vri keeps as stored; nullopt for a file a brick reads
+// whole. Reads no voxel.
 std::optional<RawLayout> offsetLayout(const std::filesystem::path& input, const VolumeReadOptions& options = {});
 
 // One brick of the volume (core/brick_volume.h) of a `counts` grid. A raw file is read by its rows of the
 // brick's stored box alone, so that the memory is the brick's, and so are an Inviwo .dat's raw file and a NRRD
-// whose voxels vri keeps as stored (raw encoding; uint8, uint16 or float32); any other format is read whole and
-// cut. The
+// or MetaImage whose voxels vri keeps as stored (uncompressed; uint8, uint16 or float32); any other format is
+// read whole and cut. The
 // normalisation range is `range` when given, else the type's for integers, else (float) the whole file's
 // min..max: a raw file's streamed a chunk at a time. Throws vri::Error naming the option or file at fault.
 BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,

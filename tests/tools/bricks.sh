@@ -95,6 +95,24 @@ dat=(--volume nan.dat --tf tf.yaml --size 37x29 --eye 60,-40,50 -q)
 "$bin/vri-render" "${dat[@]}" --bricks 2,2,2 --brick 0,0,0 -o nan-dat-layer.exr || fail "a .dat brick read a voxel outside its box"
 if "$bin/vri-render" "${dat[@]}" -o nan-dat-whole.exr 2> nan-dat.txt; then fail "the whole .dat render read no NaN"; fi
 grep -q "nan.dat: voxel 7679 (x 23, y 19, z 15) is nan" nan-dat.txt || fail "the .dat's NaN: $(cat nan-dat.txt)"
+# MetaImage likewise, its ElementDataFile or its LOCAL data after the header: a brick bit for bit the raw
+# file's, and a NaN in an .mha's last voxel stops the whole render and not brick 0,0,0 (--range given).
+/usr/bin/python3 - <<'PY'
+import random, struct
+open("noise.mhd", "w").write("ObjectType = Image\nNDims = 3\nDimSize = 24 20 16\nElementType = MET_UCHAR\n"
+                             "ElementDataFile = noise_24x20x16_uint8.raw\n")
+random.seed(6)
+values = [random.randrange(256) / 85.0 - 1.0 for _ in range(24 * 20 * 16)]
+values[-1] = float("nan")
+open("nan.mha", "wb").write(b"ObjectType = Image\nNDims = 3\nDimSize = 24 20 16\nElementType = MET_FLOAT\n"
+                            b"ElementDataFile = LOCAL\n" + b"".join(struct.pack("<f", v) for v in values))
+PY
+"$bin/vri-render" --volume noise.mhd "${scene[@]}" -o mhd-layer.exr
+"$bin/vri-diff" raw-layer.exr mhd-layer.exr --fail 0 > /dev/null || fail "a MetaImage's brick differs from the raw file's"
+mha=(--volume nan.mha --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --range -1,2)
+"$bin/vri-render" "${mha[@]}" --bricks 2,2,2 --brick 0,0,0 -o nan-mha-layer.exr || fail "an .mha brick read a voxel outside its box"
+if "$bin/vri-render" "${mha[@]}" -o nan-mha-whole.exr 2> nan-mha.txt; then fail "the whole .mha render read no NaN"; fi
+grep -q "nan.mha: voxel 7679 (x 23, y 19, z 15) is nan" nan-mha.txt || fail "the .mha's NaN: $(cat nan-mha.txt)"
 /usr/bin/python3 - <<'PY'
 import random, struct
 random.seed(3)
