@@ -47,7 +47,7 @@ std::optional<fs::path> inviwoDatDataFile(const fs::path& path) {
     return dataFileNamedBy(path, it->second.value);
 }
 
-DatVoxels inviwoDatVoxels(const fs::path& path) {
+HeaderVoxels inviwoDatVoxels(const fs::path& path) {
     requireRegularFile(path);
     const std::map<std::string, HeaderEntry> entries = parseDat(path);
     const auto find = [&](const std::string& key) -> const HeaderEntry* {
@@ -104,7 +104,14 @@ DatVoxels inviwoDatVoxels(const fs::path& path) {
         }
     }
 
-    DatVoxels voxels{dataFileNamedBy(path, require("rawfile", "Rawfile").value), layout, std::nullopt, std::nullopt};
+    // Checked as a raw file's layout is (a basis vector of length 0 gives a spacing of 0).
+    const fs::path rawPath = dataFileNamedBy(path, require("rawfile", "Rawfile").value);
+    namingHeader(
+        path, rawPath, [&] { requireValidLayout(rawPath, layout); }, "Rawfile");
+    HeaderVoxels voxels{
+        rawPath,        {layout.dims, storedTypeOf(layout.type), layout.order, layout.headerBytes, false},
+        layout.spacing, std::nullopt,
+        std::nullopt,   "Rawfile"};
     if (const HeaderEntry* range = find("datarange")) voxels.range = parseValueRange(range->value, where(*range));
     if (const HeaderEntry* offset = find("offset")) {
         const std::vector<double> o = parseNumbers(offset->value, 3, where(*offset));
@@ -113,14 +120,7 @@ DatVoxels inviwoDatVoxels(const fs::path& path) {
     return voxels;
 }
 
-Volume readInviwoDat(const fs::path& path) {
-    const DatVoxels dat = inviwoDatVoxels(path);
-    Volume volume = namingHeader(
-        path, dat.rawPath, [&] { return readRaw(dat.rawPath, dat.layout); }, "Rawfile");
-    volume.range = dat.range;
-    if (dat.origin) volume.origin = *dat.origin;
-    return volume;
-}
+Volume readInviwoDat(const fs::path& path) { return readHeaderVoxels(path, inviwoDatVoxels(path)); }
 
 void writeInviwoDat(const fs::path& path, const Volume& volume) {
     const fs::path rawPath = rawFileBeside(path);

@@ -156,7 +156,7 @@ HeaderVoxels metaImageVoxels(const fs::path& path) {
         }
     }
 
-    HeaderVoxels voxels{dataPath, data, spacing, std::nullopt, std::nullopt};
+    HeaderVoxels voxels{dataPath, data, spacing, std::nullopt, std::nullopt, "ElementDataFile"};
     for (const char* key : {"offset", "origin", "position"})
         if (const HeaderEntry* offset = find(key)) {
             const std::vector<double> o = parseNumbers(offset->value, 3, where(*offset));
@@ -165,13 +165,6 @@ HeaderVoxels metaImageVoxels(const fs::path& path) {
     return voxels;
 }
 
-Volume readMetaImage(const fs::path& path) {
-    const HeaderVoxels mhd = metaImageVoxels(path);
-    Volume volume = namingHeader(
-        path, mhd.dataPath, [&] { return readVoxelData(mhd.dataPath, mhd.data); }, "ElementDataFile");
-    volume.spacing = mhd.spacing;
-    if (mhd.origin) volume.origin = *mhd.origin;
-    return volume;
-}
+Volume readMetaImage(const fs::path& path) { return readHeaderVoxels(path, metaImageVoxels(path)); }
 
 }  // namespace vri::detail

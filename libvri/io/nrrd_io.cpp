@@ -141,6 +141,7 @@ HeaderVoxels nrrdVoxels(const fs::path& path) {
 
     RawLayout layout;
     HeaderVoxels result;
+    result.entry = "data file";
     const StoredType storedType = parseNrrdType(requiredField("type"), where("type"));
 
     const std::vector<double> sizes = parseNumbers(requiredField("sizes"), 3, where("sizes"));
@@ -247,14 +248,7 @@ HeaderVoxels nrrdVoxels(const fs::path& path) {
     return result;
 }
 
-Volume readNrrd(const fs::path& path) {
-    const HeaderVoxels nrrd = nrrdVoxels(path);
-    Volume volume = namingHeader(path, nrrd.dataPath, [&] { return readVoxelData(nrrd.dataPath, nrrd.data); });
-    volume.spacing = nrrd.spacing;
-    if (nrrd.origin) volume.origin = *nrrd.origin;
-    if (nrrd.range) volume.range = nrrd.range;
-    return volume;
-}
+Volume readNrrd(const fs::path& path) { return readHeaderVoxels(path, nrrdVoxels(path)); }
 
 void writeNrrd(const fs::path& path, const Volume& volume) {
     const bool attached = toLower(path.extension().string()) == ".nrrd";

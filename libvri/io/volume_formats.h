@@ -28,14 +28,7 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume);
 Volume readMetaImage(const std::filesystem::path& path);  // .mhd (detached) or .mha (LOCAL data)
 Volume readTiffStack(const std::filesystem::path& path);  // .tif/.tiff: one page per z slice
 Volume readInviwoDat(const std::filesystem::path& path);
-// An Inviwo .dat header: its raw file, the layout it gives it, and its DataRange and Offset; reads no voxel.
-struct DatVoxels {
-    std::filesystem::path rawPath;
-    RawLayout layout;
-    std::optional<ValueRange> range;
-    std::optional<glm::dvec3> origin;
-};
-DatVoxels inviwoDatVoxels(const std::filesystem::path& path);
+
 void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);
 
 // Where a header format's voxels are and how they are stored.
@@ -46,19 +39,25 @@ struct VoxelData {
     std::optional<std::uintmax_t> offset = 0;  // bytes before the first voxel; nullopt: the file's last bytes
     bool gzip = false;                         // deflated (gzip or zlib stream) from `offset` on
 };
-// What a header (NRRD, MetaImage) says of its voxels: where they are (its data file, or itself) and how they
-// are stored, and what it says of their place and values (absent: the reader's defaults).
+// What a header (NRRD, MetaImage, Inviwo .dat) says of its voxels: where they are (its data file, or itself)
+// and how they are stored, and what it says of their place and values (absent: the reader's defaults).
 struct HeaderVoxels {
     std::filesystem::path dataPath;
     VoxelData data;
     glm::dvec3 spacing{1.0, 1.0, 1.0};
     std::optional<glm::dvec3> origin;  // vri's: the box's corner
-    std::optional<ValueRange> range;   // NRRD's vri_range key
+    std::optional<ValueRange> range;   // NRRD's vri_range, the .dat's DataRange
+    std::string_view entry;            // what the header calls its data file, for messages
 };
-// Parse the header of `path` (.nhdr or .nrrd; .mhd or .mha) as readNrrd and readMetaImage do, with their
-// messages; read no voxel.
+// Parse the header of `path` (.nhdr or .nrrd; .mhd or .mha; .dat) as the readers do, with their messages;
+// read no voxel.
 HeaderVoxels nrrdVoxels(const std::filesystem::path& path);
 HeaderVoxels metaImageVoxels(const std::filesystem::path& path);
+HeaderVoxels inviwoDatVoxels(const std::filesystem::path& path);
+// Throws "PATH: dimensions must be at least 1x1x1" or "... spacing must be positive and finite" for a raw layout.
+void requireValidLayout(const std::filesystem::path& path, const RawLayout& layout);
+// The volume `header` describes (`voxels`, its parse): its voxels read, its messages after the header's.
+Volume readHeaderVoxels(const std::filesystem::path& header, const HeaderVoxels& voxels);
 
 // Where `data`'s voxels lie in `path` and how many bytes they take, checked before anything is allocated, so
 // that a mistyped --dims or header is an error, not a huge allocation.

@@ -35,17 +35,6 @@ void reverseEachVoxel(std::vector<std::byte>& bytes, std::size_t voxelBytes) {
         std::reverse(it, it + static_cast<std::ptrdiff_t>(voxelBytes));
 }
 
-void requireValidLayout(const fs::path& path, const RawLayout& layout) {
-    const glm::ivec3 d = layout.dims;
-    if (d.x < 1 || d.y < 1 || d.z < 1)
-        throw Error(path.string() + ": dimensions must be at least 1x1x1, got " + dimsText(d));
-    const glm::dvec3 s = layout.spacing;
-    for (int axis = 0; axis < 3; ++axis)
-        if (!(s[axis] > 0.0) || !std::isfinite(s[axis]))
-            throw Error(path.string() + ": spacing must be positive and finite, got " + exactNumber(s.x) +
-                        " " + exactNumber(s.y) + " " + exactNumber(s.z));
-}
-
 std::optional<glm::ivec3> parseDimsToken(std::string_view token) {
     glm::ivec3 dims;
     for (int axis = 0; axis < 3; ++axis) {
@@ -61,6 +50,26 @@ std::optional<glm::ivec3> parseDimsToken(std::string_view token) {
 }  // namespace
 
 namespace detail {
+
+void requireValidLayout(const fs::path& path, const RawLayout& layout) {
+    const glm::ivec3 d = layout.dims;
+    if (d.x < 1 || d.y < 1 || d.z < 1)
+        throw Error(path.string() + ": dimensions must be at least 1x1x1, got " + dimsText(d));
+    const glm::dvec3 s = layout.spacing;
+    for (int axis = 0; axis < 3; ++axis)
+        if (!(s[axis] > 0.0) || !std::isfinite(s[axis]))
+            throw Error(path.string() + ": spacing must be positive and finite, got " + exactNumber(s.x) + " " +
+                        exactNumber(s.y) + " " + exactNumber(s.z));
+}
+
+Volume readHeaderVoxels(const fs::path& header, const HeaderVoxels& voxels) {
+    Volume volume = namingHeader(
+        header, voxels.dataPath, [&] { return readVoxelData(voxels.dataPath, voxels.data); }, voxels.entry);
+    volume.spacing = voxels.spacing;
+    if (voxels.origin) volume.origin = *voxels.origin;
+    if (voxels.range) volume.range = voxels.range;
+    return volume;
+}
 
 void requireRegularFile(const fs::path& path) {
     std::error_code ec;
@@ -314,7 +323,7 @@ std::string_view volumeStorageName(VolumeStorage storage) {
 
 Volume readRaw(const fs::path& path, const RawLayout& layout) {
     detail::requireRegularFile(path);
-    requireValidLayout(path, layout);
+    detail::requireValidLayout(path, layout);
     Volume volume = detail::readVoxelData(
         path, {layout.dims, detail::storedTypeOf(layout.type), layout.order, layout.headerBytes, false});
     volume.spacing = layout.spacing;
@@ -326,7 +335,7 @@ namespace {
 // A raw file checked against its layout as readRaw checks it: its voxel bytes.
 std::uint64_t checkedRawFile(const fs::path& path, const RawLayout& layout) {
     detail::requireRegularFile(path);
-    requireValidLayout(path, layout);
+    detail::requireValidLayout(path, layout);
     const detail::StoredVoxels stored = detail::storedVoxels(
         path, {layout.dims, detail::storedTypeOf(layout.type), layout.order, layout.headerBytes, false});
     detail::requireExactSize(path, stored);

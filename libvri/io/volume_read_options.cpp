@@ -99,21 +99,19 @@ std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, con
     if (std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options)))
         return OffsetVoxels{input, *layout, std::nullopt, std::nullopt};
     const std::string extension = detail::toLower(input.extension().string());
-    if (extension == ".dat") {
-        detail::DatVoxels dat = detail::inviwoDatVoxels(input);
-        return OffsetVoxels{std::move(dat.rawPath), dat.layout, dat.origin, dat.range, "Rawfile"};
-    }
     const bool nrrd = extension == ".nrrd" || extension == ".nhdr", mhd = extension == ".mhd" || extension == ".mha";
-    if (!nrrd && !mhd) return std::nullopt;
-    const detail::HeaderVoxels header = nrrd ? detail::nrrdVoxels(input) : detail::metaImageVoxels(input);
-    const std::string_view entry = nrrd ? "data file" : "ElementDataFile";
+    if (!nrrd && !mhd && extension != ".dat") return std::nullopt;
+    const detail::HeaderVoxels header = nrrd  ? detail::nrrdVoxels(input)
+                                        : mhd ? detail::metaImageVoxels(input)
+                                              : detail::inviwoDatVoxels(input);
     const VoxelType type = detail::volumeTypeFor(header.data.type);
     if (header.data.gzip || detail::storedTypeOf(type) != header.data.type) return std::nullopt;
     RawLayout layout{header.data.dims, type, header.data.order, header.spacing, 0};
     // Where the data begin (the file's last bytes, for a header size of -1); the read checks the file's size.
     layout.headerBytes = static_cast<std::size_t>(detail::namingHeader(
-        input, header.dataPath, [&] { return detail::storedVoxels(header.dataPath, header.data).offset; }, entry));
-    return OffsetVoxels{header.dataPath, layout, header.origin, header.range, entry};
+        input, header.dataPath, [&] { return detail::storedVoxels(header.dataPath, header.data).offset; },
+        header.entry));
+    return OffsetVoxels{header.dataPath, layout, header.origin, header.range, header.entry};
 }
 
 }  // namespace
