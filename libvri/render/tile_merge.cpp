@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "libvri/core/brick_layers.h"
 #include "libvri/render/render_job.h"  // medianIntervalRecord
 #include "libvri/util/error.h"
 #include "libvri/util/json_file.h"
@@ -255,15 +256,17 @@ MergedTiles mergeTiles(const std::vector<TileFiles>& tiles) {
         throw Error("the tiles cover " + std::to_string(covered) + " of the " + imageSize + " image's " +
                     std::to_string(pixels) + " pixels (tiles must cover the image once)");
 
+    // A render's tiles are RGBA; a brick's (its scene names the brick) are its layer's channels (brick_layers.h).
+    const bool layer = records[0]["scene"].is_object() && records[0]["scene"].contains("brick");
+    const Image shape = layer ? brickLayerImage(1, 1) : Image(1, 1);
     std::vector<Image> images;
     for (std::size_t i = 0; i < tiles.size(); ++i) {
         const PixelRegion& r = regions[i];
         Image tile = readImage(tiles[i].image);
-        if (tile.width != r.width || tile.height != r.height || tile.channels != 4 ||
-            tile.channelNames != Image().channelNames)
+        if (tile.width != r.width || tile.height != r.height || tile.channelNames != shape.channelNames)
             throw Error(tiles[i].image + ": a " + std::to_string(tile.width) + "x" + std::to_string(tile.height) +
-                        " image of " + std::to_string(tile.channels) + " channels, but " + names[i] +
-                        " says a RGBA region " + r.text());
+                        " image of " + std::to_string(tile.channels) + " channels, but " + names[i] + " says a " +
+                        (layer ? "brick layer's" : "RGBA") + " region " + r.text());
         const ImageMetadata metadata = readImageMetadata(tiles[i].image);
         const auto said = std::ranges::find(metadata, std::string("vri:region"), &ImageMetadata::value_type::first);
         if (said == metadata.end() || said->second != r.text())
@@ -272,12 +275,14 @@ MergedTiles mergeTiles(const std::vector<TileFiles>& tiles) {
         images.push_back(std::move(tile));
     }
     MergedTiles merged;
-    merged.image = Image(width, height);  // as many pixels as the tiles' images hold: checked above
+    // As many pixels as the tiles' images hold: checked above.
+    merged.image = layer ? brickLayerImage(width, height) : Image(width, height);
+    const std::ptrdiff_t channels = shape.channels;
     for (std::size_t i = 0; i < tiles.size(); ++i) {
         const PixelRegion& r = regions[i];
         for (int y = 0; y < r.height; ++y)
-            std::copy_n(images[i].pixels.begin() + std::ptrdiff_t(y) * r.width * 4, std::size_t(r.width) * 4,
-                        &merged.image.at(r.x, r.y + y, 0));
+            std::copy_n(images[i].pixels.begin() + std::ptrdiff_t(y) * r.width * channels,
+                        std::size_t(r.width) * std::size_t(channels), &merged.image.at(r.x, r.y + y, 0));
         images[i] = Image();  // each tile's pixels freed once copied
     }
 

@@ -203,6 +203,25 @@ layer = oiio.ImageBuf("layer.exr").get_pixels(oiio.FLOAT)
 tiles = np.concatenate([oiio.ImageBuf(f).get_pixels(oiio.FLOAT) for f in ("top.exr", "bottom.exr")])
 assert layer.shape[2] == 5 and np.array_equal(layer.view(np.uint32), tiles.view(np.uint32))
 PY
+# vri-merge-tiles --tile joins a layer's tiles into the layer, bit for bit, which then joins with the other
+# bricks' layers as the untiled one does: tiles and bricks combined.
+"$bin/vri-merge-tiles" --tile top.exr top.json --tile bottom.exr bottom.json -o merged-layer.exr --stats merged-layer.json
+"$bin/vri-diff" layer.exr merged-layer.exr --fail 0 > /dev/null || fail "the merged tiles are not the layer"
+/usr/bin/python3 - <<'PY' || fail "the merged layer's channels"
+import OpenImageIO as oiio
+spec = oiio.ImageBuf("merged-layer.exr").spec()
+assert list(spec.channelnames) == ["R", "G", "B", "A", "brick_order"], spec.channelnames
+a, b = (oiio.ImageBuf(f).get_pixels(oiio.FLOAT) for f in ("layer.exr", "merged-layer.exr"))
+assert (a.view("uint32") == b.view("uint32")).all()
+PY
+layers=()
+for b in 0,0,0 0,1,0 1,1,0; do
+  "$bin/vri-render" "${scene[@]/1,0,0/$b}" -o "tiled-layer-$b.exr" --stats "tiled-layer-$b.json"
+  layers+=(--layer "tiled-layer-$b.exr" "tiled-layer-$b.json")
+done
+"$bin/vri-merge-tiles" "${layers[@]}" --layer layer.exr layer.json -o joined-untiled.exr
+"$bin/vri-merge-tiles" "${layers[@]}" --layer merged-layer.exr merged-layer.json -o joined-tiled.exr
+"$bin/vri-diff" joined-untiled.exr joined-tiled.exr --fail 0 > /dev/null || fail "a layer merged from tiles joins otherwise"
 
 # Refusals: one line naming the option, exit 1 (64 for usage).
 expect() {
