@@ -59,6 +59,7 @@ public:
     void sceneOptions(Step& step, const SceneSpec& scene) const;
     void addTiles(const RunSpec& run, const SceneSpec& scene, const Step& render);
     void addBricks(const RunSpec& run, const SceneSpec& scene, const Step& render);
+    void addLayerTiles(const RunSpec& run, const SceneSpec& scene, const Step& brick);
     // One part of a split run (a tile or a brick): what its step adds to the render's.
     struct RunPart {
         std::string suffix;                             // of the run's id: ".tile-1", ".brick-0-1-0"
@@ -139,12 +140,12 @@ void Planner::addRender(const RunSpec& run) {
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
     step.alone = run.tiles == 1 && run.bricks == glm::ivec3(1);
-    if (run.tiles > 1) {
-        addTiles(run, scene, step);
+    if (run.bricks != glm::ivec3(1)) {  // each brick's layer in tiles where the run has tiles too
+        addBricks(run, scene, step);
         return;
     }
-    if (run.bricks != glm::ivec3(1)) {
-        addBricks(run, scene, step);
+    if (run.tiles > 1) {
+        addTiles(run, scene, step);
         return;
     }
     output(step, "-o", renderImage(plan_, run.id));
@@ -210,11 +211,15 @@ void Planner::addSplit(const RunSpec& run, const SceneSpec& scene, const Step& r
         step.volumeBytes = part.volumeBytes;
         step.arguments.insert(step.arguments.end(), part.arguments.begin(), part.arguments.end());
         step.parameters.push_back(part.parameter);
-        output(step, "-o", result(step.id + ".exr"));
-        output(step, render_flag::stats, result(step.id + ".json"));
         merge.arguments.push_back(mergeFlag);
         input(merge, "", result(step.id + ".exr"));
         input(merge, "", result(step.id + ".json"));
+        if (mergeFlag == std::string_view(merge_flag::layer) && run.tiles > 1) {
+            addLayerTiles(run, scene, step);
+            continue;
+        }
+        output(step, "-o", result(step.id + ".exr"));
+        output(step, render_flag::stats, result(step.id + ".json"));
         plan_.steps.push_back(std::move(step));
     }
     for (const ToolOption& o : scene.options)  // the preview's looks, made from the whole image
@@ -223,6 +228,31 @@ void Planner::addSplit(const RunSpec& run, const SceneSpec& scene, const Step& r
     output(merge, "-o", renderImage(plan_, run.id));
     output(merge, render_flag::png, result(run.id + ".png"));
     output(merge, render_flag::stats, result(run.id + ".json"));
+    plan_.steps.push_back(std::move(merge));
+}
+
+// A brick's layer as tiles: the brick's command with --region per band of rows, then vri-merge-tiles --tile
+// writing the layer the brick's step would have, which the join then reads.
+void Planner::addLayerTiles(const RunSpec& run, const SceneSpec& scene, const Step& brick) {
+    Step merge{brick.id, "render", "vri-merge-tiles", {}, {}, {}, brick.parameters};
+    merge.parameters.push_back({"tiles", std::to_string(run.tiles)});
+    merge.pixels = brick.pixels;
+    const std::vector<PixelRegion> bands = rowBands(scene.width, scene.height, run.tiles);
+    for (std::size_t k = 0; k < bands.size(); ++k) {
+        Step tile = brick;
+        tile.id = brick.id + ".tile-" + std::to_string(k + 1);
+        tile.pixels = static_cast<std::uint64_t>(bands[k].width) * static_cast<std::uint64_t>(bands[k].height);
+        tile.arguments.insert(tile.arguments.end(), {kRegionFlag, bands[k].text()});
+        tile.parameters.push_back({"region", bands[k].text()});
+        output(tile, "-o", result(tile.id + ".exr"));
+        output(tile, render_flag::stats, result(tile.id + ".json"));
+        merge.arguments.push_back(merge_flag::tile);
+        input(merge, "", result(tile.id + ".exr"));
+        input(merge, "", result(tile.id + ".json"));
+        plan_.steps.push_back(std::move(tile));
+    }
+    output(merge, "-o", result(brick.id + ".exr"));
+    output(merge, render_flag::stats, result(brick.id + ".json"));
     plan_.steps.push_back(std::move(merge));
 }
 

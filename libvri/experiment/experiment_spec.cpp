@@ -607,7 +607,6 @@ void ExperimentReader::readRuns(const YAML::Node& node, bool reference, Experime
                     if (renderer || exact)
                         throw Error(bricked + "method " + methodName + " (" + run.tool +
                                     ") renders whole volumes only");
-                    if (tiles > 1) throw Error(bricked + "a bricked run renders each brick untiled (no tiles:)");
                     if (request.clamp) throw Error(bricked + "clamp clamps the joined image, not a brick's layer");
                     const SceneSpec& s = experiment.scene(scene);
                     if (std::none_of(s.options.begin(), s.options.end(),

@@ -223,6 +223,23 @@ done
 "$bin/vri-merge-tiles" "${layers[@]}" --layer merged-layer.exr merged-layer.json -o joined-tiled.exr
 "$bin/vri-diff" joined-untiled.exr joined-tiled.exr --fail 0 > /dev/null || fail "a layer merged from tiles joins otherwise"
 
+# An experiment's run in bricks and tiles (vri-run): each brick's layer joined from its tiles, then the
+# bricks joined: bit for bit the run in bricks alone.
+cat > both.yaml <<'YAML'
+name: both
+title: bricks and tiles
+paper: {paper: none, item: bricks, says: a test}
+scenes:
+  noise: {volume: noise_24x20x16_uint8.raw, convention: cell, tf: tf.yaml, size: [37, 29],
+          camera: {eye: [60, -40, 50], target: [12, 10, 8], up: [0, 0, 1]}}
+methods:
+  bricked: {method: riemann, step: 0.5, bricks: [2, 1, 2]}
+  tiled: {method: riemann, step: 0.5, bricks: [2, 1, 2], tiles: 3}
+YAML
+"$bin/vri-run" --results runs both.yaml 2> both.txt || { cat both.txt; fail "the run in bricks and tiles failed"; }
+[ -f runs/both/tiled.brick-1-0-1.tile-3.exr ] || fail "no tile of a brick: $(ls runs/both)"
+"$bin/vri-diff" runs/both/bricked.exr runs/both/tiled.exr --fail 0 > /dev/null || fail "bricks in tiles join otherwise"
+
 # Refusals: one line naming the option, exit 1 (64 for usage).
 expect() {
   local code=$1 pattern=$2

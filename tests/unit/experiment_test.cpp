@@ -523,6 +523,31 @@ TEST_CASE("experiment: bricks of a raw file laid out by its name carry the bytes
     CHECK(plan.step("riemann").volumeBytes == 0);  // the join holds layers, not voxels
 }
 
+TEST_CASE("experiment: bricks in tiles: each brick's layer from its tiles, then the join") {
+    ExperimentDir d;
+    d.write("v_10x6x4_uint16.raw", std::string(10 * 6 * 4 * 2, '\0'));
+    const vri::Experiment e =
+        d.parse(kHead +
+                "scenes: {s: {volume: v_10x6x4_uint16.raw, convention: cell, tf: a.yaml, size: [8, 5]}}\n"
+                "methods:\n  riemann: {bricks: [2, 1, 1], tiles: 2}\n");
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    for (const char* brick : {"riemann.brick-0-0-0", "riemann.brick-1-0-0"}) {
+        const vri::Step& layer = plan.step(brick);
+        CHECK(layer.tool == "vri-merge-tiles");  // the layer joined from the brick's tiles
+        CHECK(std::ranges::count(layer.arguments, std::string("--tile")) == 2);
+        for (const char* tile : {".tile-1", ".tile-2"}) {
+            const vri::Step& t = plan.step(std::string(brick) + tile);
+            CHECK(t.tool == "vri-render");
+            CHECK(std::ranges::count(t.arguments, std::string("--region")) == 1);
+            CHECK(std::ranges::count(t.arguments, std::string("--brick")) == 1);
+        }
+    }
+    CHECK(plan.step("riemann.brick-0-0-0.tile-1").volumeBytes == 6 * 6 * 4 * 2);  // a tile of a brick holds the brick
+    const vri::Step& join = plan.step("riemann");
+    CHECK(std::ranges::count(join.arguments, std::string("--layer")) == 2);
+    CHECK(plan.steps.size() == 2 * (2 + 1) + 1);
+}
+
 TEST_CASE("experiment: bricks of a NRRD whose voxels a brick reads by offset carry the bytes each brick holds") {
     ExperimentDir d;
     d.write("v.raw", std::string(10 * 6 * 4 * 2, '\0'));
