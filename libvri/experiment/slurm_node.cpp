@@ -45,7 +45,7 @@ void writeNodeSteps(const fs::path& file, const NodeSteps& steps) {
 NodeSteps readNodeSteps(const fs::path& file) {
     const nlohmann::json j = readJsonFile(file);
     return readingJsonOf(file, [&] {
-        NodeSteps steps{j.at("work_dir").get<std::string>(), {}, j.at("digest_record").get<std::string>()};
+        NodeSteps steps{j.at("work_dir").get<std::string>(), {}, j.value("digest_record", std::string())};
         for (const nlohmann::json& s : j.at("steps"))
             steps.steps.push_back({s.at("id").get<std::string>(), s.at("program").get<std::string>(),
                                    s.at("words").get<std::vector<std::string>>(), s.at("log").get<std::string>(),

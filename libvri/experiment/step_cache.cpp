@@ -72,8 +72,15 @@ nlohmann::json toJson(const std::vector<FileDigest>& files) {
 
 const std::string& FileHasher::digest(const fs::path& path) {
     if (auto found = digests_.find(path); found != digests_.end()) return found->second;
-    std::error_code ec;
-    return digests_[path] = fs::is_regular_file(path, ec) ? sha512File(path) : kMissing;
+    const std::optional<FileStamp> before = fileStamp(path);  // before the read: a write meanwhile shows later
+    if (!before) return digests_[path] = kMissing;
+    stamps_[path] = *before;
+    return digests_[path] = sha512File(path);
+}
+
+std::optional<FileStamp> FileHasher::stamp(const fs::path& path) const {
+    const auto found = stamps_.find(path);
+    return found == stamps_.end() ? std::nullopt : std::optional<FileStamp>(found->second);
 }
 
 std::vector<std::string> stepKeys(const Plan& plan, const fs::path& toolDir, FileHasher& hasher) {

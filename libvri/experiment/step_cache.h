@@ -15,6 +15,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "libvri/experiment/experiment_plan.h"
+#include "libvri/util/input_digest.h"
 
 namespace vri {
 
@@ -23,10 +24,16 @@ class FileHasher {
 public:
     // The digest, or "missing" when there is no such file.
     const std::string& digest(const std::filesystem::path& path);
-    void forget(const std::filesystem::path& path) { digests_.erase(path); }
+    // The size and time the file had before digest() hashed it; nullopt when it was missing or not hashed.
+    std::optional<FileStamp> stamp(const std::filesystem::path& path) const;
+    void forget(const std::filesystem::path& path) {
+        digests_.erase(path);
+        stamps_.erase(path);
+    }
 
 private:
     std::map<std::filesystem::path, std::string> digests_;
+    std::map<std::filesystem::path, FileStamp> stamps_;
 };
 
 // The keys of all steps of a plan, in plan order; tools are looked up in `toolDir`.

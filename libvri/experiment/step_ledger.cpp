@@ -78,13 +78,16 @@ fs::path StepLedger::logPath(std::size_t i) const {
 std::vector<std::string> StepLedger::prepare(std::size_t i) {
     if (!digestRecordWritten_) {  // before the first step runs (a dry run writes nothing)
         // The source files the keys digested (a step's outputs are another's inputs, digested once it ran).
-        std::vector<std::pair<fs::path, std::string>> sources;
+        std::vector<StampedDigest> sources;
         std::set<fs::path> produced, listed;
         for (const Step& step : plan_.steps) produced.insert(step.outputs.begin(), step.outputs.end());
         for (const Step& step : plan_.steps)
             for (const fs::path& input : step.inputs)
-                if (!produced.contains(input) && listed.insert(input).second)
-                    sources.emplace_back(input, hasher_.digest(input));
+                if (!produced.contains(input) && listed.insert(input).second) {
+                    const std::string& sha512 = hasher_.digest(input);
+                    if (const std::optional<FileStamp> stamp = hasher_.stamp(input))
+                        sources.push_back({input, sha512, *stamp});
+                }
         writeDigestRecord(digestRecord_, sources);
         digestRecordWritten_ = true;
     }

@@ -104,7 +104,7 @@ HeaderVoxels inviwoDatVoxels(const fs::path& path) {
         }
     }
 
-    // Checked as a raw file's layout is (a basis vector of length 0 gives a spacing of 0).
+    // Checked as a raw file's layout is (a basis vector so short that its spacing underflows to 0).
     const fs::path rawPath = dataFileNamedBy(path, require("rawfile", "Rawfile").value);
     namingHeader(
         path, rawPath, [&] { requireValidLayout(rawPath, layout); }, "Rawfile");

@@ -33,9 +33,11 @@ Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
 // The voxels [box.lo, box.hi) of a raw file whose size must be as readRaw's, read row by row from their
 // offsets: the memory is the box's, whatever the file's size (a brick, core/brick_volume.h).
 Volume readRawBox(const std::filesystem::path& path, const RawLayout& layout, const VoxelBox& box);
-// The min..max of a raw file's voxels, read a chunk at a time; throws vri::Error naming the file at a
-// NaN or an infinity (float), as requireUsableValues would on the whole volume.
-ValueRange rawValueRange(const std::filesystem::path& path, const RawLayout& layout);
+// The min..max of a raw file's voxels, read a chunk at a time; throws vri::Error at a NaN or an infinity
+// (float) as requireUsableValues would on the whole volume, naming `volumeName` (the header that describes the
+// file), else the file.
+ValueRange rawValueRange(const std::filesystem::path& path, const RawLayout& layout,
+                         const std::string& volumeName = {});
 // Writes the voxels only (no header), atomically.
 void writeRaw(const std::filesystem::path& path, const Volume& volume, ByteOrder order = ByteOrder::Little);
 

@@ -139,7 +139,9 @@ BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOption
     b.voxels.range = range           ? range
                      : source->range ? source->range
                                      : fixedNormalisationRange(source->layout.type, std::nullopt);
-    if (!b.voxels.range) b.voxels.range = naming([&] { return rawValueRange(source->file, source->layout); });
+    // A NaN named as the whole read names it: by the volume's name and its place in the volume.
+    if (!b.voxels.range)
+        b.voxels.range = naming([&] { return rawValueRange(source->file, source->layout, input.string()); });
     // Checked as the whole volume would be: its box, a voxel named by its place in it.
     const auto requireUsable = [&](const Volume& v, const std::string& source) {
         requireUsableValues(v, grid.storedBox(brick), grid.dims(), source);

@@ -15,29 +15,23 @@ namespace vri {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// Size and modification time in nanoseconds, or false when the file cannot be looked at.
-bool stamp(const fs::path& path, std::uintmax_t& size, long long& mtime) {
+std::optional<FileStamp> fileStamp(const fs::path& path) {
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) return false;
-    size = fs::file_size(path, ec);
-    if (ec) return false;
+    if (!fs::is_regular_file(path, ec)) return std::nullopt;
+    FileStamp stamp;
+    stamp.size = fs::file_size(path, ec);
+    if (ec) return std::nullopt;
     const auto time = fs::last_write_time(path, ec);
-    if (ec) return false;
-    mtime =
+    if (ec) return std::nullopt;
+    stamp.mtimeNs =
         std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::file_clock::to_sys(time).time_since_epoch())
-            .count();  // since the Unix epoch
-    return true;
+            .count();
+    return stamp;
 }
-
-}  // namespace
 
 InputDigest inputDigest(const fs::path& path) {
     const char* named = std::getenv(kInputDigestsVariable);
-    std::uintmax_t size = 0;
-    long long mtime = 0;
-    if (named && *named && stamp(path, size, mtime)) {
+    if (const std::optional<FileStamp> stamp = named && *named ? fileStamp(path) : std::nullopt) {
         const fs::path record = named;
         const std::string where = std::string(kInputDigestsVariable) + " " + record.string();
         nlohmann::json j;
@@ -49,8 +43,8 @@ InputDigest inputDigest(const fs::path& path) {
         const std::string absolute = fs::absolute(path).lexically_normal().string();
         try {
             for (const nlohmann::json& f : j.at("files"))
-                if (f.at("path").get<std::string>() == absolute && f.at("size").get<std::uintmax_t>() == size &&
-                    f.at("mtime_ns").get<long long>() == mtime)
+                if (f.at("path").get<std::string>() == absolute && f.at("size").get<std::uintmax_t>() == stamp->size &&
+                    f.at("mtime_ns").get<long long>() == stamp->mtimeNs)
                     return {f.at("sha512").get<std::string>(), record};
         } catch (const nlohmann::json::exception& e) {
             throw Error(where + ": not a record of digests (" + e.what() + ")");
@@ -59,17 +53,16 @@ InputDigest inputDigest(const fs::path& path) {
     return {sha512File(path), {}};
 }
 
-void writeDigestRecord(const fs::path& record, const std::vector<std::pair<fs::path, std::string>>& digests) {
+void writeDigestRecord(const fs::path& record, const std::vector<StampedDigest>& digests) {
     nlohmann::json files = nlohmann::json::array();
-    for (const auto& [path, sha512] : digests) {
-        std::uintmax_t size = 0;
-        long long mtime = 0;
-        if (stamp(path, size, mtime))
-            files.push_back({{"path", fs::absolute(path).lexically_normal().string()},
-                             {"size", size},
-                             {"mtime_ns", mtime},
-                             {"sha512", sha512}});
-    }
+    for (const StampedDigest& d : digests)
+        if (fileStamp(d.path) == d.stamp)
+            files.push_back({{"path", fs::absolute(d.path).lexically_normal().string()},
+                             {"size", d.stamp.size},
+                             {"mtime_ns", d.stamp.mtimeNs},
+                             {"sha512", d.sha512}});
+    std::error_code ec;
+    if (fs::is_symlink(record, ec)) fs::remove(record);
     writeTextFile(record, nlohmann::json{{"files", files}}.dump(2) + "\n");
 }
 

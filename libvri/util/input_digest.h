@@ -4,7 +4,9 @@
 // time are still those recorded, else computed. A brick job then records its volume's digest without reading
 // the whole file, of which it reads only its brick. The file is trusted to have kept its contents while its
 // size and nanosecond modification time stayed: the test make and rsync use, not a proof.
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,10 +21,24 @@ struct InputDigest {
 // Throws vri::Error naming VRI_INPUT_DIGESTS when the record it names cannot be read or is malformed.
 InputDigest inputDigest(const std::filesystem::path& path);
 
-// Writes the record for `digests` (each file's digest as computed now; files that are gone are left out):
-// {"files": [{"path", "size", "mtime_ns", "sha512"}, ...]}, paths absolute.
-void writeDigestRecord(const std::filesystem::path& record,
-                       const std::vector<std::pair<std::filesystem::path, std::string>>& digests);
+// A file's size and modification time (ns since the Unix epoch, as fine as the file system keeps it).
+struct FileStamp {
+    std::uintmax_t size = 0;
+    long long mtimeNs = 0;
+    bool operator==(const FileStamp&) const = default;
+};
+std::optional<FileStamp> fileStamp(const std::filesystem::path& path);  // nullopt: not a regular file
+
+// A file's digest with the stamp it had before it was hashed.
+struct StampedDigest {
+    std::filesystem::path path;
+    std::string sha512;
+    FileStamp stamp;
+};
+// Writes the record {"files": [{"path", "size", "mtime_ns", "sha512"}, ...]}, paths absolute, of the files whose
+// stamp is still the one they were hashed with (one written since is left out, and then computed by whoever
+// needs it); a link in the record's place is removed, never written through.
+void writeDigestRecord(const std::filesystem::path& record, const std::vector<StampedDigest>& digests);
 
 inline constexpr const char* kInputDigestsVariable = "VRI_INPUT_DIGESTS";
 

@@ -63,7 +63,7 @@ bad 1 "${R}cloud\.vdb: vri_dims 150x150x150 \(uint8\) kept sparse, the [0-9]+ br
 # 2^30 voxels along each axis: the table alone would take 2^83 bytes (auto keeps such a box sparse).
 bad 1 "${C}huge\.vdb: vri_dims 1073741824x1073741824x1073741824 \(uint8\) kept sparse, its brick table: needs .* bytes, limit [0-9]+ \(VRI_MAX_BYTES\)$" -- \
   "$bin/vri-convert" --info huge.vdb
-bad 1 "${C}nan\.vdb: voxel \(x 17, y 1, z 2\) is nan: float volumes must hold finite values$" -- \
+bad 1 "${C}nan\.vdb: voxel 157 \(x 17, y 1, z 2\) is nan: float volumes must hold finite values$" -- \
   "$bin/vri-convert" --info --storage sparse nan.vdb
 
 # --- item 4: tiles that fill gigabytes of bricks, refused before any brick is read ---

@@ -154,6 +154,12 @@ grep -q "nan.nrrd: voxel 7679 (x 23, y 19, z 15) is nan" nan.txt || { cat nan.tx
 # not), a box over the byte limit by its file (and by the header that names it).
 if "$bin/vri-render" "${scene[@]}" --bricks 2,2,2 --brick 1,1,1 -o nan-brick.exr 2> nan-brick.txt; then fail "the brick read no NaN"; fi
 grep -q "nan.nrrd: voxel 7679 (x 23, y 19, z 15) is nan" nan-brick.txt || fail "the brick's NaN: $(cat nan-brick.txt)"
+# Without a range a float brick's normalisation streams the whole file, and the NaN it meets there is named as
+# the whole read names it, by the volume and its place in it.
+if "$bin/vri-render" --volume nan.nrrd --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --bricks 2,2,2 --brick 0,0,0 \
+  -o nan-range.exr 2> nan-range.txt; then fail "the brick's range read no NaN"; fi
+grep -qx "vri-render: error: nan.nrrd: voxel 7679 (x 23, y 19, z 15) is nan: float volumes must hold finite values" nan-range.txt ||
+  fail "the range's NaN: $(cat nan-range.txt)"
 far=(--volume noise_24x20x16_uint8.raw --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --spacing 1e307,1,1)
 for brick in "" "--bricks 2,1,1 --brick 0,0,0"; do
   if "$bin/vri-render" "${far[@]}" $brick -o far.exr 2> far.txt; then fail "a box beyond double's range rendered ($brick)"; fi

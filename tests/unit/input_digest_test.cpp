@@ -40,8 +40,11 @@ TEST_CASE("input digests: taken from the record while size and time hold, comput
     const fs::path file = dir / "volume.raw", record = dir / "record.json";
     write(file, "12345678");
     const std::string real = sha512File(file);
-    // A record that says something else for the file: what comes back is the record's, so nothing was read.
-    writeDigestRecord(record, {{file, "recorded"}, {dir / "gone.raw", "never listed"}});
+    // A record that says something else for the file: what comes back is the record's, so nothing was read. A
+    // file written since it was hashed (another stamp) is left out of the record.
+    write(dir / "stale.raw", "abc");
+    const FileStamp stale{3, fileStamp(dir / "stale.raw")->mtimeNs - 1};
+    writeDigestRecord(record, {{file, "recorded", *fileStamp(file)}, {dir / "stale.raw", "stale", stale}});
     {
         const RecordNamed named(record);
         const InputDigest d = inputDigest(file);
@@ -61,7 +64,21 @@ TEST_CASE("input digests: taken from the record while size and time hold, comput
         CHECK(again.sha512 == real);
         CHECK(again.record.empty());
     }
+    {
+        const RecordNamed named(record);
+        CHECK(inputDigest(dir / "stale.raw").sha512 == sha512File(dir / "stale.raw"));
+    }
     CHECK(inputDigest(file).sha512 == real);  // no record named
+    // A link in the record's place is replaced, its target untouched.
+    write(dir / "target.txt", "kept");
+    fs::remove(record);
+    fs::create_symlink(dir / "target.txt", record);
+    writeDigestRecord(record, {});
+    CHECK_FALSE(fs::is_symlink(record));
+    std::ifstream target(dir / "target.txt");
+    std::string kept;
+    target >> kept;
+    CHECK(kept == "kept");
     write(record, "{\"files\": [{\"path\": 3}]}");
     {
         const RecordNamed named(record);
