@@ -127,6 +127,7 @@ void Planner::sceneOptions(Step& step, const SceneSpec& scene) const {
         else
             option(step, o);
     }
+    step.inputs.insert(step.inputs.end(), scene.dataFiles.begin(), scene.dataFiles.end());
 }
 
 void Planner::addRender(const RunSpec& run) {

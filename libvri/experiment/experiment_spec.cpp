@@ -22,6 +22,7 @@
 #include "libvri/core/scene_flags.h"
 #include "libvri/experiment/experiment_keys.h"
 #include "libvri/experiment/timing_defaults.h"
+#include "libvri/io/volume_io.h"
 #include "libvri/io/volume_read_options.h"
 #include "libvri/io/transfer_function_yaml.h"
 #include "libvri/io/transfer_function_yaml_node.h"
@@ -312,6 +313,8 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
                                             : ""));
         scene.files.push_back(*file);
         scene.options.emplace_back(scene_flag::volume, scene.files.back().string());
+        for (const fs::path& read : filesReadBy(*file))
+            if (read != *file) scene.dataFiles.push_back(fs::absolute(read).lexically_normal());
         try {
             scene.rawLayout = describesItsLayout(*file) ? offsetLayout(*file) : layoutFromFileName(*file);
         } catch (const Error&) {  // a type vri does not read, a broken header: vri-render says so

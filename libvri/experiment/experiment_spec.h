@@ -36,6 +36,9 @@ struct SceneSpec {
     std::string dataset;                    // catalog name, when the scene names one
     std::string datasetStatus, datasetNote;  // from the catalog: "exact", "reconstructed" or "stand-in", and why
     std::vector<std::filesystem::path> files;  // volume and transfer function, absolute: hashed for the cache
+    // A header volume's data file (.nhdr's .raw, .mhd's data, .dat's raw file), absolute: the render reads it
+    // too, so its digest keys the step's cache with the header's.
+    std::vector<std::filesystem::path> dataFiles;
     ToolOptions options;                    // vri-render's scene options, paths as absolute paths
     int width = 800, height = 600;          // the images' size: `size:`, else vri-render's default --size
     // How its volume's voxels lie in a raw file: the catalog's, a `volume:` file's name's (the Open SciVis

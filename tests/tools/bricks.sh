@@ -246,6 +246,30 @@ YAML
 [ -f runs/both/tiled.brick-1-0-1.tile-3.exr ] || fail "no tile of a brick: $(ls runs/both)"
 "$bin/vri-diff" runs/both/bricked.exr runs/both/tiled.exr --fail 0 > /dev/null || fail "bricks in tiles join otherwise"
 
+# A header volume's data file keys vri-run's cache with the header: a run again is cached, and a changed
+# .raw (the header untouched) renders again.
+mkdir -p hdr && cp noise-uint8.nhdr noise-uint8.raw hdr/
+cat > hdr/header.yaml <<'YAML'
+name: header
+title: a header's data file in the cache
+paper: {paper: none, item: cache, says: a test}
+scenes:
+  noise: {volume: noise-uint8.nhdr, convention: cell, tf: ../tf.yaml, size: [37, 29],
+          camera: {eye: [60, -40, 50], target: [12, 10, 8], up: [0, 0, 1]}}
+methods:
+  riemann: {step: 0.5}
+YAML
+"$bin/vri-run" --results hdr/runs hdr/header.yaml 2> hdr/first.txt || { cat hdr/first.txt; fail "the header run failed"; }
+"$bin/vri-run" --results hdr/runs hdr/header.yaml 2> hdr/again.txt || { cat hdr/again.txt; fail "the header run again failed"; }
+grep -q "1 steps, 0 ran, 1 cached" hdr/again.txt || fail "the run again was not cached: $(cat hdr/again.txt)"
+/usr/bin/python3 - <<'PY'
+data = bytearray(open("hdr/noise-uint8.raw", "rb").read())
+data[100] ^= 0xFF
+open("hdr/noise-uint8.raw", "wb").write(bytes(data))
+PY
+"$bin/vri-run" --results hdr/runs hdr/header.yaml 2> hdr/changed.txt || { cat hdr/changed.txt; fail "the run after the change failed"; }
+grep -q "1 steps, 1 ran, 0 cached" hdr/changed.txt || fail "a changed data file did not render again: $(cat hdr/changed.txt)"
+
 # Refusals: one line naming the option, exit 1 (64 for usage).
 expect() {
   local code=$1 pattern=$2

@@ -561,6 +561,9 @@ TEST_CASE("experiment: bricks of a NRRD whose voxels a brick reads by offset car
         return vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
     };
     const vri::Plan nhdr = bricked("v.nhdr");
+    // The header's data file keys the steps' cache with the header: a changed .raw reruns them.
+    CHECK(std::ranges::count(nhdr.step("riemann.brick-0-0-0").inputs,
+                             fs::absolute(d.dir / "v.raw").lexically_normal()) == 1);
     CHECK(nhdr.step("riemann.brick-0-0-0").volumeBytes == 6 * 6 * 4 * 2);  // as the raw file's bricks
     CHECK(nhdr.step("riemann.brick-1-0-0").volumeBytes == 5 * 6 * 4 * 2);
     // A gzip-encoded NRRD is read whole for a brick: no box to size it by (the planner falls back to the file).
