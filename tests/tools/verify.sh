@@ -46,6 +46,19 @@ r = json.load(open(sys.argv[1]))
 assert r["passed"] and r["placement"] == "eye" and not r["upside_down"], r
 assert 0.85 < r["order"] < 1.2, r["order"]   # a Riemann sum: first order
 PY
+# Its record says where an input's digest came from when vri-run's record gave it (util/input_digest.h).
+"$python" - <<'PY'
+import json, os
+st = os.stat("blob_8x8x8_uint8.raw")
+json.dump({"files": [{"path": os.path.abspath("blob_8x8x8_uint8.raw"), "size": st.st_size,
+                      "mtime_ns": st.st_mtime_ns, "sha512": "from-the-record"}]}, open("record.json", "w"))
+PY
+VRI_INPUT_DIGESTS=$PWD/record.json verify 0 "pass: convergence" none --placement eye
+"$python" - none.json "$PWD/record.json" <<'PY' || fail "vri-verify's record of its inputs' digests"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["inputs"][0]["sha512"] == "from-the-record" and r["input_digests_from"] == sys.argv[2], (r["inputs"], r.get("input_digests_from"))
+PY
 
 # Jittered renderers, each card run with 12 seeds: the example renderer (vri's own hash: the same frames) and
 # one with random numbers of its own pass; one that ignores the seed, and one whose first sample falls in the

@@ -339,6 +339,7 @@ int RenderCommand::runVerify() {
         record["command"] = commandLine(argc_, argv_);
         record["build"] = buildInfo();
         record["inputs"] = setup.inputs;
+        if (!setup.digestRecord.empty()) record["input_digests_from"] = setup.digestRecord.string();
         files.add(jsonPath_, record.dump(2) + "\n");
     }
     if (!junitPath_.empty()) files.add(junitPath_, report.junit);
