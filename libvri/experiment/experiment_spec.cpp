@@ -316,7 +316,7 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
         for (const fs::path& read : filesReadBy(*file))
             if (read != *file) scene.dataFiles.push_back(fs::absolute(read).lexically_normal());
         try {
-            scene.rawLayout = describesItsLayout(*file) ? offsetLayout(*file) : layoutFromFileName(*file);
+            scene.rawLayout = offsetLayout(*file);  // a raw file's by its name, a header's by its header
         } catch (const Error&) {  // a type vri does not read, a broken header: vri-render says so
         }
     } else {

@@ -142,12 +142,13 @@ BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOption
     // A NaN named as the whole read names it: by the volume's name and its place in the volume.
     if (!b.voxels.range)
         b.voxels.range = naming([&] { return rawValueRange(source->file, source->layout, input.string()); });
-    // Checked as the whole volume would be: its box, a voxel named by its place in it.
+    // Checked as the whole volume is, in its order (the file's values, then --spacing's box): its box, a voxel
+    // named by its place in it.
     const auto requireUsable = [&](const Volume& v, const std::string& source) {
         requireUsableValues(v, grid.storedBox(brick), grid.dims(), source);
     };
-    overrideSpacing<Volume>(b.voxels, options, requireUsable);
     requireUsable(b.voxels, input.string());
+    overrideSpacing<Volume>(b.voxels, options, requireUsable);
     return b;
 }
 
