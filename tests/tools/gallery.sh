@@ -10,13 +10,12 @@ mkdir results
 for manifest in "$VRI_SOURCE"/results/*/manifest.json; do
   folder=$(dirname "$manifest") name=$(basename "$(dirname "$manifest")")
   mkdir "results/$name"
-  cp "$manifest" "results/$name/"
-  find "$folder" -maxdepth 1 \( -name '*.csv' -o -name '*.md' -o -name '*.json' \) -exec cp {} "results/$name/" \;
-  # The PNGs give the viewer's pages each image's size: linked where the file system allows, else copied.
-  for png in "$folder"/*.png; do
-    [ -f "$png" ] || continue
-    ln "$png" "results/$name/" 2> /dev/null || cp "$png" "results/$name/"
-  done
+  find "$folder" -maxdepth 1 \( -name '*.csv' -o -name '*.md' -o -name '*.json' \) -exec cp -t "results/$name/" {} +
+  # The PNGs give the viewer's pages each image's size: linked where the file system allows, else copied
+  # (one cp a folder: a process a file took a third of the test's time).
+  pngs=("$folder"/*.png)
+  [ -f "${pngs[0]}" ] || continue
+  cp --link -t "results/$name/" "${pngs[@]}" 2> /dev/null || { rm -f "results/$name/"*.png && cp -t "results/$name/" "${pngs[@]}"; }
 done
 # The pages scripts wrote (make bricks-slurm's), which the index lists after the experiments; the long sections'
 # pages copied with them are written again.
