@@ -8,9 +8,11 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 
+#include "libvri/core/brick_grid.h"
 #include "libvri/core/image.h"
 #include "libvri/io/image_io.h"
 #include "libvri/io/stored_voxels.h"
@@ -25,6 +27,19 @@ struct TiffStackShape {
     StoredType type = StoredType::UInt8;  // half floats are read as float32, which holds them exactly
 };
 
+// What readTiffStack reads of a stack, once every page's shape is checked.
+struct TiffStackRead {
+    // The voxels [box.lo, box.hi) (x a column, y a row, z a page), box-row after box-row in x-fastest order;
+    // every page whole when absent. A run of whole rows at a time is held besides the buffer (about 1 MiB).
+    std::optional<VoxelBox> box;
+    // The buffer for the box's voxels (read as TiffStackShape's type), given the stack's shape: it checks the
+    // sizes (what it throws comes back as the message). nullptr: the shape was all the caller wanted.
+    std::function<char*(const TiffStackShape&)> allocate;
+    // When set, the buffer holds one page of the box: each page is read into it and then handed to pageRead
+    // with its z (a scan of every voxel a page at a time).
+    std::function<void(int z)> pageRead;
+};
+
 // The module's functions. Each returns "" when it succeeded, else its one-line message, which names the
 // file: no exception crosses the module's boundary.
 struct OiioModule {
@@ -35,14 +50,12 @@ struct OiioModule {
     // `image` as float in the format the path's extension names, encoded into `bytes` (formats that cannot
     // encode into memory are refused: their writes could not be checked).
     std::string (*encodeImage)(const std::filesystem::path& path, const Image& image, std::string& bytes);
-    // Reads the pages into the buffer `allocate` returns for their shape (it checks the size; what it throws
-    // comes back as the message), page after page, rows top to bottom.
-    std::string (*readTiffStack)(const std::filesystem::path& path,
-                                 const std::function<char*(const TiffStackShape&)>& allocate);
+    // Checks every page's shape, then reads `read.box` of the stack (see TiffStackRead).
+    std::string (*readTiffStack)(const std::filesystem::path& path, const TiffStackRead& read);
 };
 
 // The entry point the module exports: a versioned name, so that a module of another build is not taken.
-inline constexpr const char* kOiioModuleEntry = "vri_oiio_module_1";
+inline constexpr const char* kOiioModuleEntry = "vri_oiio_module_2";
 inline constexpr const char* kOiioModuleFile = "libvri-oiio.so";
 
 // The module, loaded on first use (once per process). Throws vri::Error "PATH: cannot <doing>: ..." naming

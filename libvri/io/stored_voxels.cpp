@@ -76,6 +76,8 @@ VoxelType volumeTypeFor(StoredType type) {
     return VoxelType::Float32;
 }
 
+bool keptAsStored(StoredType type) { return storedTypeOf(volumeTypeFor(type)) == type; }
+
 Volume decodeVoxels(const std::string& source, glm::ivec3 dims, StoredType type, ByteOrder order,
                     std::string_view bytes) {
     Volume volume(dims, volumeTypeFor(type));

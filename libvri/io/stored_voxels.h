@@ -23,6 +23,9 @@ std::string_view storedTypeName(StoredType type);  // "int8", "uint8", ..., "flo
 StoredType storedTypeOf(VoxelType type);
 // The voxel type a volume of stored `type` is kept in.
 VoxelType volumeTypeFor(StoredType type);
+// True when that voxel type is `type` itself (uint8, uint16, float32): the voxels are kept as stored, so that a
+// box of them can be read by offset, not converted from the whole file's.
+bool keptAsStored(StoredType type);
 
 // The volume of `dims` whose voxels are `bytes` (x fastest, each in `order`), converted by the rule above.
 // The caller has checked that bytes.size() is the voxel count times storedSize(type); `source` names the

@@ -9,7 +9,9 @@
 #include <string_view>
 #include <vector>
 
+#include "libvri/core/brick_grid.h"
 #include "libvri/core/volume.h"
+#include "libvri/io/oiio_module.h"
 #include "libvri/io/stored_voxels.h"
 #include "libvri/io/volume_io.h"
 #include "libvri/util/checked_size.h"
@@ -27,6 +29,16 @@ std::optional<std::filesystem::path> inviwoDatDataFile(const std::filesystem::pa
 void writeNrrd(const std::filesystem::path& path, const Volume& volume);
 Volume readMetaImage(const std::filesystem::path& path);  // .mhd (detached) or .mha (LOCAL data)
 Volume readTiffStack(const std::filesystem::path& path);  // .tif/.tiff: one page per z slice
+// A TIFF stack's shape, every page checked as readTiffStack checks it; no voxel read.
+TiffStackShape tiffStackShape(const std::filesystem::path& path);
+// The voxels [box.lo, box.hi) of a TIFF stack kept as stored (keptAsStored), read a run of rows at a time: the
+// memory is the box's and about 1 MiB.
+Volume readTiffStackBox(const std::filesystem::path& path, const VoxelBox& box);
+// The min..max of a float32 TIFF stack, read a page at a time; a NaN or infinity is named as rawValueRange
+// names it (by `volumeName`, else the file).
+ValueRange tiffStackValueRange(const std::filesystem::path& path, const std::string& volumeName = {});
+// "SOURCE: voxel N (x X, y Y, z Z) is V: ...": voxel `at` of a volume of `dims`, N its index in x-fastest order.
+std::string nonFiniteVoxel(glm::ivec3 at, glm::ivec3 dims, double value, const std::string& source);
 Volume readInviwoDat(const std::filesystem::path& path);
 
 void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);

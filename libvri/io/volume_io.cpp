@@ -223,6 +223,15 @@ ValueRange parseValueRange(std::string_view text, const std::string& where) {
     return {r[0], r[1]};
 }
 
+std::string nonFiniteVoxel(glm::ivec3 at, glm::ivec3 dims, double value, const std::string& source) {
+    const std::uint64_t index =
+        (static_cast<std::uint64_t>(at.z) * static_cast<std::uint64_t>(dims.y) + static_cast<std::uint64_t>(at.y)) *
+            static_cast<std::uint64_t>(dims.x) +
+        static_cast<std::uint64_t>(at.x);
+    return source + ": voxel " + std::to_string(index) + " (x " + std::to_string(at.x) + ", y " + std::to_string(at.y) +
+           ", z " + std::to_string(at.z) + ") is " + exactNumber(value) + ": float volumes must hold finite values";
+}
+
 }  // namespace detail
 
 // What every reader's volume must hold, whatever its format says: finite float voxels (a NaN compares
@@ -245,16 +254,6 @@ void requireUsableGeometry(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origi
     }
 }
 
-// "SOURCE: voxel N (x X, y Y, z Z) is V: ...": voxel `at` of a volume of `dims`, N its index in x-fastest order.
-std::string nonFiniteVoxel(glm::ivec3 at, glm::ivec3 dims, double value, const std::string& source) {
-    const std::uint64_t index =
-        (static_cast<std::uint64_t>(at.z) * static_cast<std::uint64_t>(dims.y) + static_cast<std::uint64_t>(at.y)) *
-            static_cast<std::uint64_t>(dims.x) +
-        static_cast<std::uint64_t>(at.x);
-    return source + ": voxel " + std::to_string(index) + " (x " + std::to_string(at.x) + ", y " + std::to_string(at.y) +
-           ", z " + std::to_string(at.z) + ") is " + exactNumber(value) + ": float volumes must hold finite values";
-}
-
 // The first non-finite float voxel of `volume`, whose first voxel sits at `start` in a volume of `dims` (0 and
 // its own dims, or a brick's stored box), named by its place in that volume.
 void requireFiniteVoxels(const Volume& volume, glm::ivec3 start, glm::ivec3 dims, const std::string& source) {
@@ -267,7 +266,7 @@ void requireFiniteVoxels(const Volume& volume, glm::ivec3 start, glm::ivec3 dims
     const auto bx = static_cast<std::size_t>(volume.dims.x), by = static_cast<std::size_t>(volume.dims.y);
     const glm::ivec3 at = start + glm::ivec3(static_cast<int>(bad % bx), static_cast<int>(bad / bx % by),
                                              static_cast<int>(bad / bx / by));
-    throw Error(nonFiniteVoxel(at, dims, v[bad], source));
+    throw Error(detail::nonFiniteVoxel(at, dims, v[bad], source));
 }
 
 }  // namespace
@@ -303,7 +302,7 @@ void requireUsableValues(const SparseVolume& volume, const std::string& source) 
         });
         if (bad) {
             const glm::ivec3 at = bad->second;
-            throw Error(nonFiniteVoxel(at, volume.dims, volume.value(at.x, at.y, at.z), source));
+            throw Error(detail::nonFiniteVoxel(at, volume.dims, volume.value(at.x, at.y, at.z), source));
         }
     }
     requireUsableGeometry(volume.dims, volume.spacing, volume.origin, volume.range, source);
@@ -390,7 +389,8 @@ ValueRange rawValueRange(const fs::path& path, const RawLayout& layout, const st
                 const std::uint64_t index = done / size + i, rows = index / static_cast<std::uint64_t>(layout.dims.x);
                 const glm::ivec3 at{static_cast<int>(index % layout.dims.x), static_cast<int>(rows % layout.dims.y),
                                     static_cast<int>(rows / layout.dims.y)};
-                throw Error(nonFiniteVoxel(at, layout.dims, v, volumeName.empty() ? path.string() : volumeName));
+                throw Error(
+                    detail::nonFiniteVoxel(at, layout.dims, v, volumeName.empty() ? path.string() : volumeName));
             }
             range.lo = std::min(range.lo, v);
             range.hi = std::max(range.hi, v);

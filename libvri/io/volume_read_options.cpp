@@ -105,7 +105,7 @@ std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, con
                                         : mhd ? detail::metaImageVoxels(input)
                                               : detail::inviwoDatVoxels(input);
     const VoxelType type = detail::volumeTypeFor(header.data.type);
-    if (header.data.gzip || detail::storedTypeOf(type) != header.data.type) return std::nullopt;
+    if (header.data.gzip || !detail::keptAsStored(header.data.type)) return std::nullopt;
     RawLayout layout{header.data.dims, type, header.data.order, header.spacing, 0};
     // Where the data begin (the file's last bytes, for a header size of -1); the read checks the file's size.
     layout.headerBytes = static_cast<std::size_t>(detail::namingHeader(
@@ -121,27 +121,67 @@ std::optional<RawLayout> offsetLayout(const std::filesystem::path& input, const 
     return std::nullopt;
 }
 
+namespace {
+
+// What a brick is read from without the whole volume: the volume's dims and voxel type, what a header adds, its
+// box of voxels read alone, and the min..max of its values scanned a part at a time.
+struct BrickSource {
+    glm::ivec3 dims{0};
+    VoxelType type = VoxelType::UInt8;
+    std::optional<glm::dvec3> origin;
+    std::optional<ValueRange> range;
+    std::function<Volume(const VoxelBox&)> readBox;
+    std::function<ValueRange()> scanRange;
+};
+
+// offsetVoxels' files by offset, their messages after the header's; a TIFF stack kept as stored by its pages'
+// rows; nullopt for any other file, which a brick reads whole.
+std::optional<BrickSource> brickSource(const std::filesystem::path& input, const VolumeReadOptions& options) {
+    if (const std::optional<OffsetVoxels> source = offsetVoxels(input, options)) {
+        const auto naming = [&input, source](auto read) {
+            return detail::namingHeader(input, source->file, read, source->entry);
+        };
+        return BrickSource{
+            source->layout.dims,
+            source->layout.type,
+            source->origin,
+            source->range,
+            [=](const VoxelBox& box) { return naming([&] { return readRawBox(source->file, source->layout, box); }); },
+            [=] { return naming([&] { return rawValueRange(source->file, source->layout, input.string()); }); }};
+    }
+    const std::string extension = detail::toLower(input.extension().string());
+    if (requestedRawLayout(input, options) || (extension != ".tif" && extension != ".tiff")) return std::nullopt;
+    const detail::TiffStackShape shape = detail::tiffStackShape(input);
+    if (!detail::keptAsStored(shape.type)) return std::nullopt;
+    return BrickSource{{shape.width, shape.height, shape.pages},
+                       detail::volumeTypeFor(shape.type),
+                       std::nullopt,
+                       std::nullopt,
+                       [=](const VoxelBox& box) { return detail::readTiffStackBox(input, box); },
+                       [=] { return detail::tiffStackValueRange(input); }};
+}
+
+}  // namespace
+
 BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,
                       glm::ivec3 brick, const std::optional<ValueRange>& range) {
     if (options.grid) throw Error("--brick: reads dense volumes (raw, NRRD, ...), not a .vdb grid");
-    const std::optional<OffsetVoxels> source = offsetVoxels(input, options);
+    const std::optional<BrickSource> source = brickSource(input, options);
     if (!source) {  // read whole, then cut
         Volume whole = readVolume(input, options);
         if (range) whole.range = *range;
         requireUsableValues(whole, input.string());
         return cutBrick(whole, BrickGrid(whole.dims, counts), brick);
     }
-    const auto naming = [&](auto read) { return detail::namingHeader(input, source->file, read, source->entry); };
-    const BrickGrid grid(source->layout.dims, counts);
+    const BrickGrid grid(source->dims, counts);
     grid.requireBrick(brick, "--brick");
-    BrickVolume b{grid, brick, naming([&] { return readRawBox(source->file, source->layout, grid.storedBox(brick)); })};
+    BrickVolume b{grid, brick, source->readBox(grid.storedBox(brick))};
     if (source->origin) b.voxels.origin = *source->origin;
     b.voxels.range = range           ? range
                      : source->range ? source->range
-                                     : fixedNormalisationRange(source->layout.type, std::nullopt);
+                                     : fixedNormalisationRange(source->type, std::nullopt);
     // A NaN named as the whole read names it: by the volume's name and its place in the volume.
-    if (!b.voxels.range)
-        b.voxels.range = naming([&] { return rawValueRange(source->file, source->layout, input.string()); });
+    if (!b.voxels.range) b.voxels.range = source->scanRange();
     // Checked as the whole volume is, in its order (the file's values, then --spacing's box): its box, a voxel
     // named by its place in it.
     const auto requireUsable = [&](const Volume& v, const std::string& source) {

@@ -39,10 +39,10 @@ std::optional<RawLayout> offsetLayout(const std::filesystem::path& input, const 
 
 // One brick of the volume (core/brick_volume.h) of a `counts` grid. A raw file is read by its rows of the
 // brick's stored box alone, so that the memory is the brick's, and so are an Inviwo .dat's raw file and a NRRD
-// or MetaImage whose voxels vri keeps as stored (uncompressed; uint8, uint16 or float32); any other format is
-// read whole and cut. The
-// normalisation range is `range` when given, else the type's for integers, else (float) the whole file's
-// min..max: a raw file's streamed a chunk at a time. Throws vri::Error naming the option or file at fault.
+// or MetaImage whose voxels vri keeps as stored (uncompressed; uint8, uint16 or float32); a TIFF stack of such
+// pages by its rows; any other format is read whole and cut. The normalisation range is `range` when given,
+// else the type's for integers, else (float) the whole file's min..max: streamed a chunk (a TIFF page) at a
+// time. Throws vri::Error naming the option or file at fault.
 BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,
                       glm::ivec3 brick, const std::optional<ValueRange>& range);
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A volume as bricks (issue 49): vri-render --bricks --brick reads only a brick's stored box of a raw file (or
-# of a NRRD holding its voxels as vri keeps them) and renders its layer; vri-merge-tiles --layer joins every brick's layer into the unbricked render's image
+# of a NRRD, MetaImage, Inviwo .dat or TIFF stack holding its voxels as vri keeps them) and renders its layer; vri-merge-tiles --layer joins every brick's layer into the unbricked render's image
 # within the bound its stats give, the same bits in any order and for tiles of the layers; a float volume's
 # range is the whole file's; what a brick cannot do is refused naming the option.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/scratch.sh"
@@ -51,7 +51,7 @@ assert worst <= bound, (worst, bound)
 assert record["scene"]["storage"] == "bricks" and len(record["layers"]) == eval(sys.argv[2].replace(",", "*"))
 layer, unbricked = json.load(open("layer-0-0-0.json")), json.load(open("whole.json"))
 lo, hi = layer["scene"]["brick"]["stored_lo"], layer["scene"]["brick"]["stored_hi"]
-size = 4 if "float32" in sys.argv[1] else 1
+size = 4 if "float32" in sys.argv[1] or "int16" in sys.argv[1] else 1  # int16 is kept as float32
 assert layer["scene"]["volume_bytes"] == (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]) * size
 if sys.argv[2] != "1,1,1":
     assert layer["scene"]["volume_bytes"] < unbricked["scene"]["volume_bytes"], "a brick kept the whole volume"
@@ -60,6 +60,7 @@ PY
 }
 
 joined noise_24x20x16_uint8.raw 3,2,2 --method riemann --step 0.5
+cp joined.exr raw-joined.exr
 joined noise_24x20x16_uint8.raw 1,1,1 --method composite --step 0.7 --convention node
 joined noise_24x20x16_uint8.raw 2,3,1 --method riemann --step 0.3 --jitter --seed 5
 joined noise_24x20x16_float32.raw 2,2,2 --method composite --step 0.5
@@ -113,6 +114,54 @@ mha=(--volume nan.mha --tf tf.yaml --size 37x29 --eye 60,-40,50 -q --range -1,2)
 "$bin/vri-render" "${mha[@]}" --bricks 2,2,2 --brick 0,0,0 -o nan-mha-layer.exr || fail "an .mha brick read a voxel outside its box"
 if "$bin/vri-render" "${mha[@]}" -o nan-mha-whole.exr 2> nan-mha.txt; then fail "the whole .mha render read no NaN"; fi
 grep -q "nan.mha: voxel 7679 (x 23, y 19, z 15) is nan" nan-mha.txt || fail "the .mha's NaN: $(cat nan-mha.txt)"
+# TIFF stacks (a page a z slice) whose voxels vri keeps as stored (uint8, uint16, float32) are read by their
+# pages' rows: a uint8 stack's brick bit for bit the raw file's, in strips of 3 rows, deflated; a float32
+# stack's range scanned a page at a time; a NaN in its last voxel stops the whole render and the range's scan,
+# named alike, and not brick 0,0,0 (--range given). An int16 stack (vri converts it) is read whole and cut.
+/usr/bin/python3 - <<'PY'
+import random
+import numpy as np
+import OpenImageIO as oiio
+def stack(name, voxels, compression="none"):  # voxels[z][y][x]
+    specs = []
+    for page in voxels:
+        spec = oiio.ImageSpec(page.shape[1], page.shape[0], 1, oiio.TypeDesc({"float32": "float"}.get(page.dtype.name, page.dtype.name)))
+        spec.attribute("compression", compression)
+        spec.attribute("tiff:RowsPerStrip", 3)
+        specs.append(spec)
+    out = oiio.ImageOutput.create(name)
+    assert out.open(name, specs), oiio.geterror()
+    for z, page in enumerate(voxels):
+        assert z == 0 or out.open(name, specs[z], "AppendSubimage"), out.geterror()
+        assert out.write_image(np.ascontiguousarray(page[:, :, None])), out.geterror()
+    out.close()
+u8 = np.fromfile("noise_24x20x16_uint8.raw", np.uint8).reshape(16, 20, 24)
+stack("noise-uint8.tif", u8, "zip")
+stack("noise-float32.tif", np.fromfile("noise_24x20x16_float32.raw", "<f4").reshape(16, 20, 24))
+stack("noise-int16.tif", (u8.astype(np.int16) - 100).astype(np.int16))
+random.seed(7)
+nan = np.array([random.randrange(256) / 85.0 - 1.0 for _ in range(24 * 20 * 16)], np.float32).reshape(16, 20, 24)
+nan[-1, -1, -1] = np.nan
+stack("nan.tif", nan)
+PY
+joined noise-uint8.tif 3,2,2 --method riemann --step 0.5
+"$bin/vri-diff" raw-joined.exr joined.exr --fail 0 > /dev/null || fail "a TIFF stack's bricks joined differ from the raw file's"
+joined noise-float32.tif 2,2,2 --method composite --step 0.5
+joined noise-int16.tif 2,1,2 --method riemann --step 0.5
+scene=(--tf tf.yaml --size 37x29 --eye 60,-40,50 -q --method riemann --step 0.5 --bricks 3,2,2 --brick 1,1,0)
+"$bin/vri-render" --volume noise-uint8.tif "${scene[@]}" -o tif-layer.exr
+"$bin/vri-diff" raw-layer.exr tif-layer.exr --fail 0 > /dev/null || fail "a TIFF stack's brick differs from the raw file's"
+tif=(--volume nan.tif --tf tf.yaml --size 37x29 --eye 60,-40,50 -q)
+"$bin/vri-render" "${tif[@]}" --range -1,2 --bricks 2,2,2 --brick 0,0,0 -o nan-tif-layer.exr ||
+  fail "a TIFF brick read a voxel outside its box"
+if "$bin/vri-render" "${tif[@]}" -o nan-tif-whole.exr 2> nan-tif.txt; then fail "the whole TIFF render read no NaN"; fi
+if "$bin/vri-render" "${tif[@]}" --bricks 2,2,2 --brick 0,0,0 -o nan-tif-range.exr 2> nan-tif-range.txt; then
+  fail "the TIFF brick's range read no NaN"
+fi
+for txt in nan-tif.txt nan-tif-range.txt; do
+  grep -qx "vri-render: error: nan.tif: voxel 7679 (x 23, y 19, z 15) is nan: float volumes must hold finite values" "$txt" ||
+    fail "the TIFF's NaN ($txt): $(cat "$txt")"
+done
 /usr/bin/python3 - <<'PY'
 import random, struct
 random.seed(3)

@@ -9,7 +9,6 @@ namespace vri::detail::oiio {
 std::string readImage(const std::filesystem::path& path, Image& image);
 std::string readImageMetadata(const std::filesystem::path& path, ImageMetadata& metadata);
 std::string encodeImage(const std::filesystem::path& path, const Image& image, std::string& bytes);
-std::string readTiffStack(const std::filesystem::path& path,
-                          const std::function<char*(const TiffStackShape&)>& allocate);
+std::string readTiffStack(const std::filesystem::path& path, const TiffStackRead& read);
 
 }  // namespace vri::detail::oiio

@@ -1,5 +1,9 @@
 // TIFF stacks' pages (the layout and its checks are tiff_stack_io.cpp's): a multi-page TIFF whose pages
 // (subimages) are the z slices, each one channel of the same width, height and type.
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
 #include <OpenImageIO/imageio.h>
 
 #include "libvri/io/oiio/oiio_functions.h"
@@ -32,7 +36,7 @@ StoredType pageStoredType(const fs::path& path, OIIO::TypeDesc format, OIIO::Typ
 
 }  // namespace
 
-std::string readTiffStack(const fs::path& path, const std::function<char*(const TiffStackShape&)>& allocate) {
+std::string readTiffStack(const fs::path& path, const TiffStackRead& read) {
     return caughtMessage("OpenImageIO", [&] {
         auto in = OIIO::ImageInput::open(path.string());
         if (!in) throw Error(path.string() + ": cannot read image: " + oneLine(OIIO::geterror()));
@@ -54,18 +58,49 @@ std::string readTiffStack(const fs::path& path, const std::function<char*(const 
                             " " + std::string(first.format.c_str()) + " with one, as page 0");
             ++shape.pages;
         }
-        char* voxels = allocate(shape);  // checks the pages' size against the limits before allocating
-        const std::size_t pageBytes = std::size_t(shape.width) * std::size_t(shape.height) * readAs.size();
-        // read_image succeeds on a page whose strips or tiles end early (libtiff reports a short read, the
+        const VoxelBox box = read.box.value_or(VoxelBox{{0, 0, 0}, {shape.width, shape.height, shape.pages}});
+        for (int a = 0; a < 3; ++a)
+            if (box.lo[a] < 0 || box.lo[a] >= box.hi[a] ||
+                box.hi[a] > glm::ivec3(shape.width, shape.height, shape.pages)[a])
+                throw Error(path.string() + ": the box of voxels does not lie inside the stack's " +
+                            std::to_string(shape.width) + "x" + std::to_string(shape.height) + "x" +
+                            std::to_string(shape.pages));
+        char* voxels = read.allocate(shape);  // checks the sizes against the limits before allocating
+        if (!voxels) return;
+        const std::size_t size = readAs.size(), pageRowBytes = std::size_t(shape.width) * size;
+        const std::size_t rowBytes = std::size_t(box.hi.x - box.lo.x) * size;
+        const std::size_t slabBytes = rowBytes * std::size_t(box.hi.y - box.lo.y);
+        // Rows are read whole, a run of them at a time, and the box's columns kept: OpenImageIO reads no part
+        // of a row. A box as wide as the page is read straight into the buffer.
+        const bool wholeRows = box.lo.x == 0 && box.hi.x == shape.width;
+        constexpr std::size_t kRunBytes = std::size_t(1) << 20;
+        const int runRows = wholeRows ? box.hi.y - box.lo.y
+                                      : static_cast<int>(std::clamp<std::size_t>(kRunBytes / pageRowBytes, 1,
+                                                                                 std::size_t(box.hi.y - box.lo.y)));
+        std::vector<char> run(wholeRows ? 0 : std::size_t(runRows) * pageRowBytes);
+        // read_scanlines succeeds on a page whose strips or tiles end early (libtiff reports a short read, the
         // rest of the page stays as it was): the error that it leaves behind marks the page as bad. libtiff's
         // warnings about a page's directory (an unknown tag) are errors to OpenImageIO too: they are dropped
         // once the seek to the page has read it, so that only what the read itself reports counts.
-        for (int z = 0; z < shape.pages; ++z) {
-            if (!in->seek_subimage(z, 0))
-                throw Error(path.string() + ": page " + std::to_string(z) + ": " + oneLine(in->geterror()));
+        for (int z = box.lo.z; z < box.hi.z; ++z) {
+            const auto pageError = [&] {
+                return Error(path.string() + ": page " + std::to_string(z) + ": " + oneLine(in->geterror()));
+            };
+            if (!in->seek_subimage(z, 0)) throw pageError();
             (void)in->geterror();
-            if (!in->read_image(z, 0, 0, 1, readAs, voxels + std::size_t(z) * pageBytes) || in->has_error())
-                throw Error(path.string() + ": page " + std::to_string(z) + ": " + oneLine(in->geterror()));
+            char* page = voxels + (read.pageRead ? 0 : std::size_t(z - box.lo.z) * slabBytes);
+            for (int y = box.lo.y; y < box.hi.y; y += runRows) {
+                const int end = std::min(y + runRows, box.hi.y);
+                char* rows = page + std::size_t(y - box.lo.y) * rowBytes;
+                if (!in->read_scanlines(z, 0, y, end, 0, 0, 1, readAs, wholeRows ? rows : run.data()) ||
+                    in->has_error())
+                    throw pageError();
+                if (wholeRows) continue;
+                for (int r = 0; r < end - y; ++r)
+                    std::memcpy(rows + std::size_t(r) * rowBytes,
+                                run.data() + std::size_t(r) * pageRowBytes + std::size_t(box.lo.x) * size, rowBytes);
+            }
+            if (read.pageRead) read.pageRead(z);
         }
     });
 }
