@@ -37,7 +37,8 @@ std::size_t checkedBoxBytes(const fs::path& path, glm::ivec3 dims, StoredType ty
 }
 
 // Reads what `read` asks of the stack once its shape is checked: its pages counted by the file's own chain
-// too, and one page's bytes (the most a read holds besides its buffer) checked by checkedBoxBytes.
+// too. Each `allocate` checks the bytes it allocates (checkedBoxBytes) and, besides, what the module holds:
+// a run of whole rows, at most one row over 1 MiB.
 void readChecked(const fs::path& path, TiffStackRead read) {
     requireRegularFile(path);
     const int chainedPages = tiffPageCount(path);
@@ -48,7 +49,6 @@ void readChecked(const fs::path& path, TiffStackRead read) {
         if (shape.width < 1 || shape.height < 1)
             throw Error(path.string() + ": pages of " + std::to_string(shape.width) + "x" +
                         std::to_string(shape.height) + " pixels");
-        checkedBoxBytes(path, {shape.width, shape.height, 1}, shape.type);
         return allocate(shape);
     };
     requireModuleSuccess(oiioModule(path, "read a TIFF stack").readTiffStack(path, read));
@@ -97,6 +97,7 @@ Volume readTiffStackBox(const fs::path& path, const VoxelBox& box) {
                                throw Error(path.string() + ": a box of a " + std::string(storedTypeName(shape.type)) +
                                            " stack is read with the whole stack (its voxels are converted)");
                            checkedBoxBytes(path, box.size(), shape.type);
+                           checkedBoxBytes(path, {shape.width, 1, 1}, shape.type);  // a row of the module's run
                            volume = namingFileIfTooLarge(path,
                                                          [&] { return Volume(box.size(), volumeTypeFor(shape.type)); });
                            return reinterpret_cast<char*>(volume.bytes.data());
@@ -115,6 +116,7 @@ ValueRange tiffStackValueRange(const fs::path& path, const std::string& volumeNa
                      if (shape.type != StoredType::Float32)
                          throw Error(path.string() + ": the value range is scanned for float stacks only");
                      dims = dimsOf(shape);
+                     checkedBoxBytes(path, {dims.x, dims.y, 1}, shape.type);
                      page = namingFileIfTooLarge(path, [&] { return Volume({dims.x, dims.y, 1}, VoxelType::Float32); });
                      return reinterpret_cast<char*>(page.bytes.data());
                  },
