@@ -40,13 +40,6 @@ std::map<std::string, HeaderEntry> parseDat(const fs::path& path) {
 
 }  // namespace
 
-std::optional<fs::path> inviwoDatDataFile(const fs::path& path) {
-    const std::map<std::string, HeaderEntry> entries = parseDat(path);
-    const auto it = entries.find("rawfile");
-    if (it == entries.end()) return std::nullopt;
-    return dataFileNamedBy(path, it->second.value);
-}
-
 HeaderVoxels inviwoDatVoxels(const fs::path& path) {
     requireRegularFile(path);
     const std::map<std::string, HeaderEntry> entries = parseDat(path);
@@ -120,7 +113,6 @@ HeaderVoxels inviwoDatVoxels(const fs::path& path) {
     return voxels;
 }
 
-Volume readInviwoDat(const fs::path& path) { return readHeaderVoxels(path, inviwoDatVoxels(path)); }
 
 void writeInviwoDat(const fs::path& path, const Volume& volume) {
     const fs::path rawPath = rawFileBeside(path);

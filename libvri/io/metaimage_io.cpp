@@ -67,13 +67,6 @@ bool parseBool(const HeaderEntry& entry, const std::string& where) {
 
 }  // namespace
 
-std::optional<fs::path> metaImageDataFile(const fs::path& path) {
-    const MetaHeader header = parseMetaHeader(path);
-    const std::string& value = header.entries.at("elementdatafile").value;
-    if (toLower(value) == "local") return std::nullopt;
-    return dataFileNamedBy(path, value);
-}
-
 HeaderVoxels metaImageVoxels(const fs::path& path) {
     requireRegularFile(path);
     const MetaHeader header = parseMetaHeader(path);
@@ -165,6 +158,5 @@ HeaderVoxels metaImageVoxels(const fs::path& path) {
     return voxels;
 }
 
-Volume readMetaImage(const fs::path& path) { return readHeaderVoxels(path, metaImageVoxels(path)); }
 
 }  // namespace vri::detail

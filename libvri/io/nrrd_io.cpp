@@ -111,14 +111,6 @@ void requireSpanningSpacing(const RawLayout& layout, const std::string& where) {
 
 }  // namespace
 
-std::optional<fs::path> nrrdDataFile(const fs::path& path) {
-    const NrrdHeader header = parseNrrdHeader(path);
-    for (const char* name : {"data file", "datafile"})
-        if (const auto it = header.fields.find(name); it != header.fields.end())
-            return dataFileNamedBy(path, it->second.value);
-    return std::nullopt;
-}
-
 HeaderVoxels nrrdVoxels(const fs::path& path) {
     requireRegularFile(path);
     const NrrdHeader header = parseNrrdHeader(path);
@@ -248,7 +240,6 @@ HeaderVoxels nrrdVoxels(const fs::path& path) {
     return result;
 }
 
-Volume readNrrd(const fs::path& path) { return readHeaderVoxels(path, nrrdVoxels(path)); }
 
 void writeNrrd(const fs::path& path, const Volume& volume) {
     const bool attached = toLower(path.extension().string()) == ".nrrd";

@@ -19,15 +19,8 @@
 
 namespace vri::detail {
 
-Volume readNrrd(const std::filesystem::path& path);  // .nhdr (detached) or .nrrd (attached or detached)
-// The data file a header names apart from itself (NRRD's `data file`, MetaImage's ElementDataFile other than
-// LOCAL, Inviwo's Rawfile), else nullopt; throws as the reader would when the header cannot be parsed.
-std::optional<std::filesystem::path> nrrdDataFile(const std::filesystem::path& path);
-std::optional<std::filesystem::path> metaImageDataFile(const std::filesystem::path& path);
-std::optional<std::filesystem::path> inviwoDatDataFile(const std::filesystem::path& path);
 // .nhdr: a detached header and NAME.raw beside it; .nrrd: the header with the data attached.
 void writeNrrd(const std::filesystem::path& path, const Volume& volume);
-Volume readMetaImage(const std::filesystem::path& path);  // .mhd (detached) or .mha (LOCAL data)
 Volume readTiffStack(const std::filesystem::path& path);  // .tif/.tiff: one page per z slice
 // A TIFF stack's shape, every page checked as readTiffStack checks it; no voxel read.
 TiffStackShape tiffStackShape(const std::filesystem::path& path);
@@ -39,7 +32,6 @@ Volume readTiffStackBox(const std::filesystem::path& path, const VoxelBox& box);
 ValueRange tiffStackValueRange(const std::filesystem::path& path, const std::string& volumeName = {});
 // "SOURCE: voxel N (x X, y Y, z Z) is V: ...": voxel `at` of a volume of `dims`, N its index in x-fastest order.
 std::string nonFiniteVoxel(glm::ivec3 at, glm::ivec3 dims, double value, const std::string& source);
-Volume readInviwoDat(const std::filesystem::path& path);
 
 void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);
 
@@ -61,11 +53,13 @@ struct HeaderVoxels {
     std::optional<ValueRange> range;   // NRRD's vri_range, the .dat's DataRange
     std::string_view entry;            // what the header calls its data file, for messages
 };
-// Parse the header of `path` (.nhdr or .nrrd; .mhd or .mha; .dat) as the readers do, with their messages;
-// read no voxel.
+// Parse the header of `path` (.nhdr or .nrrd, detached or attached; .mhd or .mha, LOCAL data or not; .dat) as
+// the readers do, with their messages; read no voxel.
 HeaderVoxels nrrdVoxels(const std::filesystem::path& path);
 HeaderVoxels metaImageVoxels(const std::filesystem::path& path);
 HeaderVoxels inviwoDatVoxels(const std::filesystem::path& path);
+// The one of those three that the extension of `path` names; nullopt for a file that is not a header.
+std::optional<HeaderVoxels> headerVoxels(const std::filesystem::path& path);
 // Throws "PATH: dimensions must be at least 1x1x1" or "... spacing must be positive and finite" for a raw layout.
 void requireValidLayout(const std::filesystem::path& path, const RawLayout& layout);
 // The volume `header` describes (`voxels`, its parse): its voxels read, its messages after the header's.

@@ -62,6 +62,14 @@ void requireValidLayout(const fs::path& path, const RawLayout& layout) {
                         exactNumber(s.y) + " " + exactNumber(s.z));
 }
 
+std::optional<HeaderVoxels> headerVoxels(const fs::path& path) {
+    const std::string extension = toLower(path.extension().string());
+    if (extension == ".nhdr" || extension == ".nrrd") return nrrdVoxels(path);
+    if (extension == ".mhd" || extension == ".mha") return metaImageVoxels(path);
+    if (extension == ".dat") return inviwoDatVoxels(path);
+    return std::nullopt;
+}
+
 Volume readHeaderVoxels(const fs::path& header, const HeaderVoxels& voxels) {
     Volume volume = namingHeader(
         header, voxels.dataPath, [&] { return readVoxelData(voxels.dataPath, voxels.data); }, voxels.entry);
@@ -445,9 +453,8 @@ Volume readVolume(const fs::path& path, const std::optional<RawLayout>& rawLayou
     const std::optional<RawLayout> raw = rawLayoutOf(path, rawLayout);
     const auto read = [&] {
         if (raw) return readRaw(path, *raw);
-        if (extension == ".nhdr" || extension == ".nrrd") return detail::readNrrd(path);
-        if (extension == ".dat") return detail::readInviwoDat(path);
-        if (extension == ".mhd" || extension == ".mha") return detail::readMetaImage(path);
+        if (const std::optional<detail::HeaderVoxels> header = detail::headerVoxels(path))
+            return detail::readHeaderVoxels(path, *header);
         if (extension == ".tif" || extension == ".tiff") return detail::readTiffStack(path);
         return readVdb(path);
     };
@@ -472,16 +479,13 @@ std::vector<fs::path> filesWrittenBy(const fs::path& path) {
 }
 
 std::vector<fs::path> filesReadBy(const fs::path& path) {
-    const std::string extension = detail::toLower(path.extension().string());
-    std::optional<fs::path> dataFile;
+    std::optional<detail::HeaderVoxels> header;
     try {
-        if (extension == ".nhdr" || extension == ".nrrd") dataFile = detail::nrrdDataFile(path);
-        else if (extension == ".mhd" || extension == ".mha") dataFile = detail::metaImageDataFile(path);
-        else if (extension == ".dat") dataFile = detail::inviwoDatDataFile(path);
+        header = detail::headerVoxels(path);
     } catch (const Error&) {
         // A header that cannot be parsed names no data file; reading the volume says what is wrong with it.
     }
-    if (dataFile) return {path, *dataFile};
+    if (header && header->dataPath != path) return {path, header->dataPath};
     return {path};
 }
 

@@ -98,12 +98,9 @@ struct OffsetVoxels {
 std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, const VolumeReadOptions& options) {
     if (std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options)))
         return OffsetVoxels{input, *layout, std::nullopt, std::nullopt};
-    const std::string extension = detail::toLower(input.extension().string());
-    const bool nrrd = extension == ".nrrd" || extension == ".nhdr", mhd = extension == ".mhd" || extension == ".mha";
-    if (!nrrd && !mhd && extension != ".dat") return std::nullopt;
-    const detail::HeaderVoxels header = nrrd  ? detail::nrrdVoxels(input)
-                                        : mhd ? detail::metaImageVoxels(input)
-                                              : detail::inviwoDatVoxels(input);
+    const std::optional<detail::HeaderVoxels> found = detail::headerVoxels(input);
+    if (!found) return std::nullopt;
+    const detail::HeaderVoxels& header = *found;
     const VoxelType type = detail::volumeTypeFor(header.data.type);
     if (header.data.gzip || !detail::keptAsStored(header.data.type)) return std::nullopt;
     RawLayout layout{header.data.dims, type, header.data.order, header.spacing, 0};
