@@ -21,10 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The bytes of the voxels `box` of a raw file laid out as `layout`: what a step holding them stores
-// (Step::volumeBytes).
-std::uint64_t heldBytes(const RawLayout& layout, const VoxelBox& box) {
-    return box.voxelCount() * voxelSize(layout.type);
+// The bytes of the voxels `box` of a volume of `shape`: what a step holding them stores (Step::volumeBytes).
+std::uint64_t heldBytes(const VolumeShape& shape, const VoxelBox& box) {
+    return box.voxelCount() * voxelSize(shape.type);
 }
 
 // `path` as a command names it when run from `workDir`: relative when the two share more than the root.
@@ -136,7 +135,7 @@ void Planner::addRender(const RunSpec& run) {
     sceneOptions(step, scene);
     step.pixels = static_cast<std::uint64_t>(scene.width) * static_cast<std::uint64_t>(scene.height);
     // A tile loads the whole volume too; a brick replaces this with its own box.
-    if (scene.rawLayout) step.volumeBytes = heldBytes(*scene.rawLayout, {{0, 0, 0}, scene.rawLayout->dims});
+    if (scene.volumeShape) step.volumeBytes = heldBytes(*scene.volumeShape, {{0, 0, 0}, scene.volumeShape->dims});
     for (const ToolOption& o : run.options) option(step, o);
     step.parameters.insert(step.parameters.end(), run.parameters.begin(), run.parameters.end());
     step.arguments.push_back("-q");  // vri-run shows its own progress
@@ -178,14 +177,14 @@ void Planner::addTiles(const RunSpec& run, const SceneSpec& scene, const Step& r
 void Planner::addBricks(const RunSpec& run, const SceneSpec& scene, const Step& render) {
     std::vector<RunPart> parts;
     const std::string grid = brickText(run.bricks);
-    // Where the volume is a raw file of a known layout (read by offset), each brick's stored box.
+    // Where a brick reads its box alone (SceneSpec::volumeShape), each brick's stored box.
     std::optional<BrickGrid> bricks;
-    if (scene.rawLayout) try {
-            bricks = BrickGrid(scene.rawLayout->dims, run.bricks);
+    if (scene.volumeShape) try {
+            bricks = BrickGrid(scene.volumeShape->dims, run.bricks);
         } catch (const Error&) {  // a grid finer than the volume: vri-render says so
         }
     const auto brickBytes = [&](glm::ivec3 brick) -> std::uint64_t {
-        return bricks ? heldBytes(*scene.rawLayout, bricks->storedBox(brick)) : 0;
+        return bricks ? heldBytes(*scene.volumeShape, bricks->storedBox(brick)) : 0;
     };
     for (int z = 0; z < run.bricks.z; ++z)
         for (int y = 0; y < run.bricks.y; ++y)

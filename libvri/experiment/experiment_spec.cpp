@@ -295,7 +295,7 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
         scene.options.emplace_back(scene_flag::volume, file.string());
         if (info.header.empty()) {
             const RawLayout layout = rawLayout(info);
-            scene.rawLayout = layout;
+            scene.volumeShape = VolumeShape{layout.dims, layout.type};
             // Exactly as the catalog has them: a spacing printed to 6 digits would be another volume.
             const auto join = [](auto v) { return exactNumber(v.x) + "," + exactNumber(v.y) + "," + exactNumber(v.z); };
             scene.options.emplace_back(scene_flag::dims, join(layout.dims));
@@ -316,7 +316,7 @@ SceneSpec ExperimentReader::readScene(const std::string& name, const YAML::Node&
         for (const fs::path& read : filesReadBy(*file))
             if (read != *file) scene.dataFiles.push_back(fs::absolute(read).lexically_normal());
         try {
-            scene.rawLayout = offsetLayout(*file);  // a raw file's by its name, a header's by its header
+            scene.volumeShape = brickedShape(*file);  // a raw file's by its name, a header's, a TIFF stack's
         } catch (const Error&) {  // a type vri does not read, a broken header: vri-render says so
         }
     } else {

@@ -14,7 +14,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "libvri/io/volume_io.h"
+#include "libvri/io/volume_read_options.h"
 
 namespace vri {
 
@@ -41,10 +41,11 @@ struct SceneSpec {
     std::vector<std::filesystem::path> dataFiles;
     ToolOptions options;                    // vri-render's scene options, paths as absolute paths
     int width = 800, height = 600;          // the images' size: `size:`, else vri-render's default --size
-    // How its volume's voxels lie in a raw file: the catalog's, a `volume:` file's name's (the Open SciVis
-    // convention), or a header's (NRRD, MetaImage, .dat) whose voxels a brick reads by offset (io's offsetLayout); none
-    // for another file that describes itself, an analytic field, or a name vri-render will refuse.
-    std::optional<RawLayout> rawLayout;
+    // Its volume's dims and voxel type where a brick reads its box alone: the catalog's raw file, a `volume:`
+    // file's (io's brickedShape: a raw file named by the Open SciVis convention, a header whose voxels are
+    // stored as vri keeps them, a TIFF stack of such pages); none for another file, an analytic field, or a
+    // name vri-render will refuse.
+    std::optional<VolumeShape> volumeShape;
 };
 
 // The most runs the sweeps of one experiment file may expand to (the largest of experiments/ has

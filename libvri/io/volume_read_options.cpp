@@ -113,11 +113,6 @@ std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, con
 
 }  // namespace
 
-std::optional<RawLayout> offsetLayout(const std::filesystem::path& input, const VolumeReadOptions& options) {
-    if (const std::optional<OffsetVoxels> source = offsetVoxels(input, options)) return source->layout;
-    return std::nullopt;
-}
-
 namespace {
 
 // What a brick is read from without the whole volume: the volume's dims and voxel type, what a header adds, its
@@ -159,6 +154,12 @@ std::optional<BrickSource> brickSource(const std::filesystem::path& input, const
 }
 
 }  // namespace
+
+std::optional<VolumeShape> brickedShape(const std::filesystem::path& input, const VolumeReadOptions& options) {
+    if (const std::optional<BrickSource> source = brickSource(input, options))
+        return VolumeShape{source->dims, source->type};
+    return std::nullopt;
+}
 
 BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOptions& options, glm::ivec3 counts,
                       glm::ivec3 brick, const std::optional<ValueRange>& range) {

@@ -32,10 +32,15 @@ Volume readVolume(const std::filesystem::path& input, const VolumeReadOptions& o
 // the dense copy freed once converted), for Auto kept dense.
 LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOptions& options, VolumeStorage storage);
 
-// How a brick of `input` is read by offset (readBrick): a raw file's layout (its name's or the options'), an
-// Inviwo .dat's, or a NRRD's or MetaImage's whose voxels vri keeps as stored; nullopt for a file a brick reads
-// whole. Reads no voxel.
-std::optional<RawLayout> offsetLayout(const std::filesystem::path& input, const VolumeReadOptions& options = {});
+// The dims and voxel type of a volume whose bricks readBrick reads without the whole: a raw file (its name's or
+// the options' layout), an Inviwo .dat's, a NRRD's or MetaImage's whose voxels vri keeps as stored, a TIFF
+// stack of such pages; nullopt for a file a brick reads whole. Reads no voxel (a header; a TIFF stack's page
+// directories, through the OpenImageIO module).
+struct VolumeShape {
+    glm::ivec3 dims{0};
+    VoxelType type = VoxelType::UInt8;
+};
+std::optional<VolumeShape> brickedShape(const std::filesystem::path& input, const VolumeReadOptions& options = {});
 
 // One brick of the volume (core/brick_volume.h) of a `counts` grid. A raw file is read by its rows of the
 // brick's stored box alone, so that the memory is the brick's, and so are an Inviwo .dat's raw file and a NRRD

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -568,6 +569,56 @@ TEST_CASE("experiment: bricks of a NRRD whose voxels a brick reads by offset car
     CHECK(nhdr.step("riemann.brick-1-0-0").volumeBytes == 5 * 6 * 4 * 2);
     // A gzip-encoded NRRD is read whole for a brick: no box to size it by (the planner falls back to the file).
     CHECK(bricked("z.nrrd").step("riemann.brick-0-0-0").volumeBytes == 0);
+}
+
+namespace {
+
+// A baseline TIFF stack of `pages` pages of `w` x `h` uint16 zeros, uncompressed, a strip a page (as
+// tests/tools/formats_tiff.sh writes them).
+std::string tiffStack(int w, int h, int pages) {
+    std::string file = "II*";
+    file.push_back('\0');
+    const auto put = [&file](std::uint32_t value, int bytes) {
+        for (int b = 0; b < bytes; ++b) file.push_back(static_cast<char>((value >> (8 * b)) & 0xff));
+    };
+    const std::uint32_t dataBytes = static_cast<std::uint32_t>(w * h * 2);
+    put(8 + dataBytes, 4);  // the first page's directory, after its data
+    for (int page = 0; page < pages; ++page) {
+        const std::uint32_t data = static_cast<std::uint32_t>(file.size());
+        file.append(dataBytes, '\0');
+        put(10, 2);
+        for (auto [tag, type, value] : std::initializer_list<std::array<std::uint32_t, 3>>{{256, 4, std::uint32_t(w)},
+                                                                                           {257, 4, std::uint32_t(h)},
+                                                                                           {258, 3, 16},
+                                                                                           {259, 3, 1},
+                                                                                           {262, 3, 1},
+                                                                                           {273, 4, data},
+                                                                                           {277, 3, 1},
+                                                                                           {278, 4, std::uint32_t(h)},
+                                                                                           {279, 4, dataBytes},
+                                                                                           {339, 3, 1}}) {
+            put(tag, 2);
+            put(type, 2);
+            put(1, 4);
+            put(value, 4);
+        }
+        put(page + 1 < pages ? static_cast<std::uint32_t>(file.size()) + 4 + dataBytes : 0, 4);
+    }
+    return file;
+}
+
+}  // namespace
+
+TEST_CASE("experiment: bricks of a TIFF stack, which a brick reads by its pages' rows, carry the bytes each holds") {
+    ExperimentDir d;
+    d.write("v.tif", tiffStack(10, 6, 4));
+    const vri::Experiment e =
+        d.parse(kHead +
+                "scenes: {s: {volume: v.tif, convention: cell, tf: a.yaml, size: [8, 5]}}\nmethods:\n  riemann: "
+                "{bricks: [2, 1, 1]}\n");
+    const vri::Plan plan = vri::planExperiment(e, d.dir / "results" / e.name, d.dir);
+    CHECK(plan.step("riemann.brick-0-0-0").volumeBytes == 6 * 6 * 4 * 2);  // as the raw file's bricks
+    CHECK(plan.step("riemann.brick-1-0-0").volumeBytes == 5 * 6 * 4 * 2);
 }
 
 TEST_CASE("experiment: a comparison's id writes the run's scene once and the run's id whole") {
