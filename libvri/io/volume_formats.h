@@ -92,15 +92,9 @@ decltype(auto) namingHeader(const std::filesystem::path& header, const std::file
     };
     try {
         return read();
-    } catch (const OutOfMemory& e) {
-        if (file == header) throw;
-        throw OutOfMemory(named(e));
-    } catch (const OverLimit& e) {
-        if (file == header) throw;
-        throw OverLimit(named(e));
     } catch (const Error& e) {
         if (file == header) throw;
-        throw Error(named(e));
+        throwLike(e, named(e));
     }
 }
 
@@ -113,12 +107,9 @@ decltype(auto) namingFileIfTooLarge(const std::filesystem::path& path, Read&& re
     const auto names = [&](const Error& e) { return std::string_view(e.what()).starts_with(path.string() + ":"); };
     try {
         return read();
-    } catch (const OutOfMemory& e) {
-        if (names(e)) throw;
-        throw OutOfMemory(named(e));
-    } catch (const OverLimit& e) {
-        if (names(e)) throw;
-        throw OverLimit(named(e));
+    } catch (const Error& e) {
+        if (!isSizeRefusal(e) || names(e)) throw;
+        throwLike(e, named(e));
     } catch (const std::bad_alloc&) {
         throw OutOfMemory(path.string() + ": out of memory while reading it");
     }

@@ -98,4 +98,14 @@ void requireWithin(const std::string& what, double amount, double limit, std::st
                     std::string(unit) + ", limit " + amountText(limit));
 }
 
+bool isSizeRefusal(const Error& e) {
+    return dynamic_cast<const OverLimit*>(&e) != nullptr || dynamic_cast<const OutOfMemory*>(&e) != nullptr;
+}
+
+void throwLike(const Error& e, const std::string& message) {
+    if (dynamic_cast<const OverLimit*>(&e)) throw OverLimit(message);
+    if (dynamic_cast<const OutOfMemory*>(&e)) throw OutOfMemory(message);
+    throw Error(message);
+}
+
 }  // namespace vri

@@ -63,6 +63,12 @@ public:
     using Error::Error;
 };
 
+// True for the two refusals of a size above (OverLimit, OutOfMemory).
+bool isSizeRefusal(const Error& e);
+// Throws an error of e's class (OverLimit, OutOfMemory, else Error) saying `message`: a reader that puts a
+// file's name in front keeps what the error is.
+[[noreturn]] void throwLike(const Error& e, const std::string& message);
+
 // Runs allocate(), which allocates `bytes` for `what`; its std::bad_alloc becomes
 // OutOfMemory("<what>: needs N bytes: out of memory"). A reader that knows the file adds its name.
 template <class Allocate>
