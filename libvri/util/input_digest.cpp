@@ -29,26 +29,34 @@ std::optional<FileStamp> fileStamp(const fs::path& path) {
     return stamp;
 }
 
-InputDigest inputDigest(const fs::path& path) {
+InputDigests InputDigests::fromEnvironment() {
+    InputDigests digests;
     const char* named = std::getenv(kInputDigestsVariable);
-    if (const std::optional<FileStamp> stamp = named && *named ? fileStamp(path) : std::nullopt) {
-        const fs::path record = named;
-        const std::string where = std::string(kInputDigestsVariable) + " " + record.string();
-        nlohmann::json j;
-        try {
-            j = readJsonFile(record);
-        } catch (const Error& e) {
-            throw Error(where + ": " + e.what());
-        }
+    if (!named || !*named) return digests;
+    digests.record_ = named;
+    const std::string where = std::string(kInputDigestsVariable) + " " + digests.record_.string();
+    nlohmann::json j;
+    try {
+        j = readJsonFile(digests.record_);
+    } catch (const Error& e) {
+        throw Error(where + ": " + e.what());
+    }
+    try {
+        for (const nlohmann::json& f : j.at("files"))
+            digests.entries_.push_back({f.at("path").get<std::string>(),
+                                        {f.at("size").get<std::uintmax_t>(), f.at("mtime_ns").get<long long>()},
+                                        f.at("sha512").get<std::string>()});
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(where + ": not a record of digests (" + e.what() + ")");
+    }
+    return digests;
+}
+
+InputDigest InputDigests::of(const fs::path& path) const {
+    if (const std::optional<FileStamp> stamp = entries_.empty() ? std::nullopt : fileStamp(path)) {
         const std::string absolute = fs::absolute(path).lexically_normal().string();
-        try {
-            for (const nlohmann::json& f : j.at("files"))
-                if (f.at("path").get<std::string>() == absolute && f.at("size").get<std::uintmax_t>() == stamp->size &&
-                    f.at("mtime_ns").get<long long>() == stamp->mtimeNs)
-                    return {f.at("sha512").get<std::string>(), record};
-        } catch (const nlohmann::json::exception& e) {
-            throw Error(where + ": not a record of digests (" + e.what() + ")");
-        }
+        for (const Entry& e : entries_)
+            if (e.path == absolute && e.stamp == *stamp) return {e.sha512, record_};
     }
     return {sha512File(path), {}};
 }

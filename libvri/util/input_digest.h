@@ -18,9 +18,6 @@ struct InputDigest {
     std::filesystem::path record;  // the record it came from; empty when computed here
 };
 
-// Throws vri::Error naming VRI_INPUT_DIGESTS when the record it names cannot be read or is malformed.
-InputDigest inputDigest(const std::filesystem::path& path);
-
 // A file's size and modification time (ns since the Unix epoch, as fine as the file system keeps it).
 struct FileStamp {
     std::uintmax_t size = 0;
@@ -28,6 +25,26 @@ struct FileStamp {
     bool operator==(const FileStamp&) const = default;
 };
 std::optional<FileStamp> fileStamp(const std::filesystem::path& path);  // nullopt: not a regular file
+
+// The record VRI_INPUT_DIGESTS names, read once, and the digests of files looked up in it.
+class InputDigests {
+public:
+    // Reads the record VRI_INPUT_DIGESTS names (none when it is unset or empty); throws vri::Error naming it when
+    // it cannot be read or is malformed.
+    static InputDigests fromEnvironment();
+    // The record's digest of `path` where its absolute path, size and modification time are the recorded ones,
+    // else computed.
+    InputDigest of(const std::filesystem::path& path) const;
+
+private:
+    struct Entry {
+        std::string path;  // absolute
+        FileStamp stamp;
+        std::string sha512;
+    };
+    std::filesystem::path record_;
+    std::vector<Entry> entries_;
+};
 
 // A file's digest with the stamp it had before it was hashed.
 struct StampedDigest {

@@ -76,8 +76,15 @@ joined noise-uint8.nhdr 3,2,2 --method riemann --step 0.5
 joined noise-float32.nrrd 2,2,2 --method composite --step 0.5
 scene=(--tf tf.yaml --size 37x29 --eye 60,-40,50 -q --method riemann --step 0.5 --bricks 3,2,2 --brick 1,1,0)
 "$bin/vri-render" --volume noise_24x20x16_uint8.raw "${scene[@]}" -o raw-layer.exr
-"$bin/vri-render" --volume noise-uint8.nhdr "${scene[@]}" -o nhdr-layer.exr
+"$bin/vri-render" --volume noise-uint8.nhdr "${scene[@]}" -o nhdr-layer.exr --stats nhdr-layer.json
 "$bin/vri-diff" raw-layer.exr nhdr-layer.exr --fail 0 > /dev/null || fail "a NRRD's brick differs from the raw file's"
+# Its record names both files the image comes from, the header and the data file it names, with their digests.
+/usr/bin/python3 - "$(sha512sum < noise-uint8.nhdr | cut -d' ' -f1)" "$(sha512sum < noise-uint8.raw | cut -d' ' -f1)" <<'PY' ||
+import json, os, sys
+inputs = {os.path.basename(i["path"]): i["sha512"] for i in json.load(open("nhdr-layer.json"))["inputs"]}
+assert inputs == {"noise-uint8.nhdr": sys.argv[1], "noise-uint8.raw": sys.argv[2], "tf.yaml": inputs.get("tf.yaml")}, inputs
+PY
+  fail "the NRRD's stats do not name its data file: $(cat nhdr-layer.json)"
 # An Inviwo .dat's raw file is read by offset too: its brick bit for bit the raw file's, and only its box read
 # (a NaN in the last voxel, DataRange given, stops the whole render and not brick 0,0,0).
 "$bin/vri-convert" noise_24x20x16_uint8.raw noise-uint8.dat 2> /dev/null

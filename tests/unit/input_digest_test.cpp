@@ -47,28 +47,28 @@ TEST_CASE("input digests: taken from the record while size and time hold, comput
     writeDigestRecord(record, {{file, "recorded", *fileStamp(file)}, {dir / "stale.raw", "stale", stale}});
     {
         const RecordNamed named(record);
-        const InputDigest d = inputDigest(file);
+        const InputDigest d = InputDigests::fromEnvironment().of(file);
         CHECK(d.sha512 == "recorded");
         CHECK(d.record == record);
         // Another file of the same size is not the recorded one.
         write(dir / "other.raw", "87654321");
-        CHECK(inputDigest(dir / "other.raw").sha512 == sha512File(dir / "other.raw"));
+        CHECK(InputDigests::fromEnvironment().of(dir / "other.raw").sha512 == sha512File(dir / "other.raw"));
         // The same path, relative: the record lists absolute paths.
         const fs::path here = fs::current_path();
         fs::current_path(dir);
-        CHECK(inputDigest("volume.raw").sha512 == "recorded");
+        CHECK(InputDigests::fromEnvironment().of("volume.raw").sha512 == "recorded");
         fs::current_path(here);
         // Written again (same size, later time): computed.
         fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(1));
-        const InputDigest again = inputDigest(file);
+        const InputDigest again = InputDigests::fromEnvironment().of(file);
         CHECK(again.sha512 == real);
         CHECK(again.record.empty());
     }
     {
         const RecordNamed named(record);
-        CHECK(inputDigest(dir / "stale.raw").sha512 == sha512File(dir / "stale.raw"));
+        CHECK(InputDigests::fromEnvironment().of(dir / "stale.raw").sha512 == sha512File(dir / "stale.raw"));
     }
-    CHECK(inputDigest(file).sha512 == real);  // no record named
+    CHECK(InputDigests::fromEnvironment().of(file).sha512 == real);  // no record named
     // A link in the record's place is replaced, its target untouched.
     write(dir / "target.txt", "kept");
     fs::remove(record);
@@ -83,12 +83,12 @@ TEST_CASE("input digests: taken from the record while size and time hold, comput
     {
         const RecordNamed named(record);
         const std::string expected = "VRI_INPUT_DIGESTS " + record.string() + ": not a record of digests";
-        CHECK_THROWS_WITH_AS(inputDigest(file), doctest::Contains(expected.c_str()), Error);
+        CHECK_THROWS_WITH_AS(InputDigests::fromEnvironment().of(file), doctest::Contains(expected.c_str()), Error);
     }
     {
         const RecordNamed named(dir / "no-such-record.json");
         const std::string expected = "VRI_INPUT_DIGESTS " + (dir / "no-such-record.json").string() + ": ";
-        CHECK_THROWS_WITH_AS(inputDigest(file), doctest::Contains(expected.c_str()), Error);
+        CHECK_THROWS_WITH_AS(InputDigests::fromEnvironment().of(file), doctest::Contains(expected.c_str()), Error);
     }
     fs::remove_all(dir);
 }

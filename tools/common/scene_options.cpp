@@ -107,12 +107,15 @@ SceneSetup SceneOptions::load() const {
         (sparse ? sparse->range : volume->range) = *range;
     }
     std::filesystem::path digestRecord;  // where a digest came from, when vri-run recorded it (input_digest.h)
+    const InputDigests digests = InputDigests::fromEnvironment();
     const auto digested = [&](const std::string& path) {
-        InputDigest digest = inputDigest(path);
+        InputDigest digest = digests.of(path);
         if (!digest.record.empty()) digestRecord = digest.record;
         return nlohmann::json{{"path", path}, {"sha512", std::move(digest.sha512)}};
     };
-    if (!volumePath_.empty()) inputs.push_back(digested(volumePath_));
+    // The volume and, for a header, the file holding its voxels (filesReadBy): both are what the image comes from.
+    if (!volumePath_.empty())
+        for (const std::filesystem::path& read : filesReadBy(volumePath_)) inputs.push_back(digested(read.string()));
     Scene scene{volume, linear, conv, loadTransferFunction(tfPath_), sparse, brick};
     inputs.push_back(digested(tfPath_));
 
