@@ -247,21 +247,6 @@ std::string nonFiniteVoxel(glm::ivec3 at, glm::ivec3 dims, double value, const s
 // range with lo < hi (metadata of a .vdb included), and a box that a double can span.
 namespace {
 
-void requireUsableGeometry(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origin,
-                           const std::optional<ValueRange>& range, const std::string& source) {
-    // Values map to (v - lo) / (hi - lo): a width past the largest double maps every value to 0.
-    if (range && !(range->lo < range->hi && std::isfinite(range->hi - range->lo)))
-        throw Error(source + ": value range " + exactNumber(range->lo) + " " + exactNumber(range->hi) +
-                    ": expected finite lo < hi with a finite hi - lo");
-    for (int axis = 0; axis < 3; ++axis) {
-        const double end = origin[axis] + spacing[axis] * dims[axis];
-        if (!std::isfinite(end))
-            throw Error(source + ": the box (origin " + exactNumber(origin[axis]) + " + " + std::to_string(dims[axis]) +
-                        " voxels x spacing " + exactNumber(spacing[axis]) + " along " + "xyz"[axis] +
-                        ") is beyond the range of a double");
-    }
-}
-
 // The first non-finite float voxel of `volume`, whose first voxel sits at `start` in a volume of `dims` (0 and
 // its own dims, or a brick's stored box), named by its place in that volume.
 void requireFiniteVoxels(const Volume& volume, glm::ivec3 start, glm::ivec3 dims, const std::string& source) {
@@ -278,6 +263,21 @@ void requireFiniteVoxels(const Volume& volume, glm::ivec3 start, glm::ivec3 dims
 }
 
 }  // namespace
+
+void requireUsableGeometry(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origin,
+                           const std::optional<ValueRange>& range, const std::string& source) {
+    // Values map to (v - lo) / (hi - lo): a width past the largest double maps every value to 0.
+    if (range && !(range->lo < range->hi && std::isfinite(range->hi - range->lo)))
+        throw Error(source + ": value range " + exactNumber(range->lo) + " " + exactNumber(range->hi) +
+                    ": expected finite lo < hi with a finite hi - lo");
+    for (int axis = 0; axis < 3; ++axis) {
+        const double end = origin[axis] + spacing[axis] * dims[axis];
+        if (!std::isfinite(end))
+            throw Error(source + ": the box (origin " + exactNumber(origin[axis]) + " + " + std::to_string(dims[axis]) +
+                        " voxels x spacing " + exactNumber(spacing[axis]) + " along " + "xyz"[axis] +
+                        ") is beyond the range of a double");
+    }
+}
 
 void requireUsableValues(const Volume& volume, const std::string& source) {
     requireFiniteVoxels(volume, glm::ivec3(0), volume.dims, source);

@@ -53,6 +53,9 @@ void requireUsableValues(const SparseVolume& volume, const std::string& source);
 // The same for the stored box of a brick of a volume of `dims` (core/brick_volume.h): a voxel named by its place
 // in the whole volume, and the whole volume's box checked, so that a brick refuses what the whole would.
 void requireUsableValues(const Volume& box, const VoxelBox& stored, glm::ivec3 dims, const std::string& source);
+// The part of those checks that is not the voxels: the range (when set) and the box of a volume of `dims`.
+void requireUsableGeometry(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origin,
+                           const std::optional<ValueRange>& range, const std::string& source);
 
 // How a volume is kept in memory: dense (Volume), sparse (SparseVolume: the 8^3 bricks that are not all
 // background), or auto: sparse for a .vdb whose dense box would be refused (over the byte limit, or over

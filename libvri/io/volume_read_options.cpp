@@ -37,19 +37,15 @@ std::optional<RawLayout> requestedRawLayout(const std::filesystem::path& input, 
 
 namespace {
 
-// --spacing, when given, over what the file says, then the volume checked with it (a brick as its whole volume).
+// --spacing, when given, over what the file says, then the box it makes checked, for a volume of `dims` (a
+// brick's: its whole volume's); the values were checked as they were read, and --spacing changes none.
 template <class V>
-void overrideSpacing(V& volume, const VolumeReadOptions& options,
-                     const std::function<void(const V&, const std::string&)>& requireUsable) {
+void overrideSpacing(V& volume, const VolumeReadOptions& options, glm::ivec3 dims) {
     if (options.spacing.empty()) return;
     volume.spacing = parseVec3(options.spacing, "--spacing");
     if (!(volume.spacing.x > 0 && volume.spacing.y > 0 && volume.spacing.z > 0))
         throw Error("--spacing: expected positive numbers, got '" + options.spacing + "'");
-    requireUsable(volume, "--spacing " + options.spacing);
-}
-template <class V>
-void overrideSpacing(V& volume, const VolumeReadOptions& options) {
-    overrideSpacing<V>(volume, options, [](const V& v, const std::string& source) { requireUsableValues(v, source); });
+    requireUsableGeometry(dims, volume.spacing, volume.origin, volume.range, "--spacing " + options.spacing);
 }
 
 }  // namespace
@@ -57,7 +53,7 @@ void overrideSpacing(V& volume, const VolumeReadOptions& options) {
 Volume readVolume(const std::filesystem::path& input, const VolumeReadOptions& options) {
     const std::optional<RawLayout> layout = requestedRawLayout(input, options);
     Volume volume = options.grid ? readVdb(input, *options.grid) : readVolume(input, layout);
-    overrideSpacing(volume, options);
+    overrideSpacing(volume, options, volume.dims);
     return volume;
 }
 
@@ -67,10 +63,10 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
         LoadedVolume loaded = readVdb(input, options.grid, storage);
         if (loaded.sparse) {
             requireUsableValues(*loaded.sparse, input.string());
-            overrideSpacing(*loaded.sparse, options);
+            overrideSpacing(*loaded.sparse, options, loaded.sparse->dims);
         } else {
             requireUsableValues(*loaded.dense, input.string());
-            overrideSpacing(*loaded.dense, options);
+            overrideSpacing(*loaded.dense, options, loaded.dense->dims);
         }
         return loaded;
     }
@@ -182,11 +178,8 @@ BrickVolume readBrick(const std::filesystem::path& input, const VolumeReadOption
     if (!b.voxels.range) b.voxels.range = source->scanRange();
     // Checked as the whole volume is, in its order (the file's values, then --spacing's box): its box, a voxel
     // named by its place in it.
-    const auto requireUsable = [&](const Volume& v, const std::string& source) {
-        requireUsableValues(v, grid.storedBox(brick), grid.dims(), source);
-    };
-    requireUsable(b.voxels, input.string());
-    overrideSpacing<Volume>(b.voxels, options, requireUsable);
+    requireUsableValues(b.voxels, grid.storedBox(brick), grid.dims(), input.string());
+    overrideSpacing(b.voxels, options, grid.dims());
     return b;
 }
 
