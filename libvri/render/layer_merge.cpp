@@ -9,6 +9,7 @@
 
 #include "libvri/core/brick_grid.h"
 #include "libvri/core/brick_layers.h"
+#include "libvri/render/merged_digest_sources.h"
 #include "libvri/util/error.h"
 #include "libvri/util/json_file.h"
 
@@ -111,6 +112,9 @@ MergedLayers mergeLayers(const std::vector<LayerFiles>& files) {
                         {"brick", {layers[i].brick.x, layers[i].brick.y, layers[i].brick.z}},
                         {"command", layers[i].record.value("command", nlohmann::json())}});
     record["layers"] = std::move(list);
+    std::vector<nlohmann::json> parts;
+    for (const Layer& l : layers) parts.push_back(l.record);
+    mergeDigestSources(record, parts);
     record["join"] = {{"grid", {first.grid.x, first.grid.y, first.grid.z}},
                       {"bound_max", joined.boundMax},
                       {"bound", "per pixel and channel, against the unbricked render (core/brick_layers.h)"}};

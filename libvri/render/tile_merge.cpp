@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "libvri/core/brick_layers.h"
+#include "libvri/render/merged_digest_sources.h"
 #include "libvri/render/render_job.h"  // medianIntervalRecord
 #include "libvri/util/error.h"
 #include "libvri/util/json_file.h"
@@ -290,6 +291,7 @@ MergedTiles mergeTiles(const std::vector<TileFiles>& tiles) {
     for (const char* key : {"region", "command", "time_utc"}) record.erase(key);
     const json combined = combineTileStats(records, names);
     for (const auto& [key, value] : combined.items()) record[key] = value;
+    mergeDigestSources(record, records);
     record["tiles"] = json::array();
     for (std::size_t i = 0; i < tiles.size(); ++i)
         record["tiles"].push_back({{"image", tiles[i].image},
