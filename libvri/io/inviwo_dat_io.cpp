@@ -113,7 +113,6 @@ HeaderVoxels inviwoDatVoxels(const fs::path& path) {
     return voxels;
 }
 
-
 void writeInviwoDat(const fs::path& path, const Volume& volume) {
     const fs::path rawPath = rawFileBeside(path);
     const auto n = [](double value) { return exactNumber(value); };

@@ -158,5 +158,4 @@ HeaderVoxels metaImageVoxels(const fs::path& path) {
     return voxels;
 }
 
-
 }  // namespace vri::detail

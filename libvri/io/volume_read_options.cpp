@@ -79,38 +79,6 @@ LoadedVolume readVolume(const std::filesystem::path& input, const VolumeReadOpti
 
 namespace {
 
-// Where a volume's voxels lie as vri keeps them, so that a brick reads its box alone by offset: a raw file, an
-// Inviwo .dat's raw file, or the data of a NRRD or MetaImage stored so (uncompressed; uint8, uint16 or
-// float32), with what its header adds. nullopt for any other file (compressed, a type vri converts, TIFF,
-// .vdb), which is read whole.
-struct OffsetVoxels {
-    std::filesystem::path file;
-    RawLayout layout;
-    std::optional<glm::dvec3> origin;
-    std::optional<ValueRange> range;
-    std::string_view entry = "data file";  // what the header calls its data file, for messages
-};
-
-std::optional<OffsetVoxels> offsetVoxels(const std::filesystem::path& input, const VolumeReadOptions& options) {
-    if (std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options)))
-        return OffsetVoxels{input, *layout, std::nullopt, std::nullopt};
-    const std::optional<detail::HeaderVoxels> found = detail::headerVoxels(input);
-    if (!found) return std::nullopt;
-    const detail::HeaderVoxels& header = *found;
-    const VoxelType type = detail::volumeTypeFor(header.data.type);
-    if (header.data.gzip || !detail::keptAsStored(header.data.type)) return std::nullopt;
-    RawLayout layout{header.data.dims, type, header.data.order, header.spacing, 0};
-    // Where the data begin (the file's last bytes, for a header size of -1); the read checks the file's size.
-    layout.headerBytes = static_cast<std::size_t>(detail::namingHeader(
-        input, header.dataPath, [&] { return detail::storedVoxels(header.dataPath, header.data).offset; },
-        header.entry));
-    return OffsetVoxels{header.dataPath, layout, header.origin, header.range, header.entry};
-}
-
-}  // namespace
-
-namespace {
-
 // What a brick is read from without the whole volume: the volume's dims and voxel type, what a header adds, its
 // box of voxels read alone, and the min..max of its values scanned a part at a time.
 struct BrickSource {
@@ -122,23 +90,40 @@ struct BrickSource {
     std::function<ValueRange()> scanRange;
 };
 
-// offsetVoxels' files by offset, their messages after the header's; a TIFF stack kept as stored by its pages'
-// rows; nullopt for any other file, which a brick reads whole.
+// A raw file, an Inviwo .dat's raw file, or the data of a NRRD or MetaImage stored as vri keeps them
+// (uncompressed; uint8, uint16 or float32), read by offset with what a header adds and its messages after the
+// header's; a TIFF stack of such pages, by its pages' rows. nullopt for any other file (compressed, a type vri
+// converts, .vdb), which a brick reads whole.
 std::optional<BrickSource> brickSource(const std::filesystem::path& input, const VolumeReadOptions& options) {
-    if (const std::optional<OffsetVoxels> source = offsetVoxels(input, options)) {
-        const auto naming = [&input, source](auto read) {
-            return detail::namingHeader(input, source->file, read, source->entry);
-        };
+    // `file`'s voxels laid out as `layout`, named after `input` where that is a header (`entry`: its word for
+    // the data file).
+    const auto byOffset = [&input](const std::filesystem::path& file, const RawLayout& layout, std::string_view entry) {
+        const auto naming = [input, file, entry](auto read) { return detail::namingHeader(input, file, read, entry); };
         return BrickSource{
-            source->layout.dims,
-            source->layout.type,
-            source->origin,
-            source->range,
-            [=](const VoxelBox& box) { return naming([&] { return readRawBox(source->file, source->layout, box); }); },
-            [=] { return naming([&] { return rawValueRange(source->file, source->layout, input.string()); }); }};
+            layout.dims,
+            layout.type,
+            std::nullopt,
+            std::nullopt,
+            [=](const VoxelBox& box) { return naming([&] { return readRawBox(file, layout, box); }); },
+            [=] { return naming([&] { return rawValueRange(file, layout, input.string()); }); }};
+    };
+    if (const std::optional<RawLayout> layout = rawLayoutOf(input, requestedRawLayout(input, options)))
+        return byOffset(input, *layout, {});
+    if (const std::optional<detail::HeaderVoxels> header = detail::headerVoxels(input)) {
+        if (header->data.gzip || !detail::keptAsStored(header->data.type)) return std::nullopt;
+        RawLayout layout{header->data.dims, detail::volumeTypeFor(header->data.type), header->data.order,
+                         header->spacing, 0};
+        // Where the data begin (the file's last bytes, for a header size of -1); the read checks the file's size.
+        layout.headerBytes = static_cast<std::size_t>(detail::namingHeader(
+            input, header->dataPath, [&] { return detail::storedVoxels(header->dataPath, header->data).offset; },
+            header->entry));
+        BrickSource source = byOffset(header->dataPath, layout, header->entry);
+        source.origin = header->origin;
+        source.range = header->range;
+        return source;
     }
     const std::string extension = detail::toLower(input.extension().string());
-    if (requestedRawLayout(input, options) || (extension != ".tif" && extension != ".tiff")) return std::nullopt;
+    if (extension != ".tif" && extension != ".tiff") return std::nullopt;
     const detail::TiffStackShape shape = detail::tiffStackShape(input);
     if (!detail::keptAsStored(shape.type)) return std::nullopt;
     return BrickSource{{shape.width, shape.height, shape.pages},
