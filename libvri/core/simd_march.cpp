@@ -351,20 +351,31 @@ private:
 // kNormalRange, or any.
 enum class StepDepth { NearZero, NormalRange, Any };
 
-// A step's attenuation exp(x), and for composite expm1(x), in the shortest form of exp_kernel.h that
-// `depth` allows: the same bits as exp() and expm1().
+// The depth class of exponents down to -deepest (the lanes' largest), with a margin for the rounding of
+// their factors and of the product.
+HWY_INLINE StepDepth stepDepthOf(VF deepest) {
+    const DF df;
+    if (hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNearZero))))) return StepDepth::NearZero;
+    if (hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNormalRange)))))
+        return StepDepth::NormalRange;
+    return StepDepth::Any;
+}
+
+// A step's attenuation exp(x) in the shortest form of exp_kernel.h that `depth` allows: exp()'s bits.
+HWY_INLINE VF stepAttenuation(const VectorOps& ops, StepDepth depth, VF x) {
+    if (depth == StepDepth::NearZero) return exp_kernel::expNearZero(ops, x);
+    if (depth == StepDepth::NormalRange) return exp_kernel::expInNormalRange(ops, x);
+    return exp_kernel::exp(ops, x);
+}
+
+// stepAttenuation, and for composite expm1(x) in its shortest form too.
 template <Integrator Method>
 HWY_INLINE void stepExponentials(const VectorOps& ops, StepDepth depth, VF x, VF& exp, VF& expm1) {
-    if (depth == StepDepth::NearZero) {
-        exp = exp_kernel::expNearZero(ops, x);
-        if constexpr (Method != Integrator::Riemann) expm1 = exp_kernel::expm1NearZero(ops, x);
-    } else if (depth == StepDepth::NormalRange) {
-        exp = exp_kernel::expInNormalRange(ops, x);
-        if constexpr (Method != Integrator::Riemann) expm1 = exp_kernel::expm1InNormalRange(ops, x);
-    } else {
-        exp = exp_kernel::exp(ops, x);
-        if constexpr (Method != Integrator::Riemann) expm1 = exp_kernel::expm1(ops, x);
-    }
+    exp = stepAttenuation(ops, depth, x);
+    if constexpr (Method != Integrator::Riemann)
+        expm1 = depth == StepDepth::NearZero      ? exp_kernel::expm1NearZero(ops, x)
+                : depth == StepDepth::NormalRange ? exp_kernel::expm1InNormalRange(ops, x)
+                                                  : exp_kernel::expm1(ops, x);
 }
 
 constexpr std::size_t kMaxLanes = PacketScene::kMaxLanes;
@@ -700,11 +711,7 @@ void marchTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& ima
         // 0.1 on Bonsai and at h = 0.5 and 0.1 on Engine, the one without a reduction.
         const VF deepest =
             hn::Mul(hn::Set(df, sc.maxTau), hn::IfThenElseZero(hn::RebindMask(df, hn::Gt(count, hn::Zero(di))), rays.dx));
-        const StepDepth depth =
-            hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNearZero)))) ? StepDepth::NearZero
-            : hn::AllTrue(df, hn::Le(deepest, hn::Set(df, 0.97f * float(exp_kernel::kNormalRange))))
-                ? StepDepth::NormalRange
-                : StepDepth::Any;
+        const StepDepth depth = stepDepthOf(deepest);
         MF ended = none;            // lanes early termination ended, after sample kEnded - 1
         VI kEnded = hn::Zero(di);
         MF pending = none;          // lanes whose sample the march interpolated last step, not yet integrated
@@ -823,7 +830,7 @@ HWY_INLINE TableLookup lookupAt(const PreintegrationTable& table, VF front, VF b
     const VF zero = hn::Zero(df), one = hn::Set(df, 1.f), last = hn::Set(df, static_cast<float>(table.size() - 1));
     const auto locate = [&](VF s, VI& i) {
         const VF x = hn::Mul(hn::IfThenElse(hn::Gt(s, zero), hn::IfThenElse(hn::Lt(s, one), s, one), zero), last);
-        i = hn::Min(hn::ConvertTo(di, x), hn::Set(di, table.size() - 2));
+        i = hn::Min(truncateInRange(x), hn::Set(di, table.size() - 2));  // x lies in [0, size - 1]
         return hn::Sub(x, hn::ConvertTo(df, i));
     };
     VI i, j;
@@ -834,33 +841,78 @@ HWY_INLINE TableLookup lookupAt(const PreintegrationTable& table, VF front, VF b
     return l;
 }
 
+#if HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128
+constexpr std::size_t kTableLanes = hn::MaxLanes(DF());
+static_assert(kTableLanes == 4 || kTableLanes == 8 || kTableLanes == 16,
+              "a whole number of 128-bit blocks, at most four");
+
+// A table entry is the 16 bytes R, G, B, depth: with x[q]'s block b holding the entry of lane q + 4 b, the
+// interleaves within blocks (a 4x4 transpose each) leave channel c of lanes 4 b .. 4 b + 3 in block b of
+// out[c].
+HWY_INLINE void transposeBlocks(const VF (&x)[4], VF (&out)[4]) {
+    const DF df;
+    const hn::Repartition<std::uint64_t, DF> dw;
+    const auto words = [&](VF f) { return hn::BitCast(dw, f); };
+    const VF low01 = hn::InterleaveLower(df, x[0], x[1]), low23 = hn::InterleaveLower(df, x[2], x[3]);
+    const VF high01 = hn::InterleaveUpper(df, x[0], x[1]), high23 = hn::InterleaveUpper(df, x[2], x[3]);
+    out[0] = hn::BitCast(df, hn::InterleaveLower(dw, words(low01), words(low23)));
+    out[1] = hn::BitCast(df, hn::InterleaveUpper(dw, words(low01), words(low23)));
+    out[2] = hn::BitCast(df, hn::InterleaveLower(dw, words(high01), words(high23)));
+    out[3] = hn::BitCast(df, hn::InterleaveUpper(dw, words(high01), words(high23)));
+}
+
+// The corners (i', j) and (i', j + 1) of the lanes' cells in channels, lane l's two entries the 32 bytes at
+// v + at[l] + offset: 128-bit loads, one an entry (a gather loads its elements one by one, and its wide
+// forms are slow on AMD's cores: gathering the channels, even two floats a lane at a time, cost more). On 8
+// lanes an entry pair is one 256-bit load, its blocks the two corners, regrouped after the transposes.
+HWY_INLINE void loadCornerPair(const float* v, const std::int32_t* at, std::ptrdiff_t offset, VF (&first)[4],
+                               VF (&second)[4]) {
+    const DF df;
+    const auto entry = [&](std::size_t lane) { return v + at[lane] + offset; };
+    if constexpr (kTableLanes == 8) {
+        VF low[4], high[4], lanes0123[4], lanes4567[4];
+        for (std::size_t q = 0; q < 4; ++q) {
+            low[q] = hn::LoadU(df, entry(q));
+            high[q] = hn::LoadU(df, entry(q + 4));
+        }
+        transposeBlocks(low, lanes0123);
+        transposeBlocks(high, lanes4567);
+        for (int c = 0; c < 4; ++c) {
+            first[c] = hn::ConcatLowerLower(df, lanes4567[c], lanes0123[c]);
+            second[c] = hn::ConcatUpperUpper(df, lanes4567[c], lanes0123[c]);
+        }
+    } else {
+        const auto corner = [&](std::ptrdiff_t at4, VF(&out)[4]) {
+            VF x[4];
+            for (std::size_t q = 0; q < 4; ++q) {
+                const auto e = [&](std::size_t lane) { return entry(lane) + at4; };
+                if constexpr (kTableLanes == 4) {
+                    x[q] = hn::LoadU(df, e(q));
+                } else {
+                    const hn::Half<DF> d8;
+                    const hn::Half<decltype(d8)> d4;
+                    x[q] = hn::Combine(df, hn::Combine(d8, hn::LoadU(d4, e(q + 12)), hn::LoadU(d4, e(q + 8))),
+                                       hn::Combine(d8, hn::LoadU(d4, e(q + 4)), hn::LoadU(d4, e(q))));
+                }
+            }
+            transposeBlocks(x, out);
+        };
+        corner(0, first);
+        corner(4, second);
+    }
+}
+#endif
+
 HWY_INLINE void interpolateTable(const float* v, const TableLookup& l, int size, VF (&out)[4]) {
     const DF df;
     const DI di;
-#if HWY_TARGET <= HWY_AVX2
-    // An entry's four floats are 16 bytes: R and G, and B and depth, are one 64-bit word each, so a corner of
-    // the lanes' cells is gathered as two words a lane (half as many elements as float by float, which is what
-    // a gather's cost follows) and split into channels. The same values, interpolated as below.
-    const hn::Repartition<std::int64_t, DF> dw;
-    const hn::Half<DI> dh;
-    const auto* words = reinterpret_cast<const std::int64_t*>(v);
-    const VI first = hn::ShiftRight<1>(l.at);  // the entry's first word
-    const auto corner = [&](int offset, int pair, VF& even, VF& odd) {
-        const VI at = hn::Add(first, hn::Set(di, offset + pair));
-        const VF low = hn::BitCast(df, hn::GatherIndex(dw, words, hn::PromoteTo(dw, hn::LowerHalf(dh, at))));
-        const VF high = hn::BitCast(df, hn::GatherIndex(dw, words, hn::PromoteTo(dw, hn::UpperHalf(dh, at))));
-        even = hn::ConcatEven(df, high, low);
-        odd = hn::ConcatOdd(df, high, low);
-    };
-    for (int pair = 0; pair < 2; ++pair) {
-        VF a[4], b[4];  // channels 2 pair and 2 pair + 1 at the corners (i, j), (i, j + 1), (i + 1, j), (i + 1, j + 1)
-        corner(0, pair, a[0], b[0]);
-        corner(2, pair, a[1], b[1]);
-        corner(size * 2, pair, a[2], b[2]);
-        corner(size * 2 + 2, pair, a[3], b[3]);
-        out[2 * pair] = lerp(lerp(a[0], a[1], l.fj), lerp(a[2], a[3], l.fj), l.fi);
-        out[2 * pair + 1] = lerp(lerp(b[0], b[1], l.fj), lerp(b[2], b[3], l.fj), l.fi);
-    }
+#if HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128
+    HWY_ALIGN std::int32_t at[kMaxLanes];
+    hn::Store(l.at, di, at);
+    VF a[4][4];  // the corners (i, j), (i, j + 1), (i + 1, j), (i + 1, j + 1), each in channels
+    loadCornerPair(v, at, 0, a[0], a[1]);
+    loadCornerPair(v, at, 4 * static_cast<std::ptrdiff_t>(size), a[2], a[3]);
+    for (int c = 0; c < 4; ++c) out[c] = lerp(lerp(a[0][c], a[1][c], l.fj), lerp(a[2][c], a[3][c], l.fj), l.fi);
 #else
     const VI right = hn::Set(di, 4), down = hn::Set(di, size * 4), both = hn::Set(di, size * 4 + 4);
     for (int c = 0; c < 4; ++c) {
@@ -876,7 +928,7 @@ HWY_INLINE void interpolateTable(const float* v, const TableLookup& l, int size,
 // its scalars read by the same stencils as a sample, and RayAccumulator::addSegment in lanes; a lane jumps
 // over segments in the table's own empty space (sc.emptyDistance: the pre-integration StencilBricks) and
 // reads its front scalar again where it lands, at the same position the segment before would have given it.
-template <class T>
+template <class T, int Order>
 void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
     const DF df;
     const DI di;
@@ -885,7 +937,7 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
     const PreintegrationTable& table = *sc.preintegration;
     const float* values = table.values<float>();
     const float* slopes = table.slopes<float>();
-    const bool secondOrder = table.order() == 2;
+    constexpr bool secondOrder = Order == 2;
     // PreintegrationTable::operator()'s clamp of a second-order value, once per call, not per sample.
     const VF upper[4] = {hn::Set(df, table.upperBound<float>()[0]), hn::Set(df, table.upperBound<float>()[1]),
                          hn::Set(df, table.upperBound<float>()[2]), hn::Set(df, table.upperBound<float>()[3])};
@@ -956,7 +1008,8 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
         // brick along every axis, so that a segment's two ends lie in bricks that touch.
         VF samplesPerVoxel[3];
         VI octant = hn::Zero(di);
-        MF mayJump = hn::RebindMask(df, hn::Lt(hn::Zero(di), lanesCount));
+        const MF hasRay = hn::RebindMask(df, hn::Lt(hn::Zero(di), lanesCount));
+        MF mayJump = hasRay;
         for (int a = 0; a < 3; ++a) {
             const VF voxelsPerStep = hn::Abs(hn::Mul(hn::Mul(d[a], hn::Set(df, sc.layout.scale[a])), step));
             samplesPerVoxel[a] = hn::Div(one, voxelsPerStep);
@@ -965,100 +1018,113 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
             octant = hn::IfThenElse(hn::RebindMask(di, hn::Lt(d[a], zero)),
                                     hn::Add(octant, hn::Set(di, (1 << a) * sc.octantStride)), octant);
         }
+        // A segment's depth is at most the table's bound times its length ratio, which picks exp_kernel's
+        // shortest form of its attenuation (stepDepthOf).
+        const StepDepth depthForm =
+            stepDepthOf(hn::Mul(hn::Set(df, table.upperBound<float>()[3]), hn::IfThenElseZero(hasRay, lengthRatio)));
+        // Segments of the table's length (lengthRatio 1: every segment of an equally spaced volume under Entry or
+        // Eye Align) need no correction of their integral: its two expm1 and a division are left out.
+        const bool unitLengths = hn::AllTrue(df, hn::Or(hn::Eq(lengthRatio, one), hn::Not(hasRay)));
+        // A lane's segments end at boundaries 0 .. count; a lane without a ray (count 0) reads none.
+        const VI boundaries = hn::IfThenElseZero(hn::RebindMask(di, hasRay), hn::Add(lanesCount, hn::Set(di, 1)));
         VI lastBrick = hn::Set(di, -1), lastDistance = hn::Zero(di);
-        VF cr = zero, cg = zero, cb = zero, left = one, front = zero;
-        VI k = hn::Zero(di);
-        MF haveFront = hn::FirstN(df, 0);  // lanes whose front scalar, and its stencil, the round before left
-        Stencil frontStencil{};
+        VF cr = zero, cg = zero, cb = zero, left = one;
+        VI k = hn::Zero(di);               // the boundary each lane reads next
+        MF haveFront = hn::FirstN(df, 0);  // lanes that read boundary k - 1, into `front`
+        VF front = zero;
+        MF pending = hn::FirstN(df, 0);  // lanes whose segment the march read last step, not yet looked up
+        VF pendingFront = zero, pendingBack = zero, pendingDelta = zero;
         const auto boundary = [&](VI at) { return hn::Add(segmentOffset, hn::Mul(hn::ConvertTo(df, at), step)); };
+        // Two stages a step, as marchTile's: the march reads each lane's next boundary (or jumps) one step
+        // ahead of the lookup and the sums of the segment it ended, so that the two chains run side by side.
         for (;;) {
-            const MF active = hn::RebindMask(df, hn::Lt(k, lanesCount));
-            if (hn::AllFalse(df, active)) break;
-            // A lane whose segment starts in an empty brick jumps over the segments whose ends certainly lie in
-            // empty bricks (samplesInEmptyCube: boundaries k .. k + m), each of which looks up exactly 0 and adds
-            // nothing (RayAccumulator::addSegment); the others look theirs up. A lane that jumped looks again
-            // from where it landed, in the next round.
-            MF jumped = hn::FirstN(df, 0);
-            const MF jumping = hn::And(active, mayJump);
-            if (sc.emptyDistance && !hn::AllFalse(df, jumping)) {
-                const Stencil stencil =
-                    hn::AllFalse(df, hn::AndNot(haveFront, jumping)) ? frontStencil : stencilAt(boundary(k), active, e, d);
+            const MF marching = hn::RebindMask(df, hn::Lt(k, boundaries));
+            if (hn::AllFalse(df, marching) && hn::AllFalse(df, pending)) break;
+
+            // The lookup of the segments the march ended last step, and RayAccumulator::addSegment.
+            if (!hn::AllFalse(df, pending)) {
+                VF v[4];
+                const TableLookup l = lookupAt(table, pendingFront, pendingBack);
+                interpolateTable(values, l, table.size(), v);
+                if constexpr (secondOrder) {
+                    VF slope[4];
+                    interpolateTable(slopes, l, table.size(), slope);
+                    for (int c = 0; c < 4;
+                         ++c)  // kept within [0, upperBound] as PreintegrationTable::operator() keeps it
+                        v[c] = hn::Max(hn::Min(hn::Add(v[c], hn::Mul(pendingDelta, slope[c])), upper[c]), zero);
+                }
+                const MF adds = hn::AndNot(hn::And(hn::And(hn::Eq(v[3], zero), hn::Eq(v[0], zero)),
+                                                   hn::And(hn::Eq(v[1], zero), hn::Eq(v[2], zero))),
+                                           pending);
+                if constexpr (secondOrder) {
+                    const VF deltaSize = hn::Abs(pendingDelta);
+                    largestDelta = hn::Max(largestDelta, hn::IfThenElseZero(adds, deltaSize));
+                    counts.lookupsBeyond[0] += hn::CountTrue(df, adds);
+                    // The levels ascend: past the first no lane exceeds, none does (most deviations stop at a spacing).
+                    for (std::size_t level = 0; level < deltaLevels; ++level) {
+                        const MF beyond = hn::And(adds, hn::Gt(deltaSize, deltaLevel[level]));
+                        if (hn::AllFalse(df, beyond)) break;
+                        counts.lookupsBeyond[level + 1] += hn::CountTrue(df, beyond);
+                    }
+                }
+                if (!hn::AllFalse(df, adds)) {
+                    const VF depth = hn::Mul(v[3], lengthRatio);
+                    VF scale = one;
+                    if (!unitLengths) {
+                        const VF corrected =
+                            hn::Div(exp_kernel::expm1(ops, hn::Neg(depth)), exp_kernel::expm1(ops, hn::Neg(v[3])));
+                        scale = hn::IfThenElse(hn::Eq(lengthRatio, one), one,
+                                               hn::IfThenElse(hn::Gt(v[3], zero), corrected, lengthRatio));
+                    }
+                    const VF w = hn::Mul(left, scale);
+                    cr = hn::IfThenElse(adds, hn::Add(cr, hn::Mul(w, v[0])), cr);
+                    cg = hn::IfThenElse(adds, hn::Add(cg, hn::Mul(w, v[1])), cg);
+                    cb = hn::IfThenElse(adds, hn::Add(cb, hn::Mul(w, v[2])), cb);
+                    left = hn::IfThenElse(adds, hn::Mul(left, stepAttenuation(ops, depthForm, hn::Neg(depth))), left);
+                }
+                pending = hn::FirstN(df, 0);
+            }
+            if (hn::AllFalse(df, marching)) continue;
+
+            // The march: each lane reads boundary k, which ends its segment k - 1 where it read k - 1.
+            const Stencil stencil = stencilAt(boundary(k), marching, e, d);
+            MF empty = hn::FirstN(df, 0);
+            if (sc.emptyDistance) {
                 const VI brick = hn::Add(stencil.brick, octant);
                 if (!hn::AllTrue(di, hn::Eq(brick, lastBrick))) {
                     lastBrick = brick;
                     lastDistance = brickDistances(sc, brick);
                 }
-                const MF empty = hn::And(jumping, hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
-                if (!hn::AllFalse(df, empty)) {
-                    const VI m = samplesInEmptyCube(stencil, lastDistance, d, samplesPerVoxel, sc.jumpMargin);
-                    jumped = hn::And(empty, hn::RebindMask(df, hn::Gt(m, hn::Zero(di))));
-                    k = hn::Min(hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, jumped), m)), lanesCount);
-                    haveFront = hn::AndNot(jumped, haveFront);
-                }
+                empty = hn::And(hn::And(marching, mayJump), hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
             }
-            const MF looking = hn::AndNot(jumped, active);
-            if (hn::AllFalse(df, looking)) continue;
-            const MF needFront = hn::AndNot(haveFront, looking);
-            if (!hn::AllFalse(df, needFront)) front = hn::IfThenElse(needFront, scalarAt(boundary(k), needFront, e, d), front);
-            const VI next = hn::Add(k, hn::Set(di, 1));
-            const Stencil backStencil = stencilAt(boundary(next), looking, e, d);
-            const VF back = interpolate<T>(sc, backStencil);
+            const VF back = interpolate<T>(sc, stencil);
+            const MF looking = hn::And(marching, haveFront);
             lookedUp += hn::CountTrue(df, looking);
-            const auto advance = [&] {
-                front = back;
-                frontStencil = backStencil;
-                haveFront = looking;
-                k = hn::IfThenElse(hn::RebindMask(di, looking), next, k);
-            };
-            if (hn::AllTrue(df, hn::Or(hn::Not(looking), hn::And(hn::Lt(front, zeroBelow), hn::Lt(back, zeroBelow))))) {
-                advance();  // every lane's lookup is 0
-                continue;
+            // Below zeroBelow both ends look up exactly 0: such a segment adds nothing and is not looked up.
+            pending = hn::AndNot(hn::And(hn::Lt(front, zeroBelow), hn::Lt(back, zeroBelow)), looking);
+            pendingFront = front;
+            pendingBack = back;
+            if (secondOrder && !hn::AllFalse(df, pending)) {
+                const VI segment = hn::Sub(k, hn::Set(di, 1));
+                const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, segment), step));
+                pendingDelta = hn::Sub(scalarAt(t, pending, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
             }
-            VF v[4];
-            const TableLookup l = lookupAt(table, front, back);
-            interpolateTable(values, l, table.size(), v);
-            VF deltaSize = hn::Zero(df);
-            if (secondOrder) {
-                const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, k), step));
-                const VF delta = hn::Sub(scalarAt(t, looking, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
-                deltaSize = hn::Abs(delta);
-                VF slope[4];
-                interpolateTable(slopes, l, table.size(), slope);
-                for (int c = 0; c < 4; ++c)  // kept within [0, upperBound] as PreintegrationTable::operator() keeps it
-                    v[c] = hn::Max(hn::Min(hn::Add(v[c], hn::Mul(delta, slope[c])), upper[c]), zero);
+            front = back;
+            haveFront = marching;
+            const VI read = k;
+            k = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, marching), hn::Set(di, 1)));
+            // A lane whose boundary lies in an empty brick (StencilBricks' pre-integration bricks) jumps over the
+            // segments whose two ends certainly lie in that cube of empty bricks (samplesInEmptyCube: boundaries
+            // k .. k + m), each of which looks up exactly 0 and adds nothing; it reads boundary k + m next, as the
+            // front of the segment leaving the cube, or is done where the cube holds its last boundary.
+            if (!hn::AllFalse(df, empty)) {
+                const VI m = samplesInEmptyCube(stencil, lastDistance, d, samplesPerVoxel, sc.jumpMargin);
+                const MF jumped = hn::And(empty, hn::RebindMask(df, hn::Gt(m, hn::Zero(di))));
+                const VI landing = hn::Add(read, m);
+                k = hn::IfThenElse(hn::RebindMask(di, jumped),
+                                   hn::IfThenElse(hn::Lt(landing, lanesCount), landing, boundaries), k);
+                haveFront = hn::AndNot(jumped, haveFront);
             }
-            // RayAccumulator::addSegment.
-            const MF adds = hn::AndNot(hn::And(hn::And(hn::Eq(v[3], zero), hn::Eq(v[0], zero)),
-                                               hn::And(hn::Eq(v[1], zero), hn::Eq(v[2], zero))),
-                                       looking);
-            if (secondOrder) {
-                largestDelta = hn::Max(largestDelta, hn::IfThenElseZero(adds, deltaSize));
-                counts.lookupsBeyond[0] += hn::CountTrue(df, adds);
-                // The levels ascend: past the first no lane exceeds, none does (most deviations stop at a spacing).
-                for (std::size_t level = 0; level < deltaLevels; ++level) {
-                    const MF beyond = hn::And(adds, hn::Gt(deltaSize, deltaLevel[level]));
-                    if (hn::AllFalse(df, beyond)) break;
-                    counts.lookupsBeyond[level + 1] += hn::CountTrue(df, beyond);
-                }
-            }
-            if (!hn::AllFalse(df, adds)) {
-                const VF depth = hn::Mul(v[3], lengthRatio);
-                // A segment of the table's length (lengthRatio 1, every segment of an equally spaced volume under
-                // Entry or Eye Align) needs no correction: its two expm1 and a division are left out.
-                VF scale = one;
-                if (!hn::AllTrue(df, hn::Or(hn::Not(adds), hn::Eq(lengthRatio, one)))) {
-                    const VF corrected =
-                        hn::Div(exp_kernel::expm1(ops, hn::Neg(depth)), exp_kernel::expm1(ops, hn::Neg(v[3])));
-                    scale = hn::IfThenElse(hn::Eq(lengthRatio, one), one,
-                                           hn::IfThenElse(hn::Gt(v[3], zero), corrected, lengthRatio));
-                }
-                const VF w = hn::Mul(left, scale);
-                cr = hn::IfThenElse(adds, hn::Add(cr, hn::Mul(w, v[0])), cr);
-                cg = hn::IfThenElse(adds, hn::Add(cg, hn::Mul(w, v[1])), cg);
-                cb = hn::IfThenElse(adds, hn::Add(cb, hn::Mul(w, v[2])), cb);
-                left = hn::IfThenElse(adds, hn::Mul(left, exp_kernel::exp(ops, hn::Neg(depth))), left);
-            }
-            advance();
         }
         hn::Store(cr, df, r);
         hn::Store(cg, df, g);
@@ -1081,7 +1147,9 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
 
 template <class T>
 void marchTileOfType(const PacketScene& sc, int x0, int y0, int x1, int y1, Image& image, MarchCounts& counts) {
-    if (sc.preintegration) return marchSegmentsTile<T>(sc, x0, y0, x1, y1, image, counts);
+    if (sc.preintegration)
+        return sc.preintegration->order() == 2 ? marchSegmentsTile<T, 2>(sc, x0, y0, x1, y1, image, counts)
+                                               : marchSegmentsTile<T, 1>(sc, x0, y0, x1, y1, image, counts);
     const bool composite = sc.options.integrator == Integrator::Composite;
     if (sc.emission == EmissionModel::ColourTimesExtinction) {
         if (composite)
