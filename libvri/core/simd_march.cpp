@@ -1031,6 +1031,7 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
         VF cr = zero, cg = zero, cb = zero, left = one;
         VI k = hn::Zero(di);               // the boundary each lane reads next
         MF haveFront = hn::FirstN(df, 0);  // lanes that read boundary k - 1, into `front`
+        MF frontEmpty = haveFront;         // lanes whose boundary k - 1 lies in an empty brick
         VF front = zero;
         MF pending = hn::FirstN(df, 0);  // lanes whose segment the march read last step, not yet looked up
         VF pendingFront = zero, pendingBack = zero, pendingDelta = zero;
@@ -1088,7 +1089,12 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
 
             // The march: each lane reads boundary k, which ends its segment k - 1 where it read k - 1.
             const Stencil stencil = stencilAt(boundary(k), marching, e, d);
-            MF empty = hn::FirstN(df, 0);
+            // A lane whose boundary lies in an empty brick (StencilBricks' pre-integration bricks) jumps over the
+            // segments whose two ends certainly lie in that cube of empty bricks (samplesInEmptyCube: boundaries
+            // k .. k + m), each of which looks up exactly 0 and adds nothing, to boundary k + m, in the cube too (done
+            // where the cube holds its last boundary). There it has no front: the segment ending there adds nothing.
+            MF empty = hn::FirstN(df, 0), jumping = empty;
+            VI m = hn::Zero(di);
             if (sc.emptyDistance) {
                 const VI brick = hn::Add(stencil.brick, octant);
                 if (!hn::AllTrue(di, hn::Eq(brick, lastBrick))) {
@@ -1096,35 +1102,37 @@ void marchSegmentsTile(const PacketScene& sc, int x0, int y0, int x1, int y1, Im
                     lastDistance = brickDistances(sc, brick);
                 }
                 empty = hn::And(hn::And(marching, mayJump), hn::RebindMask(df, hn::Ne(lastDistance, hn::Zero(di))));
+                if (!hn::AllFalse(df, empty)) {
+                    m = samplesInEmptyCube(stencil, lastDistance, d, samplesPerVoxel, sc.jumpMargin);
+                    jumping = hn::And(empty, hn::RebindMask(df, hn::Gt(m, hn::Zero(di))));
+                }
             }
-            const VF back = interpolate<T>(sc, stencil);
-            const MF looking = hn::And(marching, haveFront);
-            lookedUp += hn::CountTrue(df, looking);
-            // Below zeroBelow both ends look up exactly 0: such a segment adds nothing and is not looked up.
-            pending = hn::AndNot(hn::And(hn::Lt(front, zeroBelow), hn::Lt(back, zeroBelow)), looking);
-            pendingFront = front;
-            pendingBack = back;
-            if (secondOrder && !hn::AllFalse(df, pending)) {
-                const VI segment = hn::Sub(k, hn::Set(di, 1));
-                const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, segment), step));
-                pendingDelta = hn::Sub(scalarAt(t, pending, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
+            // Segment k - 1 is looked up unless its two ends lie in empty bricks, which touch (the step is shorter
+            // than a brick along every axis).
+            const MF looking = hn::AndNot(hn::And(frontEmpty, empty), hn::And(marching, haveFront));
+            // The boundary's value ends that segment, or starts the next where the lane does not jump: where no lane
+            // needs it, it is not read.
+            if (!hn::AllFalse(df, hn::Or(looking, hn::AndNot(jumping, marching)))) {
+                const VF back = interpolate<T>(sc, stencil);
+                lookedUp += hn::CountTrue(df, looking);
+                // Below zeroBelow both ends look up exactly 0: such a segment adds nothing and is not looked up.
+                pending = hn::AndNot(hn::And(hn::Lt(front, zeroBelow), hn::Lt(back, zeroBelow)), looking);
+                pendingFront = front;
+                pendingBack = back;
+                if (secondOrder && !hn::AllFalse(df, pending)) {
+                    const VI segment = hn::Sub(k, hn::Set(di, 1));
+                    const VF t = hn::Add(start, hn::Mul(hn::ConvertTo(df, segment), step));
+                    pendingDelta =
+                        hn::Sub(scalarAt(t, pending, e, d), hn::Mul(hn::Set(df, 0.5f), hn::Add(front, back)));
+                }
+                front = back;
             }
-            front = back;
-            haveFront = marching;
-            const VI read = k;
-            k = hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, marching), hn::Set(di, 1)));
-            // A lane whose boundary lies in an empty brick (StencilBricks' pre-integration bricks) jumps over the
-            // segments whose two ends certainly lie in that cube of empty bricks (samplesInEmptyCube: boundaries
-            // k .. k + m), each of which looks up exactly 0 and adds nothing; it reads boundary k + m next, as the
-            // front of the segment leaving the cube, or is done where the cube holds its last boundary.
-            if (!hn::AllFalse(df, empty)) {
-                const VI m = samplesInEmptyCube(stencil, lastDistance, d, samplesPerVoxel, sc.jumpMargin);
-                const MF jumped = hn::And(empty, hn::RebindMask(df, hn::Gt(m, hn::Zero(di))));
-                const VI landing = hn::Add(read, m);
-                k = hn::IfThenElse(hn::RebindMask(di, jumped),
-                                   hn::IfThenElse(hn::Lt(landing, lanesCount), landing, boundaries), k);
-                haveFront = hn::AndNot(jumped, haveFront);
-            }
+            haveFront = hn::AndNot(jumping, marching);
+            frontEmpty = empty;
+            const VI landing = hn::Add(k, m);
+            k = hn::IfThenElse(hn::RebindMask(di, jumping),
+                               hn::IfThenElse(hn::Lt(landing, lanesCount), landing, boundaries),
+                               hn::Add(k, hn::IfThenElseZero(hn::RebindMask(di, marching), hn::Set(di, 1))));
         }
         hn::Store(cr, df, r);
         hn::Store(cg, df, g);
