@@ -110,28 +110,22 @@ ValueRange tiffStackValueRange(const fs::path& path, const std::string& volumeNa
     ValueRange range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     Volume page;
     glm::ivec3 dims(0);
-    readChecked(path,
-                {std::nullopt,
-                 [&](const TiffStackShape& shape) {
-                     if (shape.type != StoredType::Float32)
-                         throw Error(path.string() + ": the value range is scanned for float stacks only");
-                     dims = dimsOf(shape);
-                     checkedBoxBytes(path, {dims.x, dims.y, 1}, shape.type);
-                     page = namingFileIfTooLarge(path, [&] { return Volume({dims.x, dims.y, 1}, VoxelType::Float32); });
-                     return reinterpret_cast<char*>(page.bytes.data());
-                 },
-                 [&](int z) {
-                     const float* v = page.data<float>();
-                     for (int y = 0; y < dims.y; ++y)
-                         for (int x = 0; x < dims.x; ++x) {
-                             const float value = v[std::size_t(y) * std::size_t(dims.x) + std::size_t(x)];
-                             if (!std::isfinite(value))
-                                 throw Error(nonFiniteVoxel({x, y, z}, dims, value,
-                                                            volumeName.empty() ? path.string() : volumeName));
-                             range.lo = std::min(range.lo, double(value));
-                             range.hi = std::max(range.hi, double(value));
-                         }
-                 }});
+    readChecked(
+        path,
+        {std::nullopt,
+         [&](const TiffStackShape& shape) {
+             if (shape.type != StoredType::Float32)
+                 throw Error(path.string() + ": the value range is scanned for float stacks only");
+             dims = dimsOf(shape);
+             checkedBoxBytes(path, {dims.x, dims.y, 1}, shape.type);
+             page = namingFileIfTooLarge(path, [&] { return Volume({dims.x, dims.y, 1}, VoxelType::Float32); });
+             return reinterpret_cast<char*>(page.bytes.data());
+         },
+         [&](int z) {
+             const ValueRange r = boxValueRange(page, {0, 0, z}, dims, volumeName.empty() ? path.string() : volumeName);
+             range.lo = std::min(range.lo, r.lo);
+             range.hi = std::max(range.hi, r.hi);
+         }});
     return range;
 }
 

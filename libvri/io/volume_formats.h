@@ -32,6 +32,9 @@ Volume readTiffStackBox(const std::filesystem::path& path, const VoxelBox& box);
 ValueRange tiffStackValueRange(const std::filesystem::path& path, const std::string& volumeName = {});
 // "SOURCE: voxel N (x X, y Y, z Z) is V: ...": voxel `at` of a volume of `dims`, N its index in x-fastest order.
 std::string nonFiniteVoxel(glm::ivec3 at, glm::ivec3 dims, double value, const std::string& source);
+// The value range of `box`, voxels whose first sits at `start` in a volume of `dims`, a NaN or infinity among them
+// refused by its place in that volume (nonFiniteVoxel): the range scans that stream a file a box at a time.
+ValueRange boxValueRange(const Volume& box, glm::ivec3 start, glm::ivec3 dims, const std::string& source);
 
 void writeInviwoDat(const std::filesystem::path& path, const Volume& volume);
 

@@ -264,6 +264,15 @@ void requireFiniteVoxels(const Volume& volume, glm::ivec3 start, glm::ivec3 dims
 
 }  // namespace
 
+namespace detail {
+
+ValueRange boxValueRange(const Volume& box, glm::ivec3 start, glm::ivec3 dims, const std::string& source) {
+    requireFiniteVoxels(box, start, dims, source);
+    return box.dataRange();
+}
+
+}  // namespace detail
+
 void requireUsableGeometry(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 origin,
                            const std::optional<ValueRange>& range, const std::string& source) {
     // Values map to (v - lo) / (hi - lo): a width past the largest double maps every value to 0.
@@ -375,36 +384,31 @@ Volume readRawBox(const fs::path& path, const RawLayout& layout, const VoxelBox&
 }
 
 ValueRange rawValueRange(const fs::path& path, const RawLayout& layout, const std::string& volumeName) {
-    const std::uint64_t voxelBytes = checkedRawFile(path, layout);
+    checkedRawFile(path, layout);
     const std::size_t size = voxelSize(layout.type);
-    constexpr std::size_t kChunkVoxels = std::size_t(1) << 20;
+    const glm::ivec3 dims = layout.dims;
+    // A box of about a million voxels at a time, in the file's order: whole rows of one plane, or a run of one row
+    // where a row is longer.
+    constexpr int kChunkVoxels = 1 << 20;
+    const int runX = std::min(dims.x, kChunkVoxels), runY = runX < dims.x ? 1 : std::max(1, kChunkVoxels / dims.x);
     std::ifstream in(path, std::ios::binary);
     in.seekg(static_cast<std::streamoff>(layout.headerBytes));
     ValueRange range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     Volume chunk;
     chunk.type = layout.type;
-    for (std::uint64_t done = 0; done < voxelBytes;) {
-        const std::size_t voxels =
-            static_cast<std::size_t>(std::min<std::uint64_t>(kChunkVoxels, (voxelBytes - done) / size));
-        chunk.dims = glm::ivec3(static_cast<int>(voxels), 1, 1);
-        chunk.bytes.resize(voxels * size);
-        in.read(reinterpret_cast<char*>(chunk.bytes.data()), static_cast<std::streamsize>(chunk.bytes.size()));
-        if (!in) throw Error(path.string() + ": read failed");
-        if (layout.order != nativeByteOrder()) reverseEachVoxel(chunk.bytes, size);
-        for (std::size_t i = 0; i < voxels; ++i) {
-            const double v = chunk.value(static_cast<int>(i), 0, 0);
-            if (!std::isfinite(v)) {
-                const std::uint64_t index = done / size + i, rows = index / static_cast<std::uint64_t>(layout.dims.x);
-                const glm::ivec3 at{static_cast<int>(index % layout.dims.x), static_cast<int>(rows % layout.dims.y),
-                                    static_cast<int>(rows / layout.dims.y)};
-                throw Error(
-                    detail::nonFiniteVoxel(at, layout.dims, v, volumeName.empty() ? path.string() : volumeName));
+    const std::string source = volumeName.empty() ? path.string() : volumeName;
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; y += runY)
+            for (int x = 0; x < dims.x; x += runX) {
+                chunk.dims = glm::ivec3(std::min(runX, dims.x - x), std::min(runY, dims.y - y), 1);
+                chunk.bytes.resize(chunk.voxelCount() * size);
+                in.read(reinterpret_cast<char*>(chunk.bytes.data()), static_cast<std::streamsize>(chunk.bytes.size()));
+                if (!in) throw Error(path.string() + ": read failed");
+                if (layout.order != nativeByteOrder()) reverseEachVoxel(chunk.bytes, size);
+                const ValueRange r = detail::boxValueRange(chunk, {x, y, z}, dims, source);
+                range.lo = std::min(range.lo, r.lo);
+                range.hi = std::max(range.hi, r.hi);
             }
-            range.lo = std::min(range.lo, v);
-            range.hi = std::max(range.hi, v);
-        }
-        done += voxels * size;
-    }
     return range;
 }
 

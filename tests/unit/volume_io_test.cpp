@@ -683,3 +683,31 @@ TEST_CASE("volume io: VDB dims metadata are checked against the active voxels an
     CHECK_THROWS_WITH_AS(vri::readVdb(forged(2, 3, 2)), doctest::Contains("does not contain the active voxels"),
                          vri::Error);
 }
+
+TEST_CASE("volume io: a raw file's value range streams box by box and names a NaN by its place in the volume") {
+    TempDir dir;
+    // Whole rows of a plane a chunk (1000 x 1048 voxels, then the plane's last 452 rows), and rows longer than a
+    // chunk taken in runs (2^20 voxels, then 5): the range is the whole volume's, a NaN named in either kind.
+    for (const glm::ivec3 dims : {glm::ivec3(1000, 1500, 2), glm::ivec3((1 << 20) + 5, 1, 2)})
+        for (vri::ByteOrder order : {vri::ByteOrder::Little, vri::ByteOrder::Big}) {
+            CAPTURE(dims.x);
+            vri::Volume volume(dims, vri::VoxelType::Float32);
+            float* v = volume.data<float>();
+            for (std::size_t i = 0; i < volume.voxelCount(); ++i) v[i] = static_cast<float>(i % 977) - 300.f;
+            const glm::ivec3 low(dims.x - 1, dims.y - 1, 1), high(0, dims.y - 1, 1);  // both in a plane's last chunk
+            v[volume.index(low.x, low.y, low.z)] = -1e6f;
+            v[volume.index(high.x, high.y, high.z)] = 2e6f;
+            const fs::path path = dir / "v.raw";
+            vri::writeRaw(path, volume, order);
+            const vri::RawLayout layout{dims, vri::VoxelType::Float32, order};
+            const vri::ValueRange range = vri::rawValueRange(path, layout, "");
+            CHECK(range.lo == -1e6);
+            CHECK(range.hi == 2e6);
+            v[volume.index(dims.x - 3, dims.y - 1, 1)] = std::numeric_limits<float>::quiet_NaN();
+            vri::writeRaw(path, volume, order);
+            const std::uint64_t index = volume.index(dims.x - 3, dims.y - 1, 1);
+            checkMentions(errorOf([&] { vri::rawValueRange(path, layout, "the volume"); }),
+                          {"the volume: voxel " + std::to_string(index) + " (x " + std::to_string(dims.x - 3) + ", y " +
+                           std::to_string(dims.y - 1) + ", z 1) is nan"});
+        }
+}
