@@ -71,16 +71,15 @@ nlohmann::json toJson(const std::vector<FileDigest>& files) {
 }
 
 const std::string& FileHasher::digest(const fs::path& path) {
-    if (auto found = digests_.find(path); found != digests_.end()) return found->second;
+    if (auto found = files_.find(path); found != files_.end()) return found->second.digest;
     const std::optional<FileStamp> before = fileStamp(path);  // before the read: a write meanwhile shows later
-    if (!before) return digests_[path] = kMissing;
-    stamps_[path] = *before;
-    return digests_[path] = sha512File(path);
+    Hashed hashed{before ? sha512File(path) : kMissing, before};
+    return files_.insert_or_assign(path, std::move(hashed)).first->second.digest;
 }
 
 std::optional<FileStamp> FileHasher::stamp(const fs::path& path) const {
-    const auto found = stamps_.find(path);
-    return found == stamps_.end() ? std::nullopt : std::optional<FileStamp>(found->second);
+    const auto found = files_.find(path);
+    return found == files_.end() ? std::nullopt : found->second.stamp;
 }
 
 std::vector<std::string> stepKeys(const Plan& plan, const fs::path& toolDir, FileHasher& hasher) {

@@ -26,14 +26,14 @@ public:
     const std::string& digest(const std::filesystem::path& path);
     // The size and time the file had before digest() hashed it; nullopt when it was missing or not hashed.
     std::optional<FileStamp> stamp(const std::filesystem::path& path) const;
-    void forget(const std::filesystem::path& path) {
-        digests_.erase(path);
-        stamps_.erase(path);
-    }
+    void forget(const std::filesystem::path& path) { files_.erase(path); }
 
 private:
-    std::map<std::filesystem::path, std::string> digests_;
-    std::map<std::filesystem::path, FileStamp> stamps_;
+    struct Hashed {
+        std::string digest;
+        std::optional<FileStamp> stamp;  // nullopt for a missing file
+    };
+    std::map<std::filesystem::path, Hashed> files_;
 };
 
 // The keys of all steps of a plan, in plan order; tools are looked up in `toolDir`.
