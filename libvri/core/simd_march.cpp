@@ -882,17 +882,18 @@ HWY_INLINE void loadCornerPair(const float* v, const std::int32_t* at, std::ptrd
             second[c] = hn::ConcatUpperUpper(df, lanes4567[c], lanes0123[c]);
         }
     } else {
-        const auto corner = [&](std::ptrdiff_t at4, VF(&out)[4]) {
+        // One corner: entry l + 4 b in block b of x[l].
+        const auto corner = [&](std::ptrdiff_t next, VF(&out)[4]) {
             VF x[4];
             for (std::size_t q = 0; q < 4; ++q) {
-                const auto e = [&](std::size_t lane) { return entry(lane) + at4; };
                 if constexpr (kTableLanes == 4) {
-                    x[q] = hn::LoadU(df, e(q));
+                    x[q] = hn::LoadU(df, entry(q) + next);
                 } else {
                     const hn::Half<DF> d8;
                     const hn::Half<decltype(d8)> d4;
-                    x[q] = hn::Combine(df, hn::Combine(d8, hn::LoadU(d4, e(q + 12)), hn::LoadU(d4, e(q + 8))),
-                                       hn::Combine(d8, hn::LoadU(d4, e(q + 4)), hn::LoadU(d4, e(q))));
+                    const auto block = [&](std::size_t lane) { return hn::LoadU(d4, entry(lane) + next); };
+                    x[q] = hn::Combine(df, hn::Combine(d8, block(q + 12), block(q + 8)),
+                                       hn::Combine(d8, block(q + 4), block(q)));
                 }
             }
             transposeBlocks(x, out);
